@@ -1,0 +1,214 @@
+//! The certificate format: plain data that the search produces and the kernel replays.
+//!
+//! Nothing here checks anything: these are the statements the kernel is given as
+//! axioms ([`Axiom`]) and the proofs it is asked to replay ([`Certificate`],
+//! [`Proof`], [`Step`]), and the reasons it gives for a rejection ([`KernelError`]).
+//! Keeping the format apart keeps `kernel.rs` to its logic.
+
+use std::fmt;
+
+use crate::term::{Expr, Symbol};
+
+/// The relation a theorem, law or hypothesis states between two signals.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Rel {
+    /// `a = b`: equal at every instant.
+    Eq,
+    /// `a ⇒ b`: wherever `a` is 1, `b` is 1.
+    Implies,
+}
+
+/// A comparison between two delays in a law's side condition.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Cmp {
+    /// `≥`
+    Ge,
+    /// `>`
+    Gt,
+    /// `≤`
+    Le,
+    /// `<`
+    Lt,
+    /// `=`
+    Eq,
+}
+
+/// An axiom: a law of `theories/` (a schema over metavariables) or a ground
+/// hypothesis (a rung's equation, a bound, an `assume`; no variables).
+#[derive(Clone, Debug)]
+pub struct Axiom {
+    /// The name printed in traces (`ton_weaken`, `L06`).
+    pub name: String,
+    /// Left side (metavariables are `Term::Name`s listed below).
+    pub lhs: Expr,
+    /// `=` or `⇒`.
+    pub rel: Rel,
+    /// Right side.
+    pub rhs: Expr,
+    /// Names standing for any signal.
+    pub signal_vars: Vec<Symbol>,
+    /// Names standing for any delay.
+    pub delay_vars: Vec<Symbol>,
+    /// Side conditions on delays, checked on the instance.
+    pub delay_conditions: Vec<(Expr, Cmp, Expr)>,
+    /// Side conditions on signals: each instance must be supplied as a premise theorem.
+    pub signal_conditions: Vec<(Expr, Rel, Expr)>,
+}
+
+impl Axiom {
+    /// A ground axiom `lhs rel rhs` without variables or side conditions.
+    pub fn ground(name: impl Into<String>, lhs: Expr, rel: Rel, rhs: Expr) -> Axiom {
+        let name = name.into();
+        let (signal_vars, delay_vars) = (Vec::new(), Vec::new());
+        let (delay_conditions, signal_conditions) = (Vec::new(), Vec::new());
+        Axiom { name, lhs, rel, rhs, signal_vars, delay_vars, delay_conditions, signal_conditions }
+    }
+}
+
+/// How a cited statement `l R r` is used in one rewrite step.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Use {
+    /// Replace an instance of `l` by `r` (an `⇒` law: only at a monotone position).
+    Forward,
+    /// Replace an instance of `r` by `l` (an `⇒` law: only at an antitone position).
+    Backward,
+    /// `⇒` law `p ⇒ q` as the equation `p = p·q`, left to right.
+    Meet,
+    /// `p·q` back to `p`.
+    MeetBack,
+    /// `⇒` law `p ⇒ q` as the equation `q = q + p`, left to right.
+    Join,
+    /// `q + p` back to `q`.
+    JoinBack,
+    /// `⇒` law `p ⇒ q` as the equation `¬q = ¬q·¬p` (its contrapositive), left to right.
+    Contra,
+    /// `¬q·¬p` back to `¬q`.
+    ContraBack,
+}
+
+/// Where a cited statement comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Source {
+    /// A law of the theory.
+    Law,
+    /// A hypothesis of the context.
+    Hypothesis,
+    /// A lemma proved earlier in the same certificate.
+    Lemma,
+}
+
+/// What justifies one step.
+#[derive(Clone, Debug)]
+pub enum Rule {
+    /// A law, hypothesis or lemma, by name, and how it is used.
+    Cite(Source, String, Use),
+    /// A local case assumption `atom = value` (only at pointwise positions).
+    Case(Expr, bool),
+    /// Exact `max`/`min`/`+` of two delay literals.
+    DelayArith,
+}
+
+/// One rewrite step of a chain.
+#[derive(Clone, Debug)]
+pub struct Step {
+    /// Child indices from the root to the rewritten subterm.
+    pub path: Vec<usize>,
+    /// Why the step is valid.
+    pub rule: Rule,
+    /// The whole term after the step.
+    pub after: Expr,
+    /// The substitution the search claims (may be empty: the kernel infers it by matching).
+    pub subst: Vec<(Symbol, Expr)>,
+    /// Proofs of the law's signal side conditions, in order.
+    pub premises: Vec<Proof>,
+}
+
+/// A certificate: untrusted data that `Kernel::check` replays.
+#[derive(Clone, Debug)]
+pub enum Proof {
+    /// `start`, rewritten step by step.
+    Chain {
+        /// The first term.
+        start: Expr,
+        /// The steps.
+        steps: Vec<Step>,
+    },
+    /// Both cases of `atom` prove the same statement.
+    CaseSplit {
+        /// The split term (used only at pointwise positions).
+        atom: Expr,
+        /// The proof under `atom = 1*`.
+        one: Box<Proof>,
+        /// The proof under `atom = 0*`.
+        zero: Box<Proof>,
+    },
+    /// `b = a` from a proof of `a = b`.
+    Symm(Box<Proof>),
+    /// `a R c` from proofs of `a R b` and `b R' c` (`⇒` if either is).
+    Trans(Box<Proof>, Box<Proof>),
+    /// `a = b` from proofs of `a ⇒ b` and `b ⇒ a`.
+    Antisym(Box<Proof>, Box<Proof>),
+    /// `f ⇒ g` from a proof of `f·g = f`.
+    ImpliesByMeet(Box<Proof>),
+    /// `f ⇒ g` from a proof of `f·¬g = 0*`.
+    ImpliesByZero(Box<Proof>),
+}
+
+/// A certificate with named lemmas, checked in order before the main proof.
+#[derive(Clone, Debug, Default)]
+pub struct Certificate {
+    /// Lemmas, each usable by later lemmas and by the main proof.
+    pub lemmas: Vec<(String, Proof)>,
+    /// The proof of the goal.
+    pub main: Option<Proof>,
+}
+
+/// Why the kernel rejected a certificate. Every failure is one of these; each
+/// carries a sentence saying what was wrong.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum KernelError {
+    /// A rule name the kernel does not know.
+    UnknownRule(String),
+    /// A law or hypothesis given to `Kernel::new` is malformed.
+    BadAxiom(String),
+    /// The path does not lead to a subterm.
+    BadPath(String),
+    /// The rewritten subterm is not an instance of the rule.
+    NoMatch(String),
+    /// The claimed substitution disagrees with the instance.
+    WrongSubstitution(String),
+    /// The step changes the term outside the rewritten position.
+    WrongResult(String),
+    /// An implication or a case assumption used where it is unsound.
+    BadPosition(String),
+    /// A delay side condition is false or not decidable on the instance.
+    SideCondition(String),
+    /// A signal side condition lacks a matching premise.
+    MissingPremise(String),
+    /// The pieces of a proof do not fit together.
+    Mismatch(String),
+    /// The certificate has no main proof, or proves something else.
+    NotTheGoal(String),
+}
+
+impl fmt::Display for KernelError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        use KernelError::*;
+        let (what, detail) = match self {
+            UnknownRule(d) => ("unknown rule", d),
+            BadAxiom(d) => ("malformed axiom", d),
+            BadPath(d) => ("no subterm at the position", d),
+            NoMatch(d) => ("the instance does not match", d),
+            WrongSubstitution(d) => ("wrong substitution", d),
+            WrongResult(d) => ("wrong result", d),
+            BadPosition(d) => ("unsound position", d),
+            SideCondition(d) => ("side condition fails", d),
+            MissingPremise(d) => ("missing premise", d),
+            Mismatch(d) => ("proof pieces do not fit", d),
+            NotTheGoal(d) => ("not a proof of the goal", d),
+        };
+        write!(f, "{what}: {detail}")
+    }
+}
+
+impl std::error::Error for KernelError {}

@@ -1,0 +1,866 @@
+//! Counterexamples for ladder programs: bounded model checking over scans, confirmed by exact evaluation and by the scan simulator.
+//!
+//! # Method
+//!
+//! The property's cone of influence (the equations of every signal it reads, closed
+//! under `pre_X → X`, and the `assume` statements that touch it) is unrolled over
+//! *steps* ([`unroll`](mod@unroll)) and handed to a SAT solver (varisat), for 1, 2, … steps up
+//! to a bound (3× the longest timer plus 4 steps), asking for a violation at the last
+//! step. Inputs (and the outputs of elements the algebra cannot express) are free at
+//! each step, `pre_X` is `X` at the previous step, timers count steps.
+//!
+//! A step is `m` scans, where `m` is the greatest common divisor of every timer's
+//! delay in scans (one scan when there are no timers): inputs change only at step
+//! boundaries. This coarse grid is an abstraction (within a step the scans may
+//! differ); nothing found on it is trusted. If it finds nothing, one scan per step is
+//! tried as well when the timers are short enough.
+//!
+//! # Confirmation
+//!
+//! A candidate is expanded to one value per scan (scan `k` is the time `[(k−1)·c, k·c)`
+//! for the cycle `c`, the first scan `(0, c)`) and re-run scan by scan; the horizon is
+//! cut at the first violating scan. It is then **confirmed twice**:
+//!
+//! 1. *exactly*: the inputs become exact [`Signal`]s with breakpoints at scan
+//!    boundaries, every compiled signal is computed from its equation with
+//!    [`semantics::eval`](fn@crate::semantics::eval), every hypothesis of the cone
+//!    (equations, bounds, assumptions) is checked on the whole horizon, `pre_X` is
+//!    checked to be `X` one cycle earlier at every scan instant, and the property must
+//!    fail at the violating scan's instant;
+//! 2. *by the scan simulator* ([`Simulator`]): the same inputs, one `step` per scan,
+//!    and the property (its timers read per scan) must fail at some scan.
+//!
+//! Only then is the result a [`Verdict::Refuted`]. A candidate that passes the first
+//! check only is a [`Verdict::Unconfirmed`], with the rung whose abstraction is
+//! responsible (the first signal on which the equations and the PLC part).
+//!
+//! Timer quantisation: the search times a `d` timer as the algebra does (`d/f` turns
+//! on at the `(N+1)`-th scan, `N = d / c`); an LDmicro 0.1 timer (`P = N − 1`) fires one
+//! scan earlier in the simulator. The simulator only has to show *some* violating
+//! scan, so this one-scan difference is tolerated, never hidden.
+#![warn(missing_docs)]
+
+pub mod unroll;
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::time::Instant;
+
+use num_integer::Integer;
+use num_traits::ToPrimitive;
+
+use crate::kernel::{Axiom, Rel};
+use crate::ladder::{CompiledProgram, HypothesisKind, LdProgram, SignalKind, Simulator};
+use crate::prover::Obligation;
+use crate::semantics::falsify::violation;
+use crate::semantics::{Assignment, Signal, Time, eval, format_time};
+use crate::term::{Delay, Expr, Symbol, Term, root};
+use crate::theory::sample_relation;
+use unroll::{Bits, Cnf, Concrete, Model, unroll, violated};
+
+/// Limits of one search.
+#[derive(Clone, Copy, Debug)]
+pub struct Limits {
+    /// Give up after this instant.
+    pub deadline: Instant,
+    /// At most this many steps on a grid.
+    pub max_steps: usize,
+    /// At most this many scans in a candidate.
+    pub max_scans: usize,
+}
+
+/// Input values scan by scan.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ScanTrace {
+    /// The scan cycle, in seconds.
+    pub cycle: Time,
+    /// Number of scans.
+    pub scans: usize,
+    /// Per free name (inputs and unconstrained element outputs): one value a scan.
+    pub values: BTreeMap<String, Vec<bool>>,
+}
+
+impl ScanTrace {
+    /// The instant that stands for scan `k` (0-based): `k·c`, or `c/2` for the first.
+    pub fn instant(&self, k: usize) -> Time {
+        if k == 0 {
+            &self.cycle / Time::from_integer(2.into())
+        } else {
+            &self.cycle * Time::from_integer(k.into())
+        }
+    }
+
+    /// The horizon `scans · c`.
+    pub fn horizon(&self) -> Time {
+        &self.cycle * Time::from_integer(self.scans.into())
+    }
+
+    /// Per-scan values as an exact signal, constant on each `[k·c, (k+1)·c)`.
+    pub fn signal(&self, values: &[bool]) -> Result<Signal, String> {
+        let first = values.first().copied().unwrap_or(false);
+        let mut changes = Vec::new();
+        for k in 1..self.scans.min(values.len()) {
+            if values[k] != values[k - 1] {
+                changes.push((&self.cycle * Time::from_integer(k.into()), values[k]));
+            }
+        }
+        Signal::from_steps(self.horizon(), first, &changes)
+    }
+
+    fn truncate(&mut self, scans: usize) {
+        self.scans = scans.min(self.scans);
+        for v in self.values.values_mut() {
+            v.truncate(self.scans);
+        }
+    }
+
+    fn changes(&self) -> usize {
+        self.values.values().map(|v| v.windows(2).filter(|w| w[0] != w[1]).count()).sum()
+    }
+}
+
+/// A counterexample with the evidence that confirms it.
+#[derive(Clone, Debug)]
+pub struct Counterexample {
+    /// The inputs, scan by scan.
+    pub trace: ScanTrace,
+    /// Every signal of the cone, exactly (inputs, previous values, computed signals).
+    pub assignment: Assignment,
+    /// The instant where the property fails (the violating scan's instant).
+    pub time: Time,
+    /// The violating scan (1-based) in the exact evaluation.
+    pub scan: usize,
+    /// The left side's value there.
+    pub lhs: bool,
+    /// The right side's value there.
+    pub rhs: bool,
+    /// The first scan (1-based) where the scan simulator violates the property.
+    pub simulator_scan: Option<usize>,
+    /// Names of the inputs (not unconstrained element outputs).
+    pub inputs: BTreeSet<String>,
+}
+
+/// The end of a search.
+#[derive(Clone, Debug)]
+pub enum Verdict {
+    /// Confirmed by exact evaluation and by the scan simulator.
+    Refuted(Box<Counterexample>),
+    /// Confirmed exactly, but the simulator does not reproduce it; `why` names the rung.
+    Unconfirmed {
+        /// The candidate.
+        candidate: Box<Counterexample>,
+        /// Which rung's abstraction is responsible, and how.
+        why: String,
+    },
+    /// Nothing found within the limits.
+    NotFound(String),
+}
+
+/// The program a property is about.
+pub struct Program<'a> {
+    /// The LDmicro program (for the simulator).
+    pub ld: &'a LdProgram,
+    /// Its compiled equations.
+    pub compiled: &'a CompiledProgram,
+    /// The `assume` statements.
+    pub assumptions: &'a [Axiom],
+}
+
+fn names_of(e: &Expr, into: &mut BTreeSet<String>) {
+    for node in e.as_ref() {
+        if let Term::Name(n) = node {
+            into.insert(n.as_str().to_string());
+        }
+    }
+}
+
+impl Program<'_> {
+    /// The cone of `terms`: equations in scan order, `pre_` names, assumptions touching it.
+    pub fn model(&self, terms: &[&Expr]) -> Model {
+        let mut reached = BTreeSet::new();
+        for t in terms {
+            names_of(t, &mut reached);
+        }
+        let defs_all: Vec<(String, &Expr)> = self
+            .compiled
+            .hypotheses
+            .iter()
+            .filter(|h| h.kind == HypothesisKind::Equation && h.rel == Rel::Eq)
+            .filter_map(|h| match &h.lhs[root(&h.lhs)] {
+                Term::Name(n) => Some((n.as_str().to_string(), &h.rhs)),
+                _ => None,
+            })
+            .collect();
+        let mut taken_a = vec![false; self.assumptions.len()];
+        loop {
+            let before = reached.len();
+            for (n, kind) in &self.compiled.signals {
+                if let SignalKind::Previous { of } = kind
+                    && reached.contains(n)
+                {
+                    reached.insert(of.clone());
+                }
+            }
+            for (name, rhs) in &defs_all {
+                if reached.contains(name) {
+                    names_of(rhs, &mut reached);
+                }
+            }
+            for (i, a) in self.assumptions.iter().enumerate() {
+                let mut m = BTreeSet::new();
+                names_of(&a.lhs, &mut m);
+                names_of(&a.rhs, &mut m);
+                if !taken_a[i] && m.iter().any(|n| reached.contains(n)) {
+                    taken_a[i] = true;
+                    reached.extend(m);
+                }
+            }
+            if reached.len() == before {
+                break;
+            }
+        }
+        let pre = self
+            .compiled
+            .signals
+            .iter()
+            .filter_map(|(n, k)| match k {
+                SignalKind::Previous { of } => Some((n.clone(), of.clone())),
+                _ => None,
+            })
+            .collect();
+        Model {
+            defs: defs_all
+                .into_iter()
+                .filter(|(n, _)| reached.contains(n))
+                .map(|(n, e)| (n, e.clone()))
+                .collect(),
+            pre,
+            constraints: self
+                .assumptions
+                .iter()
+                .zip(&taken_a)
+                .filter(|(_, t)| **t)
+                .map(|(a, _)| (a.lhs.clone(), a.rel, a.rhs.clone()))
+                .collect(),
+        }
+    }
+
+    fn cycle(&self) -> Option<Time> {
+        (self.ld.cycle_us > 0).then(|| Time::new(self.ld.cycle_us.into(), 1_000_000u64.into()))
+    }
+}
+
+/// The delay of `d` in units of `unit`, if it is a whole number of them.
+fn whole(d: &Delay, unit: &Time) -> Option<usize> {
+    let q = d.seconds() / unit;
+    q.is_integer().then(|| q.to_integer().to_usize()).flatten()
+}
+
+/// A timer's delay in scans: `d / c` rounded down, as the search counts it.
+fn scans_of(d: &Delay, cycle: &Time) -> Option<usize> {
+    (d.seconds() / cycle).floor().to_integer().to_usize()
+}
+
+/// Looks for a counterexample of `goal` on `program`, confirmed twice.
+pub fn refute(program: &Program, goal: &Obligation, limits: Limits) -> Verdict {
+    let Some(cycle) = program.cycle() else {
+        return Verdict::NotFound("the program has a zero cycle time".into());
+    };
+    let model = program.model(&[&goal.lhs, &goal.rhs]);
+    let delays = model.delays([&goal.lhs, &goal.rhs].into_iter());
+    let scans: Vec<usize> = delays.iter().filter_map(|d| scans_of(d, &cycle)).collect();
+    let exact_grid = delays.iter().all(|d| whole(d, &cycle).is_some());
+    let m = if exact_grid { scans.iter().fold(0usize, |g, n| g.gcd(n)).max(1) } else { 1 };
+    let longest = scans.iter().copied().max().unwrap_or(0);
+    let mut grids = vec![m];
+    if m > 1 && longest <= 64 {
+        grids.push(1);
+    }
+    let mut unconfirmed: Option<(Box<Counterexample>, String)> = None;
+    let mut tried = 0usize;
+    let mut checked = 0usize;
+    for grid in grids {
+        let k_max = (3 * longest / grid + 4).min(limits.max_steps);
+        if k_max * grid > limits.max_scans {
+            continue;
+        }
+        checked = checked.max(k_max * grid);
+        let steps_of = |d: &Delay| scans_of(d, &cycle).map(|n| n / grid);
+        for k in 1..=k_max {
+            if Instant::now() > limits.deadline {
+                break;
+            }
+            let Some(step_trace) = bmc(&model, goal, k, &steps_of) else { continue };
+            tried += 1;
+            let mut trace =
+                ScanTrace { cycle: cycle.clone(), scans: k * grid, values: BTreeMap::new() };
+            for (name, v) in step_trace {
+                trace
+                    .values
+                    .insert(name, v.iter().flat_map(|b| std::iter::repeat_n(*b, grid)).collect());
+            }
+            match judge(program, &model, goal, trace, &cycle, limits) {
+                Ok(Judged::Both(c)) => return Verdict::Refuted(c),
+                Ok(Judged::ExactOnly(c, why)) => {
+                    if unconfirmed.is_none() {
+                        unconfirmed = Some((c, why));
+                    }
+                }
+                Err(_) => {}
+            }
+        }
+    }
+    match unconfirmed {
+        Some((candidate, why)) => Verdict::Unconfirmed { candidate, why },
+        None => Verdict::NotFound(format!(
+            "bounded model checking found no counterexample in runs of up to {checked} scans ({} s; {tried} candidates rejected)",
+            format_time(&(&cycle * Time::from_integer(checked.into())))
+        )),
+    }
+}
+
+/// One SAT query: a run of `k` steps violating the goal at the last one, as free values.
+fn bmc(
+    model: &Model,
+    goal: &Obligation,
+    k: usize,
+    steps_of: &dyn Fn(&Delay) -> Option<usize>,
+) -> Option<BTreeMap<String, Vec<bool>>> {
+    let mut cnf = Cnf::new();
+    let mut free: BTreeMap<String, Vec<varisat::Lit>> = BTreeMap::new();
+    let u = unroll(&mut cnf, model, &[&goal.lhs, &goal.rhs], k, steps_of, &mut |b, name, _| {
+        let l = b.fresh();
+        free.entry(name.to_string()).or_default().push(l);
+        l
+    })
+    .ok()?;
+    for (c, (l, r)) in model.constraints.iter().zip(&u.constraints) {
+        for s in 0..k {
+            let v = violated(&mut cnf, c.1, &l[s], &r[s]);
+            cnf.require(!v);
+        }
+    }
+    let v = violated(&mut cnf, goal.rel, &u.extra[0][k - 1], &u.extra[1][k - 1]);
+    cnf.require(v);
+    let model_lits = cnf.solve(&[])?;
+    Some(
+        free.into_iter()
+            .map(|(n, ls)| (n, ls.iter().map(|l| model_lits.contains(l)).collect()))
+            .collect(),
+    )
+}
+
+/// Per signal name, one value a scan.
+type Values = BTreeMap<String, Vec<bool>>;
+
+/// The scan-by-scan run of the equations: every signal, the goal's sides, constraints.
+struct Run {
+    signals: BTreeMap<String, Vec<bool>>,
+    lhs: Vec<bool>,
+    rhs: Vec<bool>,
+    constraints_hold: bool,
+}
+
+fn run_scans(model: &Model, goal: &Obligation, trace: &ScanTrace) -> Result<Run, String> {
+    let cycle = trace.cycle.clone();
+    let u = unroll(
+        &mut Concrete,
+        model,
+        &[&goal.lhs, &goal.rhs],
+        trace.scans,
+        &|d| scans_of(d, &cycle),
+        &mut |_, name, k| trace.values.get(name).and_then(|v| v.get(k)).copied().unwrap_or(false),
+    )?;
+    let constraints_hold = model
+        .constraints
+        .iter()
+        .zip(&u.constraints)
+        .all(|(c, (l, r))| l.iter().zip(r).all(|(a, b)| !violated(&mut Concrete, c.1, a, b)));
+    let mut it = u.extra.into_iter();
+    let lhs = it.next().unwrap_or_default();
+    let rhs = it.next().unwrap_or_default();
+    Ok(Run { signals: u.signals, lhs, rhs, constraints_hold })
+}
+
+fn first_violation(goal: &Obligation, run: &Run) -> Option<usize> {
+    (0..run.lhs.len()).find(|&k| violated(&mut Concrete, goal.rel, &run.lhs[k], &run.rhs[k]))
+}
+
+/// The scan simulator's run on the trace: the first violating scan (0-based), and per
+/// scan the value of every defined signal of the model.
+fn simulate(
+    program: &Program,
+    model: &Model,
+    goal: &Obligation,
+    trace: &ScanTrace,
+) -> Result<(Option<usize>, Values), String> {
+    let mut sim = Simulator::new(program.ld);
+    // The program's inputs, and free names of the `.ii` files the program does not know.
+    let mut inputs: Vec<&String> = program
+        .compiled
+        .signals
+        .iter()
+        .filter(|(_, k)| matches!(k, SignalKind::Input))
+        .map(|(n, _)| n)
+        .collect();
+    inputs.extend(trace.values.keys().filter(|n| !program.compiled.signals.contains_key(*n)));
+    let mut read = BTreeSet::new();
+    names_of(&goal.lhs, &mut read);
+    names_of(&goal.rhs, &mut read);
+    for (l, _, r) in &model.constraints {
+        names_of(l, &mut read);
+        names_of(r, &mut read);
+    }
+    let mut watched: BTreeSet<String> = model.defs.iter().map(|(n, _)| n.clone()).collect();
+    for n in &read {
+        match program.compiled.signals.get(n) {
+            Some(SignalKind::Previous { of }) => {
+                watched.insert(of.clone());
+            }
+            Some(k) if k.is_unconstrained() => {
+                return Err(format!(
+                    "the property reads `{n}`, which the simulator does not compute"
+                ));
+            }
+            _ => {
+                watched.insert(n.clone());
+            }
+        }
+    }
+    let mut seen: BTreeMap<String, Vec<bool>> = BTreeMap::new();
+    for k in 0..trace.scans {
+        let step: BTreeMap<String, bool> = inputs
+            .iter()
+            .map(|n| {
+                (
+                    (*n).clone(),
+                    trace.values.get(*n).and_then(|v| v.get(k)).copied().unwrap_or(false),
+                )
+            })
+            .collect();
+        sim.step(&step);
+        for n in &watched {
+            if !sim.is_known(n) {
+                return Err(format!("the simulator does not model what `{n}` depends on"));
+            }
+            seen.entry(n.clone()).or_default().push(sim.bit(n));
+        }
+    }
+    // The property (and the assumptions) on the simulator's values.
+    let cycle = trace.cycle.clone();
+    let u = unroll(
+        &mut Concrete,
+        &Model { defs: Vec::new(), pre: BTreeMap::new(), constraints: model.constraints.clone() },
+        &[&goal.lhs, &goal.rhs],
+        trace.scans,
+        &|d| scans_of(d, &cycle),
+        &mut |_, name, k| {
+            if let Some(v) = seen.get(name) {
+                return v.get(k).copied().unwrap_or(false);
+            }
+            if let Some(of) = model.pre.get(name) {
+                return k > 0 && seen.get(of).and_then(|v| v.get(k - 1)).copied().unwrap_or(false);
+            }
+            trace.values.get(name).and_then(|v| v.get(k)).copied().unwrap_or(false)
+        },
+    )?;
+    let mut first = None;
+    for k in 0..trace.scans {
+        let assumptions_hold = model
+            .constraints
+            .iter()
+            .zip(&u.constraints)
+            .all(|(c, (l, r))| !violated(&mut Concrete, c.1, &l[k], &r[k]));
+        if !assumptions_hold {
+            break;
+        }
+        if violated(&mut Concrete, goal.rel, &u.extra[0][k], &u.extra[1][k]) {
+            first = Some(k);
+            break;
+        }
+    }
+    Ok((first, seen))
+}
+
+/// Exact confirmation: every hypothesis of the cone holds on the whole horizon, `pre_X`
+/// is `X` one cycle earlier at every scan instant, the goal fails at scan `v`.
+fn exact(
+    model: &Model,
+    goal: &Obligation,
+    trace: &ScanTrace,
+    run: &Run,
+    v: usize,
+) -> Result<(Assignment, bool, bool), String> {
+    let mut env = Assignment::new(trace.horizon());
+    let defined: BTreeSet<&str> = model.defs.iter().map(|(n, _)| n.as_str()).collect();
+    for (name, values) in &run.signals {
+        if !defined.contains(name.as_str()) {
+            env.signals.insert(Symbol::from(name.as_str()), trace.signal(values)?);
+        }
+    }
+    for (name, rhs) in &model.defs {
+        let s = eval(rhs, &env).map_err(|e| e.to_string())?;
+        env.signals.insert(Symbol::from(name.as_str()), s);
+    }
+    for (l, rel, r) in &model.constraints {
+        let (a, b) =
+            (eval(l, &env).map_err(|e| e.to_string())?, eval(r, &env).map_err(|e| e.to_string())?);
+        if let Some(t) = violation(&a, sample_relation(*rel), &b) {
+            return Err(format!("an assumption fails at t = {}", format_time(&t)));
+        }
+    }
+    for (pre, of) in &model.pre {
+        let (Some(p), Some(x)) = (
+            env.signals.get(&Symbol::from(pre.as_str())),
+            env.signals.get(&Symbol::from(of.as_str())),
+        ) else {
+            continue;
+        };
+        for k in 0..trace.scans {
+            let expected = k > 0 && x.value_at(&trace.instant(k - 1));
+            if p.value_at(&trace.instant(k)) != expected {
+                return Err(format!("`{pre}` is not `{of}` one cycle earlier at scan {}", k + 1));
+            }
+        }
+    }
+    let l = eval(&goal.lhs, &env).map_err(|e| e.to_string())?;
+    let r = eval(&goal.rhs, &env).map_err(|e| e.to_string())?;
+    let t = trace.instant(v);
+    let (a, b) = (l.value_at(&t), r.value_at(&t));
+    if !violated(&mut Concrete, goal.rel, &a, &b) {
+        return Err("the exact evaluation does not show the violation".into());
+    }
+    Ok((env, a, b))
+}
+
+/// Checks a compiled hypothesis set on the exact signals (every equation and bound).
+fn hypotheses_hold(program: &Program, env: &Assignment) -> bool {
+    program.compiled.hypotheses.iter().all(|h| {
+        let mut names = BTreeSet::new();
+        names_of(&h.lhs, &mut names);
+        names_of(&h.rhs, &mut names);
+        if !names.iter().all(|n| env.signals.contains_key(&Symbol::from(n.as_str()))) {
+            return true; // outside the cone
+        }
+        match (eval(&h.lhs, env), eval(&h.rhs, env)) {
+            (Ok(a), Ok(b)) => violation(&a, sample_relation(h.rel), &b).is_none(),
+            _ => false,
+        }
+    })
+}
+
+enum Judged {
+    Both(Box<Counterexample>),
+    ExactOnly(Box<Counterexample>, String),
+}
+
+/// Checks (discretely) that a trace still violates the goal; the first violating scan.
+fn discrete_violation(model: &Model, goal: &Obligation, trace: &ScanTrace) -> Option<usize> {
+    let run = run_scans(model, goal, trace).ok()?;
+    if !run.constraints_hold {
+        return None;
+    }
+    first_violation(goal, &run)
+}
+
+fn judge(
+    program: &Program,
+    model: &Model,
+    goal: &Obligation,
+    mut trace: ScanTrace,
+    cycle: &Time,
+    limits: Limits,
+) -> Result<Judged, String> {
+    let v = discrete_violation(model, goal, &trace).ok_or("no violation scan by scan")?;
+    trace.truncate(v + 1);
+    let sim_ok = |t: &ScanTrace| matches!(simulate(program, model, goal, t), Ok((Some(_), _)));
+    let with_sim = sim_ok(&trace);
+    let keep =
+        |t: &ScanTrace| discrete_violation(model, goal, t).is_some() && (!with_sim || sim_ok(t));
+    minimise(&mut trace, &keep, limits);
+    let v = discrete_violation(model, goal, &trace).ok_or("lost the violation")?;
+    trace.truncate(v + 1);
+    let run = run_scans(model, goal, &trace)?;
+    let (assignment, lhs, rhs) = exact(model, goal, &trace, &run, v)?;
+    if !hypotheses_hold(program, &assignment) {
+        return Err("a compiled hypothesis fails on the exact signals".into());
+    }
+    let inputs = program
+        .compiled
+        .signals
+        .iter()
+        .filter(|(_, k)| matches!(k, SignalKind::Input))
+        .map(|(n, _)| n.clone())
+        .collect();
+    let _ = cycle;
+    let mut cex = Counterexample {
+        time: trace.instant(v),
+        scan: v + 1,
+        lhs,
+        rhs,
+        simulator_scan: None,
+        assignment,
+        inputs,
+        trace,
+    };
+    match simulate(program, model, goal, &cex.trace) {
+        Ok((Some(s), _)) => {
+            cex.simulator_scan = Some(s + 1);
+            Ok(Judged::Both(Box::new(cex)))
+        }
+        Ok((None, seen)) => {
+            let why = responsible(program, &run, &seen, &cex.trace);
+            Ok(Judged::ExactOnly(Box::new(cex), why))
+        }
+        Err(e) => {
+            Ok(Judged::ExactOnly(Box::new(cex), format!("the scan simulator cannot check it: {e}")))
+        }
+    }
+}
+
+/// The first signal (scan, then program order) on which the equations and the PLC part,
+/// and the rung that computes it.
+fn responsible(
+    program: &Program,
+    run: &Run,
+    seen: &BTreeMap<String, Vec<bool>>,
+    trace: &ScanTrace,
+) -> String {
+    for k in 0..trace.scans {
+        for h in &program.compiled.hypotheses {
+            let Term::Name(n) = &h.lhs[root(&h.lhs)] else { continue };
+            if h.kind != HypothesisKind::Equation {
+                continue;
+            }
+            let (Some(a), Some(b)) = (run.signals.get(n.as_str()), seen.get(n.as_str())) else {
+                continue;
+            };
+            if a.get(k) != b.get(k) {
+                let mut names = BTreeSet::new();
+                names_of(&h.rhs, &mut names);
+                let loose: Vec<String> = names
+                    .iter()
+                    .filter(|m| {
+                        program.compiled.signals.get(*m).is_some_and(|s| s.is_unconstrained())
+                    })
+                    .cloned()
+                    .collect();
+                let reads = if loose.is_empty() {
+                    String::new()
+                } else {
+                    format!("; its equation reads the unconstrained {}", loose.join(", "))
+                };
+                return format!(
+                    "the scan simulator does not reproduce it: at scan {} `{n}` is {} by the equations but {} in the PLC — rung {} ({}) is responsible{reads}",
+                    k + 1,
+                    a.get(k).copied().unwrap_or(false) as u8,
+                    b.get(k).copied().unwrap_or(false) as u8,
+                    h.rung,
+                    h.name
+                );
+            }
+        }
+    }
+    let fresh: Vec<String> = program
+        .compiled
+        .signals
+        .iter()
+        .filter_map(|(n, k)| match k {
+            SignalKind::Fresh { rung, element } | SignalKind::Unmodelled { rung, element }
+                if trace.values.contains_key(n) =>
+            {
+                Some(format!("`{n}` ({element}, rung {rung})"))
+            }
+            _ => None,
+        })
+        .collect();
+    if fresh.is_empty() {
+        "the scan simulator does not reproduce it (timer quantisation: the PLC's timers count scans)".into()
+    } else {
+        format!(
+            "the scan simulator does not reproduce it: it depends on the unconstrained {}",
+            fresh.join(", ")
+        )
+    }
+}
+
+/// Fewer signals, fewer changes, a shorter horizon, while `keep` holds.
+fn minimise(trace: &mut ScanTrace, keep: &dyn Fn(&ScanTrace) -> bool, limits: Limits) {
+    let names: Vec<String> = trace.values.keys().cloned().collect();
+    // Signals: constant 0, else constant 1.
+    for n in &names {
+        for c in [false, true] {
+            if Instant::now() > limits.deadline {
+                return;
+            }
+            let mut t = trace.clone();
+            t.values.insert(n.clone(), vec![c; t.scans]);
+            if t.values.get(n) != trace.values.get(n) && keep(&t) {
+                *trace = t;
+                break;
+            }
+        }
+    }
+    // Changes: extend the previous value over the next run, or the next value back.
+    let mut improved = true;
+    while improved && Instant::now() <= limits.deadline {
+        improved = false;
+        'outer: for n in &names {
+            let Some(v) = trace.values.get(n).cloned() else { continue };
+            for p in 1..v.len() {
+                if v[p] == v[p - 1] {
+                    continue;
+                }
+                let mut forward = v.clone();
+                let mut j = p;
+                while j < v.len() && v[j] == v[p] {
+                    forward[j] = v[p - 1];
+                    j += 1;
+                }
+                let mut backward = v.clone();
+                let mut j = p;
+                while j > 0 && v[j - 1] == v[p - 1] {
+                    backward[j - 1] = v[p];
+                    j -= 1;
+                }
+                for cand in [forward, backward] {
+                    let mut t = trace.clone();
+                    t.values.insert(n.clone(), cand);
+                    if t.changes() < trace.changes() && keep(&t) {
+                        *trace = t;
+                        improved = true;
+                        break 'outer;
+                    }
+                }
+            }
+        }
+    }
+    // Horizon: shorten each stretch on which nothing changes.
+    let mut improved = true;
+    while improved && Instant::now() <= limits.deadline {
+        improved = false;
+        let cuts: Vec<usize> =
+            (1..trace.scans).filter(|&k| trace.values.values().any(|v| v[k] != v[k - 1])).collect();
+        let mut bounds = vec![0];
+        bounds.extend(cuts);
+        bounds.push(trace.scans);
+        for w in bounds.windows(2) {
+            let (a, b) = (w[0], w[1]);
+            let len = b - a;
+            for keep_len in [1, len / 2] {
+                if keep_len == 0 || keep_len >= len {
+                    continue;
+                }
+                let mut t = trace.clone();
+                for v in t.values.values_mut() {
+                    v.drain(a + keep_len..b);
+                }
+                t.scans -= len - keep_len;
+                if keep(&t) {
+                    *trace = t;
+                    improved = true;
+                    break;
+                }
+            }
+            if improved {
+                break;
+            }
+        }
+    }
+}
+
+/// What the hypotheses force, found by bounded search over scans.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Vacuity {
+    /// No run satisfies the assumptions (bounded: the first `steps` steps).
+    pub inconsistent: bool,
+    /// Signals the property reads that every bounded run holds constant.
+    pub constants: Vec<(String, bool)>,
+    /// The horizon checked, in seconds.
+    pub horizon: Option<Time>,
+}
+
+/// The model unrolled symbolically over `k` steps of `grid` scans, the constraints
+/// required at every step; the values of the names in `read`, per step.
+fn bounded(
+    model: &Model,
+    read: &[String],
+    cycle: &Time,
+    grid: usize,
+    k: usize,
+) -> Option<(Cnf, Vec<Vec<varisat::Lit>>)> {
+    let exprs: Vec<Expr> = read.iter().map(|n| crate::term::name(n)).collect();
+    let refs: Vec<&Expr> = exprs.iter().collect();
+    let steps_of = |d: &Delay| scans_of(d, cycle).map(|n| n / grid);
+    let mut cnf = Cnf::new();
+    let u = unroll(&mut cnf, model, &refs, k, &steps_of, &mut |b, _, _| b.fresh()).ok()?;
+    for (c, (l, r)) in model.constraints.iter().zip(&u.constraints) {
+        for s in 0..k {
+            let v = violated(&mut cnf, c.1, &l[s], &r[s]);
+            cnf.require(!v);
+        }
+    }
+    Some((cnf, u.extra))
+}
+
+/// The constant value `values` has in every model of `cnf`, if any.
+fn forced(cnf: &mut Cnf, values: &[varisat::Lit]) -> Option<bool> {
+    let some_one = cnf.or_all(values);
+    let negs: Vec<varisat::Lit> = values.iter().map(|v| !*v).collect();
+    let some_zero = cnf.or_all(&negs);
+    if cnf.solve(&[some_one]).is_none() {
+        Some(false)
+    } else if cnf.solve(&[some_zero]).is_none() {
+        Some(true)
+    } else {
+        None
+    }
+}
+
+/// Whether some scan-by-scan run satisfies the assumptions (over the first scans:
+/// up to 3× the longest timer plus 4, at most 64), and which signals `terms` read are
+/// forced to a constant. A constant is reported only when it holds on runs covering 3×
+/// the longest timer (on the step grid of [`refute`], at most 64 steps) *and* on the
+/// scan grid; both checks are bounded.
+pub fn vacuity(program: &Program, terms: &[&Expr]) -> Vacuity {
+    let Some(cycle) = program.cycle() else { return Vacuity::default() };
+    let model = program.model(terms);
+    let delays = model.delays(terms.iter().copied());
+    let scans: Vec<usize> = delays.iter().filter_map(|d| scans_of(d, &cycle)).collect();
+    let grid = scans.iter().fold(0usize, |g, n| g.gcd(n)).max(1);
+    let exact_grid = delays.iter().all(|d| whole(d, &cycle).is_some());
+    let grid = if exact_grid { grid } else { 1 };
+    let longest = scans.iter().copied().max().unwrap_or(0);
+    let mut read = BTreeSet::new();
+    for t in terms {
+        names_of(t, &mut read);
+    }
+    let read: Vec<String> = read.into_iter().collect();
+    const MAX_STEPS: usize = 64;
+    // Consistency, scan by scan: a statement about every PLC run.
+    let k_scans = (3 * longest + 4).min(MAX_STEPS);
+    let Some((mut fine, fine_values)) = bounded(&model, &read, &cycle, 1, k_scans) else {
+        return Vacuity::default();
+    };
+    if fine.solve(&[]).is_none() {
+        let horizon = Some(&cycle * Time::from_integer(k_scans.into()));
+        return Vacuity { inconsistent: true, constants: Vec::new(), horizon };
+    }
+    // Constants: runs long enough for every timer, confirmed scan by scan.
+    let k = 3 * longest / grid + 4;
+    if k > MAX_STEPS {
+        return Vacuity::default();
+    }
+    let Some((mut coarse, coarse_values)) = bounded(&model, &read, &cycle, grid, k) else {
+        return Vacuity::default();
+    };
+    let mut constants = Vec::new();
+    for ((n, c), f) in read.iter().zip(&coarse_values).zip(&fine_values) {
+        if let Some(v) = forced(&mut coarse, c)
+            && forced(&mut fine, f) == Some(v)
+        {
+            constants.push((n.clone(), v));
+        }
+    }
+    let horizon = Some(&cycle * Time::from_integer((k * grid).into()));
+    Vacuity { inconsistent: false, constants, horizon }
+}

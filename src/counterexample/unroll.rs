@@ -1,0 +1,411 @@
+//! A compiled program unrolled over discrete steps, concretely (`bool`) or symbolically (SAT literals).
+//!
+//! One step is a stretch `[(k−1)·g, k·g)` of time (the first one `(0, g)`) on which every
+//! input is constant. The equations are evaluated step by step in program order:
+//! `·, +, ¬` pointwise, `SR(s, r)`: `Q := s + Q·¬r`, `RS(s, r)`: `Q := (s + Q)·¬r` (from
+//! 0), `d/f` with `d = N·g`: `f` true at each of the steps `k−N … k` (and `k > N`),
+//! `f/d`: `f` true at one of the steps `k−N … k`. For inputs constant on the steps this
+//! is exactly the II algebra (`semantics.md`) sampled once per step. `pre_X` is `X` at
+//! the previous step (0 at the first): the scan cycle's meaning when a step is a scan.
+#![warn(missing_docs)]
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use varisat::{ExtendFormula, Lit, Solver};
+
+use crate::kernel::Rel;
+use crate::semantics::{Assignment, Time, eval_delay};
+use crate::term::{Delay, Expr, Id, Term};
+
+/// Boolean operations over some kind of value (a `bool`, a SAT literal).
+pub trait Bits {
+    /// A value.
+    type V: Clone;
+    /// A constant.
+    fn konst(&mut self, b: bool) -> Self::V;
+    /// Negation.
+    fn not(&mut self, a: &Self::V) -> Self::V;
+    /// Conjunction of all.
+    fn and_all(&mut self, xs: &[Self::V]) -> Self::V;
+    /// Disjunction of all.
+    fn or_all(&mut self, xs: &[Self::V]) -> Self::V;
+}
+
+/// Plain Booleans.
+pub struct Concrete;
+
+impl Bits for Concrete {
+    type V = bool;
+    fn konst(&mut self, b: bool) -> bool {
+        b
+    }
+    fn not(&mut self, a: &bool) -> bool {
+        !a
+    }
+    fn and_all(&mut self, xs: &[bool]) -> bool {
+        xs.iter().all(|x| *x)
+    }
+    fn or_all(&mut self, xs: &[bool]) -> bool {
+        xs.iter().any(|x| *x)
+    }
+}
+
+/// A SAT formula under construction (Tseitin encoding, constants folded).
+pub struct Cnf {
+    /// The solver holding the clauses.
+    pub solver: Solver<'static>,
+    truth: Lit,
+}
+
+impl Default for Cnf {
+    fn default() -> Self {
+        Cnf::new()
+    }
+}
+
+impl Cnf {
+    /// An empty formula.
+    pub fn new() -> Cnf {
+        let mut solver = Solver::new();
+        let truth = solver.new_lit();
+        solver.add_clause(&[truth]);
+        Cnf { solver, truth }
+    }
+
+    /// A fresh unconstrained literal.
+    pub fn fresh(&mut self) -> Lit {
+        self.solver.new_lit()
+    }
+
+    /// Adds `a → b`.
+    pub fn imply(&mut self, a: Lit, b: Lit) {
+        self.solver.add_clause(&[!a, b]);
+    }
+
+    /// Adds the clause `a`.
+    pub fn require(&mut self, a: Lit) {
+        self.solver.add_clause(&[a]);
+    }
+
+    /// Solves under assumptions; `Some(true literals)` when satisfiable.
+    pub fn solve(&mut self, assumptions: &[Lit]) -> Option<BTreeSet<Lit>> {
+        self.solver.assume(assumptions);
+        match self.solver.solve() {
+            Ok(true) => self.solver.model().map(|m| m.into_iter().collect()),
+            _ => None,
+        }
+    }
+}
+
+impl Bits for Cnf {
+    type V = Lit;
+    fn konst(&mut self, b: bool) -> Lit {
+        if b { self.truth } else { !self.truth }
+    }
+    fn not(&mut self, a: &Lit) -> Lit {
+        !*a
+    }
+    fn and_all(&mut self, xs: &[Lit]) -> Lit {
+        let mut kept: Vec<Lit> = Vec::new();
+        for x in xs {
+            if *x == !self.truth {
+                return !self.truth;
+            }
+            if *x != self.truth && !kept.contains(x) {
+                kept.push(*x);
+            }
+        }
+        match kept.len() {
+            0 => self.truth,
+            1 => kept[0],
+            _ => {
+                let z = self.solver.new_lit();
+                let mut long = vec![z];
+                for x in &kept {
+                    self.solver.add_clause(&[!z, *x]);
+                    long.push(!*x);
+                }
+                self.solver.add_clause(&long);
+                z
+            }
+        }
+    }
+    fn or_all(&mut self, xs: &[Lit]) -> Lit {
+        let negated: Vec<Lit> = xs.iter().map(|x| !*x).collect();
+        !self.and_all(&negated)
+    }
+}
+
+/// What is unrolled: equations in evaluation order, previous-value names, side terms.
+#[derive(Clone, Debug, Default)]
+pub struct Model {
+    /// `X = term`, in the order the scan computes them.
+    pub defs: Vec<(String, Expr)>,
+    /// `pre_X` → `X`.
+    pub pre: BTreeMap<String, String>,
+    /// Relations that must hold at every step (`assume` statements).
+    pub constraints: Vec<(Expr, Rel, Expr)>,
+}
+
+impl Model {
+    /// Every term of the model: the definitions' right sides and both sides of each constraint.
+    fn terms(&self) -> impl Iterator<Item = &Expr> {
+        let defs = self.defs.iter().map(|(_, e)| e);
+        defs.chain(self.constraints.iter().flat_map(|(l, _, r)| [l, r]))
+    }
+
+    /// The names the model leaves free (neither defined nor previous values) among `exprs`.
+    pub fn free_names<'a>(&'a self, exprs: impl Iterator<Item = &'a Expr>) -> BTreeSet<String> {
+        let defined: BTreeSet<&str> = self.defs.iter().map(|(n, _)| n.as_str()).collect();
+        let mut out = BTreeSet::new();
+        for e in self.terms().chain(exprs) {
+            for node in e.as_ref() {
+                if let Term::Name(n) = node
+                    && !defined.contains(n.as_str())
+                    && !self.pre.contains_key(n.as_str())
+                {
+                    out.insert(n.as_str().to_string());
+                }
+            }
+        }
+        out
+    }
+
+    /// Every delay literal of a timer in the model and in `exprs`.
+    pub fn delays<'a>(&'a self, exprs: impl Iterator<Item = &'a Expr>) -> Vec<Delay> {
+        let env = Assignment::new(Time::from_integer(1.into()));
+        let mut out = Vec::new();
+        for e in self.terms().chain(exprs) {
+            for node in e.as_ref() {
+                let d = match node {
+                    Term::Ton([d, _]) | Term::Tof([_, d]) => *d,
+                    _ => continue,
+                };
+                if let Ok(d) = eval_delay(e, d, &env) {
+                    out.push(d);
+                }
+            }
+        }
+        out
+    }
+}
+
+/// The values of an unrolled model: per signal name and per extra term, one value a step.
+#[derive(Clone, Debug)]
+pub struct Unrolled<V> {
+    /// Defined, free and previous-value signals.
+    pub signals: BTreeMap<String, Vec<V>>,
+    /// The constraints' sides, `(lhs, rhs)` per step, in order.
+    pub constraints: Vec<(Vec<V>, Vec<V>)>,
+    /// The extra terms' values, in order.
+    pub extra: Vec<Vec<V>>,
+}
+
+/// Unrolls `model` over `steps` steps. `steps_of(d)` is a timer's delay in steps;
+/// `free(bits, name, k)` gives a free name's value at step `k` (0-based).
+pub fn unroll<B: Bits>(
+    bits: &mut B,
+    model: &Model,
+    extra: &[&Expr],
+    steps: usize,
+    steps_of: &dyn Fn(&Delay) -> Option<usize>,
+    free: &mut dyn FnMut(&mut B, &str, usize) -> B::V,
+) -> Result<Unrolled<B::V>, String> {
+    let env = Assignment::new(Time::from_integer(1.into()));
+    let mut exprs: Vec<&Expr> = model.defs.iter().map(|(_, e)| e).collect();
+    for (l, _, r) in &model.constraints {
+        exprs.push(l);
+        exprs.push(r);
+    }
+    exprs.extend(extra.iter().copied());
+    // Per term: per node, the timer width in steps (resolved once).
+    let mut widths: Vec<Vec<Option<usize>>> = Vec::new();
+    for e in &exprs {
+        let mut w = vec![None; e.as_ref().len()];
+        for (i, node) in e.as_ref().iter().enumerate() {
+            if let Term::Ton([d, _]) | Term::Tof([_, d]) = node {
+                let delay = eval_delay(e, *d, &env).map_err(|x| x.to_string())?;
+                w[i] = Some(
+                    steps_of(&delay)
+                        .ok_or_else(|| format!("the delay {delay} is not on the grid"))?,
+                );
+            }
+        }
+        widths.push(w);
+    }
+    let defined: BTreeSet<&str> = model.defs.iter().map(|(n, _)| n.as_str()).collect();
+    let mut hist: Vec<Vec<Vec<B::V>>> =
+        exprs.iter().map(|e| vec![Vec::with_capacity(steps); e.as_ref().len()]).collect();
+    let mut signals: BTreeMap<String, Vec<B::V>> = BTreeMap::new();
+    for k in 0..steps {
+        for (j, e) in exprs.iter().enumerate() {
+            for (i, node) in e.as_ref().iter().enumerate() {
+                let h = &hist[j];
+                let at = |id: &Id| h[usize::from(*id)][k].clone();
+                let value = match node {
+                    Term::Zero | Term::Delay(_) | Term::DMax(_) | Term::DMin(_) | Term::DAdd(_) => {
+                        bits.konst(false)
+                    }
+                    Term::One => bits.konst(true),
+                    Term::Not(a) => {
+                        let a = at(a);
+                        bits.not(&a)
+                    }
+                    Term::And([a, b]) => {
+                        let xs = [at(a), at(b)];
+                        bits.and_all(&xs)
+                    }
+                    Term::Or([a, b]) => {
+                        let xs = [at(a), at(b)];
+                        bits.or_all(&xs)
+                    }
+                    Term::Sr([s, r]) | Term::Rs([s, r]) => {
+                        let prev = if k == 0 { bits.konst(false) } else { h[i][k - 1].clone() };
+                        let (s, r) = (at(s), at(r));
+                        let nr = bits.not(&r);
+                        if matches!(node, Term::Sr(_)) {
+                            let hold = bits.and_all(&[prev, nr]);
+                            bits.or_all(&[s, hold])
+                        } else {
+                            let set = bits.or_all(&[s, prev]);
+                            bits.and_all(&[set, nr])
+                        }
+                    }
+                    Term::Ton([_, f]) => {
+                        let n = widths[j][i].unwrap_or(0);
+                        if k < n {
+                            bits.konst(false)
+                        } else {
+                            let xs: Vec<B::V> = h[usize::from(*f)][k - n..=k].to_vec();
+                            bits.and_all(&xs)
+                        }
+                    }
+                    Term::Tof([f, _]) => {
+                        let n = widths[j][i].unwrap_or(0);
+                        let xs: Vec<B::V> = h[usize::from(*f)][k.saturating_sub(n)..=k].to_vec();
+                        bits.or_all(&xs)
+                    }
+                    Term::Name(n) => {
+                        let n = n.as_str();
+                        if let Some(v) = signals.get(n).and_then(|v| v.get(k)) {
+                            v.clone()
+                        } else if defined.contains(n) {
+                            return Err(format!("`{n}` is read before the scan computes it"));
+                        } else if let Some(of) = model.pre.get(n) {
+                            let v = if k == 0 {
+                                bits.konst(false)
+                            } else {
+                                signals
+                                    .get(of)
+                                    .and_then(|v| v.get(k - 1))
+                                    .cloned()
+                                    .ok_or_else(|| format!("`{of}` is not computed"))?
+                            };
+                            signals.entry(n.to_string()).or_default().push(v.clone());
+                            v
+                        } else {
+                            let v = free(bits, n, k);
+                            signals.entry(n.to_string()).or_default().push(v.clone());
+                            v
+                        }
+                    }
+                };
+                hist[j][i].push(value);
+            }
+            if let Some((name, _)) = model.defs.get(j) {
+                let top = hist[j].last().and_then(|v| v.get(k)).cloned();
+                let top = top.ok_or_else(|| format!("the equation of `{name}` is empty"))?;
+                signals.entry(name.clone()).or_default().push(top);
+            }
+        }
+    }
+    let root = |j: usize| hist[j].last().cloned().unwrap_or_default();
+    let d = model.defs.len();
+    let constraints =
+        (0..model.constraints.len()).map(|c| (root(d + 2 * c), root(d + 2 * c + 1))).collect();
+    let extra = (0..extra.len()).map(|x| root(d + 2 * model.constraints.len() + x)).collect();
+    Ok(Unrolled { signals, constraints, extra })
+}
+
+/// `lhs rel rhs` violated (as a value).
+pub fn violated<B: Bits>(bits: &mut B, rel: Rel, l: &B::V, r: &B::V) -> B::V {
+    let nr = bits.not(r);
+    match rel {
+        Rel::Implies => bits.and_all(&[l.clone(), nr]),
+        Rel::Eq => {
+            let nl = bits.not(l);
+            let a = bits.and_all(&[l.clone(), nr]);
+            let b = bits.and_all(&[nl, r.clone()]);
+            bits.or_all(&[a, b])
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::semantics::{Signal, eval};
+    use crate::term::{Symbol, sexp};
+    use num_traits::ToPrimitive;
+
+    /// The step reading agrees with the exact semantics at every step's instant, for
+    /// inputs constant on `[k, k+1)` seconds (the first step `(0, 1)`).
+    #[test]
+    fn steps_agree_with_the_exact_semantics() {
+        let terms = [
+            "(ton 3s f)",
+            "(tof f 2s)",
+            "(sr f g)",
+            "(rs f g)",
+            "(ton 2s (tof (& f (! g)) 1s))",
+            "(+ (sr (ton 1s f) g) (rs g (tof f 3s)))",
+        ];
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        for text in terms {
+            let e = sexp(text);
+            for _ in 0..200 {
+                let steps = 12;
+                let mut values: BTreeMap<String, Vec<bool>> = BTreeMap::new();
+                for n in ["f", "g"] {
+                    let v: Vec<bool> = (0..steps)
+                        .map(|_| {
+                            seed ^= seed << 13;
+                            seed ^= seed >> 7;
+                            seed ^= seed << 17;
+                            !seed.is_multiple_of(3)
+                        })
+                        .collect();
+                    values.insert(n.into(), v);
+                }
+                let u = unroll(
+                    &mut Concrete,
+                    &Model::default(),
+                    &[&e],
+                    steps,
+                    &|d| d.seconds().to_integer().to_usize(),
+                    &mut |_, n, k| values[n][k],
+                )
+                .expect("unrolls");
+                let horizon = Time::from_integer(steps.into());
+                let mut env = Assignment::new(horizon.clone());
+                for (n, v) in &values {
+                    let changes: Vec<(Time, bool)> = (1..steps)
+                        .filter(|&k| v[k] != v[k - 1])
+                        .map(|k| (Time::from_integer(k.into()), v[k]))
+                        .collect();
+                    let s = Signal::from_steps(horizon.clone(), v[0], &changes).unwrap();
+                    env.signals.insert(Symbol::from(n.as_str()), s);
+                }
+                let exact = eval(&e, &env).expect("evaluates");
+                for k in 0..steps {
+                    let t = if k == 0 {
+                        Time::new(1.into(), 2.into())
+                    } else {
+                        Time::from_integer(k.into())
+                    };
+                    assert_eq!(u.extra[0][k], exact.value_at(&t), "{text} at step {k}: {values:?}");
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,682 @@
+//! The trusted kernel: re-checks every proof step and is the only maker of [`Theorem`]s.
+//!
+//! Everything else (search, case splitter, proof scripts) is untrusted: it produces a
+//! [`Proof`] of plain data and [`Kernel::check`] replays it. The kernel imports only the
+//! term module, the certificate format and `std`. It **fails closed**: an unknown rule, a
+//! non-matching instance, a disagreeing substitution, a broken or truncated chain, a false
+//! side condition, a rewrite at an unsound position — each is an error, never a theorem.
+//!
+//! # What a theorem means
+//!
+//! `Γ ⊢ a = b` (or `a ⇒ b`) holds at every instant `t > 0` at which the local
+//! case assumptions `Γ` (pairs `x = 1*` / `x = 0*`) hold, for all signals that
+//! satisfy the kernel's hypotheses and laws; with no local assumptions, at every instant.
+//!
+//! # The primitive rules (the whole trusted surface)
+//!
+//! | rule | from | gives |
+//! |---|---|---|
+//! | chain of rewrite steps | a term `t0` and steps | `t0 R tn` (`R` is `⇒` if any step is) |
+//! | law / hypothesis / lemma step | an instance at a position | `=` anywhere; `⇒` at a monotone position |
+//! | implication used as equation | `p ⇒ q` | `p = p·q` (meet), `q = q + p` (join) or `¬q = ¬q·¬p` (contrapositive), anywhere |
+//! | case step | local assumption `x = v` | `x` replaced by `v` at a pointwise position |
+//! | delay arithmetic | `max`/`min`/`+` of two literals | the exact result |
+//! | case split | `Γ,x=1* ⊢ a R b` and `Γ,x=0* ⊢ a R b` | `Γ ⊢ a R b` |
+//! | symmetry | `a = b` | `b = a` |
+//! | transitivity | `a R b` and `b R' c` | `a R c` (`⇒` if either is) |
+//! | antisymmetry | `a ⇒ b` and `b ⇒ a` | `a = b` |
+//! | implication from meet | `f·g = f` | `f ⇒ g` |
+//! | implication from zero | `f·¬g = 0*` | `f ⇒ g` |
+//!
+//! Laws and hypotheses are the kernel's axioms, given to [`Kernel::new`] and listed by
+//! [`Kernel::laws`] and [`Kernel::hypotheses`]; every theorem records which it used.
+
+#![forbid(unsafe_code)]
+
+use std::collections::{BTreeMap, BTreeSet};
+
+pub use crate::certificate::{
+    Axiom, Certificate, Cmp, KernelError, Proof, Rel, Rule, Source, Step, Use,
+};
+use crate::term::{
+    Delay, Expr, Id, Language, Symbol, Term, and, copy_into, is_delay_node, not, or, root, same,
+    same_tree, subterm,
+};
+
+/// A checked statement. Only this module can create one.
+#[derive(Clone, Debug)]
+pub struct Theorem {
+    lhs: Expr,
+    rel: Rel,
+    rhs: Expr,
+    local: Vec<(Expr, bool)>,
+    laws: BTreeSet<String>,
+    hyps: BTreeSet<String>,
+}
+
+impl Theorem {
+    /// Left side.
+    pub fn lhs(&self) -> &Expr {
+        &self.lhs
+    }
+    /// `=` or `⇒`.
+    pub fn rel(&self) -> Rel {
+        self.rel
+    }
+    /// Right side.
+    pub fn rhs(&self) -> &Expr {
+        &self.rhs
+    }
+    /// Local case assumptions (empty for a theorem about whole signals).
+    pub fn local(&self) -> &[(Expr, bool)] {
+        &self.local
+    }
+    /// The laws this theorem depends on.
+    pub fn laws_used(&self) -> &BTreeSet<String> {
+        &self.laws
+    }
+    /// The hypotheses this theorem depends on.
+    pub fn hypotheses_used(&self) -> &BTreeSet<String> {
+        &self.hyps
+    }
+    /// Does this theorem establish `lhs rel rhs` about whole signals?
+    /// An equation also establishes the implication.
+    pub fn proves(&self, lhs: &Expr, rel: Rel, rhs: &Expr) -> bool {
+        self.local.is_empty()
+            && same(&self.lhs, lhs)
+            && same(&self.rhs, rhs)
+            && (self.rel == rel || self.rel == Rel::Eq)
+    }
+}
+
+type Result<T> = std::result::Result<T, KernelError>;
+
+/// The checker, holding the axioms (laws and hypotheses) it trusts.
+#[derive(Clone, Debug, Default)]
+pub struct Kernel {
+    laws: BTreeMap<String, Axiom>,
+    hyps: BTreeMap<String, Axiom>,
+}
+
+/// A rewrite rule `from → to` after choosing how a law is used.
+struct Oriented {
+    from: Expr,
+    to: Expr,
+    /// `Some(true)`: the step is `before ⇒ after` only at a monotone position;
+    /// `Some(false)`: only at an antitone position; `None`: an equation.
+    implication: Option<bool>,
+}
+
+/// Checks that every node below `id` is a well-formed signal (or delay, in delay slots).
+fn well_formed(e: &Expr, id: Id, want_delay: bool, delay_vars: &[Symbol]) -> bool {
+    let node = &e[id];
+    let is_delay_var = matches!(node, Term::Name(s) if delay_vars.contains(s));
+    if want_delay != (is_delay_node(node) || is_delay_var) {
+        return false;
+    }
+    match node {
+        Term::Ton([d, f]) | Term::Tof([f, d]) => {
+            well_formed(e, *d, true, delay_vars) && well_formed(e, *f, false, delay_vars)
+        }
+        Term::DMax([a, b]) | Term::DMin([a, b]) | Term::DAdd([a, b]) => {
+            well_formed(e, *a, true, delay_vars) && well_formed(e, *b, true, delay_vars)
+        }
+        other => other.children().iter().all(|c| well_formed(e, *c, false, delay_vars)),
+    }
+}
+
+fn check_signal_term(what: &str, e: &Expr, delay_vars: &[Symbol]) -> Result<()> {
+    if e.as_ref().is_empty() || !well_formed(e, root(e), false, delay_vars) {
+        return Err(KernelError::BadAxiom(format!("{what} is not a signal term")));
+    }
+    Ok(())
+}
+
+impl Kernel {
+    /// A kernel trusting these laws and (ground) hypotheses. Rejects malformed
+    /// axioms and duplicate names.
+    pub fn new(laws: Vec<Axiom>, hypotheses: Vec<Axiom>) -> Result<Kernel> {
+        let mut kernel = Kernel::default();
+        for (axiom, is_law) in
+            laws.into_iter().map(|a| (a, true)).chain(hypotheses.into_iter().map(|a| (a, false)))
+        {
+            check_signal_term(&axiom.name, &axiom.lhs, &axiom.delay_vars)?;
+            check_signal_term(&axiom.name, &axiom.rhs, &axiom.delay_vars)?;
+            let ground = axiom.signal_vars.is_empty() && axiom.delay_vars.is_empty();
+            let ground_hypothesis = ground && axiom.signal_conditions.is_empty();
+            if !is_law && !ground_hypothesis {
+                return Err(KernelError::BadAxiom(format!(
+                    "hypothesis `{}` is not ground",
+                    axiom.name
+                )));
+            }
+            let name = axiom.name.clone();
+            let fresh = !kernel.laws.contains_key(&name) && !kernel.hyps.contains_key(&name);
+            let table = if is_law { &mut kernel.laws } else { &mut kernel.hyps };
+            if !fresh || table.insert(name.clone(), axiom).is_some() {
+                return Err(KernelError::BadAxiom(format!("`{name}` is defined twice")));
+            }
+        }
+        Ok(kernel)
+    }
+
+    /// Every law the kernel trusts, by name.
+    pub fn laws(&self) -> impl Iterator<Item = &Axiom> {
+        self.laws.values()
+    }
+
+    /// Every hypothesis the kernel trusts, by name.
+    pub fn hypotheses(&self) -> impl Iterator<Item = &Axiom> {
+        self.hyps.values()
+    }
+
+    /// Replays a certificate: its lemmas in order, then its main proof.
+    pub fn check(&self, cert: &Certificate) -> Result<Theorem> {
+        let mut lemmas: BTreeMap<String, Theorem> = BTreeMap::new();
+        for (name, proof) in &cert.lemmas {
+            let thm = self.replay(proof, &lemmas)?;
+            if !thm.local.is_empty() {
+                return Err(KernelError::Mismatch(format!("lemma `{name}` is only local")));
+            }
+            if lemmas.insert(name.clone(), thm).is_some() {
+                return Err(KernelError::Mismatch(format!("lemma `{name}` twice")));
+            }
+        }
+        let main = cert
+            .main
+            .as_ref()
+            .ok_or_else(|| KernelError::NotTheGoal("the certificate has no main proof".into()))?;
+        let mut thm = self.replay(main, &lemmas)?;
+        for used in lemmas.values() {
+            thm.laws.extend(used.laws.iter().cloned());
+            thm.hyps.extend(used.hyps.iter().cloned());
+        }
+        Ok(thm)
+    }
+
+    /// Checks a certificate and that it proves exactly `lhs rel rhs` about whole signals.
+    pub fn check_goal(
+        &self,
+        cert: &Certificate,
+        lhs: &Expr,
+        rel: Rel,
+        rhs: &Expr,
+    ) -> Result<Theorem> {
+        let thm = self.check(cert)?;
+        if thm.proves(lhs, rel, rhs) {
+            return Ok(thm);
+        }
+        let (l, r, n) = (&thm.lhs, &thm.rhs, thm.local.len());
+        let got = format!("`{l} {:?} {r}` under {n} case assumption(s)", thm.rel);
+        Err(KernelError::NotTheGoal(format!("proved {got}, wanted `{lhs} {rel:?} {rhs}`")))
+    }
+
+    fn replay(&self, proof: &Proof, lemmas: &BTreeMap<String, Theorem>) -> Result<Theorem> {
+        match proof {
+            Proof::Chain { start, steps } => self.chain(start, steps, lemmas),
+            Proof::CaseSplit { atom, one, zero } => {
+                let one = self.replay(one, lemmas)?;
+                let zero = self.replay(zero, lemmas)?;
+                case_split(atom, one, zero)
+            }
+            Proof::Symm(p) => {
+                let mut thm = self.replay(p, lemmas)?;
+                if thm.rel != Rel::Eq {
+                    return Err(KernelError::Mismatch("symmetry of an implication".into()));
+                }
+                std::mem::swap(&mut thm.lhs, &mut thm.rhs);
+                Ok(thm)
+            }
+            Proof::Trans(p, q) => {
+                let a = self.replay(p, lemmas)?;
+                let b = self.replay(q, lemmas)?;
+                if !same(&a.rhs, &b.lhs) {
+                    return Err(KernelError::Mismatch(
+                        "transitivity through different terms".into(),
+                    ));
+                }
+                let rel = if a.rel == Rel::Eq && b.rel == Rel::Eq { Rel::Eq } else { Rel::Implies };
+                let rhs = b.rhs.clone();
+                Ok(merge(Theorem { rel, rhs, ..a }, &b))
+            }
+            Proof::Antisym(p, q) => {
+                let a = self.replay(p, lemmas)?;
+                let b = self.replay(q, lemmas)?;
+                if !(same(&a.lhs, &b.rhs) && same(&a.rhs, &b.lhs)) {
+                    return Err(KernelError::Mismatch(
+                        "antisymmetry of unrelated statements".into(),
+                    ));
+                }
+                Ok(merge(Theorem { rel: Rel::Eq, ..a }, &b))
+            }
+            Proof::ImpliesByMeet(p) => {
+                let thm = self.replay(p, lemmas)?;
+                match &thm.lhs[root(&thm.lhs)] {
+                    Term::And([f, g])
+                        if thm.rel == Rel::Eq
+                            && same_tree(&thm.lhs, *f, &thm.rhs, root(&thm.rhs)) =>
+                    {
+                        let (f, g) = (subterm(&thm.lhs, *f), subterm(&thm.lhs, *g));
+                        Ok(Theorem { lhs: f, rel: Rel::Implies, rhs: g, ..thm })
+                    }
+                    _ => Err(KernelError::Mismatch("expected a proof of `f·g = f`".into())),
+                }
+            }
+            Proof::ImpliesByZero(p) => {
+                let thm = self.replay(p, lemmas)?;
+                let lhs = &thm.lhs;
+                if thm.rel == Rel::Eq
+                    && matches!(thm.rhs[root(&thm.rhs)], Term::Zero)
+                    && let Term::And([f, not_g]) = &lhs[root(lhs)]
+                    && let Term::Not(g) = &lhs[*not_g]
+                {
+                    let (f, g) = (subterm(lhs, *f), subterm(lhs, *g));
+                    return Ok(Theorem { lhs: f, rel: Rel::Implies, rhs: g, ..thm });
+                }
+                Err(KernelError::Mismatch("expected a proof of `f·¬g = 0*`".into()))
+            }
+        }
+    }
+
+    fn chain(
+        &self,
+        start: &Expr,
+        steps: &[Step],
+        lemmas: &BTreeMap<String, Theorem>,
+    ) -> Result<Theorem> {
+        check_signal_term("the start of a chain", start, &[])?;
+        let mut thm = Theorem {
+            lhs: start.clone(),
+            rel: Rel::Eq,
+            rhs: start.clone(),
+            local: Vec::new(),
+            laws: BTreeSet::new(),
+            hyps: BTreeSet::new(),
+        };
+        for step in steps {
+            let rel = self.step(&mut thm, step, lemmas)?;
+            if rel == Rel::Implies {
+                thm.rel = Rel::Implies;
+            }
+            thm.rhs = step.after.clone();
+        }
+        Ok(thm)
+    }
+
+    /// Checks one step from `thm.rhs` to `step.after`; records what it used.
+    fn step(
+        &self,
+        thm: &mut Theorem,
+        step: &Step,
+        lemmas: &BTreeMap<String, Theorem>,
+    ) -> Result<Rel> {
+        let before = &thm.rhs;
+        let (target, position) = locate(before, &step.path)?;
+        check_signal_term("the result of a step", &step.after, &[])?;
+        let (after_target, _) = locate(&step.after, &step.path).map_err(|_| {
+            KernelError::WrongResult("the result has no subterm at the path".into())
+        })?;
+        if !same_outside(before, root(before), &step.after, root(&step.after), &step.path) {
+            return Err(KernelError::WrongResult(
+                "the step changes the term outside the rewritten position".into(),
+            ));
+        }
+        let old = subterm(before, target);
+        let new = subterm(&step.after, after_target);
+        match &step.rule {
+            Rule::DelayArith => {
+                // `max`/`min`/`+` of literals equals the literal it computes, either way round.
+                let computes = |a: &Expr, b: &Expr| {
+                    !matches!(a[root(a)], Term::Delay(_))
+                        && matches!(&b[root(b)], Term::Delay(d) if fold_delay(a, root(a)).as_ref() == Some(d))
+                };
+                if computes(&old, &new) || computes(&new, &old) {
+                    return Ok(Rel::Eq);
+                }
+                Err(KernelError::NoMatch(format!(
+                    "`{old}` and `{new}` are not a computation and its value"
+                )))
+            }
+            Rule::Case(atom, value) => {
+                if !position.pointwise {
+                    return Err(KernelError::BadPosition(
+                        "a case assumption rewrites only outside timers and memories".into(),
+                    ));
+                }
+                let constant = if *value { Term::One } else { Term::Zero };
+                let forward = same(&old, atom) && new.as_ref() == [constant.clone()];
+                let backward = same(&new, atom) && old.as_ref() == [constant];
+                if !(forward || backward) {
+                    return Err(KernelError::NoMatch(format!(
+                        "`{old}` → `{new}` is not `{atom}` ↔ constant"
+                    )));
+                }
+                if !thm.local.iter().any(|(a, v)| same(a, atom) && v == value) {
+                    thm.local.push((atom.clone(), *value));
+                }
+                Ok(Rel::Eq)
+            }
+            Rule::Cite(source, name, how) => {
+                let lemma = lemmas.get(name).filter(|_| *source == Source::Lemma);
+                let lemma_axiom =
+                    lemma.map(|t| Axiom::ground(name, t.lhs.clone(), t.rel, t.rhs.clone()));
+                let axiom = match source {
+                    Source::Law => self.laws.get(name),
+                    Source::Hypothesis => self.hyps.get(name),
+                    Source::Lemma => lemma_axiom.as_ref(),
+                }
+                .ok_or_else(|| KernelError::UnknownRule(format!("{source:?} {name}")))?;
+                let vars: Vec<Symbol> =
+                    axiom.signal_vars.iter().chain(&axiom.delay_vars).cloned().collect();
+                let rule = orient(&axiom.lhs, axiom.rel, &axiom.rhs, *how, name)?;
+                let sigma =
+                    instance(&rule, &vars, &axiom.delay_vars, &old, &new, &step.subst, name)?;
+                let rel = position_rel(&rule, position)?;
+                check_delay_conditions(axiom, &sigma)?;
+                let wanted = axiom.signal_conditions.len();
+                if step.premises.len() != wanted {
+                    let n = step.premises.len();
+                    return Err(KernelError::MissingPremise(format!(
+                        "`{name}` has {wanted} side condition(s) on signals, {n} premise(s) given"
+                    )));
+                }
+                for ((l, rel, r), premise) in axiom.signal_conditions.iter().zip(&step.premises) {
+                    let (want_l, want_r) = (instantiate(l, &sigma)?, instantiate(r, &sigma)?);
+                    let got = self.replay(premise, lemmas)?;
+                    if !got.proves(&want_l, *rel, &want_r) {
+                        return Err(KernelError::MissingPremise(format!(
+                            "`{name}` needs `{want_l} {rel:?} {want_r}`"
+                        )));
+                    }
+                    thm.laws.extend(got.laws.iter().cloned());
+                    thm.hyps.extend(got.hyps.iter().cloned());
+                }
+                match (source, lemma) {
+                    (Source::Law, _) => thm.laws.insert(name.clone()),
+                    (Source::Hypothesis, _) => thm.hyps.insert(name.clone()),
+                    (Source::Lemma, Some(used)) => {
+                        thm.laws.extend(used.laws.iter().cloned());
+                        thm.hyps.extend(used.hyps.iter().cloned());
+                        true
+                    }
+                    (Source::Lemma, None) => false,
+                };
+                Ok(rel)
+            }
+        }
+    }
+}
+
+fn merge(mut a: Theorem, b: &Theorem) -> Theorem {
+    for (atom, v) in &b.local {
+        if !a.local.iter().any(|(x, w)| same(x, atom) && w == v) {
+            a.local.push((atom.clone(), *v));
+        }
+    }
+    a.laws.extend(b.laws.iter().cloned());
+    a.hyps.extend(b.hyps.iter().cloned());
+    a
+}
+
+fn case_split(atom: &Expr, one: Theorem, zero: Theorem) -> Result<Theorem> {
+    if !(same(&one.lhs, &zero.lhs) && same(&one.rhs, &zero.rhs) && one.rel == zero.rel) {
+        return Err(KernelError::Mismatch("the two cases prove different statements".into()));
+    }
+    let without = |thm: &Theorem, value: bool| -> Vec<(Expr, bool)> {
+        thm.local.iter().filter(|(a, v)| !(same(a, atom) && *v == value)).cloned().collect()
+    };
+    let (rest_one, rest_zero) = (without(&one, true), without(&zero, false));
+    Ok(merge(Theorem { local: rest_one, ..one }, &Theorem { local: rest_zero, ..zero }))
+}
+
+/// Where a subterm sits: may an implication be used there, and is it pointwise?
+#[derive(Clone, Copy, Debug)]
+struct Position {
+    /// The whole term grows with the subterm (an even number of negations and
+    /// reset arguments on the way down).
+    monotone: bool,
+    /// Only `·`, `+` and `¬` lie on the way down.
+    pointwise: bool,
+    /// The subterm is (inside) a delay, not a signal.
+    delay: bool,
+}
+
+/// Follows `path` from the root; the id of the subterm and its position.
+fn locate(e: &Expr, path: &[usize]) -> Result<(Id, Position)> {
+    let bad = || KernelError::BadPath(format!("{path:?}"));
+    if e.as_ref().is_empty() {
+        return Err(bad());
+    }
+    let mut id = root(e);
+    let mut pos = Position { monotone: true, pointwise: true, delay: false };
+    for &index in path {
+        let node = &e[id];
+        let child = *node.children().get(index).ok_or_else(bad)?;
+        match (node, index) {
+            (Term::And(_) | Term::Or(_), _) => {}
+            (Term::Not(_), _) => pos.monotone = !pos.monotone,
+            (Term::Ton(_), 0) | (Term::Tof(_), 1) => {
+                pos.delay = true;
+                pos.pointwise = false;
+            }
+            (Term::Ton(_) | Term::Tof(_) | Term::Sr(_) | Term::Rs(_), 0 | 1) => {
+                pos.pointwise = false;
+                if index == 1 && matches!(node, Term::Sr(_) | Term::Rs(_)) {
+                    pos.monotone = !pos.monotone;
+                }
+            }
+            (Term::DMax(_) | Term::DMin(_) | Term::DAdd(_), _) => {}
+            _ => return Err(bad()),
+        }
+        id = child;
+    }
+    Ok((id, pos))
+}
+
+/// Are the two trees equal everywhere except (possibly) at `path`?
+fn same_outside(x: &Expr, a: Id, y: &Expr, b: Id, path: &[usize]) -> bool {
+    let Some((&first, rest)) = path.split_first() else {
+        return true;
+    };
+    let (m, n) = (&x[a], &y[b]);
+    m.matches(n)
+        && m.children().iter().zip(n.children()).enumerate().all(|(i, (&c, &d))| {
+            if i == first { same_outside(x, c, y, d, rest) } else { same_tree(x, c, y, d) }
+        })
+}
+
+/// Chooses the two sides of `lhs rel rhs` for a use.
+fn orient(lhs: &Expr, rel: Rel, rhs: &Expr, how: Use, name: &str) -> Result<Oriented> {
+    let (l, r) = (lhs.clone(), rhs.clone());
+    let (from, to, implication) = match (rel, how) {
+        (Rel::Eq, Use::Forward) => (l, r, None),
+        (Rel::Eq, Use::Backward) => (r, l, None),
+        (Rel::Implies, Use::Forward) => (l, r, Some(true)),
+        (Rel::Implies, Use::Backward) => (r, l, Some(false)),
+        (Rel::Implies, Use::Meet) => (l, and(lhs, rhs), None),
+        (Rel::Implies, Use::MeetBack) => (and(lhs, rhs), l, None),
+        (Rel::Implies, Use::Join) => (r, or(rhs, lhs), None),
+        (Rel::Implies, Use::JoinBack) => (or(rhs, lhs), r, None),
+        (Rel::Implies, Use::Contra) => (not(rhs), and(&not(rhs), &not(lhs)), None),
+        (Rel::Implies, Use::ContraBack) => (and(&not(rhs), &not(lhs)), not(rhs), None),
+        (Rel::Eq, _) => {
+            return Err(KernelError::UnknownRule(format!(
+                "`{name}` is an equation; it has no {how:?} use"
+            )));
+        }
+    };
+    Ok(Oriented { from, to, implication })
+}
+
+/// The relation a step establishes at `pos`, or an error where it is unsound.
+fn position_rel(rule: &Oriented, pos: Position) -> Result<Rel> {
+    if pos.delay {
+        return Err(KernelError::BadPosition("only delay arithmetic rewrites a delay".into()));
+    }
+    match rule.implication {
+        None => Ok(Rel::Eq),
+        Some(wanted) if wanted == pos.monotone => Ok(Rel::Implies),
+        Some(_) => Err(KernelError::BadPosition(
+            "an implication used in the wrong direction for this position (under ¬ or a reset)"
+                .into(),
+        )),
+    }
+}
+
+/// Matches `rule.from` against `old` and `rule.to` against `new`, one substitution for both;
+/// checks the claimed substitution against it.
+fn instance(
+    rule: &Oriented,
+    vars: &[Symbol],
+    delay_vars: &[Symbol],
+    old: &Expr,
+    new: &Expr,
+    claimed: &[(Symbol, Expr)],
+    name: &str,
+) -> Result<BTreeMap<Symbol, Expr>> {
+    let mut sigma = BTreeMap::new();
+    let no_match = |side: &str, term: &Expr, pattern: &Expr| {
+        KernelError::NoMatch(format!("`{name}`: `{term}` is not an instance of {side} `{pattern}`"))
+    };
+    if !matches(&rule.from, root(&rule.from), vars, delay_vars, old, root(old), &mut sigma) {
+        return Err(no_match("the rewritten side", old, &rule.from));
+    }
+    if !matches(&rule.to, root(&rule.to), vars, delay_vars, new, root(new), &mut sigma) {
+        return Err(no_match("the result side", new, &rule.to));
+    }
+    for (var, value) in claimed {
+        match sigma.get(var) {
+            Some(bound) if same(bound, value) => {}
+            Some(bound) => {
+                return Err(KernelError::WrongSubstitution(format!(
+                    "`{var}` is `{bound}` in the instance, not `{value}`"
+                )));
+            }
+            None => {
+                return Err(KernelError::WrongSubstitution(format!(
+                    "`{var}` is not a variable of `{name}`"
+                )));
+            }
+        }
+    }
+    Ok(sigma)
+}
+
+/// Matches a law's side against a whole ground term, extending `sigma` (untrusted
+/// code uses this and the three functions below to find instances; the kernel
+/// re-checks every use).
+pub fn match_side(
+    law: &Axiom,
+    side: &Expr,
+    term: &Expr,
+    sigma: &mut BTreeMap<Symbol, Expr>,
+) -> bool {
+    let vars: Vec<Symbol> = law.signal_vars.iter().chain(&law.delay_vars).cloned().collect();
+    matches(side, root(side), &vars, &law.delay_vars, term, root(term), sigma)
+}
+
+/// A law side with its variables replaced (all must be bound).
+pub use self::instantiate as instantiate_side;
+
+/// The value of a ground delay expression (a literal, or `max`/`min`/`+` of them).
+pub fn delay_value(e: &Expr) -> Option<Delay> {
+    fold_delay(e, root(e))
+}
+
+/// Do a law's delay side conditions hold under a substitution?
+pub fn delay_conditions_hold(law: &Axiom, sigma: &BTreeMap<Symbol, Expr>) -> bool {
+    check_delay_conditions(law, sigma).is_ok()
+}
+
+/// First-order matching of a law side against a ground term.
+fn matches(
+    pat: &Expr,
+    p: Id,
+    vars: &[Symbol],
+    delay_vars: &[Symbol],
+    term: &Expr,
+    t: Id,
+    sigma: &mut BTreeMap<Symbol, Expr>,
+) -> bool {
+    if let Term::Name(v) = &pat[p]
+        && vars.contains(v)
+    {
+        let wants_delay = delay_vars.contains(v);
+        if wants_delay != is_delay_node(&term[t]) {
+            return false;
+        }
+        return match sigma.get(v) {
+            Some(bound) => same_tree(bound, root(bound), term, t),
+            None => {
+                sigma.insert(*v, subterm(term, t));
+                true
+            }
+        };
+    }
+    let (m, n) = (&pat[p], &term[t]);
+    m.matches(n)
+        && m.children()
+            .iter()
+            .zip(n.children())
+            .all(|(&c, &d)| matches(pat, c, vars, delay_vars, term, d, sigma))
+}
+
+/// A law side with its variables replaced (variables must all be bound).
+pub fn instantiate(pat: &Expr, sigma: &BTreeMap<Symbol, Expr>) -> Result<Expr> {
+    fn go(pat: &Expr, p: Id, sigma: &BTreeMap<Symbol, Expr>, out: &mut Expr) -> Option<Id> {
+        if let Term::Name(v) = &pat[p]
+            && let Some(value) = sigma.get(v)
+        {
+            return Some(copy_into(value, root(value), out));
+        }
+        let mut failed = false;
+        let node = pat[p].clone().map_children(|c| {
+            go(pat, c, sigma, out).unwrap_or_else(|| {
+                failed = true;
+                c
+            })
+        });
+        if failed { None } else { Some(out.add(node)) }
+    }
+    let mut out = Expr::default();
+    go(pat, root(pat), sigma, &mut out).map(|_| out).ok_or_else(|| {
+        KernelError::WrongSubstitution("a variable of a side condition is unbound".into())
+    })
+}
+
+/// The value of a ground delay expression built from literals, `max`, `min` and `+`.
+fn fold_delay(e: &Expr, id: Id) -> Option<Delay> {
+    match &e[id] {
+        Term::Delay(d) => Some(d.clone()),
+        Term::DMax([a, b]) => Some(fold_delay(e, *a)?.dmax(&fold_delay(e, *b)?)),
+        Term::DMin([a, b]) => Some(fold_delay(e, *a)?.dmin(&fold_delay(e, *b)?)),
+        Term::DAdd([a, b]) => Some(fold_delay(e, *a)?.dadd(&fold_delay(e, *b)?)),
+        _ => None,
+    }
+}
+
+fn check_delay_conditions(law: &Axiom, sigma: &BTreeMap<Symbol, Expr>) -> Result<()> {
+    for (lhs, cmp, rhs) in &law.delay_conditions {
+        let value = |side: &Expr| -> Result<Delay> {
+            let ground = instantiate(side, sigma)?;
+            fold_delay(&ground, root(&ground)).ok_or_else(|| {
+                KernelError::SideCondition(format!("`{ground}` is not a concrete delay"))
+            })
+        };
+        let (a, b) = (value(lhs)?, value(rhs)?);
+        let holds = match cmp {
+            Cmp::Ge => a >= b,
+            Cmp::Gt => a > b,
+            Cmp::Le => a <= b,
+            Cmp::Lt => a < b,
+            Cmp::Eq => a == b,
+        };
+        if !holds {
+            return Err(KernelError::SideCondition(format!(
+                "`{}` needs {a} {cmp:?} {b}",
+                law.name
+            )));
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,969 @@
+//! The rung compiler: an LDmicro program ([`LdProgram`]) → ground hypotheses of the II algebra (equations and sound bounds), following `shared/spec/semantics.md`, "Ladder programs as signals".
+//!
+//! # Model
+//!
+//! Zero response time: a scan runs every rung top to bottom infinitely fast, so
+//! every signal is read at the same instant. Power flows as in LDmicro
+//! (ldmicro.md §6.2): series is `·`, parallel is `+`, a contact is its signal
+//! or its complement, `SHORT` is `1*`, `OPEN`/`PLACEHOLDER` is `0*`, and
+//! elements after a false still execute: a coil in the middle of a series gets
+//! the power at that point. A rung's rung-in is the master-relay bit, modelled
+//! exactly (§6.6: `MASTER_RELAY` with input `i` makes it `¬mcr + i`; it is `1*`
+//! at the start of every scan).
+//!
+//! # Reads
+//!
+//! Every variable written by coils is tracked through the scan. Its value at a
+//! point of the scan is an *affine* function of its previous-scan value
+//! `pre_X`: each coil on `X` composes one step (plain `X := i`, negated
+//! `X := ¬i`, set `X := i + X`, reset `X := ¬i · X`), so after the coils seen so
+//! far `X = A + B · pre_X`. Hence:
+//!
+//! * before the first coil on `X` a read sees `pre_X` (the previous-scan value);
+//! * after the last coil on `X` a read sees the signal `X` itself (exact);
+//! * between two coils on `X` (several plain coils, a set rung and a later reset
+//!   rung, …) a read sees the intermediate value `A + B · pre_X`, inlined
+//!   **exactly** (it mentions `pre_X` only if a set/reset coil came first).
+//!
+//! # Equations and memories
+//!
+//! At the last coil on `X` the end-of-scan value is `G(pre_X) = A + B · pre_X`
+//! (where `A`, `B` may read `pre_X` themselves, e.g. a seal-in contact). If
+//! `pre_X` does not occur, `X = G` exactly. If it occurs only as a pointwise
+//! Boolean argument and `G0 = G[pre_X:=0*] ⇒ G1 = G[pre_X:=1*]` (checked by truth
+//! table over the rung's atoms, at most [`MAX_ATOMS`](super::logic::MAX_ATOMS)),
+//! then `G = G0 + pre_X · G1`, which is the scan recurrence of `SR(G0, ¬G1)`:
+//! `X` is a memory. It is written in the most readable equivalent form: `RS(S,
+//! ¬Y)` with `Y = G1` and `S` = the factors of `G0` not implied by `G1` (the
+//! `(S + Q)·Y` seal-in), or `SR(S, ¬Y)` with `S = G0` and `Y` = the summands of
+//! `G1` that do not imply `G0` (the `S + Q·Y` form); the form that drops
+//! something wins, then the smaller one, then `SR`. Every candidate is checked
+//! against `G` by truth table before it is used. Set/reset coils are the same
+//! composition, so a set rung followed by a reset rung gives `RS(S, R)` and the
+//! other order `SR(S, R)`; several set (reset) coils sum their powers.
+//!
+//! Otherwise (not monotone, e.g. a coil reading its own complement; or `pre_X`
+//! under a timer) `X = G(pre_X)` with `pre_X` **unconstrained**.
+//!
+//! # Bounds
+//!
+//! Whenever an emitted equation `X = F` still mentions `pre_` signals, two sound
+//! bounds eliminating them are emitted as well (see
+//! [`eliminate`]): `lo ⇒ X` and `X ⇒ hi`, named
+//! `Lnn_lo` and `Lnn_hi`. Where `p` is a pointwise Boolean argument these are
+//! the Shannon bounds `F[p:=0]·F[p:=1]` and `F[p:=0] + F[p:=1]`; through
+//! memories and timers they use monotonicity (SR/RS monotone in the set,
+//! antitone in the reset). Trivial bounds (`0* ⇒ X`, `X ⇒ 1*`) are not emitted.
+//!
+//! # Timers and the rest
+//!
+//! A TON with a literal delay `d` µs has output `d/IN` (exact seconds); a TOF
+//! `IN/d`; the output continues the series. A timer whose accumulator is also
+//! written by another element (RES, MOVE, a second timer of the same name, …), a
+//! variable delay, a zero delay or a zero cycle, and RTO/RTL/THI/TLO/TCY give a
+//! fresh, unconstrained output. So do one-shots, counters (orig CTC passes its
+//! input, exactly), comparisons (`IN · fresh`) and every peripheral or
+//! control-flow element; integer side effects (MOVE, math, RES) pass the power
+//! and have no Boolean meaning. A bit written by anything but a plain, negated,
+//! set or reset coil (a toggle coil, a MOVE, …) is itself unconstrained and no
+//! equation is emitted for it. Every such case is a [`CompileWarning`] naming
+//! the rung and the element: nothing is dropped silently. GOTO-style control
+//! flow is reported too; the equations assume a plain top-to-bottom scan.
+//!
+//! # Names
+//!
+//! Signals keep their exact LDmicro names (a back quote, which `.ii` cannot
+//! quote, becomes `'`). Previous values are `pre_X`; fresh outputs are
+//! `OSR_r5` (keyword and file rung number), `CTU_Cpieces`, `RTO_Tfoo` (keyword
+//! and variable); a clash with a program name adds `_2`, `_3`, …. An
+//! intermediate value larger than 2 000 nodes is not inlined: reads see a fresh
+//! `X_r7` instead (with a warning). Hypotheses are named after the logic rung
+//! (rungs LDmicro skips as comments are not counted; `L{:02}`, wider for 100
+//! rungs or more): a rung yielding one equation gives `L06`, several give `L06a`,
+//! `L06b`, … in coil order, and the bounds are `L03_lo`/`L03_hi`. An equation
+//! is stated at the rung of the variable's *last* coil, so a set rung followed
+//! by a reset rung yields one memory, named after the reset rung, and the set
+//! rung's name is unused.
+#![warn(missing_docs)]
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use super::ldmicro::{
+    Circuit, CoilKind, CounterKind, Element, ElementKind, LdProgram, Rung, TimerDelay, TimerKind,
+};
+use super::logic::{L, MAX_BOUND_SIZE, Tables, eliminate, factors, product, simp, sum, summands};
+use crate::diag::{Report, Severity, Sources, Span};
+use crate::kernel::{Axiom, Rel};
+use crate::syntax::print::{GoalKeyword, Notation, goal_statement_to_string, name_to_string};
+use crate::syntax::{Goal, Relation, Statement};
+use crate::term::{Delay, Expr};
+
+/// What a signal of a compiled program is.
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum SignalKind {
+    /// Read but never written by a coil: a free input (usually an `X` name).
+    Input,
+    /// Written by coils, name starting with `Y`: an output pin.
+    Output,
+    /// Written by coils, any other name (usually `R`): an internal relay.
+    Relay,
+    /// The previous-scan value of a written variable; unconstrained.
+    Previous {
+        /// The variable.
+        of: String,
+    },
+    /// The output of an element the algebra cannot express; unconstrained.
+    Fresh {
+        /// File rung number (1-based, comment rungs counted).
+        rung: usize,
+        /// The element keyword.
+        element: String,
+    },
+    /// A bit written by something other than plain/negated/set/reset coils; unconstrained.
+    Unmodelled {
+        /// File rung number of the first such writer.
+        rung: usize,
+        /// Its keyword.
+        element: String,
+    },
+}
+
+impl SignalKind {
+    /// Whether the program leaves this signal unconstrained (previous values, fresh outputs).
+    pub fn is_unconstrained(&self) -> bool {
+        matches!(
+            self,
+            SignalKind::Previous { .. } | SignalKind::Fresh { .. } | SignalKind::Unmodelled { .. }
+        )
+    }
+}
+
+/// What a hypothesis says about its rung.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum HypothesisKind {
+    /// `X = term`: exact.
+    Equation,
+    /// `lo ⇒ X`: holds whatever the `pre_` signals are.
+    LowerBound,
+    /// `X ⇒ hi`: holds whatever the `pre_` signals are.
+    UpperBound,
+}
+
+/// One compiled fact about the program.
+#[derive(Clone, Debug)]
+pub struct Hypothesis {
+    /// The name printed in proof traces (`L06a`, `L03_hi`).
+    pub name: String,
+    /// File rung number (1-based, comment rungs counted).
+    pub rung: usize,
+    /// The rung's span.
+    pub span: Span,
+    /// Equation or bound.
+    pub kind: HypothesisKind,
+    /// Left side.
+    pub lhs: Expr,
+    /// `=` or `⇒`.
+    pub rel: Rel,
+    /// Right side.
+    pub rhs: Expr,
+}
+
+impl Hypothesis {
+    /// The hypothesis as a ground kernel axiom.
+    pub fn axiom(&self) -> Axiom {
+        Axiom::ground(self.name.clone(), self.lhs.clone(), self.rel, self.rhs.clone())
+    }
+}
+
+/// Something the compiler could not express exactly; it is never dropped silently.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct CompileWarning {
+    /// File rung number (1-based, comment rungs counted).
+    pub rung: usize,
+    /// The logic rung name (`L07`), if the rung is not a comment rung.
+    pub logic: Option<String>,
+    /// The element's line (or the rung's span).
+    pub span: Span,
+    /// The element keyword (`OSR`, `CTU`, `COIL`, …).
+    pub element: String,
+    /// What was done about it.
+    pub message: String,
+}
+
+impl CompileWarning {
+    /// `rung 12 (L07)`: the rung, as printed in messages.
+    pub fn rung_label(&self) -> String {
+        match &self.logic {
+            Some(l) => format!("rung {} ({l})", self.rung),
+            None => format!("rung {}", self.rung),
+        }
+    }
+}
+
+impl CompileWarning {
+    /// The whole warning with its place: `water.ld:80:5: rung 12 (L07): OSR: …`.
+    pub fn describe(&self, sources: &Sources) -> String {
+        format!("{}: {}", sources.location(self.span), Report::message(self))
+    }
+
+    /// The 1-based line of the element in its file.
+    pub fn line(&self, sources: &Sources) -> usize {
+        sources.line_col(self.span.file, self.span.start).0
+    }
+}
+
+impl Report for CompileWarning {
+    fn span(&self) -> Option<Span> {
+        Some(self.span)
+    }
+    fn message(&self) -> String {
+        format!("{}: {}: {}", self.rung_label(), self.element, self.message)
+    }
+    fn label(&self) -> String {
+        "not expressed exactly".into()
+    }
+    fn severity(&self) -> Severity {
+        Severity::Warning
+    }
+}
+
+/// A compiled program: hypotheses in rung order, every signal, and warnings.
+#[derive(Clone, Debug, Default)]
+pub struct CompiledProgram {
+    /// Equations and bounds, in rung order.
+    pub hypotheses: Vec<Hypothesis>,
+    /// Every canonical signal name (program bits, `pre_` and fresh signals) and its kind.
+    pub signals: BTreeMap<String, SignalKind>,
+    /// Everything not expressed exactly, each naming its rung and element.
+    pub warnings: Vec<CompileWarning>,
+}
+
+impl CompiledProgram {
+    /// Every hypothesis as a ground kernel axiom.
+    pub fn axioms(&self) -> Vec<Axiom> {
+        self.hypotheses.iter().map(Hypothesis::axiom).collect()
+    }
+
+    /// The hypothesis called `name`.
+    pub fn hypothesis(&self, name: &str) -> Option<&Hypothesis> {
+        self.hypotheses.iter().find(|h| h.name == name)
+    }
+}
+
+/// The largest intermediate value (in nodes) inlined into later reads.
+const MAX_INLINE: usize = 2_000;
+
+/// Control-flow keywords: a program using them is not a plain top-to-bottom scan.
+const CONTROL_FLOW: &[&str] = &["GOTO", "GOSUB", "LABEL", "SUBPROG", "ENDSUB", "RETURN"];
+
+/// The canonical `.ii` name of an LDmicro name (a back quote cannot be quoted; it becomes `'`).
+pub fn canonical(name: &str) -> String {
+    name.replace('`', "'")
+}
+
+/// Compiles a program. Never panics; everything not expressed exactly is a warning.
+pub fn compile(program: &LdProgram) -> CompiledProgram {
+    let mut c = Compiler::new(program);
+    c.run();
+    c.finish()
+}
+
+struct Pending {
+    var: String,
+    rhs: L,
+    bounds: Option<(Option<L>, Option<L>)>,
+}
+
+struct Compiler<'a> {
+    program: &'a LdProgram,
+    /// Logic rung names by rung index (None for comment rungs).
+    logic: Vec<Option<String>>,
+    /// Per coil-written variable, the global index of its last coil.
+    last_coil: BTreeMap<String, usize>,
+    /// Bits written by something other than modelled coils: first writer (rung, keyword).
+    opaque: BTreeMap<String, (usize, String)>,
+    /// Timer accumulators written by more than one element.
+    shared_timers: BTreeSet<String>,
+    /// Every name the program uses (for fresh-name uniqueness).
+    taken: BTreeSet<String>,
+    pre_names: BTreeMap<String, String>,
+    fresh: BTreeMap<String, SignalKind>,
+    // Scan state.
+    coil_index: usize,
+    current: BTreeMap<String, L>,
+    affine: BTreeMap<String, (L, L)>,
+    mcr: L,
+    // Current rung.
+    rung_idx: usize,
+    pending: Vec<Pending>,
+    // Output.
+    hypotheses: Vec<Hypothesis>,
+    warnings: Vec<CompileWarning>,
+    warned_opaque: BTreeSet<String>,
+}
+
+fn is_modelled_coil(kind: CoilKind) -> bool {
+    matches!(kind, CoilKind::Normal | CoilKind::Negated | CoilKind::Set | CoilKind::Reset)
+}
+
+/// A circuit of conditions only (no side effects, no state): its output is `input · conductance`.
+fn is_pure(c: &Circuit) -> bool {
+    match c {
+        Circuit::Series(items) | Circuit::Parallel(items) => items.iter().all(is_pure),
+        Circuit::Element(e) => matches!(
+            e.kind,
+            ElementKind::Contacts { .. }
+                | ElementKind::Short
+                | ElementKind::Open
+                | ElementKind::Comment(_)
+        ),
+    }
+}
+
+fn letters(mut k: usize) -> String {
+    // 0 → a, 25 → z, 26 → aa, …
+    let mut out = Vec::new();
+    loop {
+        out.push(b'a' + (k % 26) as u8);
+        if k < 26 {
+            break;
+        }
+        k = k / 26 - 1;
+    }
+    out.reverse();
+    String::from_utf8(out).unwrap_or_default()
+}
+
+impl<'a> Compiler<'a> {
+    fn new(program: &'a LdProgram) -> Compiler<'a> {
+        let n_logic = program.rungs.iter().filter(|r| !r.is_comment(&program.version)).count();
+        let width = n_logic.to_string().len().max(2);
+        let mut k = 0;
+        let logic = program
+            .rungs
+            .iter()
+            .map(|r| {
+                if r.is_comment(&program.version) {
+                    None
+                } else {
+                    k += 1;
+                    Some(format!("L{k:0width$}"))
+                }
+            })
+            .collect();
+        let mut c = Compiler {
+            program,
+            logic,
+            last_coil: BTreeMap::new(),
+            opaque: BTreeMap::new(),
+            shared_timers: BTreeSet::new(),
+            taken: BTreeSet::new(),
+            pre_names: BTreeMap::new(),
+            fresh: BTreeMap::new(),
+            coil_index: 0,
+            current: BTreeMap::new(),
+            affine: BTreeMap::new(),
+            mcr: L::One,
+            rung_idx: 0,
+            pending: Vec::new(),
+            hypotheses: Vec::new(),
+            warnings: Vec::new(),
+            warned_opaque: BTreeSet::new(),
+        };
+        c.prepass();
+        c
+    }
+
+    fn live_rungs(&self) -> impl Iterator<Item = (usize, &'a Rung)> + 'a {
+        let version = &self.program.version;
+        self.program.rungs.iter().enumerate().filter(move |(_, r)| !r.is_comment(version))
+    }
+
+    fn prepass(&mut self) {
+        let bits: BTreeSet<String> = self.program.signals().iter().map(|s| canonical(s)).collect();
+        for e in self.program.elements() {
+            for n in e.names_read().into_iter().chain(e.names_written()) {
+                self.taken.insert(canonical(n));
+            }
+        }
+        self.taken.extend(bits.iter().cloned());
+        let mut writers: BTreeMap<String, usize> = BTreeMap::new();
+        let mut k = 0;
+        let rungs: Vec<(usize, &Rung)> = self.live_rungs().collect();
+        for (_, rung) in rungs {
+            for e in rung.elements() {
+                match &e.kind {
+                    ElementKind::Coil { name, kind } if is_modelled_coil(*kind) => {
+                        self.last_coil.insert(canonical(name), k);
+                        k += 1;
+                    }
+                    ElementKind::Coil { name, .. } => {
+                        k += 1;
+                        self.opaque.entry(canonical(name)).or_insert((rung.number, "COIL".into()));
+                    }
+                    _ => {
+                        for n in e.names_written() {
+                            let n = canonical(n);
+                            *writers.entry(n.clone()).or_default() += 1;
+                            if bits.contains(&n) {
+                                self.opaque
+                                    .entry(n)
+                                    .or_insert((rung.number, e.kind.keyword().to_string()));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        for e in self.program.elements() {
+            if let ElementKind::Timer { name, .. } = &e.kind
+                && writers.get(&canonical(name)).copied().unwrap_or(0) > 1
+            {
+                self.shared_timers.insert(canonical(name));
+            }
+        }
+        for name in self.opaque.keys() {
+            self.last_coil.remove(name);
+        }
+        let written: Vec<String> = self.last_coil.keys().cloned().collect();
+        for x in written {
+            let pre = self.unique(&format!("pre_{x}"));
+            self.current.insert(x.clone(), L::Var(pre.clone()));
+            self.affine.insert(x.clone(), (L::Zero, L::One));
+            self.fresh.insert(pre.clone(), SignalKind::Previous { of: x.clone() });
+            self.pre_names.insert(x, pre);
+        }
+    }
+
+    fn unique(&mut self, base: &str) -> String {
+        let mut name = base.to_string();
+        let mut k = 2;
+        while self.taken.contains(&name) {
+            name = format!("{base}_{k}");
+            k += 1;
+        }
+        self.taken.insert(name.clone());
+        name
+    }
+
+    fn rung(&self) -> &'a Rung {
+        &self.program.rungs[self.rung_idx]
+    }
+
+    fn warn(&mut self, span: Span, element: &str, message: String) {
+        let rung = self.rung();
+        self.warnings.push(CompileWarning {
+            rung: rung.number,
+            logic: self.logic.get(self.rung_idx).cloned().flatten(),
+            span,
+            element: element.to_string(),
+            message,
+        });
+    }
+
+    fn new_fresh(&mut self, base: &str, e: &Element, why: &str) -> L {
+        let base = if base.starts_with(|c: char| c.is_ascii_digit()) {
+            format!("_{base}")
+        } else {
+            base.to_string()
+        };
+        let name = self.unique(&canonical(&base));
+        let rung = self.rung().number;
+        let keyword = e.kind.keyword().to_string();
+        self.fresh.insert(name.clone(), SignalKind::Fresh { rung, element: keyword.clone() });
+        self.warn(
+            e.span,
+            &keyword,
+            format!("{why}; its output is the unconstrained signal {name}"),
+        );
+        L::Var(name)
+    }
+
+    fn run(&mut self) {
+        let program = self.program;
+        let version = &program.version;
+        for idx in 0..self.program.rungs.len() {
+            self.rung_idx = idx;
+            let rung = self.rung();
+            if rung.is_comment(version) {
+                let extra =
+                    rung.elements().iter().any(|e| !matches!(e.kind, ElementKind::Comment(_)));
+                if extra {
+                    self.warn(
+                        rung.span,
+                        "COMMENT",
+                        "LDmicro skips a rung whose first element is a COMMENT; \
+                         its other elements are not compiled"
+                            .into(),
+                    );
+                }
+                continue;
+            }
+            let input = self.mcr.clone();
+            self.circuit(&rung.body, input);
+            self.flush_rung();
+        }
+    }
+
+    fn circuit(&mut self, c: &'a Circuit, input: L) -> L {
+        match c {
+            Circuit::Series(items) => {
+                items.iter().fold(input, |power, item| self.circuit(item, power))
+            }
+            Circuit::Parallel(branches) if branches.iter().all(is_pure) => {
+                // Pure conditions: `i · (c1 + c2 + …)`, the readable factored form.
+                let outs: Vec<L> = branches.iter().map(|b| self.circuit(b, L::One)).collect();
+                simp(&input.and(sum(outs)))
+            }
+            Circuit::Parallel(branches) => {
+                let outs: Vec<L> =
+                    branches.iter().map(|b| self.circuit(b, input.clone())).collect();
+                simp(&sum(outs))
+            }
+            Circuit::Element(e) => self.element(e, input),
+        }
+    }
+
+    fn read(&mut self, name: &str) -> L {
+        let name = canonical(name);
+        if let Some(v) = self.current.get(&name) {
+            return v.clone();
+        }
+        L::Var(name)
+    }
+
+    fn element(&mut self, e: &'a Element, input: L) -> L {
+        match &e.kind {
+            ElementKind::Contacts { name, negated } => {
+                let v = self.read(name);
+                let v = if *negated { v.negate() } else { v };
+                simp(&input.and(v))
+            }
+            ElementKind::Coil { name, kind } => {
+                self.coil(e, name, *kind, &input);
+                input
+            }
+            ElementKind::Short | ElementKind::Comment(_) => input,
+            ElementKind::Open => L::Zero,
+            ElementKind::Placeholder => {
+                self.warn(e.span, "PLACEHOLDER", "an empty editor slot, read as OPEN (0*)".into());
+                L::Zero
+            }
+            ElementKind::MasterRelay => {
+                self.mcr = simp(&self.mcr.clone().negate().or(input.clone()));
+                input
+            }
+            ElementKind::Timer { kind, name, delay, .. } => {
+                self.timer(e, *kind, name, delay, input)
+            }
+            ElementKind::Edge { .. } => {
+                let base = format!("{}_r{}", e.kind.keyword(), self.rung().number);
+                self.new_fresh(&base, e, "a one-shot (edge) is not expressible in the algebra")
+            }
+            ElementKind::Counter { kind, name, .. } => {
+                if *kind == CounterKind::Ctc && self.program.version.is_orig() {
+                    self.warn(
+                        e.span,
+                        "CTC",
+                        format!(
+                            "the count of {name} is not modelled; the output passes its \
+                             input (orig CTC), exactly"
+                        ),
+                    );
+                    input
+                } else {
+                    let base = format!("{}_{}", e.kind.keyword(), name);
+                    self.new_fresh(&base, e, "a counter is not expressible in the algebra")
+                }
+            }
+            ElementKind::Res { name } => {
+                self.warn(
+                    e.span,
+                    "RES",
+                    format!("resets the count of {name}: no Boolean effect; the power passes"),
+                );
+                input
+            }
+            ElementKind::Compare { .. } => {
+                let base = format!("{}_r{}", e.kind.keyword(), self.rung().number);
+                let f = self.new_fresh(&base, e, "a comparison of integers is not expressible");
+                simp(&input.and(f))
+            }
+            ElementKind::Move { dest, .. } | ElementKind::Math { dest, .. } => {
+                self.warn(
+                    e.span,
+                    e.kind.keyword(),
+                    format!("writes the integer {dest}: no Boolean effect; the power passes"),
+                );
+                input
+            }
+            ElementKind::Other { keyword, .. } => {
+                let flow = CONTROL_FLOW.contains(&keyword.as_str());
+                if crate::ladder::ldmicro::PASS_THROUGH.contains(&keyword.as_str()) {
+                    self.warn(
+                        e.span,
+                        keyword,
+                        "integer or peripheral operation: no Boolean effect; the power passes"
+                            .into(),
+                    );
+                    input
+                } else {
+                    let why = if flow {
+                        "control flow: the equations assume a plain top-to-bottom scan"
+                    } else {
+                        "an integer, peripheral or text element is not expressible"
+                    };
+                    let base = format!("{keyword}_r{}", self.rung().number);
+                    self.new_fresh(&base, e, why)
+                }
+            }
+        }
+    }
+
+    fn timer(
+        &mut self,
+        e: &Element,
+        kind: TimerKind,
+        name: &str,
+        delay: &TimerDelay,
+        input: L,
+    ) -> L {
+        let keyword = e.kind.keyword().to_string();
+        let why = match (kind, delay) {
+            _ if self.shared_timers.contains(&canonical(name)) => Some(format!(
+                "the accumulator {name} is also written by another element (RES, MOVE, another timer)"
+            )),
+            (TimerKind::Ton | TimerKind::Tof, TimerDelay::Variable(v)) => {
+                Some(format!("a delay given by the variable {v} is not a constant"))
+            }
+            (TimerKind::Ton | TimerKind::Tof, TimerDelay::Micros(0)) => {
+                Some("a zero delay is not a delay".into())
+            }
+            (TimerKind::Ton | TimerKind::Tof, _) if self.program.cycle_us == 0 => {
+                Some("with a zero cycle the timer never expires".into())
+            }
+            (TimerKind::Ton | TimerKind::Tof, TimerDelay::Micros(_)) => None,
+            _ => Some(format!("the {keyword} timer is not expressible in the algebra")),
+        };
+        let d = match delay {
+            TimerDelay::Micros(us) => Delay::from_micros(*us).ok(),
+            TimerDelay::Variable(_) => None,
+        };
+        match (why, d) {
+            (None, Some(d)) => match kind {
+                TimerKind::Ton => simp(&L::Ton(d, Box::new(input))),
+                _ => simp(&L::Tof(Box::new(input), d)),
+            },
+            (why, _) => {
+                let why = why.unwrap_or_else(|| "the delay is not expressible".into());
+                self.new_fresh(&format!("{keyword}_{name}"), e, &why)
+            }
+        }
+    }
+
+    fn coil(&mut self, e: &Element, name: &str, kind: CoilKind, input: &L) {
+        let x = canonical(name);
+        let k = self.coil_index;
+        self.coil_index += 1;
+        if let Some((rung, keyword)) = self.opaque.get(&x).cloned() {
+            let why = if kind == CoilKind::Toggle {
+                "a toggle coil is not expressible in the algebra".to_string()
+            } else {
+                format!("{x} is also written by {keyword} in rung {rung}")
+            };
+            let first = self.warned_opaque.insert(x.clone());
+            self.warn(
+                e.span,
+                "COIL",
+                format!(
+                    "{why}; no equation for {x}, which is unconstrained{}",
+                    if first { "" } else { " (see above)" }
+                ),
+            );
+            return;
+        }
+        let Some((a, b)) = self.affine.get(&x).cloned() else {
+            return;
+        };
+        // Which coil kind dominates (the last set or reset coil), for the memory's form.
+        let dominant = match kind {
+            CoilKind::Set => Some(false),
+            CoilKind::Reset => Some(true),
+            _ => None,
+        };
+        let (a, b) = match kind {
+            CoilKind::Normal => (input.clone(), L::Zero),
+            CoilKind::Negated => (input.clone().negate(), L::Zero),
+            CoilKind::Set => (a.or(input.clone()), b),
+            CoilKind::Reset => {
+                let keep = input.clone().negate();
+                (keep.clone().and(a), keep.and(b))
+            }
+            CoilKind::Toggle => return,
+        };
+        let (a, b) = (simp(&a), simp(&b));
+        self.affine.insert(x.clone(), (a.clone(), b.clone()));
+        let pre = self.pre_names.get(&x).cloned().unwrap_or_default();
+        let g = simp(&a.or(b.and(L::Var(pre.clone()))));
+        if self.last_coil.get(&x) == Some(&k) {
+            let rhs = self.finish_var(&pre, g, dominant);
+            self.current.insert(x.clone(), L::Var(x.clone()));
+            let bounds = self.bounds(&rhs);
+            self.pending.push(Pending { var: x, rhs, bounds });
+        } else if g.size() > MAX_INLINE {
+            let name = self.unique(&format!("{x}_r{}", self.rung().number));
+            let rung = self.rung().number;
+            self.fresh.insert(name.clone(), SignalKind::Fresh { rung, element: "COIL".into() });
+            self.warn(
+                e.span,
+                "COIL",
+                format!(
+                    "the intermediate value of {x} is too large to inline; later reads \
+                     until its next coil see the unconstrained signal {name}"
+                ),
+            );
+            self.current.insert(x, L::Var(name));
+        } else {
+            self.current.insert(x, g);
+        }
+    }
+
+    /// The end-of-scan value `g(pre)` of `x` as a term: an equation, or a memory.
+    fn finish_var(&self, pre: &str, g: L, prefer_rs: Option<bool>) -> L {
+        if !g.mentions(pre) || g.mentions_temporally(pre) {
+            return g;
+        }
+        let g0 = simp(&g.subst(pre, &L::Zero));
+        let g1 = simp(&g.subst(pre, &L::One));
+        let Some(t) = Tables::new(&[&g0, &g1]) else {
+            return g;
+        };
+        if !t.implies(0, 1) {
+            return g;
+        }
+        memory_form(&g, pre, g0, g1, prefer_rs).unwrap_or(g)
+    }
+
+    fn bounds(&self, rhs: &L) -> Option<(Option<L>, Option<L>)> {
+        let mut names = Vec::new();
+        rhs.names(&mut names);
+        let pres: Vec<&String> = names
+            .iter()
+            .filter(|n| matches!(self.fresh.get(*n), Some(SignalKind::Previous { .. })))
+            .collect();
+        if pres.is_empty() {
+            return None;
+        }
+        let (mut lo, mut hi) = (Some(rhs.clone()), Some(rhs.clone()));
+        for p in pres {
+            lo = lo.map(|e| eliminate(&e, p, false)).filter(|e| e.size() <= MAX_BOUND_SIZE);
+            hi = hi.map(|e| eliminate(&e, p, true)).filter(|e| e.size() <= MAX_BOUND_SIZE);
+        }
+        Some((lo.filter(|e| *e != L::Zero), hi.filter(|e| *e != L::One)))
+    }
+
+    fn flush_rung(&mut self) {
+        let pending = std::mem::take(&mut self.pending);
+        if pending.is_empty() {
+            return;
+        }
+        let rung = self.rung();
+        let base = self.logic.get(self.rung_idx).cloned().flatten().unwrap_or_default();
+        let several = pending.len() > 1;
+        for (k, p) in pending.into_iter().enumerate() {
+            let name = if several { format!("{base}{}", letters(k)) } else { base.clone() };
+            let var = L::Var(p.var.clone()).to_expr();
+            let mut push = |name: String, kind, lhs: Expr, rel, rhs: Expr| {
+                self.hypotheses.push(Hypothesis {
+                    name,
+                    rung: rung.number,
+                    span: rung.span,
+                    kind,
+                    lhs,
+                    rel,
+                    rhs,
+                });
+            };
+            push(name.clone(), HypothesisKind::Equation, var.clone(), Rel::Eq, p.rhs.to_expr());
+            if let Some((lo, hi)) = p.bounds {
+                if let Some(lo) = lo {
+                    let n = format!("{name}_lo");
+                    push(n, HypothesisKind::LowerBound, lo.to_expr(), Rel::Implies, var.clone());
+                }
+                if let Some(hi) = hi {
+                    let n = format!("{name}_hi");
+                    push(n, HypothesisKind::UpperBound, var.clone(), Rel::Implies, hi.to_expr());
+                }
+            }
+        }
+    }
+
+    fn finish(self) -> CompiledProgram {
+        let mut signals: BTreeMap<String, SignalKind> = BTreeMap::new();
+        let written: BTreeSet<&String> = self.last_coil.keys().collect();
+        let classify = |n: &str| -> SignalKind {
+            if let Some(k) = self.fresh.get(n) {
+                return k.clone();
+            }
+            if let Some((rung, element)) = self.opaque.get(n) {
+                return SignalKind::Unmodelled { rung: *rung, element: element.clone() };
+            }
+            if written.contains(&n.to_string()) {
+                if n.starts_with('Y') { SignalKind::Output } else { SignalKind::Relay }
+            } else {
+                SignalKind::Input
+            }
+        };
+        for s in self.program.signals() {
+            let s = canonical(&s);
+            let kind = classify(&s);
+            signals.insert(s, kind);
+        }
+        for h in &self.hypotheses {
+            for side in [&h.lhs, &h.rhs] {
+                for node in side.as_ref() {
+                    if let crate::term::Term::Name(n) = node {
+                        let n = n.as_str();
+                        if !signals.contains_key(n) {
+                            signals.insert(n.to_string(), classify(n));
+                        }
+                    }
+                }
+            }
+        }
+        for (name, kind) in &self.fresh {
+            if matches!(kind, SignalKind::Fresh { .. }) {
+                signals.insert(name.clone(), kind.clone());
+            }
+        }
+        CompiledProgram { hypotheses: self.hypotheses, signals, warnings: self.warnings }
+    }
+}
+
+/// `¬y`, with De Morgan applied when every operand of `y` is a complement
+/// (`¬(¬a · ¬b)` is written `a + b`).
+fn readable_not(y: &L) -> L {
+    let inner = |xs: &[L]| -> Option<Vec<L>> {
+        xs.iter()
+            .map(|x| match x {
+                L::Not(i) => Some((**i).clone()),
+                _ => None,
+            })
+            .collect()
+    };
+    match y {
+        L::And(xs) => inner(xs).map_or_else(|| simp(&y.clone().negate()), |v| simp(&sum(v))),
+        L::Or(xs) => inner(xs).map_or_else(|| simp(&y.clone().negate()), |v| simp(&product(v))),
+        _ => simp(&y.clone().negate()),
+    }
+}
+
+/// The memory `SR(g0, ¬g1)` (valid when `g0 ⇒ g1`) in its most readable checked form.
+fn memory_form(g: &L, pre: &str, g0: L, g1: L, prefer_rs: Option<bool>) -> Option<L> {
+    let p = L::var(pre);
+    // RS(S, ¬Y): Y = g1, S = the factors of g0 not implied by g1.
+    let y_rs = g1.clone();
+    let f0 = factors(&g0);
+    let kept: Vec<L> =
+        f0.iter().filter(|f| super::logic::implies(&y_rs, f) != Some(true)).cloned().collect();
+    let rs_dropped = kept.len() < f0.len();
+    let s_rs = simp(&product(kept));
+    // SR(S, ¬Y): S = g0, Y = the summands of g1 that do not imply g0.
+    let s_sr = g0.clone();
+    let f1 = summands(&g1);
+    let kept: Vec<L> =
+        f1.iter().filter(|f| super::logic::implies(f, &g0) != Some(true)).cloned().collect();
+    let sr_dropped = kept.len() < f1.len();
+    let y_sr = simp(&sum(kept));
+    let rs = (s_rs.clone(), y_rs.clone());
+    let sr = (s_sr.clone(), y_sr.clone());
+    let size = |(s, y): &(L, L)| s.size() + y.size();
+    let prefer_rs = match (rs_dropped, sr_dropped) {
+        (true, false) => true,
+        (false, true) => false,
+        _ => prefer_rs.unwrap_or(size(&rs) < size(&sr)),
+    };
+    let candidates = if prefer_rs { [(true, rs), (false, sr)] } else { [(false, sr), (true, rs)] };
+    for (is_rs, (s, y)) in candidates {
+        let recurrence = if is_rs {
+            s.clone().or(p.clone()).and(y.clone())
+        } else {
+            s.clone().or(p.clone().and(y.clone()))
+        };
+        if super::logic::equivalent(&recurrence, g) == Some(true) {
+            let r = Box::new(readable_not(&y));
+            let s = Box::new(s);
+            return Some(simp(&if is_rs { L::Rs(s, r) } else { L::Sr(s, r) }));
+        }
+    }
+    let fallback = L::Sr(Box::new(g0), Box::new(simp(&g1.negate())));
+    Some(simp(&fallback))
+}
+
+type KindFilter = fn(&SignalKind) -> bool;
+
+/// The compiled program as `.ii` text: a header comment, `input` lines declaring
+/// every signal, the warnings as `//` comments naming their rung, and one
+/// `assume` per hypothesis. It parses back with
+/// [`parse_document`](crate::syntax::parse_document) and
+/// [`NoProgram`](crate::syntax::NoProgram) to the same hypotheses.
+pub fn program_to_ii(compiled: &CompiledProgram, notation: Notation) -> String {
+    let mut out = String::new();
+    out.push_str("// Compiled from an LDmicro program by ii-prove (zero-response-time model).\n");
+    out.push_str(&format!(
+        "// {} hypotheses, {} signals, {} warnings. pre_X is X's previous-scan value and,\n",
+        compiled.hypotheses.len(),
+        compiled.signals.len(),
+        compiled.warnings.len()
+    ));
+    out.push_str("// like every fresh signal, is unconstrained.\n");
+    let groups: [(&str, KindFilter); 6] = [
+        ("inputs", |k| *k == SignalKind::Input),
+        ("outputs", |k| *k == SignalKind::Output),
+        ("relays", |k| *k == SignalKind::Relay),
+        ("previous-scan values (unconstrained)", |k| matches!(k, SignalKind::Previous { .. })),
+        ("fresh outputs of unsupported elements (unconstrained)", |k| {
+            matches!(k, SignalKind::Fresh { .. })
+        }),
+        ("bits written by unsupported elements (unconstrained)", |k| {
+            matches!(k, SignalKind::Unmodelled { .. })
+        }),
+    ];
+    for (title, pick) in groups {
+        let names: Vec<String> = compiled
+            .signals
+            .iter()
+            .filter(|(_, k)| pick(k))
+            .map(|(n, _)| name_to_string(n))
+            .collect();
+        if names.is_empty() {
+            continue;
+        }
+        out.push_str(&format!("\n// {title}\n"));
+        for chunk in names.chunks(8) {
+            out.push_str(&format!("input {}\n", chunk.join(", ")));
+        }
+    }
+    if !compiled.warnings.is_empty() {
+        out.push_str("\n// warnings\n");
+        for w in &compiled.warnings {
+            let text = format!("{}: {}: {}", w.rung_label(), w.element, w.message);
+            let text: String = text.chars().map(|c| if c.is_control() { ' ' } else { c }).collect();
+            out.push_str(&format!("// warning: {text}\n"));
+        }
+    }
+    out.push('\n');
+    let dummy = Span::new(0, 0..0);
+    for h in &compiled.hypotheses {
+        let relation = match h.rel {
+            Rel::Eq => Relation::Equals,
+            Rel::Implies => Relation::Implies,
+        };
+        let goal = Goal { lhs: h.lhs.clone(), relation, rhs: h.rhs.clone(), after: None };
+        let statement =
+            Statement { name: h.name.clone(), name_span: dummy, span: dummy, value: goal };
+        out.push_str(&goal_statement_to_string(GoalKeyword::Assume, &statement, notation));
+        out.push('\n');
+    }
+    out
+}

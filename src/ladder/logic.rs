@@ -1,0 +1,585 @@
+//! Working terms of the rung compiler: Boolean structure over opaque temporal atoms, with truth tables, simplification and the sound elimination of unconstrained signals.
+//!
+//! A [`L`] is an II term with n-ary sums and products, easy to flatten and
+//! substitute into. Anything that is not `0*`, `1*`, `·`, `+` or `¬` (a name, a
+//! timer, a memory) is an *atom* for Boolean reasoning: two terms are equivalent
+//! when their truth tables over their atoms agree. That is sound for the II
+//! algebra (Boolean identities hold pointwise whatever the atoms' values) and
+//! never confuses two different atoms. Truth tables are built 64 rows at a time
+//! and only for at most [`MAX_ATOMS`] atoms; beyond that the Boolean checks
+//! answer "unknown" and the compiler falls back to its always-sound choice.
+#![warn(missing_docs)]
+
+use std::collections::BTreeMap;
+
+use crate::term::{Builder, Delay, Expr, Id, Term, root};
+
+/// The most atoms a truth table is built for (2^16 rows, 1024 words).
+pub const MAX_ATOMS: usize = 16;
+
+/// The largest term (in nodes) the bound elimination produces; bigger bounds are dropped.
+pub const MAX_BOUND_SIZE: usize = 20_000;
+
+/// A working term.
+#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum L {
+    /// `0*`.
+    Zero,
+    /// `1*`.
+    One,
+    /// A named signal.
+    Var(String),
+    /// `¬f`.
+    Not(Box<L>),
+    /// A product (empty = `1*`).
+    And(Vec<L>),
+    /// A sum (empty = `0*`).
+    Or(Vec<L>),
+    /// `d/f`.
+    Ton(Delay, Box<L>),
+    /// `f/d`.
+    Tof(Box<L>, Delay),
+    /// `SR(s, r)`.
+    Sr(Box<L>, Box<L>),
+    /// `RS(s, r)`.
+    Rs(Box<L>, Box<L>),
+}
+
+impl L {
+    /// A named signal.
+    pub fn var(name: &str) -> L {
+        L::Var(name.to_string())
+    }
+
+    /// `¬self`, folding constants and double negation.
+    pub fn negate(self) -> L {
+        match self {
+            L::Zero => L::One,
+            L::One => L::Zero,
+            L::Not(x) => *x,
+            x => L::Not(Box::new(x)),
+        }
+    }
+
+    /// `self · other`, folding constants and flattening.
+    pub fn and(self, other: L) -> L {
+        match (self, other) {
+            (L::Zero, _) | (_, L::Zero) => L::Zero,
+            (L::One, x) | (x, L::One) => x,
+            (L::And(mut a), L::And(b)) => {
+                a.extend(b);
+                L::And(a)
+            }
+            (L::And(mut a), x) => {
+                a.push(x);
+                L::And(a)
+            }
+            (x, L::And(b)) => {
+                let mut a = vec![x];
+                a.extend(b);
+                L::And(a)
+            }
+            (x, y) => L::And(vec![x, y]),
+        }
+    }
+
+    /// `self + other`, folding constants and flattening.
+    pub fn or(self, other: L) -> L {
+        match (self, other) {
+            (L::One, _) | (_, L::One) => L::One,
+            (L::Zero, x) | (x, L::Zero) => x,
+            (L::Or(mut a), L::Or(b)) => {
+                a.extend(b);
+                L::Or(a)
+            }
+            (L::Or(mut a), x) => {
+                a.push(x);
+                L::Or(a)
+            }
+            (x, L::Or(b)) => {
+                let mut a = vec![x];
+                a.extend(b);
+                L::Or(a)
+            }
+            (x, y) => L::Or(vec![x, y]),
+        }
+    }
+
+    /// The number of nodes.
+    pub fn size(&self) -> usize {
+        1 + match self {
+            L::Zero | L::One | L::Var(_) => 0,
+            L::Not(x) | L::Ton(_, x) | L::Tof(x, _) => x.size(),
+            L::And(xs) | L::Or(xs) => xs.iter().map(L::size).sum(),
+            L::Sr(a, b) | L::Rs(a, b) => a.size() + b.size(),
+        }
+    }
+
+    /// Whether `name` occurs.
+    pub fn mentions(&self, name: &str) -> bool {
+        match self {
+            L::Zero | L::One => false,
+            L::Var(v) => v == name,
+            L::Not(x) | L::Ton(_, x) | L::Tof(x, _) => x.mentions(name),
+            L::And(xs) | L::Or(xs) => xs.iter().any(|x| x.mentions(name)),
+            L::Sr(a, b) | L::Rs(a, b) => a.mentions(name) || b.mentions(name),
+        }
+    }
+
+    /// Whether `name` occurs under a timer or a memory (then it is not a pointwise Boolean argument).
+    pub fn mentions_temporally(&self, name: &str) -> bool {
+        match self {
+            L::Zero | L::One | L::Var(_) => false,
+            L::Not(x) => x.mentions_temporally(name),
+            L::And(xs) | L::Or(xs) => xs.iter().any(|x| x.mentions_temporally(name)),
+            L::Ton(_, x) | L::Tof(x, _) => x.mentions(name),
+            L::Sr(a, b) | L::Rs(a, b) => a.mentions(name) || b.mentions(name),
+        }
+    }
+
+    /// Every name, in first-occurrence order, without repeats.
+    pub fn names(&self, out: &mut Vec<String>) {
+        match self {
+            L::Zero | L::One => {}
+            L::Var(v) => {
+                if !out.contains(v) {
+                    out.push(v.clone());
+                }
+            }
+            L::Not(x) | L::Ton(_, x) | L::Tof(x, _) => x.names(out),
+            L::And(xs) | L::Or(xs) => xs.iter().for_each(|x| x.names(out)),
+            L::Sr(a, b) | L::Rs(a, b) => {
+                a.names(out);
+                b.names(out);
+            }
+        }
+    }
+
+    /// `self[name := value]` everywhere (also under timers and memories).
+    pub fn subst(&self, name: &str, value: &L) -> L {
+        match self {
+            L::Zero => L::Zero,
+            L::One => L::One,
+            L::Var(v) => {
+                if v == name {
+                    value.clone()
+                } else {
+                    self.clone()
+                }
+            }
+            L::Not(x) => L::Not(Box::new(x.subst(name, value))),
+            L::And(xs) => L::And(xs.iter().map(|x| x.subst(name, value)).collect()),
+            L::Or(xs) => L::Or(xs.iter().map(|x| x.subst(name, value)).collect()),
+            L::Ton(d, x) => L::Ton(d.clone(), Box::new(x.subst(name, value))),
+            L::Tof(x, d) => L::Tof(Box::new(x.subst(name, value)), d.clone()),
+            L::Sr(a, b) => L::Sr(Box::new(a.subst(name, value)), Box::new(b.subst(name, value))),
+            L::Rs(a, b) => L::Rs(Box::new(a.subst(name, value)), Box::new(b.subst(name, value))),
+        }
+    }
+
+    /// Renames every name through `f`.
+    pub fn rename(&self, f: &dyn Fn(&str) -> String) -> L {
+        match self {
+            L::Zero => L::Zero,
+            L::One => L::One,
+            L::Var(v) => L::Var(f(v)),
+            L::Not(x) => L::Not(Box::new(x.rename(f))),
+            L::And(xs) => L::And(xs.iter().map(|x| x.rename(f)).collect()),
+            L::Or(xs) => L::Or(xs.iter().map(|x| x.rename(f)).collect()),
+            L::Ton(d, x) => L::Ton(d.clone(), Box::new(x.rename(f))),
+            L::Tof(x, d) => L::Tof(Box::new(x.rename(f)), d.clone()),
+            L::Sr(a, b) => L::Sr(Box::new(a.rename(f)), Box::new(b.rename(f))),
+            L::Rs(a, b) => L::Rs(Box::new(a.rename(f)), Box::new(b.rename(f))),
+        }
+    }
+
+    fn atoms(&self, out: &mut BTreeMap<L, usize>) {
+        match self {
+            L::Zero | L::One => {}
+            L::Not(x) => x.atoms(out),
+            L::And(xs) | L::Or(xs) => xs.iter().for_each(|x| x.atoms(out)),
+            atom => {
+                let n = out.len();
+                out.entry(atom.clone()).or_insert(n);
+            }
+        }
+    }
+
+    fn table(&self, atoms: &BTreeMap<L, usize>, words: usize) -> Vec<u64> {
+        match self {
+            L::Zero => vec![0; words],
+            L::One => vec![!0; words],
+            L::Not(x) => x.table(atoms, words).into_iter().map(|w| !w).collect(),
+            L::And(xs) => xs.iter().fold(vec![!0; words], |acc, x| {
+                acc.iter().zip(x.table(atoms, words)).map(|(a, b)| a & b).collect()
+            }),
+            L::Or(xs) => xs.iter().fold(vec![0; words], |acc, x| {
+                acc.iter().zip(x.table(atoms, words)).map(|(a, b)| a | b).collect()
+            }),
+            atom => {
+                let i = atoms.get(atom).copied().unwrap_or(0);
+                (0..words).map(|w| atom_word(i, w)).collect()
+            }
+        }
+    }
+
+    /// Converts to an egg term (sums and products left-associated).
+    pub fn to_expr(&self) -> Expr {
+        let mut b = Builder::default();
+        self.build(&mut b);
+        b.finish()
+    }
+
+    fn build(&self, b: &mut Builder) -> Id {
+        match self {
+            L::Zero => b.zero(),
+            L::One => b.one(),
+            L::Var(v) => b.name(v),
+            L::Not(x) => {
+                let x = x.build(b);
+                b.not(x)
+            }
+            L::And(xs) => match xs.split_first() {
+                None => b.one(),
+                Some((first, rest)) => {
+                    let mut acc = first.build(b);
+                    for x in rest {
+                        let y = x.build(b);
+                        acc = b.and(acc, y);
+                    }
+                    acc
+                }
+            },
+            L::Or(xs) => match xs.split_first() {
+                None => b.zero(),
+                Some((first, rest)) => {
+                    let mut acc = first.build(b);
+                    for x in rest {
+                        let y = x.build(b);
+                        acc = b.or(acc, y);
+                    }
+                    acc
+                }
+            },
+            L::Ton(d, x) => {
+                let d = b.delay(d.clone());
+                let x = x.build(b);
+                b.ton(d, x)
+            }
+            L::Tof(x, d) => {
+                let x = x.build(b);
+                let d = b.delay(d.clone());
+                b.tof(x, d)
+            }
+            L::Sr(s, r) => {
+                let s = s.build(b);
+                let r = r.build(b);
+                b.sr(s, r)
+            }
+            L::Rs(s, r) => {
+                let s = s.build(b);
+                let r = r.build(b);
+                b.rs(s, r)
+            }
+        }
+    }
+
+    /// Reads an egg term back (delay arithmetic other than literals is kept as `None`).
+    pub fn from_expr(expr: &Expr) -> Option<L> {
+        if expr.as_ref().is_empty() {
+            return None;
+        }
+        from_node(expr, root(expr))
+    }
+}
+
+fn from_node(expr: &Expr, id: Id) -> Option<L> {
+    let delay = |id: Id| match &expr[id] {
+        Term::Delay(d) => Some(d.clone()),
+        _ => None,
+    };
+    Some(match &expr[id] {
+        Term::Zero => L::Zero,
+        Term::One => L::One,
+        Term::Name(s) => L::Var(s.as_str().to_string()),
+        Term::Not(x) => L::Not(Box::new(from_node(expr, *x)?)),
+        Term::And([a, b]) => from_node(expr, *a)?.and(from_node(expr, *b)?),
+        Term::Or([a, b]) => from_node(expr, *a)?.or(from_node(expr, *b)?),
+        Term::Ton([d, f]) => L::Ton(delay(*d)?, Box::new(from_node(expr, *f)?)),
+        Term::Tof([f, d]) => L::Tof(Box::new(from_node(expr, *f)?), delay(*d)?),
+        Term::Sr([s, r]) => L::Sr(Box::new(from_node(expr, *s)?), Box::new(from_node(expr, *r)?)),
+        Term::Rs([s, r]) => L::Rs(Box::new(from_node(expr, *s)?), Box::new(from_node(expr, *r)?)),
+        Term::Delay(_) | Term::DMax(_) | Term::DMin(_) | Term::DAdd(_) => return None,
+    })
+}
+
+/// The truth-table word `w` of atom `i`.
+fn atom_word(i: usize, w: usize) -> u64 {
+    const MASKS: [u64; 6] = [
+        0xAAAA_AAAA_AAAA_AAAA,
+        0xCCCC_CCCC_CCCC_CCCC,
+        0xF0F0_F0F0_F0F0_F0F0,
+        0xFF00_FF00_FF00_FF00,
+        0xFFFF_0000_FFFF_0000,
+        0xFFFF_FFFF_0000_0000,
+    ];
+    if i < 6 {
+        MASKS[i]
+    } else if (w >> (i - 6)) & 1 == 1 {
+        !0
+    } else {
+        0
+    }
+}
+
+/// Truth tables of several terms over their common atoms, with the mask of valid bits.
+pub struct Tables {
+    /// One table per term.
+    pub tables: Vec<Vec<u64>>,
+    mask: u64,
+}
+
+impl Tables {
+    /// Tables for `terms`, or `None` if they have more than [`MAX_ATOMS`] atoms together.
+    pub fn new(terms: &[&L]) -> Option<Tables> {
+        let mut atoms = BTreeMap::new();
+        for t in terms {
+            t.atoms(&mut atoms);
+            if atoms.len() > MAX_ATOMS {
+                return None;
+            }
+        }
+        let n = atoms.len();
+        let words = if n <= 6 { 1 } else { 1 << (n - 6) };
+        let mask = if n >= 6 { !0 } else { (1u64 << (1u32 << n)) - 1 };
+        let tables = terms.iter().map(|t| t.table(&atoms, words)).collect();
+        Some(Tables { tables, mask })
+    }
+
+    /// Does term `i` imply term `j` (for every valuation of the atoms)?
+    pub fn implies(&self, i: usize, j: usize) -> bool {
+        self.tables[i].iter().zip(&self.tables[j]).all(|(a, b)| a & !b & self.mask == 0)
+    }
+
+    /// Is term `i` always 0?
+    pub fn is_zero(&self, i: usize) -> bool {
+        self.tables[i].iter().all(|a| a & self.mask == 0)
+    }
+
+    /// Is term `i` always 1?
+    pub fn is_one(&self, i: usize) -> bool {
+        self.tables[i].iter().all(|a| !a & self.mask == 0)
+    }
+}
+
+/// `a ⇒ b` as Boolean functions of their atoms; `None` when there are too many atoms.
+pub fn implies(a: &L, b: &L) -> Option<bool> {
+    Tables::new(&[a, b]).map(|t| t.implies(0, 1))
+}
+
+/// `a = b` as Boolean functions of their atoms; `None` when there are too many atoms.
+pub fn equivalent(a: &L, b: &L) -> Option<bool> {
+    Tables::new(&[a, b]).map(|t| t.implies(0, 1) && t.implies(1, 0))
+}
+
+/// Simplifies, keeping the order of operands: constants, double negation,
+/// flattening, duplicates, and absorption (a factor implied by another factor,
+/// or a summand implying another summand, is dropped); a sum or product that is
+/// constant as a Boolean function becomes that constant. Also `d/0* = 0*`,
+/// `0*/d = 0*`, `SR(0*, r) = RS(0*, r) = RS(s, 1*) = 0*`, `SR(1*, r) = 1*`.
+pub fn simp(e: &L) -> L {
+    match e {
+        L::Zero | L::One | L::Var(_) => e.clone(),
+        L::Not(x) => simp(x).negate(),
+        L::And(xs) => junction(xs, true),
+        L::Or(xs) => junction(xs, false),
+        L::Ton(d, x) => match simp(x) {
+            L::Zero => L::Zero,
+            x => L::Ton(d.clone(), Box::new(x)),
+        },
+        L::Tof(x, d) => match simp(x) {
+            L::Zero => L::Zero,
+            x => L::Tof(Box::new(x), d.clone()),
+        },
+        L::Sr(s, r) => match (simp(s), simp(r)) {
+            (L::Zero, _) => L::Zero,
+            (L::One, _) => L::One,
+            (s, r) => L::Sr(Box::new(s), Box::new(r)),
+        },
+        L::Rs(s, r) => match (simp(s), simp(r)) {
+            (L::Zero, _) | (_, L::One) => L::Zero,
+            (s, r) => L::Rs(Box::new(s), Box::new(r)),
+        },
+    }
+}
+
+fn junction(xs: &[L], is_and: bool) -> L {
+    let (unit, absorbing) = if is_and { (L::One, L::Zero) } else { (L::Zero, L::One) };
+    let mut items: Vec<L> = Vec::new();
+    for x in xs {
+        let x = simp(x);
+        let parts = match x {
+            L::And(ys) if is_and => ys,
+            L::Or(ys) if !is_and => ys,
+            y => vec![y],
+        };
+        for y in parts {
+            if y == absorbing {
+                return absorbing;
+            }
+            if y != unit && !items.contains(&y) {
+                items.push(y);
+            }
+        }
+    }
+    if items.len() > 1 {
+        let refs: Vec<&L> = items.iter().collect();
+        if let Some(t) = Tables::new(&refs) {
+            let n = items.len();
+            let mut whole = Vec::with_capacity(n);
+            let mut keep = vec![true; n];
+            // Drop, from the last to the first, an operand made redundant by another kept one.
+            for j in (0..n).rev() {
+                let redundant = (0..n).any(|i| {
+                    i != j && keep[i] && if is_and { t.implies(i, j) } else { t.implies(j, i) }
+                });
+                if redundant {
+                    keep[j] = false;
+                }
+            }
+            for (k, item) in items.into_iter().enumerate() {
+                if keep[k] {
+                    whole.push(item);
+                }
+            }
+            items = whole;
+            let folded = if is_and { L::And(items.clone()) } else { L::Or(items.clone()) };
+            if let Some(t) = Tables::new(&[&folded]) {
+                if t.is_zero(0) {
+                    return L::Zero;
+                }
+                if t.is_one(0) {
+                    return L::One;
+                }
+            }
+        }
+    }
+    match items.len() {
+        0 => unit,
+        1 => items.pop().unwrap_or(unit),
+        _ => {
+            if is_and {
+                L::And(items)
+            } else {
+                L::Or(items)
+            }
+        }
+    }
+}
+
+/// The operands of a product (a non-product is a product of one).
+pub fn factors(e: &L) -> Vec<L> {
+    match e {
+        L::And(xs) => xs.clone(),
+        L::One => Vec::new(),
+        x => vec![x.clone()],
+    }
+}
+
+/// The operands of a sum (a non-sum is a sum of one).
+pub fn summands(e: &L) -> Vec<L> {
+    match e {
+        L::Or(xs) => xs.clone(),
+        L::Zero => Vec::new(),
+        x => vec![x.clone()],
+    }
+}
+
+/// A product of `xs` (`1*` if empty).
+pub fn product(xs: Vec<L>) -> L {
+    xs.into_iter().fold(L::One, L::and)
+}
+
+/// A sum of `xs` (`0*` if empty).
+pub fn sum(xs: Vec<L>) -> L {
+    xs.into_iter().fold(L::Zero, L::or)
+}
+
+/// A term below `e` whatever the signal `p` is (`upper = false`), or above it
+/// (`upper = true`); `p` no longer occurs in the result.
+///
+/// Where `p` occurs in `e` only as a pointwise Boolean argument, this is the
+/// Shannon bound `e[p:=0]·e[p:=1]` (resp. `e[p:=0] + e[p:=1]`). Otherwise the
+/// bound is taken through the structure: every operator of the algebra is
+/// monotone in each argument except `¬` (antitone) and the reset of
+/// `SR`/`RS` (antitone), so the bound of each argument with the right polarity
+/// gives a bound of the whole.
+pub fn eliminate(e: &L, p: &str, upper: bool) -> L {
+    if !e.mentions(p) {
+        return e.clone();
+    }
+    if !e.mentions_temporally(p) {
+        let e0 = e.subst(p, &L::Zero);
+        let e1 = e.subst(p, &L::One);
+        return simp(&if upper { e0.or(e1) } else { e0.and(e1) });
+    }
+    let r = match e {
+        L::Zero | L::One => e.clone(),
+        L::Var(_) => {
+            if upper {
+                L::One
+            } else {
+                L::Zero
+            }
+        }
+        L::Not(x) => eliminate(x, p, !upper).negate(),
+        L::And(xs) => L::And(xs.iter().map(|x| eliminate(x, p, upper)).collect()),
+        L::Or(xs) => L::Or(xs.iter().map(|x| eliminate(x, p, upper)).collect()),
+        L::Ton(d, x) => L::Ton(d.clone(), Box::new(eliminate(x, p, upper))),
+        L::Tof(x, d) => L::Tof(Box::new(eliminate(x, p, upper)), d.clone()),
+        L::Sr(s, r) => L::Sr(Box::new(eliminate(s, p, upper)), Box::new(eliminate(r, p, !upper))),
+        L::Rs(s, r) => L::Rs(Box::new(eliminate(s, p, upper)), Box::new(eliminate(r, p, !upper))),
+    };
+    simp(&r)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn v(n: &str) -> L {
+        L::var(n)
+    }
+
+    #[test]
+    fn absorption_and_constants() {
+        let e = v("a").and(v("b")).or(v("a"));
+        assert_eq!(simp(&e), v("a"));
+        let e = v("a").and(v("a").negate());
+        assert_eq!(simp(&e), L::Zero);
+        let e = v("s").and(v("r").negate()).or(v("r").negate());
+        assert_eq!(simp(&e), v("r").negate());
+        assert_eq!(simp(&e.negate()), v("r"));
+    }
+
+    #[test]
+    fn shannon_and_structural_bounds() {
+        // e = a·p + b·¬p: lower a·b, upper a + b.
+        let e = v("a").and(v("p")).or(v("b").and(v("p").negate()));
+        assert_eq!(eliminate(&e, "p", false), v("b").and(v("a")));
+        assert_eq!(eliminate(&e, "p", true), v("b").or(v("a")));
+        let d: Delay = "1s".parse().unwrap();
+        let t = L::Ton(d.clone(), Box::new(v("a").and(v("p").negate())));
+        assert_eq!(eliminate(&t, "p", true), L::Ton(d, Box::new(v("a"))));
+        assert_eq!(eliminate(&t, "p", false), L::Zero);
+    }
+
+    #[test]
+    fn tables_beyond_six_atoms() {
+        let names: Vec<L> = (0..9).map(|i| v(&format!("x{i}"))).collect();
+        let all = product(names.clone());
+        let any = sum(names);
+        assert_eq!(implies(&all, &any), Some(true));
+        assert_eq!(implies(&any, &all), Some(false));
+    }
+}

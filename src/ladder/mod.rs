@@ -1,0 +1,200 @@
+//! Ladder front ends: LDmicro `.ld` files read into an AST ([`ldmicro`]) and run by a reference scan-cycle simulator ([`simulate`]).
+//!
+//! The reader never panics; every problem it finds is a [`LadderError`] with a
+//! [`Span`] into the source text, rendered by [`crate::diag::render`].
+
+pub mod compile;
+pub mod ldmicro;
+pub mod logic;
+pub mod names;
+pub mod simulate;
+
+pub use compile::{
+    CompileWarning, CompiledProgram, Hypothesis, HypothesisKind, SignalKind, compile, program_to_ii,
+};
+pub use ldmicro::{
+    Circuit, CoilKind, CompareOp, CounterEdge, CounterKind, EdgeKind, Element, ElementKind,
+    HeaderVersion, IoEntry, LdProgram, MathOp, Operand, Rung, TimerDelay, TimerKind, decode_latin1,
+    read_ldmicro,
+};
+pub use names::short_name;
+pub use simulate::{Simulator, run};
+
+use crate::diag::{Report, Severity, Span};
+
+/// A malformed ladder file, or something the reader or compiler reports about it.
+///
+/// Variants with [`Severity::Warning`] (see [`Report::severity`]) do not stop
+/// loading; they are collected in [`LdProgram::warnings`].
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum LadderError {
+    /// An element keyword the reader does not know.
+    UnknownKeyword {
+        /// The keyword token.
+        span: Span,
+        /// The keyword as written.
+        keyword: String,
+        /// The nearest known keyword, if one is close.
+        suggestion: Option<String>,
+    },
+    /// An element line with too few arguments.
+    Arity {
+        /// The whole line.
+        span: Span,
+        /// The element keyword.
+        keyword: String,
+        /// The minimum number of arguments.
+        min: usize,
+        /// How many were given.
+        found: usize,
+        /// The expected shape, e.g. `CONTACTS name neg [set1]`.
+        usage: String,
+    },
+    /// An argument that does not have the expected form (e.g. a delay that is not an integer).
+    BadArgument {
+        /// The argument token.
+        span: Span,
+        /// The element keyword.
+        keyword: String,
+        /// The argument as written.
+        found: String,
+        /// What was expected there.
+        expected: String,
+    },
+    /// A line that is not allowed where it stands (PARALLEL directly in PARALLEL,
+    /// a stray `END`, a non-`RUNG` line between rungs, …).
+    Unexpected {
+        /// The offending line or token.
+        span: Span,
+        /// What was found.
+        found: String,
+        /// What was expected there.
+        expected: String,
+    },
+    /// The file ends inside a block.
+    Truncated {
+        /// The end of the file.
+        span: Span,
+        /// The block that is still open (`RUNG`, `PARALLEL`, `IO LIST`, …).
+        open: String,
+        /// Where that block was opened.
+        opened_at: Span,
+    },
+    /// No `PROGRAM` line: not an LDmicro program.
+    MissingProgram {
+        /// The end of the file.
+        span: Span,
+        /// Whether an `LDmicro…` header line was seen.
+        saw_header: bool,
+    },
+    /// `SERIES`/`PARALLEL` nested deeper than the reader allows.
+    TooDeep {
+        /// The line that opens one level too many.
+        span: Span,
+        /// The limit.
+        limit: usize,
+    },
+    /// Warning: a line before `PROGRAM` that the reader does not understand and skips.
+    IgnoredLine {
+        /// The line.
+        span: Span,
+        /// Why it is ignored.
+        reason: String,
+    },
+    /// Warning: a `PLACEHOLDER` (an empty editor slot; LDmicro refuses to compile it).
+    Placeholder {
+        /// The element line.
+        span: Span,
+    },
+}
+
+impl Report for LadderError {
+    fn span(&self) -> Option<Span> {
+        Some(match self {
+            LadderError::UnknownKeyword { span, .. }
+            | LadderError::Arity { span, .. }
+            | LadderError::BadArgument { span, .. }
+            | LadderError::Unexpected { span, .. }
+            | LadderError::Truncated { span, .. }
+            | LadderError::MissingProgram { span, .. }
+            | LadderError::TooDeep { span, .. }
+            | LadderError::IgnoredLine { span, .. }
+            | LadderError::Placeholder { span } => *span,
+        })
+    }
+
+    fn message(&self) -> String {
+        match self {
+            LadderError::UnknownKeyword { keyword, .. } => {
+                format!("unknown LDmicro element `{keyword}`")
+            }
+            LadderError::Arity { keyword, min, found, .. } => format!(
+                "`{keyword}` needs at least {min} argument{}, found {found}",
+                if *min == 1 { "" } else { "s" }
+            ),
+            LadderError::BadArgument { keyword, found, expected, .. } => {
+                format!("bad argument `{found}` to `{keyword}`: expected {expected}")
+            }
+            LadderError::Unexpected { found, expected, .. } => {
+                format!("unexpected `{found}`: expected {expected}")
+            }
+            LadderError::Truncated { open, .. } => {
+                format!("file ends inside `{open}`: expected `END`")
+            }
+            LadderError::MissingProgram { saw_header, .. } => {
+                if *saw_header {
+                    "no `PROGRAM` line: expected `PROGRAM` followed by rungs".into()
+                } else {
+                    "not an LDmicro file: no `LDmicro` header and no `PROGRAM` line".into()
+                }
+            }
+            LadderError::TooDeep { limit, .. } => {
+                format!("SERIES/PARALLEL nested more than {limit} levels deep")
+            }
+            LadderError::IgnoredLine { reason, .. } => format!("line ignored: {reason}"),
+            LadderError::Placeholder { .. } => {
+                "PLACEHOLDER: an empty editor slot; LDmicro refuses to compile it (treated as OPEN)"
+                    .into()
+            }
+        }
+    }
+
+    fn label(&self) -> String {
+        match self {
+            LadderError::UnknownKeyword { .. } => "expected an element keyword".into(),
+            LadderError::Arity { usage, .. } => format!("expected `{usage}`"),
+            LadderError::BadArgument { expected, .. } => format!("expected {expected}"),
+            LadderError::Unexpected { expected, .. } => format!("expected {expected}"),
+            LadderError::Truncated { .. } => "expected `END` before the end of the file".into(),
+            LadderError::MissingProgram { .. } => "expected `PROGRAM`".into(),
+            LadderError::TooDeep { .. } => "too deep".into(),
+            LadderError::IgnoredLine { .. } => "ignored".into(),
+            LadderError::Placeholder { .. } => "empty slot".into(),
+        }
+    }
+
+    fn related(&self) -> Vec<(Span, String)> {
+        match self {
+            LadderError::Truncated { open, opened_at, .. } => {
+                vec![(*opened_at, format!("`{open}` opened here"))]
+            }
+            _ => Vec::new(),
+        }
+    }
+
+    fn notes(&self) -> Vec<String> {
+        match self {
+            LadderError::UnknownKeyword { suggestion: Some(s), .. } => {
+                vec![format!("did you mean `{s}`?")]
+            }
+            _ => Vec::new(),
+        }
+    }
+
+    fn severity(&self) -> Severity {
+        match self {
+            LadderError::IgnoredLine { .. } | LadderError::Placeholder { .. } => Severity::Warning,
+            _ => Severity::Error,
+        }
+    }
+}

@@ -1,0 +1,100 @@
+//! Names of a compiled program in the plant's vocabulary: exact LDmicro names (`YL1_pump`) and the same without their one-letter kind prefix (`L1_pump`).
+//!
+//! The kind prefixes are those of ldmicro.md §5: `X Y R T C A P I M H`. A short
+//! name resolves when exactly one signal has it; `pre_YL1_pump` is shortened to
+//! `pre_L1_pump` the same way; fresh signals (`CTU_Cpieces`) have no short
+//! form. An exact name always wins.
+#![warn(missing_docs)]
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use super::compile::{CompiledProgram, SignalKind};
+use crate::syntax::{Lookup, Scope};
+use crate::term::{Expr, Symbol, Term};
+
+/// The one-letter kind prefixes of LDmicro names.
+pub const KIND_PREFIXES: &[char] = &['X', 'Y', 'R', 'T', 'C', 'A', 'P', 'I', 'M', 'H'];
+
+/// `name` without its kind prefix (`XL_flow` → `L_flow`), if it has one and
+/// the rest starts like an identifier.
+pub fn short_name(name: &str) -> Option<String> {
+    let mut chars = name.chars();
+    let first = chars.next()?;
+    let rest = chars.as_str();
+    let ok = KIND_PREFIXES.contains(&first)
+        && rest.chars().next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_');
+    ok.then(|| rest.to_string())
+}
+
+impl CompiledProgram {
+    /// The short form of a signal of this program: program bits lose their
+    /// kind prefix, `pre_X` becomes `pre_` + the short form of `X`; fresh
+    /// signals have none.
+    fn short_of(&self, name: &str) -> Option<String> {
+        match self.signals.get(name)? {
+            SignalKind::Fresh { .. } => None,
+            SignalKind::Previous { of } => short_name(of).map(|s| format!("pre_{s}")),
+            _ => short_name(name),
+        }
+    }
+
+    fn short_index(&self) -> BTreeMap<String, Vec<String>> {
+        let mut index: BTreeMap<String, Vec<String>> = BTreeMap::new();
+        for name in self.signals.keys() {
+            if let Some(s) = self.short_of(name) {
+                index.entry(s).or_default().push(name.clone());
+            }
+        }
+        index
+    }
+
+    /// The name to print for a canonical signal name: the short name when it
+    /// denotes only this signal (and is no other signal's exact name), else the name itself.
+    pub fn display_name(&self, canonical: &str) -> String {
+        match self.short_of(canonical) {
+            Some(s) if !self.signals.contains_key(&s) => {
+                let unique = self.short_index().get(&s).is_some_and(|c| c.len() == 1);
+                if unique { s } else { canonical.to_string() }
+            }
+            _ => canonical.to_string(),
+        }
+    }
+
+    /// `expr` with every signal name replaced by its [`display_name`](Self::display_name).
+    pub fn rename_for_display(&self, expr: &Expr) -> Expr {
+        let nodes: Vec<Term> = expr
+            .as_ref()
+            .iter()
+            .map(|node| match node {
+                Term::Name(n) if self.signals.contains_key(n.as_str()) => {
+                    Term::Name(Symbol::from(self.display_name(n.as_str())))
+                }
+                other => other.clone(),
+            })
+            .collect();
+        Expr::from(nodes)
+    }
+}
+
+impl Scope for CompiledProgram {
+    fn lookup(&self, name: &str) -> Lookup {
+        if self.signals.contains_key(name) {
+            return Lookup::Signal(name.to_string());
+        }
+        match self.short_index().get(name) {
+            Some(c) if c.len() == 1 => Lookup::Signal(c[0].clone()),
+            Some(c) if c.len() > 1 => Lookup::Ambiguous(c.clone()),
+            _ => Lookup::Unknown,
+        }
+    }
+
+    fn names(&self) -> Vec<String> {
+        let mut out: BTreeSet<String> = self.signals.keys().cloned().collect();
+        for (short, c) in self.short_index() {
+            if c.len() == 1 {
+                out.insert(short);
+            }
+        }
+        out.into_iter().collect()
+    }
+}

@@ -1,0 +1,815 @@
+//! Reference scan-cycle simulator: runs an [`LdProgram`] the way LDmicro's generated code does (§6 of `shared/formats/ldmicro.md`).
+//!
+//! This is an independent, executable statement of the semantics, used to test
+//! the rung compiler and the examples. One [`Simulator::step`] is one scan:
+//!
+//! * `$mcr` is set at the start of the scan; each rung starts with power `$mcr`;
+//! * rungs run top to bottom; a coil written in rung *k* is seen by later
+//!   elements of the same scan, earlier rungs see it next scan;
+//! * series: left to right, and elements after a false still execute with input
+//!   false (a plain coil writes 0, a TON resets, a TOF times, an OSR updates);
+//! * parallel: every branch runs, in order, with the same input; the output is
+//!   the OR; side effects of earlier branches are visible to later ones;
+//! * comment rungs are skipped (orig: a rung that is exactly one COMMENT; new:
+//!   any rung whose first element is a COMMENT).
+//!
+//! Modelled exactly: CONTACTS, COIL (plain, negated, set, reset, toggle), SHORT,
+//! OPEN, PLACEHOLDER (as OPEN), COMMENT (as a wire), MASTER_RELAY, TON, TOF, RTO,
+//! RTL (§6.3 scan arithmetic, `P = floor(delay/cycle) + adjust`, TOF starting at
+//! `P`; a variable delay is `P` scans; a zero cycle makes timers never expire),
+//! OSR, OSF, ODR, CTU/CTD/CTC (orig semantics for `LDmicro0.1`/headerless files,
+//! new semantics otherwise; CTR always new), RES, EQU…LEQ, MOVE and
+//! ADD/SUB/MUL/DIV with 16-bit two's-complement wrap.
+//!
+//! Everything else (THI, TLO, TCY, ODF, OSC, the other integer, peripheral, text
+//! and control-flow elements, division by zero) is **not modelled**: the
+//! simulator keeps a best guess (the output follows the input; written values are
+//! left unchanged) and marks what it affects as *unknown*. Unknown-ness
+//! propagates: a contact on an unknown bit gives unknown power, a coil written
+//! with unknown power becomes unknown, and so on. [`Simulator::is_known`] tells
+//! whether a value is exact; [`Simulator::unmodelled`] lists the keywords met.
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use super::ldmicro::{
+    Circuit, CoilKind, CompareOp, CounterEdge, CounterKind, EdgeKind, Element, ElementKind,
+    LdProgram, MathOp, Operand, Rung, TimerDelay, TimerKind,
+};
+
+/// Power flowing through a rung: its value, and whether that value is exact.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Pow {
+    on: bool,
+    sure: bool,
+}
+
+impl Pow {
+    const OFF: Pow = Pow { on: false, sure: true };
+    /// `self ∧ v` where `v` is a condition with exactness `vs`.
+    fn and(self, v: bool, vs: bool) -> Pow {
+        Pow { on: self.on && v, sure: (self.sure && !self.on) || (vs && !v) || (self.sure && vs) }
+    }
+    fn or(self, o: Pow) -> Pow {
+        Pow { on: self.on || o.on, sure: (self.sure && (o.sure || self.on)) || (o.sure && o.on) }
+    }
+    fn unknown(self) -> Pow {
+        Pow { on: self.on, sure: false }
+    }
+}
+
+fn wrap16(v: i64) -> i64 {
+    i64::from(v as i16)
+}
+
+/// A running LDmicro program: every bit, integer and hidden edge memory.
+#[derive(Clone, Debug)]
+pub struct Simulator {
+    rungs: Vec<Rung>,
+    orig: bool,
+    comment_rungs: Vec<bool>,
+    cycle_us: u64,
+    bits: BTreeMap<String, bool>,
+    ints: BTreeMap<String, i64>,
+    /// Per element (in execution order): edge memory and whether it is exact.
+    hidden: Vec<(bool, bool)>,
+    counter_init: BTreeMap<String, Operand>,
+    unknown: BTreeSet<String>,
+    unmodelled: BTreeSet<String>,
+    mcr: Pow,
+    scans: u64,
+}
+
+impl Simulator {
+    /// A simulator at power-up: every bit and integer 0, except TOF counts (`P`)
+    /// and, for new-semantics files, counters with a literal `init`.
+    pub fn new(program: &LdProgram) -> Simulator {
+        let orig = program.version.is_orig();
+        let mut sim = Simulator {
+            rungs: program.rungs.clone(),
+            orig,
+            comment_rungs: program.rungs.iter().map(|r| r.is_comment(&program.version)).collect(),
+            cycle_us: program.cycle_us,
+            bits: program.signals().into_iter().map(|s| (s, false)).collect(),
+            ints: BTreeMap::new(),
+            hidden: vec![(false, true); program.elements().count()],
+            counter_init: BTreeMap::new(),
+            unknown: BTreeSet::new(),
+            unmodelled: BTreeSet::new(),
+            mcr: Pow { on: true, sure: true },
+            scans: 0,
+        };
+        for e in program.elements() {
+            match &e.kind {
+                ElementKind::Timer { kind: TimerKind::Tof, name, delay, adjust } => {
+                    let (p, _) = sim.period(delay, *adjust);
+                    sim.ints.insert(name.clone(), p);
+                }
+                ElementKind::Counter { name, init, .. } if !orig => {
+                    sim.counter_init.insert(name.clone(), init.clone());
+                    if let Operand::Literal(v) = init {
+                        sim.ints.insert(name.clone(), *v);
+                    }
+                }
+                _ => {}
+            }
+        }
+        sim
+    }
+
+    /// Runs one scan. `inputs` gives input bits (normally the `X…` names); they
+    /// are written before the first rung and are constant during the scan unless
+    /// the program itself writes them. Names not given keep their previous value.
+    pub fn step(&mut self, inputs: &BTreeMap<String, bool>) {
+        for (name, value) in inputs {
+            self.bits.insert(name.clone(), *value);
+            self.unknown.remove(name);
+        }
+        if self.scans == 0 && !self.orig {
+            // New counters copy a variable `init` on the first scan.
+            let inits: Vec<(String, Operand)> = self
+                .counter_init
+                .iter()
+                .filter(|(_, op)| matches!(op, Operand::Var(_)))
+                .map(|(n, op)| (n.clone(), op.clone()))
+                .collect();
+            for (name, op) in inits {
+                let (v, s) = self.value(&op);
+                self.set_int(&name, v, s);
+            }
+        }
+        self.mcr = Pow { on: true, sure: true };
+        let rungs = std::mem::take(&mut self.rungs);
+        let mut idx = 0;
+        for (rung, &skip) in rungs.iter().zip(&self.comment_rungs.clone()) {
+            if skip {
+                idx += rung.elements().len();
+                continue;
+            }
+            let power = self.mcr;
+            self.circuit(&rung.body, power, &mut idx);
+        }
+        self.rungs = rungs;
+        self.scans += 1;
+    }
+
+    /// The value of a bit (false if never written).
+    pub fn bit(&self, name: &str) -> bool {
+        self.bits.get(name).copied().unwrap_or(false)
+    }
+
+    /// The value of an integer variable, timer count or counter (0 if never written).
+    pub fn int(&self, name: &str) -> i64 {
+        self.ints.get(name).copied().unwrap_or(0)
+    }
+
+    /// How many scans have run.
+    pub fn scans(&self) -> u64 {
+        self.scans
+    }
+
+    /// Every bit: the program's contact and coil names and every input given so far.
+    pub fn bits(&self) -> &BTreeMap<String, bool> {
+        &self.bits
+    }
+
+    /// Whether the current value of `name` (bit or integer) is exact, i.e. not
+    /// influenced by an element the simulator does not model.
+    pub fn is_known(&self, name: &str) -> bool {
+        !self.unknown.contains(name)
+    }
+
+    /// The names whose values are not exact (see the module documentation).
+    pub fn unknown(&self) -> &BTreeSet<String> {
+        &self.unknown
+    }
+
+    /// The keywords of the elements met that the simulator does not model.
+    pub fn unmodelled(&self) -> &BTreeSet<String> {
+        &self.unmodelled
+    }
+
+    fn mark(&mut self, name: &str, sure: bool) {
+        if sure {
+            self.unknown.remove(name);
+        } else {
+            self.unknown.insert(name.to_string());
+        }
+    }
+
+    fn set_bit(&mut self, name: &str, v: bool, sure: bool) {
+        self.bits.insert(name.to_string(), v);
+        self.mark(name, sure);
+    }
+
+    fn set_int(&mut self, name: &str, v: i64, sure: bool) {
+        self.ints.insert(name.to_string(), v);
+        self.mark(name, sure);
+    }
+
+    fn value(&self, op: &Operand) -> (i64, bool) {
+        match op {
+            Operand::Literal(v) => (*v, true),
+            Operand::Var(n) => (self.int(n), self.is_known(n)),
+        }
+    }
+
+    /// `P` for a timer, and whether it is exact.
+    fn period(&self, delay: &TimerDelay, adjust: i64) -> (i64, bool) {
+        match delay {
+            TimerDelay::Micros(d) => {
+                let n = d
+                    .checked_div(self.cycle_us)
+                    .map_or(i64::MAX / 2, |n| i64::try_from(n).unwrap_or(i64::MAX / 2));
+                (n.saturating_add(adjust), true)
+            }
+            TimerDelay::Variable(v) => (self.int(v), self.is_known(v)),
+        }
+    }
+
+    fn circuit(&mut self, c: &Circuit, input: Pow, idx: &mut usize) -> Pow {
+        match c {
+            Circuit::Series(items) => {
+                items.iter().fold(input, |p, item| self.circuit(item, p, idx))
+            }
+            Circuit::Parallel(branches) => {
+                let mut out = Pow::OFF;
+                for b in branches {
+                    let o = self.circuit(b, input, idx);
+                    out = out.or(o);
+                }
+                out
+            }
+            Circuit::Element(e) => {
+                let k = *idx;
+                *idx += 1;
+                self.element(e, input, k)
+            }
+        }
+    }
+
+    /// Updates the hidden edge memory of element `k` with `i`; returns the old value.
+    fn remember(&mut self, k: usize, i: Pow) -> Pow {
+        let slot = self.hidden.get_mut(k);
+        match slot {
+            Some(slot) => {
+                let old = Pow { on: slot.0, sure: slot.1 };
+                *slot = (i.on, i.sure);
+                old
+            }
+            None => Pow::OFF.unknown(),
+        }
+    }
+
+    fn element(&mut self, e: &Element, i: Pow, k: usize) -> Pow {
+        match &e.kind {
+            ElementKind::Contacts { name, negated } => {
+                let v = self.bit(name) != *negated;
+                i.and(v, self.is_known(name))
+            }
+            ElementKind::Coil { name, kind } => {
+                match kind {
+                    CoilKind::Normal => self.set_bit(name, i.on, i.sure),
+                    CoilKind::Negated => self.set_bit(name, !i.on, i.sure),
+                    CoilKind::Set | CoilKind::Reset => {
+                        let target = *kind == CoilKind::Set;
+                        if i.on {
+                            self.set_bit(name, target, i.sure);
+                        } else if !i.sure && self.bit(name) != target {
+                            self.mark(name, false);
+                        }
+                    }
+                    CoilKind::Toggle => {
+                        let prev = self.remember(k, i);
+                        let trig = i.on && !prev.on;
+                        let sure = i.sure && prev.sure && self.is_known(name);
+                        let v = self.bit(name) != trig;
+                        self.set_bit(name, v, sure);
+                    }
+                }
+                i
+            }
+            ElementKind::Short | ElementKind::Comment(_) => i,
+            ElementKind::Open | ElementKind::Placeholder => Pow::OFF,
+            ElementKind::MasterRelay => {
+                self.mcr = if self.mcr.on {
+                    Pow { on: i.on, sure: i.sure && self.mcr.sure }
+                } else {
+                    Pow { on: true, sure: self.mcr.sure }
+                };
+                i
+            }
+            ElementKind::Timer { kind, name, delay, adjust } => {
+                self.timer(*kind, name, delay, *adjust, i)
+            }
+            ElementKind::Edge { kind } => match kind {
+                EdgeKind::Osr | EdgeKind::Osf | EdgeKind::Odr => {
+                    let prev = self.remember(k, i);
+                    let sure = i.sure && prev.sure;
+                    let on = match kind {
+                        EdgeKind::Osr => i.on && !prev.on,
+                        EdgeKind::Osf => !i.on && prev.on,
+                        _ => !i.on || prev.on,
+                    };
+                    Pow { on, sure }
+                }
+                EdgeKind::Odf | EdgeKind::Osc => {
+                    self.unmodelled.insert(e.kind.keyword().to_string());
+                    i.unknown()
+                }
+            },
+            ElementKind::Counter { kind, name, limit, init, edge } => {
+                let prev = self.remember(k, i);
+                let trig = match edge {
+                    CounterEdge::Rising => i.on && !prev.on,
+                    CounterEdge::Falling => !i.on && prev.on,
+                    CounterEdge::High => i.on,
+                    CounterEdge::Low => !i.on,
+                };
+                let trig_sure = i.sure && prev.sure;
+                let (max, max_sure) = self.value(limit);
+                let (init, init_sure) = if self.orig { (0, true) } else { self.value(init) };
+                let c0 = self.int(name);
+                let c_sure = self.is_known(name) && trig_sure && max_sure;
+                let (c, on) = match (kind, self.orig) {
+                    (CounterKind::Ctu, true) => {
+                        let c = if trig { wrap16(c0.wrapping_add(1)) } else { c0 };
+                        (c, c >= max)
+                    }
+                    (CounterKind::Ctd, true) => {
+                        let c = if trig { wrap16(c0.wrapping_sub(1)) } else { c0 };
+                        (c, c >= max)
+                    }
+                    (CounterKind::Ctc, true) => {
+                        let mut c = c0;
+                        if trig {
+                            c = wrap16(c.wrapping_add(1));
+                            if c > max {
+                                c = 0;
+                            }
+                        }
+                        (c, i.on)
+                    }
+                    (CounterKind::Ctu, false) => {
+                        let c = if trig && c0 < max { c0.wrapping_add(1) } else { c0 };
+                        (c, c >= max)
+                    }
+                    (CounterKind::Ctd, false) => {
+                        let c = if trig && c0 > max { c0.wrapping_sub(1) } else { c0 };
+                        (c, c > max)
+                    }
+                    (CounterKind::Ctc, false) => {
+                        if trig {
+                            let c = wrap16(c0.wrapping_add(1));
+                            if c > max { (init, true) } else { (c, false) }
+                        } else {
+                            (c0, false)
+                        }
+                    }
+                    (CounterKind::Ctr, _) => {
+                        if trig {
+                            let c = wrap16(c0.wrapping_sub(1));
+                            if c < max { (init, true) } else { (c, false) }
+                        } else {
+                            (c0, false)
+                        }
+                    }
+                };
+                let sure = c_sure && init_sure;
+                self.set_int(name, c, sure);
+                let out_sure = if matches!((kind, self.orig), (CounterKind::Ctc, true)) {
+                    i.sure
+                } else {
+                    sure
+                };
+                Pow { on, sure: out_sure }
+            }
+            ElementKind::Res { name } => {
+                if i.on {
+                    let (v, s) = match self.counter_init.get(name).cloned() {
+                        Some(op) if !self.orig => self.value(&op),
+                        _ => (0, true),
+                    };
+                    self.set_int(name, v, s && i.sure);
+                } else if !i.sure {
+                    self.mark(name, false);
+                }
+                i
+            }
+            ElementKind::Compare { op, a, b } => {
+                let (a, a_sure) = self.value(a);
+                let (b, b_sure) = self.value(b);
+                let v = match op {
+                    CompareOp::Equ => a == b,
+                    CompareOp::Neq => a != b,
+                    CompareOp::Grt => a > b,
+                    CompareOp::Geq => a >= b,
+                    CompareOp::Les => a < b,
+                    CompareOp::Leq => a <= b,
+                };
+                i.and(v, a_sure && b_sure)
+            }
+            ElementKind::Move { dest, src } => {
+                let (v, s) = self.value(src);
+                self.assign(dest, i, wrap16(v), s);
+                i
+            }
+            ElementKind::Math { op, dest, a, b } => {
+                let (a, a_sure) = self.value(a);
+                let (b, b_sure) = self.value(b);
+                let r = match op {
+                    MathOp::Add => Some(a.wrapping_add(b)),
+                    MathOp::Sub => Some(a.wrapping_sub(b)),
+                    MathOp::Mul => Some(a.wrapping_mul(b)),
+                    MathOp::Div => (b != 0).then(|| a.wrapping_div(b)),
+                };
+                match r {
+                    Some(r) => self.assign(dest, i, wrap16(r), a_sure && b_sure),
+                    None => {
+                        // Division by zero: undefined in LDmicro.
+                        self.unmodelled.insert("DIV by zero".into());
+                        if i.on || !i.sure {
+                            self.mark(dest, false);
+                        }
+                    }
+                }
+                i
+            }
+            ElementKind::Other { keyword, .. } => {
+                self.unmodelled.insert(keyword.clone());
+                for n in e.names_written() {
+                    if i.on || !i.sure {
+                        self.unknown.insert(n.to_string());
+                    }
+                }
+                if crate::ladder::ldmicro::PASS_THROUGH.contains(&keyword.as_str()) {
+                    i
+                } else {
+                    i.unknown()
+                }
+            }
+        }
+    }
+
+    /// `if i { dest := v }`, tracking exactness.
+    fn assign(&mut self, dest: &str, i: Pow, v: i64, v_sure: bool) {
+        if i.on {
+            self.set_int(dest, v, v_sure && i.sure);
+        } else if !i.sure {
+            self.mark(dest, false);
+        }
+    }
+
+    fn timer(
+        &mut self,
+        kind: TimerKind,
+        name: &str,
+        delay: &TimerDelay,
+        adjust: i64,
+        i: Pow,
+    ) -> Pow {
+        let (p, p_sure) = self.period(delay, adjust);
+        let t = self.int(name);
+        let t_sure = self.is_known(name);
+        let (t, on, sure) = match kind {
+            TimerKind::Ton => {
+                if i.on {
+                    if t < p { (t.wrapping_add(1), false, t_sure) } else { (t, true, t_sure) }
+                } else {
+                    (0, false, true)
+                }
+            }
+            TimerKind::Tof => {
+                if !i.on {
+                    if t < p { (t.wrapping_add(1), true, t_sure) } else { (t, false, t_sure) }
+                } else {
+                    (0, true, true)
+                }
+            }
+            TimerKind::Rto => {
+                if t < p {
+                    (if i.on { t.wrapping_add(1) } else { t }, false, t_sure)
+                } else {
+                    (t, true, t_sure)
+                }
+            }
+            TimerKind::Rtl => {
+                if t < p {
+                    (if i.on { t } else { t.wrapping_add(1) }, false, t_sure)
+                } else {
+                    (t, true, t_sure)
+                }
+            }
+            TimerKind::Thi | TimerKind::Tlo | TimerKind::Tcy => {
+                self.unmodelled.insert(format!("{kind:?}").to_uppercase());
+                self.mark(name, false);
+                return i.unknown();
+            }
+        };
+        let sure = sure && i.sure && p_sure;
+        self.set_int(name, t, sure);
+        Pow { on, sure }
+    }
+}
+
+/// Runs `program` from power-up over `input_trace` (one map of inputs per scan)
+/// and returns every bit after each scan.
+pub fn run(
+    program: &LdProgram,
+    input_trace: &[BTreeMap<String, bool>],
+) -> Vec<BTreeMap<String, bool>> {
+    let mut sim = Simulator::new(program);
+    input_trace
+        .iter()
+        .map(|inputs| {
+            sim.step(inputs);
+            sim.bits().clone()
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diag::Sources;
+    use crate::ladder::read_ldmicro;
+
+    fn program(header: &str, rungs: &str) -> LdProgram {
+        let mut s = Sources::new();
+        let f = s.add("t.ld", format!("{header}\nCYCLE=10000\nPROGRAM\n{rungs}"));
+        match read_ldmicro(&s, f) {
+            Ok(p) => p,
+            Err(e) => panic!("{e:?}"),
+        }
+    }
+
+    fn inputs(pairs: &[(&str, bool)]) -> BTreeMap<String, bool> {
+        pairs.iter().map(|(n, v)| (n.to_string(), *v)).collect()
+    }
+
+    /// The scan (1-based) on which `out` first becomes true with `x` held true.
+    fn first_true(p: &LdProgram, x: &str, out: &str, limit: u64) -> Option<u64> {
+        let mut sim = Simulator::new(p);
+        let on = inputs(&[(x, true)]);
+        (1..=limit).find(|_| {
+            sim.step(&on);
+            sim.bit(out)
+        })
+    }
+
+    const TON: &str = "RUNG\nCONTACTS Xa 0\nTON Tt 50000\nCOIL Yq 0 0 0\nEND\n";
+
+    #[test]
+    fn ton_fires_on_scan_p_plus_one() {
+        // 0.2: adjust 0, N = 50000/10000 = 5 = P, so the 6th consecutive true scan.
+        assert_eq!(first_true(&program("LDmicro0.2", TON), "Xa", "Yq", 20), Some(6));
+        // 0.1: adjust -1, P = 4: the 5th scan.
+        assert_eq!(first_true(&program("LDmicro0.1", TON), "Xa", "Yq", 20), Some(5));
+        // An explicit adjust field wins over the header default.
+        let p = program("LDmicro0.1", "RUNG\nCONTACTS Xa 0\nTON Tt 50000 0\nCOIL Yq 0 0 0\nEND\n");
+        assert_eq!(first_true(&p, "Xa", "Yq", 20), Some(6));
+    }
+
+    #[test]
+    fn ton_resets_when_the_input_drops() {
+        let p = program("LDmicro0.2", TON);
+        let mut sim = Simulator::new(&p);
+        for _ in 0..5 {
+            sim.step(&inputs(&[("Xa", true)]));
+        }
+        assert!(!sim.bit("Yq"));
+        assert_eq!(sim.int("Tt"), 5);
+        sim.step(&inputs(&[("Xa", false)]));
+        assert_eq!(sim.int("Tt"), 0);
+        for _ in 0..5 {
+            sim.step(&inputs(&[("Xa", true)]));
+            assert!(!sim.bit("Yq"));
+        }
+        sim.step(&inputs(&[("Xa", true)]));
+        assert!(sim.bit("Yq"));
+        sim.step(&inputs(&[("Xa", false)]));
+        assert!(!sim.bit("Yq"), "a TON output falls with its input");
+    }
+
+    #[test]
+    fn tof_starts_false_and_holds_p_scans() {
+        let p = program("LDmicro0.2", "RUNG\nCONTACTS Xa 0\nTOF Tt 30000\nCOIL Yq 0 0 0\nEND\n");
+        let mut sim = Simulator::new(&p);
+        assert_eq!(sim.int("Tt"), 3, "TOF count starts at P");
+        sim.step(&inputs(&[("Xa", false)]));
+        assert!(!sim.bit("Yq"), "a TOF does not start true");
+        sim.step(&inputs(&[("Xa", true)]));
+        assert!(sim.bit("Yq"));
+        // P = 3: true for 3 more scans after the fall, false on the 4th.
+        for _ in 0..3 {
+            sim.step(&inputs(&[("Xa", false)]));
+            assert!(sim.bit("Yq"));
+        }
+        sim.step(&inputs(&[("Xa", false)]));
+        assert!(!sim.bit("Yq"));
+        assert_eq!(sim.scans(), 6);
+    }
+
+    #[test]
+    fn seal_in_behaves_as_reset_dominant_rs() {
+        let p = program(
+            "LDmicro0.1",
+            "RUNG\nPARALLEL\nCONTACTS XS 0\nCONTACTS Y 0\nEND\nCONTACTS XR 1\nCOIL Y 0 0 0\nEND\n",
+        );
+        let trace: Vec<_> = [
+            (false, false, false),
+            (true, false, true),
+            (false, false, true),
+            (false, true, false),
+            (false, false, false),
+            (true, true, false),
+            (true, false, true),
+            (false, false, true),
+        ]
+        .iter()
+        .map(|&(s, r, _)| inputs(&[("XS", s), ("XR", r)]))
+        .collect();
+        let out = run(&p, &trace);
+        let expected = [false, true, true, false, false, false, true, true];
+        let got: Vec<bool> = out.iter().map(|b| b["Y"]).collect();
+        assert_eq!(got, expected);
+    }
+
+    #[test]
+    fn set_and_reset_coils() {
+        let p = program(
+            "LDmicro0.1",
+            "RUNG\nCONTACTS XS 0\nCOIL Y 0 1 0\nEND\nRUNG\nCONTACTS XR 0\nCOIL Y 0 0 1\nEND\nRUNG\nCONTACTS XN 0\nCOIL Yn 1 0 0\nEND\n",
+        );
+        let mut sim = Simulator::new(&p);
+        sim.step(&inputs(&[("XS", true)]));
+        assert!(sim.bit("Y"));
+        assert!(sim.bit("Yn"), "a negated coil is true when its input is false");
+        sim.step(&inputs(&[("XS", false)]));
+        assert!(sim.bit("Y"), "set holds");
+        sim.step(&inputs(&[("XS", true), ("XR", true)]));
+        assert!(!sim.bit("Y"), "the later reset rung wins");
+        sim.step(&inputs(&[("XS", false), ("XR", false), ("XN", true)]));
+        assert!(!sim.bit("Y"));
+        assert!(!sim.bit("Yn"));
+    }
+
+    #[test]
+    fn osr_pulses_on_the_first_scan_and_on_rising_edges() {
+        let p = program(
+            "LDmicro0.2",
+            "RUNG 1\nOSR\nCOIL Rfirst 0 0 0\nEND\nRUNG 2\nCONTACTS Xa 0\nOSR\nCOIL Rup 0 0 0\nEND\nRUNG 3\nCONTACTS Xa 0\nOSF\nCOIL Rdown 0 0 0\nEND\n",
+        );
+        let a = [true, true, false, true, false, false];
+        let trace: Vec<_> = a.iter().map(|&v| inputs(&[("Xa", v)])).collect();
+        let out = run(&p, &trace);
+        let col = |n: &str| out.iter().map(|b| b[n]).collect::<Vec<_>>();
+        assert_eq!(col("Rfirst"), [true, false, false, false, false, false]);
+        assert_eq!(col("Rup"), [true, false, false, true, false, false]);
+        assert_eq!(col("Rdown"), [false, false, true, false, true, false]);
+    }
+
+    #[test]
+    fn rung_order_decides_same_scan_or_previous_scan() {
+        let p = program(
+            "LDmicro0.1",
+            "RUNG\nCONTACTS Rlater 0\nCOIL Rearly 0 0 0\nEND\nRUNG\nCONTACTS Xa 0\nCOIL Rlater 0 0 0\nEND\nRUNG\nCONTACTS Rlater 0\nCOIL Rsame 0 0 0\nEND\n",
+        );
+        let mut sim = Simulator::new(&p);
+        sim.step(&inputs(&[("Xa", true)]));
+        assert!(sim.bit("Rlater"));
+        assert!(sim.bit("Rsame"), "a later rung sees the coil in the same scan");
+        assert!(!sim.bit("Rearly"), "an earlier rung sees it one scan later");
+        sim.step(&inputs(&[("Xa", true)]));
+        assert!(sim.bit("Rearly"));
+    }
+
+    #[test]
+    fn parallel_branches_see_earlier_branches() {
+        let p = program(
+            "LDmicro0.2",
+            "RUNG 1\nPARALLEL\nSERIES\nCONTACTS Xa 0\nCOIL R1 0 0 0\nEND\nSERIES\nCONTACTS R1 0\nCOIL R2 0 0 0\nEND\nEND\nCOIL Rout 0 0 0\nEND\n",
+        );
+        let mut sim = Simulator::new(&p);
+        sim.step(&inputs(&[("Xa", true)]));
+        assert!(sim.bit("R2"));
+        assert!(sim.bit("Rout"));
+    }
+
+    #[test]
+    fn elements_after_a_false_still_execute() {
+        let p = program(
+            "LDmicro0.2",
+            "RUNG 1\nCONTACTS Xa 0\nCONTACTS Xb 0\nTON Tt 20000\nCOIL Yq 0 0 0\nEND\n",
+        );
+        let mut sim = Simulator::new(&p);
+        sim.step(&inputs(&[("Xa", true), ("Xb", true)]));
+        assert_eq!(sim.int("Tt"), 1);
+        sim.step(&inputs(&[("Xa", false), ("Xb", true)]));
+        assert_eq!(sim.int("Tt"), 0, "the TON ran with input false and reset");
+    }
+
+    #[test]
+    fn master_relay_zone() {
+        let p = program(
+            "LDmicro0.1",
+            "RUNG\nCONTACTS Xen 0\nMASTER_RELAY\nEND\nRUNG\nCOIL Yin 0 0 0\nEND\nRUNG\nMASTER_RELAY\nEND\nRUNG\nCOIL Yout 0 0 0\nEND\n",
+        );
+        let mut sim = Simulator::new(&p);
+        sim.step(&inputs(&[("Xen", false)]));
+        assert!(!sim.bit("Yin"));
+        assert!(sim.bit("Yout"));
+        sim.step(&inputs(&[("Xen", true)]));
+        assert!(sim.bit("Yin"));
+        assert!(sim.bit("Yout"));
+    }
+
+    #[test]
+    fn counters_follow_the_header_version() {
+        let rungs = "RUNG\nCONTACTS Xa 0\nCTC Cc 2\nCOIL Yc 0 0 0\nEND\nRUNG\nCONTACTS Xa 0\nCTU Cu 2\nCOIL Yu 0 0 0\nEND\n";
+        let pulses: Vec<_> = (0..8).map(|k| inputs(&[("Xa", k % 2 == 0)])).collect();
+        // orig: CTC passes its input; CTU counts without bound.
+        let p = program("LDmicro0.1", rungs);
+        let mut sim = Simulator::new(&p);
+        let mut yc = Vec::new();
+        for i in &pulses {
+            sim.step(i);
+            yc.push(sim.bit("Yc"));
+        }
+        assert_eq!(yc, [true, false, true, false, true, false, true, false]);
+        assert_eq!(sim.int("Cu"), 4);
+        assert_eq!(sim.int("Cc"), 1, "0→1→2→(3>2)0→1");
+        assert!(sim.bit("Yu"));
+        // new: CTC gives a one-scan carry pulse; CTU saturates.
+        let p = program("LDmicro0.2", rungs);
+        let mut sim = Simulator::new(&p);
+        let mut yc = Vec::new();
+        for i in &pulses {
+            sim.step(i);
+            yc.push(sim.bit("Yc"));
+        }
+        assert_eq!(yc, [false, false, false, false, true, false, false, false]);
+        assert_eq!(sim.int("Cu"), 2);
+    }
+
+    #[test]
+    fn rto_accumulates_until_res() {
+        let p = program(
+            "LDmicro0.2",
+            "RUNG 1\nCONTACTS Xa 0\nRTO Tr 20000\nCOIL Yq 0 0 0\nEND\nRUNG 2\nCONTACTS Xr 0\nRES Tr\nEND\n",
+        );
+        let mut sim = Simulator::new(&p);
+        for v in [true, false, true] {
+            sim.step(&inputs(&[("Xa", v)]));
+            assert!(!sim.bit("Yq"));
+        }
+        assert_eq!(sim.int("Tr"), 2, "non-consecutive true scans accumulate");
+        sim.step(&inputs(&[("Xa", false)]));
+        assert!(sim.bit("Yq"), "once T = P the output is on, whatever the input");
+        sim.step(&inputs(&[("Xa", false)]));
+        assert!(sim.bit("Yq"), "retentive: stays on with the input off");
+        sim.step(&inputs(&[("Xr", true)]));
+        assert_eq!(sim.int("Tr"), 0);
+        sim.step(&inputs(&[("Xr", false)]));
+        assert!(!sim.bit("Yq"));
+    }
+
+    #[test]
+    fn integers_compare_and_wrap() {
+        let p = program(
+            "LDmicro0.1",
+            "RUNG\nMOVE x 32767\nEND\nRUNG\nCONTACTS Xa 0\nADD x x 1\nEND\nRUNG\nLES x 0\nCOIL Yneg 0 0 0\nEND\nRUNG\nDIV y x 0\nEND\n",
+        );
+        let mut sim = Simulator::new(&p);
+        sim.step(&inputs(&[("Xa", true)]));
+        assert_eq!(sim.int("x"), -32768);
+        assert!(sim.bit("Yneg"));
+        assert!(sim.is_known("Yneg"));
+        assert!(!sim.is_known("y"), "division by zero is undefined");
+    }
+
+    #[test]
+    fn unmodelled_elements_make_their_results_unknown() {
+        let p = program(
+            "LDmicro0.2",
+            "RUNG 1\nCONTACTS Xa 0\nTHI Th 20000\nCOIL Yq 0 0 0\nEND\nRUNG 2\nCONTACTS Yq 0\nCOIL Yr 0 0 0\nEND\nRUNG 3\nCONTACTS Xa 0\nCOIL Ys 0 0 0\nEND\n",
+        );
+        let mut sim = Simulator::new(&p);
+        sim.step(&inputs(&[("Xa", true)]));
+        assert!(!sim.is_known("Yq"));
+        assert!(!sim.is_known("Yr"));
+        assert!(sim.is_known("Ys"));
+        assert!(sim.unmodelled().contains("THI"));
+    }
+
+    #[test]
+    fn comment_rungs_are_skipped() {
+        let p = program(
+            "LDmicro0.2",
+            "RUNG 1\nCOMMENT note\nCOIL Yx 0 0 0\nEND\nRUNG 2\nCONTACTS Xa 1\nCOIL Yy 0 0 0\nEND\n",
+        );
+        let mut sim = Simulator::new(&p);
+        sim.step(&BTreeMap::new());
+        assert!(!sim.bit("Yx"), "new skips a rung whose first element is a COMMENT");
+        assert!(sim.bit("Yy"));
+    }
+}

@@ -1,0 +1,773 @@
+//! Complete reasoning on the Boolean skeleton: a SAT solver decides, case splits prove.
+//!
+//! Names and temporal subterms (`d/f`, `f/d`, `SR`, `RS`) are opaque *atoms*;
+//! the hypotheses and instances of the laws for the atoms present (e.g.
+//! `5s/a ⇒ a`) are constraints that hold at every instant. If the goal is
+//! valid over the skeleton, a Shannon case-split proof is built: each branch
+//! fixes atoms with named case assumptions and either evaluates the goal to
+//! `0*` with the constant laws or shows that a constraint is violated. If it
+//! is not valid, the satisfying assignment is a *candidate* countermodel of
+//! the abstraction, not yet a counterexample.
+
+use std::collections::{BTreeMap, HashMap};
+use std::time::Instant;
+
+use varisat::{ExtendFormula, Lit, Solver};
+
+use crate::kernel::{self, Axiom, Proof, Rel, Rule, Source, Step, Use};
+use crate::term::{Expr, Id, Language, Symbol, Term, and, constant, root, subterm};
+
+use super::normalize::replace_at;
+
+/// A statement that holds at every instant: a hypothesis, a law instance or a lemma.
+#[derive(Clone, Debug)]
+pub struct Constraint {
+    /// What the proof cites.
+    pub source: Source,
+    /// Its name.
+    pub name: String,
+    /// The instance exactly as the citation produces it.
+    pub raw: (Expr, Expr),
+    /// The same with delay arithmetic evaluated.
+    pub lhs: Expr,
+    /// `=` or `⇒`.
+    pub rel: Rel,
+    /// Right side, delay arithmetic evaluated.
+    pub rhs: Expr,
+    /// The law's side conditions on signals, instantiated (to be proved as premises).
+    pub conditions: Vec<(Expr, Rel, Expr)>,
+    /// Proofs of `conditions`, in order.
+    pub premises: Vec<Proof>,
+}
+
+/// A Boolean view of a term: atoms are opaque; paths match the term's.
+#[derive(Clone, Debug)]
+enum B {
+    Const(bool),
+    Atom(usize),
+    Not(Box<B>),
+    And(Box<B>, Box<B>),
+    Or(Box<B>, Box<B>),
+}
+
+/// The atoms met so far, by their printed form.
+#[derive(Default, Debug)]
+pub struct Atoms {
+    /// Each atom's term.
+    pub terms: Vec<Expr>,
+    index: HashMap<String, usize>,
+    /// Towards the representative of the atom's class: the next atom and the
+    /// hypothesis (`a = b`, used forward or backward) that rewrites this one into it.
+    link: Vec<Option<(usize, String, Use)>>,
+}
+
+impl Atoms {
+    /// Merges atoms that a hypothesis `a = b` between two atoms makes equal (a rung
+    /// `L1_pump = 5s/L1_Prod`, say) into one class, represented preferably by a name.
+    /// Such hypotheses leave the constraints: evaluating an atom first rewrites it to
+    /// its representative with them.
+    pub fn merge_equal(&mut self, constraints: &mut Vec<Constraint>) {
+        let mut edges: Vec<(usize, usize, String)> = Vec::new();
+        constraints.retain(|c| {
+            let atomic = |e: &Expr| {
+                !matches!(
+                    e[root(e)],
+                    Term::Zero | Term::One | Term::Not(_) | Term::And(_) | Term::Or(_)
+                )
+            };
+            let definitional = c.source == Source::Hypothesis
+                && c.rel == Rel::Eq
+                && atomic(&c.lhs)
+                && atomic(&c.rhs);
+            if definitional {
+                edges.push((self.intern(&c.lhs), self.intern(&c.rhs), c.name.clone()));
+            }
+            !definitional
+        });
+        self.link = vec![None; self.terms.len()];
+        let mut seen = vec![false; self.terms.len()];
+        let mut order: Vec<usize> = (0..self.terms.len()).collect();
+        order.sort_by_key(|&i| {
+            (
+                !matches!(self.terms[i][root(&self.terms[i])], Term::Name(_)),
+                self.terms[i].as_ref().len(),
+                i,
+            )
+        });
+        for start in order {
+            if seen[start] {
+                continue;
+            }
+            seen[start] = true;
+            let mut queue = std::collections::VecDeque::from([start]);
+            while let Some(at) = queue.pop_front() {
+                for (a, b, name) in &edges {
+                    let (next, how) = if *a == at {
+                        (*b, Use::Backward)
+                    } else if *b == at {
+                        (*a, Use::Forward)
+                    } else {
+                        continue;
+                    };
+                    if !seen[next] {
+                        seen[next] = true;
+                        self.link[next] = Some((at, name.clone(), how));
+                        queue.push_back(next);
+                    }
+                }
+            }
+        }
+    }
+
+    /// The representative of an atom's class.
+    fn rep(&self, mut i: usize) -> usize {
+        while let Some((next, _, _)) = self.link.get(i).and_then(|l| l.as_ref()) {
+            i = *next;
+        }
+        i
+    }
+
+    fn intern(&mut self, e: &Expr) -> usize {
+        let key = e.to_string();
+        if let Some(&i) = self.index.get(&key) {
+            return i;
+        }
+        self.terms.push(e.clone());
+        self.index.insert(key, self.terms.len() - 1);
+        self.terms.len() - 1
+    }
+
+    fn view(&mut self, e: &Expr, id: Id) -> B {
+        match &e[id] {
+            Term::Zero => B::Const(false),
+            Term::One => B::Const(true),
+            Term::Not(a) => B::Not(Box::new(self.view(e, *a))),
+            Term::And([a, b]) => B::And(Box::new(self.view(e, *a)), Box::new(self.view(e, *b))),
+            Term::Or([a, b]) => B::Or(Box::new(self.view(e, *a)), Box::new(self.view(e, *b))),
+            _ => B::Atom(self.intern(&subterm(e, id))),
+        }
+    }
+}
+
+fn eval3(b: &B, sigma: &[Option<bool>]) -> Option<bool> {
+    match b {
+        B::Const(v) => Some(*v),
+        B::Atom(i) => sigma[*i],
+        B::Not(a) => eval3(a, sigma).map(|v| !v),
+        B::And(a, b) => match (eval3(a, sigma), eval3(b, sigma)) {
+            (Some(false), _) | (_, Some(false)) => Some(false),
+            (Some(true), Some(true)) => Some(true),
+            _ => None,
+        },
+        B::Or(a, b) => match (eval3(a, sigma), eval3(b, sigma)) {
+            (Some(true), _) | (_, Some(true)) => Some(true),
+            (Some(false), Some(false)) => Some(false),
+            _ => None,
+        },
+    }
+}
+
+fn first_unassigned(b: &B, sigma: &[Option<bool>]) -> Option<usize> {
+    match b {
+        B::Const(_) => None,
+        B::Atom(i) => sigma[*i].is_none().then_some(*i),
+        B::Not(a) => first_unassigned(a, sigma),
+        B::And(a, b) | B::Or(a, b) => {
+            first_unassigned(a, sigma).or_else(|| first_unassigned(b, sigma))
+        }
+    }
+}
+
+/// Registers the atoms of the constraints' sides.
+pub fn register(atoms: &mut Atoms, constraints: &[Constraint]) {
+    for c in constraints {
+        atoms.view(&c.lhs, root(&c.lhs));
+        atoms.view(&c.rhs, root(&c.rhs));
+    }
+}
+
+/// Instances of the laws for the atoms present: every law side with a temporal
+/// root (or a `·`/`+` of two of them) is matched against the atoms, in two rounds
+/// so that atoms introduced by instances get their own lemmas.
+pub fn law_instances(laws: &[Axiom], atoms: &mut Atoms, limit: usize) -> Vec<Constraint> {
+    let mut out: Vec<Constraint> = Vec::new();
+    let mut seen = std::collections::HashSet::new();
+    for _round in 0..2 {
+        let pool: Vec<Expr> = atoms.terms.clone();
+        let temporal: Vec<&Expr> =
+            pool.iter().filter(|a| !matches!(a[root(a)], Term::Name(_))).collect();
+        for law in laws {
+            let pieces = temporal_pieces(law);
+            if pieces.is_empty() {
+                continue;
+            }
+            let mut sigmas: Vec<BTreeMap<Symbol, Expr>> = Vec::new();
+            for atom in &temporal {
+                let mut sigma = BTreeMap::new();
+                if kernel::match_side(law, &pieces[0], atom, &mut sigma) {
+                    sigmas.push(sigma);
+                }
+            }
+            if let Some(second) = pieces.get(1) {
+                let mut extended = Vec::new();
+                for sigma in &sigmas {
+                    for atom in &temporal {
+                        let mut s = sigma.clone();
+                        if kernel::match_side(law, second, atom, &mut s) {
+                            extended.push(s);
+                        }
+                    }
+                }
+                sigmas.extend(extended);
+            }
+            for sigma in sigmas {
+                if out.len() >= limit {
+                    return out;
+                }
+                if !kernel::delay_conditions_hold(law, &sigma) {
+                    continue;
+                }
+                let (Ok(l), Ok(r)) = (
+                    kernel::instantiate_side(&law.lhs, &sigma),
+                    kernel::instantiate_side(&law.rhs, &sigma),
+                ) else {
+                    continue;
+                };
+                let (fl, fr) = (fold_delays(&l), fold_delays(&r));
+                if fl.to_string() == fr.to_string() || !seen.insert(format!("{} {l} {r}", law.name))
+                {
+                    continue;
+                }
+                let mut conditions = Vec::new();
+                for (cl, rel, cr) in &law.signal_conditions {
+                    match (
+                        kernel::instantiate_side(cl, &sigma),
+                        kernel::instantiate_side(cr, &sigma),
+                    ) {
+                        (Ok(a), Ok(b)) => conditions.push((a, *rel, b)),
+                        _ => break,
+                    }
+                }
+                if conditions.len() != law.signal_conditions.len() {
+                    continue;
+                }
+                atoms.view(&fl, root(&fl));
+                atoms.view(&fr, root(&fr));
+                out.push(Constraint {
+                    source: Source::Law,
+                    name: law.name.clone(),
+                    raw: (l, r),
+                    lhs: fl,
+                    rel: law.rel,
+                    rhs: fr,
+                    conditions,
+                    premises: Vec::new(),
+                });
+            }
+        }
+    }
+    out
+}
+
+/// The temporal subpatterns of a law (roots of either side, or children of a top `·`/`+`).
+fn temporal_pieces(law: &Axiom) -> Vec<Expr> {
+    let temporal = |e: &Expr, id: Id| crate::term::is_temporal_node(&e[id]);
+    let mut pieces = Vec::new();
+    for side in [&law.lhs, &law.rhs] {
+        let top = root(side);
+        if temporal(side, top) {
+            pieces.push(subterm(side, top));
+        } else if let Term::And([a, b]) | Term::Or([a, b]) = &side[top] {
+            for c in [*a, *b] {
+                if temporal(side, c) {
+                    pieces.push(subterm(side, c));
+                }
+            }
+        }
+    }
+    pieces.sort_by_key(|p| std::cmp::Reverse(p.as_ref().len()));
+    pieces.truncate(2);
+    pieces
+}
+
+/// The term with every delay arithmetic node replaced by its value.
+pub fn fold_delays(e: &Expr) -> Expr {
+    fn go(e: &Expr, id: Id, out: &mut Expr) -> Id {
+        if let Term::DMax(_) | Term::DMin(_) | Term::DAdd(_) = &e[id]
+            && let Some(v) = kernel::delay_value(&subterm(e, id))
+        {
+            return out.add(Term::Delay(v));
+        }
+        let node = e[id].clone().map_children(|c| go(e, c, out));
+        out.add(node)
+    }
+    let mut out = Expr::default();
+    go(e, root(e), &mut out);
+    out
+}
+
+/// Delay-arithmetic steps turning `from` into `to` where they differ only in delays.
+fn align_delays(whole: &mut Expr, prefix: &[usize], from: &Expr, to: &Expr, out: &mut Vec<Step>) {
+    fn diffs(a: &Expr, x: Id, b: &Expr, y: Id, path: &mut Vec<usize>, found: &mut Vec<Vec<usize>>) {
+        if crate::term::same_tree(a, x, b, y) {
+            return;
+        }
+        let arith = |e: &Expr, i: Id| crate::term::is_delay_node(&e[i]);
+        if arith(a, x) && arith(b, y) {
+            found.push(path.clone());
+            return;
+        }
+        use crate::term::Language;
+        for (i, (&c, &d)) in a[x].children().iter().zip(b[y].children()).enumerate() {
+            path.push(i);
+            diffs(a, c, b, d, path, found);
+            path.pop();
+        }
+    }
+    let mut found = Vec::new();
+    diffs(from, root(from), to, root(to), &mut Vec::new(), &mut found);
+    for path in found {
+        let mut full = prefix.to_vec();
+        full.extend(&path);
+        let (target, _) = locate_sub(to, &path);
+        *whole = replace_at(whole, &full, &subterm(to, target));
+        out.push(step(full, Rule::DelayArith, whole.clone()));
+    }
+}
+
+fn locate_sub(e: &Expr, path: &[usize]) -> (Id, ()) {
+    use crate::term::Language;
+    let mut id = root(e);
+    for &i in path {
+        id = e[id].children()[i];
+    }
+    (id, ())
+}
+
+fn step(path: Vec<usize>, rule: Rule, after: Expr) -> Step {
+    Step { path, rule, after, subst: Vec::new(), premises: Vec::new() }
+}
+
+/// The laws that evaluate `·`, `+` and `¬` on constants; case proofs use only these
+/// (and the cited constraints) once every atom of a term has a value.
+pub const CONSTANT_LAWS: &[&str] = &[
+    "and_one", "one_and", "and_zero", "zero_and", "or_zero", "zero_or", "or_one", "one_or",
+    "not_zero", "not_one",
+];
+
+fn law(name: &str, how: Use) -> Rule {
+    Rule::Cite(Source::Law, name.to_string(), how)
+}
+
+/// Steps rewriting the subterm at `path` (viewed as `b`) to the constant it evaluates to.
+fn evaluate(
+    whole: &mut Expr,
+    path: &[usize],
+    b: &B,
+    sigma: &[Option<bool>],
+    atoms: &Atoms,
+    out: &mut Vec<Step>,
+) -> Option<bool> {
+    let value = eval3(b, sigma)?;
+    let child = |i: usize| {
+        let mut p = path.to_vec();
+        p.push(i);
+        p
+    };
+    let finish = |whole: &mut Expr, out: &mut Vec<Step>, rule: Rule| {
+        *whole = replace_at(whole, path, &constant(value));
+        out.push(step(path.to_vec(), rule, whole.clone()));
+    };
+    match b {
+        B::Const(_) => {}
+        B::Atom(i) => {
+            let mut at = *i;
+            while let Some((next, name, how)) = atoms.link.get(at).and_then(|l| l.as_ref()) {
+                *whole = replace_at(whole, path, &atoms.terms[*next]);
+                let cite = Rule::Cite(Source::Hypothesis, name.clone(), *how);
+                out.push(step(path.to_vec(), cite, whole.clone()));
+                at = *next;
+            }
+            finish(whole, out, Rule::Case(atoms.terms[at].clone(), value));
+        }
+        B::Not(a) => {
+            let inner = evaluate(whole, &child(0), a, sigma, atoms, out)?;
+            finish(whole, out, law(if inner { "not_one" } else { "not_zero" }, Use::Forward));
+        }
+        B::And(a, c) | B::Or(a, c) => {
+            let is_and = matches!(b, B::And(..));
+            let dominant = !is_and; // 0 for `·`, 1 for `+`
+            let (va, vc) = (eval3(a, sigma), eval3(c, sigma));
+            let rule = if va == Some(dominant) {
+                evaluate(whole, &child(0), a, sigma, atoms, out);
+                if is_and { "zero_and" } else { "one_or" }
+            } else if vc == Some(dominant) {
+                evaluate(whole, &child(1), c, sigma, atoms, out);
+                if is_and { "and_zero" } else { "or_one" }
+            } else {
+                evaluate(whole, &child(0), a, sigma, atoms, out);
+                evaluate(whole, &child(1), c, sigma, atoms, out);
+                if is_and { "and_one" } else { "or_zero" }
+            };
+            finish(whole, out, law(rule, Use::Forward));
+        }
+    }
+    Some(value)
+}
+
+/// The reverse of a chain that started at `start`.
+fn reverse(start: &Expr, steps: Vec<Step>) -> Vec<Step> {
+    let mut befores = vec![start.clone()];
+    befores.extend(steps.iter().map(|s| s.after.clone()));
+    steps
+        .into_iter()
+        .enumerate()
+        .rev()
+        .map(|(i, s)| Step {
+            rule: super::normalize::reversed(&s.rule),
+            after: befores[i].clone(),
+            ..s
+        })
+        .collect()
+}
+
+fn atoms_in(b: &B, out: &mut Vec<usize>) {
+    match b {
+        B::Const(_) => {}
+        B::Atom(i) => out.push(*i),
+        B::Not(a) => atoms_in(a, out),
+        B::And(a, c) | B::Or(a, c) => {
+            atoms_in(a, out);
+            atoms_in(c, out);
+        }
+    }
+}
+
+/// Limits and bookkeeping of one proof search.
+struct Search<'a> {
+    goal: B,
+    goal_term: Expr,
+    constraints: &'a [Constraint],
+    views: Vec<(B, B)>,
+    atoms: &'a Atoms,
+    reps: Vec<usize>,
+    /// The atoms of each class, by representative.
+    members: Vec<Vec<usize>>,
+    /// The constraints that mention each class, by representative.
+    occurs: Vec<Vec<usize>>,
+    leaves: usize,
+    max_leaves: usize,
+    deadline: Instant,
+}
+
+impl Search<'_> {
+    fn prove(&mut self, sigma: &mut Vec<Option<bool>>) -> Result<Proof, String> {
+        if Instant::now() > self.deadline {
+            return Err("time limit".into());
+        }
+        self.leaves += 1;
+        if self.leaves > self.max_leaves {
+            return Err(format!("more than {} cases", self.max_leaves));
+        }
+        let mut whole = self.goal_term.clone();
+        let mut steps = Vec::new();
+        if evaluate(&mut whole, &[], &self.goal, sigma, self.atoms, &mut steps) == Some(false) {
+            return Ok(Proof::Chain { start: self.goal_term.clone(), steps });
+        }
+        for (c, (l, r)) in self.constraints.iter().zip(&self.views) {
+            let (vl, vr) = (eval3(l, sigma), eval3(r, sigma));
+            let violated = match c.rel {
+                Rel::Eq => vl.is_some() && vr.is_some() && vl != vr,
+                Rel::Implies => vl == Some(true) && vr == Some(false),
+            };
+            if violated {
+                return Ok(self.contradiction(c, l, r, sigma));
+            }
+        }
+        let next =
+            self.unit_atom(sigma).or_else(|| first_unassigned(&self.goal, sigma)).or_else(|| {
+                self.views.iter().find_map(|(l, r)| {
+                    let undetermined = eval3(l, sigma).is_none() || eval3(r, sigma).is_none();
+                    if undetermined {
+                        first_unassigned(l, sigma).or_else(|| first_unassigned(r, sigma))
+                    } else {
+                        None
+                    }
+                })
+            });
+        let Some(atom) = next else {
+            return Err("the skeleton has a countermodel".into());
+        };
+        self.set(sigma, atom, Some(true));
+        let one = self.prove(sigma);
+        self.set(sigma, atom, Some(false));
+        let zero = self.prove(sigma);
+        self.set(sigma, atom, None);
+        Ok(Proof::CaseSplit {
+            atom: self.atoms.terms[self.reps[atom]].clone(),
+            one: Box::new(one?),
+            zero: Box::new(zero?),
+        })
+    }
+
+    /// Assigns a value to every atom of `atom`'s class.
+    fn set(&self, sigma: &mut [Option<bool>], atom: usize, value: Option<bool>) {
+        for &i in &self.members[self.reps[atom]] {
+            sigma[i] = value;
+        }
+    }
+
+    /// Is constraint `i` violated under the assignment?
+    fn violated(&self, i: usize, sigma: &[Option<bool>]) -> bool {
+        let (l, r) = &self.views[i];
+        let (vl, vr) = (eval3(l, sigma), eval3(r, sigma));
+        match self.constraints[i].rel {
+            Rel::Eq => vl.is_some() && vr.is_some() && vl != vr,
+            Rel::Implies => vl == Some(true) && vr == Some(false),
+        }
+    }
+
+    /// Does the assignment close the branch at once (the goal is `0*`, or a constraint
+    /// on `atom`'s class is violated)?
+    fn closes_by(&self, atom: usize, sigma: &[Option<bool>]) -> bool {
+        eval3(&self.goal, sigma) == Some(false)
+            || self.occurs[self.reps[atom]].iter().any(|&i| self.violated(i, sigma))
+    }
+
+    /// An unassigned atom of the goal or a constraint one of whose values closes the
+    /// branch at once, so that splitting on it costs one short case (unit propagation).
+    /// Atoms that close the branch for both values come first.
+    fn unit_atom(&self, sigma: &mut [Option<bool>]) -> Option<usize> {
+        // Candidates: the goal's atoms, and those of constraints not yet decided.
+        let mut candidates: Vec<usize> = Vec::new();
+        atoms_in(&self.goal, &mut candidates);
+        for (l, r) in &self.views {
+            if eval3(l, sigma).is_none() || eval3(r, sigma).is_none() {
+                atoms_in(l, &mut candidates);
+                atoms_in(r, &mut candidates);
+            }
+        }
+        let mut seen = std::collections::HashSet::new();
+        let mut unit = None;
+        for atom in candidates {
+            if sigma[atom].is_some() || !seen.insert(atom) {
+                continue;
+            }
+            self.set(sigma, atom, Some(true));
+            let one = self.closes_by(atom, sigma);
+            self.set(sigma, atom, Some(false));
+            let zero = self.closes_by(atom, sigma);
+            self.set(sigma, atom, None);
+            if one && zero {
+                return Some(atom);
+            }
+            if (one || zero) && unit.is_none() {
+                unit = Some(atom);
+            }
+        }
+        unit
+    }
+
+    /// `G = G·1* = G·0* = 0*`, where `1* = … = 0*` runs through the violated constraint.
+    fn contradiction(&self, c: &Constraint, l: &B, r: &B, sigma: &[Option<bool>]) -> Proof {
+        let g = &self.goal_term;
+        let mut whole = and(g, &constant(true));
+        let mut steps = vec![step(vec![], law("and_one", Use::Backward), whole.clone())];
+        let vl = eval3(l, sigma) == Some(true);
+        // Start from the side that is 1 (for `⇒`, the left side).
+        let (from_view, from_term, forward) =
+            if vl { (l, &c.lhs, true) } else { (r, &c.rhs, false) };
+        // 1* back up to that side.
+        let mut scratch = from_term.clone();
+        let mut eval_steps = Vec::new();
+        evaluate(&mut scratch, &[], from_view, sigma, self.atoms, &mut eval_steps);
+        let up = reverse(from_term, eval_steps);
+        for s in up {
+            let mut path = vec![1];
+            path.extend(&s.path);
+            whole = replace_at(&whole, &[1], &s.after);
+            steps.push(Step { path, after: whole.clone(), ..s });
+        }
+        // Cite the constraint (through its raw, unevaluated-delay form).
+        let (raw_from, raw_to) = if forward { (&c.raw.0, &c.raw.1) } else { (&c.raw.1, &c.raw.0) };
+        align_delays(&mut whole, &[1], from_term, raw_from, &mut steps);
+        let (how, result_raw) = match (c.rel, forward) {
+            (Rel::Eq, true) => (Use::Forward, raw_to.clone()),
+            (Rel::Eq, false) => (Use::Backward, raw_to.clone()),
+            (Rel::Implies, _) => (Use::Meet, and(&c.raw.0, &c.raw.1)),
+        };
+        whole = replace_at(&whole, &[1], &result_raw);
+        steps.push(Step {
+            premises: c.premises.clone(),
+            ..step(vec![1], Rule::Cite(c.source, c.name.clone(), how), whole.clone())
+        });
+        let result = fold_delays(&result_raw);
+        align_delays(&mut whole, &[1], &result_raw, &result, &mut steps);
+        // The result evaluates to 0*.
+        let result_view = match (c.rel, forward) {
+            (Rel::Eq, true) => r.clone(),
+            (Rel::Eq, false) => l.clone(),
+            (Rel::Implies, _) => B::And(Box::new(l.clone()), Box::new(r.clone())),
+        };
+        evaluate(&mut whole, &[1], &result_view, sigma, self.atoms, &mut steps);
+        whole = constant(false);
+        steps.push(step(vec![], law("and_zero", Use::Forward), whole));
+        Proof::Chain { start: g.clone(), steps }
+    }
+}
+
+/// Why the skeleton method did not prove the goal.
+#[derive(Clone, Debug)]
+pub enum Failure {
+    /// The skeleton has a model: atom values under which every constraint holds and the goal fails.
+    Countermodel(Vec<(Expr, bool)>),
+    /// A limit was reached.
+    Limit(String),
+}
+
+/// Decides `goal = 0*` over the skeleton with a SAT solver; if valid, builds a case-split proof.
+pub fn prove_zero(
+    goal: &Expr,
+    constraints: &[Constraint],
+    atoms: &mut Atoms,
+    max_leaves: usize,
+    deadline: Instant,
+) -> Result<Proof, Failure> {
+    let mut constraints = constraints.to_vec();
+    atoms.view(goal, root(goal));
+    register(atoms, &constraints);
+    atoms.merge_equal(&mut constraints);
+    let constraints = &constraints[..];
+    let goal_view = atoms.view(goal, root(goal));
+    let reps: Vec<usize> = (0..atoms.terms.len()).map(|i| atoms.rep(i)).collect();
+    let mut members = vec![Vec::new(); reps.len()];
+    for (i, r) in reps.iter().enumerate() {
+        members[*r].push(i);
+    }
+    let views: Vec<(B, B)> = constraints
+        .iter()
+        .map(|c| (atoms.view(&c.lhs, root(&c.lhs)), atoms.view(&c.rhs, root(&c.rhs))))
+        .collect();
+    let mut occurs = vec![Vec::new(); reps.len()];
+    for (i, (l, r)) in views.iter().enumerate() {
+        let mut found = Vec::new();
+        atoms_in(l, &mut found);
+        atoms_in(r, &mut found);
+        for a in found {
+            let list: &mut Vec<usize> = &mut occurs[reps[a]];
+            if list.last() != Some(&i) {
+                list.push(i);
+            }
+        }
+    }
+    if let Some(model) = satisfiable(&goal_view, constraints, &views, &reps) {
+        let assignment =
+            model.into_iter().enumerate().map(|(i, v)| (atoms.terms[i].clone(), v)).collect();
+        return Err(Failure::Countermodel(assignment));
+    }
+    let mut search = Search {
+        goal: goal_view,
+        goal_term: goal.clone(),
+        constraints,
+        views,
+        atoms,
+        members,
+        occurs,
+        reps,
+        leaves: 0,
+        max_leaves,
+        deadline,
+    };
+    let mut sigma = vec![None; search.atoms.terms.len()];
+    search.prove(&mut sigma).map(prune).map_err(Failure::Limit)
+}
+
+/// Does any step of the proof rewrite with the case assumption on `atom`?
+fn uses_case(proof: &Proof, atom: &Expr) -> bool {
+    match proof {
+        Proof::Chain { steps, .. } => {
+            steps.iter().any(|s| matches!(&s.rule, Rule::Case(a, _) if crate::term::same(a, atom)))
+        }
+        Proof::CaseSplit { one, zero, .. } => uses_case(one, atom) || uses_case(zero, atom),
+        Proof::Symm(p) | Proof::ImpliesByMeet(p) | Proof::ImpliesByZero(p) => uses_case(p, atom),
+        Proof::Antisym(p, q) | Proof::Trans(p, q) => uses_case(p, atom) || uses_case(q, atom),
+    }
+}
+
+/// Drops case splits whose assumption one branch never uses: that branch alone proves
+/// the statement.
+fn prune(proof: Proof) -> Proof {
+    match proof {
+        Proof::CaseSplit { atom, one, zero } => {
+            let (one, zero) = (prune(*one), prune(*zero));
+            if !uses_case(&one, &atom) {
+                one
+            } else if !uses_case(&zero, &atom) {
+                zero
+            } else {
+                Proof::CaseSplit { atom, one: Box::new(one), zero: Box::new(zero) }
+            }
+        }
+        other => other,
+    }
+}
+
+/// A model of `goal ∧ constraints` over the atoms, if there is one.
+fn satisfiable(
+    goal: &B,
+    constraints: &[Constraint],
+    views: &[(B, B)],
+    reps: &[usize],
+) -> Option<Vec<bool>> {
+    let mut solver = Solver::new();
+    // Atoms of one class share the representative's variable.
+    let own: Vec<Lit> = (0..reps.len()).map(|_| solver.new_lit()).collect();
+    let atom_vars: Vec<Lit> = reps.iter().map(|r| own[*r]).collect();
+    let truth = solver.new_lit();
+    solver.add_clause(&[truth]);
+    fn encode(b: &B, s: &mut Solver, atoms: &[Lit], truth: Lit) -> Lit {
+        match b {
+            B::Const(v) => {
+                if *v {
+                    truth
+                } else {
+                    !truth
+                }
+            }
+            B::Atom(i) => atoms[*i],
+            B::Not(a) => !encode(a, s, atoms, truth),
+            B::And(a, c) | B::Or(a, c) => {
+                let (x, y) = (encode(a, s, atoms, truth), encode(c, s, atoms, truth));
+                let z = s.new_lit();
+                if matches!(b, B::And(..)) {
+                    s.add_clause(&[!z, x]);
+                    s.add_clause(&[!z, y]);
+                    s.add_clause(&[z, !x, !y]);
+                } else {
+                    s.add_clause(&[z, !x]);
+                    s.add_clause(&[z, !y]);
+                    s.add_clause(&[!z, x, y]);
+                }
+                z
+            }
+        }
+    }
+    let g = encode(goal, &mut solver, &atom_vars, truth);
+    solver.add_clause(&[g]);
+    for (c, (l, r)) in constraints.iter().zip(views) {
+        let (x, y) =
+            (encode(l, &mut solver, &atom_vars, truth), encode(r, &mut solver, &atom_vars, truth));
+        solver.add_clause(&[!x, y]);
+        if c.rel == Rel::Eq {
+            solver.add_clause(&[x, !y]);
+        }
+    }
+    match solver.solve() {
+        Ok(true) => {
+            let model = solver.model()?;
+            let set: std::collections::HashSet<Lit> = model.into_iter().collect();
+            Some(atom_vars.iter().map(|l| set.contains(l)).collect())
+        }
+        _ => None,
+    }
+}

@@ -1,0 +1,412 @@
+//! The prover: untrusted search that returns certificates for the kernel to check.
+//!
+//! [`prove`] restricts the hypotheses to the goal's cone of influence, tries
+//! equality saturation in growing rule sets ([`saturate`]) and turns the
+//! explanation into a readable chain ([`normalize`], [`explain`]). If that does
+//! not close the goal, the Boolean skeleton is decided by a SAT solver and
+//! proved by case splits ([`boolean`]). Every certificate is checked by the
+//! kernel before the outcome says "proved"; otherwise the outcome is unknown,
+//! with the reason and, when the skeleton has one, a candidate countermodel.
+
+pub mod boolean;
+pub mod explain;
+pub mod normalize;
+pub mod saturate;
+
+use std::collections::BTreeSet;
+use std::time::{Duration, Instant};
+
+use crate::kernel::{self, Axiom, Certificate, Kernel, KernelError, Proof, Rel, Source, Theorem};
+use crate::term::{Expr, Symbol, Term, and_not, root};
+
+use saturate::{Closed, Limits};
+
+/// A goal `lhs rel rhs` about whole signals.
+#[derive(Clone, Debug)]
+pub struct Obligation {
+    /// Left side.
+    pub lhs: Expr,
+    /// `=` or `⇒`.
+    pub rel: Rel,
+    /// Right side.
+    pub rhs: Expr,
+}
+
+/// A checked proof.
+#[derive(Clone, Debug)]
+pub struct Proved {
+    /// The kernel's theorem.
+    pub theorem: Theorem,
+    /// The certificate the kernel checked.
+    pub certificate: Certificate,
+    /// Which method found it.
+    pub method: Method,
+    /// How many atomic steps of the main chain form each printed line (saturation proofs).
+    pub lines: Vec<usize>,
+}
+
+/// The method that found a proof.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// Equality saturation with the laws and hypotheses.
+    Saturation,
+    /// Case splits on the Boolean skeleton.
+    CaseSplit,
+}
+
+/// How a proof attempt ended.
+#[derive(Clone, Debug)]
+pub enum Outcome {
+    /// The kernel checked a certificate of the goal.
+    Proved(Box<Proved>),
+    /// No proof. `candidate` is a model of the Boolean skeleton (atom values) when the
+    /// search found one: a *possible* counterexample, not a confirmed one.
+    Unknown {
+        /// What was tried and why it stopped.
+        reason: String,
+        /// Atom values under which every constraint holds and the goal fails.
+        candidate: Option<Vec<(Expr, bool)>>,
+    },
+}
+
+/// Limits of one proof attempt. Every attempt ends within them.
+#[derive(Clone, Copy, Debug)]
+pub struct Budget {
+    /// Wall-clock time for the whole attempt.
+    pub time: Duration,
+    /// E-nodes per saturation run.
+    pub nodes: usize,
+    /// Leaves of a case-split proof.
+    pub cases: usize,
+}
+
+impl Default for Budget {
+    fn default() -> Self {
+        Budget { time: Duration::from_secs(10), nodes: 60_000, cases: 4_096 }
+    }
+}
+
+/// Everything a proof attempt may use.
+pub struct Context {
+    /// The checker with the laws and hypotheses.
+    pub kernel: Kernel,
+    /// The laws (also in the kernel), for building search rules.
+    pub laws: Vec<Axiom>,
+    /// The hypotheses (also in the kernel).
+    pub hypotheses: Vec<Axiom>,
+    rules: Vec<saturate::Rule>,
+    /// Side conditions already attempted, with their proofs (shared by every goal).
+    premises: std::sync::Mutex<std::collections::HashMap<String, Option<Proof>>>,
+}
+
+impl Context {
+    /// A context over these laws and hypotheses; fails if the kernel refuses an axiom.
+    pub fn new(laws: Vec<Axiom>, hypotheses: Vec<Axiom>) -> Result<Context, KernelError> {
+        let kernel = Kernel::new(laws.clone(), hypotheses.clone())?;
+        let rules = saturate::rules_for(&laws);
+        Ok(Context { kernel, laws, hypotheses, rules, premises: Default::default() })
+    }
+}
+
+fn names(e: &Expr, into: &mut BTreeSet<Symbol>) {
+    for node in e.as_ref() {
+        if let Term::Name(s) = node {
+            into.insert(*s);
+        }
+    }
+}
+
+/// The hypotheses in the cone of influence of `terms`: definitions `Q = …` of a
+/// signal `Q` the cone reaches, and any other hypothesis that mentions one.
+pub fn cone_of_influence<'a>(hypotheses: &'a [Axiom], terms: &[&Expr]) -> Vec<&'a Axiom> {
+    let mut reached = BTreeSet::new();
+    for t in terms {
+        names(t, &mut reached);
+    }
+    let mut taken = vec![false; hypotheses.len()];
+    loop {
+        let mut grew = false;
+        for (i, h) in hypotheses.iter().enumerate() {
+            if taken[i] {
+                continue;
+            }
+            let relevant = match (&h.lhs[root(&h.lhs)], h.rel) {
+                (Term::Name(q), Rel::Eq) => reached.contains(q),
+                _ => {
+                    let mut mentioned = BTreeSet::new();
+                    names(&h.lhs, &mut mentioned);
+                    names(&h.rhs, &mut mentioned);
+                    mentioned.iter().any(|n| reached.contains(n))
+                }
+            };
+            if relevant {
+                taken[i] = true;
+                grew = true;
+                names(&h.lhs, &mut reached);
+                names(&h.rhs, &mut reached);
+            }
+        }
+        if !grew {
+            break;
+        }
+    }
+    hypotheses.iter().zip(taken).filter(|(_, t)| *t).map(|(h, _)| h).collect()
+}
+
+/// Tries to prove the goal within the budget.
+pub fn prove(ctx: &Context, goal: &Obligation, budget: Budget) -> Outcome {
+    prove_at(ctx, goal, budget, 0)
+}
+
+/// [`prove`], at a nesting depth (side conditions of laws are proved one level down).
+fn prove_at(ctx: &Context, goal: &Obligation, budget: Budget, depth: usize) -> Outcome {
+    let started = Instant::now();
+    let deadline = started + budget.time;
+    let cone: Vec<Axiom> =
+        cone_of_influence(&ctx.hypotheses, &[&goal.lhs, &goal.rhs]).into_iter().cloned().collect();
+    let limits = Limits { time: budget.time / 6, nodes: budget.nodes, ..Limits::default() };
+    let mut terms: Vec<&Expr> = vec![&goal.lhs, &goal.rhs];
+    terms.extend(cone.iter().flat_map(|h| [&h.lhs, &h.rhs]));
+    let tiers = saturate::tiers(&ctx.rules, &terms);
+    let mut saturation = String::new();
+    // Small rule sets get small limits: when they close, they close quickly.
+    let tier_limits = |tier: usize| match tier {
+        0 => Limits { time: budget.time / 20, nodes: budget.nodes / 6, ..limits },
+        1 => Limits { time: budget.time / 10, nodes: budget.nodes / 3, ..limits },
+        _ => Limits { time: budget.time / 4, ..limits },
+    };
+    let attempt = |tier: usize, rules: &[saturate::Rule], saturation: &mut String| {
+        let limits = tier_limits(tier);
+        let mut run = saturate::saturate(&goal.lhs, goal.rel, &goal.rhs, &cone, rules, limits);
+        *saturation = format!("saturation stopped ({}, {} e-nodes)", run.stop, run.nodes);
+        let closed = run.closed?;
+        certify_saturation(ctx, goal, &cone, &mut run.egraph, closed, limits)
+    };
+    // Cheap rule sets first: they give the shortest proofs when they close.
+    if let Some(proved) = attempt(0, &tiers[0], &mut saturation) {
+        return Outcome::Proved(Box::new(proved));
+    }
+    // The Boolean skeleton decides; a short case proof is accepted at once.
+    let cases = prove_by_cases(ctx, goal, &cone, deadline, budget, depth);
+    let boolean_only = terms.iter().all(|t| !has_temporal(t));
+    match &cases {
+        Ok(proved) if case_leaves(proved) <= SHORT_CASE_PROOF => {
+            return Outcome::Proved(Box::new(proved.clone()));
+        }
+        Err(boolean::Failure::Countermodel(candidate)) if boolean_only => {
+            return Outcome::Unknown {
+                reason: "the goal is false on constant signals".into(),
+                candidate: Some(candidate.clone()),
+            };
+        }
+        _ => {}
+    }
+    // Larger rule sets may still find a proof (or a shorter one); side conditions
+    // (depth > 0) get only the quick methods.
+    // When a (long) case proof exists, a shorter one is looked for only in small cones:
+    // in large ones the bigger rule sets rarely close and would cost the whole budget.
+    if let Ok(proved) = &cases
+        && cone.len() > SHORTENING_CONE
+    {
+        return Outcome::Proved(Box::new(proved.clone()));
+    }
+    for (tier, rules) in tiers.iter().enumerate().skip(1) {
+        if Instant::now() > deadline || depth > 0 {
+            break;
+        }
+        if let Some(proved) = attempt(tier, rules, &mut saturation) {
+            let better = match &cases {
+                Ok(c) => case_leaves(c) > proved.lines.len(),
+                Err(_) => true,
+            };
+            if better {
+                return Outcome::Proved(Box::new(proved));
+            }
+            break;
+        }
+    }
+    match cases {
+        Ok(proved) => Outcome::Proved(Box::new(proved)),
+        Err(boolean::Failure::Countermodel(candidate)) => Outcome::Unknown {
+            reason: format!(
+                "{saturation}; the Boolean skeleton with the laws' instances has a model"
+            ),
+            candidate: Some(candidate),
+        },
+        Err(boolean::Failure::Limit(why)) => Outcome::Unknown {
+            reason: format!("{saturation}; case splitting stopped: {why}"),
+            candidate: None,
+        },
+    }
+}
+
+/// Above this many hypotheses in the cone, a case proof is not shortened by saturation.
+const SHORTENING_CONE: usize = 40;
+
+/// Case proofs with at most this many cases are accepted without trying larger rule sets.
+const SHORT_CASE_PROOF: usize = 24;
+
+fn has_temporal(e: &Expr) -> bool {
+    e.as_ref().iter().any(crate::term::is_temporal_node)
+}
+
+/// The number of cases (leaves) of a proof's case splits (1 for a plain chain).
+pub fn case_leaves(proved: &Proved) -> usize {
+    fn count(p: &Proof) -> usize {
+        match p {
+            Proof::Chain { .. } => 1,
+            Proof::CaseSplit { one, zero, .. } => count(one) + count(zero),
+            Proof::Symm(p) | Proof::ImpliesByMeet(p) | Proof::ImpliesByZero(p) => count(p),
+            Proof::Antisym(p, q) | Proof::Trans(p, q) => count(p) + count(q),
+        }
+    }
+    proved.certificate.main.as_ref().map_or(0, count)
+}
+
+fn certify_saturation(
+    ctx: &Context,
+    goal: &Obligation,
+    cone: &[Axiom],
+    egraph: &mut saturate::Graph,
+    closed: Closed,
+    limits: Limits,
+) -> Option<Proved> {
+    let (_, from, to) = saturate::goal_pairs(&goal.lhs, goal.rel, &goal.rhs)
+        .into_iter()
+        .find(|(c, _, _)| *c == closed)?;
+    let mut bridge = |x: &Expr, y: &Expr| bridge(ctx, cone, x, y, limits);
+    let mut candidates = Vec::new();
+    if let Ok((steps, lines)) = normalize::chain_via_normal_form(egraph, &from, &to, &mut bridge) {
+        candidates.push((steps, lines));
+    }
+    if let Ok(steps) = explain::chain_steps(egraph, &from, &to) {
+        let lines = vec![1; steps.len()];
+        candidates.push((steps, lines));
+    }
+    candidates.sort_by_key(|(steps, lines)| (lines.len(), steps.len()));
+    for (steps, lines) in candidates {
+        let chain = Proof::Chain { start: from.clone(), steps };
+        let main = match closed {
+            Closed::Equal => chain,
+            Closed::Meet => Proof::ImpliesByMeet(Box::new(chain)),
+            Closed::Zero => Proof::ImpliesByZero(Box::new(chain)),
+        };
+        let certificate = Certificate { lemmas: vec![], main: Some(main) };
+        if let Ok(theorem) = ctx.kernel.check_goal(&certificate, &goal.lhs, goal.rel, &goal.rhs) {
+            return Some(Proved { theorem, certificate, method: Method::Saturation, lines });
+        }
+    }
+    None
+}
+
+/// Proves `x = y` in a fresh, small e-graph (growing rule sets), for a detour-free chain.
+fn bridge(
+    ctx: &Context,
+    cone: &[Axiom],
+    x: &Expr,
+    y: &Expr,
+    limits: Limits,
+) -> Result<Vec<kernel::Step>, explain::ExplainError> {
+    let mut terms: Vec<&Expr> = vec![x, y];
+    terms.extend(cone.iter().flat_map(|h| [&h.lhs, &h.rhs]));
+    for rules in saturate::tiers(&ctx.rules, &terms) {
+        let mut run = saturate::saturate(x, Rel::Eq, y, cone, &rules, limits);
+        if run.closed.is_some() {
+            return explain::chain_steps(&mut run.egraph, x, y);
+        }
+    }
+    Err(explain::ExplainError(format!("no local proof of `{x} = {y}`")))
+}
+
+/// The goal as `f·¬g = 0*` (both ways for an equation), proved by cases on the skeleton.
+fn prove_by_cases(
+    ctx: &Context,
+    goal: &Obligation,
+    cone: &[Axiom],
+    deadline: Instant,
+    budget: Budget,
+    depth: usize,
+) -> Result<Proved, boolean::Failure> {
+    let max_leaves = budget.cases;
+    let mut directions = vec![(goal.lhs.clone(), goal.rhs.clone())];
+    if goal.rel == Rel::Eq {
+        directions.push((goal.rhs.clone(), goal.lhs.clone()));
+    }
+    let mut proofs = Vec::new();
+    for (f, g) in &directions {
+        let zero_goal = and_not(f, g);
+        let mut atoms = boolean::Atoms::default();
+        let mut constraints: Vec<boolean::Constraint> = cone
+            .iter()
+            .map(|h| boolean::Constraint {
+                source: Source::Hypothesis,
+                name: h.name.clone(),
+                raw: (h.lhs.clone(), h.rhs.clone()),
+                lhs: h.lhs.clone(),
+                rel: h.rel,
+                rhs: h.rhs.clone(),
+                conditions: Vec::new(),
+                premises: Vec::new(),
+            })
+            .collect();
+        // Register the atoms of the goal and the hypotheses, then instantiate the laws for them.
+        let mut probe = constraints.clone();
+        probe.push(boolean::Constraint {
+            source: Source::Hypothesis,
+            name: String::new(),
+            raw: (zero_goal.clone(), zero_goal.clone()),
+            lhs: zero_goal.clone(),
+            rel: Rel::Eq,
+            rhs: zero_goal.clone(),
+            conditions: Vec::new(),
+            premises: Vec::new(),
+        });
+        boolean::register(&mut atoms, &probe);
+        for mut c in boolean::law_instances(&ctx.laws, &mut atoms, 2_000) {
+            // A law with side conditions on signals is used only where they are proved.
+            if !c.conditions.is_empty() {
+                if depth > 0 {
+                    continue;
+                }
+                let small = Budget { time: budget.time / 20, ..budget };
+                for (l, rel, r) in &c.conditions {
+                    let key = format!("{l} {rel:?} {r}");
+                    let known = ctx.premises.lock().ok().and_then(|m| m.get(&key).cloned());
+                    let proof = known.unwrap_or_else(|| {
+                        let sub = Obligation { lhs: l.clone(), rel: *rel, rhs: r.clone() };
+                        let proof = match prove_at(ctx, &sub, small, depth + 1) {
+                            Outcome::Proved(p) => p.certificate.main,
+                            Outcome::Unknown { .. } => None,
+                        };
+                        if let Ok(mut m) = ctx.premises.lock() {
+                            m.insert(key, proof.clone());
+                        }
+                        proof
+                    });
+                    c.premises.extend(proof);
+                }
+                if c.premises.len() != c.conditions.len() {
+                    continue;
+                }
+            }
+            constraints.push(c);
+        }
+        let proof =
+            boolean::prove_zero(&zero_goal, &constraints, &mut atoms, max_leaves, deadline)?;
+        proofs.push(Proof::ImpliesByZero(Box::new(proof)));
+    }
+    let main = if proofs.len() == 2 {
+        let second = proofs.pop().expect("two directions");
+        let first = proofs.pop().expect("two directions");
+        Proof::Antisym(Box::new(first), Box::new(second))
+    } else {
+        proofs.pop().expect("one direction")
+    };
+    let certificate = Certificate { lemmas: vec![], main: Some(main) };
+    match ctx.kernel.check_goal(&certificate, &goal.lhs, goal.rel, &goal.rhs) {
+        Ok(theorem) => {
+            Ok(Proved { theorem, certificate, method: Method::CaseSplit, lines: vec![] })
+        }
+        Err(e) => Err(boolean::Failure::Limit(format!("the kernel rejected the case split: {e}"))),
+    }
+}

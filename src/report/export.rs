@@ -1,0 +1,234 @@
+//! Counterexamples as files: Value Change Dump (`--vcd`, opens in GTKWave) and WaveDrom JSON (`--wavedrom`).
+//!
+//! Both take the signals a counterexample's diagram shows. VCD times are the exact
+//! rational instants scaled to the coarsest timescale (`1 s`, `1 ms`, … `1 fs`) that
+//! makes them all integers; an instant that is not a whole number of femtoseconds is
+//! rounded (and a `$comment` says so). WaveDrom has one column per piece of the
+//! common partition of the time axis (an interval, or an isolated instant where some
+//! signal has an event), and the violation's instant is named in the head. In VCD an
+//! event (a value at one instant only) is a zero-width glitch: two changes at one time.
+#![warn(missing_docs)]
+
+use std::collections::BTreeSet;
+
+use num_traits::ToPrimitive;
+
+use super::{CounterexampleReport, RunReport};
+use crate::semantics::{Signal, Time, format_time};
+
+/// The counterexamples of a run, with the property names.
+fn counterexamples(report: &RunReport) -> Vec<(&str, &CounterexampleReport)> {
+    report
+        .properties
+        .iter()
+        .filter_map(|p| p.counterexample.as_ref().map(|c| (p.name.as_str(), c)))
+        .collect()
+}
+
+fn vcd_identifier(mut i: usize) -> String {
+    let mut out = String::new();
+    loop {
+        out.push(char::from(b'!' + (i % 94) as u8));
+        i /= 94;
+        if i == 0 {
+            return out;
+        }
+    }
+}
+
+fn vcd_name(name: &str) -> String {
+    let name = match name.split_once(": ") {
+        Some((side @ ("lhs" | "rhs"), _)) => side,
+        _ => name,
+    };
+    name.chars().map(|c| if c.is_ascii_graphic() { c } else { '_' }).collect()
+}
+
+/// Every counterexample of the run as one VCD file, one scope per property (all
+/// starting at time 0). `None` when there is no counterexample.
+pub fn vcd(report: &RunReport) -> Option<String> {
+    let cexs = counterexamples(report);
+    if cexs.is_empty() {
+        return None;
+    }
+    let mut times: BTreeSet<Time> = BTreeSet::new();
+    for (_, c) in &cexs {
+        for (_, s) in &c.shown {
+            times.extend(s.breakpoints().iter().cloned());
+        }
+    }
+    let units = [("s", 1i64), ("ms", 1_000), ("us", 1_000_000), ("ns", 1_000_000_000)];
+    let mut chosen = None;
+    for (unit, scale) in units {
+        if times.iter().all(|t| (t * Time::from_integer(scale.into())).is_integer()) {
+            chosen = Some((unit, Time::from_integer(scale.into()), false));
+            break;
+        }
+    }
+    let (unit, scale, rounded) =
+        chosen.unwrap_or(("fs", Time::from_integer(1_000_000_000_000_000i64.into()), true));
+    let tick = |t: &Time| (t * &scale).round().to_integer().to_u64().unwrap_or(u64::MAX);
+    let mut out = String::new();
+    out.push_str("$date ii-prove counterexample $end\n");
+    out.push_str("$version ii-prove $end\n");
+    if rounded {
+        out.push_str("$comment some instants are not whole femtoseconds and are rounded $end\n");
+    }
+    out.push_str(&format!("$timescale 1{unit} $end\n"));
+    let mut ids = Vec::new();
+    let mut n = 0;
+    for (name, c) in &cexs {
+        out.push_str(&format!("$scope module {} $end\n", vcd_name(name)));
+        out.push_str(&format!(
+            "$comment violated at t = {} s{} $end\n",
+            c.time,
+            c.simulator_scan
+                .map(|k| format!(", scan {k} in the scan simulator"))
+                .unwrap_or_default()
+        ));
+        for (label, s) in &c.shown {
+            let id = vcd_identifier(n);
+            n += 1;
+            out.push_str(&format!("$var wire 1 {id} {} $end\n", vcd_name(label)));
+            ids.push((id, s));
+        }
+        out.push_str("$upscope $end\n");
+    }
+    out.push_str("$enddefinitions $end\n");
+    // Value changes: every piece boundary, with the value on the piece that follows.
+    let mut events: BTreeSet<Time> = BTreeSet::new();
+    events.insert(Time::from_integer(0.into()));
+    for (_, s) in &ids {
+        events.extend(s.breakpoints().iter().cloned());
+    }
+    let mut last: Vec<Option<bool>> = vec![None; ids.len()];
+    let mut end = 0u64;
+    for t in &events {
+        let mut lines = String::new();
+        for (i, (id, s)) in ids.iter().enumerate() {
+            if t >= s.horizon() {
+                continue;
+            }
+            let after = value_after(s, t);
+            // An isolated instant (an event) is a zero-width glitch: its value, then the
+            // value after it, at the same time stamp.
+            let at = s.value_at(t);
+            if t > &Time::from_integer(0.into()) && at != after && last[i] != Some(at) {
+                lines.push_str(&format!("{}{id}\n", u8::from(at)));
+                last[i] = Some(at);
+            }
+            if last[i] != Some(after) {
+                lines.push_str(&format!("{}{id}\n", u8::from(after)));
+                last[i] = Some(after);
+            }
+        }
+        end = end.max(tick(t));
+        if !lines.is_empty() {
+            out.push_str(&format!("#{}\n{lines}", tick(t)));
+        }
+    }
+    out.push_str(&format!("#{end}\n"));
+    Some(out)
+}
+
+/// The value just after `t` (on the open interval that starts at `t`).
+fn value_after(s: &Signal, t: &Time) -> bool {
+    let next =
+        s.breakpoints().iter().find(|b| *b > t).cloned().unwrap_or_else(|| s.horizon().clone());
+    s.value_at(&((t + &next) / Time::from_integer(2.into())))
+}
+
+/// Every counterexample as WaveDrom JSON (`{"signal": [...], "head": ..., "foot": ...}`);
+/// with several properties each signal name is prefixed by the property's.
+pub fn wavedrom(report: &RunReport) -> Option<String> {
+    let cexs = counterexamples(report);
+    if cexs.is_empty() {
+        return None;
+    }
+    let several = cexs.len() > 1;
+    let mut signals = Vec::new();
+    let mut heads = Vec::new();
+    let mut ticks = Vec::new();
+    for (name, c) in &cexs {
+        let Some((_, first)) = c.shown.first() else { continue };
+        let horizon = first.horizon().clone();
+        let mut points: BTreeSet<Time> = BTreeSet::new();
+        for (_, s) in &c.shown {
+            points.extend(s.breakpoints().iter().cloned());
+        }
+        // Columns: the open interval before each breakpoint, then the breakpoint itself
+        // when some signal has an event there.
+        let mut columns: Vec<Time> = Vec::new();
+        let mut previous = Time::from_integer(0.into());
+        for p in &points {
+            columns.push((&previous + p) / Time::from_integer(2.into()));
+            let event = c.shown.iter().any(|(_, s)| {
+                let v = s.value_at(p);
+                v != s.left_limit(p) && (p == &horizon || v != value_after(s, p))
+            });
+            if event && p != &horizon {
+                columns.push(p.clone());
+            }
+            previous = p.clone();
+        }
+        for (label, s) in &c.shown {
+            let mut wave = String::new();
+            let mut last = None;
+            for t in &columns {
+                let v = s.value_at(t);
+                wave.push(if last == Some(v) {
+                    '.'
+                } else if v {
+                    '1'
+                } else {
+                    '0'
+                });
+                last = Some(v);
+            }
+            let shown = if several { format!("{name}.{label}") } else { label.clone() };
+            signals.push(serde_json::json!({ "name": shown, "wave": wave }));
+        }
+        let starts: Vec<String> = std::iter::once(Time::from_integer(0.into()))
+            .chain(points.iter().cloned())
+            .take(columns.len())
+            .map(|t| format_time(&t))
+            .collect();
+        ticks.push(format!("{name}: columns start at t = {}", starts.join(", ")));
+        heads.push(format!("{name}: violated at t = {} s", c.time));
+    }
+    let doc = serde_json::json!({
+        "signal": signals,
+        "head": { "text": heads.join("; ") },
+        "foot": { "text": ticks.join("; ") },
+        "config": { "hscale": 1 },
+    });
+    serde_json::to_string_pretty(&doc).ok()
+}
+
+/// Writes the requested files after a successful run: each is rendered first, then
+/// written whole (to a temporary name, then renamed), so nothing is half written.
+/// A run without a counterexample writes no file and says so on standard error.
+pub fn write_files(
+    report: &RunReport,
+    vcd_path: Option<&str>,
+    wavedrom_path: Option<&str>,
+) -> Result<(), super::InputError> {
+    let mut files = Vec::new();
+    for (path, render) in
+        [(vcd_path, vcd as fn(&RunReport) -> Option<String>), (wavedrom_path, wavedrom)]
+    {
+        let Some(path) = path else { continue };
+        match render(report) {
+            Some(text) => files.push((path, text)),
+            None => eprintln!("note: no counterexample to write to {path}"),
+        }
+    }
+    for (path, text) in files {
+        let tmp = format!("{path}.tmp-ii-prove");
+        std::fs::write(&tmp, text).and_then(|_| std::fs::rename(&tmp, path)).map_err(|e| {
+            let _ = std::fs::remove_file(&tmp);
+            super::InputError { rendered: format!("error: cannot write {path}: {e}\n") }
+        })?;
+    }
+    Ok(())
+}

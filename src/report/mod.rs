@@ -1,0 +1,737 @@
+//! Runs the properties of a session and reports verdicts: text for people, JSON for tools.
+//!
+//! This is the layer the command line and the test harness share: it loads
+//! files (reporting located diagnostics), builds the prover's context, proves
+//! each property, looks for a witness when a proof fails, and renders the
+//! result. Exit codes: 0 all proved, 1 some refuted or unknown, 2 bad input.
+
+pub mod export;
+pub mod trace;
+pub mod waveform;
+
+use std::time::{Duration, Instant};
+
+use serde::Serialize;
+
+use crate::counterexample::{self, Counterexample, Limits, Verdict};
+use crate::diag::{Diagnostic, IoError, RenderStyle, Sources, render};
+use crate::kernel::{Axiom, Rel};
+use crate::prover::{self, Budget, Context, Obligation, Outcome};
+use crate::semantics::falsify::{self, Condition, Witness};
+use crate::semantics::{eval, format_time};
+use crate::syntax::{self, Document, Goal, NoProgram, Notation, Scope, Statement};
+use crate::term::Expr;
+use crate::theory;
+
+/// How a run reports.
+#[derive(Clone, Copy, Debug)]
+pub struct Options {
+    /// Print each checked proof.
+    pub trace: bool,
+    /// Write JSON instead of text.
+    pub json: bool,
+    /// ASCII notation and diagrams.
+    pub ascii: bool,
+    /// Time limit per property.
+    pub timeout: Duration,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options { trace: false, json: false, ascii: false, timeout: Duration::from_secs(10) }
+    }
+}
+
+impl Options {
+    fn notation(&self) -> Notation {
+        if self.ascii { Notation::Ascii } else { Notation::Paper }
+    }
+}
+
+/// The verdict on one property.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Status {
+    /// The kernel checked a proof.
+    Proved,
+    /// A counterexample, confirmed by exact evaluation.
+    Refuted,
+    /// Neither within the limits.
+    Unknown,
+}
+
+/// A step of a checked proof, in the JSON output.
+#[derive(Clone, Debug, Serialize)]
+pub struct StepReport {
+    /// The law, hypothesis or lemma cited (`case`, `delay arithmetic` otherwise).
+    pub rule: String,
+    /// `law`, `hypothesis`, `lemma`, `case` or `delay-arithmetic`.
+    pub kind: String,
+    /// The whole term after the step.
+    pub term: String,
+}
+
+/// A proof in the JSON output.
+#[derive(Clone, Debug, Serialize)]
+pub struct TraceReport {
+    /// `saturation` or `case-split`.
+    pub method: String,
+    /// The printed calculation, line by line.
+    pub lines: Vec<String>,
+    /// The length of the calculation (its lines, as the paper's proofs are counted).
+    pub length: usize,
+    /// Every kernel-checked step.
+    pub steps: Vec<StepReport>,
+    /// The hypotheses the proof depends on.
+    pub hypotheses: Vec<String>,
+    /// The laws the proof depends on.
+    pub laws: Vec<String>,
+}
+
+/// One signal of a counterexample: its exact pieces.
+#[derive(Clone, Debug, Serialize)]
+pub struct SignalReport {
+    /// The signal's name.
+    pub name: String,
+    /// Breakpoints `b1 … bn` (exact, as decimals or fractions).
+    pub breakpoints: Vec<String>,
+    /// The value on each open interval `(b(i−1), b(i))`.
+    pub intervals: Vec<bool>,
+    /// The value at each breakpoint.
+    pub points: Vec<bool>,
+}
+
+/// A counterexample in the JSON output.
+#[derive(Clone, Debug, Serialize)]
+pub struct CounterexampleReport {
+    /// The instant where the property fails.
+    pub time: String,
+    /// The left side's value there.
+    pub lhs: bool,
+    /// The right side's value there.
+    pub rhs: bool,
+    /// The signals.
+    pub signals: Vec<SignalReport>,
+    /// The timing diagram as text lines.
+    pub diagram: Vec<String>,
+    /// The violating scan (1-based) of a program counterexample.
+    pub scan: Option<usize>,
+    /// The first scan at which LDmicro's scan simulator shows the violation.
+    pub simulator_scan: Option<usize>,
+    /// What confirmed it: `exact evaluation`, `scan simulator`.
+    pub confirmed_by: Vec<String>,
+    /// The signals shown in the diagram, with their exact pieces (for `--vcd`, `--wavedrom`).
+    #[serde(skip)]
+    pub shown: Vec<(String, crate::semantics::Signal)>,
+    /// The instant marked in the diagram.
+    #[serde(skip)]
+    pub mark: Option<crate::semantics::Time>,
+}
+
+/// The result for one property.
+#[derive(Clone, Debug, Serialize)]
+pub struct PropertyReport {
+    /// Its name.
+    pub name: String,
+    /// The statement as printed.
+    pub statement: String,
+    /// The verdict.
+    pub status: Status,
+    /// Why it is unknown (or how it was refuted).
+    pub reason: Option<String>,
+    /// Wall-clock time in milliseconds.
+    pub time_ms: f64,
+    /// The checked proof.
+    pub trace: Option<TraceReport>,
+    /// The counterexample (only for `refuted`: confirmed).
+    pub counterexample: Option<CounterexampleReport>,
+    /// For `unknown`: a counterexample that only the exact evaluation confirms.
+    pub candidate: Option<CounterexampleReport>,
+    /// For `proved`: the property holds only vacuously (see `vacuity`).
+    pub vacuous: bool,
+    /// Why the property holds vacuously: inconsistent hypotheses, or a signal it reads
+    /// forced to a constant.
+    pub vacuity: Option<String>,
+}
+
+/// Counts of verdicts.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Summary {
+    /// Proved properties.
+    pub proved: usize,
+    /// Refuted properties.
+    pub refuted: usize,
+    /// Unknown properties.
+    pub unknown: usize,
+}
+
+/// Everything a run found.
+#[derive(Clone, Debug, Serialize)]
+pub struct RunReport {
+    /// The ladder program, if there is one.
+    pub program: Option<String>,
+    /// The property files.
+    pub files: Vec<String>,
+    /// Warnings (unconstrained elements and the like).
+    pub warnings: Vec<String>,
+    /// Per property.
+    pub properties: Vec<PropertyReport>,
+    /// Totals.
+    pub summary: Summary,
+}
+
+impl RunReport {
+    /// 0 when every property is proved, 1 otherwise.
+    pub fn exit_code(&self) -> i32 {
+        if self.summary.refuted + self.summary.unknown == 0 { 0 } else { 1 }
+    }
+}
+
+/// A run that could not start: located diagnostics, already rendered.
+#[derive(Clone, Debug)]
+pub struct InputError {
+    /// The rendered diagnostics.
+    pub rendered: String,
+}
+
+/// Reads a file into `sources` (Latin-1 fallback for non-UTF-8 bytes).
+pub fn read_source(sources: &mut Sources, path: &str) -> Result<usize, Diagnostic> {
+    let bytes = std::fs::read(path)
+        .map_err(|e| Diagnostic::Io(IoError { path: path.to_string(), reason: e.to_string() }))?;
+    let text = match String::from_utf8(bytes) {
+        Ok(text) => text,
+        Err(e) => crate::ladder::decode_latin1(e.as_bytes()),
+    };
+    Ok(sources.add(path, text))
+}
+
+fn fail(sources: &Sources, diagnostics: Vec<Diagnostic>, opts: &Options) -> InputError {
+    let style = RenderStyle { ascii: opts.ascii };
+    InputError { rendered: diagnostics.iter().map(|d| render(d, sources, style)).collect() }
+}
+
+/// A statement's goal as a kernel obligation.
+pub fn obligation(goal: &Goal) -> Obligation {
+    let (lhs, rel, rhs) = theory::goal_parts(goal);
+    Obligation { lhs, rel, rhs }
+}
+
+/// The hypotheses of `assume` statements.
+pub fn assumptions(doc: &Document) -> Vec<Axiom> {
+    doc.assumptions
+        .iter()
+        .map(|s| {
+            let (lhs, rel, rhs) = theory::goal_parts(&s.value);
+            Axiom::ground(s.name.clone(), lhs, rel, rhs)
+        })
+        .collect()
+}
+
+/// Reads and resolves property files against `scope`; all their diagnostics, or the documents.
+fn read_documents(
+    sources: &mut Sources,
+    paths: &[String],
+    scope: &dyn Scope,
+    opts: &Options,
+) -> Result<Vec<Document>, InputError> {
+    let mut docs = Vec::new();
+    let mut diagnostics = Vec::new();
+    for path in paths {
+        match read_source(sources, path) {
+            Ok(file) => match syntax::parse_document(sources, file, scope) {
+                Ok(doc) => docs.push(doc),
+                Err(errors) => diagnostics.extend(errors.into_iter().map(Diagnostic::from)),
+            },
+            Err(d) => diagnostics.push(d),
+        }
+    }
+    if diagnostics.is_empty() { Ok(docs) } else { Err(fail(sources, diagnostics, opts)) }
+}
+
+/// The session for properties about free signals (`ii-prove FILE.ii …`).
+pub fn run_free(paths: &[String], opts: &Options) -> Result<RunReport, InputError> {
+    let mut sources = Sources::new();
+    let theory = theory::standard(&mut sources).map_err(|d| fail(&sources, d, opts))?;
+    let docs = read_documents(&mut sources, paths, &NoProgram, opts)?;
+    let hypotheses: Vec<Axiom> = docs.iter().flat_map(assumptions).collect();
+    let ctx = Context::new(theory.axioms(), hypotheses.clone())
+        .map_err(|e| InputError { rendered: format!("error: {e}\n") })?;
+    let identity = |e: &Expr| e.clone();
+    let mut properties = Vec::new();
+    for doc in &docs {
+        for statement in &doc.properties {
+            properties.push(check_property(&ctx, statement, &hypotheses, opts, &identity, None));
+        }
+    }
+    Ok(finish(None, paths.to_vec(), Vec::new(), properties))
+}
+
+/// A ladder program read and compiled, with its sources for diagnostics.
+pub struct LoadedProgram {
+    /// The program as read (for the scan simulator).
+    pub program: crate::ladder::LdProgram,
+    /// The compiled equations, bounds, signals and warnings.
+    pub compiled: crate::ladder::CompiledProgram,
+    /// The warnings, rendered with file and line.
+    pub warnings: Vec<String>,
+}
+
+/// Reads and compiles an LDmicro program registered under `path`.
+pub fn load_program(sources: &mut Sources, path: &str) -> Result<LoadedProgram, Vec<Diagnostic>> {
+    let file = read_source(sources, path).map_err(|d| vec![d])?;
+    let program = crate::ladder::read_ldmicro(sources, file)
+        .map_err(|errors| errors.into_iter().map(Diagnostic::from).collect::<Vec<_>>())?;
+    let compiled = crate::ladder::compile(&program);
+    let warnings = compiled.warnings.iter().map(|w| w.describe(sources)).collect();
+    Ok(LoadedProgram { program, compiled, warnings })
+}
+
+/// The session for `ii-prove PROGRAM.ld PROPS.ii…`: the properties are goals about the
+/// compiled program, whose equations and bounds are the hypotheses.
+pub fn run_program(
+    program: &str,
+    paths: &[String],
+    opts: &Options,
+) -> Result<RunReport, InputError> {
+    let mut sources = Sources::new();
+    let theory = theory::standard(&mut sources).map_err(|d| fail(&sources, d, opts))?;
+    let loaded = load_program(&mut sources, program).map_err(|d| fail(&sources, d, opts))?;
+    let compiled = &loaded.compiled;
+    let docs = read_documents(&mut sources, paths, compiled, opts)?;
+    let assumed: Vec<Axiom> = docs.iter().flat_map(assumptions).collect();
+    let mut hypotheses = compiled.axioms();
+    hypotheses.extend(assumed.iter().cloned());
+    let ctx = Context::new(theory.axioms(), hypotheses.clone())
+        .map_err(|e| InputError { rendered: format!("error: {e}\n") })?;
+    let rename = |e: &Expr| compiled.rename_for_display(e);
+    let session = counterexample::Program { ld: &loaded.program, compiled, assumptions: &assumed };
+    let mut warnings = loaded.warnings.clone();
+    // Consistency: an `assume` that no run of the program satisfies makes every
+    // property hold vacuously.
+    let mut inconsistent = None;
+    if !assumed.is_empty() {
+        let sides: Vec<&Expr> = assumed.iter().flat_map(|a| [&a.lhs, &a.rhs]).collect();
+        let v = counterexample::vacuity(&session, &sides);
+        if v.inconsistent {
+            let names: Vec<&str> = assumed.iter().map(|a| a.name.as_str()).collect();
+            let text = format!(
+                "the assumptions ({}) contradict the program: no scan-by-scan run satisfies them{}; every property holds vacuously",
+                names.join(", "),
+                v.horizon
+                    .map(|h| format!(" (checked up to t = {} s)", format_time(&h)))
+                    .unwrap_or_default()
+            );
+            warnings.push(text.clone());
+            inconsistent = Some(text);
+        }
+    }
+    let mut properties = Vec::new();
+    for doc in &docs {
+        for statement in &doc.properties {
+            let mut report =
+                check_property(&ctx, statement, &hypotheses, opts, &rename, Some(&session));
+            if report.status == Status::Unknown
+                && let (Some(text), Some(reason)) = (&inconsistent, &mut report.reason)
+            {
+                reason.push_str(&format!("; {text}"));
+            }
+            if report.status == Status::Proved {
+                let goal = obligation(&statement.value);
+                let why = match &inconsistent {
+                    Some(text) => Some(text.clone()),
+                    None => forced_constants(&session, &goal, &rename, opts),
+                };
+                if let Some(why) = why {
+                    report.vacuous = true;
+                    report.vacuity = Some(why);
+                }
+            }
+            properties.push(report);
+        }
+    }
+    Ok(finish(Some(program.to_string()), paths.to_vec(), warnings, properties))
+}
+
+/// `ii-prove show PROGRAM`: the compiled equations and bounds as `.ii` text.
+pub fn show_program(program: &str, opts: &Options) -> Result<String, InputError> {
+    let mut sources = Sources::new();
+    let loaded = load_program(&mut sources, program).map_err(|d| fail(&sources, d, opts))?;
+    Ok(crate::ladder::program_to_ii(&loaded.compiled, opts.notation()))
+}
+
+fn finish(
+    program: Option<String>,
+    files: Vec<String>,
+    warnings: Vec<String>,
+    properties: Vec<PropertyReport>,
+) -> RunReport {
+    let mut summary = Summary::default();
+    for p in &properties {
+        match p.status {
+            Status::Proved => summary.proved += 1,
+            Status::Refuted => summary.refuted += 1,
+            Status::Unknown => summary.unknown += 1,
+        }
+    }
+    RunReport { program, files, warnings, properties, summary }
+}
+
+/// Signals the property reads that the hypotheses force to a constant (bounded search).
+fn forced_constants(
+    session: &counterexample::Program,
+    goal: &Obligation,
+    rename: &dyn Fn(&Expr) -> Expr,
+    opts: &Options,
+) -> Option<String> {
+    let v = counterexample::vacuity(session, &[&goal.lhs, &goal.rhs]);
+    if v.constants.is_empty() {
+        return None;
+    }
+    let style = trace::Style { notation: opts.notation(), rename };
+    let parts: Vec<String> = v
+        .constants
+        .iter()
+        .map(|(n, c)| {
+            let value = if *c { "1*" } else { "0*" };
+            format!("{} = {value}", style_term(&style, &crate::term::name(n)))
+        })
+        .collect();
+    Some(format!(
+        "the hypotheses force {} in every run{}: the property may hold only vacuously",
+        parts.join(", "),
+        v.horizon.map(|h| format!(" up to t = {} s", format_time(&h))).unwrap_or_default()
+    ))
+}
+
+/// Proves one property; if that fails, looks for a witness that the exact evaluator
+/// confirms (and, for a program, the scan simulator too).
+pub fn check_property(
+    ctx: &Context,
+    statement: &Statement<Goal>,
+    hypotheses: &[Axiom],
+    opts: &Options,
+    rename: &dyn Fn(&Expr) -> Expr,
+    program: Option<&counterexample::Program>,
+) -> PropertyReport {
+    let started = Instant::now();
+    let goal = obligation(&statement.value);
+    let style = trace::Style { notation: opts.notation(), rename };
+    let shown = Goal {
+        lhs: rename(&statement.value.lhs),
+        rhs: rename(&statement.value.rhs),
+        ..statement.value.clone()
+    };
+    let statement_text = syntax::goal_to_string(&shown, opts.notation());
+    let budget = Budget { time: opts.timeout, ..Budget::default() };
+    let outcome = prover::prove(ctx, &goal, budget);
+    let mut report = PropertyReport {
+        name: statement.name.clone(),
+        statement: statement_text,
+        status: Status::Unknown,
+        reason: None,
+        time_ms: 0.0,
+        trace: None,
+        counterexample: None,
+        candidate: None,
+        vacuous: false,
+        vacuity: None,
+    };
+    match (outcome, program) {
+        (Outcome::Proved(proved), _) => {
+            report.status = Status::Proved;
+            report.trace = Some(TraceReport {
+                method: match proved.method {
+                    prover::Method::Saturation => "saturation".into(),
+                    prover::Method::CaseSplit => "case-split".into(),
+                },
+                lines: trace::render(&proved, &style),
+                length: trace::length(&proved),
+                steps: trace::atomic_steps(&proved, &style)
+                    .into_iter()
+                    .map(|(rule, kind, term)| StepReport { rule, kind: kind.into(), term })
+                    .collect(),
+                hypotheses: proved.theorem.hypotheses_used().iter().cloned().collect(),
+                laws: proved.theorem.laws_used().iter().cloned().collect(),
+            });
+        }
+        (Outcome::Unknown { reason, candidate }, Some(session)) => {
+            let limits = Limits {
+                deadline: Instant::now() + opts.timeout.min(Duration::from_secs(5)),
+                max_steps: 200,
+                max_scans: 100_000,
+            };
+            match counterexample::refute(session, &goal, limits) {
+                Verdict::Refuted(c) => {
+                    report.status = Status::Refuted;
+                    report.counterexample =
+                        Some(program_counterexample(session, &goal, &c, opts, rename));
+                }
+                Verdict::Unconfirmed { candidate, why } => {
+                    report.reason = Some(format!("{reason}; {why}"));
+                    report.candidate =
+                        Some(program_counterexample(session, &goal, &candidate, opts, rename));
+                }
+                Verdict::NotFound(why) => {
+                    let hint = candidate_hint(&style, candidate.as_deref());
+                    report.reason = Some(format!("{reason}; {why}{hint}"));
+                }
+            }
+        }
+        (Outcome::Unknown { reason, candidate }, None) => {
+            let conditions: Vec<Condition> = hypotheses
+                .iter()
+                .map(|h| Condition::Signal {
+                    lhs: h.lhs.clone(),
+                    rel: theory::sample_relation(h.rel),
+                    rhs: h.rhs.clone(),
+                })
+                .collect();
+            let deadline = Instant::now() + opts.timeout.min(Duration::from_secs(2));
+            let sampled = falsify::falsify(
+                &goal.lhs,
+                theory::sample_relation(goal.rel),
+                &goal.rhs,
+                &conditions,
+                2_000,
+                1,
+                Some(deadline),
+            );
+            match sampled {
+                Ok(Err(witness)) if confirmed(&goal, &witness, hypotheses) => {
+                    report.status = Status::Refuted;
+                    report.counterexample = Some(counterexample(&goal, &witness, opts, rename));
+                }
+                _ => {
+                    let hint = candidate_hint(&style, candidate.as_deref());
+                    report.reason = Some(format!("{reason}{hint}"));
+                }
+            }
+        }
+    }
+    report.time_ms = started.elapsed().as_secs_f64() * 1e3;
+    report
+}
+
+/// The prover's Boolean model, as a hint.
+fn candidate_hint(style: &trace::Style, candidate: Option<&[(Expr, bool)]>) -> String {
+    let Some(c) = candidate else { return String::new() };
+    let parts: Vec<String> = c
+        .iter()
+        .map(|(atom, v)| format!("{} = {}", style_term(style, atom), if *v { "1*" } else { "0*" }))
+        .collect();
+    format!("; possible counterexample of the Boolean abstraction: {}", parts.join(", "))
+}
+
+/// A program counterexample for people: the inputs that are not always 0, the signals
+/// the property reads, its two sides; the violation marked.
+fn program_counterexample(
+    session: &counterexample::Program,
+    goal: &Obligation,
+    c: &Counterexample,
+    opts: &Options,
+    rename: &dyn Fn(&Expr) -> Expr,
+) -> CounterexampleReport {
+    let style = trace::Style { notation: opts.notation(), rename };
+    let env = &c.assignment;
+    let named = |n: &str| style_term(&style, &crate::term::name(n));
+    let mut shown: Vec<(String, crate::semantics::Signal)> = Vec::new();
+    for (name, values) in &c.trace.values {
+        if values.iter().any(|v| *v)
+            && let Some(s) = env.signals.get(&crate::term::Symbol::from(name.as_str()))
+        {
+            shown.push((named(name), s.clone()));
+        }
+    }
+    let mut read = Vec::new();
+    for side in [&goal.lhs, &goal.rhs] {
+        for node in side.as_ref() {
+            if let crate::term::Term::Name(n) = node
+                && !read.contains(n)
+            {
+                read.push(*n);
+            }
+        }
+    }
+    for n in read {
+        let label = named(n.as_str());
+        if !shown.iter().any(|(l, _)| *l == label)
+            && let Some(s) = env.signals.get(&n)
+        {
+            shown.push((label, s.clone()));
+        }
+    }
+    for (label, side) in [("lhs", &goal.lhs), ("rhs", &goal.rhs)] {
+        let is_name = matches!(side[crate::term::root(side)], crate::term::Term::Name(_));
+        if !is_name && let Ok(s) = eval(side, env) {
+            shown.push((format!("{label}: {}", style_term(&style, side)), s));
+        }
+    }
+    let glyphs = if opts.ascii { waveform::Glyphs::ASCII } else { waveform::Glyphs::UNICODE };
+    let mut confirmed_by = vec!["exact evaluation".to_string()];
+    if c.simulator_scan.is_some() {
+        confirmed_by.push("scan simulator".into());
+    }
+    let _ = session;
+    CounterexampleReport {
+        time: format_time(&c.time),
+        lhs: c.lhs,
+        rhs: c.rhs,
+        signals: env
+            .signals
+            .iter()
+            .map(|(name, s)| SignalReport {
+                name: named(name.as_str()),
+                breakpoints: s.breakpoints().iter().map(format_time).collect(),
+                intervals: s.open_values().to_vec(),
+                points: s.point_values().to_vec(),
+            })
+            .collect(),
+        diagram: waveform::draw(&shown, Some(&c.time), glyphs),
+        scan: Some(c.scan),
+        simulator_scan: c.simulator_scan,
+        confirmed_by,
+        shown,
+        mark: Some(c.time.clone()),
+    }
+}
+
+fn style_term(style: &trace::Style, e: &Expr) -> String {
+    syntax::term_to_string(&(style.rename)(e), style.notation)
+}
+
+/// Re-checks a witness with the exact evaluator: every hypothesis holds, the goal fails.
+fn confirmed(goal: &Obligation, witness: &Witness, hypotheses: &[Axiom]) -> bool {
+    let env = &witness.assignment;
+    let holds = |l: &Expr, rel: Rel, r: &Expr| match (eval(l, env), eval(r, env)) {
+        (Ok(a), Ok(b)) => falsify::violation(&a, theory::sample_relation(rel), &b).is_none(),
+        _ => false,
+    };
+    hypotheses.iter().all(|h| holds(&h.lhs, h.rel, &h.rhs))
+        && !holds(&goal.lhs, goal.rel, &goal.rhs)
+}
+
+fn counterexample(
+    goal: &Obligation,
+    witness: &Witness,
+    opts: &Options,
+    rename: &dyn Fn(&Expr) -> Expr,
+) -> CounterexampleReport {
+    let env = &witness.assignment;
+    let mut shown: Vec<(String, crate::semantics::Signal)> =
+        env.signals.iter().map(|(name, s)| (name.to_string(), s.clone())).collect();
+    let style = trace::Style { notation: opts.notation(), rename };
+    for (label, side) in [("lhs", &goal.lhs), ("rhs", &goal.rhs)] {
+        if let Ok(s) = eval(side, env) {
+            let text = style_term(&style, side);
+            if !shown.iter().any(|(n, _)| *n == text) {
+                shown.push((format!("{label}: {text}"), s));
+            }
+        }
+    }
+    let glyphs = if opts.ascii { waveform::Glyphs::ASCII } else { waveform::Glyphs::UNICODE };
+    CounterexampleReport {
+        time: format_time(&witness.time),
+        lhs: witness.lhs,
+        rhs: witness.rhs,
+        signals: env
+            .signals
+            .iter()
+            .map(|(name, s)| SignalReport {
+                name: name.to_string(),
+                breakpoints: s.breakpoints().iter().map(format_time).collect(),
+                intervals: s.open_values().to_vec(),
+                points: s.point_values().to_vec(),
+            })
+            .collect(),
+        diagram: waveform::draw(&shown, Some(&witness.time), glyphs),
+        scan: None,
+        simulator_scan: None,
+        confirmed_by: vec!["exact evaluation".into()],
+        mark: Some(witness.time.clone()),
+        shown,
+    }
+}
+
+/// The text report: one line per property, proofs and counterexamples when asked, a summary.
+pub fn render_text(report: &RunReport, opts: &Options) -> String {
+    let mut out = String::new();
+    for w in &report.warnings {
+        out.push_str(&format!("warning: {w}\n"));
+    }
+    let width = report.properties.iter().map(|p| p.name.chars().count()).max().unwrap_or(0);
+    for p in &report.properties {
+        let status = match p.status {
+            Status::Proved => "proved",
+            Status::Refuted => "refuted",
+            Status::Unknown => "unknown",
+        };
+        out.push_str(&format!(
+            "{:<width$}  {status:<8} {:>9.1} ms   {}\n",
+            p.name, p.time_ms, p.statement
+        ));
+        if let Some(reason) = &p.reason {
+            out.push_str(&format!("{:<width$}  reason: {reason}\n", ""));
+        }
+        if opts.trace
+            && let Some(t) = &p.trace
+        {
+            for line in &t.lines {
+                out.push_str(&format!("{line}\n"));
+            }
+        }
+        if let Some(why) = &p.vacuity {
+            out.push_str(&format!("{:<width$}  warning: vacuous: {why}\n", ""));
+        }
+        if let Some(c) = &p.counterexample {
+            let at = match c.scan {
+                Some(k) => format!("at t = {} s (scan {k})", c.time),
+                None => format!("at t = {}", c.time),
+            };
+            out.push_str(&format!(
+                "    counterexample: {at} the left side is {} and the right side is {}\n",
+                c.lhs as u8, c.rhs as u8
+            ));
+            if let Some(k) = c.simulator_scan {
+                out.push_str(&format!(
+                    "    confirmed by exact evaluation and by the scan simulator (violated at scan {k})\n"
+                ));
+            }
+            for line in &c.diagram {
+                out.push_str(&format!("    {line}\n"));
+            }
+        }
+        if let Some(c) = &p.candidate {
+            out.push_str(&format!(
+                "    possible counterexample (exact evaluation only, not confirmed by the scan simulator): at t = {} s\n",
+                c.time
+            ));
+            for line in &c.diagram {
+                out.push_str(&format!("    {line}\n"));
+            }
+        }
+    }
+    let s = &report.summary;
+    out.push_str(&format!("{} proved, {} refuted, {} unknown\n", s.proved, s.refuted, s.unknown));
+    out
+}
+
+/// The JSON report (schema: [`RunReport`]).
+pub fn render_json(report: &RunReport) -> String {
+    serde_json::to_string_pretty(report).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"))
+}
+
+/// The laws of the standard theory, one per line with name and file, for `ii-prove axioms`.
+pub fn list_axioms(opts: &Options) -> Result<String, InputError> {
+    let mut sources = Sources::new();
+    let theory = theory::standard(&mut sources).map_err(|d| fail(&sources, d, opts))?;
+    let width = theory.laws.iter().map(|l| l.axiom.name.len()).max().unwrap_or(0);
+    let mut out = String::new();
+    for law in &theory.laws {
+        let text = syntax::law_to_string(&law.statement, opts.notation());
+        let text = text.trim_start_matches("law ").to_string();
+        let text = text.split_once(": ").map(|(_, t)| t.to_string()).unwrap_or(text);
+        out.push_str(&format!("{:<width$}  {}:{}  {}\n", law.axiom.name, law.file, law.line, text));
+    }
+    out.push_str(&format!("{} laws\n", theory.laws.len()));
+    Ok(out)
+}

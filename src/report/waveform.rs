@@ -1,0 +1,94 @@
+//! Timing diagrams of exact signals, as people read them, in the terminal.
+//!
+//! Each piece of the common partition (an open interval or an instant) is a
+//! column: intervals are several characters wide, instants one. A time axis
+//! labels the breakpoints, and an optional marker points at an instant.
+
+use std::collections::BTreeSet;
+
+use crate::semantics::{Signal, Time, format_time};
+
+/// Characters for the two levels and the marker.
+#[derive(Clone, Copy, Debug)]
+pub struct Glyphs {
+    /// Drawn where the signal is 1.
+    pub high: char,
+    /// Drawn where the signal is 0.
+    pub low: char,
+    /// Marks the instant of interest.
+    pub marker: char,
+}
+
+impl Glyphs {
+    /// Block characters.
+    pub const UNICODE: Glyphs = Glyphs { high: '█', low: '▁', marker: '▲' };
+    /// Plain ASCII.
+    pub const ASCII: Glyphs = Glyphs { high: '#', low: '_', marker: '^' };
+}
+
+const INTERVAL_WIDTH: usize = 5;
+
+/// Draws the named signals over their common horizon; `mark` points at one instant.
+pub fn draw(signals: &[(String, Signal)], mark: Option<&Time>, glyphs: Glyphs) -> Vec<String> {
+    let Some((_, first)) = signals.first() else { return Vec::new() };
+    let horizon = first.horizon().clone();
+    let mut points: BTreeSet<Time> = BTreeSet::new();
+    for (_, s) in signals {
+        points.extend(s.breakpoints().iter().filter(|b| **b <= horizon).cloned());
+    }
+    if let Some(t) = mark {
+        points.insert(t.clone());
+    }
+    points.insert(horizon.clone());
+    let points: Vec<Time> = points.into_iter().collect();
+    let name_width = signals.iter().map(|(n, _)| n.chars().count()).max().unwrap_or(0).max(4);
+    let mut rows = Vec::new();
+    // Columns: (value sampler, width, is_point).
+    let mut previous = Time::from_integer(0.into());
+    let mut columns: Vec<(Time, bool)> = Vec::new(); // (sample instant, is_point)
+    for p in &points {
+        let middle = (&previous + p) / Time::from_integer(2.into());
+        columns.push((middle, false));
+        columns.push((p.clone(), true));
+        previous = p.clone();
+    }
+    for (name, signal) in signals {
+        let mut row = format!("{name:<name_width$} ");
+        for (t, is_point) in &columns {
+            let c = if signal.value_at(t) { glyphs.high } else { glyphs.low };
+            let width = if *is_point { 1 } else { INTERVAL_WIDTH };
+            row.extend(std::iter::repeat_n(c, width));
+        }
+        rows.push(row.trim_end().to_string());
+    }
+    // Time axis: a label under each breakpoint column.
+    let mut axis: Vec<char> = vec![' '; name_width + 1];
+    let mut marker_row: Vec<char> = vec![' '; name_width + 1];
+    let mut col = name_width + 1;
+    axis[..4].copy_from_slice(&['t', 'i', 'm', 'e']);
+    for (t, is_point) in &columns {
+        let width = if *is_point { 1 } else { INTERVAL_WIDTH };
+        if *is_point {
+            let label = format_time(t);
+            while axis.len() < col {
+                axis.push(' ');
+            }
+            // A label that would run into the previous one is left out.
+            if axis.len() == col {
+                axis.extend(label.chars());
+            }
+            while marker_row.len() < col {
+                marker_row.push(' ');
+            }
+            if mark == Some(t) {
+                marker_row.push(glyphs.marker);
+            }
+        }
+        col += width;
+    }
+    rows.push(axis.into_iter().collect::<String>().trim_end().to_string());
+    if mark.is_some() {
+        rows.push(marker_row.into_iter().collect::<String>().trim_end().to_string());
+    }
+    rows
+}

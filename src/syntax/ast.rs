@@ -1,0 +1,208 @@
+//! The syntax tree of a `.ii` file as written, with spans; the resolver turns it into terms.
+
+use crate::diag::Span;
+use crate::term::Delay;
+
+/// An expression as written.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Ast {
+    /// What it is.
+    pub kind: AstKind,
+    /// Where it is.
+    pub span: Span,
+}
+
+/// The built-in functions written as calls.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Func {
+    /// `SR(s, r)`.
+    Sr,
+    /// `RS(s, r)`.
+    Rs,
+    /// `max(d, d)`.
+    Max,
+    /// `min(d, d)`.
+    Min,
+}
+
+impl Func {
+    /// The function a name denotes when it is followed by `(`.
+    pub fn from_name(name: &str) -> Option<Func> {
+        match name {
+            "SR" => Some(Func::Sr),
+            "RS" => Some(Func::Rs),
+            "max" => Some(Func::Max),
+            "min" => Some(Func::Min),
+            _ => None,
+        }
+    }
+}
+
+/// The forms of an expression.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum AstKind {
+    /// A name (plain or back-quoted).
+    Name(String),
+    /// A duration literal.
+    Duration(Delay),
+    /// `0*`.
+    Zero,
+    /// `1*`.
+    One,
+    /// `!a`.
+    Not(Box<Ast>),
+    /// `a + b + ...` (left-associative), at least two operands.
+    Or(Vec<Ast>),
+    /// `a . b . ...` (left-associative), at least two operands.
+    And(Vec<Ast>),
+    /// `a / b / ...`, at least two operands; the resolver sorts out which are durations.
+    Chain(Vec<Ast>),
+    /// `(a)`.
+    Paren(Box<Ast>),
+    /// `SR(a, b)`, `RS(a, b)`, `max(a, b)`, `min(a, b)`.
+    Call(Func, Box<Ast>, Box<Ast>),
+    /// Text the lexer rejected (already reported).
+    Error,
+}
+
+/// A relation between two expressions.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RelOp {
+    /// `=>`.
+    Implies,
+    /// `=`.
+    Equals,
+    /// `>=`.
+    Ge,
+    /// `>`.
+    Gt,
+    /// `<=`.
+    Le,
+    /// `<`.
+    Lt,
+}
+
+/// `[after D:] lhs op rhs` as written.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct AstGoal {
+    /// The `after` duration, if any.
+    pub after: Option<Ast>,
+    /// Left side.
+    pub lhs: Ast,
+    /// The relation.
+    pub op: RelOp,
+    /// Where the relation symbol is.
+    pub op_span: Span,
+    /// Right side.
+    pub rhs: Ast,
+    /// The whole goal.
+    pub span: Span,
+}
+
+/// Which named statement.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NamedKind {
+    /// `assume`.
+    Assume,
+    /// `property`.
+    Property,
+    /// `law`.
+    Law,
+}
+
+/// One statement as written.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum AstStatement {
+    /// `let NAME = expr`.
+    Let {
+        /// The abbreviation.
+        name: (String, Span),
+        /// What it stands for.
+        value: Ast,
+        /// The whole statement.
+        span: Span,
+    },
+    /// `input NAME, ...`.
+    Input(Vec<(String, Span)>),
+    /// `delay NAME, ...`.
+    Delay(Vec<(String, Span)>),
+    /// `assume`, `property` or `law`.
+    Named {
+        /// Which one.
+        kind: NamedKind,
+        /// Its name.
+        name: (String, Span),
+        /// The goal.
+        goal: Box<AstGoal>,
+        /// The side conditions (`law` only).
+        conditions: Vec<AstGoal>,
+        /// The whole statement.
+        span: Span,
+    },
+    /// `program "path"`.
+    Program(String, Span),
+    /// `theorem NAME: goal proof ... qed` or `lemma NAME: goal by auto` (proof scripts).
+    Claim {
+        /// `theorem` or `lemma`.
+        kind: ClaimKind,
+        /// Its name.
+        name: (String, Span),
+        /// What it states.
+        goal: Box<AstGoal>,
+        /// How it is proved.
+        proof: AstProof,
+        /// The whole statement.
+        span: Span,
+    },
+}
+
+/// `theorem` or `lemma` (a lemma is meant to be cited later; both may be).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ClaimKind {
+    /// `theorem`.
+    Theorem,
+    /// `lemma`.
+    Lemma,
+}
+
+/// A rule cited in a proof step: a law, hypothesis or lemma name, or `auto`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RuleRef {
+    /// The name as written.
+    pub name: String,
+    /// Where it is written.
+    pub span: Span,
+}
+
+/// One step `= term [rules]` or `=> term [rules]` of a calculation, as written.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct AstStep {
+    /// `=` or `=>`.
+    pub op: RelOp,
+    /// Where the relation symbol is.
+    pub op_span: Span,
+    /// The term the step arrives at.
+    pub term: Ast,
+    /// The cited rules.
+    pub rules: Vec<RuleRef>,
+    /// The whole step.
+    pub span: Span,
+}
+
+/// The proof of a claim, as written.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum AstProof {
+    /// `by auto`.
+    Auto(Span),
+    /// `by r1, r2`: one step from the left side to the right side with these rules.
+    By(Vec<RuleRef>, Span),
+    /// `proof start (= term [rules])* qed`.
+    Calc {
+        /// The starting term.
+        start: Ast,
+        /// The steps.
+        steps: Vec<AstStep>,
+        /// Where `qed` is.
+        qed: Span,
+    },
+}

@@ -1,0 +1,187 @@
+//! Laws as data: the files of `theories/`, read into the kernel's axioms.
+//!
+//! The theory files are compiled into the binary, so `ii-prove` works from any
+//! directory; [`standard`] reads them, and [`check_law`] validates one law
+//! against the exact semantics (the test suite runs it on every law).
+
+use crate::diag::{Diagnostic, Sources};
+use crate::kernel::{Axiom, Cmp, Rel};
+use crate::semantics::falsify::{self, Condition, Relation, SampleError, Witness};
+use crate::syntax::{
+    self, DelayComparison, Goal, Law, NoProgram, Relation as GoalRelation, SideCondition, Statement,
+};
+
+/// The theory files shipped with the prover: path (as shown to users) and text.
+pub const THEORY_FILES: &[(&str, &str)] = &[
+    ("theories/boolean.ii", include_str!("../theories/boolean.ii")),
+    ("theories/memory.ii", include_str!("../theories/memory.ii")),
+    ("theories/timer.ii", include_str!("../theories/timer.ii")),
+];
+
+/// A law with where it was written.
+#[derive(Clone, Debug)]
+pub struct LawEntry {
+    /// The kernel's form of the law.
+    pub axiom: Axiom,
+    /// The file it comes from.
+    pub file: String,
+    /// Its line in that file.
+    pub line: usize,
+    /// The statement as written back by the printer.
+    pub statement: Statement<Law>,
+}
+
+/// The laws of the theory files.
+#[derive(Clone, Debug, Default)]
+pub struct Theory {
+    /// Every law, in file order.
+    pub laws: Vec<LawEntry>,
+}
+
+impl Theory {
+    /// The kernel axioms of every law.
+    pub fn axioms(&self) -> Vec<Axiom> {
+        self.laws.iter().map(|l| l.axiom.clone()).collect()
+    }
+    /// A law by name.
+    pub fn get(&self, name: &str) -> Option<&LawEntry> {
+        self.laws.iter().find(|l| l.axiom.name == name)
+    }
+}
+
+fn relation(r: GoalRelation) -> Rel {
+    match r {
+        GoalRelation::Equals => Rel::Eq,
+        GoalRelation::Implies => Rel::Implies,
+    }
+}
+
+fn comparison(c: DelayComparison) -> Cmp {
+    match c {
+        DelayComparison::Ge => Cmp::Ge,
+        DelayComparison::Gt => Cmp::Gt,
+        DelayComparison::Le => Cmp::Le,
+        DelayComparison::Lt => Cmp::Lt,
+        DelayComparison::Eq => Cmp::Eq,
+    }
+}
+
+/// The kernel axiom of a law statement.
+pub fn axiom_of(statement: &Statement<Law>) -> Axiom {
+    let law = &statement.value;
+    let mut axiom = Axiom::ground(
+        statement.name.clone(),
+        law.goal.lhs_with_after(),
+        relation(law.goal.relation),
+        law.goal.rhs.clone(),
+    );
+    axiom.signal_vars = law.signal_vars.clone();
+    axiom.delay_vars = law.delay_vars.clone();
+    for condition in &law.conditions {
+        match condition {
+            SideCondition::Delay { lhs, op, rhs } => {
+                axiom.delay_conditions.push((lhs.clone(), comparison(*op), rhs.clone()))
+            }
+            SideCondition::Signal(goal) => axiom.signal_conditions.push((
+                goal.lhs_with_after(),
+                relation(goal.relation),
+                goal.rhs.clone(),
+            )),
+        }
+    }
+    axiom
+}
+
+/// Reads the laws of one theory text registered in `sources`.
+pub fn read(sources: &Sources, file: usize) -> Result<Vec<LawEntry>, Vec<Diagnostic>> {
+    let doc = syntax::parse_document(sources, file, &NoProgram)
+        .map_err(|errors| errors.into_iter().map(Diagnostic::from).collect::<Vec<_>>())?;
+    Ok(doc
+        .laws
+        .iter()
+        .map(|statement| LawEntry {
+            axiom: axiom_of(statement),
+            file: sources.name(file).to_string(),
+            line: sources.line_col(file, statement.span.start).0,
+            statement: statement.clone(),
+        })
+        .collect())
+}
+
+/// The standard theory: every file of [`THEORY_FILES`]. The sources are added to `sources`
+/// so that errors in them can be rendered.
+pub fn standard(sources: &mut Sources) -> Result<Theory, Vec<Diagnostic>> {
+    let mut theory = Theory::default();
+    for (name, text) in THEORY_FILES {
+        let file = sources.add(*name, *text);
+        theory.laws.extend(read(sources, file)?);
+    }
+    Ok(theory)
+}
+
+/// The falsifier's relation for a kernel relation.
+pub fn sample_relation(rel: Rel) -> Relation {
+    match rel {
+        Rel::Eq => Relation::Equal,
+        Rel::Implies => Relation::Implies,
+    }
+}
+
+/// The side conditions of a law as sampling conditions.
+fn conditions(axiom: &Axiom) -> Vec<Condition> {
+    use std::cmp::Ordering::{Equal, Greater, Less};
+    let mut out: Vec<Condition> = axiom
+        .delay_conditions
+        .iter()
+        .map(|(lhs, cmp, rhs)| Condition::Delay {
+            lhs: lhs.clone(),
+            accept: match cmp {
+                Cmp::Ge => vec![Greater, Equal],
+                Cmp::Gt => vec![Greater],
+                Cmp::Le => vec![Less, Equal],
+                Cmp::Lt => vec![Less],
+                Cmp::Eq => vec![Equal],
+            },
+            rhs: rhs.clone(),
+        })
+        .collect();
+    out.extend(axiom.signal_conditions.iter().map(|(lhs, rel, rhs)| Condition::Signal {
+        lhs: lhs.clone(),
+        rel: sample_relation(*rel),
+        rhs: rhs.clone(),
+    }));
+    out
+}
+
+/// Checks a law on `cases` random exact assignments that satisfy its side conditions.
+/// `Ok(n)`: it held on `n` samples; `Err`: a witness that it is false, or why it
+/// could not be sampled.
+pub fn check_law(axiom: &Axiom, cases: usize, seed: u64) -> Result<usize, LawFailure> {
+    match falsify::falsify(
+        &axiom.lhs,
+        sample_relation(axiom.rel),
+        &axiom.rhs,
+        &conditions(axiom),
+        cases,
+        seed,
+        None,
+    ) {
+        Ok(Ok(n)) => Ok(n),
+        Ok(Err(witness)) => Err(LawFailure::Witness(witness)),
+        Err(e) => Err(LawFailure::Sampling(e)),
+    }
+}
+
+/// Why a law did not validate.
+#[derive(Clone, Debug)]
+pub enum LawFailure {
+    /// Signals under which it is false.
+    Witness(Box<Witness>),
+    /// It could not be sampled.
+    Sampling(SampleError),
+}
+
+/// A goal of a `.ii` file as a kernel relation with `after` folded in.
+pub fn goal_parts(goal: &Goal) -> (crate::term::Expr, Rel, crate::term::Expr) {
+    (goal.lhs_with_after(), relation(goal.relation), goal.rhs.clone())
+}

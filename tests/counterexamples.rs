@@ -1,0 +1,322 @@
+//! Counterexamples of ladder programs: water_faulty's P2 refuted and replayed on the scan simulator, `--vcd`/`--wavedrom` files read back, the faulty programs of `tests/data/refutes_programs/`, candidates the simulator rejects (`tests/data/unknown_programs/`), and vacuity.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::{Duration, Instant};
+
+use ii_prove::counterexample::{self, Limits, Verdict};
+use ii_prove::diag::Sources;
+use ii_prove::ladder::Simulator;
+use ii_prove::report::{self, Options, Status, load_program};
+use ii_prove::semantics::Time;
+use ii_prove::syntax;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn path(rel: &str) -> String {
+    root().join(rel).display().to_string()
+}
+
+fn opts() -> Options {
+    Options { timeout: Duration::from_secs(5), ..Options::default() }
+}
+
+/// The `(program, properties)` pairs of a folder: each `NAME.ld` with its `NAME.ii`.
+fn pairs(folder: &str) -> Vec<(String, String)> {
+    let dir = root().join("tests/data").join(folder);
+    let mut out: Vec<(String, String)> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "ld"))
+        .map(|p| (p.display().to_string(), p.with_extension("ii").display().to_string()))
+        .collect();
+    out.sort();
+    out
+}
+
+#[test]
+fn water_faulty_p2_is_refuted_with_a_confirmed_diagram() {
+    let run = report::run_program(
+        &path("examples/water_faulty.ld"),
+        &[path("examples/water.ii")],
+        &opts(),
+    )
+    .unwrap_or_else(|e| panic!("{}", e.rendered));
+    let p2 = run.properties.iter().find(|p| p.name == "P2").expect("P2");
+    assert_eq!(p2.status, Status::Refuted, "{:?}", p2.reason);
+    let c = p2.counterexample.as_ref().expect("a counterexample");
+    assert_eq!(c.confirmed_by, ["exact evaluation", "scan simulator"]);
+    assert!(c.simulator_scan.is_some() && c.scan.is_some());
+    let text = report::render_text(&run, &opts());
+    assert!(text.contains("P2                         refuted"), "{text}");
+    assert!(text.contains("confirmed by exact evaluation and by the scan simulator"), "{text}");
+    // The diagram: line 1 runs, Line_swap rises, line 2 starts while line 1 still runs.
+    let sig = |name: &str| {
+        c.shown.iter().find(|(n, _)| n == name).map(|(_, s)| s.clone()).unwrap_or_else(|| {
+            panic!("{name} not shown: {:?}", c.shown.iter().map(|(n, _)| n).collect::<Vec<_>>())
+        })
+    };
+    let t = c.mark.clone().expect("marked");
+    let (swap, l1, l2) = (sig("Line_swap"), sig("L1_up"), sig("L2_up"));
+    assert!(swap.value_at(&t) && !swap.left_limit(&t), "Line_swap rises at the violation");
+    assert!(l1.value_at(&t) && l1.left_limit(&t), "line 1 was running and still runs");
+    assert!(l2.value_at(&t) && !l2.left_limit(&t), "line 2 starts");
+    assert!(c.diagram.iter().any(|l| l.starts_with("Line_swap")));
+    assert!(c.diagram.last().is_some_and(|l| l.contains('▲')));
+}
+
+#[test]
+fn water_faulty_overlap_replays_on_the_scan_simulator() {
+    let mut sources = Sources::new();
+    let loaded = load_program(&mut sources, &path("examples/water_faulty.ld")).expect("loads");
+    let file = sources.add("p2.ii", "let Line1 = L1_up + L1_pump + L1_down\nlet Line2 = L2_up + L2_pump + L2_down\nproperty P2: Line1 . Line2 = 0*\n".to_string());
+    let doc = syntax::parse_document(&sources, file, &loaded.compiled).expect("parses");
+    let goal = report::obligation(&doc.properties[0].value);
+    let session = counterexample::Program {
+        ld: &loaded.program,
+        compiled: &loaded.compiled,
+        assumptions: &[],
+    };
+    let limits = Limits {
+        deadline: Instant::now() + Duration::from_secs(20),
+        max_steps: 200,
+        max_scans: 100_000,
+    };
+    let Verdict::Refuted(c) = counterexample::refute(&session, &goal, limits) else {
+        panic!("P2 is not refuted");
+    };
+    let scan = c.simulator_scan.expect("the simulator confirms");
+    assert_eq!(c.trace.cycle, Time::new(1.into(), 100.into()));
+    // Replay independently: one step per scan, inputs from the trace.
+    let mut sim = Simulator::new(&loaded.program);
+    let mut overlap = None;
+    for k in 0..c.trace.scans {
+        let inputs: BTreeMap<String, bool> =
+            c.trace.values.iter().map(|(n, v)| (n.clone(), v[k])).collect();
+        sim.step(&inputs);
+        if sim.bit("YL1_up") && sim.bit("YL2_up") && overlap.is_none() {
+            overlap = Some(k + 1);
+        }
+    }
+    assert_eq!(overlap, Some(scan), "the PLC runs both lines at the reported scan");
+    // Line_swap is what changes: off before, on at the overlap.
+    let swap = &c.trace.values["XLine_swap"];
+    assert!(swap[scan - 1] && swap[..scan - 1].iter().any(|v| !v));
+}
+
+/// A VCD file read back: timescale, variable names by identifier, value changes.
+type Vcd = (String, BTreeMap<String, String>, Vec<(u64, String, bool)>);
+
+/// A tiny VCD reader: variable names by identifier and the value changes in time order.
+fn read_vcd(text: &str) -> Vcd {
+    let mut timescale = String::new();
+    let mut vars = BTreeMap::new();
+    let mut changes = Vec::new();
+    let mut now = None;
+    let mut definitions = true;
+    let mut tokens = text.split_whitespace().peekable();
+    while let Some(tok) = tokens.next() {
+        if definitions {
+            match tok {
+                "$timescale" => timescale = tokens.next().expect("a timescale").to_string(),
+                "$var" => {
+                    let kind = tokens.next().unwrap();
+                    let width = tokens.next().unwrap();
+                    assert_eq!((kind, width), ("wire", "1"));
+                    let id = tokens.next().unwrap().to_string();
+                    let name = tokens.next().unwrap().to_string();
+                    assert_eq!(tokens.next(), Some("$end"));
+                    vars.insert(id, name);
+                }
+                "$enddefinitions" => {
+                    assert_eq!(tokens.next(), Some("$end"));
+                    definitions = false;
+                }
+                _ => {}
+            }
+            continue;
+        }
+        if let Some(t) = tok.strip_prefix('#') {
+            let t: u64 = t.parse().expect("an integer time");
+            assert!(now.is_none_or(|n| n <= t), "times increase");
+            now = Some(t);
+        } else {
+            let (v, id) = tok.split_at(1);
+            let v = match v {
+                "0" => false,
+                "1" => true,
+                other => panic!("bad value {other}"),
+            };
+            assert!(vars.contains_key(id), "unknown identifier {id}");
+            changes.push((now.expect("a time before the first change"), vars[id].clone(), v));
+        }
+    }
+    assert!(!definitions, "no $enddefinitions");
+    (timescale, vars, changes)
+}
+
+#[test]
+fn vcd_and_wavedrom_files_read_back() {
+    let dir = std::env::temp_dir().join(format!("ii-prove-cex-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let vcd = dir.join("p2.vcd");
+    let wave = dir.join("p2.json");
+    let out = Command::new(env!("CARGO_BIN_EXE_ii-prove"))
+        .args([path("examples/water_faulty.ld"), path("examples/water.ii")])
+        .args(["--timeout", "5", "--vcd"])
+        .arg(&vcd)
+        .arg("--wavedrom")
+        .arg(&wave)
+        .output()
+        .expect("runs");
+    assert_eq!(out.status.code(), Some(1), "{}", String::from_utf8_lossy(&out.stderr));
+    let (timescale, vars, changes) = read_vcd(&std::fs::read_to_string(&vcd).unwrap());
+    assert_eq!(timescale, "1ms");
+    assert!(vars.values().any(|n| n == "Line_swap") && vars.values().any(|n| n == "L2_up"));
+    // Replay the dump: at the instant Line_swap rises, L1_up and L2_up are both 1.
+    let mut state: BTreeMap<String, bool> = BTreeMap::new();
+    let mut overlap = false;
+    let mut i = 0;
+    while i < changes.len() {
+        let t = changes[i].0;
+        while i < changes.len() && changes[i].0 == t {
+            state.insert(changes[i].1.clone(), changes[i].2);
+            i += 1;
+        }
+        overlap |= state.get("L1_up") == Some(&true) && state.get("L2_up") == Some(&true);
+    }
+    assert!(overlap, "the dump shows both lines on: {changes:?}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&wave).unwrap()).expect("WaveDrom JSON");
+    let signals = json["signal"].as_array().expect("a signal array");
+    assert!(!signals.is_empty());
+    let mut width = None;
+    for s in signals {
+        let name = s["name"].as_str().expect("a name");
+        let wave = s["wave"].as_str().expect("a wave");
+        assert!(wave.chars().all(|c| matches!(c, '0' | '1' | '.')), "{name}: {wave}");
+        assert!(!wave.starts_with('.'));
+        assert_eq!(*width.get_or_insert(wave.len()), wave.len(), "{name}: ragged");
+    }
+    let swap = signals.iter().find(|s| s["name"] == "Line_swap").expect("Line_swap");
+    assert!(swap["wave"].as_str().unwrap().contains("01"));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn no_file_is_written_on_bad_input() {
+    let dir = std::env::temp_dir().join(format!("ii-prove-cex-bad-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let bad = dir.join("bad.ii");
+    std::fs::write(&bad, "property P: Nonsense => 0*\n").unwrap();
+    let vcd = dir.join("out.vcd");
+    let out = Command::new(env!("CARGO_BIN_EXE_ii-prove"))
+        .arg(path("examples/water_faulty.ld"))
+        .arg(&bad)
+        .arg("--vcd")
+        .arg(&vcd)
+        .output()
+        .expect("runs");
+    assert_eq!(out.status.code(), Some(2));
+    assert!(!vcd.exists());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn faulty_programs_are_refuted_and_confirmed_twice() {
+    let cases = pairs("refutes_programs");
+    assert!(cases.len() >= 3, "only {} cases", cases.len());
+    for (ld, ii) in cases {
+        let run = report::run_program(&ld, std::slice::from_ref(&ii), &opts())
+            .unwrap_or_else(|e| panic!("{ld}: {}", e.rendered));
+        assert!(!run.properties.is_empty(), "{ii}: no property");
+        for p in &run.properties {
+            assert_eq!(p.status, Status::Refuted, "{ld}: {} ({:?})", p.name, p.reason);
+            let c = p.counterexample.as_ref().expect("a counterexample");
+            assert_eq!(c.confirmed_by, ["exact evaluation", "scan simulator"], "{ld}");
+            assert!(c.simulator_scan.is_some(), "{ld}");
+            assert!(!c.diagram.is_empty());
+        }
+        let json: serde_json::Value = serde_json::from_str(&report::render_json(&run)).unwrap();
+        assert!(json["properties"][0]["counterexample"]["simulator_scan"].is_u64(), "{ld}");
+    }
+}
+
+#[test]
+fn exact_only_candidates_stay_unknown_and_name_the_rung() {
+    let cases = pairs("unknown_programs");
+    assert!(!cases.is_empty());
+    for (ld, ii) in cases {
+        let run = report::run_program(&ld, std::slice::from_ref(&ii), &opts())
+            .unwrap_or_else(|e| panic!("{ld}: {}", e.rendered));
+        for p in &run.properties {
+            assert_eq!(p.status, Status::Unknown, "{ld}: {}", p.name);
+            assert!(
+                p.counterexample.is_none(),
+                "{ld}: an unconfirmed counterexample is shown as confirmed"
+            );
+            let reason = p.reason.as_deref().unwrap_or("");
+            assert!(reason.contains("scan simulator does not reproduce"), "{ld}: {reason}");
+            assert!(reason.contains("rung 2 (L01) is responsible"), "{ld}: {reason}");
+            assert!(p.candidate.is_some(), "{ld}: the candidate is shown");
+        }
+        let text = report::render_text(&run, &opts());
+        assert!(!text.contains("refuted "), "{text}");
+        assert!(text.contains("possible counterexample"), "{text}");
+    }
+}
+
+#[test]
+fn an_assumption_that_contradicts_the_program_is_reported() {
+    let run = report::run_program(
+        &path("tests/data/refutes_programs/traffic_greens_overlap.ld"),
+        &[path("tests/data/vacuity/contradicts_program.ii")],
+        &opts(),
+    )
+    .unwrap_or_else(|e| panic!("{}", e.rendered));
+    assert!(
+        run.warnings.iter().any(|w| w.contains("always_done") && w.contains("contradict")),
+        "{:?}",
+        run.warnings
+    );
+    for p in &run.properties {
+        assert_ne!(p.status, Status::Refuted);
+        assert!(
+            p.status != Status::Proved || p.vacuous,
+            "{}: proved without the vacuity flag",
+            p.name
+        );
+    }
+}
+
+#[test]
+fn a_property_over_forced_constants_is_flagged_vacuous() {
+    let run = report::run_program(
+        &path("tests/data/refutes_programs/traffic_greens_overlap.ld"),
+        &[path("tests/data/vacuity/forces_constant.ii")],
+        &opts(),
+    )
+    .unwrap_or_else(|e| panic!("{}", e.rendered));
+    let p = &run.properties[0];
+    assert_eq!(p.status, Status::Proved);
+    assert!(p.vacuous);
+    assert!(p.vacuity.as_deref().unwrap_or("").contains("Ns_green = 0*"), "{:?}", p.vacuity);
+    let json: serde_json::Value = serde_json::from_str(&report::render_json(&run)).unwrap();
+    assert_eq!(json["properties"][0]["vacuous"], true);
+    assert!(report::render_text(&run, &opts()).contains("warning: vacuous"));
+    // The real water plant: nothing is vacuous.
+    let water =
+        report::run_program(&path("examples/water.ld"), &[path("examples/water.ii")], &opts())
+            .unwrap_or_else(|e| panic!("{}", e.rendered));
+    for p in &water.properties {
+        assert!(!p.vacuous, "{}: {:?}", p.name, p.vacuity);
+    }
+}
+
+#[test]
+fn path_helper_points_into_the_repository() {
+    assert!(Path::new(&path("examples/water_faulty.ld")).exists());
+}

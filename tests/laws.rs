@@ -1,0 +1,111 @@
+//! Every law of `theories/` holds under the exact semantics; false laws are rejected
+//! with a witness.
+
+use std::path::Path;
+
+use ii_prove::diag::Sources;
+use ii_prove::kernel::{Axiom, Rel};
+use ii_prove::semantics::falsify::violation;
+use ii_prove::semantics::{eval, random::exhaustive_boolean};
+use ii_prove::term::Term;
+use ii_prove::theory::{self, LawFailure, sample_relation};
+
+const CASES: usize = 1_000;
+
+fn is_boolean(axiom: &Axiom) -> bool {
+    let boolean = |e: &ii_prove::term::Expr| {
+        e.as_ref().iter().all(|n| {
+            matches!(
+                n,
+                Term::Zero | Term::One | Term::And(_) | Term::Or(_) | Term::Not(_) | Term::Name(_)
+            )
+        })
+    };
+    boolean(&axiom.lhs) && boolean(&axiom.rhs)
+}
+
+#[test]
+fn every_law_holds_on_random_exact_signals() {
+    let mut sources = Sources::new();
+    let theory = theory::standard(&mut sources).expect("the theory files parse");
+    assert!(theory.laws.len() >= 60, "the registry has {} laws", theory.laws.len());
+    let mut failures = Vec::new();
+    for (i, law) in theory.laws.iter().enumerate() {
+        match theory::check_law(&law.axiom, CASES, i as u64 + 1) {
+            Ok(n) => assert!(n >= CASES, "{} checked on only {n} samples", law.axiom.name),
+            Err(LawFailure::Witness(w)) => failures.push(format!(
+                "{} ({}:{}) fails at t = {} on {}",
+                law.axiom.name, law.file, law.line, w.time, w.assignment
+            )),
+            Err(LawFailure::Sampling(e)) => {
+                failures.push(format!("{}: cannot sample: {e:?}", law.axiom.name))
+            }
+        }
+    }
+    assert!(failures.is_empty(), "laws that do not hold:\n{}", failures.join("\n"));
+}
+
+#[test]
+fn boolean_laws_hold_on_every_constant_assignment() {
+    let mut sources = Sources::new();
+    let theory = theory::standard(&mut sources).expect("the theory files parse");
+    let mut checked = 0;
+    for law in theory.laws.iter().filter(|l| is_boolean(&l.axiom)) {
+        for env in exhaustive_boolean(&law.axiom.signal_vars) {
+            let (l, r) = (eval(&law.axiom.lhs, &env).unwrap(), eval(&law.axiom.rhs, &env).unwrap());
+            assert!(
+                violation(&l, sample_relation(law.axiom.rel), &r).is_none(),
+                "{} fails on {env}",
+                law.axiom.name
+            );
+        }
+        checked += 1;
+    }
+    assert!(checked >= 25, "only {checked} Boolean laws");
+}
+
+#[test]
+fn the_papers_false_forms_are_rejected_with_a_witness() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/false_laws");
+    let mut rejected = 0;
+    for entry in std::fs::read_dir(&dir).expect("the folder exists") {
+        let path = entry.unwrap().path();
+        let mut sources = Sources::new();
+        let file = sources.add(path.display().to_string(), std::fs::read_to_string(&path).unwrap());
+        let laws = theory::read(&sources, file).expect("false laws still parse");
+        assert!(!laws.is_empty(), "{} has no law", path.display());
+        for law in laws {
+            match theory::check_law(&law.axiom, CASES, 7) {
+                Err(LawFailure::Witness(w)) => {
+                    // The witness is confirmed by exact evaluation.
+                    let l = eval(&law.axiom.lhs, &w.assignment).unwrap();
+                    let r = eval(&law.axiom.rhs, &w.assignment).unwrap();
+                    assert_eq!((l.value_at(&w.time), r.value_at(&w.time)), (w.lhs, w.rhs));
+                    match law.axiom.rel {
+                        Rel::Eq => assert_ne!(w.lhs, w.rhs),
+                        Rel::Implies => assert!(w.lhs && !w.rhs),
+                    }
+                    rejected += 1;
+                }
+                other => panic!("{} was not rejected: {other:?}", law.axiom.name),
+            }
+        }
+    }
+    assert!(rejected >= 8);
+}
+
+#[test]
+fn every_law_is_restated_as_a_property_that_the_cli_proves() {
+    // tests/verdicts.rs proves these files; here we check they cover the whole registry.
+    let mut sources = Sources::new();
+    let theory = theory::standard(&mut sources).expect("the theory files parse");
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/proves");
+    let mut stated = String::new();
+    for file in ["theory_laws.ii", "theory_laws_disjoint.ii"] {
+        stated.push_str(&std::fs::read_to_string(dir.join(file)).unwrap());
+    }
+    for law in &theory.laws {
+        let line = format!("property {}:", law.axiom.name);
+        assert!(stated.contains(&line), "{} is not restated as a property", law.axiom.name);
+    }
+}

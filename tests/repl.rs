@@ -1,0 +1,194 @@
+//! REPL sessions as transcripts: `tests/repl/*.session` interleave commands (`> `, with
+//! continuation lines after `… `) and the exact expected output.
+//!
+//! The commands are fed to `repl_with` (non-interactive, so it echoes them) and its
+//! output must equal the file, after one normalisation: every time `<number> ms`
+//! (with the spaces before it) becomes ` <t> ms`. `UPDATE_TRANSCRIPTS=1` rewrites the
+//! files from the actual output (review the diff before committing).
+
+use std::path::{Path, PathBuf};
+
+use ii_prove::repl::{self, COMMANDS};
+use ii_prove::report::Options;
+use ii_prove::script;
+
+fn normalise(text: &str) -> String {
+    let mut out = String::new();
+    for line in text.lines() {
+        let mut line = line.to_string();
+        let mut from = 0;
+        while let Some(i) = line[from..].find(" ms").map(|i| i + from) {
+            let head = &line[..i];
+            let number = head.trim_end_matches(|c: char| c.is_ascii_digit() || c == '.');
+            if number.len() == head.len() {
+                from = i + 3;
+                continue;
+            }
+            let start = number.trim_end_matches(' ').len();
+            let replaced = format!("{} <t> ms", &line[..start]);
+            from = replaced.len();
+            line = format!("{replaced}{}", &line[i + 3..]);
+        }
+        out.push_str(line.trim_end());
+        out.push('\n');
+    }
+    out
+}
+
+fn sessions() -> Vec<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/repl");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .expect("tests/repl exists")
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|x| x == "session"))
+        .collect();
+    files.sort();
+    files
+}
+
+fn run(transcript: &str) -> String {
+    let input: String = transcript
+        .lines()
+        .filter_map(|l| l.strip_prefix("> ").or_else(|| l.strip_prefix("… ")))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let mut output = Vec::new();
+    repl::repl_with(input.as_bytes(), &mut output, false, None).expect("the REPL runs");
+    String::from_utf8(output).expect("UTF-8 output")
+}
+
+#[test]
+fn every_transcript_replays_exactly() {
+    let files = sessions();
+    assert!(files.len() >= 3, "found only {files:?}");
+    let update = std::env::var_os("UPDATE_TRANSCRIPTS").is_some();
+    let mut failures = Vec::new();
+    for path in files {
+        let expected = std::fs::read_to_string(&path).expect("readable");
+        let actual = run(&expected);
+        if update {
+            std::fs::write(&path, &actual).expect("writable");
+            continue;
+        }
+        if normalise(&actual) != normalise(&expected) {
+            failures.push(format!("{}:\n--- actual ---\n{actual}", path.display()));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+#[test]
+fn the_transcripts_cover_every_command() {
+    let all: String = sessions().iter().map(|p| std::fs::read_to_string(p).unwrap()).collect();
+    for c in COMMANDS {
+        let used = all.lines().any(|l| {
+            l.strip_prefix("> ")
+                .is_some_and(|cmd| cmd == c.name || cmd.starts_with(&format!("{} ", c.name)))
+        });
+        assert!(used, "no transcript uses `{}`", c.name);
+    }
+}
+
+#[test]
+fn a_proof_saved_from_the_repl_checks_as_a_script() {
+    let saved = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/repl-saved-test.ii");
+    let session = format!(
+        "> input f, g\n> assume E: f = g\n> goal T: 2s/f => g\n> apply ton_weaken\n> apply E\n> prove g . f = g\n> save {}\n",
+        saved.display()
+    );
+    let out = run(&session);
+    assert!(out.contains("saved 2 proof(s)"), "{out}");
+    let result = script::check_files(&[saved.display().to_string()], &Options::default());
+    assert_eq!(result.exit_code(), 0, "{}", result.errors.join("\n"));
+    assert_eq!(result.claims.len(), 2);
+}
+
+#[test]
+fn multi_line_input_continues_after_operators_and_open_brackets() {
+    assert!(repl::incomplete("goal f =>"));
+    assert!(repl::incomplete("= (f +"));
+    assert!(repl::incomplete("prove f . g ."));
+    assert!(!repl::incomplete("goal f => g"));
+    assert!(!repl::incomplete("save out.ii"));
+    assert!(!repl::incomplete("= f [H1]"));
+}
+
+#[test]
+fn times_are_normalised() {
+    assert_eq!(normalise("  ok T     12.5 ms\n"), "  ok T <t> ms\n");
+    assert_eq!(normalise("proved T: f  (0.3 ms)\n"), "proved T: f  ( <t> ms)\n");
+}
+
+mod fuzz {
+    use ii_prove::repl::Session;
+    use proptest::prelude::*;
+
+    const WORDS: &[&str] = &[
+        "goal",
+        "apply",
+        "=",
+        "=>",
+        "undo",
+        "trace",
+        "show",
+        "simulate",
+        "axioms",
+        "input",
+        "assume",
+        "help",
+        "save",
+        "f",
+        "g",
+        "(",
+        ")",
+        "[",
+        "]",
+        ".",
+        "+",
+        "!",
+        ",",
+        ":",
+        "at",
+        "0",
+        "1.0",
+        "5s",
+        "2s/f",
+        "f/3s",
+        "SR(f, g)",
+        "ton_weaken",
+        "E",
+        "for",
+        "with",
+        "f=1@1s",
+        "0@2s",
+        "`x`",
+        "é",
+        "",
+        "=",
+        "[E]",
+        "[and_comm]",
+        "T:",
+    ];
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(200))]
+
+        /// Random command lines never panic (proof search commands are left out: they run
+        /// to their time limit).
+        #[test]
+        fn random_commands_never_panic(lines in prop::collection::vec(
+            prop::collection::vec(prop::sample::select(WORDS), 0..8), 1..12)) {
+            let mut session = Session::new().expect("a session");
+            let _ = session.execute("input f, g");
+            let _ = session.execute("assume E: f = g");
+            for words in lines {
+                let line = words.join(" ");
+                if line.contains("save") {
+                    continue;
+                }
+                let _ = session.execute(&line);
+            }
+        }
+    }
+}

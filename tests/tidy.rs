@@ -1,0 +1,64 @@
+//! Architecture invariants checked on the source tree (see ARCHITECTURE.md).
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+fn sources() -> Vec<(PathBuf, String)> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    for dir in ["src", "tests", "benches"] {
+        files.extend(common::files_with(&root.join(dir), "rs"));
+    }
+    files.into_iter().map(|p| (p.clone(), std::fs::read_to_string(&p).unwrap())).collect()
+}
+
+#[test]
+fn every_file_opens_with_a_doc_line() {
+    for (path, text) in sources() {
+        assert!(text.starts_with("//!"), "{} does not open with a `//!` line", path.display());
+    }
+}
+
+#[test]
+fn the_kernel_is_one_small_file_importing_only_terms_and_the_certificate_format() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let kernel = std::fs::read_to_string(root.join("src/kernel.rs")).unwrap();
+    assert!(kernel.lines().count() <= 720, "kernel.rs has {} lines", kernel.lines().count());
+    for line in
+        kernel.lines().filter(|l| l.trim_start().starts_with("use ") || l.starts_with("pub use "))
+    {
+        let allowed = [
+            "use std::",
+            "use crate::term::",
+            "pub use crate::certificate::",
+            "use KernelError::",
+            "pub use self::",
+        ];
+        assert!(allowed.iter().any(|a| line.trim_start().starts_with(a)), "kernel imports: {line}");
+    }
+    let certificate = std::fs::read_to_string(root.join("src/certificate.rs")).unwrap();
+    for line in certificate.lines().filter(|l| l.starts_with("use ")) {
+        assert!(line.starts_with("use std::") || line.starts_with("use crate::term::"), "{line}");
+    }
+}
+
+#[test]
+fn only_the_kernel_builds_theorems() {
+    for (path, text) in sources() {
+        if path.ends_with("src/kernel.rs") || path.ends_with("tests/tidy.rs") {
+            continue;
+        }
+        assert!(!text.contains("Theorem {"), "{} constructs a Theorem", path.display());
+    }
+}
+
+#[test]
+fn no_should_panic_in_tests() {
+    for (path, text) in sources() {
+        if path.ends_with("tests/tidy.rs") {
+            continue;
+        }
+        assert!(!text.contains("should_panic"), "{} uses should_panic", path.display());
+    }
+}

@@ -1,0 +1,65 @@
+//! The verdict harness: every `.ii` file under `tests/data/<verdict>/` is run through
+//! `ii-prove FILE.ii` mode, and each property must end with the folder's verdict.
+//! A new case is a new file.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use ii_prove::report::{self, Options, Status};
+
+fn files(verdict: &str) -> Vec<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(verdict);
+    let out = common::files_with(&dir, "ii");
+    assert!(!out.is_empty(), "{} has no case", dir.display());
+    out
+}
+
+fn check_folder(verdict: &str, expected: Status, timeout: Duration) {
+    let opts = Options { timeout, ..Options::default() };
+    let mut checked = 0;
+    for path in files(verdict) {
+        let name = path.display().to_string();
+        let run = report::run_free(std::slice::from_ref(&name), &opts)
+            .unwrap_or_else(|e| panic!("{name} does not load:\n{}", e.rendered));
+        assert!(!run.properties.is_empty(), "{name} has no property");
+        for p in &run.properties {
+            assert_eq!(p.status, expected, "{name}: {} is {:?} ({:?})", p.name, p.status, p.reason);
+            match expected {
+                Status::Proved => {
+                    let trace = p.trace.as_ref().expect("a proved property has a trace");
+                    assert!(
+                        !trace.steps.is_empty() || trace.lines.len() <= 2,
+                        "{}: empty proof",
+                        p.name
+                    );
+                }
+                Status::Refuted => {
+                    assert!(p.counterexample.is_some(), "{}: refuted without a witness", p.name)
+                }
+                Status::Unknown => {
+                    assert!(p.reason.is_some(), "{}: unknown without a reason", p.name)
+                }
+            }
+            checked += 1;
+        }
+    }
+    assert!(checked > 0, "no property in tests/data/{verdict}");
+}
+
+#[test]
+fn proves() {
+    check_folder("proves", Status::Proved, Duration::from_secs(20));
+}
+
+#[test]
+fn refutes() {
+    check_folder("refutes", Status::Refuted, Duration::from_secs(20));
+}
+
+#[test]
+fn unknown() {
+    // A short limit: these end when the limits are reached.
+    check_folder("unknown", Status::Unknown, Duration::from_secs(2));
+}
