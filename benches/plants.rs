@@ -4,7 +4,8 @@
 //! Each unit is the 10 logic rungs of `examples/water.ld` with its signals renamed
 //! (`RL1_Prod` → `RL1_Prod_u7`); the distribution stoppage `XSP_fail` is shared. The
 //! properties are P2 (the interlock) and P3 (the stoppage) of the first and the last
-//! unit. `II_BENCH_MAX_N` caps the size for quick runs.
+//! unit. `II_BENCH_MAX_N` caps the size for quick runs. A second group times
+//! `examples/water_faulty.ld` end to end, where P2 is refuted.
 
 use std::path::Path;
 use std::time::Duration;
@@ -108,5 +109,29 @@ fn plants(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, plants);
+/// The faulty water plant end to end: P2 is refuted (counterexample found and
+/// confirmed twice), the other properties proved.
+fn faulty_water(c: &mut Criterion) {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let program = root.join("water_faulty.ld").display().to_string();
+    let props = root.join("water.ii").display().to_string();
+    let opts = Options::default();
+    let run = report::run_program(&program, std::slice::from_ref(&props), &opts)
+        .unwrap_or_else(|e| panic!("{}", e.rendered));
+    let refuted: Vec<&str> = run
+        .properties
+        .iter()
+        .filter(|p| p.status == Status::Refuted)
+        .map(|p| p.name.as_str())
+        .collect();
+    assert_eq!(refuted, ["P2"], "the faulty plant breaks the interlock only");
+    let mut group = c.benchmark_group("faulty_water_end_to_end");
+    group.sample_size(10).measurement_time(Duration::from_secs(5));
+    group.bench_function("water_faulty.ld", |b| {
+        b.iter(|| report::run_program(&program, std::slice::from_ref(&props), &opts))
+    });
+    group.finish();
+}
+
+criterion_group!(benches, plants, faulty_water);
 criterion_main!(benches);

@@ -155,11 +155,34 @@ pub fn cone_of_influence<'a>(hypotheses: &'a [Axiom], terms: &[&Expr]) -> Vec<&'
 
 /// Tries to prove the goal within the budget.
 pub fn prove(ctx: &Context, goal: &Obligation, budget: Budget) -> Outcome {
-    prove_at(ctx, goal, budget, 0)
+    prove_at(ctx, goal, budget, 0, Effort::Full)
+}
+
+/// The first part of [`prove`]: the smallest rule set and the Boolean skeleton,
+/// not the (slow) larger rule sets. A model of the skeleton comes back as the
+/// candidate, so this is the first look before a counterexample search. It returns
+/// a proof only when [`prove`] would return the same one; otherwise "unknown".
+pub fn prove_quickly(ctx: &Context, goal: &Obligation, budget: Budget) -> Outcome {
+    prove_at(ctx, goal, budget, 0, Effort::FirstLook)
+}
+
+/// How far a proof attempt goes.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Effort {
+    /// Stop before the larger rule sets.
+    FirstLook,
+    /// Every method (side conditions, one level down, still get the quick ones only).
+    Full,
 }
 
 /// [`prove`], at a nesting depth (side conditions of laws are proved one level down).
-fn prove_at(ctx: &Context, goal: &Obligation, budget: Budget, depth: usize) -> Outcome {
+fn prove_at(
+    ctx: &Context,
+    goal: &Obligation,
+    budget: Budget,
+    depth: usize,
+    effort: Effort,
+) -> Outcome {
     let started = Instant::now();
     let deadline = started + budget.time;
     let cone: Vec<Axiom> =
@@ -201,14 +224,29 @@ fn prove_at(ctx: &Context, goal: &Obligation, budget: Budget, depth: usize) -> O
         }
         _ => {}
     }
-    // Larger rule sets may still find a proof (or a shorter one); side conditions
-    // (depth > 0) get only the quick methods.
+    // Larger rule sets may still find a proof (or a shorter one).
     // When a (long) case proof exists, a shorter one is looked for only in small cones:
     // in large ones the bigger rule sets rarely close and would cost the whole budget.
     if let Ok(proved) = &cases
         && cone.len() > SHORTENING_CONE
     {
         return Outcome::Proved(Box::new(proved.clone()));
+    }
+    if effort == Effort::FirstLook && depth == 0 {
+        return match cases {
+            Ok(_) => Outcome::Unknown {
+                reason: "a long case proof; the larger rule sets may find a shorter one".into(),
+                candidate: None,
+            },
+            Err(boolean::Failure::Countermodel(candidate)) => Outcome::Unknown {
+                reason: format!("{saturation}; the Boolean skeleton has a model"),
+                candidate: Some(candidate),
+            },
+            Err(boolean::Failure::Limit(why)) => Outcome::Unknown {
+                reason: format!("{saturation}; case splitting stopped: {why}"),
+                candidate: None,
+            },
+        };
     }
     for (tier, rules) in tiers.iter().enumerate().skip(1) {
         if Instant::now() > deadline || depth > 0 {
@@ -374,7 +412,7 @@ fn prove_by_cases(
                     let known = ctx.premises.lock().ok().and_then(|m| m.get(&key).cloned());
                     let proof = known.unwrap_or_else(|| {
                         let sub = Obligation { lhs: l.clone(), rel: *rel, rhs: r.clone() };
-                        let proof = match prove_at(ctx, &sub, small, depth + 1) {
+                        let proof = match prove_at(ctx, &sub, small, depth + 1, Effort::Full) {
                             Outcome::Proved(p) => p.certificate.main,
                             Outcome::Unknown { .. } => None,
                         };

@@ -423,7 +423,6 @@ pub fn check_property(
     };
     let statement_text = syntax::goal_to_string(&shown, opts.notation());
     let budget = Budget { time: opts.timeout, ..Budget::default() };
-    let outcome = prover::prove(ctx, &goal, budget);
     let mut report = PropertyReport {
         name: statement.name.clone(),
         statement: statement_text,
@@ -436,8 +435,26 @@ pub fn check_property(
         vacuous: false,
         vacuity: None,
     };
-    match (outcome, program) {
-        (Outcome::Proved(proved), _) => {
+    let search = |deadline: Instant| {
+        search_counterexample(&goal, hypotheses, opts, rename, program, deadline)
+    };
+    let outcome = match prover::prove_quickly(ctx, &goal, budget) {
+        // The Boolean skeleton has a model: the property is likely false, and the
+        // larger rule sets are slow to give up. Look for a counterexample first.
+        Outcome::Unknown { candidate: Some(_), .. } => {
+            if let Search::Refuted(c) = search(Instant::now() + opts.timeout.min(FIRST_LOOK)) {
+                report.status = Status::Refuted;
+                report.counterexample = Some(c);
+                report.time_ms = started.elapsed().as_secs_f64() * 1e3;
+                return report;
+            }
+            prover::prove(ctx, &goal, budget)
+        }
+        Outcome::Unknown { .. } => prover::prove(ctx, &goal, budget),
+        proved => proved,
+    };
+    match outcome {
+        Outcome::Proved(proved) => {
             report.status = Status::Proved;
             report.trace = Some(TraceReport {
                 method: match proved.method {
@@ -454,62 +471,93 @@ pub fn check_property(
                 laws: proved.theorem.laws_used().iter().cloned().collect(),
             });
         }
-        (Outcome::Unknown { reason, candidate }, Some(session)) => {
-            let limits = Limits {
-                deadline: Instant::now() + opts.timeout.min(Duration::from_secs(5)),
-                max_steps: 200,
-                max_scans: 100_000,
-            };
-            match counterexample::refute(session, &goal, limits) {
-                Verdict::Refuted(c) => {
+        Outcome::Unknown { reason, candidate } => {
+            let limit = if program.is_some() { PROGRAM_SEARCH } else { FREE_SEARCH };
+            match search(Instant::now() + opts.timeout.min(limit)) {
+                Search::Refuted(c) => {
                     report.status = Status::Refuted;
-                    report.counterexample =
-                        Some(program_counterexample(session, &goal, &c, opts, rename));
+                    report.counterexample = Some(c);
                 }
-                Verdict::Unconfirmed { candidate, why } => {
+                Search::Unconfirmed { candidate, why } => {
                     report.reason = Some(format!("{reason}; {why}"));
-                    report.candidate =
-                        Some(program_counterexample(session, &goal, &candidate, opts, rename));
+                    report.candidate = Some(candidate);
                 }
-                Verdict::NotFound(why) => {
+                Search::NotFound(why) => {
                     let hint = candidate_hint(&style, candidate.as_deref());
                     report.reason = Some(format!("{reason}; {why}{hint}"));
-                }
-            }
-        }
-        (Outcome::Unknown { reason, candidate }, None) => {
-            let conditions: Vec<Condition> = hypotheses
-                .iter()
-                .map(|h| Condition::Signal {
-                    lhs: h.lhs.clone(),
-                    rel: theory::sample_relation(h.rel),
-                    rhs: h.rhs.clone(),
-                })
-                .collect();
-            let deadline = Instant::now() + opts.timeout.min(Duration::from_secs(2));
-            let sampled = falsify::falsify(
-                &goal.lhs,
-                theory::sample_relation(goal.rel),
-                &goal.rhs,
-                &conditions,
-                2_000,
-                1,
-                Some(deadline),
-            );
-            match sampled {
-                Ok(Err(witness)) if confirmed(&goal, &witness, hypotheses) => {
-                    report.status = Status::Refuted;
-                    report.counterexample = Some(counterexample(&goal, &witness, opts, rename));
-                }
-                _ => {
-                    let hint = candidate_hint(&style, candidate.as_deref());
-                    report.reason = Some(format!("{reason}{hint}"));
                 }
             }
         }
     }
     report.time_ms = started.elapsed().as_secs_f64() * 1e3;
     report
+}
+
+/// How long the first look for a counterexample may take, when the prover's quick
+/// methods found a model of the Boolean skeleton.
+const FIRST_LOOK: Duration = Duration::from_secs(2);
+/// How long the counterexample search after a failed proof may take, with a program.
+const PROGRAM_SEARCH: Duration = Duration::from_secs(5);
+/// The same for free signals (random search, confirmed exactly).
+const FREE_SEARCH: Duration = Duration::from_secs(2);
+/// Random assignments tried per free-signal search.
+const FREE_SAMPLES: usize = 2_000;
+
+/// What a counterexample search found for a goal.
+enum Search {
+    /// A confirmed counterexample: exact evaluation (and, for a program, the scan
+    /// simulator) shows the violation.
+    Refuted(CounterexampleReport),
+    /// Violates the compiled terms, but the scan simulator does not reproduce it.
+    Unconfirmed { candidate: CounterexampleReport, why: String },
+    /// Nothing found within the limits, and why.
+    NotFound(String),
+}
+
+/// Looks for a counterexample until `deadline`: bounded model checking over scans
+/// for a program, random exact signals for free signals.
+fn search_counterexample(
+    goal: &Obligation,
+    hypotheses: &[Axiom],
+    opts: &Options,
+    rename: &dyn Fn(&Expr) -> Expr,
+    program: Option<&counterexample::Program>,
+    deadline: Instant,
+) -> Search {
+    if let Some(session) = program {
+        let limits = Limits { deadline, max_steps: 200, max_scans: 100_000 };
+        return match counterexample::refute(session, goal, limits) {
+            Verdict::Refuted(c) => {
+                Search::Refuted(program_counterexample(session, goal, &c, opts, rename))
+            }
+            Verdict::Unconfirmed { candidate, why } => Search::Unconfirmed {
+                candidate: program_counterexample(session, goal, &candidate, opts, rename),
+                why,
+            },
+            Verdict::NotFound(why) => Search::NotFound(why),
+        };
+    }
+    let conditions: Vec<Condition> = hypotheses
+        .iter()
+        .map(|h| Condition::Signal {
+            lhs: h.lhs.clone(),
+            rel: theory::sample_relation(h.rel),
+            rhs: h.rhs.clone(),
+        })
+        .collect();
+    let rel = theory::sample_relation(goal.rel);
+    match falsify::falsify(&goal.lhs, rel, &goal.rhs, &conditions, FREE_SAMPLES, 1, Some(deadline))
+    {
+        Ok(Err(witness)) if confirmed(goal, &witness, hypotheses) => {
+            Search::Refuted(counterexample(goal, &witness, opts, rename))
+        }
+        Ok(Err(_)) => Search::NotFound("a sampled witness was not confirmed exactly".into()),
+        Ok(Ok(n)) => Search::NotFound(format!("no counterexample among {n} random exact signals")),
+        Err(falsify::SampleError::TooFewSamples { valid, .. }) => Search::NotFound(format!(
+            "no counterexample among {valid} random exact signals that satisfy the assumptions"
+        )),
+        Err(falsify::SampleError::Eval(why)) => Search::NotFound(why),
+    }
 }
 
 /// The prover's Boolean model, as a hint.
