@@ -1,9 +1,11 @@
 //! The verdict harness: every `.ii` file under `tests/data/<verdict>/` is run through
 //! `ii-prove FILE.ii` mode, and each property must end with the folder's verdict.
-//! A new case is a new file.
+//! A new case is a new file. In `proves/`, a comment `// trace: at most N lines`
+//! right above a property bounds the length of its printed proof.
 
 mod common;
 
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
@@ -16,6 +18,26 @@ fn files(verdict: &str) -> Vec<PathBuf> {
     out
 }
 
+/// The bounds `// trace: at most N lines` written right above `property NAME`.
+fn trace_bounds(text: &str) -> BTreeMap<String, usize> {
+    let mut bounds = BTreeMap::new();
+    let mut pending = None;
+    for line in text.lines().map(str::trim) {
+        if let Some(n) = line.strip_prefix("// trace: at most ") {
+            let n = n.trim_end_matches(" lines").trim_end_matches(" line");
+            pending = Some(n.parse::<usize>().expect("`// trace: at most N lines`"));
+        } else if let Some(rest) = line.strip_prefix("property ") {
+            let name = rest.split(':').next().unwrap_or("").trim().to_string();
+            if let Some(n) = pending.take() {
+                bounds.insert(name, n);
+            }
+        } else if !line.is_empty() {
+            assert!(pending.is_none(), "a trace bound must stand right above its property");
+        }
+    }
+    bounds
+}
+
 fn check_folder(verdict: &str, expected: Status, timeout: Duration) {
     let opts = Options { timeout, ..Options::default() };
     let mut checked = 0;
@@ -24,6 +46,7 @@ fn check_folder(verdict: &str, expected: Status, timeout: Duration) {
         let run = report::run_free(std::slice::from_ref(&name), &opts)
             .unwrap_or_else(|e| panic!("{name} does not load:\n{}", e.rendered));
         assert!(!run.properties.is_empty(), "{name} has no property");
+        let bounds = trace_bounds(&std::fs::read_to_string(&path).expect("readable"));
         for p in &run.properties {
             assert_eq!(p.status, expected, "{name}: {} is {:?} ({:?})", p.name, p.status, p.reason);
             match expected {
@@ -34,6 +57,15 @@ fn check_folder(verdict: &str, expected: Status, timeout: Duration) {
                         "{}: empty proof",
                         p.name
                     );
+                    if let Some(&bound) = bounds.get(&p.name) {
+                        assert!(
+                            trace.length <= bound,
+                            "{name}: the proof of {} has {} lines, at most {bound} expected:\n{}",
+                            p.name,
+                            trace.length,
+                            trace.lines.join("\n")
+                        );
+                    }
                 }
                 Status::Refuted => {
                     assert!(p.counterexample.is_some(), "{}: refuted without a witness", p.name)

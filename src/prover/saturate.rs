@@ -350,8 +350,18 @@ pub fn saturate(
     Saturation { egraph, closed, stop, nodes, elapsed: started.elapsed() }
 }
 
+/// A pattern's size, each delay-arithmetic subterm counted as one node: it folds to
+/// a constant, so `d1/(d2/f) → (d1+d2)/f` shrinks terms.
 fn pattern_size(p: &egg::PatternAst<Term>) -> usize {
-    p.as_ref().len()
+    let folded: usize = p
+        .as_ref()
+        .iter()
+        .map(|n| match n {
+            egg::ENodeOrVar::ENode(Term::DMax(_) | Term::DMin(_) | Term::DAdd(_)) => 2,
+            _ => 0,
+        })
+        .sum();
+    p.as_ref().len() - folded
 }
 
 /// The temporal operators (`ton`, `tof`, `sr`, `rs`) a term or pattern mentions.
