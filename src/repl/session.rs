@@ -568,7 +568,7 @@ impl Session {
                     None => e.clone(),
                 };
                 let style = trace::Style { notation: self.notation, rename: &rename };
-                self.last_trace = trace::render(&proved, &style);
+                self.last_trace = trace::render(&proved, rel, &style);
                 self.done.push(Statement {
                     name: name.clone(),
                     name_span: span,

@@ -461,7 +461,7 @@ pub fn check_property(
                     prover::Method::Saturation => "saturation".into(),
                     prover::Method::CaseSplit => "case-split".into(),
                 },
-                lines: trace::render(&proved, &style),
+                lines: trace::render(&proved, goal.rel, &style),
                 length: trace::length(&proved),
                 steps: trace::atomic_steps(&proved, &style)
                     .into_iter()

@@ -6,7 +6,7 @@
 //! constant evaluation folded into the next citation. Every atomic step was
 //! checked by the kernel; the grouping is presentation only.
 
-use crate::kernel::{Proof, Rule, Source, Step};
+use crate::kernel::{Proof, Rel, Rule, Source, Step};
 use crate::prover::Proved;
 use crate::syntax::{Notation, term_to_string};
 use crate::term::Expr;
@@ -240,8 +240,10 @@ fn cases_text(proof: &Proof, style: &Style, indent: &str, out: &mut Vec<String>)
     }
 }
 
-/// The calculation of a checked proof, as text lines (without the goal line).
-pub fn render(proved: &Proved, style: &Style) -> Vec<String> {
+/// The calculation of a checked proof of a goal with relation `goal`, as text lines
+/// (without the goal line). An implication proved by an equation ends with the
+/// implication it gives.
+pub fn render(proved: &Proved, goal: Rel, style: &Style) -> Vec<String> {
     let mut out = Vec::new();
     for (name, lemma) in &proved.certificate.lemmas {
         out.push(format!("lemma {name}:"));
@@ -253,6 +255,7 @@ pub fn render(proved: &Proved, style: &Style) -> Vec<String> {
         let closing = match main {
             Proof::ImpliesByMeet(_) => Some("f·g = f"),
             Proof::ImpliesByZero(_) => Some("f·¬g = 0*"),
+            _ if goal == Rel::Implies && theorem.rel() == Rel::Eq => Some("f = g"),
             _ => None,
         };
         if let Some(form) = closing {
