@@ -52,6 +52,7 @@ fn check_folder(verdict: &str, expected: Status, timeout: Duration) {
             match expected {
                 Status::Proved => {
                     let trace = p.trace.as_ref().expect("a proved property has a trace");
+                    assert!(!p.vacuous, "{name}: {} flagged vacuous: {:?}", p.name, p.vacuity);
                     assert!(
                         !trace.steps.is_empty() || trace.lines.len() <= 2,
                         "{}: empty proof",
@@ -83,6 +84,24 @@ fn check_folder(verdict: &str, expected: Status, timeout: Duration) {
 #[test]
 fn proves() {
     check_folder("proves", Status::Proved, Duration::from_secs(20));
+}
+
+/// Every property of `tests/data/vacuous_free/` is proved and flagged vacuous: the
+/// assumptions contradict each other or force a signal it reads to a constant.
+#[test]
+fn vacuous_free() {
+    let opts = Options { timeout: Duration::from_secs(20), ..Options::default() };
+    for path in files("vacuous_free") {
+        let name = path.display().to_string();
+        let run = report::run_free(std::slice::from_ref(&name), &opts)
+            .unwrap_or_else(|e| panic!("{name} does not load:\n{}", e.rendered));
+        assert!(!run.properties.is_empty(), "{name} has no property");
+        for p in &run.properties {
+            assert_eq!(p.status, Status::Proved, "{name}: {} ({:?})", p.name, p.reason);
+            assert!(p.vacuous, "{name}: {} not flagged vacuous", p.name);
+            assert!(p.vacuity.as_deref().is_some_and(|w| w.contains("vacuous")), "{:?}", p.vacuity);
+        }
+    }
 }
 
 #[test]

@@ -257,14 +257,94 @@ pub fn run_free(paths: &[String], opts: &Options) -> Result<RunReport, InputErro
     let ctx = Context::new(theory.axioms(), hypotheses.clone())
         .map_err(|e| InputError { rendered: format!("error: {e}\n") })?;
     let identity = |e: &Expr| e.clone();
+    let mut warnings = Vec::new();
+    // Consistency: assumptions that prove `1* = 0*` make every property hold vacuously.
+    let assumed: Vec<&str> = hypotheses.iter().map(|h| h.name.as_str()).collect();
+    let inconsistent = contradictory(&ctx, &hypotheses, opts).then(|| {
+        format!(
+            "the assumptions ({}) contradict each other: they prove 0* = 1*; every property holds vacuously",
+            assumed.join(", ")
+        )
+    });
+    warnings.extend(inconsistent.clone());
     let mut properties = Vec::new();
     for doc in &docs {
         for statement in &doc.properties {
-            properties.push(check_property(&ctx, statement, &hypotheses, opts, &identity, None));
+            let mut report = check_property(&ctx, statement, &hypotheses, opts, &identity, None);
+            if report.status == Status::Unknown
+                && let (Some(text), Some(reason)) = (&inconsistent, &mut report.reason)
+            {
+                reason.push_str(&format!("; {text}"));
+            }
+            if report.status == Status::Proved && !hypotheses.is_empty() {
+                let goal = obligation(&statement.value);
+                let style = trace::Style { notation: opts.notation(), rename: &identity };
+                let why = inconsistent.clone().or_else(|| {
+                    let forced = forced_by_assumptions(&ctx, &goal, opts);
+                    (!forced.is_empty()).then(|| forced_text(&style, &forced, None))
+                });
+                if let Some(why) = why {
+                    report.vacuous = true;
+                    report.vacuity = Some(why);
+                }
+            }
+            properties.push(report);
         }
     }
-    Ok(finish(None, paths.to_vec(), Vec::new(), properties))
+    Ok(finish(None, paths.to_vec(), warnings, properties))
 }
+
+/// Do the assumptions prove `0* = 1*`? Asked as `n·¬n = n + ¬n` for a name `n` of
+/// each assumption, so that the goal's cone of influence reaches the assumptions.
+fn contradictory(ctx: &Context, hypotheses: &[Axiom], opts: &Options) -> bool {
+    let mut asked = std::collections::BTreeSet::new();
+    hypotheses.iter().any(|h| {
+        let Some(n) = h.lhs.as_ref().iter().chain(h.rhs.as_ref()).find_map(|node| match node {
+            crate::term::Term::Name(n) => Some(*n),
+            _ => None,
+        }) else {
+            return false;
+        };
+        let signal = crate::term::name(n.as_str());
+        let zero = crate::term::and_not(&signal, &signal);
+        let one = crate::term::or(&signal, &crate::term::not(&signal));
+        asked.insert(n) && proves_quickly(ctx, &zero, &one, opts)
+    })
+}
+
+/// Does the prover's first look prove `lhs = rhs` (a short budget: this is a check
+/// on the assumptions, not a property)?
+fn proves_quickly(ctx: &Context, lhs: &Expr, rhs: &Expr, opts: &Options) -> bool {
+    let goal = Obligation { lhs: lhs.clone(), rel: Rel::Eq, rhs: rhs.clone() };
+    let budget = Budget { time: opts.timeout.min(VACUITY_CHECK), ..Budget::default() };
+    matches!(prover::prove_quickly(ctx, &goal, budget), Outcome::Proved(_))
+}
+
+/// The signals a goal reads that the assumptions force to a constant (free signals).
+fn forced_by_assumptions(ctx: &Context, goal: &Obligation, opts: &Options) -> Vec<(String, bool)> {
+    let mut read = std::collections::BTreeSet::new();
+    for side in [&goal.lhs, &goal.rhs] {
+        for node in side.as_ref() {
+            if let crate::term::Term::Name(n) = node {
+                read.insert(n.to_string());
+            }
+        }
+    }
+    let mut forced = Vec::new();
+    for n in read {
+        for value in [false, true] {
+            let signal = crate::term::name(&n);
+            if proves_quickly(ctx, &signal, &crate::term::constant(value), opts) {
+                forced.push((n.clone(), value));
+                break;
+            }
+        }
+    }
+    forced
+}
+
+/// Time for each consistency or constancy check of the assumptions.
+const VACUITY_CHECK: Duration = Duration::from_millis(500);
 
 /// A ladder program read and compiled, with its sources for diagnostics.
 pub struct LoadedProgram {
@@ -388,19 +468,30 @@ fn forced_constants(
         return None;
     }
     let style = trace::Style { notation: opts.notation(), rename };
-    let parts: Vec<String> = v
-        .constants
+    Some(forced_text(&style, &v.constants, v.horizon.as_ref()))
+}
+
+/// "the hypotheses force X = 0*, … in every run": a property reading them may hold
+/// only vacuously. `horizon`: how far a bounded check looked.
+fn forced_text(
+    style: &trace::Style,
+    forced: &[(String, bool)],
+    horizon: Option<&crate::semantics::Time>,
+) -> String {
+    let parts: Vec<String> = forced
         .iter()
         .map(|(n, c)| {
             let value = if *c { "1*" } else { "0*" };
-            format!("{} = {value}", style_term(&style, &crate::term::name(n)))
+            format!("{} = {value}", style_term(style, &crate::term::name(n)))
         })
         .collect();
-    Some(format!(
-        "the hypotheses force {} in every run{}: the property may hold only vacuously",
+    format!(
+        "the hypotheses force {}{}: the property may hold only vacuously",
         parts.join(", "),
-        v.horizon.map(|h| format!(" up to t = {} s", format_time(&h))).unwrap_or_default()
-    ))
+        horizon
+            .map(|h| format!(" in every run up to t = {} s", format_time(h)))
+            .unwrap_or_default()
+    )
 }
 
 /// Proves one property; if that fails, looks for a witness that the exact evaluator
