@@ -70,11 +70,11 @@ pub fn draw(signals: &[(String, Signal)], mark: Option<&Time>, glyphs: Glyphs) -
         let width = if *is_point { 1 } else { INTERVAL_WIDTH };
         if *is_point {
             let label = format_time(t);
-            while axis.len() < col {
-                axis.push(' ');
-            }
-            // A label that would run into the previous one is left out.
-            if axis.len() == col {
+            // A label that would touch the previous one is left out.
+            if axis.len() < col {
+                while axis.len() < col {
+                    axis.push(' ');
+                }
                 axis.extend(label.chars());
             }
             while marker_row.len() < col {

@@ -105,14 +105,37 @@ fn holds(condition: &Condition, env: &Assignment) -> Result<bool, String> {
     }
 }
 
-/// Makes `x · y = 0*` hold for two signal variables by removing `x` from `y`.
+/// Changes the sample so that a condition that fails may hold: `x · y = 0*` for two
+/// signal variables by removing `x` from `y`; a definition `Q = e` (or a bound
+/// `Q ⇒ e`, `e ⇒ Q`) whose `e` does not mention `Q` by setting `Q` from `e`. Every
+/// condition is re-checked exactly afterwards; a repair only makes samples useful.
 fn repair(condition: &Condition, env: &mut Assignment) {
-    if let Condition::Signal { lhs, rel: Relation::Equal, rhs } = condition
+    let Condition::Signal { lhs, rel, rhs } = condition else { return };
+    if *rel == Relation::Equal
         && let (Term::And([a, b]), Term::Zero) = (&lhs[root(lhs)], &rhs[root(rhs)])
         && let (Term::Name(x), Term::Name(y)) = (&lhs[*a], &lhs[*b])
         && let (Some(sx), Some(sy)) = (env.signals.get(x).cloned(), env.signals.get(y).cloned())
     {
         env.signals.insert(*y, sy.and(&sx.not()));
+        return;
+    }
+    let mentions = |e: &Expr, q: &Symbol| e.as_ref().contains(&Term::Name(*q));
+    if let Term::Name(q) = &lhs[root(lhs)]
+        && !mentions(rhs, q)
+        && let Ok(value) = eval(rhs, env)
+    {
+        let new = match (rel, env.signals.get(q)) {
+            (Relation::Implies, Some(current)) => current.and(&value),
+            _ => value,
+        };
+        env.signals.insert(*q, new);
+    } else if *rel == Relation::Implies
+        && let Term::Name(q) = &rhs[root(rhs)]
+        && !mentions(lhs, q)
+        && let (Ok(value), Some(current)) = (eval(lhs, env), env.signals.get(q))
+    {
+        let new = current.or(&value);
+        env.signals.insert(*q, new);
     }
 }
 
@@ -167,9 +190,17 @@ pub fn falsify(
         }
         let Ok(tree) = strategy.new_tree(&mut runner) else { continue };
         let mut env = tree.current();
-        for c in conditions {
-            if !holds(c, &env).map_err(SampleError::Eval)? {
-                repair(c, &mut env);
+        // Definitions may depend on one another in any order: repair in passes.
+        for _ in 0..conditions.len().min(REPAIR_PASSES) {
+            let mut repaired = false;
+            for c in conditions {
+                if !holds(c, &env).map_err(SampleError::Eval)? {
+                    repair(c, &mut env);
+                    repaired = true;
+                }
+            }
+            if !repaired {
+                break;
             }
         }
         let mut ok = true;
@@ -189,6 +220,9 @@ pub fn falsify(
     }
     Ok(Ok(valid))
 }
+
+/// At most this many repair passes per sample.
+const REPAIR_PASSES: usize = 8;
 
 fn seed_bytes(seed: u64) -> [u8; 32] {
     let mut bytes = [0u8; 32];
