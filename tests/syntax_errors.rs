@@ -8,7 +8,8 @@ use std::path::{Path, PathBuf};
 use ii_prove::diag::{Diagnostic, RenderStyle, Sources, render};
 use ii_prove::syntax::{Lookup, Scope, parse_document};
 
-/// A small program: `Out_valve`, `T1.Q`, `T1.ET`; `T1` is ambiguous.
+/// A small program: `Out_valve`, `T1.Q`, `T1.ET`; `T1` is ambiguous; its hypotheses
+/// are `R1` and `R2`.
 struct TestProgram;
 
 impl Scope for TestProgram {
@@ -21,6 +22,9 @@ impl Scope for TestProgram {
     }
     fn names(&self) -> Vec<String> {
         vec!["Out_valve".into(), "T1.Q".into(), "T1.ET".into()]
+    }
+    fn hypothesis_names(&self) -> Vec<String> {
+        vec!["R1".into(), "R2".into()]
     }
 }
 

@@ -104,6 +104,28 @@ fn vacuous_free() {
     }
 }
 
+/// Each file is its own theory: an `assume` of one file is no hypothesis of another
+/// file's properties in the same run, whatever the order.
+#[test]
+fn assumptions_stay_in_their_file() {
+    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
+    let with = data.join("proves/assumed_equal.ii").display().to_string();
+    let without = data.join("refutes/not_assumed.ii").display().to_string();
+    let opts = Options { timeout: Duration::from_secs(20), ..Options::default() };
+    for files in [[with.clone(), without.clone()], [without.clone(), with.clone()]] {
+        let run = report::run_free(&files, &opts).unwrap_or_else(|e| panic!("{}", e.rendered));
+        for p in &run.properties {
+            let expected = if p.name.ends_with("without_assumption") {
+                Status::Refuted
+            } else {
+                Status::Proved
+            };
+            assert_eq!(p.status, expected, "{files:?}: {}", p.name);
+        }
+        assert_eq!(run.properties.len(), 4);
+    }
+}
+
 #[test]
 fn refutes() {
     check_folder("refutes", Status::Refuted, Duration::from_secs(20));

@@ -97,4 +97,8 @@ impl Scope for CompiledProgram {
         }
         out.into_iter().collect()
     }
+
+    fn hypothesis_names(&self) -> Vec<String> {
+        self.hypotheses.iter().map(|h| h.name.clone()).collect()
+    }
 }

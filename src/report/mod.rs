@@ -253,22 +253,23 @@ pub fn run_free(paths: &[String], opts: &Options) -> Result<RunReport, InputErro
     let mut sources = Sources::new();
     let theory = theory::standard(&mut sources).map_err(|d| fail(&sources, d, opts))?;
     let docs = read_documents(&mut sources, paths, &NoProgram, opts)?;
-    let hypotheses: Vec<Axiom> = docs.iter().flat_map(assumptions).collect();
-    let ctx = Context::new(theory.axioms(), hypotheses.clone())
-        .map_err(|e| InputError { rendered: format!("error: {e}\n") })?;
     let identity = |e: &Expr| e.clone();
     let mut warnings = Vec::new();
-    // Consistency: assumptions that prove `1* = 0*` make every property hold vacuously.
-    let assumed: Vec<&str> = hypotheses.iter().map(|h| h.name.as_str()).collect();
-    let inconsistent = contradictory(&ctx, &hypotheses, opts).then(|| {
-        format!(
-            "the assumptions ({}) contradict each other: they prove 0* = 1*; every property holds vacuously",
-            assumed.join(", ")
-        )
-    });
-    warnings.extend(inconsistent.clone());
     let mut properties = Vec::new();
-    for doc in &docs {
+    // Each file is its own theory: its assumptions are the hypotheses of its properties.
+    for (doc, path) in docs.iter().zip(paths) {
+        let hypotheses = assumptions(doc);
+        let ctx = Context::new(theory.axioms(), hypotheses.clone())
+            .map_err(|e| InputError { rendered: format!("error: {path}: {e}\n") })?;
+        // Consistency: assumptions that prove `0* = 1*` make every property vacuous.
+        let assumed: Vec<&str> = hypotheses.iter().map(|h| h.name.as_str()).collect();
+        let inconsistent = contradictory(&ctx, &hypotheses, opts).then(|| {
+            format!(
+                "{path}: the assumptions ({}) contradict each other: they prove 0* = 1*; every property holds vacuously",
+                assumed.join(", ")
+            )
+        });
+        warnings.extend(inconsistent.clone());
         for statement in &doc.properties {
             let mut report = check_property(&ctx, statement, &hypotheses, opts, &identity, None);
             if report.status == Status::Unknown
@@ -378,35 +379,37 @@ pub fn run_program(
     let loaded = load_program(&mut sources, program).map_err(|d| fail(&sources, d, opts))?;
     let compiled = &loaded.compiled;
     let docs = read_documents(&mut sources, paths, compiled, opts)?;
-    let assumed: Vec<Axiom> = docs.iter().flat_map(assumptions).collect();
-    let mut hypotheses = compiled.axioms();
-    hypotheses.extend(assumed.iter().cloned());
-    let ctx = Context::new(theory.axioms(), hypotheses.clone())
-        .map_err(|e| InputError { rendered: format!("error: {e}\n") })?;
     let rename = |e: &Expr| compiled.rename_for_display(e);
-    let session = counterexample::Program { ld: &loaded.program, compiled, assumptions: &assumed };
     let mut warnings = loaded.warnings.clone();
-    // Consistency: an `assume` that no run of the program satisfies makes every
-    // property hold vacuously.
-    let mut inconsistent = None;
-    if !assumed.is_empty() {
-        let sides: Vec<&Expr> = assumed.iter().flat_map(|a| [&a.lhs, &a.rhs]).collect();
-        let v = counterexample::vacuity(&session, &sides);
-        if v.inconsistent {
-            let names: Vec<&str> = assumed.iter().map(|a| a.name.as_str()).collect();
-            let text = format!(
-                "the assumptions ({}) contradict the program: no scan-by-scan run satisfies them{}; every property holds vacuously",
-                names.join(", "),
-                v.horizon
-                    .map(|h| format!(" (checked up to t = {} s)", format_time(&h)))
-                    .unwrap_or_default()
-            );
-            warnings.push(text.clone());
-            inconsistent = Some(text);
-        }
-    }
     let mut properties = Vec::new();
-    for doc in &docs {
+    // Each file's assumptions join the program's equations for that file's properties.
+    for (doc, path) in docs.iter().zip(paths) {
+        let assumed = assumptions(doc);
+        let mut hypotheses = compiled.axioms();
+        hypotheses.extend(assumed.iter().cloned());
+        let ctx = Context::new(theory.axioms(), hypotheses.clone())
+            .map_err(|e| InputError { rendered: format!("error: {path}: {e}\n") })?;
+        let session =
+            counterexample::Program { ld: &loaded.program, compiled, assumptions: &assumed };
+        // Consistency: an `assume` that no run of the program satisfies makes every
+        // property hold vacuously.
+        let mut inconsistent = None;
+        if !assumed.is_empty() {
+            let sides: Vec<&Expr> = assumed.iter().flat_map(|a| [&a.lhs, &a.rhs]).collect();
+            let v = counterexample::vacuity(&session, &sides);
+            if v.inconsistent {
+                let names: Vec<&str> = assumed.iter().map(|a| a.name.as_str()).collect();
+                let text = format!(
+                    "{path}: the assumptions ({}) contradict the program: no scan-by-scan run satisfies them{}; every property holds vacuously",
+                    names.join(", "),
+                    v.horizon
+                        .map(|h| format!(" (checked up to t = {} s)", format_time(&h)))
+                        .unwrap_or_default()
+                );
+                warnings.push(text.clone());
+                inconsistent = Some(text);
+            }
+        }
         for statement in &doc.properties {
             let mut report =
                 check_property(&ctx, statement, &hypotheses, opts, &rename, Some(&session));

@@ -237,6 +237,11 @@ pub trait Scope {
     fn lookup(&self, name: &str) -> Lookup;
     /// Every signal name of the program (for "did you mean" and for listing).
     fn names(&self) -> Vec<String>;
+    /// The names of the program's own hypotheses (rung equations and bounds), which
+    /// an `assume` may not reuse.
+    fn hypothesis_names(&self) -> Vec<String> {
+        Vec::new()
+    }
 }
 
 /// The answer of a [`Scope`] to a name.
@@ -293,6 +298,17 @@ pub fn parse_goal(
     inputs: &[String],
 ) -> Result<Goal, Vec<SyntaxError>> {
     resolve::goal(sources.text(file), file, scope, inputs)
+}
+
+/// The statement that declares a name (for [`SyntaxError::ShadowsSignal`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Declaration {
+    /// `let NAME = …`
+    Let,
+    /// `input NAME, …`
+    Input,
+    /// `assume NAME: …`
+    Assume,
 }
 
 /// A malformed `.ii` file, or one that refers to something that does not exist.
@@ -405,12 +421,15 @@ pub enum SyntaxError {
         /// The first definition.
         first: Span,
     },
-    /// A `let` whose name is already a signal of the program.
+    /// A `let` or `input` whose name is already a signal of the program, or an
+    /// `assume` named like one of the program's hypotheses.
     ShadowsSignal {
-        /// Where the abbreviation is named.
+        /// Where the name is declared.
         span: Span,
         /// The name.
         name: String,
+        /// What declares it.
+        by: Declaration,
     },
     /// `5s/f/2s`: an on-delay and an off-delay on one atom.
     BothDelayKinds {
@@ -544,9 +563,15 @@ impl Report for SyntaxError {
             UnknownName { name, .. } => format!("unknown signal `{name}`"),
             AmbiguousName { name, .. } => format!("ambiguous signal name `{name}`"),
             DuplicateName { name, .. } => format!("`{name}` is defined twice"),
-            ShadowsSignal { name, .. } => {
+            ShadowsSignal { name, by: Declaration::Let, .. } => {
                 format!("`{name}` is already a signal of the program; an abbreviation needs another name")
             }
+            ShadowsSignal { name, by: Declaration::Input, .. } => format!(
+                "`{name}` is already a signal of the program; `input` would declare a new, unrelated signal"
+            ),
+            ShadowsSignal { name, by: Declaration::Assume, .. } => format!(
+                "`{name}` already names one of the program's hypotheses; an `assume` needs another name"
+            ),
             BothDelayKinds { .. } => {
                 "an on-delay and an off-delay on the same signal: add parentheses, e.g. `(5s/f)/2s` or `5s/(f/2s)`".into()
             }
@@ -581,6 +606,8 @@ impl Report for SyntaxError {
             UnknownName { .. } => "not defined".into(),
             AmbiguousName { .. } => "ambiguous".into(),
             DuplicateName { .. } => "defined again here".into(),
+            ShadowsSignal { by: Declaration::Assume, .. } => "name taken".into(),
+            ShadowsSignal { .. } => "a signal of the program".into(),
             BothDelayKinds { .. } => "add parentheses".into(),
             NoDuration { .. } => "expected a duration on one side".into(),
             NoSignal { .. } => "expected a signal on one side".into(),
@@ -626,6 +653,9 @@ impl Report for SyntaxError {
             AmbiguousName { candidates, .. } => {
                 vec![format!("it could be any of {}", backquote_list(candidates, 40))]
             }
+            ShadowsSignal { name, by: Declaration::Input, .. } => vec![format!(
+                "remove `{name}` from `input` to mean the program's signal; a free signal needs a name the program does not use"
+            )],
             UndeclaredDelay { name, .. } => {
                 vec![format!("declare it before the law: `delay {name}`")]
             }

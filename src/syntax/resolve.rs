@@ -12,8 +12,8 @@ use super::ast::{Ast, AstGoal, AstKind, AstProof, AstStatement, Func, NamedKind,
 use super::lexer::{Tok, lex};
 use super::parser::Parser;
 use super::{
-    CalcStep, Claim, DelayComparison, Document, Goal, Law, Lookup, Relation, Scope, ScriptProof,
-    SideCondition, Statement, SyntaxError,
+    CalcStep, Claim, Declaration, DelayComparison, Document, Goal, Law, Lookup, Relation, Scope,
+    ScriptProof, SideCondition, Statement, SyntaxError,
 };
 use crate::diag::{FileId, Span, did_you_mean};
 use crate::term::{Delay, Expr, Id, Language, Symbol, Term};
@@ -550,6 +550,7 @@ impl<'a> Resolver<'a> {
                         self.errors.push(SyntaxError::ShadowsSignal {
                             span: name.1,
                             name: name.0.clone(),
+                            by: Declaration::Let,
                         });
                         continue;
                     }
@@ -561,6 +562,14 @@ impl<'a> Resolver<'a> {
                 }
                 AstStatement::Input(names) => {
                     for (name, span) in names {
+                        if self.scope.lookup(name) != Lookup::Unknown {
+                            self.errors.push(SyntaxError::ShadowsSignal {
+                                span: *span,
+                                name: name.clone(),
+                                by: Declaration::Input,
+                            });
+                            continue;
+                        }
                         if self.declare(name, *span) {
                             self.inputs.push((name.clone(), *span));
                         }
@@ -605,7 +614,14 @@ impl<'a> Resolver<'a> {
                     });
                 }
                 AstStatement::Named { kind, name, goal, conditions, span } => {
-                    if let Some(first) = statement_names.get(&name.0) {
+                    if *kind == NamedKind::Assume && self.scope.hypothesis_names().contains(&name.0)
+                    {
+                        self.errors.push(SyntaxError::ShadowsSignal {
+                            span: name.1,
+                            name: name.0.clone(),
+                            by: Declaration::Assume,
+                        });
+                    } else if let Some(first) = statement_names.get(&name.0) {
                         self.errors.push(SyntaxError::DuplicateName {
                             span: name.1,
                             name: name.0.clone(),
