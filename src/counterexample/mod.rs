@@ -271,8 +271,10 @@ pub fn refute(program: &Program, goal: &Obligation, limits: Limits) -> Verdict {
     let exact_grid = delays.iter().all(|d| whole(d, &cycle).is_some());
     let m = if exact_grid { scans.iter().fold(0usize, |g, n| g.gcd(n)).max(1) } else { 1 };
     let longest = scans.iter().copied().max().unwrap_or(0);
+    // Steps of `m` scans reach long timers in few steps; single scans find the
+    // counterexamples whose inputs change between two timer steps.
     let mut grids = vec![m];
-    if m > 1 && longest <= 64 {
+    if m > 1 {
         grids.push(1);
     }
     let mut unconfirmed: Option<(Box<Counterexample>, String)> = None;
