@@ -910,11 +910,13 @@ type KindFilter = fn(&SignalKind) -> bool;
 pub fn program_to_ii(compiled: &CompiledProgram, notation: Notation) -> String {
     let mut out = String::new();
     out.push_str("// Compiled from an LDmicro program by ii-prove (zero-response-time model).\n");
+    let count =
+        |n: usize, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
     out.push_str(&format!(
-        "// {} hypotheses, {} signals, {} warnings. pre_X is X's previous-scan value and,\n",
-        compiled.hypotheses.len(),
-        compiled.signals.len(),
-        compiled.warnings.len()
+        "// {}, {}, {}. pre_X is X's previous-scan value and,\n",
+        count(compiled.hypotheses.len(), "hypothesis", "hypotheses"),
+        count(compiled.signals.len(), "signal", "signals"),
+        count(compiled.warnings.len(), "warning", "warnings")
     ));
     out.push_str("// like every fresh signal, is unconstrained.\n");
     let groups: [(&str, KindFilter); 6] = [

@@ -643,6 +643,7 @@ fn search_counterexample(
     match falsify::falsify(&goal.lhs, rel, &goal.rhs, &conditions, FREE_SAMPLES, 1, Some(deadline))
     {
         Ok(Err(witness)) if confirmed(goal, &witness, hypotheses) => {
+            let witness = simplified(goal, *witness, hypotheses);
             Search::Refuted(counterexample(goal, &witness, opts, rename))
         }
         Ok(Err(_)) => Search::NotFound("a sampled witness was not confirmed exactly".into()),
@@ -750,6 +751,49 @@ fn confirmed(goal: &Obligation, witness: &Witness, hypotheses: &[Axiom]) -> bool
     };
     hypotheses.iter().all(|h| holds(&h.lhs, h.rel, &h.rhs))
         && !holds(&goal.lhs, goal.rel, &goal.rhs)
+}
+
+/// A simpler confirmed witness: each signal made constant where that keeps the
+/// violation and every assumption (re-checked exactly), then the horizon cut a little
+/// after the violation.
+fn simplified(goal: &Obligation, witness: Witness, hypotheses: &[Axiom]) -> Witness {
+    let rewitness = |assignment: crate::semantics::Assignment| -> Option<Witness> {
+        let l = eval(&goal.lhs, &assignment).ok()?;
+        let r = eval(&goal.rhs, &assignment).ok()?;
+        let time = falsify::violation(&l, theory::sample_relation(goal.rel), &r)?;
+        let (lhs, rhs) = (l.value_at(&time), r.value_at(&time));
+        let w = Witness { assignment, time, lhs, rhs };
+        confirmed(goal, &w, hypotheses).then_some(w)
+    };
+    let mut best = witness;
+    let names: Vec<_> = best.assignment.signals.keys().copied().collect();
+    for name in names {
+        if best.assignment.signals[&name].as_constant().is_some() {
+            continue;
+        }
+        for value in [false, true] {
+            let mut assignment = best.assignment.clone();
+            let constant = crate::semantics::Signal::constant(assignment.horizon.clone(), value);
+            assignment.signals.insert(name, constant);
+            if let Some(w) = rewitness(assignment) {
+                best = w;
+                break;
+            }
+        }
+    }
+    // Signals are causal: cutting the horizon after the violation keeps it.
+    let cut = &best.time * crate::semantics::Time::new(5.into(), 4.into());
+    if cut < best.assignment.horizon {
+        let mut assignment = best.assignment.clone();
+        for s in assignment.signals.values_mut() {
+            *s = s.restrict(&cut);
+        }
+        assignment.horizon = cut;
+        if let Some(w) = rewitness(assignment) {
+            best = w;
+        }
+    }
+    best
 }
 
 fn counterexample(
