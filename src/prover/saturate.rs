@@ -387,16 +387,35 @@ fn pattern_ops(p: &PatternAst<Term>) -> u8 {
 /// The rules in growing sets, restricted to the temporal operators present in
 /// `terms`: first the rules that shrink terms, then with the permutations
 /// (commutativity, associativity), then with rules that grow a term by at most
-/// two nodes, then everything. Small sets give short proofs quickly when they
+/// two nodes, then everything; each of the last two followed, if that adds any, by
+/// the same with the operators the laws reach from those present. Small sets give short proofs quickly when they
 /// suffice; the last set is the whole relevant rule set.
 pub fn tiers(rules: &[Rule], terms: &[&Expr]) -> Vec<Vec<Rule>> {
     let present = terms.iter().fold(0u8, |acc, t| acc | temporal_ops(t.as_ref().iter()));
-    let class = |r: &Rule| {
+    // The operators reachable from those present by rules that rewrite one of them
+    // into another: `RS(s, r) = SR(s·¬r, r)` brings the SR laws to a goal about RS
+    // (rules that make an operator out of none, such as `f ⇒ SR(f, 0*)`, do not count).
+    let mut reachable = present;
+    loop {
+        let before = reachable;
+        for r in rules {
+            if let (Some(l), Some(rt)) = (r.searcher.get_pattern_ast(), r.applier.get_pattern_ast())
+                && pattern_ops(l) != 0
+                && pattern_ops(l) & !reachable == 0
+            {
+                reachable |= pattern_ops(rt);
+            }
+        }
+        if reachable == before {
+            break;
+        }
+    }
+    let class = |r: &Rule, ops: u8| {
         let (Some(l), Some(rt)) = (r.searcher.get_pattern_ast(), r.applier.get_pattern_ast())
         else {
             return 3;
         };
-        if (pattern_ops(l) | pattern_ops(rt)) & !present != 0 {
+        if (pattern_ops(l) | pattern_ops(rt)) & !ops != 0 {
             return usize::MAX;
         }
         let (a, b) = (pattern_size(l), pattern_size(rt));
@@ -414,14 +433,17 @@ pub fn tiers(rules: &[Rule], terms: &[&Expr]) -> Vec<Vec<Rule>> {
             3
         }
     };
-    let classes: Vec<usize> = rules.iter().map(class).collect();
-    let tier = |max: usize| {
-        rules
-            .iter()
-            .zip(&classes)
-            .filter(|(_, c)| **c <= max)
-            .map(|(r, _)| r.clone())
-            .collect::<Vec<_>>()
+    let tier = |max: usize, ops: u8| {
+        rules.iter().filter(|r| class(r, ops) <= max).cloned().collect::<Vec<_>>()
     };
-    vec![tier(0), tier(1), tier(2), tier(3)]
+    let mut out = vec![tier(0, present), tier(1, present)];
+    // The growing rules, each set followed by the same with the reachable operators
+    // when that adds any.
+    for max in [2, 3] {
+        out.push(tier(max, present));
+        if reachable != present {
+            out.push(tier(max, reachable));
+        }
+    }
+    out
 }
