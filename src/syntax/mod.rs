@@ -441,6 +441,11 @@ pub enum SyntaxError {
         /// The chain.
         span: Span,
     },
+    /// `!2s/f`: `!` binds tightest, so it negates the duration alone.
+    NegatedDuration {
+        /// The negated duration.
+        span: Span,
+    },
     /// `5s/2s`: no side of `/` is a signal.
     NoSignal {
         /// The chain.
@@ -505,6 +510,7 @@ impl SyntaxError {
             | ShadowsSignal { span, .. }
             | BothDelayKinds { span }
             | NoDuration { span }
+            | NegatedDuration { span }
             | NoSignal { span }
             | DurationAsSignal { span }
             | SignalAsDuration { span }
@@ -578,6 +584,9 @@ impl Report for SyntaxError {
             NoDuration { .. } => {
                 "exactly one side of `/` must be a duration, but neither is".into()
             }
+            NegatedDuration { .. } => {
+                "`!` applies to the duration alone here: `!` binds tighter than `/`".into()
+            }
             NoSignal { .. } => {
                 "exactly one side of `/` must be a duration, but both are: there is no signal to delay".into()
             }
@@ -610,6 +619,7 @@ impl Report for SyntaxError {
             ShadowsSignal { .. } => "a signal of the program".into(),
             BothDelayKinds { .. } => "add parentheses".into(),
             NoDuration { .. } => "expected a duration on one side".into(),
+            NegatedDuration { .. } => "a duration cannot be negated".into(),
             NoSignal { .. } => "expected a signal on one side".into(),
             DurationAsSignal { .. } => "expected a signal".into(),
             SignalAsDuration { .. } => "expected a duration".into(),
@@ -660,6 +670,9 @@ impl Report for SyntaxError {
                 vec![format!("declare it before the law: `delay {name}`")]
             }
             ReservedWord { word, .. } => vec![format!("write `` `{word}` `` to use it as a name")],
+            NegatedDuration { .. } => vec![
+                "the complement of a timer is written with parentheses: `!(2s/f)`; an on-delay of a complement is `2s/!f`".into(),
+            ],
             UnexpectedChar { .. } => vec![
                 "names with other characters can be written between back quotes: `Xpi@90`".into(),
             ],

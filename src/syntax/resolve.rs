@@ -325,6 +325,14 @@ impl<'a> Resolver<'a> {
             }
             [k] => *k,
             _ => {
+                // `!2s/f`: `!` binds tightest, so it took the duration alone.
+                if let Some(negated) = v.iter().find(|a| match &a.kind {
+                    AstKind::Not(inner) => self.is_duration(inner),
+                    _ => false,
+                }) {
+                    self.errors.push(SyntaxError::NegatedDuration { span: negated.span });
+                    return None;
+                }
                 let guess = [0, v.len() - 1].into_iter().find_map(|i| match &v[i].kind {
                     AstKind::Name(n) if mode == Mode::Law && !self.lets.contains_key(n) => {
                         Some((n.clone(), v[i].span))
