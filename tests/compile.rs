@@ -310,7 +310,7 @@ fn unsupported_elements_are_fresh_and_reported() {
     let c = compile(&rungs(
         "RUNG\nCONTACTS Xa 0\nOSR\nCOIL Yp 0 0 0\nEND\nRUNG\nCONTACTS Xa 0\nCTU Cpieces 5\nCOIL Yfull 0 0 0\nEND\nRUNG\nGRT Cpieces 3\nCOIL Ymany 0 0 0\nEND\nRUNG\nCONTACTS Xa 0\nRTO Tr 20000\nCOIL Yr 0 0 0\nEND\nRUNG\nCONTACTS Xa 0\nCOIL Yt 0 0 0 1\nEND\nRUNG\nCONTACTS Yt 0\nCOIL Yu 0 0 0\nEND\n",
     ));
-    assert_eq!(stmt(&c, "L01"), "Yp = OSR_r1");
+    assert_eq!(stmt(&c, "L01"), "Yp = Xa · OSR_r1");
     assert_eq!(stmt(&c, "L02"), "Yfull = CTU_Cpieces");
     assert_eq!(stmt(&c, "L03"), "Ymany = GRT_r3");
     assert_eq!(stmt(&c, "L04"), "Yr = RTO_Tr");

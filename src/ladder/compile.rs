@@ -61,8 +61,9 @@
 //! `IN/d`; the output continues the series. A timer whose accumulator is also
 //! written by another element (RES, MOVE, a second timer of the same name, …), a
 //! variable delay, a zero delay or a zero cycle, and RTO/RTL/THI/TLO/TCY give a
-//! fresh, unconstrained output. So do one-shots, counters (orig CTC passes its
-//! input, exactly), comparisons (`IN · fresh`) and every peripheral or
+//! fresh, unconstrained output. So do counters (orig CTC passes its input,
+//! exactly), one-shots (OSR `IN · fresh`, OSF `¬IN · fresh`, ODR `¬IN + fresh`;
+//! ODF and OSC plain fresh), comparisons (`IN · fresh`) and every peripheral or
 //! control-flow element; integer side effects (MOVE, math, RES) pass the power
 //! and have no Boolean meaning. A bit written by anything but a plain, negated,
 //! set or reset coil (a toggle coil, a MOVE, …) is itself unconstrained and no
@@ -89,7 +90,8 @@
 use std::collections::{BTreeMap, BTreeSet};
 
 use super::ldmicro::{
-    Circuit, CoilKind, CounterKind, Element, ElementKind, LdProgram, Rung, TimerDelay, TimerKind,
+    Circuit, CoilKind, CounterKind, EdgeKind, Element, ElementKind, LdProgram, Rung, TimerDelay,
+    TimerKind,
 };
 use super::logic::{L, MAX_BOUND_SIZE, Tables, eliminate, factors, product, simp, sum, summands};
 use crate::diag::{Report, Severity, Sources, Span};
@@ -474,7 +476,7 @@ impl<'a> Compiler<'a> {
         self.warn(
             e.span,
             &keyword,
-            format!("{why}; its output is the unconstrained signal {name}"),
+            format!("{why}; it is modelled with the unconstrained signal {name}"),
         );
         L::Var(name)
     }
@@ -556,9 +558,19 @@ impl<'a> Compiler<'a> {
             ElementKind::Timer { kind, name, delay, .. } => {
                 self.timer(e, *kind, name, delay, input)
             }
-            ElementKind::Edge { .. } => {
+            ElementKind::Edge { kind } => {
                 let base = format!("{}_r{}", e.kind.keyword(), self.rung().number);
-                self.new_fresh(&base, e, "a one-shot (edge) is not expressible in the algebra")
+                let f =
+                    self.new_fresh(&base, e, "a one-shot (edge) is not expressible in the algebra");
+                // What a one-shot's output does at a scan bounds it by its input there:
+                // OSR pulses only while the input is on, OSF only while it is off, and
+                // ODR is on whenever the input is off.
+                match kind {
+                    EdgeKind::Osr => simp(&input.and(f)),
+                    EdgeKind::Osf => simp(&input.negate().and(f)),
+                    EdgeKind::Odr => simp(&input.negate().or(f)),
+                    _ => f,
+                }
             }
             ElementKind::Counter { kind, name, .. } => {
                 if *kind == CounterKind::Ctc && self.program.version.is_orig() {
