@@ -516,7 +516,10 @@ pub fn check_property(
         ..statement.value.clone()
     };
     let statement_text = syntax::goal_to_string(&shown, opts.notation());
-    let budget = Budget { time: opts.timeout, ..Budget::default() };
+    // `--timeout` bounds the whole property: the proof search gets most of it, the
+    // counterexample search the rest.
+    let budget = Budget { time: opts.timeout.mul_f64(PROOF_SHARE), ..Budget::default() };
+    let end = started + opts.timeout;
     let mut report = PropertyReport {
         name: statement.name.clone(),
         statement: statement_text,
@@ -536,7 +539,8 @@ pub fn check_property(
         // The Boolean skeleton has a model: the property is likely false, and the
         // larger rule sets are slow to give up. Look for a counterexample first.
         Outcome::Unknown { candidate: Some(_), .. } => {
-            if let Search::Refuted(c) = search(Instant::now() + opts.timeout.min(FIRST_LOOK)) {
+            let first_look = (Instant::now() + FIRST_LOOK).min(end);
+            if let Search::Refuted(c) = search(first_look) {
                 report.status = Status::Refuted;
                 report.counterexample = Some(c);
                 report.time_ms = started.elapsed().as_secs_f64() * 1e3;
@@ -567,7 +571,10 @@ pub fn check_property(
         }
         Outcome::Unknown { reason, candidate } => {
             let limit = if program.is_some() { PROGRAM_SEARCH } else { FREE_SEARCH };
-            match search(Instant::now() + opts.timeout.min(limit)) {
+            // At least a small share of the limit even when the proof search used
+            // all of its own.
+            let floor = Instant::now() + opts.timeout.mul_f64(1.0 - PROOF_SHARE);
+            match search((Instant::now() + limit).min(end.max(floor))) {
                 Search::Refuted(c) => {
                     report.status = Status::Refuted;
                     report.counterexample = Some(c);
@@ -587,6 +594,8 @@ pub fn check_property(
     report
 }
 
+/// The share of `--timeout` the proof search may use.
+const PROOF_SHARE: f64 = 0.7;
 /// How long the first look for a counterexample may take, when the prover's quick
 /// methods found a model of the Boolean skeleton.
 const FIRST_LOOK: Duration = Duration::from_secs(2);
