@@ -661,6 +661,20 @@ impl<'a> Compiler<'a> {
             TimerDelay::Micros(us) => Delay::from_micros(*us).ok(),
             TimerDelay::Variable(_) => None,
         };
+        let cycle = self.program.cycle_us;
+        if why.is_none()
+            && let TimerDelay::Micros(us) = delay
+            && *us < cycle
+        {
+            self.warn(
+                e.span,
+                &keyword,
+                format!(
+                    "a delay of {us} µs is shorter than the cycle ({cycle} µs): LDmicro refuses \
+                     to compile this timer; the equation uses the delay as written"
+                ),
+            );
+        }
         match (why, d) {
             (None, Some(d)) => match kind {
                 TimerKind::Ton => simp(&L::Ton(d, Box::new(input))),
