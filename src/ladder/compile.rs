@@ -510,6 +510,24 @@ impl<'a> Compiler<'a> {
     fn circuit(&mut self, c: &'a Circuit, input: L) -> L {
         match c {
             Circuit::Series(items) => {
+                let is_coil = |item: &Circuit| {
+                    matches!(item, Circuit::Element(Element { kind: ElementKind::Coil { .. }, .. }))
+                };
+                let last_other = items.iter().rposition(|item| !is_coil(item)).unwrap_or(0);
+                for item in &items[..last_other] {
+                    if let Circuit::Element(e) = item
+                        && is_coil(item)
+                    {
+                        self.warn(
+                            e.span,
+                            e.kind.keyword(),
+                            "a coil before other elements of its series: LDmicro's editor \
+                             keeps coils at the end of a rung; here the power passes through it \
+                             to them"
+                                .into(),
+                        );
+                    }
+                }
                 items.iter().fold(input, |power, item| self.circuit(item, power))
             }
             Circuit::Parallel(branches) if branches.iter().all(is_pure) => {
