@@ -388,8 +388,8 @@ fn pattern_ops(p: &PatternAst<Term>) -> u8 {
 /// `terms`: first the rules that shrink terms, then with the permutations
 /// (commutativity, associativity), then with rules that grow a term by at most
 /// two nodes, then everything; each of the last two followed, if that adds any, by
-/// the same with the operators the laws reach from those present. Small sets give short proofs quickly when they
-/// suffice; the last set is the whole relevant rule set.
+/// the same with the operators the laws reach from those present. Small sets give
+/// short proofs quickly when they suffice; the last set is the whole relevant rule set.
 pub fn tiers(rules: &[Rule], terms: &[&Expr]) -> Vec<Vec<Rule>> {
     let present = terms.iter().fold(0u8, |acc, t| acc | temporal_ops(t.as_ref().iter()));
     // The operators reachable from those present by rules that rewrite one of them
@@ -433,16 +433,24 @@ pub fn tiers(rules: &[Rule], terms: &[&Expr]) -> Vec<Vec<Rule>> {
             3
         }
     };
-    let tier = |max: usize, ops: u8| {
-        rules.iter().filter(|r| class(r, ops) <= max).cloned().collect::<Vec<_>>()
+    let classes: Vec<usize> = rules.iter().map(|r| class(r, present)).collect();
+    let reachable_classes: Option<Vec<usize>> =
+        (reachable != present).then(|| rules.iter().map(|r| class(r, reachable)).collect());
+    let tier = |max: usize, classes: &[usize]| {
+        rules
+            .iter()
+            .zip(classes)
+            .filter(|(_, c)| **c <= max)
+            .map(|(r, _)| r.clone())
+            .collect::<Vec<_>>()
     };
-    let mut out = vec![tier(0, present), tier(1, present)];
+    let mut out = vec![tier(0, &classes), tier(1, &classes)];
     // The growing rules, each set followed by the same with the reachable operators
     // when that adds any.
     for max in [2, 3] {
-        out.push(tier(max, present));
-        if reachable != present {
-            out.push(tier(max, reachable));
+        out.push(tier(max, &classes));
+        if let Some(reachable_classes) = &reachable_classes {
+            out.push(tier(max, reachable_classes));
         }
     }
     out
