@@ -190,22 +190,26 @@ pub fn falsify(
         }
         let Ok(tree) = strategy.new_tree(&mut runner) else { continue };
         let mut env = tree.current();
-        // Definitions may depend on one another in any order: repair in passes.
-        for _ in 0..conditions.len().min(REPAIR_PASSES) {
-            let mut repaired = false;
+        // Definitions may depend on one another in any order: repair in passes. The
+        // sample is kept once a pass finds every condition holding; the last pass
+        // only checks.
+        let passes = conditions.len().min(REPAIR_PASSES);
+        let mut ok = false;
+        for pass in 0..=passes {
+            let mut failed = false;
             for c in conditions {
                 if !holds(c, &env).map_err(SampleError::Eval)? {
+                    failed = true;
+                    if pass == passes {
+                        break;
+                    }
                     repair(c, &mut env);
-                    repaired = true;
                 }
             }
-            if !repaired {
+            if !failed {
+                ok = true;
                 break;
             }
-        }
-        let mut ok = true;
-        for c in conditions {
-            ok &= holds(c, &env).map_err(SampleError::Eval)?;
         }
         if !ok {
             continue;
