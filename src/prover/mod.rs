@@ -65,7 +65,7 @@ pub enum Outcome {
         /// What was tried and why it stopped.
         reason: String,
         /// Atom values under which every constraint holds and the goal fails.
-        candidate: Option<Vec<(Expr, bool)>>,
+        candidate: Option<Candidate>,
     },
 }
 
@@ -155,33 +155,35 @@ pub fn cone_of_influence<'a>(hypotheses: &'a [Axiom], terms: &[&Expr]) -> Vec<&'
 
 /// Tries to prove the goal within the budget.
 pub fn prove(ctx: &Context, goal: &Obligation, budget: Budget) -> Outcome {
-    prove_at(ctx, goal, budget, 0, Effort::Full)
+    prove_with(ctx, goal, budget, &mut |_| false)
 }
 
-/// The first part of [`prove`]: the smallest rule set and the Boolean skeleton,
-/// not the (slow) larger rule sets. A model of the skeleton comes back as the
-/// candidate, so this is the first look before a counterexample search. It returns
-/// a proof only when [`prove`] would return the same one; otherwise "unknown".
-pub fn prove_quickly(ctx: &Context, goal: &Obligation, budget: Budget) -> Outcome {
-    prove_at(ctx, goal, budget, 0, Effort::FirstLook)
+/// A model of the Boolean skeleton: atom values under which every constraint holds
+/// and the goal fails.
+pub type Candidate = Vec<(Expr, bool)>;
+
+/// [`prove`], with a look at the skeleton's model before the slow part: when the
+/// smallest rule set and the Boolean skeleton leave the goal open and the skeleton
+/// has a model, `before_larger_rules` gets it first. If it answers `true` (it settled
+/// the goal otherwise, e.g. found a counterexample), the attempt stops there,
+/// "unknown" with that candidate; otherwise the larger rule sets run as usual.
+pub fn prove_with(
+    ctx: &Context,
+    goal: &Obligation,
+    budget: Budget,
+    before_larger_rules: &mut dyn FnMut(&Candidate) -> bool,
+) -> Outcome {
+    prove_at(ctx, goal, budget, 0, before_larger_rules)
 }
 
-/// How far a proof attempt goes.
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Effort {
-    /// Stop before the larger rule sets.
-    FirstLook,
-    /// Every method (side conditions, one level down, still get the quick ones only).
-    Full,
-}
-
-/// [`prove`], at a nesting depth (side conditions of laws are proved one level down).
+/// [`prove_with`], at a nesting depth (side conditions of laws are proved one level
+/// down, with the quick methods only).
 fn prove_at(
     ctx: &Context,
     goal: &Obligation,
     budget: Budget,
     depth: usize,
-    effort: Effort,
+    before_larger_rules: &mut dyn FnMut(&Candidate) -> bool,
 ) -> Outcome {
     let started = Instant::now();
     let deadline = started + budget.time;
@@ -232,20 +234,15 @@ fn prove_at(
     {
         return Outcome::Proved(Box::new(proved.clone()));
     }
-    if effort == Effort::FirstLook && depth == 0 {
-        return match cases {
-            Ok(_) => Outcome::Unknown {
-                reason: "a long case proof; the larger rule sets may find a shorter one".into(),
-                candidate: None,
-            },
-            Err(boolean::Failure::Countermodel(candidate)) => Outcome::Unknown {
-                reason: format!("{saturation}; the Boolean skeleton has a model"),
-                candidate: Some(candidate),
-            },
-            Err(boolean::Failure::Limit(why)) => Outcome::Unknown {
-                reason: format!("{saturation}; case splitting stopped: {why}"),
-                candidate: None,
-            },
+    if let Err(boolean::Failure::Countermodel(candidate)) = &cases
+        && depth == 0
+        && before_larger_rules(candidate)
+    {
+        return Outcome::Unknown {
+            reason: format!(
+                "{saturation}; the Boolean skeleton has a model, settled without the larger rule sets"
+            ),
+            candidate: Some(candidate.clone()),
         };
     }
     for (tier, rules) in tiers.iter().enumerate().skip(1) {
@@ -412,7 +409,7 @@ fn prove_by_cases(
                     let known = ctx.premises.lock().ok().and_then(|m| m.get(&key).cloned());
                     let proof = known.unwrap_or_else(|| {
                         let sub = Obligation { lhs: l.clone(), rel: *rel, rhs: r.clone() };
-                        let proof = match prove_at(ctx, &sub, small, depth + 1, Effort::Full) {
+                        let proof = match prove_at(ctx, &sub, small, depth + 1, &mut |_| false) {
                             Outcome::Proved(p) => p.certificate.main,
                             Outcome::Unknown { .. } => None,
                         };

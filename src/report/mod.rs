@@ -272,27 +272,42 @@ pub fn run_free(paths: &[String], opts: &Options) -> Result<RunReport, InputErro
         warnings.extend(inconsistent.clone());
         for statement in &doc.properties {
             let mut report = check_property(&ctx, statement, &hypotheses, opts, &identity, None);
-            if report.status == Status::Unknown
-                && let (Some(text), Some(reason)) = (&inconsistent, &mut report.reason)
-            {
-                reason.push_str(&format!("; {text}"));
-            }
-            if report.status == Status::Proved && !hypotheses.is_empty() {
+            flag_vacuity(&mut report, inconsistent.as_deref(), || {
+                if hypotheses.is_empty() {
+                    return None;
+                }
                 let goal = obligation(&statement.value);
                 let style = trace::Style { notation: opts.notation(), rename: &identity };
-                let why = inconsistent.clone().or_else(|| {
-                    let forced = forced_by_assumptions(&ctx, &goal, opts);
-                    (!forced.is_empty()).then(|| forced_text(&style, &forced, None))
-                });
-                if let Some(why) = why {
-                    report.vacuous = true;
-                    report.vacuity = Some(why);
-                }
-            }
+                let forced = forced_by_assumptions(&ctx, &goal, opts);
+                (!forced.is_empty()).then(|| forced_text(&style, &forced, None))
+            });
             properties.push(report);
         }
     }
     Ok(finish(None, paths.to_vec(), warnings, properties))
+}
+
+/// Marks what inconsistent hypotheses mean for a property: an unknown one's reason
+/// says so, a proved one is vacuous. Otherwise `forced` (run only for a proved
+/// property) may name signals the hypotheses force to a constant.
+fn flag_vacuity(
+    report: &mut PropertyReport,
+    inconsistent: Option<&str>,
+    forced: impl FnOnce() -> Option<String>,
+) {
+    match report.status {
+        Status::Unknown => {
+            if let (Some(text), Some(reason)) = (inconsistent, &mut report.reason) {
+                reason.push_str(&format!("; {text}"));
+            }
+        }
+        Status::Proved => {
+            let why = inconsistent.map(str::to_string).or_else(forced);
+            report.vacuous = why.is_some();
+            report.vacuity = why;
+        }
+        Status::Refuted => {}
+    }
 }
 
 /// Do the assumptions prove `0* = 1*`? Asked as `n·¬n = n + ¬n` for a name `n` of
@@ -313,12 +328,14 @@ fn contradictory(ctx: &Context, hypotheses: &[Axiom], opts: &Options) -> bool {
     })
 }
 
-/// Does the prover's first look prove `lhs = rhs` (a short budget: this is a check
-/// on the assumptions, not a property)?
+/// Does the prover prove `lhs = rhs` quickly (a short budget, and no larger rule sets
+/// once the Boolean skeleton has a model: this is a check on the assumptions, not a
+/// property)?
 fn proves_quickly(ctx: &Context, lhs: &Expr, rhs: &Expr, opts: &Options) -> bool {
     let goal = Obligation { lhs: lhs.clone(), rel: Rel::Eq, rhs: rhs.clone() };
     let budget = Budget { time: opts.timeout.min(VACUITY_CHECK), ..Budget::default() };
-    matches!(prover::prove_quickly(ctx, &goal, budget), Outcome::Proved(_))
+    // A model of the Boolean skeleton is answer enough: no larger rule sets.
+    matches!(prover::prove_with(ctx, &goal, budget, &mut |_| true), Outcome::Proved(_))
 }
 
 /// The signals a goal reads that the assumptions force to a constant (free signals).
@@ -413,22 +430,9 @@ pub fn run_program(
         for statement in &doc.properties {
             let mut report =
                 check_property(&ctx, statement, &hypotheses, opts, &rename, Some(&session));
-            if report.status == Status::Unknown
-                && let (Some(text), Some(reason)) = (&inconsistent, &mut report.reason)
-            {
-                reason.push_str(&format!("; {text}"));
-            }
-            if report.status == Status::Proved {
-                let goal = obligation(&statement.value);
-                let why = match &inconsistent {
-                    Some(text) => Some(text.clone()),
-                    None => forced_constants(&session, &goal, &rename, opts),
-                };
-                if let Some(why) = why {
-                    report.vacuous = true;
-                    report.vacuity = Some(why);
-                }
-            }
+            flag_vacuity(&mut report, inconsistent.as_deref(), || {
+                forced_constants(&session, &obligation(&statement.value), &rename, opts)
+            });
             properties.push(report);
         }
     }
@@ -535,22 +539,22 @@ pub fn check_property(
     let search = |deadline: Instant| {
         search_counterexample(&goal, hypotheses, opts, rename, program, deadline)
     };
-    let outcome = match prover::prove_quickly(ctx, &goal, budget) {
-        // The Boolean skeleton has a model: the property is likely false, and the
-        // larger rule sets are slow to give up. Look for a counterexample first.
-        Outcome::Unknown { candidate: Some(_), .. } => {
-            let first_look = (Instant::now() + FIRST_LOOK).min(end);
-            if let Search::Refuted(c) = search(first_look) {
-                report.status = Status::Refuted;
-                report.counterexample = Some(c);
-                report.time_ms = started.elapsed().as_secs_f64() * 1e3;
-                return report;
-            }
-            prover::prove(ctx, &goal, budget)
+    // When the Boolean skeleton has a model the property is likely false, and the
+    // larger rule sets are slow to give up: look for a counterexample before them.
+    let mut refuted = None;
+    let outcome = prover::prove_with(ctx, &goal, budget, &mut |_| {
+        match search((Instant::now() + FIRST_LOOK).min(end)) {
+            Search::Refuted(c) => refuted = Some(c),
+            Search::Unconfirmed { .. } | Search::NotFound(_) => {}
         }
-        Outcome::Unknown { .. } => prover::prove(ctx, &goal, budget),
-        proved => proved,
-    };
+        refuted.is_some()
+    });
+    if let Some(c) = refuted {
+        report.status = Status::Refuted;
+        report.counterexample = Some(c);
+        report.time_ms = started.elapsed().as_secs_f64() * 1e3;
+        return report;
+    }
     match outcome {
         Outcome::Proved(proved) => {
             report.status = Status::Proved;
