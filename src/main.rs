@@ -4,6 +4,7 @@ use std::process::ExitCode;
 use std::time::Duration;
 
 use clap::{Parser, Subcommand};
+use ii_prove::ladder::TimerModel;
 use ii_prove::report::{self, Options};
 use ii_prove::{repl, script};
 
@@ -37,12 +38,23 @@ struct Cli {
     /// Time limit per property, in seconds.
     #[arg(long, global = true, default_value_t = 10.0, value_name = "SECONDS")]
     timeout: f64,
+    /// How a program's TON/TOF timers are compiled: `plc`, exactly the scans the
+    /// runtime counts (P = floor(delay / cycle) + adjust, so an LDmicro0.1 timer is one
+    /// scan early); `ideal`, the paper's idealisation, the delay as written.
+    #[arg(long, global = true, value_enum, default_value_t = Timers::Plc)]
+    timers: Timers,
     /// Write the counterexamples as a Value Change Dump (GTKWave).
     #[arg(long, value_name = "FILE")]
     vcd: Option<String>,
     /// Write the counterexamples as WaveDrom JSON.
     #[arg(long, value_name = "FILE")]
     wavedrom: Option<String>,
+}
+
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum Timers {
+    Plc,
+    Ideal,
 }
 
 #[derive(Subcommand)]
@@ -78,6 +90,10 @@ fn main() -> ExitCode {
         json: cli.json,
         ascii: cli.ascii,
         timeout: Duration::from_secs_f64(cli.timeout.min(1e6)),
+        timers: match cli.timers {
+            Timers::Plc => TimerModel::Plc,
+            Timers::Ideal => TimerModel::Ideal,
+        },
     };
     let result = match cli.command {
         Some(Command::Axioms) => report::list_axioms(&opts).map(|text| (text, 0)),

@@ -73,7 +73,7 @@ pub fn axiom_of(statement: &Statement<Law>) -> Axiom {
         statement.name.clone(),
         law.goal.lhs_with_after(),
         relation(law.goal.relation),
-        law.goal.rhs.clone(),
+        law.goal.rhs_with_after(),
     );
     axiom.signal_vars = law.signal_vars.clone();
     axiom.delay_vars = law.delay_vars.clone();
@@ -85,7 +85,7 @@ pub fn axiom_of(statement: &Statement<Law>) -> Axiom {
             SideCondition::Signal(goal) => axiom.signal_conditions.push((
                 goal.lhs_with_after(),
                 relation(goal.relation),
-                goal.rhs.clone(),
+                goal.rhs_with_after(),
             )),
         }
     }
@@ -183,5 +183,5 @@ pub enum LawFailure {
 
 /// A goal of a `.ii` file as a kernel relation with `after` folded in.
 pub fn goal_parts(goal: &Goal) -> (crate::term::Expr, Rel, crate::term::Expr) {
-    (goal.lhs_with_after(), relation(goal.relation), goal.rhs.clone())
+    (goal.lhs_with_after(), relation(goal.relation), goal.rhs_with_after())
 }

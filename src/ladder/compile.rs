@@ -89,6 +89,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
+use super::LadderError;
 use super::ldmicro::{
     Circuit, CoilKind, CounterKind, EdgeKind, Element, ElementKind, LdProgram, Rung, TimerDelay,
     TimerKind,
@@ -96,15 +97,19 @@ use super::ldmicro::{
 use super::logic::{L, MAX_BOUND_SIZE, Tables, eliminate, factors, product, simp, sum, summands};
 use crate::diag::{Report, Severity, Sources, Span};
 use crate::kernel::{Axiom, Rel};
-use crate::syntax::print::{GoalKeyword, Notation, goal_statement_to_string, name_to_string};
+use crate::syntax::print::{
+    GoalKeyword, Notation, delay_to_string, goal_statement_to_string, name_to_string,
+};
 use crate::syntax::{Goal, Relation, Statement};
 use crate::term::{Delay, Expr};
 
 /// What a signal of a compiled program is.
 #[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub enum SignalKind {
-    /// Read but never written by a coil: a free input (usually an `X` name).
+    /// An input bit the outside world writes (an `X` pin, an `I` or `M` Modbus bit): free.
     Input,
+    /// Read but never written, and not an input: it keeps its power-up value `0*` (exact).
+    Unwritten,
     /// Written by coils, name starting with `Y`: an output pin.
     Output,
     /// Written by coils, any other name (usually `R`): an internal relay.
@@ -121,22 +126,12 @@ pub enum SignalKind {
         /// The element keyword.
         element: String,
     },
-    /// A bit written by something other than plain/negated/set/reset coils; unconstrained.
-    Unmodelled {
-        /// File rung number of the first such writer.
-        rung: usize,
-        /// Its keyword.
-        element: String,
-    },
 }
 
 impl SignalKind {
     /// Whether the program leaves this signal unconstrained (previous values, fresh outputs).
     pub fn is_unconstrained(&self) -> bool {
-        matches!(
-            self,
-            SignalKind::Previous { .. } | SignalKind::Fresh { .. } | SignalKind::Unmodelled { .. }
-        )
+        matches!(self, SignalKind::Previous { .. } | SignalKind::Fresh { .. })
     }
 }
 
@@ -229,6 +224,53 @@ impl Report for CompileWarning {
     }
 }
 
+/// How TON/TOF delays are compiled.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum TimerModel {
+    /// What the runtime counts (ldmicro.md §6.3): `P = floor(delay / cycle) + adjust` scans,
+    /// so the term's delay is `P · cycle` (exact on every scan run).
+    #[default]
+    Plc,
+    /// The paper's idealisation: the nominal delay as written, whatever the cycle.
+    Ideal,
+}
+
+impl TimerModel {
+    /// `plc` or `ideal`, as on the command line and in the JSON report.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            TimerModel::Plc => "plc",
+            TimerModel::Ideal => "ideal",
+        }
+    }
+}
+
+/// Options of the rung compiler.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct CompileOptions {
+    /// How timer delays are compiled.
+    pub timers: TimerModel,
+}
+
+/// One TON/TOF timer as compiled: what the file says and the delay the equations use.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct TimerInfo {
+    /// File rung number.
+    pub rung: usize,
+    /// `TON` or `TOF`.
+    pub keyword: String,
+    /// The accumulator name.
+    pub name: String,
+    /// The delay field, in µs.
+    pub delay_us: u64,
+    /// The scan adjust (the field, or the header's default).
+    pub adjust: i64,
+    /// `P`, the scans the runtime counts (`floor(delay / cycle) + adjust`).
+    pub scans: i64,
+    /// The delay of the compiled term (`None`: the output follows the input, `P ≤ 0`).
+    pub effective: Option<Delay>,
+}
+
 /// A compiled program: hypotheses in rung order, every signal, and warnings.
 #[derive(Clone, Debug, Default)]
 pub struct CompiledProgram {
@@ -238,6 +280,10 @@ pub struct CompiledProgram {
     pub signals: BTreeMap<String, SignalKind>,
     /// Everything not expressed exactly, each naming its rung and element.
     pub warnings: Vec<CompileWarning>,
+    /// How timer delays were compiled.
+    pub timers: TimerModel,
+    /// Every TON/TOF compiled as a timer term, in scan order.
+    pub timer_info: Vec<TimerInfo>,
 }
 
 impl CompiledProgram {
@@ -255,19 +301,62 @@ impl CompiledProgram {
 /// The largest intermediate value (in nodes) inlined into later reads.
 const MAX_INLINE: usize = 2_000;
 
-/// Control-flow keywords: a program using them is not a plain top-to-bottom scan.
-const CONTROL_FLOW: &[&str] = &["GOTO", "GOSUB", "LABEL", "SUBPROG", "ENDSUB", "RETURN"];
+/// Elements that change which rungs run (or stop the scan): a program using them is
+/// refused, since the equations would describe a plain top-to-bottom scan.
+const CONTROL_FLOW: &[(&str, &str)] = &[
+    ("GOTO", "a jump skips rungs, which then keep their previous values"),
+    ("GOSUB", "a subroutine call runs rungs out of order"),
+    ("SUBPROG", "a subroutine body runs only when called, not in the scan"),
+    ("ENDSUB", "a subroutine body runs only when called, not in the scan"),
+    ("RETURN", "a return skips the rest of a subroutine or of the scan"),
+    ("LOCK", "the program stops scanning here"),
+    ("SLEEP", "the processor sleeps in the middle of the scan"),
+];
+
+/// Names the outside world writes (ldmicro.md §5): `X` input pins, `I` Modbus discrete
+/// inputs and `M` Modbus coils. Any other bit that no coil writes stays `0*`.
+fn is_external_input(name: &str) -> bool {
+    name.starts_with(['X', 'I', 'M'])
+}
 
 /// The canonical `.ii` name of an LDmicro name (a back quote cannot be quoted; it becomes `'`).
 pub fn canonical(name: &str) -> String {
     name.replace('`', "'")
 }
 
-/// Compiles a program. Never panics; everything not expressed exactly is a warning.
-pub fn compile(program: &LdProgram) -> CompiledProgram {
-    let mut c = Compiler::new(program);
+/// Compiles a program with the default options (PLC timer counts).
+pub fn compile(program: &LdProgram) -> Result<CompiledProgram, Vec<LadderError>> {
+    compile_with(program, &CompileOptions::default())
+}
+
+/// Compiles a program. Never panics. An element whose effect the equations cannot
+/// describe soundly (control flow) refuses the program with a located error;
+/// everything else not expressed exactly is a sound over-approximation and a warning.
+pub fn compile_with(
+    program: &LdProgram,
+    options: &CompileOptions,
+) -> Result<CompiledProgram, Vec<LadderError>> {
+    let refused: Vec<LadderError> = program
+        .elements()
+        .filter_map(|e| {
+            let ElementKind::Other { keyword, .. } = &e.kind else { return None };
+            let (_, why) = CONTROL_FLOW.iter().find(|(k, _)| k == keyword)?;
+            Some(LadderError::Unsupported {
+                span: e.span,
+                keyword: keyword.clone(),
+                reason: format!(
+                    "{why}; ii-prove compiles only programs that run every rung once per scan, \
+                     top to bottom"
+                ),
+            })
+        })
+        .collect();
+    if !refused.is_empty() {
+        return Err(refused);
+    }
+    let mut c = Compiler::new(program, *options);
     c.run();
-    c.finish()
+    Ok(c.finish())
 }
 
 struct Pending {
@@ -278,12 +367,13 @@ struct Pending {
 
 struct Compiler<'a> {
     program: &'a LdProgram,
+    options: CompileOptions,
     /// Logic rung names by rung index (None for comment rungs).
     logic: Vec<Option<String>>,
     /// Per coil-written variable, the global index of its last coil.
     last_coil: BTreeMap<String, usize>,
-    /// Bits written by something other than modelled coils: first writer (rung, keyword).
-    opaque: BTreeMap<String, (usize, String)>,
+    /// Bits read but never written and not inputs: they stay `0*`; first reading rung.
+    unwritten: BTreeMap<String, usize>,
     /// Timer accumulators written by more than one element.
     shared_timers: BTreeSet<String>,
     /// Every name the program uses (for fresh-name uniqueness).
@@ -292,8 +382,9 @@ struct Compiler<'a> {
     fresh: BTreeMap<String, SignalKind>,
     // Scan state.
     coil_index: usize,
+    /// What a read of each coil-written bit sees at this point of the scan, as a
+    /// function of its previous-scan value `pre_X` (the signal `X` after its last coil).
     current: BTreeMap<String, L>,
-    affine: BTreeMap<String, (L, L)>,
     mcr: L,
     // Current rung.
     rung_idx: usize,
@@ -301,11 +392,7 @@ struct Compiler<'a> {
     // Output.
     hypotheses: Vec<Hypothesis>,
     warnings: Vec<CompileWarning>,
-    warned_opaque: BTreeSet<String>,
-}
-
-fn is_modelled_coil(kind: CoilKind) -> bool {
-    matches!(kind, CoilKind::Normal | CoilKind::Negated | CoilKind::Set | CoilKind::Reset)
+    timer_info: Vec<TimerInfo>,
 }
 
 /// A circuit of conditions only (no side effects, no state): its output is `input · conductance`.
@@ -337,7 +424,7 @@ fn letters(mut k: usize) -> String {
 }
 
 impl<'a> Compiler<'a> {
-    fn new(program: &'a LdProgram) -> Compiler<'a> {
+    fn new(program: &'a LdProgram, options: CompileOptions) -> Compiler<'a> {
         let n_logic = program.rungs.iter().filter(|r| !r.is_comment(&program.version)).count();
         let width = n_logic.to_string().len().max(2);
         let mut k = 0;
@@ -355,22 +442,22 @@ impl<'a> Compiler<'a> {
             .collect();
         let mut c = Compiler {
             program,
+            options,
             logic,
             last_coil: BTreeMap::new(),
-            opaque: BTreeMap::new(),
+            unwritten: BTreeMap::new(),
             shared_timers: BTreeSet::new(),
             taken: BTreeSet::new(),
             pre_names: BTreeMap::new(),
             fresh: BTreeMap::new(),
             coil_index: 0,
             current: BTreeMap::new(),
-            affine: BTreeMap::new(),
             mcr: L::One,
             rung_idx: 0,
             pending: Vec::new(),
             hypotheses: Vec::new(),
             warnings: Vec::new(),
-            warned_opaque: BTreeSet::new(),
+            timer_info: Vec::new(),
         };
         c.prepass();
         c
@@ -382,58 +469,58 @@ impl<'a> Compiler<'a> {
     }
 
     fn prepass(&mut self) {
-        let bits: BTreeSet<String> = self.program.signals().iter().map(|s| canonical(s)).collect();
         for e in self.program.elements() {
             for n in e.names_read().into_iter().chain(e.names_written()) {
                 self.taken.insert(canonical(n));
             }
         }
-        self.taken.extend(bits.iter().cloned());
-        let mut writers: BTreeMap<String, usize> = BTreeMap::new();
+        self.taken.extend(self.program.signals().iter().map(|s| canonical(s)));
+        // Bits are written only by coils; timers, counters, RES, MOVE and the integer
+        // elements write integers, a separate name space (ldmicro.md §5).
+        let mut int_writers: BTreeMap<String, usize> = BTreeMap::new();
         let mut k = 0;
         let rungs: Vec<(usize, &Rung)> = self.live_rungs().collect();
-        for (_, rung) in rungs {
+        for (_, rung) in &rungs {
             for e in rung.elements() {
                 match &e.kind {
-                    ElementKind::Coil { name, kind } if is_modelled_coil(*kind) => {
+                    ElementKind::Coil { name, .. } => {
                         self.last_coil.insert(canonical(name), k);
                         k += 1;
                     }
-                    ElementKind::Coil { name, .. } => {
-                        k += 1;
-                        self.opaque.entry(canonical(name)).or_insert((rung.number, "COIL".into()));
-                    }
                     _ => {
                         for n in e.names_written() {
-                            let n = canonical(n);
-                            *writers.entry(n.clone()).or_default() += 1;
-                            if bits.contains(&n) {
-                                self.opaque
-                                    .entry(n)
-                                    .or_insert((rung.number, e.kind.keyword().to_string()));
-                            }
+                            *int_writers.entry(canonical(n)).or_default() += 1;
                         }
+                    }
+                }
+            }
+        }
+        for (_, rung) in &rungs {
+            for e in rung.elements() {
+                if let ElementKind::Contacts { name, .. } = &e.kind {
+                    let n = canonical(name);
+                    if !self.last_coil.contains_key(&n) && !is_external_input(&n) {
+                        self.unwritten.entry(n).or_insert(rung.number);
                     }
                 }
             }
         }
         for e in self.program.elements() {
             if let ElementKind::Timer { name, .. } = &e.kind
-                && writers.get(&canonical(name)).copied().unwrap_or(0) > 1
+                && int_writers.get(&canonical(name)).copied().unwrap_or(0) > 1
             {
                 self.shared_timers.insert(canonical(name));
             }
-        }
-        for name in self.opaque.keys() {
-            self.last_coil.remove(name);
         }
         let written: Vec<String> = self.last_coil.keys().cloned().collect();
         for x in written {
             let pre = self.unique(&format!("pre_{x}"));
             self.current.insert(x.clone(), L::Var(pre.clone()));
-            self.affine.insert(x.clone(), (L::Zero, L::One));
             self.fresh.insert(pre.clone(), SignalKind::Previous { of: x.clone() });
             self.pre_names.insert(x, pre);
+        }
+        for x in self.unwritten.keys() {
+            self.current.insert(x.clone(), L::Zero);
         }
     }
 
@@ -573,8 +660,8 @@ impl<'a> Compiler<'a> {
                 self.mcr = simp(&self.mcr.clone().negate().or(input.clone()));
                 input
             }
-            ElementKind::Timer { kind, name, delay, .. } => {
-                self.timer(e, *kind, name, delay, input)
+            ElementKind::Timer { kind, name, delay, adjust, adjust_given } => {
+                self.timer(e, *kind, name, delay, (*adjust, *adjust_given), input)
             }
             ElementKind::Edge { kind } => {
                 let base = format!("{}_r{}", e.kind.keyword(), self.rung().number);
@@ -627,8 +714,9 @@ impl<'a> Compiler<'a> {
                 );
                 input
             }
+            // A label only marks a place to jump to (jumps are refused, see `compile_with`).
+            ElementKind::Other { keyword, .. } if keyword == "LABEL" => input,
             ElementKind::Other { keyword, .. } => {
-                let flow = CONTROL_FLOW.contains(&keyword.as_str());
                 if crate::ladder::ldmicro::PASS_THROUGH.contains(&keyword.as_str()) {
                     self.warn(
                         e.span,
@@ -638,11 +726,7 @@ impl<'a> Compiler<'a> {
                     );
                     input
                 } else {
-                    let why = if flow {
-                        "control flow: the equations assume a plain top-to-bottom scan"
-                    } else {
-                        "an integer, peripheral or text element is not expressible"
-                    };
+                    let why = "an integer, peripheral or text element is not expressible";
                     let base = format!("{keyword}_r{}", self.rung().number);
                     self.new_fresh(&base, e, why)
                 }
@@ -656,9 +740,11 @@ impl<'a> Compiler<'a> {
         kind: TimerKind,
         name: &str,
         delay: &TimerDelay,
+        (adjust, adjust_given): (i64, bool),
         input: L,
     ) -> L {
         let keyword = e.kind.keyword().to_string();
+        let cycle = self.program.cycle_us;
         let why = match (kind, delay) {
             _ if self.shared_timers.contains(&canonical(name)) => Some(format!(
                 "the accumulator {name} is also written by another element (RES, MOVE, another timer)"
@@ -669,39 +755,85 @@ impl<'a> Compiler<'a> {
             (TimerKind::Ton | TimerKind::Tof, TimerDelay::Micros(0)) => {
                 Some("a zero delay is not a delay".into())
             }
-            (TimerKind::Ton | TimerKind::Tof, _) if self.program.cycle_us == 0 => {
+            (TimerKind::Ton | TimerKind::Tof, _) if cycle == 0 => {
                 Some("with a zero cycle the timer never expires".into())
             }
             (TimerKind::Ton | TimerKind::Tof, TimerDelay::Micros(_)) => None,
             _ => Some(format!("the {keyword} timer is not expressible in the algebra")),
         };
-        let d = match delay {
-            TimerDelay::Micros(us) => Delay::from_micros(*us).ok(),
-            TimerDelay::Variable(_) => None,
+        let (TimerDelay::Micros(us), None) = (delay, &why) else {
+            let why = why.unwrap_or_else(|| "the delay is not expressible".into());
+            return self.new_fresh(&format!("{keyword}_{name}"), e, &why);
         };
-        let cycle = self.program.cycle_us;
-        if why.is_none()
-            && let TimerDelay::Micros(us) = delay
-            && *us < cycle
-        {
+        let us = *us;
+        // ldmicro.md §6.3: the runtime counts P = floor(delay / cycle) + adjust scans; a
+        // TON is on from the (P+1)-th consecutive scan with its input on, a TOF stays on
+        // for P scans after its input falls. On scan runs that is exactly `d/IN` and
+        // `IN/d` with d = P · cycle; with P ≤ 0 the output is the input.
+        let scans = i64::try_from(us / cycle).unwrap_or(i64::MAX).saturating_add(adjust);
+        let nominal = Delay::from_micros(us).ok();
+        let plc = u64::try_from(scans)
+            .ok()
+            .filter(|p| *p > 0)
+            .and_then(|p| p.checked_mul(cycle))
+            .and_then(|d| Delay::from_micros(d).ok());
+        let d = match self.options.timers {
+            TimerModel::Plc if scans < 1 => None,
+            TimerModel::Plc => plc.clone(),
+            TimerModel::Ideal => nominal.clone(),
+        };
+        if d.is_none() && (scans >= 1 || self.options.timers == TimerModel::Ideal) {
+            let why = "the delay is too large to express";
+            return self.new_fresh(&format!("{keyword}_{name}"), e, why);
+        }
+        if scans < 1 {
             self.warn(
                 e.span,
                 &keyword,
                 format!(
-                    "a delay of {us} µs is shorter than the cycle ({cycle} µs): LDmicro refuses \
-                     to compile this timer; the equation uses the delay as written"
+                    "the runtime counts P = floor({us} µs / {cycle} µs) {} = {scans} scans: \
+                     LDmicro 2.x refuses to compile this timer, and the new LDmicro runs it \
+                     with its output following its input{}",
+                    signed(adjust),
+                    if self.options.timers == TimerModel::Plc {
+                        ", as compiled here"
+                    } else {
+                        "; --timers ideal uses the delay as written"
+                    }
+                ),
+            );
+        } else if self.options.timers == TimerModel::Plc && plc != nominal {
+            let effective = plc.as_ref().map_or_else(String::new, delay_to_string);
+            let nominal = nominal.as_ref().map_or_else(|| format!("{us} µs"), delay_to_string);
+            self.warn(
+                e.span,
+                &keyword,
+                format!(
+                    "the runtime counts P = floor({us} µs / {cycle} µs) {} = {scans} scans of \
+                     the cycle, so {name} times {effective}, not the {nominal} written{}; the \
+                     equation uses {effective} (--timers ideal uses {nominal})",
+                    signed(adjust),
+                    if !adjust_given {
+                        format!(" (the default adjust of an {} file)", self.program.version.label())
+                    } else {
+                        String::new()
+                    }
                 ),
             );
         }
-        match (why, d) {
-            (None, Some(d)) => match kind {
-                TimerKind::Ton => simp(&L::Ton(d, Box::new(input))),
-                _ => simp(&L::Tof(Box::new(input), d)),
-            },
-            (why, _) => {
-                let why = why.unwrap_or_else(|| "the delay is not expressible".into());
-                self.new_fresh(&format!("{keyword}_{name}"), e, &why)
-            }
+        self.timer_info.push(TimerInfo {
+            rung: self.rung().number,
+            keyword: keyword.clone(),
+            name: name.to_string(),
+            delay_us: us,
+            adjust,
+            scans,
+            effective: d.clone(),
+        });
+        match (d, kind) {
+            (None, _) => input,
+            (Some(d), TimerKind::Ton) => simp(&L::Ton(d, Box::new(input))),
+            (Some(d), _) => simp(&L::Tof(Box::new(input), d)),
         }
     }
 
@@ -709,24 +841,7 @@ impl<'a> Compiler<'a> {
         let x = canonical(name);
         let k = self.coil_index;
         self.coil_index += 1;
-        if let Some((rung, keyword)) = self.opaque.get(&x).cloned() {
-            let why = if kind == CoilKind::Toggle {
-                "a toggle coil is not expressible in the algebra".to_string()
-            } else {
-                format!("{x} is also written by {keyword} in rung {rung}")
-            };
-            let first = self.warned_opaque.insert(x.clone());
-            self.warn(
-                e.span,
-                "COIL",
-                format!(
-                    "{why}; no equation for {x}, which is unconstrained{}",
-                    if first { "" } else { " (see above)" }
-                ),
-            );
-            return;
-        }
-        let Some((a, b)) = self.affine.get(&x).cloned() else {
+        let Some(old) = self.current.get(&x).cloned() else {
             return;
         };
         // Which coil kind dominates (the last set or reset coil), for the memory's form.
@@ -735,20 +850,28 @@ impl<'a> Compiler<'a> {
             CoilKind::Reset => Some(true),
             _ => None,
         };
-        let (a, b) = match kind {
-            CoilKind::Normal => (input.clone(), L::Zero),
-            CoilKind::Negated => (input.clone().negate(), L::Zero),
-            CoilKind::Set => (a.or(input.clone()), b),
-            CoilKind::Reset => {
-                let keep = input.clone().negate();
-                (keep.clone().and(a), keep.and(b))
+        let g = match kind {
+            CoilKind::Normal => input.clone(),
+            CoilKind::Negated => input.clone().negate(),
+            CoilKind::Set => old.or(input.clone()),
+            CoilKind::Reset => input.clone().negate().and(old),
+            CoilKind::Toggle => {
+                // On a rising edge of the power the bit flips (ldmicro.md §4, COIL
+                // ttrigger). The edge is a one-shot of the power: only its bound by the
+                // power is expressible (an edge needs the power on).
+                let base = format!("TOGGLE_r{}", self.rung().number);
+                let edge = self.new_fresh(
+                    &base,
+                    e,
+                    "the rising edge that flips a toggle coil is not expressible in the algebra",
+                );
+                let edge = simp(&input.clone().and(edge));
+                let flip = edge.clone().and(old.clone().negate());
+                flip.or(edge.negate().and(old))
             }
-            CoilKind::Toggle => return,
         };
-        let (a, b) = (simp(&a), simp(&b));
-        self.affine.insert(x.clone(), (a.clone(), b.clone()));
+        let g = simp(&g);
         let pre = self.pre_names.get(&x).cloned().unwrap_or_default();
-        let g = simp(&a.or(b.and(L::Var(pre.clone()))));
         if self.last_coil.get(&x) == Some(&k) {
             let rhs = self.finish_var(&pre, g, dominant);
             self.current.insert(x.clone(), L::Var(x.clone()));
@@ -842,15 +965,28 @@ impl<'a> Compiler<'a> {
         }
     }
 
-    fn finish(self) -> CompiledProgram {
+    fn finish(mut self) -> CompiledProgram {
+        // A bit nobody writes keeps its power-up value: reads saw `0*`, and the
+        // equation lets properties mention it.
+        for (x, rung) in std::mem::take(&mut self.unwritten) {
+            let idx = self.program.rungs.iter().position(|r| r.number == rung).unwrap_or(0);
+            let name = self.unique(&format!("unwritten_{x}"));
+            self.hypotheses.push(Hypothesis {
+                name,
+                rung,
+                span: self.program.rungs.get(idx).map_or(Span::new(0, 0..0), |r| r.span),
+                kind: HypothesisKind::Equation,
+                lhs: L::Var(x.clone()).to_expr(),
+                rel: Rel::Eq,
+                rhs: L::Zero.to_expr(),
+            });
+            self.fresh.insert(x, SignalKind::Unwritten);
+        }
         let mut signals: BTreeMap<String, SignalKind> = BTreeMap::new();
         let written: BTreeSet<&String> = self.last_coil.keys().collect();
         let classify = |n: &str| -> SignalKind {
             if let Some(k) = self.fresh.get(n) {
                 return k.clone();
-            }
-            if let Some((rung, element)) = self.opaque.get(n) {
-                return SignalKind::Unmodelled { rung: *rung, element: element.clone() };
             }
             if written.contains(&n.to_string()) {
                 if n.starts_with('Y') { SignalKind::Output } else { SignalKind::Relay }
@@ -880,8 +1016,19 @@ impl<'a> Compiler<'a> {
                 signals.insert(name.clone(), kind.clone());
             }
         }
-        CompiledProgram { hypotheses: self.hypotheses, signals, warnings: self.warnings }
+        CompiledProgram {
+            hypotheses: self.hypotheses,
+            signals,
+            warnings: self.warnings,
+            timers: self.options.timers,
+            timer_info: self.timer_info,
+        }
     }
+}
+
+/// An adjust as written in a formula: `+ 5`, `- 1`.
+fn signed(v: i64) -> String {
+    if v < 0 { format!("- {}", v.unsigned_abs()) } else { format!("+ {v}") }
 }
 
 /// `¬y`, with De Morgan applied when every operand of `y` is a complement
@@ -953,7 +1100,13 @@ type KindFilter = fn(&SignalKind) -> bool;
 /// [`NoProgram`](crate::syntax::NoProgram) to the same hypotheses.
 pub fn program_to_ii(compiled: &CompiledProgram, notation: Notation) -> String {
     let mut out = String::new();
-    out.push_str("// Compiled from an LDmicro program by ii-prove (zero-response-time model).\n");
+    out.push_str(&format!(
+        "// Compiled from an LDmicro program by ii-prove (timers: {}).\n",
+        match compiled.timers {
+            TimerModel::Plc => "plc, the scans the runtime counts",
+            TimerModel::Ideal => "ideal, the delays as written",
+        }
+    ));
     let count =
         |n: usize, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
     out.push_str(&format!(
@@ -971,9 +1124,7 @@ pub fn program_to_ii(compiled: &CompiledProgram, notation: Notation) -> String {
         ("fresh outputs of unsupported elements (unconstrained)", |k| {
             matches!(k, SignalKind::Fresh { .. })
         }),
-        ("bits written by unsupported elements (unconstrained)", |k| {
-            matches!(k, SignalKind::Unmodelled { .. })
-        }),
+        ("bits no coil writes (always 0*)", |k| *k == SignalKind::Unwritten),
     ];
     for (title, pick) in groups {
         let names: Vec<String> = compiled
@@ -988,6 +1139,19 @@ pub fn program_to_ii(compiled: &CompiledProgram, notation: Notation) -> String {
         out.push_str(&format!("\n// {title}\n"));
         for chunk in names.chunks(8) {
             out.push_str(&format!("input {}\n", chunk.join(", ")));
+        }
+    }
+    if !compiled.timer_info.is_empty() {
+        out.push_str(&format!("\n// timers (--timers {})\n", compiled.timers.as_str()));
+        for t in &compiled.timer_info {
+            let effective = match &t.effective {
+                Some(d) => delay_to_string(d),
+                None => "none: the output follows the input".into(),
+            };
+            out.push_str(&format!(
+                "// rung {}: {} {} {} µs, adjust {}: P = {} scans; effective delay {}\n",
+                t.rung, t.keyword, t.name, t.delay_us, t.adjust, t.scans, effective
+            ));
         }
     }
     if !compiled.warnings.is_empty() {

@@ -35,6 +35,14 @@ impl HeaderVersion {
     pub fn is_orig(&self) -> bool {
         matches!(self, HeaderVersion::V0_1 | HeaderVersion::Missing)
     }
+    /// The header as it is named in messages: `LDmicro0.1`, `LDmicro0.2`, `headerless`.
+    pub fn label(&self) -> String {
+        match self {
+            HeaderVersion::V0_1 => "LDmicro0.1".into(),
+            HeaderVersion::V0_2(rest) => format!("LDmicro{rest}"),
+            HeaderVersion::Missing => "headerless".into(),
+        }
+    }
     /// The timer adjust used when a timer has no adjust field: -1 for 0.1, 0 otherwise.
     pub fn default_adjust(&self) -> i64 {
         if self.is_orig() { -1 } else { 0 }
@@ -316,6 +324,8 @@ pub enum ElementKind {
         delay: TimerDelay,
         /// The scan adjust: the field if present, else the header default (-1 for 0.1, 0 otherwise).
         adjust: i64,
+        /// Whether the file gives the adjust field (else it is the header's default).
+        adjust_given: bool,
     },
     /// `OSR`, `OSF`, `ODR`, `ODF`/`OSL`, `OSC`.
     Edge {
@@ -1198,7 +1208,7 @@ impl<'a> Parser<'a> {
                         }
                     },
                 };
-                ElementKind::Timer { kind, name: name(0), delay, adjust }
+                ElementKind::Timer { kind, name: name(0), delay, adjust, adjust_given: args.len() > 2 }
             }
             "OSR" => ElementKind::Edge { kind: EdgeKind::Osr },
             "OSF" => ElementKind::Edge { kind: EdgeKind::Osf },

@@ -10,7 +10,8 @@ pub mod names;
 pub mod simulate;
 
 pub use compile::{
-    CompileWarning, CompiledProgram, Hypothesis, HypothesisKind, SignalKind, compile, program_to_ii,
+    CompileOptions, CompileWarning, CompiledProgram, Hypothesis, HypothesisKind, SignalKind,
+    TimerInfo, TimerModel, compile, compile_with, program_to_ii,
 };
 pub use ldmicro::{
     Circuit, CoilKind, CompareOp, CounterEdge, CounterKind, EdgeKind, Element, ElementKind,
@@ -106,6 +107,15 @@ pub enum LadderError {
         /// The element line.
         span: Span,
     },
+    /// An element the compiler cannot model soundly yet: the program is refused.
+    Unsupported {
+        /// The element line.
+        span: Span,
+        /// The element keyword.
+        keyword: String,
+        /// What the element does that the model cannot express.
+        reason: String,
+    },
 }
 
 impl Report for LadderError {
@@ -119,7 +129,8 @@ impl Report for LadderError {
             | LadderError::MissingProgram { span, .. }
             | LadderError::TooDeep { span, .. }
             | LadderError::IgnoredLine { span, .. }
-            | LadderError::Placeholder { span } => *span,
+            | LadderError::Placeholder { span }
+            | LadderError::Unsupported { span, .. } => *span,
         })
     }
 
@@ -156,6 +167,9 @@ impl Report for LadderError {
                 "PLACEHOLDER: an empty editor slot; LDmicro refuses to compile it (treated as OPEN)"
                     .into()
             }
+            LadderError::Unsupported { keyword, reason, .. } => {
+                format!("`{keyword}` is not supported: {reason}")
+            }
         }
     }
 
@@ -170,6 +184,7 @@ impl Report for LadderError {
             LadderError::TooDeep { .. } => "too deep".into(),
             LadderError::IgnoredLine { .. } => "ignored".into(),
             LadderError::Placeholder { .. } => "empty slot".into(),
+            LadderError::Unsupported { .. } => "the program is refused here".into(),
         }
     }
 

@@ -100,7 +100,7 @@ impl Simulator {
         };
         for e in program.elements() {
             match &e.kind {
-                ElementKind::Timer { kind: TimerKind::Tof, name, delay, adjust } => {
+                ElementKind::Timer { kind: TimerKind::Tof, name, delay, adjust, .. } => {
                     let (p, _) = sim.period(delay, *adjust);
                     sim.ints.insert(name.clone(), p);
                 }
@@ -298,7 +298,7 @@ impl Simulator {
                 };
                 i
             }
-            ElementKind::Timer { kind, name, delay, adjust } => {
+            ElementKind::Timer { kind, name, delay, adjust, .. } => {
                 self.timer(*kind, name, delay, *adjust, i)
             }
             ElementKind::Edge { kind } => match kind {

@@ -350,7 +350,7 @@ impl Session {
                 }
             }
         }
-        let doc = match syntax::parse_document(&self.sources, file, self.scope()) {
+        let doc = match syntax::parse_properties(&self.sources, file, self.scope()) {
             Ok(d) => d,
             Err(errors) => return format!("{out}{}", self.syntax_errors(errors)),
         };
@@ -417,7 +417,7 @@ impl Session {
                 "error: the program `{loaded}` is already loaded (one program a session)\n"
             );
         }
-        let loaded = match report::load_program(&mut self.sources, path) {
+        let loaded = match report::load_program(&mut self.sources, path, &Default::default()) {
             Ok(l) => l,
             Err(diagnostics) => {
                 return diagnostics

@@ -34,11 +34,19 @@ pub struct Options {
     pub ascii: bool,
     /// Time limit per property.
     pub timeout: Duration,
+    /// How a program's timers are compiled.
+    pub timers: crate::ladder::TimerModel,
 }
 
 impl Default for Options {
     fn default() -> Self {
-        Options { trace: false, json: false, ascii: false, timeout: Duration::from_secs(10) }
+        Options {
+            trace: false,
+            json: false,
+            ascii: false,
+            timeout: Duration::from_secs(10),
+            timers: crate::ladder::TimerModel::default(),
+        }
     }
 }
 
@@ -172,6 +180,8 @@ pub struct RunReport {
     pub program: Option<String>,
     /// The property files.
     pub files: Vec<String>,
+    /// How the program's timers were compiled (`plc` or `ideal`); null without a program.
+    pub timers: Option<&'static str>,
     /// Warnings (unconstrained elements and the like).
     pub warnings: Vec<String>,
     /// Per property.
@@ -238,7 +248,7 @@ fn read_documents(
     let mut diagnostics = Vec::new();
     for path in paths {
         match read_source(sources, path) {
-            Ok(file) => match syntax::parse_document(sources, file, scope) {
+            Ok(file) => match syntax::parse_properties(sources, file, scope) {
                 Ok(doc) => docs.push(doc),
                 Err(errors) => diagnostics.extend(errors.into_iter().map(Diagnostic::from)),
             },
@@ -364,6 +374,11 @@ fn forced_by_assumptions(ctx: &Context, goal: &Obligation, opts: &Options) -> Ve
 /// Time for each consistency or constancy check of the assumptions.
 const VACUITY_CHECK: Duration = Duration::from_millis(500);
 
+/// The rung compiler's options a run asks for.
+fn compile_options(opts: &Options) -> crate::ladder::CompileOptions {
+    crate::ladder::CompileOptions { timers: opts.timers }
+}
+
 /// A ladder program read and compiled, with its sources for diagnostics.
 pub struct LoadedProgram {
     /// The program as read (for the scan simulator).
@@ -375,11 +390,17 @@ pub struct LoadedProgram {
 }
 
 /// Reads and compiles an LDmicro program registered under `path`.
-pub fn load_program(sources: &mut Sources, path: &str) -> Result<LoadedProgram, Vec<Diagnostic>> {
+pub fn load_program(
+    sources: &mut Sources,
+    path: &str,
+    options: &crate::ladder::CompileOptions,
+) -> Result<LoadedProgram, Vec<Diagnostic>> {
     let file = read_source(sources, path).map_err(|d| vec![d])?;
-    let program = crate::ladder::read_ldmicro(sources, file)
-        .map_err(|errors| errors.into_iter().map(Diagnostic::from).collect::<Vec<_>>())?;
-    let compiled = crate::ladder::compile(&program);
+    let diagnostics = |errors: Vec<crate::ladder::LadderError>| {
+        errors.into_iter().map(Diagnostic::from).collect::<Vec<_>>()
+    };
+    let program = crate::ladder::read_ldmicro(sources, file).map_err(diagnostics)?;
+    let compiled = crate::ladder::compile_with(&program, options).map_err(diagnostics)?;
     let warnings = compiled.warnings.iter().map(|w| w.describe(sources)).collect();
     Ok(LoadedProgram { program, compiled, warnings })
 }
@@ -393,7 +414,7 @@ pub fn run_program(
 ) -> Result<RunReport, InputError> {
     let mut sources = Sources::new();
     let theory = theory::standard(&mut sources).map_err(|d| fail(&sources, d, opts))?;
-    let loaded = load_program(&mut sources, program).map_err(|d| fail(&sources, d, opts))?;
+    let loaded = load_program(&mut sources, program, &compile_options(opts)).map_err(|d| fail(&sources, d, opts))?;
     let compiled = &loaded.compiled;
     let docs = read_documents(&mut sources, paths, compiled, opts)?;
     let rename = |e: &Expr| compiled.rename_for_display(e);
@@ -436,13 +457,15 @@ pub fn run_program(
             properties.push(report);
         }
     }
-    Ok(finish(Some(program.to_string()), paths.to_vec(), warnings, properties))
+    let mut report = finish(Some(program.to_string()), paths.to_vec(), warnings, properties);
+    report.timers = Some(opts.timers.as_str());
+    Ok(report)
 }
 
 /// `ii-prove show PROGRAM`: the compiled equations and bounds as `.ii` text.
 pub fn show_program(program: &str, opts: &Options) -> Result<String, InputError> {
     let mut sources = Sources::new();
-    let loaded = load_program(&mut sources, program).map_err(|d| fail(&sources, d, opts))?;
+    let loaded = load_program(&mut sources, program, &compile_options(opts)).map_err(|d| fail(&sources, d, opts))?;
     Ok(crate::ladder::program_to_ii(&loaded.compiled, opts.notation()))
 }
 
@@ -460,7 +483,7 @@ fn finish(
             Status::Unknown => summary.unknown += 1,
         }
     }
-    RunReport { program, files, warnings, properties, summary }
+    RunReport { program, files, timers: None, warnings, properties, summary }
 }
 
 /// Signals the property reads that the hypotheses force to a constant (bounded search).
@@ -910,7 +933,11 @@ pub fn render_text(report: &RunReport, opts: &Options) -> String {
         }
     }
     let s = &report.summary;
-    out.push_str(&format!("{} proved, {} refuted, {} unknown\n", s.proved, s.refuted, s.unknown));
+    out.push_str(&format!("{} proved, {} refuted, {} unknown", s.proved, s.refuted, s.unknown));
+    if let Some(timers) = report.timers {
+        out.push_str(&format!(" (--timers {timers})"));
+    }
+    out.push('\n');
     out
 }
 

@@ -137,13 +137,13 @@ pub fn load_script(
     file: FileId,
 ) -> Result<(Document, Option<CompiledProgram>), Vec<Diagnostic>> {
     let Some((program, span)) = program_header(sources, file) else {
-        let doc = syntax::parse_document(sources, file, &NoProgram)
+        let doc = syntax::parse_properties(sources, file, &NoProgram)
             .map_err(|errors| errors.into_iter().map(Diagnostic::from).collect::<Vec<_>>())?;
         return Ok((doc, None));
     };
     let path = program_path(sources.name(file), &program);
     let shown = path.display().to_string();
-    let loaded = report::load_program(sources, &shown).map_err(|mut diagnostics| {
+    let loaded = report::load_program(sources, &shown, &Default::default()).map_err(|mut diagnostics| {
         diagnostics.push(Diagnostic::Script(ScriptError::BadContext {
             span,
             reason: format!("the program `{shown}` named here cannot be loaded"),
@@ -151,7 +151,7 @@ pub fn load_script(
         diagnostics
     })?;
     let compiled = loaded.compiled;
-    let doc = syntax::parse_document(sources, file, &compiled)
+    let doc = syntax::parse_properties(sources, file, &compiled)
         .map_err(|errors| errors.into_iter().map(Diagnostic::from).collect::<Vec<_>>())?;
     Ok((doc, Some(compiled)))
 }

@@ -83,26 +83,41 @@ pub struct Goal {
     pub relation: Relation,
     /// Right side.
     pub rhs: Expr,
-    /// `after d:` — the goal holds from `d` on (it means `d/1* · lhs ⇒ rhs`).
+    /// `after d:` — the goal holds from `d` on: `d/1* · lhs ⇒ rhs`, or
+    /// `d/1* · lhs = d/1* · rhs` for an equality.
     pub after: Option<Delay>,
 }
 
 impl Goal {
-    /// The goal as one implication/equation between terms with `after d` folded in as `d/1* · lhs`.
+    /// The left side with `after d` folded in: `d/1* · lhs`.
     pub fn lhs_with_after(&self) -> Expr {
-        match &self.after {
-            None => self.lhs.clone(),
-            Some(d) => {
-                // Built directly (egg's `RecExpr::add` is linear in the term's size).
-                let mut nodes: Vec<Term> = self.lhs.as_ref().to_vec();
-                let lhs = Id::from(nodes.len().saturating_sub(1));
-                let base = nodes.len();
-                nodes.push(Term::Delay(d.clone()));
-                nodes.push(Term::One);
-                nodes.push(Term::Ton([Id::from(base), Id::from(base + 1)]));
-                nodes.push(Term::And([Id::from(base + 2), lhs]));
-                Expr::from(nodes)
-            }
+        with_after(&self.lhs, self.after.as_ref())
+    }
+
+    /// The right side with `after d` folded in: `d/1* · rhs` for an equality (nothing is
+    /// said before `d`), `rhs` itself for an implication (`d/1* · f ⇒ g` already says it).
+    pub fn rhs_with_after(&self) -> Expr {
+        match self.relation {
+            Relation::Equals => with_after(&self.rhs, self.after.as_ref()),
+            Relation::Implies => self.rhs.clone(),
+        }
+    }
+}
+
+/// `d/1* · side`, or `side` without a delay.
+fn with_after(side: &Expr, after: Option<&Delay>) -> Expr {
+    match after {
+        None => side.clone(),
+        Some(d) => {
+            // Built directly (egg's `RecExpr::add` is linear in the term's size).
+            let mut nodes: Vec<Term> = side.as_ref().to_vec();
+            let top = Id::from(nodes.len().saturating_sub(1));
+            let base = nodes.len();
+            nodes.push(Term::Delay(d.clone()));
+            nodes.push(Term::One);
+            nodes.push(Term::Ton([Id::from(base), Id::from(base + 1)]));
+            nodes.push(Term::And([Id::from(base + 2), top]));
+            Expr::from(nodes)
         }
     }
 }
@@ -275,6 +290,19 @@ pub fn parse_document(
     scope: &dyn Scope,
 ) -> Result<Document, Vec<SyntaxError>> {
     resolve::document(sources.text(file), file, scope)
+}
+
+/// Parses a property file or proof script: a document without `law` statements (a law
+/// stated there would be neither proved nor used, so it is an error).
+pub fn parse_properties(
+    sources: &Sources,
+    file: FileId,
+    scope: &dyn Scope,
+) -> Result<Document, Vec<SyntaxError>> {
+    let doc = parse_document(sources, file, scope)?;
+    let laws: Vec<SyntaxError> =
+        doc.laws.iter().map(|l| SyntaxError::LawOutsideTheory { span: l.span }).collect();
+    if laws.is_empty() { Ok(doc) } else { Err(laws) }
 }
 
 /// One expression (for the REPL), names checked against `scope` plus `inputs`.
@@ -485,6 +513,11 @@ pub enum SyntaxError {
         /// Where.
         span: Span,
     },
+    /// A `law` in a property file or proof script (laws belong to theory files).
+    LawOutsideTheory {
+        /// The statement.
+        span: Span,
+    },
 }
 
 impl SyntaxError {
@@ -517,7 +550,8 @@ impl SyntaxError {
             | DelayVariableOutsideLaw { span, .. }
             | UndeclaredDelay { span, .. }
             | TooLarge { span }
-            | AfterNotConcrete { span } => *span,
+            | AfterNotConcrete { span }
+            | LawOutsideTheory { span } => *span,
         }
     }
 }
@@ -599,6 +633,9 @@ impl Report for SyntaxError {
                 format!("`{name}` is not a declared delay variable")
             }
             AfterNotConcrete { .. } => "`after` needs a concrete duration".into(),
+            LawOutsideTheory { .. } => {
+                "a `law` belongs in a theory file, not in a property file or proof script".into()
+            }
             TooLarge { .. } => "this term is too large or too deeply nested".into(),
         }
     }
@@ -630,6 +667,9 @@ impl Report for SyntaxError {
             UnterminatedString { .. } => "expected `\"` before the end of the line".into(),
             UnterminatedName { .. } => "expected a back quote before the end of the line".into(),
             AfterNotConcrete { .. } => "expected a concrete duration such as `5s`".into(),
+            LawOutsideTheory { .. } => {
+                "expected `property`, `assume`, `theorem` or `lemma`".into()
+            }
             _ => String::new(),
         }
     }
