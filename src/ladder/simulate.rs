@@ -21,13 +21,19 @@
 //! new semantics otherwise; CTR always new), RES, EQU…LEQ, MOVE and
 //! ADD/SUB/MUL/DIV with 16-bit two's-complement wrap.
 //!
-//! Everything else (THI, TLO, TCY, ODF, OSC, the other integer, peripheral, text
-//! and control-flow elements, division by zero) is **not modelled**: the
-//! simulator keeps a best guess (the output follows the input; written values are
-//! left unchanged) and marks what it affects as *unknown*. Unknown-ness
-//! propagates: a contact on an unknown bit gives unknown power, a coil written
-//! with unknown power becomes unknown, and so on. [`Simulator::is_known`] tells
-//! whether a value is exact; [`Simulator::unmodelled`] lists the keywords met.
+//! Everything else (THI, TLO, TCY, ODF, OSC, the other integer, peripheral and
+//! text elements, division by zero) is **not modelled**: the simulator keeps a
+//! best guess (the output follows the input; written values are left unchanged)
+//! and marks what it affects as *unknown*. Unknown-ness propagates: a contact on
+//! an unknown bit gives unknown power, a coil written with unknown power becomes
+//! unknown, and so on. [`Simulator::is_known`] tells whether a value is exact;
+//! [`Simulator::unmodelled`] lists the keywords met.
+//!
+//! Control flow (GOTO, GOSUB, SUBPROG/ENDSUB, RETURN, LOCK, SLEEP) changes which
+//! rungs run, and the format note does not pin down how (label scope, jumps into
+//! or out of subroutines). The simulator does not guess: from the first scan of a
+//! program that contains any of them, **no** value is exact ([`Simulator::is_known`]
+//! is false for every name). `LABEL` alone is a wire.
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -77,7 +83,12 @@ pub struct Simulator {
     unmodelled: BTreeSet<String>,
     mcr: Pow,
     scans: u64,
+    /// The program contains control flow: which rungs run is not modelled.
+    control_flow: bool,
 }
+
+/// Elements that change which rungs run or stop the scan (ldmicro.md §4, last table).
+const CONTROL_FLOW: &[&str] = &["GOTO", "GOSUB", "SUBPROG", "ENDSUB", "RETURN", "LOCK", "SLEEP"];
 
 impl Simulator {
     /// A simulator at power-up: every bit and integer 0, except TOF counts (`P`)
@@ -97,9 +108,14 @@ impl Simulator {
             unmodelled: BTreeSet::new(),
             mcr: Pow { on: true, sure: true },
             scans: 0,
+            control_flow: false,
         };
         for e in program.elements() {
             match &e.kind {
+                ElementKind::Other { keyword, .. } if CONTROL_FLOW.contains(&keyword.as_str()) => {
+                    sim.control_flow = true;
+                    sim.unmodelled.insert(keyword.clone());
+                }
                 ElementKind::Timer { kind: TimerKind::Tof, name, delay, adjust, .. } => {
                     let (p, _) = sim.period(delay, *adjust);
                     sim.ints.insert(name.clone(), p);
@@ -175,7 +191,13 @@ impl Simulator {
     /// Whether the current value of `name` (bit or integer) is exact, i.e. not
     /// influenced by an element the simulator does not model.
     pub fn is_known(&self, name: &str) -> bool {
-        !self.unknown.contains(name)
+        !self.control_flow && !self.unknown.contains(name)
+    }
+
+    /// Whether the program contains control flow (GOTO, GOSUB, …), which the simulator
+    /// does not model: then no value is exact.
+    pub fn has_control_flow(&self) -> bool {
+        self.control_flow
     }
 
     /// The names whose values are not exact (see the module documentation).
@@ -434,6 +456,8 @@ impl Simulator {
                 }
                 i
             }
+            // A label only marks a place to jump to.
+            ElementKind::Other { keyword, .. } if keyword == "LABEL" => i,
             ElementKind::Other { keyword, .. } => {
                 self.unmodelled.insert(keyword.clone());
                 for n in e.names_written() {
@@ -799,6 +823,25 @@ mod tests {
         assert!(!sim.is_known("Yr"));
         assert!(sim.is_known("Ys"));
         assert!(sim.unmodelled().contains("THI"));
+    }
+
+    #[test]
+    fn control_flow_makes_every_value_unknown() {
+        let p = program(
+            "LDmicro0.2",
+            "RUNG 1\nCONTACTS Xskip 0\nGOTO Lend\nEND\nRUNG 2\nCONTACTS Xa 0\nCOIL Yout 0 0 0\nEND\nRUNG 3\nLABEL Lend\nEND\n",
+        );
+        let mut sim = Simulator::new(&p);
+        assert!(sim.has_control_flow());
+        sim.step(&inputs(&[("Xskip", true), ("Xa", true)]));
+        assert!(!sim.is_known("Yout"), "the jump may skip rung 2");
+        assert!(!sim.is_known("Xa"));
+        assert!(sim.unmodelled().contains("GOTO"));
+        // A label alone is a wire.
+        let p = program("LDmicro0.2", "RUNG 1\nCONTACTS Xa 0\nLABEL Lx\nCOIL Yq 0 0 0\nEND\n");
+        let mut sim = Simulator::new(&p);
+        sim.step(&inputs(&[("Xa", true)]));
+        assert!(sim.bit("Yq") && sim.is_known("Yq") && !sim.has_control_flow());
     }
 
     #[test]
