@@ -505,6 +505,18 @@ impl<'a> Compiler<'a> {
                 }
             }
         }
+        // A bit that occurs only in rungs LDmicro skips (comment rungs) is never written either.
+        for rung in &self.program.rungs {
+            for e in rung.elements() {
+                if let ElementKind::Contacts { name, .. } | ElementKind::Coil { name, .. } = &e.kind
+                {
+                    let n = canonical(name);
+                    if !self.last_coil.contains_key(&n) && !is_external_input(&n) {
+                        self.unwritten.entry(n).or_insert(rung.number);
+                    }
+                }
+            }
+        }
         for e in self.program.elements() {
             if let ElementKind::Timer { name, .. } = &e.kind
                 && int_writers.get(&canonical(name)).copied().unwrap_or(0) > 1
