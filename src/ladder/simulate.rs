@@ -110,7 +110,10 @@ impl Simulator {
             scans: 0,
             control_flow: false,
         };
-        for e in program.elements() {
+        // Only the rungs that run: a comment rung's timers and counters do not initialise
+        // anything, and its control flow never executes.
+        let live = program.rungs.iter().filter(|r| !r.is_comment(&program.version));
+        for e in live.flat_map(|r| r.elements()) {
             match &e.kind {
                 ElementKind::Other { keyword, .. } if CONTROL_FLOW.contains(&keyword.as_str()) => {
                     sim.control_flow = true;
@@ -842,6 +845,21 @@ mod tests {
         let mut sim = Simulator::new(&p);
         sim.step(&inputs(&[("Xa", true)]));
         assert!(sim.bit("Yq") && sim.is_known("Yq") && !sim.has_control_flow());
+    }
+
+    #[test]
+    fn a_skipped_rung_initialises_nothing() {
+        // The TOF of the comment rung (P = -1) must not set the count of the live one (P = 3).
+        let p = program(
+            "LDmicro0.2",
+            "RUNG 1\nCONTACTS Xa 0\nTOF Ta 30000\nCOIL Yq 0 0 0\nEND\nRUNG 2\nCOMMENT skipped\nTOF Ta 10000 -2\nGOTO L1\nEND\n",
+        );
+        let mut sim = Simulator::new(&p);
+        assert_eq!(sim.int("Ta"), 3);
+        assert!(!sim.has_control_flow());
+        sim.step(&inputs(&[("Xa", false)]));
+        assert!(!sim.bit("Yq"));
+        assert!(sim.is_known("Yq"));
     }
 
     #[test]
