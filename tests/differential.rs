@@ -1,0 +1,1288 @@
+//! Differential test of the rung compiler against the scan simulator: every compiled equation and bound must hold at every scan of random runs of random LDmicro programs (every element kind of `formats/ldmicro.md` §4) and of the examples, data cases and corpus.
+//!
+//! The reference is [`Simulator`] (written from the format note, §6). The
+//! hypotheses are evaluated on its scans by an evaluator written here from
+//! `shared/spec/semantics.md`, "Programs, scan by scan", and nothing else:
+//!
+//! * `·`, `+`, `¬` pointwise; `SR(s, r)_k = s_k ∨ (¬r_k ∧ SR_(k−1))`,
+//!   `RS(s, r)_k = ¬r_k ∧ (s_k ∨ RS_(k−1))`, both 0 before the first scan;
+//! * `d/f` is 1 at scan `k` iff `f` is 1 at every scan `k−n … k`, and `f/d` iff `f`
+//!   is 1 at some scan `max(0, k−n) … k`, with `n = ceil(d / δ)` for the program's
+//!   cycle `δ` (the program's timers are not consulted);
+//! * a program bit is the simulator's value at the end of the scan; `pre_X` is the
+//!   simulator's `X` at the end of the previous scan (0 at the first);
+//! * fresh signals (outputs of elements the algebra cannot express) are
+//!   existential: a hypothesis must hold for *some* run of them. The evaluator
+//!   keeps the set of its own states (timer counts, memories) reachable by runs of
+//!   the fresh signals under which the hypothesis held at every scan so far; the
+//!   hypothesis fails when the set becomes empty. (Pointwise occurrences keep the
+//!   set a singleton; a hypothesis whose set grows too large is skipped and
+//!   counted.)
+//!
+//! Where the simulator does not model an element (THI, TLO, TCY, ODF, OSC,
+//! peripherals, …) it takes a best guess for its output and marks what depends
+//! on it inexact. The compiler gives every such element a fresh output, so the
+//! guess is one of the runs the hypotheses claim to cover, and they are checked
+//! on it too (the scans with inexact values are counted).
+//!
+//! The run drives only the bits the outside world writes (names starting with
+//! `X`, `I` or `M`), with values held for random numbers of scans (long enough
+//! for timers to fire, and one-scan pulses). Programs with control flow must be
+//! refused by the compiler, and only they. Failures print the program text and
+//! the seed; `II_DIFF_PROGRAMS=N` scales the random part (20,000 by default,
+//! about 10 s in release on 2 cores), `II_DIFF_SEED=S` reruns one program.
+#![warn(missing_docs)]
+
+mod common;
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::fmt::Write as _;
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+use ii_prove::diag::Sources;
+use ii_prove::kernel::Rel;
+use ii_prove::ladder::{
+    CompiledProgram, ElementKind, LadderError, LdProgram, SignalKind, Simulator, decode_latin1,
+    read_ldmicro,
+};
+use ii_prove::syntax::{Notation, term_to_string};
+use ii_prove::term::Language as _;
+use ii_prove::term::{Expr, Term};
+use num_rational::BigRational;
+use num_traits::ToPrimitive;
+
+// ---------------------------------------------------------------- randomness
+
+/// A small deterministic generator (xorshift64*), seeded per case.
+struct Rng(u64);
+
+impl Rng {
+    fn new(seed: u64) -> Rng {
+        // splitmix64 of the seed, so that neighbouring seeds give unrelated streams.
+        let mut z = seed.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        Rng((z ^ (z >> 31)) | 1)
+    }
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+    fn below(&mut self, n: u64) -> u64 {
+        self.next() % n.max(1)
+    }
+    fn chance(&mut self, percent: u64) -> bool {
+        self.below(100) < percent
+    }
+    fn pick<'a, T>(&mut self, xs: &'a [T]) -> &'a T {
+        &xs[self.below(xs.len() as u64) as usize]
+    }
+}
+
+// ---------------------------------------------------------------- program generator
+
+/// Bits read by contacts. `Rg`/`Yg` never get a coil (ghost bits); `Ia`/`Mb` are
+/// Modbus inputs the outside world writes.
+const READ_BITS: &[&str] =
+    &["Xa", "Xb", "Xc", "Xd", "Ia", "Mb", "Ra", "Rb", "Rc", "Ya", "Yb", "Rg", "Yg"];
+/// Bits written by coils.
+const COIL_BITS: &[&str] = &["Ra", "Rb", "Rc", "Ya", "Yb", "Yc"];
+/// Timer accumulators; `Ra` and `Ya` are also bit names (separate name spaces).
+const TIMERS: &[&str] = &["Ta", "Tb", "Tc", "Ra", "Ya"];
+const COUNTERS: &[&str] = &["Ca", "Cb"];
+const INTS: &[&str] = &["va", "vb", "Ca", "Ta"];
+const CYCLES: &[u64] = &[10_000, 10_000, 1_000, 5_000, 20_000, 2_500, 100_000, 40_000, 3_333];
+
+struct Gen {
+    rng: Rng,
+    cycle: u64,
+    control_flow: bool,
+    /// Keywords emitted (coverage).
+    used: BTreeSet<String>,
+}
+
+impl Gen {
+    fn operand(&mut self) -> String {
+        if self.rng.chance(50) {
+            self.rng.pick(INTS).to_string()
+        } else {
+            (self.rng.below(7) as i64 - 2).to_string()
+        }
+    }
+
+    fn timer(&mut self) -> String {
+        let kw = *self
+            .rng
+            .pick(&["TON", "TON", "TON", "TOF", "TOF", "TOF", "RTO", "RTL", "THI", "TLO", "TCY"]);
+        let name = self.rng.pick(TIMERS);
+        let n = self.rng.below(8);
+        let rem = if self.rng.chance(60) { 0 } else { self.rng.below(self.cycle) };
+        let delay =
+            if self.rng.chance(3) { "va".to_string() } else { (n * self.cycle + rem).to_string() };
+        if self.rng.chance(5) {
+            // A long delay brought back to a few scans by a large negative adjust
+            // (`TON Tdly 1000000 -95` on a 10 ms cycle counts 5 scans).
+            let adjust = -95 - self.rng.below(6) as i64;
+            return format!("{kw} {name} {} {adjust}", 100 * self.cycle + rem);
+        }
+        let adjust = if self.rng.chance(55) {
+            String::new()
+        } else {
+            let a = match self.rng.below(10) {
+                0 => -95,
+                1 => 50,
+                2 => -(n as i64) - self.rng.below(3) as i64,
+                3 => 5,
+                _ => self.rng.below(5) as i64 - 2,
+            };
+            format!(" {a}")
+        };
+        self.used.insert(kw.to_string());
+        format!("{kw} {name} {delay}{adjust}")
+    }
+
+    fn coil(&mut self) -> String {
+        let name = self.rng.pick(COIL_BITS);
+        let (neg, set, reset, toggle) = match self.rng.below(12) {
+            0..=4 => (0, 0, 0, 0),
+            5 | 6 => (1, 0, 0, 0),
+            7 | 8 => (0, 1, 0, 0),
+            9 | 10 => (0, 0, 1, 0),
+            _ => (0, 0, 0, 1),
+        };
+        self.used.insert(
+            ["COIL", "COIL neg", "COIL set", "COIL reset", "COIL toggle"][usize::from(neg == 1)
+                + 2 * usize::from(set == 1)
+                + 3 * usize::from(reset == 1)
+                + 4 * usize::from(toggle == 1)]
+            .to_string(),
+        );
+        if toggle == 0 && self.rng.chance(50) {
+            format!("COIL {name} {neg} {set} {reset}")
+        } else {
+            format!("COIL {name} {neg} {set} {reset} {toggle}")
+        }
+    }
+
+    /// An element that ends a rung (an output-type element).
+    fn output(&mut self) -> String {
+        let text = match self.rng.below(20) {
+            0..=11 => return self.coil(),
+            12 => format!("RES {}", self.rng.pick(&["Ta", "Tb", "Ca", "Cb", "Ra"])),
+            13 => format!("MOVE {} {}", self.rng.pick(INTS), self.operand()),
+            14 => {
+                let op = self.rng.pick(&["ADD", "SUB", "MUL", "DIV"]);
+                format!("{op} {} {} {}", self.rng.pick(INTS), self.operand(), self.operand())
+            }
+            15 => self
+                .rng
+                .pick(&[
+                    "MOD va vb 3",
+                    "SET_BIT va 1",
+                    "SHIFT_REGISTER sr 3",
+                    "PERSIST va",
+                    "NEG vb va",
+                ])
+                .to_string(),
+            16 => self
+                .rng
+                .pick(&[
+                    "READ_ADC Aa",
+                    "SET_PWM 50 1000",
+                    "UART_SEND va",
+                    "UART_RECV vb",
+                    "FORMATTED_STRING va 2 65 66",
+                ])
+                .to_string(),
+            17 => self.counter(),
+            _ => {
+                // A timer at the end of a rung drives a coil, so that its output is observed.
+                let t = self.timer();
+                let c = self.coil();
+                return format!("{t}\n{c}");
+            }
+        };
+        let kw = text.split_whitespace().next().unwrap_or("").to_string();
+        self.used.insert(kw);
+        text
+    }
+
+    fn counter(&mut self) -> String {
+        let kw = self.rng.pick(&["CTU", "CTD", "CTC", "CTR"]);
+        let name = self.rng.pick(COUNTERS);
+        let max = self.rng.below(4) as i64 - 1;
+        let tail = match self.rng.below(3) {
+            0 => String::new(),
+            1 => format!(" {}", self.rng.below(3)),
+            _ => format!(" {} {}", self.rng.below(3), self.rng.pick(&["/", "\\", "-", "o"])),
+        };
+        self.used.insert(kw.to_string());
+        format!("{kw} {name} {max}{tail}")
+    }
+
+    fn leaf(&mut self) -> String {
+        let text = match self.rng.below(40) {
+            0..=17 => {
+                let name = self.rng.pick(READ_BITS);
+                let neg = self.rng.below(2);
+                self.used.insert(if neg == 1 { "CONTACTS neg" } else { "CONTACTS" }.into());
+                return if self.rng.chance(20) {
+                    format!(
+                        "CONTACTS {name} {neg} {}",
+                        u8::from(name.starts_with('X') && self.rng.chance(50))
+                    )
+                } else {
+                    format!("CONTACTS {name} {neg}")
+                };
+            }
+            18 | 19 => "SHORT".into(),
+            20 | 21 => "OPEN".into(),
+            22 | 23 => "MASTER_RELAY".into(),
+            24..=26 => return self.timer(),
+            27 | 28 => self.rng.pick(&["OSR", "OSF", "ODR", "ODF", "OSL", "OSC"]).to_string(),
+            29 => return self.counter(),
+            30 | 31 => {
+                let op = self.rng.pick(&["EQU", "NEQ", "GRT", "GEQ", "LES", "LEQ"]);
+                format!("{op} {} {}", self.operand(), self.operand())
+            }
+            32 => self
+                .rng
+                .pick(&[
+                    "IF_BIT_SET va 0",
+                    "IF_BIT_CLEAR vb 1",
+                    "UART_RECV_AVAIL",
+                    "UART_SEND_READY",
+                    "CLRWDT",
+                ])
+                .to_string(),
+            33 => "LABEL Lx".into(),
+            34 => "PLACEHOLDER".into(),
+            35 => "COMMENT inline note".into(),
+            36 if self.control_flow => self
+                .rng
+                .pick(&[
+                    "GOTO Lx",
+                    "GOTO Ly",
+                    "GOSUB Sx",
+                    "SUBPROG Sx",
+                    "ENDSUB Sx",
+                    "RETURN",
+                    "LOCK",
+                    "SLEEP",
+                    "LABEL Ly",
+                ])
+                .to_string(),
+            _ => return self.coil(),
+        };
+        let kw = text.split_whitespace().next().unwrap_or("").to_string();
+        self.used.insert(kw);
+        text
+    }
+
+    fn series(&mut self, depth: u32, out: &mut String, indent: usize) {
+        let n = 1 + self.rng.below(3);
+        for _ in 0..n {
+            if depth > 0 && self.rng.chance(25) {
+                self.parallel(depth - 1, out, indent);
+            } else if depth > 0 && self.rng.chance(4) {
+                // SERIES directly inside a series (new only; the reader flattens it).
+                line(out, indent, "SERIES");
+                self.series(depth - 1, out, indent + 2);
+                line(out, indent, "END");
+            } else {
+                let l = self.leaf();
+                line(out, indent, &l);
+            }
+        }
+    }
+
+    fn parallel(&mut self, depth: u32, out: &mut String, indent: usize) {
+        line(out, indent, "PARALLEL");
+        let n = 2 + self.rng.below(2);
+        for _ in 0..n {
+            if self.rng.chance(50) {
+                line(out, indent + 2, "SERIES");
+                self.series(depth, out, indent + 4);
+                line(out, indent + 2, "END");
+            } else {
+                let l = self.leaf();
+                line(out, indent + 2, &l);
+            }
+        }
+        line(out, indent, "END");
+    }
+
+    fn rung(&mut self, out: &mut String) {
+        if self.rng.chance(6) {
+            // A comment rung (orig skips a lone COMMENT; new any rung starting with one).
+            line(out, 2, "COMMENT a comment rung");
+            if self.rng.chance(50) {
+                let o = self.output();
+                line(out, 2, &o);
+            }
+            return;
+        }
+        if self.rng.chance(3) {
+            return; // an empty rung
+        }
+        if self.rng.chance(40) {
+            // A timer rung: contacts, one or two TON/TOF, a coil.
+            for _ in 0..1 + self.rng.below(2) {
+                let name = self.rng.pick(READ_BITS);
+                line(out, 2, &format!("CONTACTS {name} {}", self.rng.below(2)));
+            }
+            for _ in 0..1 + self.rng.below(2) {
+                let mut t = self.timer();
+                while !t.starts_with("TO") {
+                    t = self.timer();
+                }
+                line(out, 2, &t);
+            }
+            let c = self.coil();
+            line(out, 2, &c);
+            return;
+        }
+        self.series(2, out, 2);
+        match self.rng.below(10) {
+            0..=5 => {
+                let o = self.output();
+                line(out, 2, &o);
+            }
+            6 | 7 => {
+                // A parallel group of outputs at the end of the rung.
+                line(out, 2, "PARALLEL");
+                for _ in 0..2 + self.rng.below(2) {
+                    if self.rng.chance(70) {
+                        let o = self.output();
+                        line(out, 4, &o);
+                    } else {
+                        line(out, 4, "SERIES");
+                        let l = self.leaf();
+                        line(out, 6, &l);
+                        let o = self.output();
+                        line(out, 6, &o);
+                        line(out, 4, "END");
+                    }
+                }
+                line(out, 2, "END");
+            }
+            _ => {}
+        }
+    }
+}
+
+fn line(out: &mut String, indent: usize, text: &str) {
+    let _ = writeln!(out, "{:indent$}{text}", "");
+}
+
+/// A random program text, and whether it was generated with control-flow elements enabled.
+fn random_program(seed: u64) -> (String, BTreeSet<String>) {
+    let mut rng = Rng::new(seed);
+    let header =
+        *rng.pick(&["LDmicro0.1", "LDmicro0.1", "LDmicro0.2", "LDmicro0.2", "LDmicro", ""]);
+    let cycle = *rng.pick(CYCLES);
+    let control_flow = rng.chance(8);
+    let mut g = Gen { rng, cycle, control_flow, used: BTreeSet::new() };
+    let mut text = String::new();
+    if !header.is_empty() {
+        text.push_str(header);
+        text.push('\n');
+    }
+    if cycle != 10_000 || g.rng.chance(50) {
+        if header == "LDmicro0.2" && g.rng.chance(50) {
+            let _ = writeln!(
+                text,
+                "CYCLE={cycle} us at Timer1, YPlcCycleDuty:0, ConfigurationWord(s):0x0"
+            );
+        } else {
+            let _ = writeln!(text, "CYCLE={cycle}");
+        }
+    }
+    if header.is_empty() {
+        g.used.insert("headerless".into());
+    } else {
+        g.used.insert(header.into());
+    }
+    text.push_str("PROGRAM\n");
+    let rungs = 1 + g.rng.below(8);
+    for k in 0..rungs {
+        if header == "LDmicro0.2" {
+            let _ = writeln!(text, "RUNG {}", k + 1);
+        } else {
+            text.push_str("RUNG\n");
+        }
+        g.rung(&mut text);
+        text.push_str("END\n");
+    }
+    (text, g.used)
+}
+
+// ---------------------------------------------------------------- evaluator (semantics.md)
+
+/// One node of a hypothesis, ready to evaluate scan by scan.
+#[derive(Clone, Copy)]
+enum Node {
+    Const(bool),
+    /// A program bit or `pre_` value: index into the scan's values.
+    Known(usize),
+    /// A fresh signal: bit of the valuation.
+    Free(usize),
+    Not(usize),
+    And(usize, usize),
+    Or(usize, usize),
+    /// Memory: children, state slot.
+    Sr(usize, usize, usize),
+    Rs(usize, usize, usize),
+    /// `d/f`: f, n = ceil(d/δ), state slot (consecutive true scans, capped at n + 1).
+    Ton(usize, u32, usize),
+    /// `f/d`: f, n, state slot (0: f never true; else 1 + scans since f was last true, capped).
+    Tof(usize, u32, usize),
+}
+
+/// Where the value of a known name comes from at each scan.
+#[derive(Clone, PartialEq, Eq, PartialOrd, Ord)]
+enum Src {
+    /// The simulator's bit at the end of this scan.
+    Bit(String),
+    /// The simulator's bit at the end of the previous scan (0 at the first).
+    Pre(String),
+}
+
+/// Why a hypothesis was not checked.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Skip {
+    /// More than [`MAX_FREE`] fresh signals.
+    TooManyFresh,
+    /// The set of evaluator states reachable under the fresh signals grew over [`MAX_STATES`].
+    TooManyStates,
+    /// A delay that is not a literal, or a zero cycle.
+    Delay,
+}
+
+const MAX_FREE: usize = 8;
+const MAX_STATES: usize = 256;
+
+struct Hyp {
+    name: String,
+    text: String,
+    rel: Rel,
+    nodes: Vec<Node>,
+    lhs: usize,
+    rhs: usize,
+    n_free: usize,
+    /// Whether a fresh signal occurs under a timer or memory.
+    temporal_free: bool,
+    states: BTreeSet<Vec<u32>>,
+    skip: Option<Skip>,
+    /// Scans on which the hypothesis held (for every live state) — all of them unless it failed.
+    checked_scans: u64,
+    /// Whether it has a `d/f` or `f/d` with `n > 0`, and whether one was on (`d/f`) or
+    /// holding after its input fell (`f/d`) at some scan.
+    has_timer: bool,
+    timer_fired: bool,
+}
+
+/// How often the hypotheses' timers were on, counted over all reachable states.
+#[derive(Default, Clone, Copy, Debug)]
+struct TimerStats {
+    /// Scans on which a `d/f` (d > 0) was 1.
+    ton_on: u64,
+    /// Scans on which an `f/d` was 1 while `f` was 0 (the hold after the fall).
+    tof_hold: u64,
+}
+
+/// `ceil(d / δ)` for a delay in seconds and a cycle in µs.
+fn ceil_scans(d: &ii_prove::term::Delay, cycle_us: u64) -> Option<u32> {
+    if cycle_us == 0 {
+        return None;
+    }
+    let cycle = BigRational::new(cycle_us.into(), 1_000_000u64.into());
+    (d.seconds() / cycle).ceil().to_integer().to_u32()
+}
+
+impl Hyp {
+    fn new(
+        h: &ii_prove::ladder::Hypothesis,
+        c: &CompiledProgram,
+        cycle_us: u64,
+        known: &mut Vec<Src>,
+    ) -> Hyp {
+        let mut nodes = Vec::new();
+        let mut free: Vec<String> = Vec::new();
+        let mut n_state = 0;
+        let mut skip = None;
+        let mut temporal_free = false;
+        let mut build = |e: &Expr, nodes: &mut Vec<Node>| -> usize {
+            let base = nodes.len();
+            let terms = e.as_ref();
+            // Whether each node lies under a timer or memory.
+            let mut under = vec![false; terms.len()];
+            for (i, t) in terms.iter().enumerate().rev() {
+                let temporal = matches!(t, Term::Ton(_) | Term::Tof(_) | Term::Sr(_) | Term::Rs(_));
+                for ch in t.children() {
+                    under[usize::from(*ch)] |= under[i] || temporal;
+                }
+            }
+            for (i, t) in terms.iter().enumerate() {
+                let at = |id: &ii_prove::term::Id| base + usize::from(*id);
+                let node = match t {
+                    Term::Zero => Node::Const(false),
+                    Term::One => Node::Const(true),
+                    Term::Not(a) => Node::Not(at(a)),
+                    Term::And([a, b]) => Node::And(at(a), at(b)),
+                    Term::Or([a, b]) => Node::Or(at(a), at(b)),
+                    Term::Sr([s, r]) | Term::Rs([s, r]) => {
+                        n_state += 1;
+                        if matches!(t, Term::Sr(_)) {
+                            Node::Sr(at(s), at(r), n_state - 1)
+                        } else {
+                            Node::Rs(at(s), at(r), n_state - 1)
+                        }
+                    }
+                    Term::Ton([d, f]) | Term::Tof([f, d]) => {
+                        let n = match &terms[usize::from(*d)] {
+                            Term::Delay(d) => ceil_scans(d, cycle_us),
+                            _ => None,
+                        };
+                        let n = n.unwrap_or_else(|| {
+                            skip = Some(Skip::Delay);
+                            0
+                        });
+                        n_state += 1;
+                        if matches!(t, Term::Ton(_)) {
+                            Node::Ton(at(f), n, n_state - 1)
+                        } else {
+                            Node::Tof(at(f), n, n_state - 1)
+                        }
+                    }
+                    Term::Name(s) => {
+                        let s = s.as_str();
+                        match c.signals.get(s) {
+                            Some(SignalKind::Fresh { .. }) => {
+                                temporal_free |= under[i];
+                                let k = free.iter().position(|f| f == s).unwrap_or_else(|| {
+                                    free.push(s.to_string());
+                                    free.len() - 1
+                                });
+                                Node::Free(k)
+                            }
+                            Some(SignalKind::Previous { of }) => {
+                                Node::Known(slot(known, Src::Pre(of.clone())))
+                            }
+                            _ => Node::Known(slot(known, Src::Bit(s.to_string()))),
+                        }
+                    }
+                    // Delays are read by their timer only.
+                    Term::Delay(_) | Term::DMax(_) | Term::DMin(_) | Term::DAdd(_) => {
+                        Node::Const(false)
+                    }
+                };
+                nodes.push(node);
+            }
+            nodes.len() - 1
+        };
+        let lhs = build(&h.lhs, &mut nodes);
+        let rhs = build(&h.rhs, &mut nodes);
+        let has_timer =
+            nodes.iter().any(|n| matches!(n, Node::Ton(_, k, _) | Node::Tof(_, k, _) if *k > 0));
+        if free.len() > MAX_FREE {
+            skip = Some(Skip::TooManyFresh);
+        }
+        let rel = if h.rel == Rel::Eq { "=" } else { "⇒" };
+        Hyp {
+            name: h.name.clone(),
+            text: format!(
+                "{} {rel} {}",
+                term_to_string(&h.lhs, Notation::Paper),
+                term_to_string(&h.rhs, Notation::Paper)
+            ),
+            rel: h.rel,
+            nodes,
+            lhs,
+            rhs,
+            n_free: free.len(),
+            temporal_free,
+            states: [vec![0; n_state]].into_iter().collect(),
+            skip,
+            checked_scans: 0,
+            has_timer,
+            timer_fired: false,
+        }
+    }
+
+    /// One scan from `state` with the fresh signals `valuation`: (lhs, rhs).
+    fn step(
+        &self,
+        state: &mut [u32],
+        known: &[bool],
+        valuation: u32,
+        vals: &mut Vec<bool>,
+        stats: &mut TimerStats,
+    ) -> (bool, bool) {
+        vals.clear();
+        for node in &self.nodes {
+            let v = match *node {
+                Node::Const(b) => b,
+                Node::Known(k) => known[k],
+                Node::Free(k) => valuation >> k & 1 == 1,
+                Node::Not(a) => !vals[a],
+                Node::And(a, b) => vals[a] && vals[b],
+                Node::Or(a, b) => vals[a] || vals[b],
+                Node::Sr(s, r, st) => {
+                    let q = vals[s] || (!vals[r] && state[st] == 1);
+                    state[st] = u32::from(q);
+                    q
+                }
+                Node::Rs(s, r, st) => {
+                    let q = !vals[r] && (vals[s] || state[st] == 1);
+                    state[st] = u32::from(q);
+                    q
+                }
+                Node::Ton(f, n, st) => {
+                    state[st] = if vals[f] { (state[st] + 1).min(n + 1) } else { 0 };
+                    let on = state[st] > n;
+                    if on && n > 0 {
+                        stats.ton_on += 1;
+                    }
+                    on
+                }
+                Node::Tof(f, n, st) => {
+                    if vals[f] {
+                        state[st] = 1;
+                    } else if state[st] > 0 {
+                        state[st] = (state[st] + 1).min(n + 2);
+                    }
+                    let on = state[st] >= 1 && state[st] - 1 <= n;
+                    if on && !vals[f] {
+                        stats.tof_hold += 1;
+                    }
+                    on
+                }
+            };
+            vals.push(v);
+        }
+        (vals[self.lhs], vals[self.rhs])
+    }
+
+    /// Advances every reachable state by one scan; false if the hypothesis fails
+    /// for every run of the fresh signals.
+    fn scan(&mut self, known: &[bool], vals: &mut Vec<bool>, stats: &mut TimerStats) -> bool {
+        if self.skip.is_some() {
+            return true;
+        }
+        let mut next = BTreeSet::new();
+        let mut local = TimerStats::default();
+        for state in &self.states {
+            for valuation in 0..(1u32 << self.n_free) {
+                let mut s = state.clone();
+                let (l, r) = self.step(&mut s, known, valuation, vals, &mut local);
+                let holds = match self.rel {
+                    Rel::Eq => l == r,
+                    Rel::Implies => !l || r,
+                };
+                if holds {
+                    next.insert(s);
+                }
+            }
+        }
+        // Timer activity per reachable run, counted once per scan when the set is a singleton.
+        if self.states.len() == 1 && self.n_free == 0 {
+            stats.ton_on += local.ton_on;
+            stats.tof_hold += local.tof_hold;
+        }
+        self.timer_fired |= local.ton_on + local.tof_hold > 0;
+        if next.is_empty() {
+            return false;
+        }
+        if next.len() > MAX_STATES {
+            self.skip = Some(Skip::TooManyStates);
+        }
+        self.states = next;
+        self.checked_scans += 1;
+        true
+    }
+}
+
+fn slot(known: &mut Vec<Src>, src: Src) -> usize {
+    known.iter().position(|s| *s == src).unwrap_or_else(|| {
+        known.push(src);
+        known.len() - 1
+    })
+}
+
+// ---------------------------------------------------------------- one program
+
+/// Figures of one or many programs.
+#[derive(Default, Debug, Clone)]
+struct Figures {
+    programs: u64,
+    /// Programs the compiler refused (all with control flow).
+    refused: u64,
+    scans: u64,
+    /// Scans on which some simulator value was inexact (an unmodelled element's guess).
+    inexact_scans: u64,
+    /// Hypotheses checked at every scan.
+    checked: u64,
+    /// Of those, with fresh signals (existential), and with fresh signals under a timer or memory.
+    existential: u64,
+    temporal_existential: u64,
+    /// Hypothesis × scan pairs checked.
+    checked_scans: u64,
+    skipped_fresh: u64,
+    skipped_states: u64,
+    skipped_delay: u64,
+    timers: TimerStats,
+    /// Compiled TON/TOF terms with a positive delay, and how many of them were seen on.
+    timer_terms: u64,
+    /// Checked hypotheses with a `d/f` or `f/d` (`n > 0`), and those of them whose timer was
+    /// on (`d/f`) or holding after its input fell (`f/d`) at some scan.
+    timer_hyps: u64,
+    timer_hyps_fired: u64,
+    disagreements: u64,
+    failures: Vec<String>,
+    keywords: BTreeSet<String>,
+}
+
+impl Figures {
+    fn skipped(&self) -> u64 {
+        self.skipped_fresh + self.skipped_states + self.skipped_delay
+    }
+    fn add(&mut self, o: &Figures) {
+        self.programs += o.programs;
+        self.refused += o.refused;
+        self.scans += o.scans;
+        self.inexact_scans += o.inexact_scans;
+        self.checked += o.checked;
+        self.existential += o.existential;
+        self.temporal_existential += o.temporal_existential;
+        self.checked_scans += o.checked_scans;
+        self.skipped_fresh += o.skipped_fresh;
+        self.skipped_states += o.skipped_states;
+        self.skipped_delay += o.skipped_delay;
+        self.timers.ton_on += o.timers.ton_on;
+        self.timers.tof_hold += o.timers.tof_hold;
+        self.timer_terms += o.timer_terms;
+        self.timer_hyps += o.timer_hyps;
+        self.timer_hyps_fired += o.timer_hyps_fired;
+        self.disagreements += o.disagreements;
+        if self.failures.len() < 10 {
+            self.failures.extend(o.failures.iter().take(10 - self.failures.len()).cloned());
+        }
+        self.keywords.extend(o.keywords.iter().cloned());
+    }
+    fn summary(&self) -> String {
+        let total = self.checked + self.skipped();
+        format!(
+            "{} programs ({} refused, all with control flow), {} scans ({} with inexact simulator values); {} hypotheses checked at \
+             every scan ({} hypothesis-scans; {} with fresh signals, {} of them under a timer or \
+             memory), {} skipped ({:.3}%: {} too many fresh signals, {} too many states, {} delay); \
+             timers: {} TON/TOF terms, {} hypotheses with a timer, on in {} of them, {} scans with a d/f on, {} scans with an f/d holding after \
+             its input fell; {} disagreements",
+            self.programs,
+            self.refused,
+            self.scans,
+            self.inexact_scans,
+            self.checked,
+            self.checked_scans,
+            self.existential,
+            self.temporal_existential,
+            self.skipped(),
+            100.0 * self.skipped() as f64 / total.max(1) as f64,
+            self.skipped_fresh,
+            self.skipped_states,
+            self.skipped_delay,
+            self.timer_terms,
+            self.timer_hyps,
+            self.timer_hyps_fired,
+            self.timers.ton_on,
+            self.timers.tof_hold,
+            self.disagreements
+        )
+    }
+}
+
+const CONTROL_FLOW: &[&str] = &["GOTO", "GOSUB", "SUBPROG", "ENDSUB", "RETURN", "LOCK", "SLEEP"];
+
+fn has_control_flow(p: &LdProgram) -> bool {
+    p.elements().any(|e| CONTROL_FLOW.contains(&e.kind.keyword()))
+}
+
+fn parse(name: &str, text: &str) -> Result<LdProgram, Vec<LadderError>> {
+    let mut s = Sources::new();
+    let f = s.add(name, text.to_string());
+    read_ldmicro(&s, f)
+}
+
+/// Longest timer of the program in scans (for the input holds and the run length only).
+fn longest_timer(p: &LdProgram) -> u64 {
+    p.elements()
+        .filter_map(|e| match &e.kind {
+            ElementKind::Timer { delay, adjust, .. } => p.timer_scans(delay, *adjust),
+            _ => None,
+        })
+        .map(|s| s.clamp(0, 200) as u64)
+        .max()
+        .unwrap_or(0)
+}
+
+/// Compiles `program`, runs it on the simulator from power-up with random inputs, and
+/// checks every hypothesis at every scan. Disagreements are recorded in the figures
+/// (with `label`, the program text and the scan).
+fn check_program(label: &str, text: &str, program: &LdProgram, seed: u64) -> Figures {
+    let mut fig = Figures { programs: 1, ..Figures::default() };
+    let fail = |fig: &mut Figures, what: String| {
+        fig.disagreements += 1;
+        if fig.failures.len() < 3 {
+            fig.failures.push(format!("{label} (seed {seed}): {what}\n---- program\n{text}----"));
+        }
+    };
+    let compiled = match ii_prove::ladder::compile(program) {
+        Ok(c) => c,
+        Err(errors) => {
+            fig.refused = 1;
+            if !has_control_flow(program) {
+                fail(&mut fig, format!("refused without control flow: {errors:?}"));
+            }
+            return fig;
+        }
+    };
+    if has_control_flow(program) {
+        fail(
+            &mut fig,
+            "a program with control flow compiled; its equations assume a plain scan".into(),
+        );
+        return fig;
+    }
+    // The bits the outside world writes.
+    let driven: Vec<String> =
+        program.signals().into_iter().filter(|n| n.starts_with(['X', 'I', 'M'])).collect();
+    for (name, kind) in &compiled.signals {
+        if *kind == SignalKind::Input && !driven.contains(name) {
+            fail(
+                &mut fig,
+                format!(
+                    "{name} is classified as an input, but nothing outside the program writes it"
+                ),
+            );
+        }
+    }
+    let mut known: Vec<Src> = Vec::new();
+    let cycle = program.cycle_us;
+    let mut hyps: Vec<Hyp> =
+        compiled.hypotheses.iter().map(|h| Hyp::new(h, &compiled, cycle, &mut known)).collect();
+    fig.timer_terms = compiled.timer_info.iter().filter(|t| t.effective.is_some()).count() as u64;
+    let longest = longest_timer(program);
+    let total = (6 * (longest + 2)).clamp(64, 3_000);
+    let hold_max = (longest + longest / 2 + 3).max(4);
+    let mut rng = Rng::new(seed ^ 0xD1FF);
+    let mut current: BTreeMap<String, bool> = driven.iter().map(|n| (n.clone(), false)).collect();
+    let mut hold: BTreeMap<String, u64> = driven.iter().map(|n| (n.clone(), 0)).collect();
+    let mut sim = Simulator::new(program);
+    let mut prev: BTreeMap<String, bool> = BTreeMap::new();
+    let mut values = vec![false; known.len()];
+    let mut vals = Vec::new();
+    // Stretches where every input is frozen, long enough for the longest timer to fire.
+    let mut frozen = 0;
+    'scans: for scan in 0..total {
+        if frozen == 0 && rng.below(3 * (longest + 2)) == 0 {
+            frozen = longest + 2 + rng.below(longest + 2);
+        }
+        for n in &driven {
+            if frozen > 0 {
+                break;
+            }
+            let h = hold.get_mut(n).expect("driven input");
+            if *h == 0 {
+                current.insert(n.clone(), rng.chance(50));
+                *h = 1 + if rng.chance(35) { rng.below(2) } else { rng.below(hold_max) };
+            }
+            *h -= 1;
+        }
+        frozen = frozen.saturating_sub(1);
+        sim.step(&current);
+        for (v, src) in values.iter_mut().zip(&known) {
+            *v = match src {
+                Src::Bit(n) => sim.bit(n),
+                Src::Pre(n) => prev.get(n).copied().unwrap_or(false),
+            };
+        }
+        fig.scans += 1;
+        fig.inexact_scans += u64::from(!sim.unknown().is_empty());
+        for h in hyps.iter_mut() {
+            if !h.scan(&values, &mut vals, &mut fig.timers) {
+                let bits: Vec<String> =
+                    sim.bits().iter().map(|(n, v)| format!("{n}={}", u8::from(*v))).collect();
+                let pre: Vec<String> =
+                    prev.iter().map(|(n, v)| format!("{n}={}", u8::from(*v))).collect();
+                fail(
+                    &mut fig,
+                    format!(
+                        "{}: {} fails at scan {scan} (0-based); bits at the end of the scan: {}; \
+                         at the end of the previous scan: {}",
+                        h.name,
+                        h.text,
+                        bits.join(" "),
+                        pre.join(" ")
+                    ),
+                );
+                break 'scans;
+            }
+        }
+        prev = sim.bits().clone();
+    }
+    for h in &hyps {
+        match h.skip {
+            Some(Skip::TooManyFresh) => fig.skipped_fresh += 1,
+            Some(Skip::TooManyStates) => fig.skipped_states += 1,
+            Some(Skip::Delay) => fig.skipped_delay += 1,
+            None => {
+                fig.checked += 1;
+                fig.existential += u64::from(h.n_free > 0);
+                fig.temporal_existential += u64::from(h.temporal_free);
+                fig.checked_scans += h.checked_scans;
+                fig.timer_hyps += u64::from(h.has_timer);
+                fig.timer_hyps_fired += u64::from(h.has_timer && h.timer_fired);
+            }
+        }
+    }
+    fig
+}
+
+// ---------------------------------------------------------------- tests
+
+fn programs_to_run() -> u64 {
+    std::env::var("II_DIFF_PROGRAMS").ok().and_then(|v| v.parse().ok()).unwrap_or(20_000)
+}
+
+fn base_seed() -> u64 {
+    std::env::var("PROPTEST_RNG_SEED").ok().and_then(|v| v.parse().ok()).unwrap_or(0x11_D1FF)
+}
+
+/// One random program: generate, parse, check. A panic is a disagreement too.
+fn random_case(seed: u64) -> Figures {
+    let (text, used) = random_program(seed);
+    let result = catch_unwind(AssertUnwindSafe(|| match parse("random.ld", &text) {
+        Ok(p) => check_program("random.ld", &text, &p, seed),
+        Err(e) => Figures {
+            programs: 1,
+            disagreements: 1,
+            failures: vec![format!(
+                "seed {seed}: the generated text does not parse: {e:?}\n{text}"
+            )],
+            ..Figures::default()
+        },
+    }));
+    let mut fig = result.unwrap_or_else(|_| Figures {
+        programs: 1,
+        disagreements: 1,
+        failures: vec![format!("seed {seed}: panic\n---- program\n{text}----")],
+        ..Figures::default()
+    });
+    fig.keywords = used;
+    fig
+}
+
+/// Every element kind of ldmicro.md §4 the generator must emit.
+const COVERAGE: &[&str] = &[
+    "CONTACTS",
+    "CONTACTS neg",
+    "COIL",
+    "COIL neg",
+    "COIL set",
+    "COIL reset",
+    "COIL toggle",
+    "SHORT",
+    "OPEN",
+    "MASTER_RELAY",
+    "TON",
+    "TOF",
+    "RTO",
+    "RTL",
+    "THI",
+    "TLO",
+    "TCY",
+    "OSR",
+    "OSF",
+    "ODR",
+    "ODF",
+    "OSL",
+    "OSC",
+    "CTU",
+    "CTD",
+    "CTC",
+    "CTR",
+    "RES",
+    "EQU",
+    "NEQ",
+    "GRT",
+    "GEQ",
+    "LES",
+    "LEQ",
+    "MOVE",
+    "ADD",
+    "SUB",
+    "MUL",
+    "DIV",
+    "MOD",
+    "SET_BIT",
+    "IF_BIT_SET",
+    "SHIFT_REGISTER",
+    "READ_ADC",
+    "SET_PWM",
+    "UART_SEND",
+    "PERSIST",
+    "FORMATTED_STRING",
+    "PLACEHOLDER",
+    "COMMENT",
+    "LABEL",
+    "GOTO",
+    "GOSUB",
+    "SUBPROG",
+    "ENDSUB",
+    "RETURN",
+    "LOCK",
+    "SLEEP",
+    "LDmicro0.1",
+    "LDmicro0.2",
+    "LDmicro",
+    "headerless",
+];
+
+#[test]
+fn random_programs_agree_with_the_simulator() {
+    if let Some(seed) = std::env::var("II_DIFF_SEED").ok().and_then(|v| v.parse().ok()) {
+        let (text, _) = random_program(seed);
+        eprintln!("{text}");
+        let fig = random_case(seed);
+        eprintln!("{}", fig.summary());
+        assert_eq!(fig.disagreements, 0, "{}", fig.failures.join("\n\n"));
+        return;
+    }
+    let n = programs_to_run();
+    let base = base_seed();
+    let threads = std::thread::available_parallelism().map_or(2, |n| n.get()).clamp(1, 8) as u64;
+    let total = Mutex::new(Figures::default());
+    std::thread::scope(|s| {
+        for t in 0..threads {
+            let total = &total;
+            s.spawn(move || {
+                let mut fig = Figures::default();
+                let mut i = t;
+                while i < n {
+                    fig.add(&random_case(base.wrapping_add(i)));
+                    i += threads;
+                }
+                total.lock().expect("figures").add(&fig);
+            });
+        }
+    });
+    let fig = total.into_inner().expect("figures");
+    eprintln!("differential, random programs (base seed {base}): {}", fig.summary());
+    assert_eq!(fig.disagreements, 0, "{}\n\n{}", fig.summary(), fig.failures.join("\n\n"));
+    assert_eq!(fig.programs, n);
+    if n < 1_000 {
+        return; // too few programs for the figures below
+    }
+    // Not vacuous: most hypotheses checked, timers fire and hold, control flow refused.
+    assert!(fig.checked > 3 * n, "{}", fig.summary());
+    assert!(
+        fig.skipped() * 100 <= fig.checked + fig.skipped(),
+        "more than 1% skipped: {}",
+        fig.summary()
+    );
+    assert!(
+        fig.timers.ton_on > n && fig.timers.tof_hold > n / 2,
+        "timers rarely on: {}",
+        fig.summary()
+    );
+    assert!(
+        fig.timer_hyps > n / 3 && fig.timer_hyps_fired * 10 >= 7 * fig.timer_hyps,
+        "timers rarely on: {}",
+        fig.summary()
+    );
+    assert!(fig.refused > 0 && fig.refused < n / 5, "{}", fig.summary());
+    let missing: Vec<&&str> = COVERAGE.iter().filter(|k| !fig.keywords.contains(**k)).collect();
+    assert!(missing.is_empty(), "never generated: {missing:?}");
+}
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).to_path_buf()
+}
+
+fn load(path: &Path) -> Option<(String, LdProgram)> {
+    let text = decode_latin1(&std::fs::read(path).ok()?);
+    let p = parse(&path.display().to_string(), &text).ok()?;
+    Some((text, p))
+}
+
+fn check_files(files: &[PathBuf], seeds: &[u64]) -> Figures {
+    let mut fig = Figures::default();
+    for path in files {
+        let Some((text, program)) = load(path) else { continue };
+        for &seed in seeds {
+            fig.add(&check_program(&path.display().to_string(), &text, &program, seed));
+        }
+    }
+    fig
+}
+
+#[test]
+fn examples_agree_with_the_simulator() {
+    let files = common::files_with(&root().join("examples"), "ld");
+    assert!(files.len() >= 5);
+    let mut fig = Figures::default();
+    for path in &files {
+        let f = check_files(std::slice::from_ref(path), &[1, 2, 3, 4, 5, 6, 7, 8]);
+        assert!(
+            f.timer_hyps == 0 || f.timer_hyps_fired > 0,
+            "{}: no timer ever on: {}",
+            path.display(),
+            f.summary()
+        );
+        fig.add(&f);
+    }
+    eprintln!("differential, examples: {}", fig.summary());
+    assert_eq!(fig.disagreements, 0, "{}", fig.failures.join("\n\n"));
+    assert_eq!(fig.refused, 0);
+    assert_eq!(fig.skipped(), 0, "{}", fig.summary());
+    assert_eq!(fig.existential, 0, "the examples compile exactly: {}", fig.summary());
+    assert!(fig.timers.ton_on > 0 && fig.timers.tof_hold > 0, "{}", fig.summary());
+}
+
+#[test]
+fn data_cases_and_corpus_agree_with_the_simulator() {
+    let mut files = common::files_with(&root().join("tests/data/compile"), "ld");
+    files.extend(common::files_with(&root().join("tests/data/ldmicro/corpus"), "ld"));
+    let fig = check_files(&files, &[11, 12]);
+    eprintln!("differential, data cases and corpus: {}", fig.summary());
+    assert_eq!(fig.disagreements, 0, "{}", fig.failures.join("\n\n"));
+    assert!(fig.checked > 50 * fig.skipped().max(1) || fig.skipped() == 0, "{}", fig.summary());
+    assert!(fig.programs as usize == 2 * files.len() || fig.programs > 20);
+}
+
+/// The issue's cases, as texts: each must be refused (control flow) or agree with the
+/// simulator at every scan.
+#[test]
+fn known_soundness_cases_agree_or_are_refused() {
+    let cases = [
+        // Timer presets with adjust fields.
+        "LDmicro0.2\nCYCLE=10000\nPROGRAM\nRUNG 1\nCONTACTS XA 0\nTON Tdly 1000000 -95\nCOIL YOut 0 0 0\nEND\n",
+        "LDmicro0.2\nCYCLE=10000\nPROGRAM\nRUNG 1\nCONTACTS XA 0\nTON Tdly 100000 50\nCOIL YOut 0 0 0\nEND\n",
+        "LDmicro0.1\nCYCLE=10000\nPROGRAM\nRUNG\nCONTACTS Xa 0\nTON T1 30000 5\nCOIL Yp 0 0 0\nEND\n",
+        "LDmicro0.1\nCYCLE=10000\nPROGRAM\nRUNG\nCONTACTS Xa 0\nTON T1 30000\nTOF T2 20000\nCOIL Yp 0 0 0\nEND\n",
+        // Control flow.
+        "LDmicro0.2\nCYCLE=10000\nPROGRAM\nRUNG 1\nCONTACTS XSkip 0\nGOTO Lend\nEND\nRUNG 2\nCONTACTS XA 0\nCOIL YOut 0 0 0\nEND\nRUNG 3\nLABEL Lend\nEND\n",
+        // A toggle coil read before and after it.
+        "LDmicro0.2\nCYCLE=10000\nPROGRAM\nRUNG 1\nCONTACTS Rb 0\nCOIL Ya 0 0 0\nEND\nRUNG 2\nCONTACTS Xin 0\nCOIL Rb 0 0 0 1\nEND\nRUNG 3\nCONTACTS Rb 0\nCOIL Yc 0 0 0\nEND\n",
+        // A bit and a timer of the same name.
+        "LDmicro0.2\nCYCLE=10000\nPROGRAM\nRUNG 1\nCONTACTS Rb 0\nCOIL Ya 0 0 0\nEND\nRUNG 2\nCONTACTS Xin 0\nCOIL Rb 0 0 0\nEND\nRUNG 3\nCONTACTS Rb 0\nCOIL Yc 0 0 0\nEND\nRUNG 4\nCONTACTS Xin 0\nTON Rb 20000 0\nCOIL Yd 0 0 0\nEND\n",
+        // A bit read and never written.
+        "LDmicro0.2\nCYCLE=10000\nPROGRAM\nRUNG 1\nCONTACTS Yghost 0\nCOIL Yout 0 0 0\nEND\n",
+    ];
+    let mut fig = Figures::default();
+    for (k, text) in cases.iter().enumerate() {
+        let program = parse("case.ld", text).expect("parses");
+        for seed in 0..20 {
+            fig.add(&check_program(&format!("case {k}"), text, &program, seed));
+        }
+    }
+    eprintln!("differential, known cases: {}", fig.summary());
+    assert_eq!(fig.disagreements, 0, "{}", fig.failures.join("\n\n"));
+    assert_eq!(fig.refused, 20, "the GOTO program is refused");
+    assert!(fig.timers.ton_on > 0 && fig.timers.tof_hold > 0);
+}
+
+/// The evaluator itself, on hand-made runs: `d/f` from the (n+1)-th consecutive
+/// true scan, `f/d` for n scans after the fall, SR/RS by their recurrences, fresh
+/// signals existential through a memory.
+#[test]
+fn the_evaluator_follows_semantics_md() {
+    // d = 25 ms on a 10 ms cycle: n = ceil(2.5) = 3.
+    assert_eq!(
+        ceil_scans(&ii_prove::term::Delay::from_micros(25_000).expect("d"), 10_000),
+        Some(3)
+    );
+    assert_eq!(
+        ceil_scans(&ii_prove::term::Delay::from_micros(30_000).expect("d"), 10_000),
+        Some(3)
+    );
+    let run = |nodes: Vec<Node>, n_free: usize, inputs: &[bool]| -> Vec<Vec<bool>> {
+        let n_state = nodes
+            .iter()
+            .filter(|n| matches!(n, Node::Sr(..) | Node::Rs(..) | Node::Ton(..) | Node::Tof(..)))
+            .count();
+        let h = Hyp {
+            name: "t".into(),
+            text: String::new(),
+            rel: Rel::Eq,
+            lhs: nodes.len() - 1,
+            rhs: nodes.len() - 1,
+            nodes,
+            n_free,
+            temporal_free: false,
+            states: BTreeSet::new(),
+            skip: None,
+            checked_scans: 0,
+            has_timer: false,
+            timer_fired: false,
+        };
+        let mut state = vec![0; n_state];
+        let mut vals = Vec::new();
+        let mut stats = TimerStats::default();
+        inputs
+            .iter()
+            .map(|&x| {
+                h.step(&mut state, &[x], 0, &mut vals, &mut stats);
+                vals.clone()
+            })
+            .collect()
+    };
+    let xs = [true, true, true, true, false, true, false, false, false, false];
+    // d/f with n = 3: on at the 4th consecutive true scan, off with the input.
+    let out: Vec<bool> =
+        run(vec![Node::Known(0), Node::Ton(0, 3, 0)], 0, &xs).iter().map(|v| v[1]).collect();
+    assert_eq!(out, [false, false, false, true, false, false, false, false, false, false]);
+    // f/d with n = 2: on while f, and for 2 scans after it falls; never before f.
+    let ys = [false, true, false, false, false, true, false, false, false, false];
+    let out: Vec<bool> =
+        run(vec![Node::Known(0), Node::Tof(0, 2, 0)], 0, &ys).iter().map(|v| v[1]).collect();
+    assert_eq!(out, [false, true, true, true, false, true, true, true, false, false]);
+    // SR(x, ¬x)... SR(s, r) with s = x, r = 0*: stays on once set; RS(x, x) is 0.
+    let out: Vec<bool> = run(vec![Node::Known(0), Node::Const(false), Node::Sr(0, 1, 0)], 0, &ys)
+        .iter()
+        .map(|v| v[2])
+        .collect();
+    assert_eq!(out, [false, true, true, true, true, true, true, true, true, true]);
+    let out: Vec<bool> =
+        run(vec![Node::Known(0), Node::Rs(0, 0, 0)], 0, &ys).iter().map(|v| v[1]).collect();
+    assert!(out.iter().all(|v| !v));
+    // Existential through a memory: Q = SR(F, 0*) with F fresh holds for Q = 0,0,1,1
+    // (F = 0,0,1,·) but not for Q = 1,0 (a set memory cannot drop).
+    let exists = |q: &[bool]| -> bool {
+        let nodes = vec![Node::Known(0), Node::Free(0), Node::Const(false), Node::Sr(1, 2, 0)];
+        let mut h = Hyp {
+            name: "t".into(),
+            text: String::new(),
+            rel: Rel::Eq,
+            lhs: 0,
+            rhs: 3,
+            nodes,
+            n_free: 1,
+            temporal_free: true,
+            states: [vec![0]].into_iter().collect(),
+            skip: None,
+            checked_scans: 0,
+            has_timer: false,
+            timer_fired: false,
+        };
+        let mut vals = Vec::new();
+        let mut stats = TimerStats::default();
+        q.iter().all(|&v| h.scan(&[v], &mut vals, &mut stats))
+    };
+    assert!(exists(&[false, false, true, true]));
+    assert!(!exists(&[true, false]));
+}
