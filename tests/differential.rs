@@ -87,10 +87,14 @@ impl Rng {
 
 /// Bits read by contacts. `Rg`/`Yg` never get a coil (ghost bits); `Ia`/`Mb` are
 /// Modbus inputs the outside world writes.
-const READ_BITS: &[&str] =
-    &["Xa", "Xb", "Xc", "Xd", "Ia", "Mb", "Ra", "Rb", "Rc", "Ya", "Yb", "Rg", "Yg"];
-/// Bits written by coils.
-const COIL_BITS: &[&str] = &["Ra", "Rb", "Rc", "Ya", "Yb", "Yc"];
+const READ_BITS: &[&str] = &[
+    "Xa", "Xb", "Xc", "Xd", "Ia", "Mb", "Ra", "Rb", "Rc", "Ya", "Yb", "Rg", "Yg", "Ra", "Rb", "Ya",
+    "pre_Ra", "OSR_r2",
+];
+/// Bits written by coils; `pre_Ra`, `OSR_r2` and `TOGGLE_r3` clash with the compiler's
+/// own names for previous values and fresh outputs.
+const COIL_BITS: &[&str] =
+    &["Ra", "Rb", "Rc", "Ya", "Yb", "Yc", "Ra", "Rb", "Ya", "pre_Ra", "OSR_r2", "TOGGLE_r3"];
 /// Timer accumulators; `Ra` and `Ya` are also bit names (separate name spaces).
 const TIMERS: &[&str] = &["Ta", "Tb", "Tc", "Ra", "Ya"];
 const COUNTERS: &[&str] = &["Ca", "Cb"];
@@ -408,7 +412,8 @@ fn random_program(seed: u64) -> (String, BTreeSet<String>) {
         g.used.insert(header.into());
     }
     text.push_str("PROGRAM\n");
-    let rungs = 1 + g.rng.below(8);
+    // Mostly small programs; now and then a large one (long inlined reads, many atoms).
+    let rungs = if g.rng.chance(10) { 8 + g.rng.below(17) } else { 1 + g.rng.below(8) };
     for k in 0..rungs {
         if header == "LDmicro0.2" {
             let _ = writeln!(text, "RUNG {}", k + 1);
@@ -882,6 +887,26 @@ fn check_program(label: &str, text: &str, program: &LdProgram, seed: u64) -> Fig
     let mut current: BTreeMap<String, bool> = driven.iter().map(|n| (n.clone(), false)).collect();
     let mut hold: BTreeMap<String, u64> = driven.iter().map(|n| (n.clone(), 0)).collect();
     let mut sim = Simulator::new(program);
+    // Every name of a hypothesis is a signal of the compiled program, and every bit it
+    // reads is one the simulator has.
+    for h in &compiled.hypotheses {
+        for side in [&h.lhs, &h.rhs] {
+            for node in side.as_ref() {
+                if let Term::Name(n) = node
+                    && !compiled.signals.contains_key(n.as_str())
+                {
+                    fail(&mut fig, format!("{}: {n} is not a signal of the program", h.name));
+                }
+            }
+        }
+    }
+    for src in &known {
+        if let Src::Bit(n) | Src::Pre(n) = src
+            && !sim.bits().contains_key(n)
+        {
+            fail(&mut fig, format!("{n} is not a bit of the program"));
+        }
+    }
     let mut prev: BTreeMap<String, bool> = BTreeMap::new();
     let mut values = vec![false; known.len()];
     let mut vals = Vec::new();
