@@ -10,8 +10,8 @@ use std::path::{Path, PathBuf};
 use ii_prove::diag::Sources;
 use ii_prove::kernel::Rel;
 use ii_prove::ladder::{
-    CompiledProgram, ElementKind, HypothesisKind, LdProgram, SignalKind, Simulator, TimerDelay,
-    TimerKind, decode_latin1, program_to_ii, read_ldmicro,
+    CompiledProgram, ElementKind, HypothesisKind, LdProgram, SignalKind, Simulator, TimerKind,
+    decode_latin1, program_to_ii, read_ldmicro,
 };
 use ii_prove::syntax::{
     Lookup, NoProgram, Notation, Relation, Scope, parse_document, term_to_string,
@@ -296,8 +296,16 @@ fn timer_chains() {
     let c = compile(&rungs(
         "RUNG\nCONTACTS Xa 0\nTON T1 1500000\nTOF T2 250000\nCOIL Yq 0 0 0\nEND\nRUNG\nCONTACTS Xb 0\nTOF T3 2000000\nCONTACTS Xc 1\nCOIL Yr 0 0 0\nEND\n",
     ));
+    // An LDmicro0.1 timer counts floor(delay / cycle) - 1 scans of 10 ms (§6.3).
+    assert_eq!(stmt(&c, "L01"), "Yq = (1.49s/Xa)/240ms");
+    assert_eq!(stmt(&c, "L02"), "Yr = Xb/1.99s · ¬Xc");
+    assert_eq!(c.warnings.len(), 3, "{:?}", c.warnings);
+    assert!(c.warnings.iter().all(|w| w.message.contains("the default adjust")));
+    let c = compile(&load_text(
+        "t.ld",
+        "LDmicro0.2\nCYCLE=10000\nPROGRAM\nRUNG\nCONTACTS Xa 0\nTON T1 1500000\nTOF T2 250000\nCOIL Yq 0 0 0\nEND\n",
+    ));
     assert_eq!(stmt(&c, "L01"), "Yq = (1.5s/Xa)/250ms");
-    assert_eq!(stmt(&c, "L02"), "Yr = Xb/2s · ¬Xc");
     assert!(c.warnings.is_empty());
 }
 
@@ -358,9 +366,10 @@ fn res_on_a_ton_makes_it_fresh() {
 #[test]
 fn a_pre_name_that_clashes_gets_a_suffix() {
     let c = compile(&rungs(
-        "RUNG\nCONTACTS Rx 0\nCONTACTS pre_Rx 0\nCOIL Ry 0 0 0\nEND\nRUNG\nCONTACTS Xa 0\nCOIL Rx 0 0 0\nEND\n",
+        "RUNG\nCONTACTS Xb 0\nCOIL pre_Rx 0 0 0\nEND\nRUNG\nCONTACTS Rx 0\nCONTACTS pre_Rx 0\nCOIL Ry 0 0 0\nEND\nRUNG\nCONTACTS Xa 0\nCOIL Rx 0 0 0\nEND\n",
     ));
-    assert_eq!(stmt(&c, "L01"), "Ry = pre_Rx_2 · pre_Rx");
+    assert_eq!(stmt(&c, "L02"), "Ry = pre_Rx_2 · pre_Rx");
+    assert_eq!(c.signals.get("pre_Rx"), Some(&SignalKind::Relay));
 }
 
 // ---------------------------------------------------------------- .ii round trips
@@ -564,20 +573,28 @@ impl Discrete {
     }
 }
 
-/// Per literal delay, the scan counts N = max(P+1, 1) of the program's TON/TOF timers.
-fn timer_scans(program: &LdProgram) -> BTreeMap<Delay, BTreeSet<u64>> {
-    let mut out: BTreeMap<Delay, BTreeSet<u64>> = BTreeMap::new();
-    for e in program.elements() {
-        if let ElementKind::Timer { kind: TimerKind::Ton | TimerKind::Tof, delay, adjust, .. } =
-            &e.kind
-            && let TimerDelay::Micros(us) = delay
-            && let Ok(d) = Delay::from_micros(*us)
-            && let Some(p) = program.timer_scans(delay, *adjust)
-        {
-            out.entry(d).or_default().insert(u64::try_from(p + 1).unwrap_or(0).max(1));
-        }
-    }
-    out
+/// The scans `N` a timer term of delay `d` looks back over on scans of `cycle_us` µs, from
+/// the algebra alone (semantics.md, "Programs, scan by scan"): `d/f` is on from the
+/// (⌈d/δ⌉+1)-th consecutive scan of `f`, `f/d` stays on ⌈d/δ⌉ scans after `f` falls.
+fn term_scans(d: &Delay, cycle_us: u64) -> Option<u64> {
+    let cycle = Delay::from_micros(cycle_us).ok()?;
+    let ratio = d.seconds() / cycle.seconds();
+    u64::try_from(ratio.ceil().to_integer()).ok().map(|n| n + 1)
+}
+
+/// The longest look-back `N` of the program's TON/TOF timers (what the runs must exceed).
+fn longest_timer(program: &LdProgram) -> u64 {
+    program
+        .elements()
+        .filter_map(|e| match &e.kind {
+            ElementKind::Timer { kind: TimerKind::Ton | TimerKind::Tof, delay, adjust, .. } => {
+                program.timer_scans(delay, *adjust)
+            }
+            _ => None,
+        })
+        .map(|p| u64::try_from(p + 1).unwrap_or(0).max(1))
+        .max()
+        .unwrap_or(1)
 }
 
 #[derive(Default, Debug)]
@@ -633,8 +650,7 @@ struct Check {
 
 fn differential(path: &Path, program: &LdProgram, seed: u64) -> Outcome {
     let c = compile(program);
-    let scans_of = timer_scans(program);
-    let max_n = scans_of.values().flatten().copied().max().unwrap_or(1);
+    let max_n = longest_timer(program);
     let total = (8 * max_n).clamp(300, 10_000) as usize;
     let inputs: Vec<String> = c
         .signals
@@ -687,8 +703,10 @@ fn differential(path: &Path, program: &LdProgram, seed: u64) -> Outcome {
         }
         sim.step(&current);
         let scans = |d: &Delay| -> Option<u64> {
-            let set = scans_of.get(d)?;
-            (set.len() == 1).then(|| set.iter().next().copied()).flatten()
+            if program.cycle_us == 0 {
+                return None;
+            }
+            term_scans(d, program.cycle_us)
         };
         for check in checks.iter_mut().filter(|k| k.live) {
             let k = check.free.len();
