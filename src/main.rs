@@ -19,6 +19,12 @@ Exit status:
 /// `ii-prove PROGRAM.ld PROPS.ii` proves the properties of PROPS.ii about the
 /// compiled program; `ii-prove FILE.ii…` proves properties about the free
 /// signals the files declare with `input`.
+///
+/// A property of a program holds when, on every run, it holds at every scan up to
+/// which the `assume` statements have held (hypotheses hold "up to now"). Each rung
+/// is compiled to what the PLC does on every scan; timers count scans as the
+/// runtime does (see --timers). Programs with control flow (GOTO, GOSUB,
+/// SUBPROG/ENDSUB, RETURN, LOCK, SLEEP) are refused with a located error.
 #[derive(Parser)]
 #[command(name = "ii-prove", version, after_help = EXIT_CODES, args_conflicts_with_subcommands = true)]
 struct Cli {

@@ -296,8 +296,16 @@ fn timer_chains() {
     let c = compile(&rungs(
         "RUNG\nCONTACTS Xa 0\nTON T1 1500000\nTOF T2 250000\nCOIL Yq 0 0 0\nEND\nRUNG\nCONTACTS Xb 0\nTOF T3 2000000\nCONTACTS Xc 1\nCOIL Yr 0 0 0\nEND\n",
     ));
+    // An LDmicro0.1 timer counts floor(delay / cycle) - 1 scans of 10 ms (§6.3).
+    assert_eq!(stmt(&c, "L01"), "Yq = (1.49s/Xa)/240ms");
+    assert_eq!(stmt(&c, "L02"), "Yr = Xb/1.99s · ¬Xc");
+    assert_eq!(c.warnings.len(), 3, "{:?}", c.warnings);
+    assert!(c.warnings.iter().all(|w| w.message.contains("the default adjust")));
+    let c = compile(&load_text(
+        "t.ld",
+        "LDmicro0.2\nCYCLE=10000\nPROGRAM\nRUNG\nCONTACTS Xa 0\nTON T1 1500000\nTOF T2 250000\nCOIL Yq 0 0 0\nEND\n",
+    ));
     assert_eq!(stmt(&c, "L01"), "Yq = (1.5s/Xa)/250ms");
-    assert_eq!(stmt(&c, "L02"), "Yr = Xb/2s · ¬Xc");
     assert!(c.warnings.is_empty());
 }
 
@@ -358,9 +366,10 @@ fn res_on_a_ton_makes_it_fresh() {
 #[test]
 fn a_pre_name_that_clashes_gets_a_suffix() {
     let c = compile(&rungs(
-        "RUNG\nCONTACTS Rx 0\nCONTACTS pre_Rx 0\nCOIL Ry 0 0 0\nEND\nRUNG\nCONTACTS Xa 0\nCOIL Rx 0 0 0\nEND\n",
+        "RUNG\nCONTACTS Xb 0\nCOIL pre_Rx 0 0 0\nEND\nRUNG\nCONTACTS Rx 0\nCONTACTS pre_Rx 0\nCOIL Ry 0 0 0\nEND\nRUNG\nCONTACTS Xa 0\nCOIL Rx 0 0 0\nEND\n",
     ));
-    assert_eq!(stmt(&c, "L01"), "Ry = pre_Rx_2 · pre_Rx");
+    assert_eq!(stmt(&c, "L02"), "Ry = pre_Rx_2 · pre_Rx");
+    assert_eq!(c.signals.get("pre_Rx"), Some(&SignalKind::Relay));
 }
 
 // ---------------------------------------------------------------- .ii round trips

@@ -71,7 +71,8 @@ fn water_faulty_p2_is_refuted_with_a_confirmed_diagram() {
 #[test]
 fn water_faulty_overlap_replays_on_the_scan_simulator() {
     let mut sources = Sources::new();
-    let loaded = load_program(&mut sources, &path("examples/water_faulty.ld"), &Default::default()).expect("loads");
+    let loaded = load_program(&mut sources, &path("examples/water_faulty.ld"), &Default::default())
+        .expect("loads");
     let file = sources.add("p2.ii", "let Line1 = L1_up + L1_pump + L1_down\nlet Line2 = L2_up + L2_pump + L2_down\nproperty P2: Line1 . Line2 = 0*\n".to_string());
     let doc = syntax::parse_document(&sources, file, &loaded.compiled).expect("parses");
     let goal = report::obligation(&doc.properties[0].value);

@@ -336,7 +336,7 @@ const WATER_INPUTS: [&str; 6] =
 fn examples_load() {
     for name in ["water.ld", "water_faulty.ld", "motor.ld", "traffic.ld", "conveyor.ld"] {
         let p = example(name);
-        assert_eq!(p.version, HeaderVersion::V0_1, "{name}");
+        assert_eq!(p.version, HeaderVersion::V0_2("0.2".into()), "{name}");
         assert_eq!(p.cycle_us, 10000, "{name}");
         // Every rung is either a comment rung or pure Boolean + timers (class A).
         for r in &p.rungs {
@@ -355,7 +355,7 @@ fn examples_load() {
             _ => None,
         })
         .collect();
-    assert_eq!(timers, [499, 499], "5 s at 10 ms, LDmicro0.1: P = 500 - 1");
+    assert_eq!(timers, [500, 500], "5 s at 10 ms, LDmicro0.2: P = 500 + 0");
     let logic: Vec<_> = water.rungs.iter().filter(|r| !r.is_comment(&water.version)).collect();
     assert_eq!(logic.len(), 10, "L01..L10");
     assert_eq!(water.io_list.len(), 14);
@@ -373,13 +373,13 @@ fn water_line_1_starts_5_s_after_l_flow() {
     sim.step(&on);
     assert!(sim.bit("RDemand") && sim.bit("RL1_Prod") && sim.bit("YL1_up"));
     assert!(!sim.bit("YL1_pump"));
-    // P = floor(5000000 / 10000) - 1 = 499 for an LDmicro0.1 file: on at scan 500.
-    for scan in 2..500 {
+    // P = floor(5000000 / 10000) + 0 = 500 for an LDmicro0.2 file: on at scan 501.
+    for scan in 2..501 {
         sim.step(&on);
         assert!(!sim.bit("YL1_pump"), "scan {scan}");
     }
     sim.step(&on);
-    assert_eq!(sim.scans(), 500);
+    assert_eq!(sim.scans(), 501);
     assert!(sim.bit("YL1_pump") && sim.bit("YL1_down") && sim.bit("YOut_valve"));
     assert!(sim.bit("YBf_valve"), "low flow only: backflow valve open");
     assert!(!sim.bit("YL2_up") && !sim.bit("YL2_pump"));
@@ -524,7 +524,8 @@ fn conveyor_upstream_never_runs_without_downstream() {
     let mut sim = Simulator::new(&p);
     sim.step(&inputs(&[("XStart", true)]));
     assert!(sim.bit("YConv2") && !sim.bit("YConv1"));
-    for _ in 0..198 {
+    // LDmicro0.2: P = 200 scans, so on at the 201st scan.
+    for _ in 0..199 {
         sim.step(&inputs(&[("XStart", false)]));
     }
     assert!(!sim.bit("YConv1"));
@@ -532,7 +533,7 @@ fn conveyor_upstream_never_runs_without_downstream() {
     assert!(sim.bit("YConv1"), "2 s (200 scans) after downstream started");
     sim.step(&inputs(&[("XStop", true)]));
     assert!(!sim.bit("YConv1") && sim.bit("YConv2"), "run-on");
-    for _ in 0..998 {
+    for _ in 0..999 {
         sim.step(&inputs(&[("XStop", false)]));
     }
     assert!(sim.bit("YConv2"));

@@ -1,9 +1,9 @@
-//! The rung compiler: an LDmicro program ([`LdProgram`]) → ground hypotheses of the II algebra (equations and sound bounds), following `shared/spec/semantics.md`, "Ladder programs as signals".
+//! The rung compiler: an LDmicro program ([`LdProgram`]) → ground hypotheses of the II algebra (equations and sound bounds) that hold at every scan of what the PLC runs (`shared/spec/semantics.md`, "Programs, scan by scan").
 //!
 //! # Model
 //!
-//! Zero response time: a scan runs every rung top to bottom infinitely fast, so
-//! every signal is read at the same instant. Power flows as in LDmicro
+//! A scan runs every rung once, top to bottom; inputs are constant during it, and
+//! each read sees the last write before it in the scan. Power flows as in LDmicro
 //! (ldmicro.md §6.2): series is `·`, parallel is `+`, a contact is its signal
 //! or its complement, `SHORT` is `1*`, `OPEN`/`PLACEHOLDER` is `0*`, and
 //! elements after a false still execute: a coil in the middle of a series gets
@@ -13,22 +13,27 @@
 //!
 //! # Reads
 //!
-//! Every variable written by coils is tracked through the scan. Its value at a
-//! point of the scan is an *affine* function of its previous-scan value
-//! `pre_X`: each coil on `X` composes one step (plain `X := i`, negated
-//! `X := ¬i`, set `X := i + X`, reset `X := ¬i · X`), so after the coils seen so
-//! far `X = A + B · pre_X`. Hence:
+//! Bits are written only by coils (timers, counters, `RES`, `MOVE` and the integer
+//! elements write integers, a separate name space, so a bit and a timer may share a
+//! name). Every bit written by coils is tracked through the scan. Its value at a
+//! point of the scan is a Boolean function of its previous-scan value `pre_X`: each
+//! coil on `X` composes one step (plain `X := i`, negated `X := ¬i`, set
+//! `X := i + X`, reset `X := ¬i · X`, toggle `X := e·¬X + ¬e·X` with `e = i · fresh`
+//! the unknown rising edge of its power). Hence:
 //!
 //! * before the first coil on `X` a read sees `pre_X` (the previous-scan value);
 //! * after the last coil on `X` a read sees the signal `X` itself (exact);
 //! * between two coils on `X` (several plain coils, a set rung and a later reset
-//!   rung, …) a read sees the intermediate value `A + B · pre_X`, inlined
-//!   **exactly** (it mentions `pre_X` only if a set/reset coil came first).
+//!   rung, …) a read sees the intermediate value, inlined **exactly** (it
+//!   mentions `pre_X` only if a set/reset/toggle coil came first);
+//! * a bit that no coil writes and that is not an input (`X` pins, `I`/`M` Modbus
+//!   bits) keeps its power-up value: reads see `0*`, and `unwritten_X: X = 0*`
+//!   is a hypothesis.
 //!
 //! # Equations and memories
 //!
-//! At the last coil on `X` the end-of-scan value is `G(pre_X) = A + B · pre_X`
-//! (where `A`, `B` may read `pre_X` themselves, e.g. a seal-in contact). If
+//! At the last coil on `X` the end-of-scan value is `G(pre_X)` (a seal-in contact
+//! reads `pre_X` too). If
 //! `pre_X` does not occur, `X = G` exactly. If it occurs only as a pointwise
 //! Boolean argument and `G0 = G[pre_X:=0*] ⇒ G1 = G[pre_X:=1*]` (checked by truth
 //! table over the rung's atoms, at most [`MAX_ATOMS`](super::logic::MAX_ATOMS)),
@@ -57,19 +62,29 @@
 //!
 //! # Timers and the rest
 //!
-//! A TON with a literal delay `d` µs has output `d/IN` (exact seconds); a TOF
-//! `IN/d`; the output continues the series. A timer whose accumulator is also
+//! A TON/TOF with a literal delay of `us` µs counts `P = floor(us / cycle) + adjust`
+//! scans (ldmicro.md §6.3; the adjust field, else -1 for `LDmicro0.1` and 0
+//! otherwise): its output is on from the (P+1)-th consecutive scan of its input
+//! (TON), or for P scans after the input falls (TOF). On scan runs that is exactly
+//! `d/IN` and `IN/d` with `d = P · cycle` ([`TimerModel::Plc`], the default; a
+//! timer whose `d` differs from the written delay is named in a warning), and the
+//! input itself when `P ≤ 0`. [`TimerModel::Ideal`] uses the written delay (the
+//! paper's idealisation). The output continues the series. A timer whose accumulator is also
 //! written by another element (RES, MOVE, a second timer of the same name, …), a
 //! variable delay, a zero delay or a zero cycle, and RTO/RTL/THI/TLO/TCY give a
 //! fresh, unconstrained output. So do counters (orig CTC passes its input,
 //! exactly), one-shots (OSR `IN · fresh`, OSF `¬IN · fresh`, ODR `¬IN + fresh`;
 //! ODF and OSC plain fresh), comparisons (`IN · fresh`) and every peripheral or
 //! control-flow element; integer side effects (MOVE, math, RES) pass the power
-//! and have no Boolean meaning. A bit written by anything but a plain, negated,
-//! set or reset coil (a toggle coil, a MOVE, …) is itself unconstrained and no
-//! equation is emitted for it. Every such case is a [`CompileWarning`] naming
-//! the rung and the element: nothing is dropped silently. GOTO-style control
-//! flow is reported too; the equations assume a plain top-to-bottom scan.
+//! and have no Boolean meaning. Every such case is a [`CompileWarning`] naming
+//! the rung and the element: nothing is dropped silently.
+//!
+//! # Refused
+//!
+//! Elements that change which rungs run (`GOTO`, `GOSUB`, `SUBPROG`/`ENDSUB`,
+//! `RETURN`, `LOCK`, `SLEEP`) refuse the program with a located
+//! [`LadderError::Unsupported`]: equations of a plain top-to-bottom scan would be
+//! wrong for it. `LABEL` alone only marks a place and passes the power.
 //!
 //! # Names
 //!
@@ -865,7 +880,13 @@ impl<'a> Compiler<'a> {
         let g = match kind {
             CoilKind::Normal => input.clone(),
             CoilKind::Negated => input.clone().negate(),
-            CoilKind::Set => old.or(input.clone()),
+            // Powers in file order, the kept previous value last: `S1 + S2 + pre_X`.
+            CoilKind::Set => {
+                let (with_pre, rest): (Vec<L>, Vec<L>) = summands(&old.or(input.clone()))
+                    .into_iter()
+                    .partition(|t| self.pre_names.get(&x).is_some_and(|p| t.mentions(p)));
+                sum(rest.into_iter().chain(with_pre).collect())
+            }
             CoilKind::Reset => input.clone().negate().and(old),
             CoilKind::Toggle => {
                 // On a rising edge of the power the bit flips (ldmicro.md §4, COIL
@@ -1161,8 +1182,15 @@ pub fn program_to_ii(compiled: &CompiledProgram, notation: Notation) -> String {
                 None => "none: the output follows the input".into(),
             };
             out.push_str(&format!(
-                "// rung {}: {} {} {} µs, adjust {}: P = {} scans; effective delay {}\n",
-                t.rung, t.keyword, t.name, t.delay_us, t.adjust, t.scans, effective
+                "// rung {}: {} {} {} µs, adjust {}: P = {} scan{}; effective delay {}\n",
+                t.rung,
+                t.keyword,
+                t.name,
+                t.delay_us,
+                t.adjust,
+                t.scans,
+                if t.scans == 1 { "" } else { "s" },
+                effective
             ));
         }
     }

@@ -1208,7 +1208,13 @@ impl<'a> Parser<'a> {
                         }
                     },
                 };
-                ElementKind::Timer { kind, name: name(0), delay, adjust, adjust_given: args.len() > 2 }
+                ElementKind::Timer {
+                    kind,
+                    name: name(0),
+                    delay,
+                    adjust,
+                    adjust_given: args.len() > 2,
+                }
             }
             "OSR" => ElementKind::Edge { kind: EdgeKind::Osr },
             "OSF" => ElementKind::Edge { kind: EdgeKind::Osf },

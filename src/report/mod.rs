@@ -375,7 +375,7 @@ fn forced_by_assumptions(ctx: &Context, goal: &Obligation, opts: &Options) -> Ve
 const VACUITY_CHECK: Duration = Duration::from_millis(500);
 
 /// The rung compiler's options a run asks for.
-fn compile_options(opts: &Options) -> crate::ladder::CompileOptions {
+pub fn compile_options(opts: &Options) -> crate::ladder::CompileOptions {
     crate::ladder::CompileOptions { timers: opts.timers }
 }
 
@@ -414,7 +414,8 @@ pub fn run_program(
 ) -> Result<RunReport, InputError> {
     let mut sources = Sources::new();
     let theory = theory::standard(&mut sources).map_err(|d| fail(&sources, d, opts))?;
-    let loaded = load_program(&mut sources, program, &compile_options(opts)).map_err(|d| fail(&sources, d, opts))?;
+    let loaded = load_program(&mut sources, program, &compile_options(opts))
+        .map_err(|d| fail(&sources, d, opts))?;
     let compiled = &loaded.compiled;
     let docs = read_documents(&mut sources, paths, compiled, opts)?;
     let rename = |e: &Expr| compiled.rename_for_display(e);
@@ -465,7 +466,8 @@ pub fn run_program(
 /// `ii-prove show PROGRAM`: the compiled equations and bounds as `.ii` text.
 pub fn show_program(program: &str, opts: &Options) -> Result<String, InputError> {
     let mut sources = Sources::new();
-    let loaded = load_program(&mut sources, program, &compile_options(opts)).map_err(|d| fail(&sources, d, opts))?;
+    let loaded = load_program(&mut sources, program, &compile_options(opts))
+        .map_err(|d| fail(&sources, d, opts))?;
     Ok(crate::ladder::program_to_ii(&loaded.compiled, opts.notation()))
 }
 

@@ -135,6 +135,7 @@ pub fn program_path(script: &str, program: &str) -> PathBuf {
 pub fn load_script(
     sources: &mut Sources,
     file: FileId,
+    options: &crate::ladder::CompileOptions,
 ) -> Result<(Document, Option<CompiledProgram>), Vec<Diagnostic>> {
     let Some((program, span)) = program_header(sources, file) else {
         let doc = syntax::parse_properties(sources, file, &NoProgram)
@@ -143,7 +144,7 @@ pub fn load_script(
     };
     let path = program_path(sources.name(file), &program);
     let shown = path.display().to_string();
-    let loaded = report::load_program(sources, &shown, &Default::default()).map_err(|mut diagnostics| {
+    let loaded = report::load_program(sources, &shown, options).map_err(|mut diagnostics| {
         diagnostics.push(Diagnostic::Script(ScriptError::BadContext {
             span,
             reason: format!("the program `{shown}` named here cannot be loaded"),
@@ -177,7 +178,7 @@ pub fn check_files(paths: &[String], opts: &Options) -> ScriptRun {
                 continue;
             }
         };
-        let (doc, program) = match load_script(&mut sources, file) {
+        let (doc, program) = match load_script(&mut sources, file, &report::compile_options(opts)) {
             Ok(loaded) => loaded,
             Err(diagnostics) => {
                 run.errors.extend(diagnostics.iter().map(|d| render(d, &sources, style)));

@@ -667,9 +667,7 @@ impl Report for SyntaxError {
             UnterminatedString { .. } => "expected `\"` before the end of the line".into(),
             UnterminatedName { .. } => "expected a back quote before the end of the line".into(),
             AfterNotConcrete { .. } => "expected a concrete duration such as `5s`".into(),
-            LawOutsideTheory { .. } => {
-                "expected `property`, `assume`, `theorem` or `lemma`".into()
-            }
+            LawOutsideTheory { .. } => "expected `property`, `assume`, `theorem` or `lemma`".into(),
             _ => String::new(),
         }
     }
