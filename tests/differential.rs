@@ -747,6 +747,8 @@ struct Figures {
     /// on (`d/f`) or holding after its input fell (`f/d`) at some scan.
     timer_hyps: u64,
     timer_hyps_fired: u64,
+    /// Programs whose exact model (no fresh signal) was also replayed by the unroller.
+    unrolled: u64,
     disagreements: u64,
     failures: Vec<String>,
     keywords: BTreeSet<String>,
@@ -773,6 +775,7 @@ impl Figures {
         self.timer_terms += o.timer_terms;
         self.timer_hyps += o.timer_hyps;
         self.timer_hyps_fired += o.timer_hyps_fired;
+        self.unrolled += o.unrolled;
         self.disagreements += o.disagreements;
         if self.failures.len() < 10 {
             self.failures.extend(o.failures.iter().take(10 - self.failures.len()).cloned());
@@ -786,7 +789,8 @@ impl Figures {
              every scan ({} hypothesis-scans; {} with fresh signals, {} of them under a timer or \
              memory), {} skipped ({:.3}%: {} too many fresh signals, {} too many states, {} delay); \
              timers: {} TON/TOF terms, {} hypotheses with a timer, on in {} of them, {} scans with a d/f on, {} scans with an f/d holding after \
-             its input fell; {} disagreements",
+             its input fell; {} programs also replayed by the counterexample unroller; {} \
+             disagreements",
             self.programs,
             self.refused,
             self.scans,
@@ -805,6 +809,7 @@ impl Figures {
             self.timer_hyps_fired,
             self.timers.ton_on,
             self.timers.tof_hold,
+            self.unrolled,
             self.disagreements
         )
     }
@@ -912,6 +917,12 @@ fn check_program(label: &str, text: &str, program: &LdProgram, seed: u64) -> Fig
     let mut vals = Vec::new();
     // Stretches where every input is frozen, long enough for the longest timer to fire.
     let mut frozen = 0;
+    // Without fresh signals the equations are a complete model: the counterexample
+    // search's unroller must then reproduce every written bit of the simulator.
+    let exact_model =
+        cycle > 0 && !compiled.signals.values().any(|k| matches!(k, SignalKind::Fresh { .. }));
+    let mut input_trace: Vec<BTreeMap<String, bool>> = Vec::new();
+    let mut bit_trace: Vec<BTreeMap<String, bool>> = Vec::new();
     'scans: for scan in 0..total {
         if frozen == 0 && rng.below(3 * (longest + 2)) == 0 {
             frozen = longest + 2 + rng.below(longest + 2);
@@ -929,6 +940,10 @@ fn check_program(label: &str, text: &str, program: &LdProgram, seed: u64) -> Fig
         }
         frozen = frozen.saturating_sub(1);
         sim.step(&current);
+        if exact_model {
+            input_trace.push(current.clone());
+            bit_trace.push(sim.bits().clone());
+        }
         for (v, src) in values.iter_mut().zip(&known) {
             *v = match src {
                 Src::Bit(n) => sim.bit(n),
@@ -959,6 +974,12 @@ fn check_program(label: &str, text: &str, program: &LdProgram, seed: u64) -> Fig
         }
         prev = sim.bits().clone();
     }
+    if exact_model && fig.disagreements == 0 {
+        if let Err(what) = unroll_agrees(program, &compiled, cycle, &input_trace, &bit_trace) {
+            fail(&mut fig, what);
+        }
+        fig.unrolled = 1;
+    }
     for h in &hyps {
         match h.skip {
             Some(Skip::TooManyFresh) => fig.skipped_fresh += 1,
@@ -975,6 +996,55 @@ fn check_program(label: &str, text: &str, program: &LdProgram, seed: u64) -> Fig
         }
     }
     fig
+}
+
+/// The compiled equations unrolled by the counterexample search (`counterexample::unroll`,
+/// its delay-to-steps rule `floor(d / δ)`) over the run's inputs give every equation's
+/// bit exactly as the simulator computed it, at every scan.
+fn unroll_agrees(
+    program: &LdProgram,
+    compiled: &CompiledProgram,
+    cycle_us: u64,
+    inputs: &[BTreeMap<String, bool>],
+    bits: &[BTreeMap<String, bool>],
+) -> Result<(), String> {
+    use ii_prove::counterexample::unroll::{Concrete, unroll};
+    let heads: Vec<Expr> = compiled.hypotheses.iter().map(|h| h.lhs.clone()).collect();
+    let refs: Vec<&Expr> = heads.iter().collect();
+    let model =
+        ii_prove::counterexample::Program { ld: program, compiled, assumptions: &[] }.model(&refs);
+    let cycle = BigRational::new(cycle_us.into(), 1_000_000u64.into());
+    let steps_of =
+        |d: &ii_prove::term::Delay| (d.seconds() / &cycle).floor().to_integer().to_usize();
+    let mut missing = None;
+    let mut free = |_: &mut Concrete, name: &str, k: usize| -> bool {
+        match inputs[k].get(name) {
+            Some(v) => *v,
+            None => {
+                missing.get_or_insert_with(|| name.to_string());
+                false
+            }
+        }
+    };
+    let u = unroll(&mut Concrete, &model, &[], inputs.len(), &steps_of, &mut free)
+        .map_err(|e| format!("the unroller refuses the model: {e}"))?;
+    if let Some(name) = missing {
+        return Err(format!("the unroller asks for {name}, which is not an input"));
+    }
+    for (name, _) in &model.defs {
+        let Some(values) = u.signals.get(name) else { continue };
+        for (k, v) in values.iter().enumerate() {
+            let sim = bits[k].get(name).copied().unwrap_or(false);
+            if *v != sim {
+                return Err(format!(
+                    "the unroller gives {name} = {} at scan {k} (0-based), the simulator {}",
+                    u8::from(*v),
+                    u8::from(sim)
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 // ---------------------------------------------------------------- tests
