@@ -299,6 +299,8 @@ pub struct CompiledProgram {
     pub timers: TimerModel,
     /// Every TON/TOF compiled as a timer term, in scan order.
     pub timer_info: Vec<TimerInfo>,
+    /// The short-name index of [`names`](super::names), built on first use from `signals`.
+    pub(super) short_names: std::sync::OnceLock<BTreeMap<String, Vec<String>>>,
 }
 
 impl CompiledProgram {
@@ -1055,6 +1057,7 @@ impl<'a> Compiler<'a> {
             warnings: self.warnings,
             timers: self.options.timers,
             timer_info: self.timer_info,
+            short_names: std::sync::OnceLock::new(),
         }
     }
 }

@@ -38,14 +38,17 @@ impl CompiledProgram {
         }
     }
 
-    fn short_index(&self) -> BTreeMap<String, Vec<String>> {
-        let mut index: BTreeMap<String, Vec<String>> = BTreeMap::new();
-        for name in self.signals.keys() {
-            if let Some(s) = self.short_of(name) {
-                index.entry(s).or_default().push(name.clone());
+    /// Short name → the signals that have it; built once per program, on first use.
+    fn short_index(&self) -> &BTreeMap<String, Vec<String>> {
+        self.short_names.get_or_init(|| {
+            let mut index: BTreeMap<String, Vec<String>> = BTreeMap::new();
+            for name in self.signals.keys() {
+                if let Some(s) = self.short_of(name) {
+                    index.entry(s).or_default().push(name.clone());
+                }
             }
-        }
-        index
+            index
+        })
     }
 
     /// The name to print for a canonical signal name: the short name when it
@@ -92,7 +95,7 @@ impl Scope for CompiledProgram {
         let mut out: BTreeSet<String> = self.signals.keys().cloned().collect();
         for (short, c) in self.short_index() {
             if c.len() == 1 {
-                out.insert(short);
+                out.insert(short.clone());
             }
         }
         out.into_iter().collect()

@@ -97,6 +97,8 @@ pub struct Context {
     rules: Vec<saturate::Rule>,
     /// Side conditions already attempted, with their proofs (shared by every goal).
     premises: std::sync::Mutex<std::collections::HashMap<String, Option<Proof>>>,
+    /// Which hypotheses concern each signal (for cones of influence).
+    index: ConeIndex,
 }
 
 impl Context {
@@ -104,7 +106,102 @@ impl Context {
     pub fn new(laws: Vec<Axiom>, hypotheses: Vec<Axiom>) -> Result<Context, KernelError> {
         let kernel = Kernel::new(laws.clone(), hypotheses.clone())?;
         let rules = saturate::rules_for(&laws);
-        Ok(Context { kernel, laws, hypotheses, rules, premises: Default::default() })
+        let index = ConeIndex::new(&hypotheses);
+        Ok(Context { kernel, laws, hypotheses, rules, premises: Default::default(), index })
+    }
+
+    /// The hypotheses in the cone of influence of `terms` (see [`cone_of_influence`]),
+    /// at most `depth` steps of signal dependence away when a depth is given.
+    pub fn cone(&self, terms: &[&Expr], depth: Option<usize>) -> Vec<&Axiom> {
+        self.index.cone(&self.hypotheses, terms, depth, false)
+    }
+
+    /// A tighter cone for goal-directed attempts: a bound `X ⇒ e` or `e ⇒ X` of a signal
+    /// `X` that has a definition `X = …` joins only when `X` itself is reached (while
+    /// `X` is outside, the bound constrains nothing the goal reads).
+    fn near_cone(&self, terms: &[&Expr], depth: usize) -> Vec<&Axiom> {
+        self.index.cone(&self.hypotheses, terms, Some(depth), true)
+    }
+}
+
+/// Which hypotheses concern each signal: a definition `Q = …` concerns `Q`, any other
+/// hypothesis every signal it mentions (`concerns`); for the tighter cone, a bound of a
+/// defined signal concerns that signal only (`anchored`). Built once per context.
+struct ConeIndex {
+    concerns: std::collections::HashMap<Symbol, Vec<usize>>,
+    anchored: std::collections::HashMap<Symbol, Vec<usize>>,
+    mentions: Vec<Vec<Symbol>>,
+}
+
+impl ConeIndex {
+    fn new(hypotheses: &[Axiom]) -> ConeIndex {
+        let definition = |h: &Axiom| match (&h.lhs[root(&h.lhs)], h.rel) {
+            (Term::Name(q), Rel::Eq) => Some(*q),
+            _ => None,
+        };
+        let defined: BTreeSet<Symbol> = hypotheses.iter().filter_map(definition).collect();
+        let mut concerns: std::collections::HashMap<Symbol, Vec<usize>> = Default::default();
+        let mut anchored: std::collections::HashMap<Symbol, Vec<usize>> = Default::default();
+        let mut mentions = Vec::with_capacity(hypotheses.len());
+        for (i, h) in hypotheses.iter().enumerate() {
+            let mut named = BTreeSet::new();
+            names(&h.lhs, &mut named);
+            names(&h.rhs, &mut named);
+            let bound_of = match (&h.lhs[root(&h.lhs)], &h.rhs[root(&h.rhs)], h.rel) {
+                (Term::Name(q), _, Rel::Implies) | (_, Term::Name(q), Rel::Implies)
+                    if defined.contains(q) =>
+                {
+                    Some(*q)
+                }
+                _ => None,
+            };
+            match definition(h) {
+                Some(q) => {
+                    concerns.entry(q).or_default().push(i);
+                    anchored.entry(q).or_default().push(i);
+                }
+                None => {
+                    named.iter().for_each(|n| concerns.entry(*n).or_default().push(i));
+                    match bound_of {
+                        Some(q) => anchored.entry(q).or_default().push(i),
+                        None => named.iter().for_each(|n| anchored.entry(*n).or_default().push(i)),
+                    }
+                }
+            }
+            mentions.push(named.into_iter().collect());
+        }
+        ConeIndex { concerns, anchored, mentions }
+    }
+
+    /// Breadth first from the names of `terms`, one layer per step of dependence.
+    fn cone<'a>(
+        &self,
+        hypotheses: &'a [Axiom],
+        terms: &[&Expr],
+        depth: Option<usize>,
+        tight: bool,
+    ) -> Vec<&'a Axiom> {
+        let index = if tight { &self.anchored } else { &self.concerns };
+        let mut reached = BTreeSet::new();
+        for t in terms {
+            names(t, &mut reached);
+        }
+        let mut frontier: Vec<Symbol> = reached.iter().copied().collect();
+        let mut taken = BTreeSet::new();
+        let mut layer = 0;
+        while !frontier.is_empty() && depth.is_none_or(|d| layer < d) {
+            let mut next = Vec::new();
+            for n in &frontier {
+                for &i in index.get(n).map_or(&[][..], Vec::as_slice) {
+                    if taken.insert(i) {
+                        next.extend(self.mentions[i].iter().filter(|m| reached.insert(**m)));
+                    }
+                }
+            }
+            frontier = next;
+            layer += 1;
+        }
+        taken.into_iter().map(|i| &hypotheses[i]).collect()
     }
 }
 
@@ -117,40 +214,10 @@ fn names(e: &Expr, into: &mut BTreeSet<Symbol>) {
 }
 
 /// The hypotheses in the cone of influence of `terms`: definitions `Q = …` of a
-/// signal `Q` the cone reaches, and any other hypothesis that mentions one.
+/// signal `Q` the cone reaches, and any other hypothesis that mentions one, in the
+/// order of `hypotheses`. ([`Context::cone`] does the same with an index built once.)
 pub fn cone_of_influence<'a>(hypotheses: &'a [Axiom], terms: &[&Expr]) -> Vec<&'a Axiom> {
-    let mut reached = BTreeSet::new();
-    for t in terms {
-        names(t, &mut reached);
-    }
-    let mut taken = vec![false; hypotheses.len()];
-    loop {
-        let mut grew = false;
-        for (i, h) in hypotheses.iter().enumerate() {
-            if taken[i] {
-                continue;
-            }
-            let relevant = match (&h.lhs[root(&h.lhs)], h.rel) {
-                (Term::Name(q), Rel::Eq) => reached.contains(q),
-                _ => {
-                    let mut mentioned = BTreeSet::new();
-                    names(&h.lhs, &mut mentioned);
-                    names(&h.rhs, &mut mentioned);
-                    mentioned.iter().any(|n| reached.contains(n))
-                }
-            };
-            if relevant {
-                taken[i] = true;
-                grew = true;
-                names(&h.lhs, &mut reached);
-                names(&h.rhs, &mut reached);
-            }
-        }
-        if !grew {
-            break;
-        }
-    }
-    hypotheses.iter().zip(taken).filter(|(_, t)| *t).map(|(h, _)| h).collect()
+    ConeIndex::new(hypotheses).cone(hypotheses, terms, None, false)
 }
 
 /// Tries to prove the goal within the budget.
@@ -187,8 +254,33 @@ fn prove_at(
 ) -> Outcome {
     let started = Instant::now();
     let deadline = started + budget.time;
-    let cone: Vec<Axiom> =
-        cone_of_influence(&ctx.hypotheses, &[&goal.lhs, &goal.rhs]).into_iter().cloned().collect();
+    let goal_terms = [&goal.lhs, &goal.rhs];
+    let cone: Vec<Axiom> = ctx.cone(&goal_terms, None).into_iter().cloned().collect();
+    // Goal-directed first: the hypotheses about the goal's own signals, then those one
+    // and two steps further, … (deeper signals stay opaque atoms), widened while the
+    // abstraction has a model, with the quick methods only. A proof from fewer
+    // hypotheses is a proof; the kernel checks it in the whole context.
+    // A side condition of a law (depth > 0) is a local fact: only the nearest
+    // hypotheses are tried for it.
+    let mut reach = 1;
+    let mut previous = 0;
+    while Instant::now() < deadline {
+        if depth > 0 && reach > SIDE_CONDITION_REACH {
+            return Outcome::Unknown {
+                reason: "no quick proof from the nearest hypotheses".into(),
+                candidate: None,
+            };
+        }
+        let small: Vec<Axiom> = ctx.near_cone(&goal_terms, reach).into_iter().cloned().collect();
+        if small.len() >= cone.len() || (small.len() == previous && reach > 1) {
+            break;
+        }
+        previous = small.len();
+        if let Some(proved) = quick_proof(ctx, goal, &small, budget, deadline, depth) {
+            return Outcome::Proved(Box::new(proved));
+        }
+        reach *= 2;
+    }
     let limits = Limits { time: budget.time / 6, nodes: budget.nodes, ..Limits::default() };
     let mut terms: Vec<&Expr> = vec![&goal.lhs, &goal.rhs];
     terms.extend(cone.iter().flat_map(|h| [&h.lhs, &h.rhs]));
@@ -274,6 +366,41 @@ fn prove_at(
         },
     }
 }
+
+/// The smallest rule set, then the Boolean skeleton, on the hypotheses `cone`, with a
+/// small share of the budget: a proof when the goal follows quickly from them.
+fn quick_proof(
+    ctx: &Context,
+    goal: &Obligation,
+    cone: &[Axiom],
+    budget: Budget,
+    deadline: Instant,
+    depth: usize,
+) -> Option<Proved> {
+    let limits = Limits { time: budget.time / 50, nodes: QUICK_NODES, ..Limits::default() };
+    let mut terms: Vec<&Expr> = vec![&goal.lhs, &goal.rhs];
+    terms.extend(cone.iter().flat_map(|h| [&h.lhs, &h.rhs]));
+    // Side conditions (depth > 0) are decided on the Boolean skeleton alone.
+    let tiers = if depth == 0 { saturate::tiers(&ctx.rules, &terms) } else { Vec::new() };
+    if let Some(rules) = tiers.first() {
+        let mut run = saturate::saturate(&goal.lhs, goal.rel, &goal.rhs, cone, rules, limits);
+        if let Some(closed) = run.closed
+            && let Some(proved) =
+                certify_saturation(ctx, goal, cone, &mut run.egraph, closed, limits)
+        {
+            return Some(proved);
+        }
+    }
+    let deadline = deadline.min(Instant::now() + budget.time / 10);
+    prove_by_cases(ctx, goal, cone, deadline, budget, depth).ok()
+}
+
+/// E-nodes of a goal-directed saturation attempt: when a small cone closes the goal,
+/// it does so in a small e-graph.
+const QUICK_NODES: usize = 1_500;
+
+/// How many steps of dependence from its own signals a side condition's proof may use.
+const SIDE_CONDITION_REACH: usize = 4;
 
 /// Above this many hypotheses in the cone, a case proof is not shortened by saturation.
 const SHORTENING_CONE: usize = 40;
