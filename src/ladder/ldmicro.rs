@@ -136,12 +136,15 @@ impl Rung {
         self.body.elements()
     }
     /// Whether LDmicro skips this rung as a comment: for orig (`version.is_orig()`)
-    /// a rung holding exactly one COMMENT; for new, any rung whose first element is a COMMENT.
+    /// a rung holding exactly one COMMENT; for new, any rung whose first element (of
+    /// its top-level series: a PARALLEL starting with a COMMENT still runs) is a COMMENT.
     pub fn is_comment(&self, version: &HeaderVersion) -> bool {
-        let elements = self.elements();
-        let first_is_comment =
-            matches!(elements.first().map(|e| &e.kind), Some(ElementKind::Comment(_)));
-        if version.is_orig() { elements.len() == 1 && first_is_comment } else { first_is_comment }
+        let Circuit::Series(items) = &self.body else { return false };
+        let first_is_comment = matches!(
+            items.first(),
+            Some(Circuit::Element(Element { kind: ElementKind::Comment(_), .. }))
+        );
+        if version.is_orig() { items.len() == 1 && first_is_comment } else { first_is_comment }
     }
 }
 

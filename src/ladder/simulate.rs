@@ -63,6 +63,15 @@ impl Pow {
     }
 }
 
+/// Whether LDmicro skips a rung (ldmicro.md §4, COMMENT): orig skips a rung that is
+/// exactly one COMMENT, new any rung whose first element is a COMMENT. "First element"
+/// is the first item of the rung's top-level series, as the editor builds rungs.
+fn skipped(rung: &Rung, orig: bool) -> bool {
+    let Circuit::Series(items) = &rung.body else { return false };
+    let comment = matches!(items.first(), Some(Circuit::Element(e)) if matches!(e.kind, ElementKind::Comment(_)));
+    comment && (!orig || items.len() == 1)
+}
+
 fn wrap16(v: i64) -> i64 {
     i64::from(v as i16)
 }
@@ -98,7 +107,7 @@ impl Simulator {
         let mut sim = Simulator {
             rungs: program.rungs.clone(),
             orig,
-            comment_rungs: program.rungs.iter().map(|r| r.is_comment(&program.version)).collect(),
+            comment_rungs: program.rungs.iter().map(|r| skipped(r, orig)).collect(),
             cycle_us: program.cycle_us,
             bits: program.signals().into_iter().map(|s| (s, false)).collect(),
             ints: BTreeMap::new(),
@@ -112,7 +121,7 @@ impl Simulator {
         };
         // Only the rungs that run: a comment rung's timers and counters do not initialise
         // anything, and its control flow never executes.
-        let live = program.rungs.iter().filter(|r| !r.is_comment(&program.version));
+        let live = program.rungs.iter().filter(|r| !skipped(r, orig));
         for e in live.flat_map(|r| r.elements()) {
             match &e.kind {
                 ElementKind::Other { keyword, .. } if CONTROL_FLOW.contains(&keyword.as_str()) => {
