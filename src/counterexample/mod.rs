@@ -255,9 +255,11 @@ fn whole(d: &Delay, unit: &Time) -> Option<usize> {
     q.is_integer().then(|| q.to_integer().to_usize()).flatten()
 }
 
-/// A timer's delay in scans: `d / c` rounded down, as the search counts it.
+/// A timer's delay in scans: `d / c` rounded up. Each scan is read at its start, so
+/// `d/f` is on from the (⌈d/c⌉+1)-th consecutive scan of `f` and `f/d` stays on ⌈d/c⌉
+/// scans after `f` falls (the same count for delays that are whole scans).
 fn scans_of(d: &Delay, cycle: &Time) -> Option<usize> {
-    (d.seconds() / cycle).floor().to_integer().to_usize()
+    (d.seconds() / cycle).ceil().to_integer().to_usize()
 }
 
 /// Looks for a counterexample of `goal` on `program`, confirmed twice.
