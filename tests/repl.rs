@@ -3,8 +3,10 @@
 //!
 //! The commands are fed to `repl_with` (non-interactive, so it echoes them) and its
 //! output must equal the file, after one normalisation: every time `<number> ms`
-//! (with the spaces before it) becomes ` <t> ms`. `UPDATE_TRANSCRIPTS=1` rewrites the
-//! files from the actual output (review the diff before committing).
+//! (with the spaces before it) becomes ` <t> ms`. `$TMP` in a transcript stands for a
+//! fresh temporary directory (files the session saves go there, never into the source
+//! tree or `target/`). `UPDATE_TRANSCRIPTS=1` rewrites the files from the actual output
+//! (review the diff before committing).
 
 use std::path::{Path, PathBuf};
 
@@ -47,15 +49,26 @@ fn sessions() -> Vec<PathBuf> {
     files
 }
 
-fn run(transcript: &str) -> String {
+/// A fresh temporary directory for one test (`name`), empty.
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("ii-prove-repl-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("a temporary directory");
+    dir
+}
+
+/// Replays the commands of `transcript` with `$TMP` standing for `tmp`; the output
+/// with `tmp` written back as `$TMP`.
+fn run_in(transcript: &str, tmp: &Path) -> String {
+    let tmp = tmp.display().to_string();
     let input: String = transcript
         .lines()
         .filter_map(|l| l.strip_prefix("> ").or_else(|| l.strip_prefix("… ")))
-        .map(|l| format!("{l}\n"))
+        .map(|l| format!("{}\n", l.replace("$TMP", &tmp)))
         .collect();
     let mut output = Vec::new();
     repl::repl_with(input.as_bytes(), &mut output, false, None).expect("the REPL runs");
-    String::from_utf8(output).expect("UTF-8 output")
+    String::from_utf8(output).expect("UTF-8 output").replace(&tmp, "$TMP")
 }
 
 #[test]
@@ -66,7 +79,8 @@ fn every_transcript_replays_exactly() {
     let mut failures = Vec::new();
     for path in files {
         let expected = std::fs::read_to_string(&path).expect("readable");
-        let actual = run(&expected);
+        let stem = path.file_stem().unwrap().to_string_lossy().into_owned();
+        let actual = run_in(&expected, &temp_dir(&stem));
         if update {
             std::fs::write(&path, &actual).expect("writable");
             continue;
@@ -92,12 +106,13 @@ fn the_transcripts_cover_every_command() {
 
 #[test]
 fn a_proof_saved_from_the_repl_checks_as_a_script() {
-    let saved = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/repl-saved-test.ii");
+    let dir = temp_dir("saved");
+    let saved = dir.join("saved.ii");
     let session = format!(
         "> input f, g\n> assume E: f = g\n> goal T: 2s/f => g\n> apply ton_weaken\n> apply E\n> prove g . f = g\n> save {}\n",
         saved.display()
     );
-    let out = run(&session);
+    let out = run_in(&session, &dir);
     assert!(out.contains("saved 2 proof(s)"), "{out}");
     let result = script::check_files(&[saved.display().to_string()], &Options::default());
     assert_eq!(result.exit_code(), 0, "{}", result.errors.join("\n"));
