@@ -278,7 +278,9 @@ fn an_assumption_that_contradicts_the_program_is_reported() {
     )
     .unwrap_or_else(|e| panic!("{}", e.rendered));
     assert!(
-        run.warnings.iter().any(|w| w.contains("always_done") && w.contains("contradict")),
+        run.warnings
+            .iter()
+            .any(|w| w.message.contains("always_done") && w.message.contains("contradict")),
         "{:?}",
         run.warnings
     );

@@ -205,9 +205,41 @@ pub fn wavedrom(report: &RunReport) -> Option<String> {
     serde_json::to_string_pretty(&doc).ok()
 }
 
+/// Refuses, before any proof runs, an output path that cannot be written: its folder
+/// is missing or not writable, or it names a folder. `-` (standard output) is fine,
+/// but only for one of the two.
+pub fn check_outputs(
+    vcd_path: Option<&str>,
+    wavedrom_path: Option<&str>,
+) -> Result<(), super::InputError> {
+    let error = |text: String| super::InputError { rendered: format!("error: {text}\n") };
+    if vcd_path == Some("-") && wavedrom_path == Some("-") {
+        return Err(error(
+            "only one of --vcd and --wavedrom can write to standard output (`-`)".into(),
+        ));
+    }
+    for path in [vcd_path, wavedrom_path].into_iter().flatten().filter(|p| *p != "-") {
+        let target = std::path::Path::new(path);
+        if target.is_dir() {
+            return Err(error(format!("cannot write {path}: it is a directory")));
+        }
+        // Probe the folder with the temporary name the file is later written under.
+        let probe = format!("{path}.tmp-ii-prove");
+        std::fs::OpenOptions::new()
+            .write(true)
+            .create(true)
+            .truncate(true)
+            .open(&probe)
+            .and_then(|_| std::fs::remove_file(&probe))
+            .map_err(|e| error(format!("cannot write {path}: {e}")))?;
+    }
+    Ok(())
+}
+
 /// Writes the requested files after a successful run: each is rendered first, then
-/// written whole (to a temporary name, then renamed), so nothing is half written.
-/// A run without a counterexample writes no file and says so on standard error.
+/// written whole (to a temporary name, then renamed), so nothing is half written;
+/// `-` writes to standard output. A run without a counterexample writes no file and
+/// says so on standard error.
 pub fn write_files(
     report: &RunReport,
     vcd_path: Option<&str>,
@@ -220,10 +252,14 @@ pub fn write_files(
         let Some(path) = path else { continue };
         match render(report) {
             Some(text) => files.push((path, text)),
-            None => eprintln!("note: no counterexample to write to {path}"),
+            None => super::console::err(&format!("note: no counterexample to write to {path}\n")),
         }
     }
     for (path, text) in files {
+        if path == "-" {
+            super::console::out(&text);
+            continue;
+        }
         let tmp = format!("{path}.tmp-ii-prove");
         std::fs::write(&tmp, text).and_then(|_| std::fs::rename(&tmp, path)).map_err(|e| {
             let _ = std::fs::remove_file(&tmp);

@@ -3,11 +3,15 @@
 //! This is the layer the command line and the test harness share: it loads
 //! files (reporting located diagnostics), builds the prover's context, proves
 //! each property, looks for a witness when a proof fails, and renders the
-//! result. Exit codes: 0 all proved, 1 some refuted or unknown, 2 bad input.
+//! result. Exit codes: 0 all proved, 1 some refuted or unknown, 2 bad input
+//! (including input with no property to check). An [`Observer`] hears of each
+//! result as soon as it is known, in file order.
 
+pub mod console;
 pub mod export;
+pub mod formats;
 mod property;
-mod text;
+pub mod text;
 pub mod trace;
 pub mod waveform;
 
@@ -29,21 +33,30 @@ use crate::term::Expr;
 use crate::theory;
 
 /// How a run reports.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct Options {
     /// Print each checked proof.
     pub trace: bool,
-    /// Write JSON instead of text.
-    pub json: bool,
     /// ASCII notation and diagrams.
     pub ascii: bool,
     /// Time limit per property.
     pub timeout: Duration,
+    /// Check only the properties whose name contains one of these, or matches one of
+    /// these glob patterns (`P1*`); all when empty.
+    pub only: Vec<String>,
+    /// A vacuous proof fails the run (exit 1).
+    pub deny_vacuous: bool,
 }
 
 impl Default for Options {
     fn default() -> Self {
-        Options { trace: false, json: false, ascii: false, timeout: Duration::from_secs(10) }
+        Options {
+            trace: false,
+            ascii: false,
+            timeout: Duration::from_secs(10),
+            only: Vec::new(),
+            deny_vacuous: false,
+        }
     }
 }
 
@@ -133,11 +146,58 @@ pub struct CounterexampleReport {
     pub mark: Option<crate::semantics::Time>,
 }
 
+/// Where something is written: a file as named on the command line, 1-based line and
+/// column.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct Location {
+    /// The file.
+    pub file: String,
+    /// The line, from 1.
+    pub line: usize,
+    /// The column (in characters), from 1.
+    pub column: usize,
+}
+
+impl Location {
+    /// The start of `span`.
+    pub fn of(sources: &Sources, span: crate::diag::Span) -> Location {
+        let (line, column) = sources.line_col(span.file, span.start);
+        Location { file: sources.name(span.file).to_string(), line, column }
+    }
+}
+
+impl std::fmt::Display for Location {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}:{}:{}", self.file, self.line, self.column)
+    }
+}
+
+/// A warning about the input: an element the algebra cannot express, contradictory
+/// assumptions.
+#[derive(Clone, Debug, Serialize)]
+pub struct WarningReport {
+    /// What it says, without the location.
+    pub message: String,
+    /// Where: the element in the program, the first assumption in a property file.
+    pub location: Option<Location>,
+}
+
+impl std::fmt::Display for WarningReport {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match &self.location {
+            Some(at) => write!(f, "{at}: {}", self.message),
+            None => write!(f, "{}", self.message),
+        }
+    }
+}
+
 /// The result for one property.
 #[derive(Clone, Debug, Serialize)]
 pub struct PropertyReport {
     /// Its name.
     pub name: String,
+    /// Where its statement starts in its property file.
+    pub location: Option<Location>,
     /// The statement as printed.
     pub statement: String,
     /// The verdict.
@@ -168,6 +228,29 @@ pub struct Summary {
     pub refuted: usize,
     /// Unknown properties.
     pub unknown: usize,
+    /// Proved properties that hold only vacuously (counted among `proved` too).
+    pub vacuous: usize,
+}
+
+impl Summary {
+    /// The counts of `properties`.
+    pub fn of(properties: &[PropertyReport]) -> Summary {
+        let mut summary = Summary::default();
+        for p in properties {
+            match p.status {
+                Status::Proved => summary.proved += 1,
+                Status::Refuted => summary.refuted += 1,
+                Status::Unknown => summary.unknown += 1,
+            }
+            summary.vacuous += usize::from(p.vacuous);
+        }
+        summary
+    }
+
+    /// Does the run fail: something refuted or unknown, or (when denied) vacuous?
+    pub fn fails(&self, deny_vacuous: bool) -> bool {
+        self.refuted + self.unknown > 0 || (deny_vacuous && self.vacuous > 0)
+    }
 }
 
 /// Everything a run found.
@@ -178,17 +261,19 @@ pub struct RunReport {
     /// The property files.
     pub files: Vec<String>,
     /// Warnings (unconstrained elements and the like).
-    pub warnings: Vec<String>,
+    pub warnings: Vec<WarningReport>,
     /// Per property.
     pub properties: Vec<PropertyReport>,
     /// Totals.
     pub summary: Summary,
+    /// The run was interrupted (Ctrl-C): `properties` are those finished before.
+    pub interrupted: bool,
 }
 
 impl RunReport {
     /// 0 when every property is proved, 1 otherwise.
     pub fn exit_code(&self) -> i32 {
-        if self.summary.refuted + self.summary.unknown == 0 { 0 } else { 1 }
+        i32::from(self.summary.fails(false))
     }
 }
 
@@ -199,10 +284,14 @@ pub struct InputError {
     pub rendered: String,
 }
 
-/// Reads a file into `sources` (Latin-1 fallback for non-UTF-8 bytes).
+/// Reads a file into `sources` (Latin-1 fallback for non-UTF-8 bytes). A binary file
+/// (a NUL byte, or control characters no text file has) is refused at once.
 pub fn read_source(sources: &mut Sources, path: &str) -> Result<usize, Diagnostic> {
-    let bytes = std::fs::read(path)
-        .map_err(|e| Diagnostic::Io(IoError { path: path.to_string(), reason: e.to_string() }))?;
+    let io_error = |reason: String| Diagnostic::Io(IoError { path: path.to_string(), reason });
+    let bytes = std::fs::read(path).map_err(|e| io_error(e.to_string()))?;
+    if let Some(why) = binary(&bytes) {
+        return Err(io_error(format!("it is a binary file ({why}), not a .ii or .ld text file")));
+    }
     let text = match String::from_utf8(bytes) {
         Ok(text) => text,
         Err(e) => crate::ladder::decode_latin1(e.as_bytes()),
@@ -210,9 +299,168 @@ pub fn read_source(sources: &mut Sources, path: &str) -> Result<usize, Diagnosti
     Ok(sources.add(path, text))
 }
 
+/// Why `bytes` are not text: a NUL byte, or a control character other than tab, line
+/// feed, form feed, carriage return and the DOS end-of-file mark.
+pub fn binary(bytes: &[u8]) -> Option<String> {
+    let at = bytes
+        .iter()
+        .position(|&b| b < 0x20 && !matches!(b, b'\t' | b'\n' | 0x0c | b'\r' | 0x1a))?;
+    Some(match bytes[at] {
+        0 => format!("a NUL byte at offset {at}"),
+        b => format!("control character 0x{b:02x} at offset {at}"),
+    })
+}
+
+/// At most this many diagnostics are printed for one run; the rest are counted.
+pub const MAX_ERRORS: usize = 20;
+
 fn fail(sources: &Sources, diagnostics: Vec<Diagnostic>, opts: &Options) -> InputError {
     let style = RenderStyle { ascii: opts.ascii };
-    InputError { rendered: diagnostics.iter().map(|d| render(d, sources, style)).collect() }
+    let mut rendered: String =
+        diagnostics.iter().take(MAX_ERRORS).map(|d| render(d, sources, style)).collect();
+    if diagnostics.len() > MAX_ERRORS {
+        let more = diagnostics.len() - MAX_ERRORS;
+        let dots = if opts.ascii { "..." } else { "…" };
+        rendered.push_str(&format!(
+            "{dots} and {more} more error{}\n",
+            if more == 1 { "" } else { "s" }
+        ));
+    }
+    InputError { rendered }
+}
+
+/// A ladder program and property files, told apart by content.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Inputs {
+    /// The LDmicro program, if one is given.
+    pub program: Option<String>,
+    /// The property files, in command-line order.
+    pub properties: Vec<String>,
+}
+
+/// Sorts the command line's files into a ladder program and property files, wherever
+/// the program stands: a file is a program when its text starts with an LDmicro
+/// header (`LDmicro0.1`, `LDmicro0.2`) or, failing that, its name ends in `.ld`. Two
+/// programs are refused.
+pub fn classify(files: &[String]) -> Result<Inputs, InputError> {
+    let mut inputs = Inputs::default();
+    for path in files {
+        if !is_ladder(path) {
+            inputs.properties.push(path.clone());
+            continue;
+        }
+        if let Some(first) = &inputs.program {
+            return Err(InputError {
+                rendered: format!(
+                    "error: two ladder programs, `{first}` and `{path}`: give one program and its property files (.ii)\n"
+                ),
+            });
+        }
+        inputs.program = Some(path.clone());
+    }
+    Ok(inputs)
+}
+
+/// Does the file look like an LDmicro program (by its first bytes, else its name)?
+fn is_ladder(path: &str) -> bool {
+    use std::io::Read;
+    let mut head = [0u8; 64];
+    let n = std::fs::File::open(path).and_then(|mut f| f.read(&mut head)).unwrap_or(0);
+    let text = head[..n].strip_prefix(b"\xef\xbb\xbf").unwrap_or(&head[..n]);
+    let start = text.iter().position(|b| !b.is_ascii_whitespace()).unwrap_or(text.len());
+    text[start..].starts_with(b"LDmicro") || path.to_ascii_lowercase().ends_with(".ld")
+}
+
+/// What a run tells as it goes: the command line prints each result as soon as it is
+/// known (in file order), draws a progress line, and can print a partial summary when
+/// interrupted. Every method does nothing by default.
+pub trait Observer {
+    /// Every file is read: these properties (name, location) will be checked, in order.
+    fn begin(&mut self, _plan: &[(String, Location)]) {}
+    /// A warning about the input.
+    fn warning(&mut self, _warning: &WarningReport) {}
+    /// The property at `index` of the plan is being checked.
+    fn started(&mut self, _index: usize) {}
+    /// A property's result.
+    fn finished(&mut self, _report: &PropertyReport) {}
+}
+
+/// Hears nothing.
+impl Observer for () {}
+
+/// The properties `--only` selects (all when it names none).
+struct Selection(Vec<Pattern>);
+
+enum Pattern {
+    Substring(String),
+    Glob(globset::GlobMatcher),
+}
+
+impl Selection {
+    fn new(only: &[String]) -> Result<Selection, InputError> {
+        let mut patterns = Vec::new();
+        for p in only {
+            if p.contains(['*', '?', '[', '{']) {
+                let glob = globset::Glob::new(p).map_err(|e| InputError {
+                    rendered: format!("error: `--only {p}` is not a valid pattern: {e}\n"),
+                })?;
+                patterns.push(Pattern::Glob(glob.compile_matcher()));
+            } else {
+                patterns.push(Pattern::Substring(p.clone()));
+            }
+        }
+        Ok(Selection(patterns))
+    }
+
+    fn selects(&self, name: &str) -> bool {
+        self.0.is_empty()
+            || self.0.iter().any(|p| match p {
+                Pattern::Substring(s) => name.contains(s.as_str()),
+                Pattern::Glob(g) => g.is_match(name),
+            })
+    }
+}
+
+/// The selected properties of `docs` with their locations; an error when there are none
+/// (a run that checks nothing must not pass).
+fn plan(
+    sources: &Sources,
+    docs: &[Document],
+    paths: &[String],
+    opts: &Options,
+) -> Result<(Selection, Vec<(String, Location)>), InputError> {
+    let selection = Selection::new(&opts.only)?;
+    let plan: Vec<(String, Location)> = docs
+        .iter()
+        .flat_map(|d| &d.properties)
+        .filter(|s| selection.selects(&s.name))
+        .map(|s| (s.name.clone(), Location::of(sources, s.span)))
+        .collect();
+    if !plan.is_empty() {
+        return Ok((selection, plan));
+    }
+    let files = if paths.is_empty() {
+        "no property file (.ii) was given: `ii-prove PROGRAM.ld PROPS.ii`".to_string()
+    } else {
+        let names: Vec<String> = paths.iter().map(|p| format!("`{p}`")).collect();
+        format!(
+            "{} {} no `property` statement",
+            names.join(", "),
+            if paths.len() == 1 { "has" } else { "have" }
+        )
+    };
+    let rendered = if opts.only.is_empty() || docs.iter().all(|d| d.properties.is_empty()) {
+        format!("error: no property to check: {files}\n")
+    } else {
+        let all: Vec<&str> =
+            docs.iter().flat_map(|d| &d.properties).map(|s| s.name.as_str()).collect();
+        format!(
+            "error: no property matches `--only {}`; the properties are: {}\n",
+            opts.only.join(" --only "),
+            all.join(", ")
+        )
+    };
+    Err(InputError { rendered })
 }
 
 /// A statement's goal as a kernel obligation.
@@ -255,14 +503,28 @@ fn read_documents(
 
 /// The session for properties about free signals (`ii-prove FILE.ii …`).
 pub fn run_free(paths: &[String], opts: &Options) -> Result<RunReport, InputError> {
+    run_free_with(paths, opts, &mut ())
+}
+
+/// [`run_free`], telling `observer` of each result as it is known.
+pub fn run_free_with(
+    paths: &[String],
+    opts: &Options,
+    observer: &mut dyn Observer,
+) -> Result<RunReport, InputError> {
     let mut sources = Sources::new();
     let theory = theory::standard(&mut sources).map_err(|d| fail(&sources, d, opts))?;
     let docs = read_documents(&mut sources, paths, &NoProgram, opts)?;
+    let (selection, plan) = plan(&sources, &docs, paths, opts)?;
+    observer.begin(&plan);
     let identity = |e: &Expr| e.clone();
     let mut warnings = Vec::new();
     let mut properties = Vec::new();
     // Each file is its own theory: its assumptions are the hypotheses of its properties.
     for (doc, path) in docs.iter().zip(paths) {
+        if !doc.properties.iter().any(|s| selection.selects(&s.name)) {
+            continue;
+        }
         let hypotheses = assumptions(doc);
         let ctx = Context::new(theory.axioms(), hypotheses.clone())
             .map_err(|e| InputError { rendered: format!("error: {path}: {e}\n") })?;
@@ -274,9 +536,17 @@ pub fn run_free(paths: &[String], opts: &Options) -> Result<RunReport, InputErro
                 assumed.join(", ")
             )
         });
-        warnings.extend(inconsistent.clone());
-        for statement in &doc.properties {
+        if let Some(text) = &inconsistent {
+            let message = text.strip_prefix(&format!("{path}: ")).unwrap_or(text).to_string();
+            let location = doc.assumptions.first().map(|a| Location::of(&sources, a.span));
+            let warning = WarningReport { message, location };
+            observer.warning(&warning);
+            warnings.push(warning);
+        }
+        for statement in doc.properties.iter().filter(|s| selection.selects(&s.name)) {
+            observer.started(properties.len());
             let mut report = check_property(&ctx, statement, &hypotheses, opts, &identity, None);
+            report.location = Some(Location::of(&sources, statement.span));
             flag_vacuity(&mut report, inconsistent.as_deref(), || {
                 if hypotheses.is_empty() {
                     return None;
@@ -286,6 +556,7 @@ pub fn run_free(paths: &[String], opts: &Options) -> Result<RunReport, InputErro
                 let forced = forced_by_assumptions(&ctx, &goal, opts);
                 (!forced.is_empty()).then(|| forced_text(&style, &forced, None))
             });
+            observer.finished(&report);
             properties.push(report);
         }
     }
@@ -377,6 +648,8 @@ pub struct LoadedProgram {
     pub compiled: crate::ladder::CompiledProgram,
     /// The warnings, rendered with file and line.
     pub warnings: Vec<String>,
+    /// The same warnings with their locations.
+    pub located: Vec<WarningReport>,
 }
 
 /// Reads and compiles an LDmicro program registered under `path`.
@@ -386,7 +659,15 @@ pub fn load_program(sources: &mut Sources, path: &str) -> Result<LoadedProgram, 
         .map_err(|errors| errors.into_iter().map(Diagnostic::from).collect::<Vec<_>>())?;
     let compiled = crate::ladder::compile(&program);
     let warnings = compiled.warnings.iter().map(|w| w.describe(sources)).collect();
-    Ok(LoadedProgram { program, compiled, warnings })
+    let located = compiled
+        .warnings
+        .iter()
+        .map(|w| WarningReport {
+            message: crate::diag::Report::message(w),
+            location: Some(Location::of(sources, w.span)),
+        })
+        .collect();
+    Ok(LoadedProgram { program, compiled, warnings, located })
 }
 
 /// The session for `ii-prove PROGRAM.ld PROPS.ii…`: the properties are goals about the
@@ -396,16 +677,34 @@ pub fn run_program(
     paths: &[String],
     opts: &Options,
 ) -> Result<RunReport, InputError> {
+    run_program_with(program, paths, opts, &mut ())
+}
+
+/// [`run_program`], telling `observer` of each result as it is known.
+pub fn run_program_with(
+    program: &str,
+    paths: &[String],
+    opts: &Options,
+    observer: &mut dyn Observer,
+) -> Result<RunReport, InputError> {
     let mut sources = Sources::new();
     let theory = theory::standard(&mut sources).map_err(|d| fail(&sources, d, opts))?;
     let loaded = load_program(&mut sources, program).map_err(|d| fail(&sources, d, opts))?;
     let compiled = &loaded.compiled;
     let docs = read_documents(&mut sources, paths, compiled, opts)?;
+    let (selection, plan) = plan(&sources, &docs, paths, opts)?;
+    observer.begin(&plan);
     let rename = |e: &Expr| compiled.rename_for_display(e);
-    let mut warnings = loaded.warnings.clone();
+    let mut warnings = loaded.located.clone();
+    for w in &warnings {
+        observer.warning(w);
+    }
     let mut properties = Vec::new();
     // Each file's assumptions join the program's equations for that file's properties.
     for (doc, path) in docs.iter().zip(paths) {
+        if !doc.properties.iter().any(|s| selection.selects(&s.name)) {
+            continue;
+        }
         let assumed = assumptions(doc);
         let mut hypotheses = compiled.axioms();
         hypotheses.extend(assumed.iter().cloned());
@@ -428,16 +727,23 @@ pub fn run_program(
                         .map(|h| format!(" (checked up to t = {} s)", format_time(&h)))
                         .unwrap_or_default()
                 );
-                warnings.push(text.clone());
+                let message = text.strip_prefix(&format!("{path}: ")).unwrap_or(&text).to_string();
+                let location = doc.assumptions.first().map(|a| Location::of(&sources, a.span));
+                let warning = WarningReport { message, location };
+                observer.warning(&warning);
+                warnings.push(warning);
                 inconsistent = Some(text);
             }
         }
-        for statement in &doc.properties {
+        for statement in doc.properties.iter().filter(|s| selection.selects(&s.name)) {
+            observer.started(properties.len());
             let mut report =
                 check_property(&ctx, statement, &hypotheses, opts, &rename, Some(&session));
+            report.location = Some(Location::of(&sources, statement.span));
             flag_vacuity(&mut report, inconsistent.as_deref(), || {
                 forced_constants(&session, &obligation(&statement.value), &rename, opts)
             });
+            observer.finished(&report);
             properties.push(report);
         }
     }
@@ -454,18 +760,11 @@ pub fn show_program(program: &str, opts: &Options) -> Result<String, InputError>
 fn finish(
     program: Option<String>,
     files: Vec<String>,
-    warnings: Vec<String>,
+    warnings: Vec<WarningReport>,
     properties: Vec<PropertyReport>,
 ) -> RunReport {
-    let mut summary = Summary::default();
-    for p in &properties {
-        match p.status {
-            Status::Proved => summary.proved += 1,
-            Status::Refuted => summary.refuted += 1,
-            Status::Unknown => summary.unknown += 1,
-        }
-    }
-    RunReport { program, files, warnings, properties, summary }
+    let summary = Summary::of(&properties);
+    RunReport { program, files, warnings, properties, summary, interrupted: false }
 }
 
 /// Signals the property reads that the hypotheses force to a constant (bounded search).

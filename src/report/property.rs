@@ -41,6 +41,7 @@ pub fn check_property(
     let end = started + opts.timeout;
     let mut report = PropertyReport {
         name: statement.name.clone(),
+        location: None,
         statement: statement_text,
         status: Status::Unknown,
         reason: None,
