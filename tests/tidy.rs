@@ -80,3 +80,25 @@ fn tests_and_transcripts_write_no_files_into_the_tree() {
         }
     }
 }
+
+/// Every relative link of the README and ARCHITECTURE.md resolves inside the repository
+/// (a fresh clone has nothing beside it).
+#[test]
+fn document_links_work_in_a_clone() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    for doc in ["README.md", "ARCHITECTURE.md"] {
+        let text = std::fs::read_to_string(root.join(doc)).unwrap();
+        for (i, _) in text.match_indices("](") {
+            let target = text[i + 2..].split(')').next().unwrap_or("");
+            let target = target.split('#').next().unwrap_or("");
+            if target.is_empty() || target.contains("://") {
+                continue;
+            }
+            let path = root.join(target);
+            assert!(
+                path.canonicalize().is_ok_and(|p| p.starts_with(root.canonicalize().unwrap())),
+                "{doc}: the link `{target}` does not resolve inside the repository"
+            );
+        }
+    }
+}
