@@ -147,13 +147,15 @@ fn main() -> ExitCode {
             report::list_axioms(&opts(notation.ascii)).map(|text| (text, 0))
         }
         Some(Command::Repl { file }) => {
+            // Commands piped in end with status 2 when one of them failed.
             let result = if std::io::stdin().is_terminal() {
-                repl::run_interactive(file.as_deref())
+                repl::run_interactive(file.as_deref()).map(|()| false)
             } else {
                 repl::repl_with(std::io::stdin().lock(), std::io::stdout(), false, file.as_deref())
             };
             return match result {
-                Ok(()) => ExitCode::SUCCESS,
+                Ok(false) => ExitCode::SUCCESS,
+                Ok(true) => ExitCode::from(2),
                 Err(e) if console::is_broken_pipe(&e) => ExitCode::from(console::BROKEN_PIPE),
                 Err(e) => {
                     console::err(&format!("error: {e}\n"));

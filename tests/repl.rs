@@ -207,3 +207,61 @@ mod fuzz {
         }
     }
 }
+
+#[test]
+fn prove_names_a_property_that_is_not_loaded() {
+    let mut session = ii_prove::repl::Session::new().unwrap();
+    session.execute("load tests/data/proves/water_paper.ii");
+    let out = session.execute("prove P1");
+    assert!(out.starts_with("error: no property `P1` is loaded"), "{out}");
+    assert!(out.contains("P1a, P1b"), "{out}");
+}
+
+#[test]
+fn tab_completes_the_program_signals() {
+    let mut session = ii_prove::repl::Session::new().unwrap();
+    session.execute(&format!("load {}/examples/water.ld", env!("CARGO_MANIFEST_DIR")));
+    let names = session.completion_names();
+    for signal in ["L1_pump", "YL1_pump", "L_flow", "L06a"] {
+        assert!(names.iter().any(|n| n == signal), "{signal} does not complete");
+    }
+}
+
+#[test]
+fn save_names_the_program_relative_to_the_saved_script() {
+    let dir = temp_dir("relative");
+    let session = format!(
+        "> load {}/examples/water.ld\n> prove SP_fail => !Bf_valve\n> save $TMP/nested/proofs.ii\n",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    std::fs::create_dir_all(dir.join("nested")).unwrap();
+    let out = run_in(&session, &dir);
+    assert!(out.contains("saved 1 proof(s)"), "{out}");
+    let saved = std::fs::read_to_string(dir.join("nested/proofs.ii")).unwrap();
+    let header = saved.lines().find(|l| l.starts_with("program ")).expect("a program line");
+    assert!(header.starts_with("program \"../"), "{header}");
+    assert!(header.ends_with("examples/water.ld\""), "{header}");
+    let checked = script::check_files(
+        &[dir.join("nested/proofs.ii").display().to_string()],
+        &Options::default(),
+    );
+    assert_eq!(checked.exit_code(), 0, "{}", checked.errors.join("\n"));
+}
+
+#[test]
+fn piped_commands_that_hit_an_error_exit_non_zero() {
+    use std::io::Write;
+    use std::process::{Command, Stdio};
+    let status = |input: &str| {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_ii-prove"))
+            .arg("repl")
+            .stdin(Stdio::piped())
+            .stdout(Stdio::null())
+            .spawn()
+            .unwrap();
+        child.stdin.take().unwrap().write_all(input.as_bytes()).unwrap();
+        child.wait().unwrap().code()
+    };
+    assert_eq!(status("input f\nprove f => f + f\n"), Some(0));
+    assert_eq!(status("input f\nfrobnicate\nprove f => f\n"), Some(2));
+}

@@ -66,6 +66,32 @@ fn is_ident(s: &str) -> bool {
         && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
 }
 
+/// `target` as a path relative to the folder of `file` (both made absolute; `target`
+/// unchanged when they share no root, as on two Windows drives).
+fn relative_to_file(target: &str, file: &str) -> String {
+    use std::path::{Component, Path, PathBuf};
+    let absolute = |p: &Path| {
+        p.canonicalize().or_else(|_| std::path::absolute(p)).unwrap_or_else(|_| p.to_path_buf())
+    };
+    let target_abs = absolute(Path::new(target));
+    let folder = Path::new(file).parent().filter(|p| !p.as_os_str().is_empty());
+    let base = absolute(folder.unwrap_or(Path::new(".")));
+    let (t, b): (Vec<Component>, Vec<Component>) =
+        (target_abs.components().collect(), base.components().collect());
+    let common = t.iter().zip(&b).take_while(|(x, y)| x == y).count();
+    if common == 0 {
+        return target.to_string();
+    }
+    let mut relative = PathBuf::new();
+    for _ in common..b.len() {
+        relative.push("..");
+    }
+    for c in &t[common..] {
+        relative.push(c);
+    }
+    relative.display().to_string().replace('\\', "/")
+}
+
 fn rel_of(r: Relation) -> Rel {
     match r {
         Relation::Equals => Rel::Eq,
@@ -148,6 +174,13 @@ impl Session {
         names.extend(self.inputs.iter().cloned());
         names.extend(self.checker.rule_names());
         names.extend(self.properties.iter().map(|p| p.name.clone()));
+        if let Some((_, program)) = &self.program {
+            // The program's signals, by the names traces show (and their exact names).
+            for signal in program.signals.keys() {
+                names.push(program.display_name(signal));
+                names.push(signal.clone());
+            }
+        }
         names.push("auto".into());
         names
     }
@@ -525,6 +558,8 @@ impl Session {
                 );
             }
             (p.name.clone(), p.value.clone(), p.span)
+        } else if is_ident(rest) {
+            return self.no_such_property(rest);
         } else {
             match self.parse_named_goal(rest, "goal") {
                 Ok(x) => x,
@@ -589,6 +624,21 @@ impl Session {
                 format!("not proved {name}: {statement}\n  reason: {reason}\n")
             }
         }
+    }
+
+    /// `prove NAME` where no property is called NAME: say so, with the loaded ones.
+    fn no_such_property(&self, name: &str) -> String {
+        let names: Vec<&str> = self.properties.iter().map(|p| p.name.as_str()).collect();
+        let mut out = format!("error: no property `{name}` is loaded");
+        if let Some(near) = did_you_mean(name, names.iter().copied()) {
+            out.push_str(&format!(" (did you mean `{near}`?)"));
+        }
+        if names.is_empty() {
+            out.push_str("; `load FILE.ii` reads properties, `prove F => G` proves a goal\n");
+        } else {
+            out.push_str(&format!("; the loaded properties: {}\n", names.join(", ")));
+        }
+        out
     }
 
     fn calculation(&self, open: &Open) -> String {
@@ -967,9 +1017,11 @@ impl Session {
             return "error: no finished proofs to save\n".into();
         }
         let span = Span::new(0, 0..0);
+        // The script names its program relative to itself, so the two can move together.
+        let program = self.program.as_ref().map(|(p, _)| (relative_to_file(p, path), span));
         let doc = Document {
             file: 0,
-            program: self.program.as_ref().map(|(p, _)| (p.clone(), span)),
+            program,
             inputs: self.inputs.iter().map(|n| (n.clone(), span)).collect(),
             delays: Vec::new(),
             assumptions: self.assumptions.clone(),
