@@ -377,6 +377,24 @@ fn completions_and_the_manual_page_are_generated() {
     assert!(page.contains(".TH ii-prove") && page.contains("\\-\\-deny"), "{}", &page[..200]);
 }
 
+/// On a terminal (a pseudo-terminal from util-linux `script`), a long run shows which
+/// property it is checking; skipped where `script` is missing.
+#[test]
+fn the_progress_line_is_drawn_on_a_terminal_once_the_run_is_long() {
+    let dir = temp_dir("progress-tty");
+    let file = quick_then_slow(&dir);
+    let command = format!("{} {} --timeout 3s", env!("CARGO_BIN_EXE_ii-prove"), file.display());
+    let Ok(out) = Command::new("script").args(["-qec", &command, "/dev/null"]).output() else {
+        eprintln!("no `script` command: the terminal case is not checked");
+        return;
+    };
+    let screen = text(&out.stdout);
+    assert!(screen.contains("[1/2] checking slow (1 s)"), "{screen}");
+    // The line is cleared before the result is printed over it.
+    assert!(screen.contains("\r\x1b[Kslow "), "{screen:?}");
+    assert!(!screen.contains("checking quick"), "the first second shows no progress");
+}
+
 #[test]
 fn the_progress_line_is_not_drawn_when_standard_error_is_not_a_terminal() {
     let dir = temp_dir("progress");

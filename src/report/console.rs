@@ -67,7 +67,8 @@ struct State {
     width: usize,
     current: Option<usize>,
     began: Instant,
-    progress_shown: bool,
+    /// The progress line on screen, if one is.
+    progress_shown: Option<String>,
     done: bool,
 }
 
@@ -104,7 +105,7 @@ impl Console {
             width: 0,
             current: None,
             began: Instant::now(),
-            progress_shown: false,
+            progress_shown: None,
             done: false,
         };
         Console { state: Arc::new(Mutex::new(state)), console, opts: opts.clone() }
@@ -161,14 +162,16 @@ impl Console {
                 }
                 let Some(i) = s.current else { continue };
                 let line = format!(
-                    "\r\x1b[K[{}/{}] checking {} ({:.0} s)",
+                    "[{}/{}] checking {} ({:.0} s)",
                     s.partial.properties.len(),
                     s.plan.len(),
                     s.plan[i].0,
-                    s.began.elapsed().as_secs_f64()
+                    s.began.elapsed().as_secs_f64().floor()
                 );
-                s.progress_shown = true;
-                let _ = io::stderr().lock().write_all(line.as_bytes());
+                if s.progress_shown.as_deref() != Some(line.as_str()) {
+                    let _ = write!(io::stderr().lock(), "\r\x1b[K{line}");
+                    s.progress_shown = Some(line);
+                }
             }
         });
     }
@@ -180,9 +183,8 @@ fn emit(console: ConsoleOptions, text: &str) {
 }
 
 fn clear_progress(s: &mut State) {
-    if s.progress_shown {
+    if s.progress_shown.take().is_some() {
         let _ = io::stderr().lock().write_all(b"\r\x1b[K");
-        s.progress_shown = false;
     }
 }
 
