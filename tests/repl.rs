@@ -265,3 +265,23 @@ fn piped_commands_that_hit_an_error_exit_non_zero() {
     assert_eq!(status("input f\nprove f => f + f\n"), Some(0));
     assert_eq!(status("input f\nfrobnicate\nprove f => f\n"), Some(2));
 }
+
+#[test]
+fn prove_and_auto_search_for_counterexamples_as_the_command_line_does() {
+    let mut session = ii_prove::repl::Session::new().unwrap();
+    session.execute(&format!("load {}/examples/water_faulty.ld", env!("CARGO_MANIFEST_DIR")));
+    let started = std::time::Instant::now();
+    let out =
+        session.execute("prove P2: (L1_up + L1_pump + L1_down) . (L2_up + L2_pump + L2_down) = 0*");
+    assert!(started.elapsed() < std::time::Duration::from_secs(5), "{:?}", started.elapsed());
+    assert!(out.starts_with("refuted P2:"), "{out}");
+    assert!(out.contains("scan simulator") && out.contains("Line_swap"), "{out}");
+    let mut free = ii_prove::repl::Session::new().unwrap();
+    free.execute("input f, g");
+    free.execute("goal f => f . g");
+    let out = free.execute("auto");
+    assert!(
+        out.contains("what is left is false") && out.contains("counterexample: at t ="),
+        "{out}"
+    );
+}

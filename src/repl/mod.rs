@@ -20,6 +20,7 @@
 //! Ctrl-D (end of input) or `quit` leaves.
 
 mod interactive;
+mod refute;
 pub mod session;
 
 use std::io::{self, BufRead, Write};

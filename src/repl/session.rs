@@ -5,12 +5,13 @@ use std::sync::atomic::Ordering;
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
+use super::refute::{SearchKit, counterexample_lines};
 use super::{CANCEL, COMMANDS};
 use crate::diag::{Diagnostic, RenderStyle, Sources, Span, did_you_mean, render};
 use crate::kernel::{Axiom, Proof, Rel, Rule, Source};
 use crate::ladder::CompiledProgram;
-use crate::prover::{self, Obligation, Outcome};
-use crate::report::{self, Options, trace, waveform};
+use crate::prover::{self, Obligation};
+use crate::report::{self, Attempt, Options, trace, waveform};
 use crate::script::{self, Checker, Justified, ProvedClaim, StepError};
 use crate::semantics::{Assignment, Signal, Time, eval, format_time};
 use crate::syntax::Scope;
@@ -57,6 +58,8 @@ pub struct Session {
     notation: Notation,
     counter: usize,
     program: Option<(String, CompiledProgram)>,
+    /// The loaded program as read (the scan simulator replays counterexamples on it).
+    ladder: Option<crate::ladder::LdProgram>,
     program_hypotheses: Vec<Axiom>,
 }
 
@@ -164,6 +167,7 @@ impl Session {
             notation: Notation::Paper,
             counter: 0,
             program: None,
+            ladder: None,
             program_hypotheses: Vec::new(),
         })
     }
@@ -470,8 +474,10 @@ impl Session {
         let (count, signals) = (compiled.hypotheses.len(), compiled.signals.len());
         self.program_hypotheses = compiled.axioms();
         self.program = Some((absolute, compiled));
+        self.ladder = Some(loaded.program);
         if let Err(e) = self.rebuild() {
             self.program = None;
+            self.ladder = None;
             self.program_hypotheses.clear();
             let _ = self.rebuild();
             return format!("error: the program's hypotheses are not accepted: {e}\n");
@@ -574,14 +580,18 @@ impl Session {
         };
         let obligation = Obligation { lhs: lhs.clone(), rel, rhs: rhs.clone() };
         let started = Instant::now();
-        let Some(outcome) =
-            cancellable(move || prover::prove(&snapshot.ctx, &obligation, snapshot.budget))
-        else {
+        // The command line's attempt: the proof search and the counterexample search.
+        let kit = self.search_kit(snapshot.budget.time.div_f64(0.7));
+        let Some(outcome) = cancellable(move || {
+            kit.run(|assumed, opts, rename, program| {
+                report::attempt(&snapshot.ctx, &obligation, assumed, opts, rename, program)
+            })
+        }) else {
             return CANCELLED.into();
         };
         let statement = self.goal_text(&goal);
         match outcome {
-            Outcome::Proved(proved) => {
+            Attempt::Proved(proved) => {
                 let Some(main) = proved.certificate.main.clone() else {
                     return "error: the prover returned no proof\n".into();
                 };
@@ -620,8 +630,24 @@ impl Session {
                     ms(started.elapsed())
                 )
             }
-            Outcome::Unknown { reason, .. } => {
-                format!("not proved {name}: {statement}\n  reason: {reason}\n")
+            Attempt::Refuted(c) => format!(
+                "refuted {name}: {statement}  (confirmed by {}, {})\n{}",
+                c.confirmed_by.join(" and "),
+                ms(started.elapsed()),
+                counterexample_lines(&c)
+            ),
+            Attempt::Unknown { reason, candidate } => {
+                let mut out = format!("not proved {name}: {statement}\n  reason: {reason}\n");
+                if let Some(c) = candidate {
+                    out.push_str(&format!(
+                        "  possible counterexample (exact evaluation only, not confirmed by the scan simulator): at t = {} s\n",
+                        c.time
+                    ));
+                    for line in &c.diagram {
+                        out.push_str(&format!("    {line}\n"));
+                    }
+                }
+                out
             }
         }
     }
@@ -639,6 +665,12 @@ impl Session {
             out.push_str(&format!("; the loaded properties: {}\n", names.join(", ")));
         }
         out
+    }
+
+    /// What the command line's counterexample search needs, owned by a worker thread.
+    fn search_kit(&self, timeout: Duration) -> SearchKit {
+        let program = self.program.as_ref().map(|(_, c)| c);
+        SearchKit::new(&self.assumptions, program, self.ladder.as_ref(), self.notation, timeout)
     }
 
     fn calculation(&self, open: &Open) -> String {
@@ -833,6 +865,27 @@ impl Session {
                 let step =
                     CalcStep { relation: relation_of(rel), term: to, term_span: span, rules, span };
                 self.record(step, justified)
+            }
+            Err(StepError::Auto(reason)) => {
+                // As on the command line: is what is left to prove false?
+                let mut out = format!("error: `auto` found no proof: {reason}\n");
+                let goal = Obligation { lhs: from, rel, rhs: to };
+                let kit = self.search_kit(Duration::from_secs(10));
+                let Some(found) = cancellable(move || {
+                    kit.run(|assumed, opts, rename, program| {
+                        report::refute(&goal, assumed, opts, rename, program)
+                    })
+                }) else {
+                    return CANCELLED.into();
+                };
+                if let Some(c) = found {
+                    out.push_str(&format!(
+                        "  what is left is false (confirmed by {}):\n{}",
+                        c.confirmed_by.join(" and "),
+                        counterexample_lines(&c)
+                    ));
+                }
+                out
             }
             Err(e) => self.step_error(e, &rules),
         }

@@ -15,8 +15,8 @@ pub mod text;
 pub mod trace;
 pub mod waveform;
 
-pub use property::check_property;
 use property::style_term;
+pub use property::{Attempt, attempt, check_property, refute};
 pub use text::render_text;
 
 use std::time::Duration;

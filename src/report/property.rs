@@ -16,6 +16,95 @@ use crate::syntax::{self, Goal, Statement};
 use crate::term::Expr;
 use crate::theory;
 
+/// How an attempt at a goal ended.
+pub enum Attempt {
+    /// The kernel checked a proof.
+    Proved(Box<prover::Proved>),
+    /// A confirmed counterexample.
+    Refuted(CounterexampleReport),
+    /// Neither: why, and a counterexample only the exact evaluation confirms, if any.
+    Unknown {
+        /// What was tried.
+        reason: String,
+        /// An unconfirmed counterexample (a program's, that the simulator does not show).
+        candidate: Option<CounterexampleReport>,
+    },
+}
+
+/// The command line's attempt at a goal within `opts.timeout`: the proof search (70 %
+/// of the time), with a first, short look for a counterexample as soon as the quick
+/// methods find a model of the Boolean skeleton, then — when no proof is found — the
+/// counterexample search (bounded model checking over scans for a program, random
+/// exact signals otherwise). The REPL's `prove` runs the same.
+pub fn attempt(
+    ctx: &Context,
+    goal: &Obligation,
+    hypotheses: &[Axiom],
+    opts: &Options,
+    rename: &dyn Fn(&Expr) -> Expr,
+    program: Option<&counterexample::Program>,
+) -> Attempt {
+    let started = Instant::now();
+    let style = trace::Style { notation: opts.notation(), rename };
+    // `--timeout` bounds the whole property: the proof search gets most of it, the
+    // counterexample search the rest.
+    let budget = Budget { time: opts.timeout.mul_f64(PROOF_SHARE), ..Budget::default() };
+    let end = started + opts.timeout;
+    let search = |deadline: Instant| {
+        search_counterexample(goal, hypotheses, opts, rename, program, deadline)
+    };
+    // When the Boolean skeleton has a model the property is likely false, and the
+    // larger rule sets are slow to give up: look for a counterexample before them.
+    let mut refuted = None;
+    let outcome = prover::prove_with(ctx, goal, budget, &mut |_| {
+        match search((Instant::now() + FIRST_LOOK).min(end)) {
+            Search::Refuted(c) => refuted = Some(c),
+            Search::Unconfirmed { .. } | Search::NotFound(_) => {}
+        }
+        refuted.is_some()
+    });
+    if let Some(c) = refuted {
+        return Attempt::Refuted(c);
+    }
+    match outcome {
+        Outcome::Proved(proved) => Attempt::Proved(proved),
+        Outcome::Unknown { reason, candidate } => {
+            let limit = if program.is_some() { PROGRAM_SEARCH } else { FREE_SEARCH };
+            // At least a small share of the limit even when the proof search used
+            // all of its own.
+            let floor = Instant::now() + opts.timeout.mul_f64(1.0 - PROOF_SHARE);
+            match search((Instant::now() + limit).min(end.max(floor))) {
+                Search::Refuted(c) => Attempt::Refuted(c),
+                Search::Unconfirmed { candidate, why } => Attempt::Unknown {
+                    reason: format!("{reason}; {why}"),
+                    candidate: Some(candidate),
+                },
+                Search::NotFound(why) => {
+                    let hint = candidate_hint(&style, candidate.as_deref());
+                    Attempt::Unknown { reason: format!("{reason}; {why}{hint}"), candidate: None }
+                }
+            }
+        }
+    }
+}
+
+/// The counterexample search alone, within the command line's limits: a confirmed
+/// counterexample of `goal`, if one is found.
+pub fn refute(
+    goal: &Obligation,
+    hypotheses: &[Axiom],
+    opts: &Options,
+    rename: &dyn Fn(&Expr) -> Expr,
+    program: Option<&counterexample::Program>,
+) -> Option<CounterexampleReport> {
+    let limit = if program.is_some() { PROGRAM_SEARCH } else { FREE_SEARCH };
+    let deadline = Instant::now() + limit.min(opts.timeout);
+    match search_counterexample(goal, hypotheses, opts, rename, program, deadline) {
+        Search::Refuted(c) => Some(c),
+        Search::Unconfirmed { .. } | Search::NotFound(_) => None,
+    }
+}
+
 /// Proves one property; if that fails, looks for a witness that the exact evaluator
 /// confirms (and, for a program, the scan simulator too).
 pub fn check_property(
@@ -34,15 +123,10 @@ pub fn check_property(
         rhs: rename(&statement.value.rhs),
         ..statement.value.clone()
     };
-    let statement_text = syntax::goal_to_string(&shown, opts.notation());
-    // `--timeout` bounds the whole property: the proof search gets most of it, the
-    // counterexample search the rest.
-    let budget = Budget { time: opts.timeout.mul_f64(PROOF_SHARE), ..Budget::default() };
-    let end = started + opts.timeout;
     let mut report = PropertyReport {
         name: statement.name.clone(),
         location: None,
-        statement: statement_text,
+        statement: syntax::goal_to_string(&shown, opts.notation()),
         status: Status::Unknown,
         reason: None,
         time_ms: 0.0,
@@ -52,27 +136,8 @@ pub fn check_property(
         vacuous: false,
         vacuity: None,
     };
-    let search = |deadline: Instant| {
-        search_counterexample(&goal, hypotheses, opts, rename, program, deadline)
-    };
-    // When the Boolean skeleton has a model the property is likely false, and the
-    // larger rule sets are slow to give up: look for a counterexample before them.
-    let mut refuted = None;
-    let outcome = prover::prove_with(ctx, &goal, budget, &mut |_| {
-        match search((Instant::now() + FIRST_LOOK).min(end)) {
-            Search::Refuted(c) => refuted = Some(c),
-            Search::Unconfirmed { .. } | Search::NotFound(_) => {}
-        }
-        refuted.is_some()
-    });
-    if let Some(c) = refuted {
-        report.status = Status::Refuted;
-        report.counterexample = Some(c);
-        report.time_ms = started.elapsed().as_secs_f64() * 1e3;
-        return report;
-    }
-    match outcome {
-        Outcome::Proved(proved) => {
+    match attempt(ctx, &goal, hypotheses, opts, rename, program) {
+        Attempt::Proved(proved) => {
             report.status = Status::Proved;
             report.trace = Some(TraceReport {
                 method: match proved.method {
@@ -89,25 +154,13 @@ pub fn check_property(
                 laws: proved.theorem.laws_used().iter().cloned().collect(),
             });
         }
-        Outcome::Unknown { reason, candidate } => {
-            let limit = if program.is_some() { PROGRAM_SEARCH } else { FREE_SEARCH };
-            // At least a small share of the limit even when the proof search used
-            // all of its own.
-            let floor = Instant::now() + opts.timeout.mul_f64(1.0 - PROOF_SHARE);
-            match search((Instant::now() + limit).min(end.max(floor))) {
-                Search::Refuted(c) => {
-                    report.status = Status::Refuted;
-                    report.counterexample = Some(c);
-                }
-                Search::Unconfirmed { candidate, why } => {
-                    report.reason = Some(format!("{reason}; {why}"));
-                    report.candidate = Some(candidate);
-                }
-                Search::NotFound(why) => {
-                    let hint = candidate_hint(&style, candidate.as_deref());
-                    report.reason = Some(format!("{reason}; {why}{hint}"));
-                }
-            }
+        Attempt::Refuted(c) => {
+            report.status = Status::Refuted;
+            report.counterexample = Some(c);
+        }
+        Attempt::Unknown { reason, candidate } => {
+            report.reason = Some(reason);
+            report.candidate = candidate;
         }
     }
     report.time_ms = started.elapsed().as_secs_f64() * 1e3;
