@@ -402,3 +402,28 @@ fn the_progress_line_is_not_drawn_when_standard_error_is_not_a_terminal() {
     let out = ii_prove(&[file.to_str().unwrap(), "--timeout", "2s"]);
     assert!(!text(&out.stderr).contains('\r') && !text(&out.stderr).contains("checking"));
 }
+
+#[test]
+fn ctrl_c_under_junit_writes_the_partial_document() {
+    use std::io::Read;
+    use std::process::Stdio;
+    let dir = temp_dir("interrupt-junit");
+    let file = quick_then_slow(&dir);
+    let mut child = Command::new(env!("CARGO_BIN_EXE_ii-prove"))
+        .args([file.to_str().unwrap(), "--timeout", "60s", "--format", "junit"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // The quick property takes milliseconds; the slow one a minute.
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    let kill = Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
+    assert!(kill.success());
+    let mut xml = String::new();
+    child.stdout.take().unwrap().read_to_string(&mut xml).unwrap();
+    assert_eq!(child.wait().unwrap().code(), Some(130));
+    let doc = roxmltree::Document::parse(&xml).expect("well-formed XML");
+    let cases: Vec<_> = doc.descendants().filter(|n| n.has_tag_name("testcase")).collect();
+    assert_eq!(cases.len(), 1, "{xml}");
+    assert_eq!(cases[0].attribute("name"), Some("quick"));
+}

@@ -118,6 +118,10 @@ impl Console {
         let (console, opts) = (self.console, self.opts.clone());
         let _ = ctrlc::set_handler(move || {
             let mut s = lock(&state);
+            if s.done {
+                // The whole report is out already.
+                std::process::exit(INTERRUPTED);
+            }
             clear_progress(&mut s);
             s.partial.summary = Summary::of(&s.partial.properties);
             s.partial.interrupted = true;
