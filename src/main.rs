@@ -1,24 +1,31 @@
 //! The `ii-prove` command line: parses arguments and hands over to the library.
 
+use std::io::IsTerminal;
 use std::process::ExitCode;
 use std::time::Duration;
 
-use clap::{Parser, Subcommand};
+use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
 use ii_prove::ladder::TimerModel;
+use ii_prove::report::console::{self, Console, ConsoleOptions};
+use ii_prove::report::formats::Format;
+use ii_prove::report::text::Paint;
 use ii_prove::report::{self, Options};
 use ii_prove::{repl, script};
 
 const EXIT_CODES: &str = "\
 Exit status:
-  0  every property was proved
-  1  some property was refuted or is unknown
-  2  bad input or usage (nothing was proved from that input)";
+  0    every property was proved
+  1    some property was refuted or is unknown (or, with --deny vacuous, holds vacuously)
+  2    bad input or usage, or no property to check (nothing was proved from that input)
+  130  interrupted (Ctrl-C): the results so far and a partial summary are printed
+  141  the output pipe was closed";
 
 /// Proves safety properties of ladder programs in the II algebra of binary signals.
 ///
 /// `ii-prove PROGRAM.ld PROPS.ii` proves the properties of PROPS.ii about the
-/// compiled program; `ii-prove FILE.ii…` proves properties about the free
-/// signals the files declare with `input`.
+/// compiled program (the program is recognised by its content, wherever it
+/// stands); `ii-prove FILE.ii…` proves properties about the free signals the
+/// files declare with `input`.
 ///
 /// A property of a program holds when, on every run, it holds at every scan up to
 /// which the `assume` statements have held (hypotheses hold "up to now"). Each rung
@@ -33,45 +40,106 @@ struct Cli {
     /// A ladder program (.ld) and property files (.ii), or property files alone.
     files: Vec<String>,
     /// Print each kernel-checked proof as a calculation.
-    #[arg(long, global = true)]
+    #[arg(long)]
     trace: bool,
-    /// Write the report as JSON.
-    #[arg(long, global = true)]
+    /// The report format on standard output.
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    format: Format,
+    /// The same as `--format json`.
+    #[arg(long, conflicts_with = "format")]
     json: bool,
-    /// Use ASCII notation (`.`, `!`, `=>`) and ASCII diagrams.
-    #[arg(long, global = true)]
-    ascii: bool,
-    /// Time limit per property, in seconds.
-    #[arg(long, global = true, default_value_t = 10.0, value_name = "SECONDS")]
-    timeout: f64,
-    /// How a program's TON/TOF timers are compiled: `plc`, exactly the scans the
-    /// runtime counts (P = floor(delay / cycle) + adjust, so an LDmicro0.1 timer is one
-    /// scan early); `ideal`, the paper's idealisation, the delay as written.
-    #[arg(long, global = true, value_enum, default_value_t = Timers::Plc)]
-    timers: Timers,
-    /// Write the counterexamples as a Value Change Dump (GTKWave).
+    #[command(flatten)]
+    notation: Notation,
+    #[command(flatten)]
+    compilation: Compilation,
+    /// Time limit per property: `10`, `10s`, `500ms`, `2m` (a bare number is seconds).
+    #[arg(long, default_value = "10s", value_parser = parse_timeout, value_name = "DURATION")]
+    timeout: Duration,
+    /// Check only the properties whose name contains NAME or matches the glob NAME (`P1*`);
+    /// repeatable.
+    #[arg(long, value_name = "NAME")]
+    only: Vec<String>,
+    /// Make a kind of result fail the run: `vacuous` (a proof from hypotheses that force it).
+    #[arg(long, value_enum, value_name = "KIND")]
+    deny: Vec<Deny>,
+    /// No warnings on standard error.
+    #[arg(short, long)]
+    quiet: bool,
+    /// Colour in the text report.
+    #[arg(long, value_enum, default_value_t = Color::Auto, value_name = "WHEN")]
+    color: Color,
+    /// Write the counterexamples as a Value Change Dump (GTKWave); `-` for standard output.
     #[arg(long, value_name = "FILE")]
     vcd: Option<String>,
-    /// Write the counterexamples as WaveDrom JSON.
+    /// Write the counterexamples as WaveDrom JSON; `-` for standard output.
     #[arg(long, value_name = "FILE")]
     wavedrom: Option<String>,
 }
 
-#[derive(Clone, Copy, clap::ValueEnum)]
+/// How a ladder program is compiled.
+#[derive(Args)]
+struct Compilation {
+    /// How a program's TON/TOF timers are compiled: `plc`, exactly the scans the
+    /// runtime counts (P = floor(delay / cycle) + adjust, so an LDmicro0.1 timer is one
+    /// scan early); `ideal`, the paper's idealisation, the delay as written.
+    #[arg(long, value_enum, default_value_t = Timers::Plc)]
+    timers: Timers,
+}
+
+impl Compilation {
+    fn model(&self) -> TimerModel {
+        match self.timers {
+            Timers::Plc => TimerModel::Plc,
+            Timers::Ideal => TimerModel::Ideal,
+        }
+    }
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
 enum Timers {
+    /// The scans the runtime counts (the default).
     Plc,
+    /// The delay as written (the paper's idealisation).
     Ideal,
+}
+
+#[derive(Args)]
+struct Notation {
+    /// Use ASCII notation (`.`, `!`, `=>`) and ASCII diagrams.
+    #[arg(long)]
+    ascii: bool,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum Deny {
+    /// A vacuous proof fails the run.
+    Vacuous,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum Color {
+    /// When standard output is a terminal and `NO_COLOR` is not set.
+    Auto,
+    Always,
+    Never,
 }
 
 #[derive(Subcommand)]
 enum Command {
     /// List every law the prover may use, with its name and file.
-    Axioms,
+    Axioms {
+        #[command(flatten)]
+        notation: Notation,
+    },
     /// Check proof scripts: every theorem and lemma, step by step, by the kernel.
     Check {
         /// Proof scripts (.ii files with `theorem`/`lemma` statements).
         #[arg(required = true)]
         files: Vec<String>,
+        #[command(flatten)]
+        notation: Notation,
+        #[command(flatten)]
+        compilation: Compilation,
     },
     /// The interactive prover: state goals and prove them step by step (`help` inside).
     Repl {
@@ -82,79 +150,158 @@ enum Command {
     Show {
         /// The ladder program (.ld).
         program: String,
+        #[command(flatten)]
+        notation: Notation,
+        #[command(flatten)]
+        compilation: Compilation,
     },
+    /// Print a shell completion script (e.g. `ii-prove completions bash > ~/.local/share/bash-completion/completions/ii-prove`).
+    Completions {
+        /// The shell.
+        shell: clap_complete::Shell,
+    },
+    /// Print the manual page (roff; `ii-prove man | man -l -`).
+    Man,
+}
+
+/// `--timeout`: a positive duration, in seconds when it has no unit.
+fn parse_timeout(text: &str) -> Result<Duration, String> {
+    let duration = match text.trim().parse::<f64>() {
+        Ok(seconds) if seconds.is_finite() && seconds > 0.0 => {
+            Duration::from_secs_f64(seconds.min(1e6))
+        }
+        Ok(_) => return Err("must be a positive duration".into()),
+        Err(_) => humantime::parse_duration(text.trim()).map_err(|e| e.to_string())?,
+    };
+    if duration.is_zero() {
+        return Err("must be a positive duration".into());
+    }
+    Ok(duration)
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    if !(cli.timeout.is_finite() && cli.timeout > 0.0) {
-        eprintln!("error: --timeout must be a positive number of seconds");
-        return ExitCode::from(2);
-    }
-    let opts = Options {
-        trace: cli.trace,
-        json: cli.json,
-        ascii: cli.ascii,
-        timeout: Duration::from_secs_f64(cli.timeout.min(1e6)),
-        timers: match cli.timers {
-            Timers::Plc => TimerModel::Plc,
-            Timers::Ideal => TimerModel::Ideal,
-        },
-    };
+    let opts = |ascii: bool| Options { ascii, ..Options::default() };
     let result = match cli.command {
-        Some(Command::Axioms) => report::list_axioms(&opts).map(|text| (text, 0)),
+        Some(Command::Axioms { notation }) => {
+            report::list_axioms(&opts(notation.ascii)).map(|text| (text, 0))
+        }
         Some(Command::Repl { file }) => {
-            let result = if std::io::IsTerminal::is_terminal(&std::io::stdin()) {
-                repl::run_interactive(file.as_deref())
+            // Commands piped in end with status 2 when one of them failed.
+            let result = if std::io::stdin().is_terminal() {
+                repl::run_interactive(file.as_deref()).map(|()| false)
             } else {
                 repl::repl_with(std::io::stdin().lock(), std::io::stdout(), false, file.as_deref())
             };
             return match result {
-                Ok(()) => ExitCode::SUCCESS,
+                Ok(false) => ExitCode::SUCCESS,
+                Ok(true) => ExitCode::from(2),
+                Err(e) if console::is_broken_pipe(&e) => ExitCode::from(console::BROKEN_PIPE),
                 Err(e) => {
-                    eprintln!("error: {e}");
+                    console::err(&format!("error: {e}\n"));
                     ExitCode::from(2)
                 }
             };
         }
-        Some(Command::Check { files }) => {
+        Some(Command::Check { files, notation, compilation }) => {
+            let opts = Options { timers: compilation.model(), ..opts(notation.ascii) };
             let run = script::check_files(&files, &opts);
             for error in &run.errors {
-                eprint!("{error}");
+                console::err(error);
             }
             Ok((script::render_text(&run), run.exit_code()))
         }
-        Some(Command::Show { program }) => report::show_program(&program, &opts).map(|t| (t, 0)),
-        None if cli.files.is_empty() => {
-            eprintln!(
-                "error: no input files\n\nUsage: ii-prove [OPTIONS] [FILES]...\nFor more information, try '--help'."
-            );
-            return ExitCode::from(2);
+        Some(Command::Show { program, notation, compilation }) => {
+            let opts = Options { timers: compilation.model(), ..opts(notation.ascii) };
+            report::show_program(&program, &opts).map(|t| (t, 0))
         }
-        None => match cli.files.split_first() {
-            Some((program, props)) if program.ends_with(".ld") => {
-                report::run_program(program, props, &opts)
+        Some(Command::Completions { shell }) => {
+            let mut script = Vec::new();
+            clap_complete::generate(shell, &mut Cli::command(), "ii-prove", &mut script);
+            Ok((String::from_utf8_lossy(&script).into_owned(), 0))
+        }
+        Some(Command::Man) => {
+            let mut page = Vec::new();
+            match clap_mangen::Man::new(Cli::command()).render(&mut page) {
+                Ok(()) => Ok((String::from_utf8_lossy(&page).into_owned(), 0)),
+                Err(e) => Err(report::InputError { rendered: format!("error: {e}\n") }),
             }
-            _ => report::run_free(&cli.files, &opts),
         }
-        .and_then(|r| {
-            report::export::write_files(&r, cli.vcd.as_deref(), cli.wavedrom.as_deref())?;
-            let text =
-                if opts.json { report::render_json(&r) } else { report::render_text(&r, &opts) };
-            Ok((text, r.exit_code()))
-        }),
+        None => return prove(cli),
     };
     match result {
         Ok((text, code)) => {
-            print!("{text}");
+            console::out(&text);
             if !text.ends_with('\n') {
-                println!();
+                console::out("\n");
             }
             ExitCode::from(code as u8)
         }
         Err(e) => {
-            eprint!("{}", e.rendered);
+            console::err(&e.rendered);
             ExitCode::from(2)
         }
     }
+}
+
+/// `ii-prove [OPTIONS] FILES…`: proves every property, printing each result as it is known.
+fn prove(cli: Cli) -> ExitCode {
+    let fail = |e: report::InputError| {
+        console::err(&e.rendered);
+        ExitCode::from(2)
+    };
+    if cli.files.is_empty() {
+        console::err(
+            "error: no input files\n\nUsage: ii-prove [OPTIONS] [FILES]...\nFor more information, try '--help'.\n",
+        );
+        return ExitCode::from(2);
+    }
+    let opts = Options {
+        trace: cli.trace,
+        ascii: cli.notation.ascii,
+        timeout: cli.timeout,
+        only: cli.only.clone(),
+        deny_vacuous: cli.deny.contains(&Deny::Vacuous),
+        timers: cli.compilation.model(),
+    };
+    let format = if cli.json { Format::Json } else { cli.format };
+    let (vcd, wavedrom) = (cli.vcd.as_deref(), cli.wavedrom.as_deref());
+    if let Err(e) = report::export::check_outputs(vcd, wavedrom) {
+        return fail(e);
+    }
+    let inputs = match report::classify(&cli.files) {
+        Ok(inputs) => inputs,
+        Err(e) => return fail(e),
+    };
+    let color = match cli.color {
+        Color::Always => true,
+        Color::Never => false,
+        Color::Auto => std::io::stdout().is_terminal() && std::env::var_os("NO_COLOR").is_none(),
+    };
+    let mut console = Console::new(
+        inputs.program.clone(),
+        inputs.properties.clone(),
+        &opts,
+        ConsoleOptions {
+            format,
+            paint: Paint { enabled: color && format == Format::Text },
+            quiet: cli.quiet,
+            progress: true,
+            results_to_stderr: vcd == Some("-") || wavedrom == Some("-"),
+        },
+    );
+    console.exit_on_interrupt();
+    let run = match &inputs.program {
+        Some(program) => report::run_program_with(program, &inputs.properties, &opts, &mut console),
+        None => report::run_free_with(&inputs.properties, &opts, &mut console),
+    };
+    let run = match run {
+        Ok(run) => run,
+        Err(e) => return fail(e),
+    };
+    console.finish(&run);
+    if let Err(e) = report::export::write_files(&run, vcd, wavedrom) {
+        return fail(e);
+    }
+    ExitCode::from(u8::from(run.summary.fails(opts.deny_vacuous)))
 }

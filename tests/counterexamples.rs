@@ -192,18 +192,46 @@ fn vcd_and_wavedrom_files_read_back() {
     assert!(overlap, "the dump shows both lines on: {changes:?}");
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&wave).unwrap()).expect("WaveDrom JSON");
-    let signals = json["signal"].as_array().expect("a signal array");
-    assert!(!signals.is_empty());
-    let mut width = None;
-    for s in signals {
-        let name = s["name"].as_str().expect("a name");
-        let wave = s["wave"].as_str().expect("a wave");
-        assert!(wave.chars().all(|c| matches!(c, '0' | '1' | '.')), "{name}: {wave}");
-        assert!(!wave.starts_with('.'));
-        assert_eq!(*width.get_or_insert(wave.len()), wave.len(), "{name}: ragged");
+    // WaveDrom's format: `signal` holds one group per property, a group is an array
+    // whose first element is its name, then lanes `{name, wave}`; the last lane is the
+    // time axis, one `=` per column labelled by `data`.
+    let groups = json["signal"].as_array().expect("a signal array");
+    assert!(!groups.is_empty());
+    for group in groups {
+        let group = group.as_array().expect("a group per property");
+        let property = group[0].as_str().expect("the group's name");
+        let lanes = &group[1..];
+        let mut width = None;
+        for s in lanes {
+            let name = s["name"].as_str().expect("a name");
+            let wave = s["wave"].as_str().expect("a wave");
+            assert!(!wave.starts_with('.'));
+            assert_eq!(*width.get_or_insert(wave.len()), wave.len(), "{property}.{name}: ragged");
+        }
+        let (time, signals) = lanes.split_last().unwrap();
+        assert_eq!(time["name"], "t (s)");
+        let labels = time["data"].as_array().expect("time labels");
+        assert!(time["wave"].as_str().unwrap().chars().all(|c| c == '='));
+        assert_eq!(labels.len(), width.unwrap(), "a label per column");
+        assert_eq!(labels[0], "0");
+        for s in signals {
+            let wave = s["wave"].as_str().unwrap();
+            assert!(wave.chars().all(|c| matches!(c, '0' | '1' | '.')), "{wave}");
+        }
     }
-    let swap = signals.iter().find(|s| s["name"] == "Line_swap").expect("Line_swap");
+    let p2 = groups.iter().find(|g| g[0] == "P2").expect("a group for P2");
+    let lanes = p2.as_array().unwrap();
+    let swap = lanes.iter().find(|s| s["name"] == "Line_swap").expect("Line_swap");
     assert!(swap["wave"].as_str().unwrap().contains("01"));
+    // Labels fit their columns: 40 px per column per unit of hscale, ~7 px a character.
+    let longest = lanes.last().unwrap()["data"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| l.as_str().unwrap().len())
+        .max()
+        .unwrap();
+    assert!(json["config"]["hscale"].as_u64().unwrap() as usize * 40 >= longest * 7);
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -279,7 +307,9 @@ fn an_assumption_that_contradicts_the_program_is_reported() {
     )
     .unwrap_or_else(|e| panic!("{}", e.rendered));
     assert!(
-        run.warnings.iter().any(|w| w.contains("always_done") && w.contains("contradict")),
+        run.warnings
+            .iter()
+            .any(|w| w.message.contains("always_done") && w.message.contains("contradict")),
         "{:?}",
         run.warnings
     );

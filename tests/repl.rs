@@ -3,8 +3,10 @@
 //!
 //! The commands are fed to `repl_with` (non-interactive, so it echoes them) and its
 //! output must equal the file, after one normalisation: every time `<number> ms`
-//! (with the spaces before it) becomes ` <t> ms`. `UPDATE_TRANSCRIPTS=1` rewrites the
-//! files from the actual output (review the diff before committing).
+//! (with the spaces before it) becomes ` <t> ms`. `$TMP` in a transcript stands for a
+//! fresh temporary directory (files the session saves go there, never into the source
+//! tree or `target/`). `UPDATE_TRANSCRIPTS=1` rewrites the files from the actual output
+//! (review the diff before committing).
 
 use std::path::{Path, PathBuf};
 
@@ -47,15 +49,26 @@ fn sessions() -> Vec<PathBuf> {
     files
 }
 
-fn run(transcript: &str) -> String {
+/// A fresh temporary directory for one test (`name`), empty.
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("ii-prove-repl-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("a temporary directory");
+    dir
+}
+
+/// Replays the commands of `transcript` with `$TMP` standing for `tmp`; the output
+/// with `tmp` written back as `$TMP`.
+fn run_in(transcript: &str, tmp: &Path) -> String {
+    let tmp = tmp.display().to_string();
     let input: String = transcript
         .lines()
         .filter_map(|l| l.strip_prefix("> ").or_else(|| l.strip_prefix("… ")))
-        .map(|l| format!("{l}\n"))
+        .map(|l| format!("{}\n", l.replace("$TMP", &tmp)))
         .collect();
     let mut output = Vec::new();
     repl::repl_with(input.as_bytes(), &mut output, false, None).expect("the REPL runs");
-    String::from_utf8(output).expect("UTF-8 output")
+    String::from_utf8(output).expect("UTF-8 output").replace(&tmp, "$TMP")
 }
 
 #[test]
@@ -66,7 +79,8 @@ fn every_transcript_replays_exactly() {
     let mut failures = Vec::new();
     for path in files {
         let expected = std::fs::read_to_string(&path).expect("readable");
-        let actual = run(&expected);
+        let stem = path.file_stem().unwrap().to_string_lossy().into_owned();
+        let actual = run_in(&expected, &temp_dir(&stem));
         if update {
             std::fs::write(&path, &actual).expect("writable");
             continue;
@@ -92,12 +106,13 @@ fn the_transcripts_cover_every_command() {
 
 #[test]
 fn a_proof_saved_from_the_repl_checks_as_a_script() {
-    let saved = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/repl-saved-test.ii");
+    let dir = temp_dir("saved");
+    let saved = dir.join("saved.ii");
     let session = format!(
         "> input f, g\n> assume E: f = g\n> goal T: 2s/f => g\n> apply ton_weaken\n> apply E\n> prove g . f = g\n> save {}\n",
         saved.display()
     );
-    let out = run(&session);
+    let out = run_in(&session, &dir);
     assert!(out.contains("saved 2 proof(s)"), "{out}");
     let result = script::check_files(&[saved.display().to_string()], &Options::default());
     assert_eq!(result.exit_code(), 0, "{}", result.errors.join("\n"));
@@ -191,4 +206,82 @@ mod fuzz {
             }
         }
     }
+}
+
+#[test]
+fn prove_names_a_property_that_is_not_loaded() {
+    let mut session = ii_prove::repl::Session::new().unwrap();
+    session.execute("load tests/data/proves/water_paper.ii");
+    let out = session.execute("prove P1");
+    assert!(out.starts_with("error: no property `P1` is loaded"), "{out}");
+    assert!(out.contains("P1a, P1b"), "{out}");
+}
+
+#[test]
+fn tab_completes_the_program_signals() {
+    let mut session = ii_prove::repl::Session::new().unwrap();
+    session.execute(&format!("load {}/examples/water.ld", env!("CARGO_MANIFEST_DIR")));
+    let names = session.completion_names();
+    for signal in ["L1_pump", "YL1_pump", "L_flow", "L06a"] {
+        assert!(names.iter().any(|n| n == signal), "{signal} does not complete");
+    }
+}
+
+#[test]
+fn save_names_the_program_relative_to_the_saved_script() {
+    let dir = temp_dir("relative");
+    let session = format!(
+        "> load {}/examples/water.ld\n> prove SP_fail => !Bf_valve\n> save $TMP/nested/proofs.ii\n",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    std::fs::create_dir_all(dir.join("nested")).unwrap();
+    let out = run_in(&session, &dir);
+    assert!(out.contains("saved 1 proof(s)"), "{out}");
+    let saved = std::fs::read_to_string(dir.join("nested/proofs.ii")).unwrap();
+    let header = saved.lines().find(|l| l.starts_with("program ")).expect("a program line");
+    assert!(header.starts_with("program \"../"), "{header}");
+    assert!(header.ends_with("examples/water.ld\""), "{header}");
+    let checked = script::check_files(
+        &[dir.join("nested/proofs.ii").display().to_string()],
+        &Options::default(),
+    );
+    assert_eq!(checked.exit_code(), 0, "{}", checked.errors.join("\n"));
+}
+
+#[test]
+fn piped_commands_that_hit_an_error_exit_non_zero() {
+    use std::io::Write;
+    use std::process::{Command, Stdio};
+    let status = |input: &str| {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_ii-prove"))
+            .arg("repl")
+            .stdin(Stdio::piped())
+            .stdout(Stdio::null())
+            .spawn()
+            .unwrap();
+        child.stdin.take().unwrap().write_all(input.as_bytes()).unwrap();
+        child.wait().unwrap().code()
+    };
+    assert_eq!(status("input f\nprove f => f + f\n"), Some(0));
+    assert_eq!(status("input f\nfrobnicate\nprove f => f\n"), Some(2));
+}
+
+#[test]
+fn prove_and_auto_search_for_counterexamples_as_the_command_line_does() {
+    let mut session = ii_prove::repl::Session::new().unwrap();
+    session.execute(&format!("load {}/examples/water_faulty.ld", env!("CARGO_MANIFEST_DIR")));
+    let started = std::time::Instant::now();
+    let out =
+        session.execute("prove P2: (L1_up + L1_pump + L1_down) . (L2_up + L2_pump + L2_down) = 0*");
+    assert!(started.elapsed() < std::time::Duration::from_secs(5), "{:?}", started.elapsed());
+    assert!(out.starts_with("refuted P2:"), "{out}");
+    assert!(out.contains("scan simulator") && out.contains("Line_swap"), "{out}");
+    let mut free = ii_prove::repl::Session::new().unwrap();
+    free.execute("input f, g");
+    free.execute("goal f => f . g");
+    let out = free.execute("auto");
+    assert!(
+        out.contains("what is left is false") && out.contains("counterexample: at t ="),
+        "{out}"
+    );
 }

@@ -62,3 +62,43 @@ fn no_should_panic_in_tests() {
         assert!(!text.contains("should_panic"), "{} uses should_panic", path.display());
     }
 }
+
+/// Tests write only to temporary directories: the suite passes with `CARGO_TARGET_DIR`
+/// elsewhere and leaves the source tree as it was.
+#[test]
+fn tests_and_transcripts_write_no_files_into_the_tree() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = common::files_with(&root.join("tests"), "rs");
+    files.extend(common::files_with(&root.join("tests/repl"), "session"));
+    for path in files {
+        if path.ends_with("tests/tidy.rs") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).unwrap();
+        for needle in ["\"target/", "join(\"target", " target/"] {
+            assert!(!text.contains(needle), "{} writes into target/ ({needle})", path.display());
+        }
+    }
+}
+
+/// Every relative link of the README and ARCHITECTURE.md resolves inside the repository
+/// (a fresh clone has nothing beside it).
+#[test]
+fn document_links_work_in_a_clone() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    for doc in ["README.md", "ARCHITECTURE.md"] {
+        let text = std::fs::read_to_string(root.join(doc)).unwrap();
+        for (i, _) in text.match_indices("](") {
+            let target = text[i + 2..].split(')').next().unwrap_or("");
+            let target = target.split('#').next().unwrap_or("");
+            if target.is_empty() || target.contains("://") {
+                continue;
+            }
+            let path = root.join(target);
+            assert!(
+                path.canonicalize().is_ok_and(|p| p.starts_with(root.canonicalize().unwrap())),
+                "{doc}: the link `{target}` does not resolve inside the repository"
+            );
+        }
+    }
+}

@@ -80,7 +80,11 @@ pub fn run_interactive(file: Option<&str>) -> io::Result<()> {
     let mut session = Session::new().map_err(io::Error::other)?;
     // Ctrl-C during a command sets the flag; the command gives up and returns.
     let _ = ctrlc::set_handler(|| CANCEL.store(true, Ordering::SeqCst));
-    let config = Config::builder().auto_add_history(false).build();
+    // Tab lists the candidates when there are several.
+    let config = Config::builder()
+        .auto_add_history(false)
+        .completion_type(rustyline::CompletionType::List)
+        .build();
     let mut editor: Editor<Names, DefaultHistory> =
         Editor::with_config(config).map_err(io::Error::other)?;
     let commands: Vec<String> = super::COMMANDS.iter().map(|c| c.name.to_string()).collect();

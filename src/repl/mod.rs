@@ -20,6 +20,7 @@
 //! Ctrl-D (end of input) or `quit` leaves.
 
 mod interactive;
+mod refute;
 pub mod session;
 
 use std::io::{self, BufRead, Write};
@@ -165,7 +166,14 @@ pub fn incomplete(text: &str) -> bool {
         && !code.is_empty()
 }
 
-/// Runs the REPL over `input` and `output` until the input ends or `quit`.
+/// Did a command's output report an error?
+fn failed(text: &str) -> bool {
+    text.lines().any(|l| l.starts_with("error"))
+}
+
+/// Runs the REPL over `input` and `output` until the input ends or `quit`; whether
+/// some command failed (its output has an `error` line), so that a script of commands
+/// can end with a failing status.
 ///
 /// With `interactive == false` (scripts and transcripts) each command is echoed
 /// after `> ` (continuation lines after `… `), so the output reads as a session.
@@ -175,16 +183,18 @@ pub fn repl_with(
     mut output: impl Write,
     interactive: bool,
     file: Option<&str>,
-) -> io::Result<()> {
+) -> io::Result<bool> {
     let mut session = match Session::new() {
         Ok(s) => s,
         Err(e) => {
             write!(output, "{e}")?;
-            return Ok(());
+            return Ok(true);
         }
     };
+    let mut any_failed = false;
     if let Some(path) = file {
         let text = session.execute(&format!("load {path}"));
+        any_failed |= failed(&text);
         output.write_all(text.as_bytes())?;
     }
     let mut pending = String::new();
@@ -205,8 +215,9 @@ pub fn repl_with(
         }
         reset_cancel();
         let text = session.execute(&command);
+        any_failed |= failed(&text);
         output.write_all(text.as_bytes())?;
         output.flush()?;
     }
-    Ok(())
+    Ok(any_failed)
 }

@@ -5,12 +5,13 @@ use std::sync::atomic::Ordering;
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
+use super::refute::{SearchKit, counterexample_lines};
 use super::{CANCEL, COMMANDS};
 use crate::diag::{Diagnostic, RenderStyle, Sources, Span, did_you_mean, render};
 use crate::kernel::{Axiom, Proof, Rel, Rule, Source};
 use crate::ladder::CompiledProgram;
-use crate::prover::{self, Obligation, Outcome};
-use crate::report::{self, Options, trace, waveform};
+use crate::prover::{self, Obligation};
+use crate::report::{self, Attempt, Options, trace, waveform};
 use crate::script::{self, Checker, Justified, ProvedClaim, StepError};
 use crate::semantics::{Assignment, Signal, Time, eval, format_time};
 use crate::syntax::Scope;
@@ -57,6 +58,8 @@ pub struct Session {
     notation: Notation,
     counter: usize,
     program: Option<(String, CompiledProgram)>,
+    /// The loaded program as read (the scan simulator replays counterexamples on it).
+    ladder: Option<crate::ladder::LdProgram>,
     program_hypotheses: Vec<Axiom>,
 }
 
@@ -64,6 +67,32 @@ fn is_ident(s: &str) -> bool {
     let mut chars = s.chars();
     chars.next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
         && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
+
+/// `target` as a path relative to the folder of `file` (both made absolute; `target`
+/// unchanged when they share no root, as on two Windows drives).
+fn relative_to_file(target: &str, file: &str) -> String {
+    use std::path::{Component, Path, PathBuf};
+    let absolute = |p: &Path| {
+        p.canonicalize().or_else(|_| std::path::absolute(p)).unwrap_or_else(|_| p.to_path_buf())
+    };
+    let target_abs = absolute(Path::new(target));
+    let folder = Path::new(file).parent().filter(|p| !p.as_os_str().is_empty());
+    let base = absolute(folder.unwrap_or(Path::new(".")));
+    let (t, b): (Vec<Component>, Vec<Component>) =
+        (target_abs.components().collect(), base.components().collect());
+    let common = t.iter().zip(&b).take_while(|(x, y)| x == y).count();
+    if common == 0 {
+        return target.to_string();
+    }
+    let mut relative = PathBuf::new();
+    for _ in common..b.len() {
+        relative.push("..");
+    }
+    for c in &t[common..] {
+        relative.push(c);
+    }
+    relative.display().to_string().replace('\\', "/")
 }
 
 fn rel_of(r: Relation) -> Rel {
@@ -138,6 +167,7 @@ impl Session {
             notation: Notation::Paper,
             counter: 0,
             program: None,
+            ladder: None,
             program_hypotheses: Vec::new(),
         })
     }
@@ -148,6 +178,13 @@ impl Session {
         names.extend(self.inputs.iter().cloned());
         names.extend(self.checker.rule_names());
         names.extend(self.properties.iter().map(|p| p.name.clone()));
+        if let Some((_, program)) = &self.program {
+            // The program's signals, by the names traces show (and their exact names).
+            for signal in program.signals.keys() {
+                names.push(program.display_name(signal));
+                names.push(signal.clone());
+            }
+        }
         names.push("auto".into());
         names
     }
@@ -437,8 +474,10 @@ impl Session {
         let (count, signals) = (compiled.hypotheses.len(), compiled.signals.len());
         self.program_hypotheses = compiled.axioms();
         self.program = Some((absolute, compiled));
+        self.ladder = Some(loaded.program);
         if let Err(e) = self.rebuild() {
             self.program = None;
+            self.ladder = None;
             self.program_hypotheses.clear();
             let _ = self.rebuild();
             return format!("error: the program's hypotheses are not accepted: {e}\n");
@@ -525,6 +564,8 @@ impl Session {
                 );
             }
             (p.name.clone(), p.value.clone(), p.span)
+        } else if is_ident(rest) {
+            return self.no_such_property(rest);
         } else {
             match self.parse_named_goal(rest, "goal") {
                 Ok(x) => x,
@@ -539,14 +580,18 @@ impl Session {
         };
         let obligation = Obligation { lhs: lhs.clone(), rel, rhs: rhs.clone() };
         let started = Instant::now();
-        let Some(outcome) =
-            cancellable(move || prover::prove(&snapshot.ctx, &obligation, snapshot.budget))
-        else {
+        // The command line's attempt: the proof search and the counterexample search.
+        let kit = self.search_kit(snapshot.budget.time.div_f64(0.7));
+        let Some(outcome) = cancellable(move || {
+            kit.run(|assumed, opts, rename, program| {
+                report::attempt(&snapshot.ctx, &obligation, assumed, opts, rename, program)
+            })
+        }) else {
             return CANCELLED.into();
         };
         let statement = self.goal_text(&goal);
         match outcome {
-            Outcome::Proved(proved) => {
+            Attempt::Proved(proved) => {
                 let Some(main) = proved.certificate.main.clone() else {
                     return "error: the prover returned no proof\n".into();
                 };
@@ -585,10 +630,47 @@ impl Session {
                     ms(started.elapsed())
                 )
             }
-            Outcome::Unknown { reason, .. } => {
-                format!("not proved {name}: {statement}\n  reason: {reason}\n")
+            Attempt::Refuted(c) => format!(
+                "refuted {name}: {statement}  (confirmed by {}, {})\n{}",
+                c.confirmed_by.join(" and "),
+                ms(started.elapsed()),
+                counterexample_lines(&c)
+            ),
+            Attempt::Unknown { reason, candidate } => {
+                let mut out = format!("not proved {name}: {statement}\n  reason: {reason}\n");
+                if let Some(c) = candidate {
+                    out.push_str(&format!(
+                        "  possible counterexample (exact evaluation only, not confirmed by the scan simulator): at t = {} s\n",
+                        c.time
+                    ));
+                    for line in &c.diagram {
+                        out.push_str(&format!("    {line}\n"));
+                    }
+                }
+                out
             }
         }
+    }
+
+    /// `prove NAME` where no property is called NAME: say so, with the loaded ones.
+    fn no_such_property(&self, name: &str) -> String {
+        let names: Vec<&str> = self.properties.iter().map(|p| p.name.as_str()).collect();
+        let mut out = format!("error: no property `{name}` is loaded");
+        if let Some(near) = did_you_mean(name, names.iter().copied()) {
+            out.push_str(&format!(" (did you mean `{near}`?)"));
+        }
+        if names.is_empty() {
+            out.push_str("; `load FILE.ii` reads properties, `prove F => G` proves a goal\n");
+        } else {
+            out.push_str(&format!("; the loaded properties: {}\n", names.join(", ")));
+        }
+        out
+    }
+
+    /// What the command line's counterexample search needs, owned by a worker thread.
+    fn search_kit(&self, timeout: Duration) -> SearchKit {
+        let program = self.program.as_ref().map(|(_, c)| c);
+        SearchKit::new(&self.assumptions, program, self.ladder.as_ref(), self.notation, timeout)
     }
 
     fn calculation(&self, open: &Open) -> String {
@@ -784,6 +866,27 @@ impl Session {
                     CalcStep { relation: relation_of(rel), term: to, term_span: span, rules, span };
                 self.record(step, justified)
             }
+            Err(StepError::Auto(reason)) => {
+                // As on the command line: is what is left to prove false?
+                let mut out = format!("error: `auto` found no proof: {reason}\n");
+                let goal = Obligation { lhs: from, rel, rhs: to };
+                let kit = self.search_kit(Duration::from_secs(10));
+                let Some(found) = cancellable(move || {
+                    kit.run(|assumed, opts, rename, program| {
+                        report::refute(&goal, assumed, opts, rename, program)
+                    })
+                }) else {
+                    return CANCELLED.into();
+                };
+                if let Some(c) = found {
+                    out.push_str(&format!(
+                        "  what is left is false (confirmed by {}):\n{}",
+                        c.confirmed_by.join(" and "),
+                        counterexample_lines(&c)
+                    ));
+                }
+                out
+            }
             Err(e) => self.step_error(e, &rules),
         }
     }
@@ -967,9 +1070,11 @@ impl Session {
             return "error: no finished proofs to save\n".into();
         }
         let span = Span::new(0, 0..0);
+        // The script names its program relative to itself, so the two can move together.
+        let program = self.program.as_ref().map(|(p, _)| (relative_to_file(p, path), span));
         let doc = Document {
             file: 0,
-            program: self.program.as_ref().map(|(p, _)| (p.clone(), span)),
+            program,
             inputs: self.inputs.iter().map(|n| (n.clone(), span)).collect(),
             delays: Vec::new(),
             assumptions: self.assumptions.clone(),

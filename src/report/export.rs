@@ -3,9 +3,10 @@
 //! Both take the signals a counterexample's diagram shows. VCD times are the exact
 //! rational instants scaled to the coarsest timescale (`1 s`, `1 ms`, … `1 fs`) that
 //! makes them all integers; an instant that is not a whole number of femtoseconds is
-//! rounded (and a `$comment` says so). WaveDrom has one column per piece of the
-//! common partition of the time axis (an interval, or an isolated instant where some
-//! signal has an event), and the violation's instant is named in the head. In VCD an
+//! rounded (and a `$comment` says so). WaveDrom has a group per property, one column
+//! per piece of the partition of its time axis (an interval, or an isolated instant
+//! where some signal has an event) with a labelled time lane, and the violation's
+//! instant is named in the head. In VCD an
 //! event (a value at one instant only) is a zero-width glitch: two changes at one time.
 #![warn(missing_docs)]
 
@@ -138,17 +139,20 @@ fn value_after(s: &Signal, t: &Time) -> bool {
     s.value_at(&((t + &next) / Time::from_integer(2.into())))
 }
 
-/// Every counterexample as WaveDrom JSON (`{"signal": [...], "head": ..., "foot": ...}`);
-/// with several properties each signal name is prefixed by the property's.
+/// Every counterexample as WaveDrom JSON (`{"signal": [...], "head": ..., "foot": ...}`):
+/// one group per property (`["P2", lane, ...]`, a group being WaveDrom's array whose
+/// first element is its name), each with its signals and a last lane `t (s)` whose
+/// labels are the instants where its columns start; the head names each violation's
+/// instant; `hscale` is wide enough for the longest label and for the head.
 pub fn wavedrom(report: &RunReport) -> Option<String> {
     let cexs = counterexamples(report);
     if cexs.is_empty() {
         return None;
     }
-    let several = cexs.len() > 1;
-    let mut signals = Vec::new();
+    let mut groups = Vec::new();
+    let mut longest = 0;
+    let mut widest = 0;
     let mut heads = Vec::new();
-    let mut ticks = Vec::new();
     for (name, c) in &cexs {
         let Some((_, first)) = c.shown.first() else { continue };
         let horizon = first.horizon().clone();
@@ -171,6 +175,7 @@ pub fn wavedrom(report: &RunReport) -> Option<String> {
             }
             previous = p.clone();
         }
+        let mut group = vec![serde_json::json!(name)];
         for (label, s) in &c.shown {
             let mut wave = String::new();
             let mut last = None;
@@ -185,29 +190,84 @@ pub fn wavedrom(report: &RunReport) -> Option<String> {
                 });
                 last = Some(v);
             }
-            let shown = if several { format!("{name}.{label}") } else { label.clone() };
-            signals.push(serde_json::json!({ "name": shown, "wave": wave }));
+            // A long side (`lhs: (a + b) · …`) is named by its side only: the renderer
+            // does not widen the name column for it.
+            let label = match label.split_once(": ") {
+                Some((side @ ("lhs" | "rhs"), _)) if label.chars().count() > 24 => side,
+                _ => label.as_str(),
+            };
+            group.push(serde_json::json!({ "name": label, "wave": wave }));
         }
-        let starts: Vec<String> = std::iter::once(Time::from_integer(0.into()))
-            .chain(points.iter().cloned())
-            .take(columns.len())
-            .map(|t| format_time(&t))
-            .collect();
-        ticks.push(format!("{name}: columns start at t = {}", starts.join(", ")));
+        // Where each column starts: the instant itself for an event, else the
+        // breakpoint before the interval.
+        let mut starts = Vec::new();
+        let mut previous = Time::from_integer(0.into());
+        for t in &columns {
+            if points.contains(t) {
+                starts.push(format_time(t));
+            } else {
+                starts.push(format_time(&previous));
+                if let Some(p) = points.iter().find(|p| *p > t) {
+                    previous = p.clone();
+                }
+            }
+        }
+        longest = starts.iter().map(String::len).fold(longest, usize::max);
+        widest = widest.max(starts.len());
+        let time_wave = "=".repeat(starts.len());
+        group.push(serde_json::json!({ "name": "t (s)", "wave": time_wave, "data": starts }));
+        groups.push(serde_json::Value::Array(group));
         heads.push(format!("{name}: violated at t = {} s", c.time));
     }
+    // A column is 40 px wide at hscale 1, a character about 7 px: room for the longest
+    // time label in its column, and for the head above the widest group's columns.
+    let head = heads.join("; ");
+    let for_labels = (longest * 7 + 8).div_ceil(40);
+    let for_head = (head.chars().count() * 7).div_ceil(40 * widest.max(1));
+    let hscale = for_labels.max(for_head).max(1);
     let doc = serde_json::json!({
-        "signal": signals,
-        "head": { "text": heads.join("; ") },
-        "foot": { "text": ticks.join("; ") },
-        "config": { "hscale": 1 },
+        "signal": groups,
+        "head": { "text": head },
+        "config": { "hscale": hscale },
     });
     serde_json::to_string_pretty(&doc).ok()
 }
 
+/// Refuses, before any proof runs, an output path that cannot be written: its folder
+/// is missing or not writable, or it names a folder. `-` (standard output) is fine,
+/// but only for one of the two.
+pub fn check_outputs(
+    vcd_path: Option<&str>,
+    wavedrom_path: Option<&str>,
+) -> Result<(), super::InputError> {
+    let error = |text: String| super::InputError { rendered: format!("error: {text}\n") };
+    if vcd_path == Some("-") && wavedrom_path == Some("-") {
+        return Err(error(
+            "only one of --vcd and --wavedrom can write to standard output (`-`)".into(),
+        ));
+    }
+    for path in [vcd_path, wavedrom_path].into_iter().flatten().filter(|p| *p != "-") {
+        let target = std::path::Path::new(path);
+        if target.is_dir() {
+            return Err(error(format!("cannot write {path}: it is a directory")));
+        }
+        // Probe the folder with the temporary name the file is later written under.
+        let probe = format!("{path}.tmp-ii-prove");
+        std::fs::OpenOptions::new()
+            .write(true)
+            .create(true)
+            .truncate(true)
+            .open(&probe)
+            .and_then(|_| std::fs::remove_file(&probe))
+            .map_err(|e| error(format!("cannot write {path}: {e}")))?;
+    }
+    Ok(())
+}
+
 /// Writes the requested files after a successful run: each is rendered first, then
-/// written whole (to a temporary name, then renamed), so nothing is half written.
-/// A run without a counterexample writes no file and says so on standard error.
+/// written whole (to a temporary name, then renamed), so nothing is half written;
+/// `-` writes to standard output. A run without a counterexample writes no file and
+/// says so on standard error.
 pub fn write_files(
     report: &RunReport,
     vcd_path: Option<&str>,
@@ -220,10 +280,14 @@ pub fn write_files(
         let Some(path) = path else { continue };
         match render(report) {
             Some(text) => files.push((path, text)),
-            None => eprintln!("note: no counterexample to write to {path}"),
+            None => super::console::err(&format!("note: no counterexample to write to {path}\n")),
         }
     }
     for (path, text) in files {
+        if path == "-" {
+            super::console::out(&text);
+            continue;
+        }
         let tmp = format!("{path}.tmp-ii-prove");
         std::fs::write(&tmp, text).and_then(|_| std::fs::rename(&tmp, path)).map_err(|e| {
             let _ = std::fs::remove_file(&tmp);

@@ -3,37 +3,49 @@
 //! This is the layer the command line and the test harness share: it loads
 //! files (reporting located diagnostics), builds the prover's context, proves
 //! each property, looks for a witness when a proof fails, and renders the
-//! result. Exit codes: 0 all proved, 1 some refuted or unknown, 2 bad input.
+//! result. Exit codes: 0 all proved, 1 some refuted or unknown, 2 bad input
+//! (including input with no property to check). An [`Observer`] hears of each
+//! result as soon as it is known, in file order.
 
+pub mod console;
 pub mod export;
+pub mod formats;
+mod property;
+pub mod text;
 pub mod trace;
 pub mod waveform;
 
-use std::time::{Duration, Instant};
+use property::style_term;
+pub use property::{Attempt, attempt, check_property, refute};
+pub use text::render_text;
+
+use std::time::Duration;
 
 use serde::Serialize;
 
-use crate::counterexample::{self, Counterexample, Limits, Verdict};
+use crate::counterexample;
 use crate::diag::{Diagnostic, IoError, RenderStyle, Sources, render};
 use crate::kernel::{Axiom, Rel};
 use crate::prover::{self, Budget, Context, Obligation, Outcome};
-use crate::semantics::falsify::{self, Condition, Witness};
-use crate::semantics::{eval, format_time};
-use crate::syntax::{self, Document, Goal, NoProgram, Notation, Scope, Statement};
+use crate::semantics::format_time;
+use crate::syntax::{self, Document, Goal, NoProgram, Notation, Scope};
 use crate::term::Expr;
 use crate::theory;
 
 /// How a run reports.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct Options {
     /// Print each checked proof.
     pub trace: bool,
-    /// Write JSON instead of text.
-    pub json: bool,
     /// ASCII notation and diagrams.
     pub ascii: bool,
     /// Time limit per property.
     pub timeout: Duration,
+    /// Check only the properties whose name contains one of these, or matches one of
+    /// these glob patterns (`P1*`); all when empty.
+    pub only: Vec<String>,
+    /// A vacuous proof fails the run (exit 1).
+    pub deny_vacuous: bool,
     /// How a program's timers are compiled.
     pub timers: crate::ladder::TimerModel,
 }
@@ -42,9 +54,10 @@ impl Default for Options {
     fn default() -> Self {
         Options {
             trace: false,
-            json: false,
             ascii: false,
             timeout: Duration::from_secs(10),
+            only: Vec::new(),
+            deny_vacuous: false,
             timers: crate::ladder::TimerModel::default(),
         }
     }
@@ -136,11 +149,58 @@ pub struct CounterexampleReport {
     pub mark: Option<crate::semantics::Time>,
 }
 
+/// Where something is written: a file as named on the command line, 1-based line and
+/// column.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct Location {
+    /// The file.
+    pub file: String,
+    /// The line, from 1.
+    pub line: usize,
+    /// The column (in characters), from 1.
+    pub column: usize,
+}
+
+impl Location {
+    /// The start of `span`.
+    pub fn of(sources: &Sources, span: crate::diag::Span) -> Location {
+        let (line, column) = sources.line_col(span.file, span.start);
+        Location { file: sources.name(span.file).to_string(), line, column }
+    }
+}
+
+impl std::fmt::Display for Location {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}:{}:{}", self.file, self.line, self.column)
+    }
+}
+
+/// A warning about the input: an element the algebra cannot express, contradictory
+/// assumptions.
+#[derive(Clone, Debug, Serialize)]
+pub struct WarningReport {
+    /// What it says, without the location.
+    pub message: String,
+    /// Where: the element in the program, the first assumption in a property file.
+    pub location: Option<Location>,
+}
+
+impl std::fmt::Display for WarningReport {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match &self.location {
+            Some(at) => write!(f, "{at}: {}", self.message),
+            None => write!(f, "{}", self.message),
+        }
+    }
+}
+
 /// The result for one property.
 #[derive(Clone, Debug, Serialize)]
 pub struct PropertyReport {
     /// Its name.
     pub name: String,
+    /// Where its statement starts in its property file.
+    pub location: Option<Location>,
     /// The statement as printed.
     pub statement: String,
     /// The verdict.
@@ -171,6 +231,29 @@ pub struct Summary {
     pub refuted: usize,
     /// Unknown properties.
     pub unknown: usize,
+    /// Proved properties that hold only vacuously (counted among `proved` too).
+    pub vacuous: usize,
+}
+
+impl Summary {
+    /// The counts of `properties`.
+    pub fn of(properties: &[PropertyReport]) -> Summary {
+        let mut summary = Summary::default();
+        for p in properties {
+            match p.status {
+                Status::Proved => summary.proved += 1,
+                Status::Refuted => summary.refuted += 1,
+                Status::Unknown => summary.unknown += 1,
+            }
+            summary.vacuous += usize::from(p.vacuous);
+        }
+        summary
+    }
+
+    /// Does the run fail: something refuted or unknown, or (when denied) vacuous?
+    pub fn fails(&self, deny_vacuous: bool) -> bool {
+        self.refuted + self.unknown > 0 || (deny_vacuous && self.vacuous > 0)
+    }
 }
 
 /// Everything a run found.
@@ -183,17 +266,19 @@ pub struct RunReport {
     /// How the program's timers were compiled (`plc` or `ideal`); null without a program.
     pub timers: Option<&'static str>,
     /// Warnings (unconstrained elements and the like).
-    pub warnings: Vec<String>,
+    pub warnings: Vec<WarningReport>,
     /// Per property.
     pub properties: Vec<PropertyReport>,
     /// Totals.
     pub summary: Summary,
+    /// The run was interrupted (Ctrl-C): `properties` are those finished before.
+    pub interrupted: bool,
 }
 
 impl RunReport {
     /// 0 when every property is proved, 1 otherwise.
     pub fn exit_code(&self) -> i32 {
-        if self.summary.refuted + self.summary.unknown == 0 { 0 } else { 1 }
+        i32::from(self.summary.fails(false))
     }
 }
 
@@ -204,10 +289,14 @@ pub struct InputError {
     pub rendered: String,
 }
 
-/// Reads a file into `sources` (Latin-1 fallback for non-UTF-8 bytes).
+/// Reads a file into `sources` (Latin-1 fallback for non-UTF-8 bytes). A binary file
+/// (a NUL byte, or control characters no text file has) is refused at once.
 pub fn read_source(sources: &mut Sources, path: &str) -> Result<usize, Diagnostic> {
-    let bytes = std::fs::read(path)
-        .map_err(|e| Diagnostic::Io(IoError { path: path.to_string(), reason: e.to_string() }))?;
+    let io_error = |reason: String| Diagnostic::Io(IoError { path: path.to_string(), reason });
+    let bytes = std::fs::read(path).map_err(|e| io_error(e.to_string()))?;
+    if let Some(why) = binary(&bytes) {
+        return Err(io_error(format!("it is a binary file ({why}), not a .ii or .ld text file")));
+    }
     let text = match String::from_utf8(bytes) {
         Ok(text) => text,
         Err(e) => crate::ladder::decode_latin1(e.as_bytes()),
@@ -215,9 +304,168 @@ pub fn read_source(sources: &mut Sources, path: &str) -> Result<usize, Diagnosti
     Ok(sources.add(path, text))
 }
 
+/// Why `bytes` are not text: a NUL byte, or a control character other than tab, line
+/// feed, form feed, carriage return and the DOS end-of-file mark.
+pub fn binary(bytes: &[u8]) -> Option<String> {
+    let at = bytes
+        .iter()
+        .position(|&b| b < 0x20 && !matches!(b, b'\t' | b'\n' | 0x0c | b'\r' | 0x1a))?;
+    Some(match bytes[at] {
+        0 => format!("a NUL byte at offset {at}"),
+        b => format!("control character 0x{b:02x} at offset {at}"),
+    })
+}
+
+/// At most this many diagnostics are printed for one run; the rest are counted.
+pub const MAX_ERRORS: usize = 20;
+
 fn fail(sources: &Sources, diagnostics: Vec<Diagnostic>, opts: &Options) -> InputError {
     let style = RenderStyle { ascii: opts.ascii };
-    InputError { rendered: diagnostics.iter().map(|d| render(d, sources, style)).collect() }
+    let mut rendered: String =
+        diagnostics.iter().take(MAX_ERRORS).map(|d| render(d, sources, style)).collect();
+    if diagnostics.len() > MAX_ERRORS {
+        let more = diagnostics.len() - MAX_ERRORS;
+        let dots = if opts.ascii { "..." } else { "…" };
+        rendered.push_str(&format!(
+            "{dots} and {more} more error{}\n",
+            if more == 1 { "" } else { "s" }
+        ));
+    }
+    InputError { rendered }
+}
+
+/// A ladder program and property files, told apart by content.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Inputs {
+    /// The LDmicro program, if one is given.
+    pub program: Option<String>,
+    /// The property files, in command-line order.
+    pub properties: Vec<String>,
+}
+
+/// Sorts the command line's files into a ladder program and property files, wherever
+/// the program stands: a file is a program when its text starts with an LDmicro
+/// header (`LDmicro0.1`, `LDmicro0.2`) or, failing that, its name ends in `.ld`. Two
+/// programs are refused.
+pub fn classify(files: &[String]) -> Result<Inputs, InputError> {
+    let mut inputs = Inputs::default();
+    for path in files {
+        if !is_ladder(path) {
+            inputs.properties.push(path.clone());
+            continue;
+        }
+        if let Some(first) = &inputs.program {
+            return Err(InputError {
+                rendered: format!(
+                    "error: two ladder programs, `{first}` and `{path}`: give one program and its property files (.ii)\n"
+                ),
+            });
+        }
+        inputs.program = Some(path.clone());
+    }
+    Ok(inputs)
+}
+
+/// Does the file look like an LDmicro program (by its first bytes, else its name)?
+fn is_ladder(path: &str) -> bool {
+    use std::io::Read;
+    let mut head = [0u8; 64];
+    let n = std::fs::File::open(path).and_then(|mut f| f.read(&mut head)).unwrap_or(0);
+    let text = head[..n].strip_prefix(b"\xef\xbb\xbf").unwrap_or(&head[..n]);
+    let start = text.iter().position(|b| !b.is_ascii_whitespace()).unwrap_or(text.len());
+    text[start..].starts_with(b"LDmicro") || path.to_ascii_lowercase().ends_with(".ld")
+}
+
+/// What a run tells as it goes: the command line prints each result as soon as it is
+/// known (in file order), draws a progress line, and can print a partial summary when
+/// interrupted. Every method does nothing by default.
+pub trait Observer {
+    /// Every file is read: these properties (name, location) will be checked, in order.
+    fn begin(&mut self, _plan: &[(String, Location)]) {}
+    /// A warning about the input.
+    fn warning(&mut self, _warning: &WarningReport) {}
+    /// The property at `index` of the plan is being checked.
+    fn started(&mut self, _index: usize) {}
+    /// A property's result.
+    fn finished(&mut self, _report: &PropertyReport) {}
+}
+
+/// Hears nothing.
+impl Observer for () {}
+
+/// The properties `--only` selects (all when it names none).
+struct Selection(Vec<Pattern>);
+
+enum Pattern {
+    Substring(String),
+    Glob(globset::GlobMatcher),
+}
+
+impl Selection {
+    fn new(only: &[String]) -> Result<Selection, InputError> {
+        let mut patterns = Vec::new();
+        for p in only {
+            if p.contains(['*', '?', '[', '{']) {
+                let glob = globset::Glob::new(p).map_err(|e| InputError {
+                    rendered: format!("error: `--only {p}` is not a valid pattern: {e}\n"),
+                })?;
+                patterns.push(Pattern::Glob(glob.compile_matcher()));
+            } else {
+                patterns.push(Pattern::Substring(p.clone()));
+            }
+        }
+        Ok(Selection(patterns))
+    }
+
+    fn selects(&self, name: &str) -> bool {
+        self.0.is_empty()
+            || self.0.iter().any(|p| match p {
+                Pattern::Substring(s) => name.contains(s.as_str()),
+                Pattern::Glob(g) => g.is_match(name),
+            })
+    }
+}
+
+/// The selected properties of `docs` with their locations; an error when there are none
+/// (a run that checks nothing must not pass).
+fn plan(
+    sources: &Sources,
+    docs: &[Document],
+    paths: &[String],
+    opts: &Options,
+) -> Result<(Selection, Vec<(String, Location)>), InputError> {
+    let selection = Selection::new(&opts.only)?;
+    let plan: Vec<(String, Location)> = docs
+        .iter()
+        .flat_map(|d| &d.properties)
+        .filter(|s| selection.selects(&s.name))
+        .map(|s| (s.name.clone(), Location::of(sources, s.span)))
+        .collect();
+    if !plan.is_empty() {
+        return Ok((selection, plan));
+    }
+    let files = if paths.is_empty() {
+        "no property file (.ii) was given: `ii-prove PROGRAM.ld PROPS.ii`".to_string()
+    } else {
+        let names: Vec<String> = paths.iter().map(|p| format!("`{p}`")).collect();
+        format!(
+            "{} {} no `property` statement",
+            names.join(", "),
+            if paths.len() == 1 { "has" } else { "have" }
+        )
+    };
+    let rendered = if opts.only.is_empty() || docs.iter().all(|d| d.properties.is_empty()) {
+        format!("error: no property to check: {files}\n")
+    } else {
+        let all: Vec<&str> =
+            docs.iter().flat_map(|d| &d.properties).map(|s| s.name.as_str()).collect();
+        format!(
+            "error: no property matches `--only {}`; the properties are: {}\n",
+            opts.only.join(" --only "),
+            all.join(", ")
+        )
+    };
+    Err(InputError { rendered })
 }
 
 /// A statement's goal as a kernel obligation.
@@ -260,14 +508,28 @@ fn read_documents(
 
 /// The session for properties about free signals (`ii-prove FILE.ii …`).
 pub fn run_free(paths: &[String], opts: &Options) -> Result<RunReport, InputError> {
+    run_free_with(paths, opts, &mut ())
+}
+
+/// [`run_free`], telling `observer` of each result as it is known.
+pub fn run_free_with(
+    paths: &[String],
+    opts: &Options,
+    observer: &mut dyn Observer,
+) -> Result<RunReport, InputError> {
     let mut sources = Sources::new();
     let theory = theory::standard(&mut sources).map_err(|d| fail(&sources, d, opts))?;
     let docs = read_documents(&mut sources, paths, &NoProgram, opts)?;
+    let (selection, plan) = plan(&sources, &docs, paths, opts)?;
+    observer.begin(&plan);
     let identity = |e: &Expr| e.clone();
     let mut warnings = Vec::new();
     let mut properties = Vec::new();
     // Each file is its own theory: its assumptions are the hypotheses of its properties.
     for (doc, path) in docs.iter().zip(paths) {
+        if !doc.properties.iter().any(|s| selection.selects(&s.name)) {
+            continue;
+        }
         let hypotheses = assumptions(doc);
         let ctx = Context::new(theory.axioms(), hypotheses.clone())
             .map_err(|e| InputError { rendered: format!("error: {path}: {e}\n") })?;
@@ -279,9 +541,17 @@ pub fn run_free(paths: &[String], opts: &Options) -> Result<RunReport, InputErro
                 assumed.join(", ")
             )
         });
-        warnings.extend(inconsistent.clone());
-        for statement in &doc.properties {
+        if let Some(text) = &inconsistent {
+            let message = text.strip_prefix(&format!("{path}: ")).unwrap_or(text).to_string();
+            let location = doc.assumptions.first().map(|a| Location::of(&sources, a.span));
+            let warning = WarningReport { message, location };
+            observer.warning(&warning);
+            warnings.push(warning);
+        }
+        for statement in doc.properties.iter().filter(|s| selection.selects(&s.name)) {
+            observer.started(properties.len());
             let mut report = check_property(&ctx, statement, &hypotheses, opts, &identity, None);
+            report.location = Some(Location::of(&sources, statement.span));
             flag_vacuity(&mut report, inconsistent.as_deref(), || {
                 if hypotheses.is_empty() {
                     return None;
@@ -291,6 +561,7 @@ pub fn run_free(paths: &[String], opts: &Options) -> Result<RunReport, InputErro
                 let forced = forced_by_assumptions(&ctx, &goal, opts);
                 (!forced.is_empty()).then(|| forced_text(&style, &forced, None))
             });
+            observer.finished(&report);
             properties.push(report);
         }
     }
@@ -387,6 +658,8 @@ pub struct LoadedProgram {
     pub compiled: crate::ladder::CompiledProgram,
     /// The warnings, rendered with file and line.
     pub warnings: Vec<String>,
+    /// The same warnings with their locations.
+    pub located: Vec<WarningReport>,
 }
 
 /// Reads and compiles an LDmicro program registered under `path`.
@@ -402,7 +675,15 @@ pub fn load_program(
     let program = crate::ladder::read_ldmicro(sources, file).map_err(diagnostics)?;
     let compiled = crate::ladder::compile_with(&program, options).map_err(diagnostics)?;
     let warnings = compiled.warnings.iter().map(|w| w.describe(sources)).collect();
-    Ok(LoadedProgram { program, compiled, warnings })
+    let located = compiled
+        .warnings
+        .iter()
+        .map(|w| WarningReport {
+            message: crate::diag::Report::message(w),
+            location: Some(Location::of(sources, w.span)),
+        })
+        .collect();
+    Ok(LoadedProgram { program, compiled, warnings, located })
 }
 
 /// The session for `ii-prove PROGRAM.ld PROPS.ii…`: the properties are goals about the
@@ -412,17 +693,35 @@ pub fn run_program(
     paths: &[String],
     opts: &Options,
 ) -> Result<RunReport, InputError> {
+    run_program_with(program, paths, opts, &mut ())
+}
+
+/// [`run_program`], telling `observer` of each result as it is known.
+pub fn run_program_with(
+    program: &str,
+    paths: &[String],
+    opts: &Options,
+    observer: &mut dyn Observer,
+) -> Result<RunReport, InputError> {
     let mut sources = Sources::new();
     let theory = theory::standard(&mut sources).map_err(|d| fail(&sources, d, opts))?;
     let loaded = load_program(&mut sources, program, &compile_options(opts))
         .map_err(|d| fail(&sources, d, opts))?;
     let compiled = &loaded.compiled;
     let docs = read_documents(&mut sources, paths, compiled, opts)?;
+    let (selection, plan) = plan(&sources, &docs, paths, opts)?;
+    observer.begin(&plan);
     let rename = |e: &Expr| compiled.rename_for_display(e);
-    let mut warnings = loaded.warnings.clone();
+    let mut warnings = loaded.located.clone();
+    for w in &warnings {
+        observer.warning(w);
+    }
     let mut properties = Vec::new();
     // Each file's assumptions join the program's equations for that file's properties.
     for (doc, path) in docs.iter().zip(paths) {
+        if !doc.properties.iter().any(|s| selection.selects(&s.name)) {
+            continue;
+        }
         let assumed = assumptions(doc);
         let mut hypotheses = compiled.axioms();
         hypotheses.extend(assumed.iter().cloned());
@@ -445,16 +744,23 @@ pub fn run_program(
                         .map(|h| format!(" (checked up to t = {} s)", format_time(&h)))
                         .unwrap_or_default()
                 );
-                warnings.push(text.clone());
+                let message = text.strip_prefix(&format!("{path}: ")).unwrap_or(&text).to_string();
+                let location = doc.assumptions.first().map(|a| Location::of(&sources, a.span));
+                let warning = WarningReport { message, location };
+                observer.warning(&warning);
+                warnings.push(warning);
                 inconsistent = Some(text);
             }
         }
-        for statement in &doc.properties {
+        for statement in doc.properties.iter().filter(|s| selection.selects(&s.name)) {
+            observer.started(properties.len());
             let mut report =
                 check_property(&ctx, statement, &hypotheses, opts, &rename, Some(&session));
+            report.location = Some(Location::of(&sources, statement.span));
             flag_vacuity(&mut report, inconsistent.as_deref(), || {
                 forced_constants(&session, &obligation(&statement.value), &rename, opts)
             });
+            observer.finished(&report);
             properties.push(report);
         }
     }
@@ -474,18 +780,11 @@ pub fn show_program(program: &str, opts: &Options) -> Result<String, InputError>
 fn finish(
     program: Option<String>,
     files: Vec<String>,
-    warnings: Vec<String>,
+    warnings: Vec<WarningReport>,
     properties: Vec<PropertyReport>,
 ) -> RunReport {
-    let mut summary = Summary::default();
-    for p in &properties {
-        match p.status {
-            Status::Proved => summary.proved += 1,
-            Status::Refuted => summary.refuted += 1,
-            Status::Unknown => summary.unknown += 1,
-        }
-    }
-    RunReport { program, files, timers: None, warnings, properties, summary }
+    let summary = Summary::of(&properties);
+    RunReport { program, files, timers: None, warnings, properties, summary, interrupted: false }
 }
 
 /// Signals the property reads that the hypotheses force to a constant (bounded search).
@@ -524,423 +823,6 @@ fn forced_text(
             .map(|h| format!(" in every run up to t = {} s", format_time(h)))
             .unwrap_or_default()
     )
-}
-
-/// Proves one property; if that fails, looks for a witness that the exact evaluator
-/// confirms (and, for a program, the scan simulator too).
-pub fn check_property(
-    ctx: &Context,
-    statement: &Statement<Goal>,
-    hypotheses: &[Axiom],
-    opts: &Options,
-    rename: &dyn Fn(&Expr) -> Expr,
-    program: Option<&counterexample::Program>,
-) -> PropertyReport {
-    let started = Instant::now();
-    let goal = obligation(&statement.value);
-    let style = trace::Style { notation: opts.notation(), rename };
-    let shown = Goal {
-        lhs: rename(&statement.value.lhs),
-        rhs: rename(&statement.value.rhs),
-        ..statement.value.clone()
-    };
-    let statement_text = syntax::goal_to_string(&shown, opts.notation());
-    // `--timeout` bounds the whole property: the proof search gets most of it, the
-    // counterexample search the rest.
-    let budget = Budget { time: opts.timeout.mul_f64(PROOF_SHARE), ..Budget::default() };
-    let end = started + opts.timeout;
-    let mut report = PropertyReport {
-        name: statement.name.clone(),
-        statement: statement_text,
-        status: Status::Unknown,
-        reason: None,
-        time_ms: 0.0,
-        trace: None,
-        counterexample: None,
-        candidate: None,
-        vacuous: false,
-        vacuity: None,
-    };
-    let search = |deadline: Instant| {
-        search_counterexample(&goal, hypotheses, opts, rename, program, deadline)
-    };
-    // When the Boolean skeleton has a model the property is likely false, and the
-    // larger rule sets are slow to give up: look for a counterexample before them.
-    let mut refuted = None;
-    let outcome = prover::prove_with(ctx, &goal, budget, &mut |_| {
-        match search((Instant::now() + FIRST_LOOK).min(end)) {
-            Search::Refuted(c) => refuted = Some(c),
-            Search::Unconfirmed { .. } | Search::NotFound(_) => {}
-        }
-        refuted.is_some()
-    });
-    if let Some(c) = refuted {
-        report.status = Status::Refuted;
-        report.counterexample = Some(c);
-        report.time_ms = started.elapsed().as_secs_f64() * 1e3;
-        return report;
-    }
-    match outcome {
-        Outcome::Proved(proved) => {
-            report.status = Status::Proved;
-            report.trace = Some(TraceReport {
-                method: match proved.method {
-                    prover::Method::Saturation => "saturation".into(),
-                    prover::Method::CaseSplit => "case-split".into(),
-                },
-                lines: trace::render(&proved, goal.rel, &style),
-                length: trace::length(&proved),
-                steps: trace::atomic_steps(&proved, &style)
-                    .into_iter()
-                    .map(|(rule, kind, term)| StepReport { rule, kind: kind.into(), term })
-                    .collect(),
-                hypotheses: proved.theorem.hypotheses_used().iter().cloned().collect(),
-                laws: proved.theorem.laws_used().iter().cloned().collect(),
-            });
-        }
-        Outcome::Unknown { reason, candidate } => {
-            let limit = if program.is_some() { PROGRAM_SEARCH } else { FREE_SEARCH };
-            // At least a small share of the limit even when the proof search used
-            // all of its own.
-            let floor = Instant::now() + opts.timeout.mul_f64(1.0 - PROOF_SHARE);
-            match search((Instant::now() + limit).min(end.max(floor))) {
-                Search::Refuted(c) => {
-                    report.status = Status::Refuted;
-                    report.counterexample = Some(c);
-                }
-                Search::Unconfirmed { candidate, why } => {
-                    report.reason = Some(format!("{reason}; {why}"));
-                    report.candidate = Some(candidate);
-                }
-                Search::NotFound(why) => {
-                    let hint = candidate_hint(&style, candidate.as_deref());
-                    report.reason = Some(format!("{reason}; {why}{hint}"));
-                }
-            }
-        }
-    }
-    report.time_ms = started.elapsed().as_secs_f64() * 1e3;
-    report
-}
-
-/// The share of `--timeout` the proof search may use.
-const PROOF_SHARE: f64 = 0.7;
-/// How long the first look for a counterexample may take, when the prover's quick
-/// methods found a model of the Boolean skeleton.
-const FIRST_LOOK: Duration = Duration::from_secs(2);
-/// How long the counterexample search after a failed proof may take, with a program.
-const PROGRAM_SEARCH: Duration = Duration::from_secs(5);
-/// The same for free signals (random search, confirmed exactly).
-const FREE_SEARCH: Duration = Duration::from_secs(2);
-/// Random assignments tried per free-signal search.
-const FREE_SAMPLES: usize = 2_000;
-
-/// What a counterexample search found for a goal.
-enum Search {
-    /// A confirmed counterexample: exact evaluation (and, for a program, the scan
-    /// simulator) shows the violation.
-    Refuted(CounterexampleReport),
-    /// Violates the compiled terms, but the scan simulator does not reproduce it.
-    Unconfirmed { candidate: CounterexampleReport, why: String },
-    /// Nothing found within the limits, and why.
-    NotFound(String),
-}
-
-/// Looks for a counterexample until `deadline`: bounded model checking over scans
-/// for a program, random exact signals for free signals.
-fn search_counterexample(
-    goal: &Obligation,
-    hypotheses: &[Axiom],
-    opts: &Options,
-    rename: &dyn Fn(&Expr) -> Expr,
-    program: Option<&counterexample::Program>,
-    deadline: Instant,
-) -> Search {
-    if let Some(session) = program {
-        let limits = Limits { deadline, max_steps: 200, max_scans: 100_000 };
-        return match counterexample::refute(session, goal, limits) {
-            Verdict::Refuted(c) => {
-                Search::Refuted(program_counterexample(session, goal, &c, opts, rename))
-            }
-            Verdict::Unconfirmed { candidate, why } => Search::Unconfirmed {
-                candidate: program_counterexample(session, goal, &candidate, opts, rename),
-                why,
-            },
-            Verdict::NotFound(why) => Search::NotFound(why),
-        };
-    }
-    let conditions: Vec<Condition> = hypotheses
-        .iter()
-        .map(|h| Condition::Signal {
-            lhs: h.lhs.clone(),
-            rel: theory::sample_relation(h.rel),
-            rhs: h.rhs.clone(),
-        })
-        .collect();
-    let rel = theory::sample_relation(goal.rel);
-    match falsify::falsify(&goal.lhs, rel, &goal.rhs, &conditions, FREE_SAMPLES, 1, Some(deadline))
-    {
-        Ok(Err(witness)) if confirmed(goal, &witness, hypotheses) => {
-            let witness = simplified(goal, *witness, hypotheses);
-            Search::Refuted(counterexample(goal, &witness, opts, rename))
-        }
-        Ok(Err(_)) => Search::NotFound("a sampled witness was not confirmed exactly".into()),
-        Ok(Ok(n)) => Search::NotFound(format!("no counterexample among {n} random exact signals")),
-        Err(falsify::SampleError::TooFewSamples { valid, .. }) => Search::NotFound(format!(
-            "no counterexample among {valid} random exact signals that satisfy the assumptions"
-        )),
-        Err(falsify::SampleError::Eval(why)) => Search::NotFound(why),
-    }
-}
-
-/// The prover's Boolean model, as a hint.
-fn candidate_hint(style: &trace::Style, candidate: Option<&[(Expr, bool)]>) -> String {
-    let Some(c) = candidate else { return String::new() };
-    let parts: Vec<String> = c
-        .iter()
-        .map(|(atom, v)| format!("{} = {}", style_term(style, atom), if *v { "1*" } else { "0*" }))
-        .collect();
-    format!("; possible counterexample of the Boolean abstraction: {}", parts.join(", "))
-}
-
-/// A program counterexample for people: the inputs that are not always 0, the signals
-/// the property reads, its two sides; the violation marked.
-fn program_counterexample(
-    session: &counterexample::Program,
-    goal: &Obligation,
-    c: &Counterexample,
-    opts: &Options,
-    rename: &dyn Fn(&Expr) -> Expr,
-) -> CounterexampleReport {
-    let style = trace::Style { notation: opts.notation(), rename };
-    let env = &c.assignment;
-    let named = |n: &str| style_term(&style, &crate::term::name(n));
-    let mut shown: Vec<(String, crate::semantics::Signal)> = Vec::new();
-    for (name, values) in &c.trace.values {
-        if values.iter().any(|v| *v)
-            && let Some(s) = env.signals.get(&crate::term::Symbol::from(name.as_str()))
-        {
-            shown.push((named(name), s.clone()));
-        }
-    }
-    let mut read = Vec::new();
-    for side in [&goal.lhs, &goal.rhs] {
-        for node in side.as_ref() {
-            if let crate::term::Term::Name(n) = node
-                && !read.contains(n)
-            {
-                read.push(*n);
-            }
-        }
-    }
-    for n in read {
-        let label = named(n.as_str());
-        if !shown.iter().any(|(l, _)| *l == label)
-            && let Some(s) = env.signals.get(&n)
-        {
-            shown.push((label, s.clone()));
-        }
-    }
-    for (label, side) in [("lhs", &goal.lhs), ("rhs", &goal.rhs)] {
-        let is_name = matches!(side[crate::term::root(side)], crate::term::Term::Name(_));
-        if !is_name && let Ok(s) = eval(side, env) {
-            shown.push((format!("{label}: {}", style_term(&style, side)), s));
-        }
-    }
-    let glyphs = if opts.ascii { waveform::Glyphs::ASCII } else { waveform::Glyphs::UNICODE };
-    let mut confirmed_by = vec!["exact evaluation".to_string()];
-    if c.simulator_scan.is_some() {
-        confirmed_by.push("scan simulator".into());
-    }
-    let _ = session;
-    CounterexampleReport {
-        time: format_time(&c.time),
-        lhs: c.lhs,
-        rhs: c.rhs,
-        signals: env
-            .signals
-            .iter()
-            .map(|(name, s)| SignalReport {
-                name: named(name.as_str()),
-                breakpoints: s.breakpoints().iter().map(format_time).collect(),
-                intervals: s.open_values().to_vec(),
-                points: s.point_values().to_vec(),
-            })
-            .collect(),
-        diagram: waveform::draw(&shown, Some(&c.time), glyphs),
-        scan: Some(c.scan),
-        simulator_scan: c.simulator_scan,
-        confirmed_by,
-        shown,
-        mark: Some(c.time.clone()),
-    }
-}
-
-fn style_term(style: &trace::Style, e: &Expr) -> String {
-    syntax::term_to_string(&(style.rename)(e), style.notation)
-}
-
-/// Re-checks a witness with the exact evaluator: every hypothesis holds, the goal fails.
-fn confirmed(goal: &Obligation, witness: &Witness, hypotheses: &[Axiom]) -> bool {
-    let env = &witness.assignment;
-    let holds = |l: &Expr, rel: Rel, r: &Expr| match (eval(l, env), eval(r, env)) {
-        (Ok(a), Ok(b)) => falsify::violation(&a, theory::sample_relation(rel), &b).is_none(),
-        _ => false,
-    };
-    hypotheses.iter().all(|h| holds(&h.lhs, h.rel, &h.rhs))
-        && !holds(&goal.lhs, goal.rel, &goal.rhs)
-}
-
-/// A simpler confirmed witness: each signal made constant where that keeps the
-/// violation and every assumption (re-checked exactly), then the horizon cut a little
-/// after the violation.
-fn simplified(goal: &Obligation, witness: Witness, hypotheses: &[Axiom]) -> Witness {
-    let rewitness = |assignment: crate::semantics::Assignment| -> Option<Witness> {
-        let l = eval(&goal.lhs, &assignment).ok()?;
-        let r = eval(&goal.rhs, &assignment).ok()?;
-        let time = falsify::violation(&l, theory::sample_relation(goal.rel), &r)?;
-        let (lhs, rhs) = (l.value_at(&time), r.value_at(&time));
-        let w = Witness { assignment, time, lhs, rhs };
-        confirmed(goal, &w, hypotheses).then_some(w)
-    };
-    let mut best = witness;
-    let names: Vec<_> = best.assignment.signals.keys().copied().collect();
-    for name in names {
-        if best.assignment.signals[&name].as_constant().is_some() {
-            continue;
-        }
-        for value in [false, true] {
-            let mut assignment = best.assignment.clone();
-            let constant = crate::semantics::Signal::constant(assignment.horizon.clone(), value);
-            assignment.signals.insert(name, constant);
-            if let Some(w) = rewitness(assignment) {
-                best = w;
-                break;
-            }
-        }
-    }
-    // Signals are causal: cutting the horizon after the violation keeps it.
-    let cut = &best.time * crate::semantics::Time::new(5.into(), 4.into());
-    if cut < best.assignment.horizon {
-        let mut assignment = best.assignment.clone();
-        for s in assignment.signals.values_mut() {
-            *s = s.restrict(&cut);
-        }
-        assignment.horizon = cut;
-        if let Some(w) = rewitness(assignment) {
-            best = w;
-        }
-    }
-    best
-}
-
-fn counterexample(
-    goal: &Obligation,
-    witness: &Witness,
-    opts: &Options,
-    rename: &dyn Fn(&Expr) -> Expr,
-) -> CounterexampleReport {
-    let env = &witness.assignment;
-    let mut shown: Vec<(String, crate::semantics::Signal)> =
-        env.signals.iter().map(|(name, s)| (name.to_string(), s.clone())).collect();
-    let style = trace::Style { notation: opts.notation(), rename };
-    for (label, side) in [("lhs", &goal.lhs), ("rhs", &goal.rhs)] {
-        if let Ok(s) = eval(side, env) {
-            let text = style_term(&style, side);
-            if !shown.iter().any(|(n, _)| *n == text) {
-                shown.push((format!("{label}: {text}"), s));
-            }
-        }
-    }
-    let glyphs = if opts.ascii { waveform::Glyphs::ASCII } else { waveform::Glyphs::UNICODE };
-    CounterexampleReport {
-        time: format_time(&witness.time),
-        lhs: witness.lhs,
-        rhs: witness.rhs,
-        signals: env
-            .signals
-            .iter()
-            .map(|(name, s)| SignalReport {
-                name: name.to_string(),
-                breakpoints: s.breakpoints().iter().map(format_time).collect(),
-                intervals: s.open_values().to_vec(),
-                points: s.point_values().to_vec(),
-            })
-            .collect(),
-        diagram: waveform::draw(&shown, Some(&witness.time), glyphs),
-        scan: None,
-        simulator_scan: None,
-        confirmed_by: vec!["exact evaluation".into()],
-        mark: Some(witness.time.clone()),
-        shown,
-    }
-}
-
-/// The text report: one line per property, proofs and counterexamples when asked, a summary.
-pub fn render_text(report: &RunReport, opts: &Options) -> String {
-    let mut out = String::new();
-    for w in &report.warnings {
-        out.push_str(&format!("warning: {w}\n"));
-    }
-    let width = report.properties.iter().map(|p| p.name.chars().count()).max().unwrap_or(0);
-    for p in &report.properties {
-        let status = match p.status {
-            Status::Proved => "proved",
-            Status::Refuted => "refuted",
-            Status::Unknown => "unknown",
-        };
-        out.push_str(&format!(
-            "{:<width$}  {status:<8} {:>9.1} ms   {}\n",
-            p.name, p.time_ms, p.statement
-        ));
-        if let Some(reason) = &p.reason {
-            out.push_str(&format!("{:<width$}  reason: {reason}\n", ""));
-        }
-        if opts.trace
-            && let Some(t) = &p.trace
-        {
-            for line in &t.lines {
-                out.push_str(&format!("{line}\n"));
-            }
-        }
-        if let Some(why) = &p.vacuity {
-            out.push_str(&format!("{:<width$}  warning: vacuous: {why}\n", ""));
-        }
-        if let Some(c) = &p.counterexample {
-            let at = match c.scan {
-                Some(k) => format!("at t = {} s (scan {k})", c.time),
-                None => format!("at t = {}", c.time),
-            };
-            out.push_str(&format!(
-                "    counterexample: {at} the left side is {} and the right side is {}\n",
-                c.lhs as u8, c.rhs as u8
-            ));
-            if let Some(k) = c.simulator_scan {
-                out.push_str(&format!(
-                    "    confirmed by exact evaluation and by the scan simulator (violated at scan {k})\n"
-                ));
-            }
-            for line in &c.diagram {
-                out.push_str(&format!("    {line}\n"));
-            }
-        }
-        if let Some(c) = &p.candidate {
-            out.push_str(&format!(
-                "    possible counterexample (exact evaluation only, not confirmed by the scan simulator): at t = {} s\n",
-                c.time
-            ));
-            for line in &c.diagram {
-                out.push_str(&format!("    {line}\n"));
-            }
-        }
-    }
-    let s = &report.summary;
-    out.push_str(&format!("{} proved, {} refuted, {} unknown", s.proved, s.refuted, s.unknown));
-    if let Some(timers) = report.timers {
-        out.push_str(&format!(" (--timers {timers})"));
-    }
-    out.push('\n');
-    out
 }
 
 /// The JSON report (schema: [`RunReport`]).
