@@ -62,6 +62,10 @@ struct Cli {
     /// Make a kind of result fail the run: `vacuous` (a proof from hypotheses that force it).
     #[arg(long, value_enum, value_name = "KIND")]
     deny: Vec<Deny>,
+    /// Properties checked at once (default: the number of cores); results are still
+    /// printed in file order, as each is known.
+    #[arg(long, short = 'j', value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
+    jobs: Option<u16>,
     /// No warnings on standard error.
     #[arg(short, long)]
     quiet: bool,
@@ -263,6 +267,10 @@ fn prove(cli: Cli) -> ExitCode {
         only: cli.only.clone(),
         deny_vacuous: cli.deny.contains(&Deny::Vacuous),
         timers: cli.compilation.model(),
+        jobs: cli.jobs.map_or_else(
+            || std::thread::available_parallelism().map_or(1, usize::from),
+            usize::from,
+        ),
     };
     let format = if cli.json { Format::Json } else { cli.format };
     let (vcd, wavedrom) = (cli.vcd.as_deref(), cli.wavedrom.as_deref());

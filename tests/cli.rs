@@ -431,3 +431,28 @@ fn ctrl_c_under_junit_writes_the_partial_document() {
     assert_eq!(cases.len(), 1, "{xml}");
     assert_eq!(cases[0].attribute("name"), Some("quick"));
 }
+
+#[test]
+fn jobs_change_neither_the_verdicts_nor_their_order() {
+    let run = |jobs: &str| {
+        let out = ii_prove(&["examples/water_faulty.ld", "examples/water.ii", "--jobs", jobs]);
+        assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
+        // Name and verdict of each property line, in the order printed.
+        text(&out.stdout)
+            .lines()
+            .filter_map(|l| {
+                let mut words = l.split_whitespace();
+                let (name, status) = (words.next()?, words.next()?);
+                matches!(status, "proved" | "refuted" | "unknown")
+                    .then(|| format!("{name} {status}"))
+            })
+            .collect::<Vec<_>>()
+    };
+    let one = run("1");
+    assert_eq!(one.len(), 12, "{one:?}");
+    assert!(one.contains(&"P2 refuted".to_string()), "{one:?}");
+    assert_eq!(run("2"), one);
+    assert_eq!(run("4"), one);
+    let out = ii_prove(&["examples/water.ld", "examples/water.ii", "--jobs", "0"]);
+    assert_eq!(out.status.code(), Some(2), "--jobs 0 is refused");
+}

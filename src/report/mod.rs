@@ -48,6 +48,8 @@ pub struct Options {
     pub deny_vacuous: bool,
     /// How a program's timers are compiled.
     pub timers: crate::ladder::TimerModel,
+    /// Properties checked at once (threads); results are reported in file order.
+    pub jobs: usize,
 }
 
 impl Default for Options {
@@ -59,6 +61,7 @@ impl Default for Options {
             only: Vec::new(),
             deny_vacuous: false,
             timers: crate::ladder::TimerModel::default(),
+            jobs: 1,
         }
     }
 }
@@ -393,6 +396,49 @@ pub trait Observer {
 /// Hears nothing.
 impl Observer for () {}
 
+/// Runs `work` on every item on up to `jobs` threads and hands each result to `emit`
+/// in the order of `items`, as soon as it and every earlier one are known. Each item's
+/// work is independent of the others, so the results do not depend on `jobs`.
+fn in_order<T: Sync, R: Send>(
+    items: &[T],
+    jobs: usize,
+    work: impl Fn(&T) -> R + Sync,
+    mut emit: impl FnMut(R),
+) {
+    let jobs = jobs.clamp(1, items.len().max(1));
+    if jobs == 1 {
+        items.iter().for_each(|item| emit(work(item)));
+        return;
+    }
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let (send, receive) = std::sync::mpsc::channel::<(usize, R)>();
+    std::thread::scope(|scope| {
+        for _ in 0..jobs {
+            let send = send.clone();
+            let (next, work) = (&next, &work);
+            scope.spawn(move || {
+                loop {
+                    let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                    let Some(item) = items.get(i) else { break };
+                    if send.send((i, work(item))).is_err() {
+                        break;
+                    }
+                }
+            });
+        }
+        drop(send);
+        let mut waiting = std::collections::BTreeMap::new();
+        let mut due = 0;
+        for (i, result) in receive {
+            waiting.insert(i, result);
+            while let Some(result) = waiting.remove(&due) {
+                emit(result);
+                due += 1;
+            }
+        }
+    });
+}
+
 /// The properties `--only` selects (all when it names none).
 struct Selection(Vec<Pattern>);
 
@@ -548,8 +594,9 @@ pub fn run_free_with(
             observer.warning(&warning);
             warnings.push(warning);
         }
-        for statement in doc.properties.iter().filter(|s| selection.selects(&s.name)) {
-            observer.started(properties.len());
+        let selected: Vec<&crate::syntax::Statement<Goal>> =
+            doc.properties.iter().filter(|s| selection.selects(&s.name)).collect();
+        let check = |statement: &&crate::syntax::Statement<Goal>| {
             let mut report = check_property(&ctx, statement, &hypotheses, opts, &identity, None);
             report.location = Some(Location::of(&sources, statement.span));
             flag_vacuity(&mut report, inconsistent.as_deref(), || {
@@ -561,9 +608,13 @@ pub fn run_free_with(
                 let forced = forced_by_assumptions(&ctx, &goal, opts);
                 (!forced.is_empty()).then(|| forced_text(&style, &forced, None))
             });
+            report
+        };
+        in_order(&selected, opts.jobs, check, |report| {
+            observer.started(properties.len());
             observer.finished(&report);
             properties.push(report);
-        }
+        });
     }
     Ok(finish(None, paths.to_vec(), warnings, properties))
 }
@@ -752,17 +803,22 @@ pub fn run_program_with(
                 inconsistent = Some(text);
             }
         }
-        for statement in doc.properties.iter().filter(|s| selection.selects(&s.name)) {
-            observer.started(properties.len());
+        let selected: Vec<&crate::syntax::Statement<Goal>> =
+            doc.properties.iter().filter(|s| selection.selects(&s.name)).collect();
+        let check = |statement: &&crate::syntax::Statement<Goal>| {
             let mut report =
                 check_property(&ctx, statement, &hypotheses, opts, &rename, Some(&session));
             report.location = Some(Location::of(&sources, statement.span));
             flag_vacuity(&mut report, inconsistent.as_deref(), || {
                 forced_constants(&session, &obligation(&statement.value), &rename, opts)
             });
+            report
+        };
+        in_order(&selected, opts.jobs, check, |report| {
+            observer.started(properties.len());
             observer.finished(&report);
             properties.push(report);
-        }
+        });
     }
     let mut report = finish(Some(program.to_string()), paths.to_vec(), warnings, properties);
     report.timers = Some(opts.timers.as_str());
