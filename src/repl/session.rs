@@ -639,13 +639,7 @@ impl Session {
             Attempt::Unknown { reason, candidate } => {
                 let mut out = format!("not proved {name}: {statement}\n  reason: {reason}\n");
                 if let Some(c) = candidate {
-                    out.push_str(&format!(
-                        "  possible counterexample (exact evaluation only, not confirmed by the scan simulator): at t = {} s\n",
-                        c.time
-                    ));
-                    for line in &c.diagram {
-                        out.push_str(&format!("    {line}\n"));
-                    }
+                    out.push_str(&crate::report::text::candidate_text(&c, "  "));
                 }
                 out
             }

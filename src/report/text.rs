@@ -4,7 +4,9 @@
 
 use anstyle::{AnsiColor, Style};
 
-use super::{Options, PropertyReport, RunReport, Status, Summary, WarningReport};
+use super::{
+    CounterexampleReport, Options, PropertyReport, RunReport, Status, Summary, WarningReport,
+};
 
 /// Colours for the text report (none when `enabled` is false).
 #[derive(Clone, Copy, Debug, Default)]
@@ -110,13 +112,19 @@ pub fn render_property(p: &PropertyReport, width: usize, opts: &Options, paint: 
         }
     }
     if let Some(c) = &p.candidate {
-        out.push_str(&format!(
-            "    possible counterexample (exact evaluation only, not confirmed by the scan simulator): at t = {} s\n",
-            c.time
-        ));
-        for line in &c.diagram {
-            out.push_str(&format!("    {line}\n"));
-        }
+        out.push_str(&candidate_text(c, "    "));
+    }
+    out
+}
+
+/// An unconfirmed counterexample, said to be one, with its diagram, indented by `indent`.
+pub fn candidate_text(c: &CounterexampleReport, indent: &str) -> String {
+    let mut out = format!(
+        "{indent}possible counterexample (exact evaluation only, not confirmed by the scan simulator): at t = {} s\n",
+        c.time
+    );
+    for line in &c.diagram {
+        out.push_str(&format!("    {line}\n"));
     }
     out
 }
