@@ -396,18 +396,30 @@ pub trait Observer {
 /// Hears nothing.
 impl Observer for () {}
 
+/// What [`in_order`] tells its caller.
+enum InOrder<R> {
+    /// The next item in order is the one being waited for.
+    Next,
+    /// The next item's result.
+    Done(R),
+}
+
 /// Runs `work` on every item on up to `jobs` threads and hands each result to `emit`
-/// in the order of `items`, as soon as it and every earlier one are known. Each item's
-/// work is independent of the others, so the results do not depend on `jobs`.
+/// in the order of `items`, as soon as it and every earlier one are known (each
+/// preceded by `Next` when it becomes the one waited for). Each item's work is
+/// independent of the others.
 fn in_order<T: Sync, R: Send>(
     items: &[T],
     jobs: usize,
     work: impl Fn(&T) -> R + Sync,
-    mut emit: impl FnMut(R),
+    mut emit: impl FnMut(InOrder<R>),
 ) {
     let jobs = jobs.clamp(1, items.len().max(1));
     if jobs == 1 {
-        items.iter().for_each(|item| emit(work(item)));
+        for item in items {
+            emit(InOrder::Next);
+            emit(InOrder::Done(work(item)));
+        }
         return;
     }
     let next = std::sync::atomic::AtomicUsize::new(0);
@@ -429,11 +441,17 @@ fn in_order<T: Sync, R: Send>(
         drop(send);
         let mut waiting = std::collections::BTreeMap::new();
         let mut due = 0;
+        if !items.is_empty() {
+            emit(InOrder::Next);
+        }
         for (i, result) in receive {
             waiting.insert(i, result);
             while let Some(result) = waiting.remove(&due) {
-                emit(result);
+                emit(InOrder::Done(result));
                 due += 1;
+                if due < items.len() {
+                    emit(InOrder::Next);
+                }
             }
         }
     });
@@ -610,10 +628,12 @@ pub fn run_free_with(
             });
             report
         };
-        in_order(&selected, opts.jobs, check, |report| {
-            observer.started(properties.len());
-            observer.finished(&report);
-            properties.push(report);
+        in_order(&selected, opts.jobs, check, |event| match event {
+            InOrder::Next => observer.started(properties.len()),
+            InOrder::Done(report) => {
+                observer.finished(&report);
+                properties.push(report);
+            }
         });
     }
     Ok(finish(None, paths.to_vec(), warnings, properties))
@@ -814,10 +834,12 @@ pub fn run_program_with(
             });
             report
         };
-        in_order(&selected, opts.jobs, check, |report| {
-            observer.started(properties.len());
-            observer.finished(&report);
-            properties.push(report);
+        in_order(&selected, opts.jobs, check, |event| match event {
+            InOrder::Next => observer.started(properties.len()),
+            InOrder::Done(report) => {
+                observer.finished(&report);
+                properties.push(report);
+            }
         });
     }
     let mut report = finish(Some(program.to_string()), paths.to_vec(), warnings, properties);
