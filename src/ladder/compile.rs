@@ -512,18 +512,11 @@ impl<'a> Compiler<'a> {
                 }
             }
         }
-        for (_, rung) in &rungs {
-            for e in rung.elements() {
-                if let ElementKind::Contacts { name, .. } = &e.kind {
-                    let n = canonical(name);
-                    if !self.last_coil.contains_key(&n) && !is_external_input(&n) {
-                        self.unwritten.entry(n).or_insert(rung.number);
-                    }
-                }
-            }
-        }
-        // A bit that occurs only in rungs LDmicro skips (comment rungs) is never written either.
-        for rung in &self.program.rungs {
+        // A bit that no live coil writes and that is not an input stays 0*: a bit read in
+        // a live rung (first such rung named), or one that occurs only in rungs LDmicro
+        // skips (comment rungs).
+        let live = rungs.iter().map(|(_, r)| *r);
+        for rung in live.chain(&self.program.rungs) {
             for e in rung.elements() {
                 if let ElementKind::Contacts { name, .. } | ElementKind::Coil { name, .. } = &e.kind
                 {
