@@ -396,6 +396,32 @@ pub trait Observer {
 /// Hears nothing.
 impl Observer for () {}
 
+/// Checks the properties of `doc` that `selection` selects, on `jobs` threads, telling
+/// `observer` and appending to `properties` in file order.
+fn check_selected(
+    doc: &Document,
+    selection: &Selection,
+    jobs: usize,
+    check: impl Fn(&crate::syntax::Statement<Goal>) -> PropertyReport + Sync,
+    observer: &mut dyn Observer,
+    properties: &mut Vec<PropertyReport>,
+) {
+    let selected: Vec<&crate::syntax::Statement<Goal>> =
+        doc.properties.iter().filter(|s| selection.selects(&s.name)).collect();
+    in_order(
+        &selected,
+        jobs,
+        |s| check(s),
+        |event| match event {
+            InOrder::Next => observer.started(properties.len()),
+            InOrder::Done(report) => {
+                observer.finished(&report);
+                properties.push(report);
+            }
+        },
+    );
+}
+
 /// What [`in_order`] tells its caller.
 enum InOrder<R> {
     /// The next item in order is the one being waited for.
@@ -612,9 +638,7 @@ pub fn run_free_with(
             observer.warning(&warning);
             warnings.push(warning);
         }
-        let selected: Vec<&crate::syntax::Statement<Goal>> =
-            doc.properties.iter().filter(|s| selection.selects(&s.name)).collect();
-        let check = |statement: &&crate::syntax::Statement<Goal>| {
+        let check = |statement: &crate::syntax::Statement<Goal>| {
             let mut report = check_property(&ctx, statement, &hypotheses, opts, &identity, None);
             report.location = Some(Location::of(&sources, statement.span));
             flag_vacuity(&mut report, inconsistent.as_deref(), || {
@@ -628,13 +652,7 @@ pub fn run_free_with(
             });
             report
         };
-        in_order(&selected, opts.jobs, check, |event| match event {
-            InOrder::Next => observer.started(properties.len()),
-            InOrder::Done(report) => {
-                observer.finished(&report);
-                properties.push(report);
-            }
-        });
+        check_selected(doc, &selection, opts.jobs, check, observer, &mut properties);
     }
     Ok(finish(None, paths.to_vec(), warnings, properties))
 }
@@ -823,9 +841,7 @@ pub fn run_program_with(
                 inconsistent = Some(text);
             }
         }
-        let selected: Vec<&crate::syntax::Statement<Goal>> =
-            doc.properties.iter().filter(|s| selection.selects(&s.name)).collect();
-        let check = |statement: &&crate::syntax::Statement<Goal>| {
+        let check = |statement: &crate::syntax::Statement<Goal>| {
             let mut report =
                 check_property(&ctx, statement, &hypotheses, opts, &rename, Some(&session));
             report.location = Some(Location::of(&sources, statement.span));
@@ -834,13 +850,7 @@ pub fn run_program_with(
             });
             report
         };
-        in_order(&selected, opts.jobs, check, |event| match event {
-            InOrder::Next => observer.started(properties.len()),
-            InOrder::Done(report) => {
-                observer.finished(&report);
-                properties.push(report);
-            }
-        });
+        check_selected(doc, &selection, opts.jobs, check, observer, &mut properties);
     }
     let mut report = finish(Some(program.to_string()), paths.to_vec(), warnings, properties);
     report.timers = Some(opts.timers.as_str());
