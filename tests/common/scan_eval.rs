@@ -1,0 +1,308 @@
+//! An evaluator of compiled hypotheses on scan runs, written from `shared/spec/semantics.md` ("Programs, scan by scan") alone; shared by the differential tests of every front end.
+//!
+//! `·`, `+`, `¬` pointwise; memories and timers by their scan recurrences (`n = ceil(d / δ)`
+//! scans for `d/f`, `f/d`); program bits and previous values are read from the reference
+//! simulator's scans (`Src`); fresh signals are existential (the set of reachable
+//! evaluator states under some run of them is kept).
+#![allow(dead_code)]
+
+use std::collections::BTreeSet;
+
+use ii_prove::kernel::Rel;
+use ii_prove::ladder::{CompiledProgram, SignalKind};
+use ii_prove::syntax::{Notation, term_to_string};
+use ii_prove::term::Language as _;
+use ii_prove::term::{Expr, Term};
+use num_rational::BigRational;
+use num_traits::ToPrimitive;
+
+/// One node of a hypothesis, ready to evaluate scan by scan.
+#[derive(Clone, Copy)]
+pub enum Node {
+    Const(bool),
+    /// A program bit or `pre_` value: index into the scan's values.
+    Known(usize),
+    /// A fresh signal: bit of the valuation.
+    Free(usize),
+    Not(usize),
+    And(usize, usize),
+    Or(usize, usize),
+    /// Memory: children, state slot.
+    Sr(usize, usize, usize),
+    Rs(usize, usize, usize),
+    /// `d/f`: f, n = ceil(d/δ), state slot (consecutive true scans, capped at n + 1).
+    Ton(usize, u32, usize),
+    /// `f/d`: f, n, state slot (0: f never true; else 1 + scans since f was last true, capped).
+    Tof(usize, u32, usize),
+}
+
+/// Where the value of a known name comes from at each scan.
+#[derive(Clone, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Src {
+    /// The simulator's bit at the end of this scan.
+    Bit(String),
+    /// The simulator's bit at the end of the previous scan (0 at the first).
+    Pre(String),
+}
+
+/// Why a hypothesis was not checked.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Skip {
+    /// More than [`MAX_FREE`] fresh signals.
+    TooManyFresh,
+    /// The set of evaluator states reachable under the fresh signals grew over [`MAX_STATES`].
+    TooManyStates,
+    /// A delay that is not a literal, or a zero cycle.
+    Delay,
+}
+
+pub const MAX_FREE: usize = 8;
+pub const MAX_STATES: usize = 256;
+
+pub struct Hyp {
+    pub name: String,
+    pub text: String,
+    pub rel: Rel,
+    pub nodes: Vec<Node>,
+    pub lhs: usize,
+    pub rhs: usize,
+    pub n_free: usize,
+    /// Whether a fresh signal occurs under a timer or memory.
+    pub temporal_free: bool,
+    pub states: BTreeSet<Vec<u32>>,
+    pub skip: Option<Skip>,
+    /// Scans on which the hypothesis held (for every live state) — all of them unless it failed.
+    pub checked_scans: u64,
+    /// Whether it has a `d/f` or `f/d` with `n > 0`, and whether one was on (`d/f`) or
+    /// holding after its input fell (`f/d`) at some scan.
+    pub has_timer: bool,
+    pub timer_fired: bool,
+}
+
+/// How often the hypotheses' timers were on, counted over all reachable states.
+#[derive(Default, Clone, Copy, Debug)]
+pub struct TimerStats {
+    /// Scans on which a `d/f` (d > 0) was 1.
+    pub ton_on: u64,
+    /// Scans on which an `f/d` was 1 while `f` was 0 (the hold after the fall).
+    pub tof_hold: u64,
+}
+
+/// `ceil(d / δ)` for a delay in seconds and a cycle in µs.
+pub fn ceil_scans(d: &ii_prove::term::Delay, cycle_us: u64) -> Option<u32> {
+    if cycle_us == 0 {
+        return None;
+    }
+    let cycle = BigRational::new(cycle_us.into(), 1_000_000u64.into());
+    (d.seconds() / cycle).ceil().to_integer().to_u32()
+}
+
+impl Hyp {
+    pub fn new(
+        h: &ii_prove::ladder::Hypothesis,
+        c: &CompiledProgram,
+        cycle_us: u64,
+        known: &mut Vec<Src>,
+    ) -> Hyp {
+        let mut nodes = Vec::new();
+        let mut free: Vec<String> = Vec::new();
+        let mut n_state = 0;
+        let mut skip = None;
+        let mut temporal_free = false;
+        let mut build = |e: &Expr, nodes: &mut Vec<Node>| -> usize {
+            let base = nodes.len();
+            let terms = e.as_ref();
+            // Whether each node lies under a timer or memory.
+            let mut under = vec![false; terms.len()];
+            for (i, t) in terms.iter().enumerate().rev() {
+                let temporal = matches!(t, Term::Ton(_) | Term::Tof(_) | Term::Sr(_) | Term::Rs(_));
+                for ch in t.children() {
+                    under[usize::from(*ch)] |= under[i] || temporal;
+                }
+            }
+            for (i, t) in terms.iter().enumerate() {
+                let at = |id: &ii_prove::term::Id| base + usize::from(*id);
+                let node = match t {
+                    Term::Zero => Node::Const(false),
+                    Term::One => Node::Const(true),
+                    Term::Not(a) => Node::Not(at(a)),
+                    Term::And([a, b]) => Node::And(at(a), at(b)),
+                    Term::Or([a, b]) => Node::Or(at(a), at(b)),
+                    Term::Sr([s, r]) | Term::Rs([s, r]) => {
+                        n_state += 1;
+                        if matches!(t, Term::Sr(_)) {
+                            Node::Sr(at(s), at(r), n_state - 1)
+                        } else {
+                            Node::Rs(at(s), at(r), n_state - 1)
+                        }
+                    }
+                    Term::Ton([d, f]) | Term::Tof([f, d]) => {
+                        let n = match &terms[usize::from(*d)] {
+                            Term::Delay(d) => ceil_scans(d, cycle_us),
+                            _ => None,
+                        };
+                        let n = n.unwrap_or_else(|| {
+                            skip = Some(Skip::Delay);
+                            0
+                        });
+                        n_state += 1;
+                        if matches!(t, Term::Ton(_)) {
+                            Node::Ton(at(f), n, n_state - 1)
+                        } else {
+                            Node::Tof(at(f), n, n_state - 1)
+                        }
+                    }
+                    Term::Name(s) => {
+                        let s = s.as_str();
+                        match c.signals.get(s) {
+                            Some(SignalKind::Fresh { .. }) => {
+                                temporal_free |= under[i];
+                                let k = free.iter().position(|f| f == s).unwrap_or_else(|| {
+                                    free.push(s.to_string());
+                                    free.len() - 1
+                                });
+                                Node::Free(k)
+                            }
+                            Some(SignalKind::Previous { of }) => {
+                                Node::Known(slot(known, Src::Pre(of.clone())))
+                            }
+                            _ => Node::Known(slot(known, Src::Bit(s.to_string()))),
+                        }
+                    }
+                    // Delays are read by their timer only.
+                    Term::Delay(_) | Term::DMax(_) | Term::DMin(_) | Term::DAdd(_) => {
+                        Node::Const(false)
+                    }
+                };
+                nodes.push(node);
+            }
+            nodes.len() - 1
+        };
+        let lhs = build(&h.lhs, &mut nodes);
+        let rhs = build(&h.rhs, &mut nodes);
+        let has_timer =
+            nodes.iter().any(|n| matches!(n, Node::Ton(_, k, _) | Node::Tof(_, k, _) if *k > 0));
+        if free.len() > MAX_FREE {
+            skip = Some(Skip::TooManyFresh);
+        }
+        let rel = if h.rel == Rel::Eq { "=" } else { "⇒" };
+        Hyp {
+            name: h.name.clone(),
+            text: format!(
+                "{} {rel} {}",
+                term_to_string(&h.lhs, Notation::Paper),
+                term_to_string(&h.rhs, Notation::Paper)
+            ),
+            rel: h.rel,
+            nodes,
+            lhs,
+            rhs,
+            n_free: free.len(),
+            temporal_free,
+            states: [vec![0; n_state]].into_iter().collect(),
+            skip,
+            checked_scans: 0,
+            has_timer,
+            timer_fired: false,
+        }
+    }
+
+    /// One scan from `state` with the fresh signals `valuation`: (lhs, rhs).
+    pub fn step(
+        &self,
+        state: &mut [u32],
+        known: &[bool],
+        valuation: u32,
+        vals: &mut Vec<bool>,
+        stats: &mut TimerStats,
+    ) -> (bool, bool) {
+        vals.clear();
+        for node in &self.nodes {
+            let v = match *node {
+                Node::Const(b) => b,
+                Node::Known(k) => known[k],
+                Node::Free(k) => valuation >> k & 1 == 1,
+                Node::Not(a) => !vals[a],
+                Node::And(a, b) => vals[a] && vals[b],
+                Node::Or(a, b) => vals[a] || vals[b],
+                Node::Sr(s, r, st) => {
+                    let q = vals[s] || (!vals[r] && state[st] == 1);
+                    state[st] = u32::from(q);
+                    q
+                }
+                Node::Rs(s, r, st) => {
+                    let q = !vals[r] && (vals[s] || state[st] == 1);
+                    state[st] = u32::from(q);
+                    q
+                }
+                Node::Ton(f, n, st) => {
+                    state[st] = if vals[f] { (state[st] + 1).min(n + 1) } else { 0 };
+                    let on = state[st] > n;
+                    if on && n > 0 {
+                        stats.ton_on += 1;
+                    }
+                    on
+                }
+                Node::Tof(f, n, st) => {
+                    if vals[f] {
+                        state[st] = 1;
+                    } else if state[st] > 0 {
+                        state[st] = (state[st] + 1).min(n + 2);
+                    }
+                    let on = state[st] >= 1 && state[st] - 1 <= n;
+                    if on && !vals[f] {
+                        stats.tof_hold += 1;
+                    }
+                    on
+                }
+            };
+            vals.push(v);
+        }
+        (vals[self.lhs], vals[self.rhs])
+    }
+
+    /// Advances every reachable state by one scan; false if the hypothesis fails
+    /// for every run of the fresh signals.
+    pub fn scan(&mut self, known: &[bool], vals: &mut Vec<bool>, stats: &mut TimerStats) -> bool {
+        if self.skip.is_some() {
+            return true;
+        }
+        let mut next = BTreeSet::new();
+        let mut local = TimerStats::default();
+        for state in &self.states {
+            for valuation in 0..(1u32 << self.n_free) {
+                let mut s = state.clone();
+                let (l, r) = self.step(&mut s, known, valuation, vals, &mut local);
+                let holds = match self.rel {
+                    Rel::Eq => l == r,
+                    Rel::Implies => !l || r,
+                };
+                if holds {
+                    next.insert(s);
+                }
+            }
+        }
+        // Timer activity per reachable run, counted once per scan when the set is a singleton.
+        if self.states.len() == 1 && self.n_free == 0 {
+            stats.ton_on += local.ton_on;
+            stats.tof_hold += local.tof_hold;
+        }
+        self.timer_fired |= local.ton_on + local.tof_hold > 0;
+        if next.is_empty() {
+            return false;
+        }
+        if next.len() > MAX_STATES {
+            self.skip = Some(Skip::TooManyStates);
+        }
+        self.states = next;
+        self.checked_scans += 1;
+        true
+    }
+}
+
+pub fn slot(known: &mut Vec<Src>, src: Src) -> usize {
+    known.iter().position(|s| *s == src).unwrap_or_else(|| {
+        known.push(src);
+        known.len() - 1
+    })
+}
