@@ -177,7 +177,8 @@ egg::define_language! {
     /// One node of a signal term.
     ///
     /// `Ton` is `d/f` with children `[d, f]`; `Tof` is `f/d` with children
-    /// `[f, d]`, in the order they are written. `DMax`, `DMin` and `DAdd` are
+    /// `[f, d]`, in the order they are written. `Pre` is `pre f`, the value of `f`
+    /// one scan earlier (programs only: `shared/spec/semantics.md`, "Programs, scan by scan"). `DMax`, `DMin` and `DAdd` are
     /// delay arithmetic, used by laws such as `d1/(d2/f) = (d1+d2)/f`.
     #[allow(missing_docs)]
     pub enum Term {
@@ -186,6 +187,7 @@ egg::define_language! {
         "&" = And([Id; 2]),
         "+" = Or([Id; 2]),
         "!" = Not(Id),
+        "pre" = Pre(Id),
         "ton" = Ton([Id; 2]),
         "tof" = Tof([Id; 2]),
         "sr" = Sr([Id; 2]),
@@ -214,6 +216,11 @@ pub fn is_delay_node(node: &Term) -> bool {
 /// Is this node a timer or a memory (an atom of the Boolean skeleton)?
 pub fn is_temporal_node(node: &Term) -> bool {
     matches!(node, Term::Ton(_) | Term::Tof(_) | Term::Sr(_) | Term::Rs(_))
+}
+
+/// Does the term mention `pre` anywhere?
+pub fn mentions_pre(expr: &Expr) -> bool {
+    expr.as_ref().iter().any(|t| matches!(t, Term::Pre(_)))
 }
 
 /// Copies the subterm rooted at `id` of `expr` into `out`, returning its new id.
@@ -280,6 +287,10 @@ impl Builder {
     /// `¬a`.
     pub fn not(&mut self, a: Id) -> Id {
         self.add(Term::Not(a))
+    }
+    /// `pre a`.
+    pub fn pre(&mut self, a: Id) -> Id {
+        self.add(Term::Pre(a))
     }
     /// `d/f`.
     pub fn ton(&mut self, d: Id, f: Id) -> Id {

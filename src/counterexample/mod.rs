@@ -193,13 +193,6 @@ impl Program<'_> {
         let mut taken_a = vec![false; self.assumptions.len()];
         loop {
             let before = reached.len();
-            for (n, kind) in &self.compiled.signals {
-                if let SignalKind::Previous { of } = kind
-                    && reached.contains(n)
-                {
-                    reached.insert(of.clone());
-                }
-            }
             for (name, rhs) in &defs_all {
                 if reached.contains(name) {
                     names_of(rhs, &mut reached);
@@ -218,22 +211,12 @@ impl Program<'_> {
                 break;
             }
         }
-        let pre = self
-            .compiled
-            .signals
-            .iter()
-            .filter_map(|(n, k)| match k {
-                SignalKind::Previous { of } => Some((n.clone(), of.clone())),
-                _ => None,
-            })
-            .collect();
         Model {
             defs: defs_all
                 .into_iter()
                 .filter(|(n, _)| reached.contains(n))
                 .map(|(n, e)| (n, e.clone()))
                 .collect(),
-            pre,
             constraints: self
                 .assumptions
                 .iter()
@@ -417,9 +400,6 @@ fn simulate(
     let mut watched: BTreeSet<String> = model.defs.iter().map(|(n, _)| n.clone()).collect();
     for n in &read {
         match program.compiled.signals.get(n) {
-            Some(SignalKind::Previous { of }) => {
-                watched.insert(of.clone());
-            }
             Some(k) if k.is_unconstrained() => {
                 return Err(format!(
                     "the property reads `{n}`, which the simulator does not compute"
@@ -453,16 +433,13 @@ fn simulate(
     let cycle = trace.cycle.clone();
     let u = unroll(
         &mut Concrete,
-        &Model { defs: Vec::new(), pre: BTreeMap::new(), constraints: model.constraints.clone() },
+        &Model { defs: Vec::new(), constraints: model.constraints.clone() },
         &[&goal.lhs, &goal.rhs],
         trace.scans,
         &|d| scans_of(d, &cycle),
         &mut |_, name, k| {
             if let Some(v) = seen.get(name) {
                 return v.get(k).copied().unwrap_or(false);
-            }
-            if let Some(of) = model.pre.get(name) {
-                return k > 0 && seen.get(of).and_then(|v| v.get(k - 1)).copied().unwrap_or(false);
             }
             trace.values.get(name).and_then(|v| v.get(k)).copied().unwrap_or(false)
         },
@@ -485,8 +462,8 @@ fn simulate(
     Ok((first, seen))
 }
 
-/// Exact confirmation: every hypothesis of the cone holds on the whole horizon, `pre_X`
-/// is `X` one cycle earlier at every scan instant, the goal fails at scan `v`.
+/// Exact confirmation: every hypothesis of the cone holds on the whole horizon (with
+/// `pre f` as `f` one cycle earlier), the goal fails at scan `v`.
 fn exact(
     model: &Model,
     goal: &Obligation,
@@ -495,6 +472,7 @@ fn exact(
     v: usize,
 ) -> Result<(Assignment, bool, bool), String> {
     let mut env = Assignment::new(trace.horizon());
+    env.cycle = Some(trace.cycle.clone());
     let defined: BTreeSet<&str> = model.defs.iter().map(|(n, _)| n.as_str()).collect();
     for (name, values) in &run.signals {
         if !defined.contains(name.as_str()) {
@@ -510,20 +488,6 @@ fn exact(
             (eval(l, &env).map_err(|e| e.to_string())?, eval(r, &env).map_err(|e| e.to_string())?);
         if let Some(t) = violation(&a, sample_relation(*rel), &b) {
             return Err(format!("an assumption fails at t = {}", format_time(&t)));
-        }
-    }
-    for (pre, of) in &model.pre {
-        let (Some(p), Some(x)) = (
-            env.signals.get(&Symbol::from(pre.as_str())),
-            env.signals.get(&Symbol::from(of.as_str())),
-        ) else {
-            continue;
-        };
-        for k in 0..trace.scans {
-            let expected = k > 0 && x.value_at(&trace.instant(k - 1));
-            if p.value_at(&trace.instant(k)) != expected {
-                return Err(format!("`{pre}` is not `{of}` one cycle earlier at scan {}", k + 1));
-            }
         }
     }
     let l = eval(&goal.lhs, &env).map_err(|e| e.to_string())?;

@@ -5,8 +5,9 @@
 //! `·, +, ¬` pointwise, `SR(s, r)`: `Q := s + Q·¬r`, `RS(s, r)`: `Q := (s + Q)·¬r` (from
 //! 0), `d/f` with `d = N·g`: `f` true at each of the steps `k−N … k` (and `k > N`),
 //! `f/d`: `f` true at one of the steps `k−N … k`. For inputs constant on the steps this
-//! is exactly the II algebra (`semantics.md`) sampled once per step. `pre_X` is `X` at
-//! the previous step (0 at the first): the scan cycle's meaning when a step is a scan.
+//! is exactly the II algebra (`semantics.md`) sampled once per step. `pre f` is `f` at
+//! the previous step (its initial value at the first): the scan cycle's meaning when a
+//! step is a scan. What is read only under `pre` is computed at the end of its step.
 #![warn(missing_docs)]
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -14,8 +15,8 @@ use std::collections::{BTreeMap, BTreeSet};
 use varisat::{ExtendFormula, Lit, Solver};
 
 use crate::kernel::Rel;
-use crate::semantics::{Assignment, Time, eval_delay};
-use crate::term::{Delay, Expr, Id, Term};
+use crate::semantics::{Assignment, Time, eval_delay, initial_values};
+use crate::term::{Delay, Expr, Id, Language as _, Term};
 
 /// Boolean operations over some kind of value (a `bool`, a SAT literal).
 pub trait Bits {
@@ -136,13 +137,11 @@ impl Bits for Cnf {
     }
 }
 
-/// What is unrolled: equations in evaluation order, previous-value names, side terms.
+/// What is unrolled: equations in evaluation order and side terms.
 #[derive(Clone, Debug, Default)]
 pub struct Model {
     /// `X = term`, in the order the scan computes them.
     pub defs: Vec<(String, Expr)>,
-    /// `pre_X` → `X`.
-    pub pre: BTreeMap<String, String>,
     /// Relations that must hold at every step (`assume` statements).
     pub constraints: Vec<(Expr, Rel, Expr)>,
 }
@@ -154,7 +153,7 @@ impl Model {
         defs.chain(self.constraints.iter().flat_map(|(l, _, r)| [l, r]))
     }
 
-    /// The names the model leaves free (neither defined nor previous values) among `exprs`.
+    /// The names the model leaves free (not defined) among `exprs`.
     pub fn free_names<'a>(&'a self, exprs: impl Iterator<Item = &'a Expr>) -> BTreeSet<String> {
         let defined: BTreeSet<&str> = self.defs.iter().map(|(n, _)| n.as_str()).collect();
         let mut out = BTreeSet::new();
@@ -162,7 +161,6 @@ impl Model {
             for node in e.as_ref() {
                 if let Term::Name(n) = node
                     && !defined.contains(n.as_str())
-                    && !self.pre.contains_key(n.as_str())
                 {
                     out.insert(n.as_str().to_string());
                 }
@@ -234,81 +232,22 @@ pub fn unroll<B: Bits>(
         widths.push(w);
     }
     let defined: BTreeSet<&str> = model.defs.iter().map(|(n, _)| n.as_str()).collect();
+    // Per term: per node, its value before the first step (names, timers, memories 0).
+    let inits: Vec<Vec<bool>> = exprs.iter().map(|e| initial_values(e)).collect();
+    // Per term: which nodes are needed at their own step. Nodes read only under `pre`
+    // are evaluated at the end of the step, once every equation of the scan is known.
+    let now: Vec<Vec<bool>> = exprs.iter().map(|e| needed_now(e)).collect();
     let mut hist: Vec<Vec<Vec<B::V>>> =
         exprs.iter().map(|e| vec![Vec::with_capacity(steps); e.as_ref().len()]).collect();
     let mut signals: BTreeMap<String, Vec<B::V>> = BTreeMap::new();
+    let mut cx = Step { bits, defined, free, widths, inits };
     for k in 0..steps {
         for (j, e) in exprs.iter().enumerate() {
             for (i, node) in e.as_ref().iter().enumerate() {
-                let h = &hist[j];
-                let at = |id: &Id| h[usize::from(*id)][k].clone();
-                let value = match node {
-                    Term::Zero | Term::Delay(_) | Term::DMax(_) | Term::DMin(_) | Term::DAdd(_) => {
-                        bits.konst(false)
-                    }
-                    Term::One => bits.konst(true),
-                    Term::Not(a) => {
-                        let a = at(a);
-                        bits.not(&a)
-                    }
-                    Term::And([a, b]) => {
-                        let xs = [at(a), at(b)];
-                        bits.and_all(&xs)
-                    }
-                    Term::Or([a, b]) => {
-                        let xs = [at(a), at(b)];
-                        bits.or_all(&xs)
-                    }
-                    Term::Sr([s, r]) | Term::Rs([s, r]) => {
-                        let prev = if k == 0 { bits.konst(false) } else { h[i][k - 1].clone() };
-                        let (s, r) = (at(s), at(r));
-                        let nr = bits.not(&r);
-                        if matches!(node, Term::Sr(_)) {
-                            let hold = bits.and_all(&[prev, nr]);
-                            bits.or_all(&[s, hold])
-                        } else {
-                            let set = bits.or_all(&[s, prev]);
-                            bits.and_all(&[set, nr])
-                        }
-                    }
-                    Term::Ton([_, f]) => {
-                        let n = widths[j][i].unwrap_or(0);
-                        if k < n {
-                            bits.konst(false)
-                        } else {
-                            let xs: Vec<B::V> = h[usize::from(*f)][k - n..=k].to_vec();
-                            bits.and_all(&xs)
-                        }
-                    }
-                    Term::Tof([f, _]) => {
-                        let n = widths[j][i].unwrap_or(0);
-                        let xs: Vec<B::V> = h[usize::from(*f)][k.saturating_sub(n)..=k].to_vec();
-                        bits.or_all(&xs)
-                    }
-                    Term::Name(n) => {
-                        let n = n.as_str();
-                        if let Some(v) = signals.get(n).and_then(|v| v.get(k)) {
-                            v.clone()
-                        } else if defined.contains(n) {
-                            return Err(format!("`{n}` is read before the scan computes it"));
-                        } else if let Some(of) = model.pre.get(n) {
-                            let v = if k == 0 {
-                                bits.konst(false)
-                            } else {
-                                signals
-                                    .get(of)
-                                    .and_then(|v| v.get(k - 1))
-                                    .cloned()
-                                    .ok_or_else(|| format!("`{of}` is not computed"))?
-                            };
-                            signals.entry(n.to_string()).or_default().push(v.clone());
-                            v
-                        } else {
-                            let v = free(bits, n, k);
-                            signals.entry(n.to_string()).or_default().push(v.clone());
-                            v
-                        }
-                    }
+                let value = if now[j][i] {
+                    cx.node(node, &hist[j], i, j, k, &mut signals)?
+                } else {
+                    cx.bits.konst(false)
                 };
                 hist[j][i].push(value);
             }
@@ -318,6 +257,14 @@ pub fn unroll<B: Bits>(
                 signals.entry(name.clone()).or_default().push(top);
             }
         }
+        for (j, e) in exprs.iter().enumerate() {
+            for (i, node) in e.as_ref().iter().enumerate() {
+                if !now[j][i] {
+                    let value = cx.node(node, &hist[j], i, j, k, &mut signals)?;
+                    hist[j][i][k] = value;
+                }
+            }
+        }
     }
     let root = |j: usize| hist[j].last().cloned().unwrap_or_default();
     let d = model.defs.len();
@@ -325,6 +272,109 @@ pub fn unroll<B: Bits>(
         (0..model.constraints.len()).map(|c| (root(d + 2 * c), root(d + 2 * c + 1))).collect();
     let extra = (0..extra.len()).map(|x| root(d + 2 * model.constraints.len() + x)).collect();
     Ok(Unrolled { signals, constraints, extra })
+}
+
+/// Which nodes of `e` are read at their own step: the root and everything below it
+/// except what is read only through `pre`.
+fn needed_now(e: &Expr) -> Vec<bool> {
+    let nodes = e.as_ref();
+    let mut now = vec![false; nodes.len()];
+    if let Some(last) = now.last_mut() {
+        *last = true;
+    }
+    for i in (0..nodes.len()).rev() {
+        if now[i] && !matches!(nodes[i], Term::Pre(_)) {
+            for c in nodes[i].children() {
+                now[usize::from(*c)] = true;
+            }
+        }
+    }
+    now
+}
+
+/// What [`unroll`] needs to compute one node at one step.
+struct Step<'a, 'm, B: Bits> {
+    bits: &'a mut B,
+    defined: BTreeSet<&'m str>,
+    free: &'a mut dyn FnMut(&mut B, &str, usize) -> B::V,
+    widths: Vec<Vec<Option<usize>>>,
+    inits: Vec<Vec<bool>>,
+}
+
+impl<B: Bits> Step<'_, '_, B> {
+    /// The value at step `k` of node `i` of term `j`, whose history is `h`.
+    fn node(
+        &mut self,
+        node: &Term,
+        h: &[Vec<B::V>],
+        i: usize,
+        j: usize,
+        k: usize,
+        signals: &mut BTreeMap<String, Vec<B::V>>,
+    ) -> Result<B::V, String> {
+        let bits = &mut *self.bits;
+        let at = |id: &Id| h[usize::from(*id)][k].clone();
+        Ok(match node {
+            Term::Zero | Term::Delay(_) | Term::DMax(_) | Term::DMin(_) | Term::DAdd(_) => {
+                bits.konst(false)
+            }
+            Term::One => bits.konst(true),
+            Term::Not(a) => {
+                let a = at(a);
+                bits.not(&a)
+            }
+            Term::Pre(a) => {
+                let a = usize::from(*a);
+                if k == 0 { bits.konst(self.inits[j][a]) } else { h[a][k - 1].clone() }
+            }
+            Term::And([a, b]) => {
+                let xs = [at(a), at(b)];
+                bits.and_all(&xs)
+            }
+            Term::Or([a, b]) => {
+                let xs = [at(a), at(b)];
+                bits.or_all(&xs)
+            }
+            Term::Sr([s, r]) | Term::Rs([s, r]) => {
+                let prev = if k == 0 { bits.konst(false) } else { h[i][k - 1].clone() };
+                let (s, r) = (at(s), at(r));
+                let nr = bits.not(&r);
+                if matches!(node, Term::Sr(_)) {
+                    let hold = bits.and_all(&[prev, nr]);
+                    bits.or_all(&[s, hold])
+                } else {
+                    let set = bits.or_all(&[s, prev]);
+                    bits.and_all(&[set, nr])
+                }
+            }
+            Term::Ton([_, f]) => {
+                let n = self.widths[j][i].unwrap_or(0);
+                if k < n {
+                    bits.konst(false)
+                } else {
+                    let xs: Vec<B::V> = h[usize::from(*f)][k - n..=k].to_vec();
+                    bits.and_all(&xs)
+                }
+            }
+            Term::Tof([f, _]) => {
+                let n = self.widths[j][i].unwrap_or(0);
+                let xs: Vec<B::V> = h[usize::from(*f)][k.saturating_sub(n)..=k].to_vec();
+                bits.or_all(&xs)
+            }
+            Term::Name(n) => {
+                let n = n.as_str();
+                if let Some(v) = signals.get(n).and_then(|v| v.get(k)) {
+                    v.clone()
+                } else if self.defined.contains(n) {
+                    return Err(format!("`{n}` is read before the scan computes it"));
+                } else {
+                    let v = (self.free)(bits, n, k);
+                    signals.entry(n.to_string()).or_default().push(v.clone());
+                    v
+                }
+            }
+        })
+    }
 }
 
 /// `lhs rel rhs` violated (as a value).

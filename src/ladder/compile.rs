@@ -129,10 +129,13 @@ pub enum SignalKind {
     Output,
     /// Written by coils, any other name (usually `R`): an internal relay.
     Relay,
-    /// The previous-scan value of a written variable; unconstrained.
-    Previous {
-        /// The variable.
-        of: String,
+    /// The memory of a one-shot or toggle coil: its input at the end of the scan, whose
+    /// previous-scan value `pre` the edge compares with (LDmicro's hidden bit, 0 at first).
+    EdgeMemory {
+        /// File rung number (1-based, comment rungs counted).
+        rung: usize,
+        /// The element keyword (`OSR`, `OSF`, `ODR`, `COIL` for a toggle).
+        element: String,
     },
     /// The output of an element the algebra cannot express; unconstrained.
     Fresh {
@@ -144,9 +147,9 @@ pub enum SignalKind {
 }
 
 impl SignalKind {
-    /// Whether the program leaves this signal unconstrained (previous values, fresh outputs).
+    /// Whether the program leaves this signal unconstrained (fresh outputs).
     pub fn is_unconstrained(&self) -> bool {
-        matches!(self, SignalKind::Previous { .. } | SignalKind::Fresh { .. })
+        matches!(self, SignalKind::Fresh { .. })
     }
 }
 
@@ -155,9 +158,9 @@ impl SignalKind {
 pub enum HypothesisKind {
     /// `X = term`: exact.
     Equation,
-    /// `lo ⇒ X`: holds whatever the `pre_` signals are.
+    /// `lo ⇒ X`: a consequence of the equation free of `pre` (whatever the previous scan).
     LowerBound,
-    /// `X ⇒ hi`: holds whatever the `pre_` signals are.
+    /// `X ⇒ hi`: a consequence of the equation free of `pre` (whatever the previous scan).
     UpperBound,
 }
 
@@ -395,7 +398,11 @@ struct Compiler<'a> {
     shared_timers: BTreeSet<String>,
     /// Every name the program uses (for fresh-name uniqueness).
     taken: BTreeSet<String>,
+    /// Per variable, the internal name standing for its previous-scan value while the
+    /// scan is compiled (`pre_X`); [`Compiler::exact`] turns each into `pre X`.
     pre_names: BTreeMap<String, String>,
+    /// The inverse: internal previous-value name → the variable (or internal name) it is of.
+    pre_of: BTreeMap<String, String>,
     fresh: BTreeMap<String, SignalKind>,
     // Scan state.
     coil_index: usize,
@@ -466,6 +473,7 @@ impl<'a> Compiler<'a> {
             shared_timers: BTreeSet::new(),
             taken: BTreeSet::new(),
             pre_names: BTreeMap::new(),
+            pre_of: BTreeMap::new(),
             fresh: BTreeMap::new(),
             coil_index: 0,
             current: BTreeMap::new(),
@@ -536,14 +544,50 @@ impl<'a> Compiler<'a> {
         }
         let written: Vec<String> = self.last_coil.keys().cloned().collect();
         for x in written {
-            let pre = self.unique(&format!("pre_{x}"));
-            self.current.insert(x.clone(), L::Var(pre.clone()));
-            self.fresh.insert(pre.clone(), SignalKind::Previous { of: x.clone() });
-            self.pre_names.insert(x, pre);
+            let pre = self.pre_name(&x);
+            self.current.insert(x, L::Var(pre));
         }
         for x in self.unwritten.keys() {
             self.current.insert(x.clone(), L::Zero);
         }
+    }
+
+    /// The internal name of `x`'s previous-scan value (made on first use).
+    fn pre_name(&mut self, x: &str) -> String {
+        if let Some(p) = self.pre_names.get(x) {
+            return p.clone();
+        }
+        let pre = self.unique(&format!("pre_{x}"));
+        self.pre_names.insert(x.to_string(), pre.clone());
+        self.pre_of.insert(pre.clone(), x.to_string());
+        pre
+    }
+
+    /// A term of the scan with every internal previous-value name replaced by `pre X`.
+    fn exact(&self, e: &L) -> L {
+        let mut names = Vec::new();
+        e.names(&mut names);
+        names.into_iter().filter(|n| self.pre_of.contains_key(n)).fold(e.clone(), |acc, p| {
+            let of = self.exact(&L::Var(self.pre_of[&p].clone()));
+            acc.subst(&p, &L::Pre(Box::new(of)))
+        })
+    }
+
+    /// The previous-scan value of the power `input` at this point of the scan (LDmicro's
+    /// hidden edge bit, 0 before the first scan): `pre X` when the power is one signal
+    /// `X`, else `pre M` for a new memory `M = input` stated with this rung.
+    fn previous_power(&mut self, e: &Element, base: &str, input: &L) -> L {
+        if let L::Var(x) = input {
+            return L::Var(self.pre_name(x));
+        }
+        let m = self.unique(&canonical(base));
+        let rung = self.rung().number;
+        let element = e.kind.keyword().to_string();
+        self.fresh.insert(m.clone(), SignalKind::EdgeMemory { rung, element });
+        let pre = self.pre_name(&m);
+        let bounds = self.bounds(input);
+        self.pending.push(Pending { var: m, rhs: input.clone(), bounds });
+        L::Var(pre)
     }
 
     fn unique(&mut self, base: &str) -> String {
@@ -685,19 +729,20 @@ impl<'a> Compiler<'a> {
             ElementKind::Timer { kind, name, delay, adjust, adjust_given } => {
                 self.timer(e, *kind, name, delay, (*adjust, *adjust_given), input)
             }
-            ElementKind::Edge { kind } => {
+            ElementKind::Edge { kind: kind @ (EdgeKind::Osr | EdgeKind::Osf | EdgeKind::Odr) } => {
+                // ldmicro.md §4: a hidden bit keeps the input of the previous scan (0 at
+                // first): OSR `i · ¬pre i`, OSF `¬i · pre i`, ODR `¬(i · ¬pre i)`.
                 let base = format!("{}_r{}", e.kind.keyword(), self.rung().number);
-                let f =
-                    self.new_fresh(&base, e, "a one-shot (edge) is not expressible in the algebra");
-                // What a one-shot's output does at a scan bounds it by its input there:
-                // OSR pulses only while the input is on, OSF only while it is off, and
-                // ODR is on whenever the input is off.
+                let prev = self.previous_power(e, &base, &input);
                 match kind {
-                    EdgeKind::Osr => simp(&input.and(f)),
-                    EdgeKind::Osf => simp(&input.negate().and(f)),
-                    EdgeKind::Odr => simp(&input.negate().or(f)),
-                    _ => f,
+                    EdgeKind::Osr => simp(&input.and(prev.negate())),
+                    EdgeKind::Osf => simp(&input.negate().and(prev)),
+                    _ => simp(&input.and(prev.negate()).negate()),
                 }
+            }
+            ElementKind::Edge { .. } => {
+                let base = format!("{}_r{}", e.kind.keyword(), self.rung().number);
+                self.new_fresh(&base, e, "this one-shot is not expressible in the algebra")
             }
             ElementKind::Counter { kind, name, .. } => {
                 if *kind == CounterKind::Ctc && self.program.version.is_orig() {
@@ -885,15 +930,10 @@ impl<'a> Compiler<'a> {
             CoilKind::Reset => input.clone().negate().and(old),
             CoilKind::Toggle => {
                 // On a rising edge of the power the bit flips (ldmicro.md §4, COIL
-                // ttrigger). The edge is a one-shot of the power: only its bound by the
-                // power is expressible (an edge needs the power on).
+                // ttrigger): the edge is `i · ¬pre i` over the coil's hidden bit.
                 let base = format!("TOGGLE_r{}", self.rung().number);
-                let edge = self.new_fresh(
-                    &base,
-                    e,
-                    "the rising edge that flips a toggle coil is not expressible in the algebra",
-                );
-                let edge = simp(&input.clone().and(edge));
+                let prev = self.previous_power(e, &base, input);
+                let edge = simp(&input.clone().and(prev.negate()));
                 let flip = edge.clone().and(old.clone().negate());
                 flip.or(edge.negate().and(old))
             }
@@ -944,7 +984,7 @@ impl<'a> Compiler<'a> {
         rhs.names(&mut names);
         let pres: Vec<&String> = names
             .iter()
-            .filter(|n| matches!(self.fresh.get(*n), Some(SignalKind::Previous { .. })))
+            .filter(|n| self.pre_of.contains_key(*n))
             .collect();
         if pres.is_empty() {
             return None;
@@ -968,6 +1008,7 @@ impl<'a> Compiler<'a> {
         for (k, p) in pending.into_iter().enumerate() {
             let name = if several { format!("{base}{}", letters(k)) } else { base.clone() };
             let var = L::Var(p.var.clone()).to_expr();
+            let rhs = self.exact(&p.rhs).to_expr();
             let mut push = |name: String, kind, lhs: Expr, rel, rhs: Expr| {
                 self.hypotheses.push(Hypothesis {
                     name,
@@ -979,7 +1020,7 @@ impl<'a> Compiler<'a> {
                     rhs,
                 });
             };
-            push(name.clone(), HypothesisKind::Equation, var.clone(), Rel::Eq, p.rhs.to_expr());
+            push(name.clone(), HypothesisKind::Equation, var.clone(), Rel::Eq, rhs);
             if let Some((lo, hi)) = p.bounds {
                 if let Some(lo) = lo {
                     let n = format!("{name}_lo");
@@ -1149,7 +1190,9 @@ pub fn program_to_ii(compiled: &CompiledProgram, notation: Notation) -> String {
         ("inputs", |k| *k == SignalKind::Input),
         ("outputs", |k| *k == SignalKind::Output),
         ("relays", |k| *k == SignalKind::Relay),
-        ("previous-scan values (unconstrained)", |k| matches!(k, SignalKind::Previous { .. })),
+        ("edge memories (the input of a one-shot or toggle coil)", |k| {
+            matches!(k, SignalKind::EdgeMemory { .. })
+        }),
         ("fresh outputs of unsupported elements (unconstrained)", |k| {
             matches!(k, SignalKind::Fresh { .. })
         }),

@@ -43,6 +43,8 @@ pub enum L {
     Sr(Box<L>, Box<L>),
     /// `RS(s, r)`.
     Rs(Box<L>, Box<L>),
+    /// `pre f`: `f` one scan earlier.
+    Pre(Box<L>),
 }
 
 impl L {
@@ -109,7 +111,7 @@ impl L {
     pub fn size(&self) -> usize {
         1 + match self {
             L::Zero | L::One | L::Var(_) => 0,
-            L::Not(x) | L::Ton(_, x) | L::Tof(x, _) => x.size(),
+            L::Not(x) | L::Ton(_, x) | L::Tof(x, _) | L::Pre(x) => x.size(),
             L::And(xs) | L::Or(xs) => xs.iter().map(L::size).sum(),
             L::Sr(a, b) | L::Rs(a, b) => a.size() + b.size(),
         }
@@ -120,7 +122,7 @@ impl L {
         match self {
             L::Zero | L::One => false,
             L::Var(v) => v == name,
-            L::Not(x) | L::Ton(_, x) | L::Tof(x, _) => x.mentions(name),
+            L::Not(x) | L::Ton(_, x) | L::Tof(x, _) | L::Pre(x) => x.mentions(name),
             L::And(xs) | L::Or(xs) => xs.iter().any(|x| x.mentions(name)),
             L::Sr(a, b) | L::Rs(a, b) => a.mentions(name) || b.mentions(name),
         }
@@ -132,7 +134,7 @@ impl L {
             L::Zero | L::One | L::Var(_) => false,
             L::Not(x) => x.mentions_temporally(name),
             L::And(xs) | L::Or(xs) => xs.iter().any(|x| x.mentions_temporally(name)),
-            L::Ton(_, x) | L::Tof(x, _) => x.mentions(name),
+            L::Ton(_, x) | L::Tof(x, _) | L::Pre(x) => x.mentions(name),
             L::Sr(a, b) | L::Rs(a, b) => a.mentions(name) || b.mentions(name),
         }
     }
@@ -146,7 +148,7 @@ impl L {
                     out.push(v.clone());
                 }
             }
-            L::Not(x) | L::Ton(_, x) | L::Tof(x, _) => x.names(out),
+            L::Not(x) | L::Ton(_, x) | L::Tof(x, _) | L::Pre(x) => x.names(out),
             L::And(xs) | L::Or(xs) => xs.iter().for_each(|x| x.names(out)),
             L::Sr(a, b) | L::Rs(a, b) => {
                 a.names(out);
@@ -174,6 +176,7 @@ impl L {
             L::Tof(x, d) => L::Tof(Box::new(x.subst(name, value)), d.clone()),
             L::Sr(a, b) => L::Sr(Box::new(a.subst(name, value)), Box::new(b.subst(name, value))),
             L::Rs(a, b) => L::Rs(Box::new(a.subst(name, value)), Box::new(b.subst(name, value))),
+            L::Pre(x) => L::Pre(Box::new(x.subst(name, value))),
         }
     }
 
@@ -190,6 +193,7 @@ impl L {
             L::Tof(x, d) => L::Tof(Box::new(x.rename(f)), d.clone()),
             L::Sr(a, b) => L::Sr(Box::new(a.rename(f)), Box::new(b.rename(f))),
             L::Rs(a, b) => L::Rs(Box::new(a.rename(f)), Box::new(b.rename(f))),
+            L::Pre(x) => L::Pre(Box::new(x.rename(f))),
         }
     }
 
@@ -281,6 +285,10 @@ impl L {
                 let r = r.build(b);
                 b.rs(s, r)
             }
+            L::Pre(x) => {
+                let x = x.build(b);
+                b.pre(x)
+            }
         }
     }
 
@@ -309,6 +317,7 @@ fn from_node(expr: &Expr, id: Id) -> Option<L> {
         Term::Tof([f, d]) => L::Tof(Box::new(from_node(expr, *f)?), delay(*d)?),
         Term::Sr([s, r]) => L::Sr(Box::new(from_node(expr, *s)?), Box::new(from_node(expr, *r)?)),
         Term::Rs([s, r]) => L::Rs(Box::new(from_node(expr, *s)?), Box::new(from_node(expr, *r)?)),
+        Term::Pre(x) => L::Pre(Box::new(from_node(expr, *x)?)),
         Term::Delay(_) | Term::DMax(_) | Term::DMin(_) | Term::DAdd(_) => return None,
     })
 }
@@ -409,6 +418,10 @@ pub fn simp(e: &L) -> L {
         L::Rs(s, r) => match (simp(s), simp(r)) {
             (L::Zero, _) | (_, L::One) => L::Zero,
             (s, r) => L::Rs(Box::new(s), Box::new(r)),
+        },
+        L::Pre(x) => match simp(x) {
+            c @ (L::Zero | L::One) => c,
+            x => L::Pre(Box::new(x)),
         },
     }
 }
@@ -539,6 +552,7 @@ pub fn eliminate(e: &L, p: &str, upper: bool) -> L {
         L::Tof(x, d) => L::Tof(Box::new(eliminate(x, p, upper)), d.clone()),
         L::Sr(s, r) => L::Sr(Box::new(eliminate(s, p, upper)), Box::new(eliminate(r, p, !upper))),
         L::Rs(s, r) => L::Rs(Box::new(eliminate(s, p, upper)), Box::new(eliminate(r, p, !upper))),
+        L::Pre(x) => L::Pre(Box::new(eliminate(x, p, upper))),
     };
     simp(&r)
 }

@@ -28,12 +28,10 @@ pub fn short_name(name: &str) -> Option<String> {
 
 impl CompiledProgram {
     /// The short form of a signal of this program: program bits lose their
-    /// kind prefix, `pre_X` becomes `pre_` + the short form of `X`; fresh
-    /// signals have none.
+    /// kind prefix; fresh signals and edge memories have none.
     fn short_of(&self, name: &str) -> Option<String> {
         match self.signals.get(name)? {
-            SignalKind::Fresh { .. } => None,
-            SignalKind::Previous { of } => short_name(of).map(|s| format!("pre_{s}")),
+            SignalKind::Fresh { .. } | SignalKind::EdgeMemory { .. } => None,
             _ => short_name(name),
         }
     }
@@ -103,5 +101,9 @@ impl Scope for CompiledProgram {
 
     fn hypothesis_names(&self) -> Vec<String> {
         self.hypotheses.iter().map(|h| h.name.clone()).collect()
+    }
+
+    fn scans(&self) -> bool {
+        true
     }
 }

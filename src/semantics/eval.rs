@@ -24,12 +24,14 @@ pub struct Assignment {
     pub signals: BTreeMap<Symbol, Signal>,
     /// The delay of each delay metavariable.
     pub delays: BTreeMap<Symbol, Delay>,
+    /// The scan cycle, for `pre` (signals of a program's scans); `None` for free signals.
+    pub cycle: Option<Time>,
 }
 
 impl Assignment {
     /// An assignment with no names, on `(0, horizon]`.
     pub fn new(horizon: Time) -> Assignment {
-        Assignment { horizon, signals: BTreeMap::new(), delays: BTreeMap::new() }
+        Assignment { horizon, signals: BTreeMap::new(), delays: BTreeMap::new(), cycle: None }
     }
 }
 
@@ -76,6 +78,8 @@ pub enum EvalError {
     NonPositiveHorizon,
     /// A signal the term reads has another horizon than the assignment.
     HorizonMismatch(Symbol),
+    /// `pre` with no scan cycle (free signals have no scans).
+    PreWithoutCycle,
     /// The term is empty, or a node refers to a child that does not precede it.
     Malformed(String),
 }
@@ -92,6 +96,7 @@ impl fmt::Display for EvalError {
                 write!(f, "`{t}` is a signal where a delay is expected")
             }
             EvalError::NonPositiveHorizon => write!(f, "the horizon must be positive"),
+            EvalError::PreWithoutCycle => write!(f, "`pre` needs a scan cycle"),
             EvalError::HorizonMismatch(n) => {
                 write!(f, "the signal `{n}` is not given on the assignment's horizon")
             }
@@ -226,6 +231,11 @@ fn evaluate(expr: &Expr, top: Id, kind: Kind, env: &Assignment) -> Result<Values
     let n = need_sig.len();
     let mut sig: Vec<Option<Signal>> = vec![None; n];
     let mut del: Vec<Option<Delay>> = vec![None; n];
+    let init = if nodes.iter().any(|t| matches!(t, Term::Pre(_))) {
+        initial_values(expr)
+    } else {
+        Vec::new()
+    };
     let missing = || EvalError::Malformed("a child was not evaluated".to_string());
     for i in 0..n {
         let node = &nodes[i];
@@ -252,6 +262,10 @@ fn evaluate(expr: &Expr, top: Id, kind: Kind, env: &Assignment) -> Result<Values
                 Term::And([a, b]) => s(a)?.and(s(b)?),
                 Term::Or([a, b]) => s(a)?.or(s(b)?),
                 Term::Not(a) => s(a)?.not(),
+                Term::Pre(a) => {
+                    let cycle = env.cycle.as_ref().ok_or(EvalError::PreWithoutCycle)?;
+                    s(a)?.delayed(cycle, init[usize::from(*a)])
+                }
                 Term::Ton([dd, f]) => s(f)?.ton(d(dd)?),
                 Term::Tof([f, dd]) => s(f)?.tof(d(dd)?),
                 Term::Sr([a, b]) => Signal::sr(s(a)?, s(b)?),
@@ -271,6 +285,25 @@ fn evaluate(expr: &Expr, top: Id, kind: Kind, env: &Assignment) -> Result<Values
         }
     }
     Ok((sig, del))
+}
+
+/// Each node's value before the first scan (`shared/spec/semantics.md`): names, timers
+/// and memories 0, the Boolean operators applied, `pre f` the value of `f`.
+pub fn initial_values(e: &Expr) -> Vec<bool> {
+    let mut init: Vec<bool> = Vec::with_capacity(e.as_ref().len());
+    for node in e.as_ref() {
+        let at = |c: &Id| init[usize::from(*c)];
+        let v = match node {
+            Term::One => true,
+            Term::Not(a) => !at(a),
+            Term::And([a, b]) => at(a) && at(b),
+            Term::Or([a, b]) => at(a) || at(b),
+            Term::Pre(a) => at(a),
+            _ => false,
+        };
+        init.push(v);
+    }
+    init
 }
 
 /// The signal denoted by the root of `expr` under `env`.

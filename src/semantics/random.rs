@@ -231,6 +231,7 @@ pub fn assignment_with_delays(
                     horizon: horizon.clone(),
                     signals: names.iter().cloned().zip(sigs).collect(),
                     delays: delay_map.clone(),
+                    cycle: None,
                 }
             })
         })
@@ -268,7 +269,12 @@ pub fn exhaustive_boolean(names: &[Symbol]) -> Vec<Assignment> {
         maps = next;
     }
     maps.into_iter()
-        .map(|signals| Assignment { horizon: horizon.clone(), signals, delays: BTreeMap::new() })
+        .map(|signals| Assignment {
+            horizon: horizon.clone(),
+            signals,
+            delays: BTreeMap::new(),
+            cycle: None,
+        })
         .collect()
 }
 

@@ -410,6 +410,23 @@ impl Signal {
         Signal::from_fn(self.horizon.clone(), self.delay_cuts(d), |t| self.any_on(&(t - d), t))
     }
 
+    /// `pre f` for scans of length `cycle` (scan `k` is `[k·c, (k+1)·c)`, the first
+    /// `(0, c)`): `f` one cycle earlier, and `init` (its value before the first scan)
+    /// on the first scan.
+    pub fn delayed(&self, cycle: &Time, init: bool) -> Signal {
+        let mut cuts: Vec<Time> = self.breaks.iter().map(|b| b + cycle).collect();
+        cuts.push(cycle.clone());
+        Signal::from_fn(self.horizon.clone(), cuts, |t| {
+            if t < cycle {
+                init
+            } else if t == cycle {
+                self.open[0]
+            } else {
+                self.value_at(&(t - cycle))
+            }
+        })
+    }
+
     /// `SR(s, r)` (set dominant): at `t`,
     /// `∃t1 ∈ (0, t]: s(t1) ∧ ∀τ ∈ (t1, t]: s(τ) ∨ ¬r(τ)` — the PLC recurrence
     /// `Q := S + Q·¬R`. On the common horizon if the horizons differ.

@@ -51,6 +51,8 @@ pub enum AstKind {
     One,
     /// `!a`.
     Not(Box<Ast>),
+    /// `pre a`.
+    Pre(Box<Ast>),
     /// `a + b + ...` (left-associative), at least two operands.
     Or(Vec<Ast>),
     /// `a . b . ...` (left-associative), at least two operands.

@@ -257,6 +257,10 @@ pub trait Scope {
     fn hypothesis_names(&self) -> Vec<String> {
         Vec::new()
     }
+    /// Whether the names are a program's, run in scans (then `pre` may be used).
+    fn scans(&self) -> bool {
+        false
+    }
 }
 
 /// The answer of a [`Scope`] to a name.
@@ -518,6 +522,11 @@ pub enum SyntaxError {
         /// The statement.
         span: Span,
     },
+    /// `pre` in a goal about free signals: it is defined only for a program's scans.
+    PreOutsideProgram {
+        /// The `pre` term.
+        span: Span,
+    },
 }
 
 impl SyntaxError {
@@ -551,7 +560,8 @@ impl SyntaxError {
             | UndeclaredDelay { span, .. }
             | TooLarge { span }
             | AfterNotConcrete { span }
-            | LawOutsideTheory { span } => *span,
+            | LawOutsideTheory { span }
+            | PreOutsideProgram { span } => *span,
         }
     }
 }
@@ -637,6 +647,10 @@ impl Report for SyntaxError {
                 "a `law` belongs in a theory file, not in a property file or proof script".into()
             }
             TooLarge { .. } => "this term is too large or too deeply nested".into(),
+            PreOutsideProgram { .. } => "`pre` (the value one scan earlier) needs a program: \
+                 free signals have no scans; give the program first (`ii-prove PROGRAM FILE.ii`) \
+                 or a `program` header"
+                .into(),
         }
     }
 
@@ -668,6 +682,7 @@ impl Report for SyntaxError {
             UnterminatedName { .. } => "expected a back quote before the end of the line".into(),
             AfterNotConcrete { .. } => "expected a concrete duration such as `5s`".into(),
             LawOutsideTheory { .. } => "expected `property`, `assume`, `theorem` or `lemma`".into(),
+            PreOutsideProgram { .. } => "no program is loaded".into(),
             _ => String::new(),
         }
     }

@@ -378,6 +378,23 @@ impl Parser {
             let span = start.to(inner.span);
             return Ok(Ast { kind: AstKind::Not(Box::new(inner)), span });
         }
+        // `pre` is the previous-scan operator when an operand follows; otherwise a name.
+        if matches!(&self.peek().tok, Tok::Ident(n) if n == "pre")
+            && matches!(
+                self.peek_at(1),
+                Tok::Ident(_)
+                    | Tok::Quoted(_)
+                    | Tok::LParen
+                    | Tok::Not
+                    | Tok::Zero
+                    | Tok::One
+            )
+        {
+            let start = self.bump().span;
+            let inner = self.nested(Parser::unary)?;
+            let span = start.to(inner.span);
+            return Ok(Ast { kind: AstKind::Pre(Box::new(inner)), span });
+        }
         self.atom()
     }
 
@@ -445,6 +462,7 @@ mod tests {
             AstKind::Zero => "0*".into(),
             AstKind::One => "1*".into(),
             AstKind::Not(x) => format!("(! {})", shape(x)),
+            AstKind::Pre(x) => format!("(pre {})", shape(x)),
             AstKind::Or(v) => list("+", v),
             AstKind::And(v) => list(".", v),
             AstKind::Chain(v) => list("/", v),

@@ -98,7 +98,7 @@ impl Printer<'_> {
             Term::Or(_) => 1,
             Term::And(_) => 2,
             Term::Ton(_) | Term::Tof(_) => 3,
-            Term::Not(_) => 4,
+            Term::Not(_) | Term::Pre(_) => 4,
             _ => 5,
         }
     }
@@ -155,6 +155,7 @@ impl Printer<'_> {
                 3,
             ),
             Term::Not(x) => text(self.sym.not).append(self.signal(*x, 4)),
+            Term::Pre(x) => text("pre ").append(self.signal(*x, 4)),
             Term::Ton([d, f]) => {
                 let inner = if matches!(self.expr[*f], Term::Ton(_)) { 3 } else { 4 };
                 self.delay_operand(*d).append(text("/")).append(self.signal(*f, inner))

@@ -84,6 +84,9 @@ impl Nodes {
     fn not(&mut self, a: Id) -> Id {
         self.add(Term::Not(a))
     }
+    fn pre(&mut self, a: Id) -> Id {
+        self.add(Term::Pre(a))
+    }
     fn ton(&mut self, d: Id, f: Id) -> Id {
         self.add(Term::Ton([d, f]))
     }
@@ -295,6 +298,14 @@ impl<'a> Resolver<'a> {
             AstKind::Not(x) => {
                 let x = self.signal(x, mode, out)?;
                 Some(out.b.not(x))
+            }
+            AstKind::Pre(x) => {
+                if mode == Mode::Concrete && !self.scope.scans() {
+                    self.errors.push(SyntaxError::PreOutsideProgram { span: a.span });
+                    return None;
+                }
+                let x = self.signal(x, mode, out)?;
+                Some(out.b.pre(x))
             }
             AstKind::Or(v) => self.fold(v, mode, out, Term::Or),
             AstKind::And(v) => self.fold(v, mode, out, Term::And),
