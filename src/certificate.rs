@@ -142,6 +142,18 @@ pub enum Proof {
         /// The proof under `atom = 0*`.
         zero: Box<Proof>,
     },
+    /// `inv = 1*` at every scan of a program, by induction over scans: `base` proves
+    /// `inv` at the first scan (`inv` with each `pre f` replaced by the value `f` has
+    /// before it, from the hypotheses read the same way) equal to `1*`, and `step`
+    /// proves `pre inv ⇒ inv`.
+    Induction {
+        /// The invariant.
+        inv: Expr,
+        /// The proof at the first scan.
+        base: Box<Proof>,
+        /// The proof of `pre inv ⇒ inv`.
+        step: Box<Proof>,
+    },
     /// `b = a` from a proof of `a = b`.
     Symm(Box<Proof>),
     /// `a R c` from proofs of `a R b` and `b R' c` (`⇒` if either is).

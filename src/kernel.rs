@@ -39,8 +39,8 @@ pub use crate::certificate::{
     Axiom, Certificate, Cmp, KernelError, Proof, Rel, Rule, Source, Step, Use,
 };
 use crate::term::{
-    Delay, Expr, Id, Language, Symbol, Term, and, copy_into, is_delay_node, not, or, root, same,
-    same_tree, subterm,
+    Delay, Expr, Id, Language, Symbol, Term, and, fold_delay, initial_values, instantiate,
+    is_delay_node, matches, mentions_pre, not, or, root, same, same_tree, subterm,
 };
 
 /// A checked statement. Only this module can create one.
@@ -96,6 +96,41 @@ type Result<T> = std::result::Result<T, KernelError>;
 pub struct Kernel {
     laws: BTreeMap<String, Axiom>,
     hyps: BTreeMap<String, Axiom>,
+    /// A program's context: signals are scan runs, so `pre` and induction are available.
+    scans: bool,
+    /// Checking the base of an induction: the hypotheses hold at the first scan only.
+    first_scan: bool,
+}
+
+/// A law that holds before the first scan too (only `·`, `+`, `¬`, `pre` and constants,
+/// no side conditions): the only kind of rewrite allowed under `pre`.
+fn pointwise_law(law: &Axiom) -> bool {
+    let plain = |e: &Expr| {
+        e.as_ref().iter().all(|t| {
+            matches!(
+                t,
+                Term::Zero | Term::One | Term::And(_) | Term::Or(_) | Term::Not(_) | Term::Pre(_)
+            ) || matches!(t, Term::Name(v) if law.signal_vars.contains(v))
+        })
+    };
+    law.signal_conditions.is_empty() && plain(&law.lhs) && plain(&law.rhs)
+}
+
+/// `e` at the first scan: every `pre f` replaced by the value `f` has before it
+/// (names, timers and memories 0).
+fn at_first_scan(e: &Expr) -> Expr {
+    let init = initial_values(e);
+    let mut out = Expr::default();
+    let mut ids: Vec<Id> = Vec::with_capacity(e.as_ref().len());
+    for (i, node) in e.as_ref().iter().enumerate() {
+        let node = match node {
+            Term::Pre(_) if init[i] => Term::One,
+            Term::Pre(_) => Term::Zero,
+            n => n.clone().map_children(|c| ids[usize::from(c)]),
+        };
+        ids.push(out.add(node));
+    }
+    subterm(&out, root(&out))
 }
 
 /// A rewrite rule `from → to` after choosing how a law is used.
@@ -125,8 +160,13 @@ fn well_formed(e: &Expr, id: Id, want_delay: bool, delay_vars: &[Symbol]) -> boo
     }
 }
 
+/// Every child precedes its node (so the term is a finite tree, whoever built it).
+fn ordered(e: &Expr) -> bool {
+    e.as_ref().iter().enumerate().all(|(i, n)| n.children().iter().all(|c| usize::from(*c) < i))
+}
+
 fn check_signal_term(what: &str, e: &Expr, delay_vars: &[Symbol]) -> Result<()> {
-    if e.as_ref().is_empty() || !well_formed(e, root(e), false, delay_vars) {
+    if e.as_ref().is_empty() || !ordered(e) || !well_formed(e, root(e), false, delay_vars) {
         return Err(KernelError::BadAxiom(format!("{what} is not a signal term")));
     }
     Ok(())
@@ -157,7 +197,45 @@ impl Kernel {
                 return Err(KernelError::BadAxiom(format!("`{name}` is defined twice")));
             }
         }
+        if kernel.hyps.values().any(|h| mentions_pre(&h.lhs) || mentions_pre(&h.rhs)) {
+            return Err(KernelError::BadAxiom(
+                "`pre` in a hypothesis about free signals (they have no scans)".into(),
+            ));
+        }
         Ok(kernel)
+    }
+
+    /// A kernel for a program's scan runs (`pre` in hypotheses and terms, induction
+    /// over scans); otherwise as [`Kernel::new`].
+    pub fn for_scans(laws: Vec<Axiom>, hypotheses: Vec<Axiom>) -> Result<Kernel> {
+        let (plain, with_pre): (Vec<Axiom>, Vec<Axiom>) = hypotheses
+            .into_iter()
+            .partition(|h| !mentions_pre(&h.lhs) && !mentions_pre(&h.rhs));
+        let mut kernel = Kernel::new(laws, plain)?;
+        for h in with_pre {
+            check_signal_term(&h.name, &h.lhs, &[])?;
+            check_signal_term(&h.name, &h.rhs, &[])?;
+            let ground = h.signal_vars.is_empty() && h.delay_vars.is_empty();
+            let taken = kernel.laws.contains_key(&h.name) || kernel.hyps.contains_key(&h.name);
+            if taken || !ground || !h.signal_conditions.is_empty() {
+                return Err(KernelError::BadAxiom(format!("hypothesis `{}`", h.name)));
+            }
+            kernel.hyps.insert(h.name.clone(), h);
+        }
+        kernel.scans = true;
+        Ok(kernel)
+    }
+
+    /// A term this kernel may reason about: well formed, and without `pre` unless the
+    /// signals are scan runs.
+    fn admit(&self, what: &str, e: &Expr) -> Result<()> {
+        check_signal_term(what, e, &[])?;
+        if !self.scans && mentions_pre(e) {
+            return Err(KernelError::BadPosition(format!(
+                "{what} uses `pre`, which free signals do not have"
+            )));
+        }
+        Ok(())
     }
 
     /// Every law the kernel trusts, by name.
@@ -219,6 +297,7 @@ impl Kernel {
                 let zero = self.replay(zero, lemmas)?;
                 case_split(atom, one, zero)
             }
+            Proof::Induction { inv, base, step } => self.induction(inv, base, step, lemmas),
             Proof::Symm(p) => {
                 let mut thm = self.replay(p, lemmas)?;
                 if thm.rel != Rel::Eq {
@@ -278,13 +357,53 @@ impl Kernel {
         }
     }
 
+    /// `inv = 1*` at every scan, from `inv` at the first scan (checked against the
+    /// hypotheses as they read there) and `pre inv ⇒ inv`.
+    fn induction(
+        &self,
+        inv: &Expr,
+        base: &Proof,
+        step: &Proof,
+        lemmas: &BTreeMap<String, Theorem>,
+    ) -> Result<Theorem> {
+        if !self.scans || self.first_scan {
+            return Err(KernelError::BadPosition(
+                "induction over scans needs a program's scans (and not inside a base case)".into(),
+            ));
+        }
+        self.admit("an invariant", inv)?;
+        let first_hyps = self.hyps.iter().map(|(n, h)| {
+            let h = Axiom::ground(n.clone(), at_first_scan(&h.lhs), h.rel, at_first_scan(&h.rhs));
+            (n.clone(), h)
+        });
+        let first = Kernel { hyps: first_hyps.collect(), first_scan: true, ..self.clone() };
+        let one = crate::term::constant(true);
+        let b = first.replay(base, lemmas)?;
+        if !b.proves(&at_first_scan(inv), Rel::Eq, &one) {
+            return Err(KernelError::Mismatch(format!(
+                "the base case proves `{} {:?} {}`, not `{} = 1*`",
+                b.lhs,
+                b.rel,
+                b.rhs,
+                at_first_scan(inv)
+            )));
+        }
+        let s = self.replay(step, lemmas)?;
+        let mut pre_inv = inv.clone();
+        pre_inv.add(Term::Pre(root(inv)));
+        if !s.proves(&pre_inv, Rel::Implies, inv) {
+            return Err(KernelError::Mismatch(format!("the step does not prove `pre {inv} ⇒ {inv}`")));
+        }
+        Ok(merge(Theorem { lhs: inv.clone(), rel: Rel::Eq, rhs: one, ..b }, &s))
+    }
+
     fn chain(
         &self,
         start: &Expr,
         steps: &[Step],
         lemmas: &BTreeMap<String, Theorem>,
     ) -> Result<Theorem> {
-        check_signal_term("the start of a chain", start, &[])?;
+        self.admit("the start of a chain", start)?;
         let mut thm = Theorem {
             lhs: start.clone(),
             rel: Rel::Eq,
@@ -312,7 +431,7 @@ impl Kernel {
     ) -> Result<Rel> {
         let before = &thm.rhs;
         let (target, position) = locate(before, &step.path)?;
-        check_signal_term("the result of a step", &step.after, &[])?;
+        self.admit("the result of a step", &step.after)?;
         let (after_target, _) = locate(&step.after, &step.path).map_err(|_| {
             KernelError::WrongResult("the result has no subterm at the path".into())
         })?;
@@ -357,6 +476,13 @@ impl Kernel {
                 Ok(Rel::Eq)
             }
             Rule::Cite(source, name, how) => {
+                let law = self.laws.get(name).filter(|_| *source == Source::Law);
+                if position.under_pre && !law.is_some_and(pointwise_law) {
+                    return Err(KernelError::BadPosition(format!(
+                        "under `pre` only laws of `·`, `+`, `¬` and `pre` rewrite (the value \
+                         before the first scan); `{name}` does not"
+                    )));
+                }
                 let lemma = lemmas.get(name).filter(|_| *source == Source::Lemma);
                 let lemma_axiom =
                     lemma.map(|t| Axiom::ground(name, t.lhs.clone(), t.rel, t.rhs.clone()));
@@ -381,7 +507,7 @@ impl Kernel {
                     )));
                 }
                 for ((l, rel, r), premise) in axiom.signal_conditions.iter().zip(&step.premises) {
-                    let (want_l, want_r) = (instantiate(l, &sigma)?, instantiate(r, &sigma)?);
+                    let (want_l, want_r) = (bound(l, &sigma)?, bound(r, &sigma)?);
                     let got = self.replay(premise, lemmas)?;
                     if !got.proves(&want_l, *rel, &want_r) {
                         return Err(KernelError::MissingPremise(format!(
@@ -439,6 +565,8 @@ struct Position {
     pointwise: bool,
     /// The subterm is (inside) a delay, not a signal.
     delay: bool,
+    /// `pre` lies on the way down.
+    under_pre: bool,
 }
 
 /// Follows `path` from the root; the id of the subterm and its position.
@@ -448,7 +576,7 @@ fn locate(e: &Expr, path: &[usize]) -> Result<(Id, Position)> {
         return Err(bad());
     }
     let mut id = root(e);
-    let mut pos = Position { monotone: true, pointwise: true, delay: false };
+    let mut pos = Position { monotone: true, pointwise: true, delay: false, under_pre: false };
     for &index in path {
         let node = &e[id];
         let child = *node.children().get(index).ok_or_else(bad)?;
@@ -466,6 +594,10 @@ fn locate(e: &Expr, path: &[usize]) -> Result<(Id, Position)> {
                 }
             }
             (Term::DMax(_) | Term::DMin(_) | Term::DAdd(_), _) => {}
+            (Term::Pre(_), _) => {
+                pos.pointwise = false;
+                pos.under_pre = true;
+            }
             _ => return Err(bad()),
         }
         id = child;
@@ -562,103 +694,22 @@ fn instance(
     Ok(sigma)
 }
 
-/// Matches a law's side against a whole ground term, extending `sigma` (untrusted
-/// code uses this and the three functions below to find instances; the kernel
-/// re-checks every use).
-pub fn match_side(
-    law: &Axiom,
-    side: &Expr,
-    term: &Expr,
-    sigma: &mut BTreeMap<Symbol, Expr>,
-) -> bool {
-    let vars: Vec<Symbol> = law.signal_vars.iter().chain(&law.delay_vars).cloned().collect();
-    matches(side, root(side), &vars, &law.delay_vars, term, root(term), sigma)
-}
-
-/// A law side with its variables replaced (all must be bound).
-pub use self::instantiate as instantiate_side;
-
-/// The value of a ground delay expression (a literal, or `max`/`min`/`+` of them).
-pub fn delay_value(e: &Expr) -> Option<Delay> {
-    fold_delay(e, root(e))
-}
-
 /// Do a law's delay side conditions hold under a substitution?
 pub fn delay_conditions_hold(law: &Axiom, sigma: &BTreeMap<Symbol, Expr>) -> bool {
     check_delay_conditions(law, sigma).is_ok()
 }
 
-/// First-order matching of a law side against a ground term.
-fn matches(
-    pat: &Expr,
-    p: Id,
-    vars: &[Symbol],
-    delay_vars: &[Symbol],
-    term: &Expr,
-    t: Id,
-    sigma: &mut BTreeMap<Symbol, Expr>,
-) -> bool {
-    if let Term::Name(v) = &pat[p]
-        && vars.contains(v)
-    {
-        let wants_delay = delay_vars.contains(v);
-        if wants_delay != is_delay_node(&term[t]) {
-            return false;
-        }
-        return match sigma.get(v) {
-            Some(bound) => same_tree(bound, root(bound), term, t),
-            None => {
-                sigma.insert(*v, subterm(term, t));
-                true
-            }
-        };
-    }
-    let (m, n) = (&pat[p], &term[t]);
-    m.matches(n)
-        && m.children()
-            .iter()
-            .zip(n.children())
-            .all(|(&c, &d)| matches(pat, c, vars, delay_vars, term, d, sigma))
-}
-
-/// A law side with its variables replaced (variables must all be bound).
-pub fn instantiate(pat: &Expr, sigma: &BTreeMap<Symbol, Expr>) -> Result<Expr> {
-    fn go(pat: &Expr, p: Id, sigma: &BTreeMap<Symbol, Expr>, out: &mut Expr) -> Option<Id> {
-        if let Term::Name(v) = &pat[p]
-            && let Some(value) = sigma.get(v)
-        {
-            return Some(copy_into(value, root(value), out));
-        }
-        let mut failed = false;
-        let node = pat[p].clone().map_children(|c| {
-            go(pat, c, sigma, out).unwrap_or_else(|| {
-                failed = true;
-                c
-            })
-        });
-        if failed { None } else { Some(out.add(node)) }
-    }
-    let mut out = Expr::default();
-    go(pat, root(pat), sigma, &mut out).map(|_| out).ok_or_else(|| {
+/// A law side with its variables replaced; an error if one is unbound.
+fn bound(pat: &Expr, sigma: &BTreeMap<Symbol, Expr>) -> Result<Expr> {
+    instantiate(pat, sigma).ok_or_else(|| {
         KernelError::WrongSubstitution("a variable of a side condition is unbound".into())
     })
-}
-
-/// The value of a ground delay expression built from literals, `max`, `min` and `+`.
-fn fold_delay(e: &Expr, id: Id) -> Option<Delay> {
-    match &e[id] {
-        Term::Delay(d) => Some(d.clone()),
-        Term::DMax([a, b]) => Some(fold_delay(e, *a)?.dmax(&fold_delay(e, *b)?)),
-        Term::DMin([a, b]) => Some(fold_delay(e, *a)?.dmin(&fold_delay(e, *b)?)),
-        Term::DAdd([a, b]) => Some(fold_delay(e, *a)?.dadd(&fold_delay(e, *b)?)),
-        _ => None,
-    }
 }
 
 fn check_delay_conditions(law: &Axiom, sigma: &BTreeMap<Symbol, Expr>) -> Result<()> {
     for (lhs, cmp, rhs) in &law.delay_conditions {
         let value = |side: &Expr| -> Result<Delay> {
-            let ground = instantiate(side, sigma)?;
+            let ground = bound(side, sigma)?;
             fold_delay(&ground, root(&ground)).ok_or_else(|| {
                 KernelError::SideCondition(format!("`{ground}` is not a concrete delay"))
             })

@@ -5,6 +5,7 @@
 //! floating point anywhere. The kernel depends on this module and on nothing
 //! else, so everything here is small and obviously correct.
 
+use std::collections::BTreeMap;
 use std::fmt;
 use std::str::FromStr;
 
@@ -316,6 +317,92 @@ impl Builder {
     pub fn finish(self) -> Expr {
         self.expr
     }
+}
+
+/// First-order matching of a pattern (a law side; `vars` are its variables, `delay_vars`
+/// those standing for delays) against the ground subterm at `t`, extending `sigma`.
+pub fn matches(
+    pat: &Expr,
+    p: Id,
+    vars: &[Symbol],
+    delay_vars: &[Symbol],
+    term: &Expr,
+    t: Id,
+    sigma: &mut BTreeMap<Symbol, Expr>,
+) -> bool {
+    if let Term::Name(v) = &pat[p]
+        && vars.contains(v)
+    {
+        let wants_delay = delay_vars.contains(v);
+        if wants_delay != is_delay_node(&term[t]) {
+            return false;
+        }
+        return match sigma.get(v) {
+            Some(bound) => same_tree(bound, root(bound), term, t),
+            None => {
+                sigma.insert(*v, subterm(term, t));
+                true
+            }
+        };
+    }
+    let (m, n) = (&pat[p], &term[t]);
+    m.matches(n)
+        && m.children()
+            .iter()
+            .zip(n.children())
+            .all(|(&c, &d)| matches(pat, c, vars, delay_vars, term, d, sigma))
+}
+
+/// A law side with its variables replaced (variables must all be bound).
+pub fn instantiate(pat: &Expr, sigma: &BTreeMap<Symbol, Expr>) -> Option<Expr> {
+    fn go(pat: &Expr, p: Id, sigma: &BTreeMap<Symbol, Expr>, out: &mut Expr) -> Option<Id> {
+        if let Term::Name(v) = &pat[p]
+            && let Some(value) = sigma.get(v)
+        {
+            return Some(copy_into(value, root(value), out));
+        }
+        let mut failed = false;
+        let node = pat[p].clone().map_children(|c| {
+            go(pat, c, sigma, out).unwrap_or_else(|| {
+                failed = true;
+                c
+            })
+        });
+        if failed { None } else { Some(out.add(node)) }
+    }
+    let mut out = Expr::default();
+    go(pat, root(pat), sigma, &mut out).map(|_| out)
+}
+
+/// The value of a ground delay expression built from literals, `max`, `min` and `+`.
+pub fn fold_delay(e: &Expr, id: Id) -> Option<Delay> {
+    match &e[id] {
+        Term::Delay(d) => Some(d.clone()),
+        Term::DMax([a, b]) => Some(fold_delay(e, *a)?.dmax(&fold_delay(e, *b)?)),
+        Term::DMin([a, b]) => Some(fold_delay(e, *a)?.dmin(&fold_delay(e, *b)?)),
+        Term::DAdd([a, b]) => Some(fold_delay(e, *a)?.dadd(&fold_delay(e, *b)?)),
+        _ => None,
+    }
+}
+
+/// Each node's value before the first scan (`shared/spec/semantics.md`, "Programs, scan
+/// by scan"): names, timers and memories 0, the Boolean operators applied, `pre f` the
+/// value of `f`.
+pub fn initial_values(e: &Expr) -> Vec<bool> {
+    let mut init: Vec<bool> = Vec::with_capacity(e.as_ref().len());
+    for node in e.as_ref() {
+        let at = |c: &Id| init[usize::from(*c)];
+        let v = match node {
+            Term::One => true,
+            Term::Not(a) => !at(a),
+            Term::And([a, b]) => at(a) && at(b),
+            Term::Or([a, b]) => at(a) || at(b),
+            Term::Pre(a) => at(a),
+            _ => false,
+        };
+        init.push(v);
+    }
+    init
 }
 
 /// The constant `1*` or `0*` as a whole term.

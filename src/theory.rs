@@ -6,16 +6,30 @@
 
 use crate::diag::{Diagnostic, Sources};
 use crate::kernel::{Axiom, Cmp, Rel};
+use crate::term::{Expr, Symbol, matches, root};
 use crate::semantics::falsify::{self, Condition, Relation, SampleError, Witness};
 use crate::syntax::{
     self, DelayComparison, Goal, Law, NoProgram, Relation as GoalRelation, SideCondition, Statement,
 };
+
+/// Matches a law's side against a whole ground term, extending `sigma` (the search and
+/// the script checker find instances with it; the kernel re-checks every use).
+pub fn match_side(
+    law: &Axiom,
+    side: &Expr,
+    term: &Expr,
+    sigma: &mut std::collections::BTreeMap<Symbol, Expr>,
+) -> bool {
+    let vars: Vec<Symbol> = law.signal_vars.iter().chain(&law.delay_vars).cloned().collect();
+    matches(side, root(side), &vars, &law.delay_vars, term, root(term), sigma)
+}
 
 /// The theory files shipped with the prover: path (as shown to users) and text.
 pub const THEORY_FILES: &[(&str, &str)] = &[
     ("theories/boolean.ii", include_str!("../theories/boolean.ii")),
     ("theories/memory.ii", include_str!("../theories/memory.ii")),
     ("theories/timer.ii", include_str!("../theories/timer.ii")),
+    ("theories/scan.ii", include_str!("../theories/scan.ii")),
 ];
 
 /// A law with where it was written.

@@ -292,7 +292,11 @@ pub fn refute(program: &Program, goal: &Obligation, limits: Limits) -> Verdict {
                         unconfirmed = Some((c, why));
                     }
                 }
-                Err(_) => {}
+                Err(e) => {
+                    if std::env::var("II_DEBUG").is_ok() {
+                        eprintln!("grid {grid} k {k}: {e}");
+                    }
+                }
             }
         }
     }
@@ -473,15 +477,16 @@ fn exact(
 ) -> Result<(Assignment, bool, bool), String> {
     let mut env = Assignment::new(trace.horizon());
     env.cycle = Some(trace.cycle.clone());
-    let defined: BTreeSet<&str> = model.defs.iter().map(|(n, _)| n.as_str()).collect();
+    // Every signal as the run computed it, scan by scan; then each equation must hold
+    // exactly (a read one scan back, `pre`, makes the order of the equations no guide).
     for (name, values) in &run.signals {
-        if !defined.contains(name.as_str()) {
-            env.signals.insert(Symbol::from(name.as_str()), trace.signal(values)?);
-        }
+        env.signals.insert(Symbol::from(name.as_str()), trace.signal(values)?);
     }
     for (name, rhs) in &model.defs {
         let s = eval(rhs, &env).map_err(|e| e.to_string())?;
-        env.signals.insert(Symbol::from(name.as_str()), s);
+        if env.signals.get(&Symbol::from(name.as_str())) != Some(&s) {
+            return Err(format!("the equation of `{name}` fails on the exact signals"));
+        }
     }
     for (l, rel, r) in &model.constraints {
         let (a, b) =

@@ -15,8 +15,8 @@ use std::collections::{BTreeMap, BTreeSet};
 use varisat::{ExtendFormula, Lit, Solver};
 
 use crate::kernel::Rel;
-use crate::semantics::{Assignment, Time, eval_delay, initial_values};
-use crate::term::{Delay, Expr, Id, Language as _, Term};
+use crate::semantics::{Assignment, Time, eval_delay};
+use crate::term::{Delay, Expr, Id, Language as _, Term, initial_values};
 
 /// Boolean operations over some kind of value (a `bool`, a SAT literal).
 pub trait Bits {

@@ -158,6 +158,9 @@ impl SignalKind {
 pub enum HypothesisKind {
     /// `X = term`: exact.
     Equation,
+    /// `X = G(pre X)`: a memory's value from its previous-scan value (the same rung as its
+    /// `SR`/`RS` equation, named `Lnn_scan`).
+    Recurrence,
     /// `lo ⇒ X`: a consequence of the equation free of `pre` (whatever the previous scan).
     LowerBound,
     /// `X ⇒ hi`: a consequence of the equation free of `pre` (whatever the previous scan).
@@ -383,6 +386,8 @@ struct Pending {
     var: String,
     rhs: L,
     bounds: Option<(Option<L>, Option<L>)>,
+    /// For a memory, its scan recurrence `X = G(pre X)` (what induction over scans reads).
+    recurrence: Option<L>,
 }
 
 struct Compiler<'a> {
@@ -586,7 +591,7 @@ impl<'a> Compiler<'a> {
         self.fresh.insert(m.clone(), SignalKind::EdgeMemory { rung, element });
         let pre = self.pre_name(&m);
         let bounds = self.bounds(input);
-        self.pending.push(Pending { var: m, rhs: input.clone(), bounds });
+        self.pending.push(Pending { var: m, rhs: input.clone(), bounds, recurrence: None });
         L::Var(pre)
     }
 
@@ -941,10 +946,11 @@ impl<'a> Compiler<'a> {
         let g = simp(&g);
         let pre = self.pre_names.get(&x).cloned().unwrap_or_default();
         if self.last_coil.get(&x) == Some(&k) {
-            let rhs = self.finish_var(&pre, g, dominant);
+            let rhs = self.finish_var(&pre, g.clone(), dominant);
             self.current.insert(x.clone(), L::Var(x.clone()));
             let bounds = self.bounds(&rhs);
-            self.pending.push(Pending { var: x, rhs, bounds });
+            let recurrence = (rhs != g).then_some(g);
+            self.pending.push(Pending { var: x, rhs, bounds, recurrence });
         } else if g.size() > MAX_INLINE {
             let name = self.unique(&format!("{x}_r{}", self.rung().number));
             let rung = self.rung().number;
@@ -1009,6 +1015,7 @@ impl<'a> Compiler<'a> {
             let name = if several { format!("{base}{}", letters(k)) } else { base.clone() };
             let var = L::Var(p.var.clone()).to_expr();
             let rhs = self.exact(&p.rhs).to_expr();
+            let recurrence = p.recurrence.as_ref().map(|g| self.exact(g).to_expr());
             let mut push = |name: String, kind, lhs: Expr, rel, rhs: Expr| {
                 self.hypotheses.push(Hypothesis {
                     name,
@@ -1021,6 +1028,10 @@ impl<'a> Compiler<'a> {
                 });
             };
             push(name.clone(), HypothesisKind::Equation, var.clone(), Rel::Eq, rhs);
+            if let Some(g) = recurrence {
+                let n = format!("{name}_scan");
+                push(n, HypothesisKind::Recurrence, var.clone(), Rel::Eq, g);
+            }
             if let Some((lo, hi)) = p.bounds {
                 if let Some(lo) = lo {
                     let n = format!("{name}_lo");

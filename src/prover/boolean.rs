@@ -204,7 +204,7 @@ pub fn law_instances(laws: &[Axiom], atoms: &mut Atoms, limit: usize) -> Vec<Con
             let mut sigmas: Vec<BTreeMap<Symbol, Expr>> = Vec::new();
             for atom in &temporal {
                 let mut sigma = BTreeMap::new();
-                if kernel::match_side(law, &pieces[0], atom, &mut sigma) {
+                if crate::theory::match_side(law, &pieces[0], atom, &mut sigma) {
                     sigmas.push(sigma);
                 }
             }
@@ -213,7 +213,7 @@ pub fn law_instances(laws: &[Axiom], atoms: &mut Atoms, limit: usize) -> Vec<Con
                 for sigma in &sigmas {
                     for atom in &temporal {
                         let mut s = sigma.clone();
-                        if kernel::match_side(law, second, atom, &mut s) {
+                        if crate::theory::match_side(law, second, atom, &mut s) {
                             extended.push(s);
                         }
                     }
@@ -227,9 +227,9 @@ pub fn law_instances(laws: &[Axiom], atoms: &mut Atoms, limit: usize) -> Vec<Con
                 if !kernel::delay_conditions_hold(law, &sigma) {
                     continue;
                 }
-                let (Ok(l), Ok(r)) = (
-                    kernel::instantiate_side(&law.lhs, &sigma),
-                    kernel::instantiate_side(&law.rhs, &sigma),
+                let (Some(l), Some(r)) = (
+                    crate::term::instantiate(&law.lhs, &sigma),
+                    crate::term::instantiate(&law.rhs, &sigma),
                 ) else {
                     continue;
                 };
@@ -241,10 +241,10 @@ pub fn law_instances(laws: &[Axiom], atoms: &mut Atoms, limit: usize) -> Vec<Con
                 let mut conditions = Vec::new();
                 for (cl, rel, cr) in &law.signal_conditions {
                     match (
-                        kernel::instantiate_side(cl, &sigma),
-                        kernel::instantiate_side(cr, &sigma),
+                        crate::term::instantiate(cl, &sigma),
+                        crate::term::instantiate(cr, &sigma),
                     ) {
-                        (Ok(a), Ok(b)) => conditions.push((a, *rel, b)),
+                        (Some(a), Some(b)) => conditions.push((a, *rel, b)),
                         _ => break,
                     }
                 }
@@ -294,7 +294,7 @@ fn temporal_pieces(law: &Axiom) -> Vec<Expr> {
 pub fn fold_delays(e: &Expr) -> Expr {
     fn go(e: &Expr, id: Id, out: &mut Expr) -> Id {
         if let Term::DMax(_) | Term::DMin(_) | Term::DAdd(_) = &e[id]
-            && let Some(v) = kernel::delay_value(&subterm(e, id))
+            && let Some(v) = crate::term::fold_delay(e, id)
         {
             return out.add(Term::Delay(v));
         }
@@ -691,6 +691,8 @@ fn uses_case(proof: &Proof, atom: &Expr) -> bool {
         Proof::CaseSplit { one, zero, .. } => uses_case(one, atom) || uses_case(zero, atom),
         Proof::Symm(p) | Proof::ImpliesByMeet(p) | Proof::ImpliesByZero(p) => uses_case(p, atom),
         Proof::Antisym(p, q) | Proof::Trans(p, q) => uses_case(p, atom) || uses_case(q, atom),
+        // Its base and step are closed proofs: no case assumption of the context reaches them.
+        Proof::Induction { .. } => false,
     }
 }
 

@@ -17,7 +17,7 @@ use std::collections::BTreeSet;
 use std::time::{Duration, Instant};
 
 use crate::kernel::{self, Axiom, Certificate, Kernel, KernelError, Proof, Rel, Source, Theorem};
-use crate::term::{Expr, Symbol, Term, and_not, root};
+use crate::term::{Expr, Symbol, Term, and_not, mentions_pre, root};
 
 use saturate::{Closed, Limits};
 
@@ -99,15 +99,39 @@ pub struct Context {
     premises: std::sync::Mutex<std::collections::HashMap<String, Option<Proof>>>,
     /// Which hypotheses concern each signal (for cones of influence).
     index: ConeIndex,
+    /// A program's context: signals are scan runs (induction over scans is available).
+    pub scans: bool,
 }
 
 impl Context {
-    /// A context over these laws and hypotheses; fails if the kernel refuses an axiom.
+    /// A context over these laws and hypotheses about free signals; fails if the kernel
+    /// refuses an axiom.
     pub fn new(laws: Vec<Axiom>, hypotheses: Vec<Axiom>) -> Result<Context, KernelError> {
-        let kernel = Kernel::new(laws.clone(), hypotheses.clone())?;
+        Context::with_scans(laws, hypotheses, false)
+    }
+
+    /// A context for a program (`scans`: signals are scan runs, with `pre` and induction
+    /// over scans) or for free signals.
+    pub fn with_scans(
+        laws: Vec<Axiom>,
+        hypotheses: Vec<Axiom>,
+        scans: bool,
+    ) -> Result<Context, KernelError> {
+        let kernel = if scans {
+            Kernel::for_scans(laws.clone(), hypotheses.clone())?
+        } else {
+            Kernel::new(laws.clone(), hypotheses.clone())?
+        };
         let rules = saturate::rules_for(&laws);
+        // The search uses the laws of `pre` only where signals are scan runs.
+        let laws = if scans {
+            laws
+        } else {
+            laws.into_iter().filter(|l| !mentions_pre(&l.lhs) && !mentions_pre(&l.rhs)).collect()
+        };
         let index = ConeIndex::new(&hypotheses);
-        Ok(Context { kernel, laws, hypotheses, rules, premises: Default::default(), index })
+        let premises = Default::default();
+        Ok(Context { kernel, laws, hypotheses, rules, premises, index, scans })
     }
 
     /// The hypotheses in the cone of influence of `terms` (see [`cone_of_influence`]),
@@ -420,6 +444,7 @@ pub fn case_leaves(proved: &Proved) -> usize {
             Proof::CaseSplit { one, zero, .. } => count(one) + count(zero),
             Proof::Symm(p) | Proof::ImpliesByMeet(p) | Proof::ImpliesByZero(p) => count(p),
             Proof::Antisym(p, q) | Proof::Trans(p, q) => count(p) + count(q),
+            Proof::Induction { base, step, .. } => count(base) + count(step),
         }
     }
     proved.certificate.main.as_ref().map_or(0, count)

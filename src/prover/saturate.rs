@@ -15,7 +15,9 @@ use egg::{
 };
 
 use crate::kernel::{Axiom, Cmp, Rel};
-use crate::term::{Delay, Expr, Id, Symbol, Term, and, and_not, constant, not, or, root};
+use crate::term::{
+    Delay, Expr, Id, Symbol, Term, and, and_not, constant, mentions_pre, not, or, root,
+};
 
 /// Folds `max`, `min` and `+` of delay literals; the data is the delay's value.
 #[derive(Default, Clone, Copy, Debug)]
@@ -196,7 +198,10 @@ impl Condition<Term, DelayFold> for DelayCondition {
 pub fn rules_for(laws: &[Axiom]) -> Vec<Rule> {
     let mut rules = Vec::new();
     for law in laws {
-        if !law.signal_conditions.is_empty() {
+        // `pre` terms are atoms of the search (rewriting under `pre` needs care the
+        // e-graph's congruence does not take), so the laws of `pre` stay out of it.
+        if !law.signal_conditions.is_empty() || mentions_pre(&law.lhs) || mentions_pre(&law.rhs)
+        {
             continue;
         }
         let vars: Vec<Symbol> = law.signal_vars.iter().chain(&law.delay_vars).cloned().collect();

@@ -316,8 +316,9 @@ impl Session {
             let (lhs, rel, rhs) = theory::goal_parts(&s.value);
             Axiom::ground(s.name.clone(), lhs, rel, rhs)
         }));
-        let mut checker =
-            Checker::new(self.theory.axioms(), hypotheses).map_err(|e| e.to_string())?;
+        let scans = self.program.is_some();
+        let mut checker = Checker::with_scans(self.theory.axioms(), hypotheses, scans)
+            .map_err(|e| e.to_string())?;
         checker.proved = std::mem::take(&mut self.checker.proved);
         checker.failed = std::mem::take(&mut self.checker.failed);
         checker.notation = self.notation;

@@ -814,7 +814,7 @@ pub fn run_program_with(
         let assumed = assumptions(doc);
         let mut hypotheses = compiled.axioms();
         hypotheses.extend(assumed.iter().cloned());
-        let ctx = Context::new(theory.axioms(), hypotheses.clone())
+        let ctx = Context::with_scans(theory.axioms(), hypotheses.clone(), true)
             .map_err(|e| InputError { rendered: format!("error: {path}: {e}\n") })?;
         let session =
             counterexample::Program { ld: &loaded.program, compiled, assumptions: &assumed };

@@ -156,6 +156,14 @@ fn proof_text(proof: &Proof, sizes: &[usize], style: &Style, indent: &str, out: 
         Proof::ImpliesByMeet(p) | Proof::ImpliesByZero(p) => {
             proof_text(p, sizes, style, indent, out);
         }
+        Proof::Induction { inv, base, step } => {
+            let inv = style.term(inv);
+            out.push(format!("{indent}{inv} = 1*, by induction over scans:"));
+            out.push(format!("{indent}first scan (every previous value 0):"));
+            proof_text(base, &[], style, &format!("{indent}  "), out);
+            out.push(format!("{indent}step, from the previous scan:"));
+            proof_text(step, &[], style, &format!("{indent}  "), out);
+        }
     }
 }
 
@@ -168,6 +176,7 @@ fn start_of(proof: &Proof) -> Option<&Expr> {
             start_of(p)
         }
         Proof::Antisym(p, _) => start_of(p),
+        Proof::Induction { inv, .. } => Some(inv),
     }
 }
 
@@ -283,6 +292,7 @@ pub fn length(proved: &Proved) -> usize {
             }
             Proof::Symm(p) | Proof::ImpliesByMeet(p) | Proof::ImpliesByZero(p) => count(p, sizes),
             Proof::Antisym(p, q) | Proof::Trans(p, q) => count(p, sizes) + count(q, sizes),
+            Proof::Induction { base, step, .. } => 3 + count(base, &[]) + count(step, &[]),
         }
     }
     proved.certificate.main.as_ref().map_or(0, |m| count(m, &proved.lines))
@@ -307,6 +317,10 @@ pub fn atomic_steps(proved: &Proved, style: &Style) -> Vec<(String, &'static str
             Proof::Antisym(p, q) | Proof::Trans(p, q) => {
                 walk(p, style, out);
                 walk(q, style, out);
+            }
+            Proof::Induction { base, step, .. } => {
+                walk(base, style, out);
+                walk(step, style, out);
             }
         }
     }

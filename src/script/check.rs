@@ -18,9 +18,10 @@ use std::time::{Duration, Instant};
 use crate::diag::{Span, did_you_mean};
 use crate::kernel::{
     Axiom, Certificate, Kernel, KernelError, Proof, Rel, Rule, Source, Step, Theorem, Use,
-    instantiate_side, match_side,
 };
 use crate::ladder::CompiledProgram;
+use crate::term::instantiate;
+use crate::theory::match_side;
 use crate::prover::saturate::{self, Closed, Limits};
 use crate::prover::{self, Budget, Context, Obligation, Outcome, explain, normalize};
 use crate::syntax::{
@@ -180,10 +181,19 @@ fn rel_symbol(rel: Rel, notation: Notation) -> &'static str {
 }
 
 impl Checker {
-    /// A checker trusting these laws and hypotheses.
+    /// A checker trusting these laws and hypotheses about free signals.
     pub fn new(laws: Vec<Axiom>, hypotheses: Vec<Axiom>) -> Result<Checker, KernelError> {
+        Checker::with_scans(laws, hypotheses, false)
+    }
+
+    /// A checker for a program's scans (`scans`) or for free signals.
+    pub fn with_scans(
+        laws: Vec<Axiom>,
+        hypotheses: Vec<Axiom>,
+        scans: bool,
+    ) -> Result<Checker, KernelError> {
         Ok(Checker {
-            ctx: Context::new(laws, hypotheses)?,
+            ctx: Context::with_scans(laws, hypotheses, scans)?,
             proved: Vec::new(),
             failed: BTreeSet::new(),
             budget: Budget::default(),
@@ -195,7 +205,8 @@ impl Checker {
 
     /// An independent copy (same axioms, claims and settings), e.g. for a worker thread.
     pub fn snapshot(&self) -> Result<Checker, KernelError> {
-        let mut copy = Checker::new(self.ctx.laws.clone(), self.ctx.hypotheses.clone())?;
+        let (laws, hypotheses) = (self.ctx.laws.clone(), self.ctx.hypotheses.clone());
+        let mut copy = Checker::with_scans(laws, hypotheses, self.ctx.scans)?;
         copy.proved = self.proved.clone();
         copy.failed = self.failed.clone();
         copy.budget = self.budget;
@@ -498,9 +509,9 @@ impl Checker {
                         if unbound {
                             continue;
                         }
-                        match instantiate_side(other, &sigma) {
-                            Ok(new) => new,
-                            Err(_) => continue,
+                        match instantiate(other, &sigma) {
+                            Some(new) => new,
+                            None => continue,
                         }
                     }
                 };
@@ -545,7 +556,7 @@ impl Checker {
     ) -> Vec<Proof> {
         let mut out = Vec::new();
         for (l, rel, r) in &axiom.signal_conditions {
-            let (Ok(lhs), Ok(rhs)) = (instantiate_side(l, sigma), instantiate_side(r, sigma))
+            let (Some(lhs), Some(rhs)) = (instantiate(l, sigma), instantiate(r, sigma))
             else {
                 return Vec::new();
             };

@@ -56,15 +56,17 @@ impl ScriptRun {
 }
 
 /// The checker for a script document: the standard laws, the program's equations and
-/// bounds (`program_hypotheses`) and the document's `assume`s.
+/// bounds (`program_hypotheses`, for a script about a program's scans) and the
+/// document's `assume`s.
 pub fn checker_for(
     theory: &Theory,
     doc: &Document,
-    program_hypotheses: Vec<Axiom>,
+    program_hypotheses: Option<Vec<Axiom>>,
 ) -> Result<Checker, ScriptError> {
-    let mut hypotheses = program_hypotheses;
+    let scans = program_hypotheses.is_some();
+    let mut hypotheses = program_hypotheses.unwrap_or_default();
     hypotheses.extend(report::assumptions(doc));
-    Checker::new(theory.axioms(), hypotheses).map_err(|e| ScriptError::BadContext {
+    Checker::with_scans(theory.axioms(), hypotheses, scans).map_err(|e| ScriptError::BadContext {
         span: doc.assumptions.first().map_or(Span::new(doc.file, 0..0), |s| s.span),
         reason: format!("the hypotheses cannot be loaded: {e}"),
     })
@@ -82,7 +84,7 @@ pub fn check_document(
 ) -> (Vec<ClaimReport>, Vec<ScriptError>) {
     let mut reports = Vec::new();
     let mut errors = Vec::new();
-    let hypotheses = program.map(CompiledProgram::axioms).unwrap_or_default();
+    let hypotheses = program.map(CompiledProgram::axioms);
     let mut checker = match checker_for(theory, doc, hypotheses) {
         Ok(c) => c,
         Err(e) => return (reports, vec![e]),

@@ -13,7 +13,7 @@ use std::fmt;
 use num_traits::Signed;
 
 use super::signal::{Signal, Time, format_time};
-use crate::term::{Delay, Expr, Id, Language, Symbol, Term};
+use crate::term::{Delay, Expr, Id, Language, Symbol, Term, initial_values};
 
 /// Values for the free names of a term, on a common horizon.
 #[derive(Clone, PartialEq, Eq)]
@@ -285,25 +285,6 @@ fn evaluate(expr: &Expr, top: Id, kind: Kind, env: &Assignment) -> Result<Values
         }
     }
     Ok((sig, del))
-}
-
-/// Each node's value before the first scan (`shared/spec/semantics.md`): names, timers
-/// and memories 0, the Boolean operators applied, `pre f` the value of `f`.
-pub fn initial_values(e: &Expr) -> Vec<bool> {
-    let mut init: Vec<bool> = Vec::with_capacity(e.as_ref().len());
-    for node in e.as_ref() {
-        let at = |c: &Id| init[usize::from(*c)];
-        let v = match node {
-            Term::One => true,
-            Term::Not(a) => !at(a),
-            Term::And([a, b]) => at(a) && at(b),
-            Term::Or([a, b]) => at(a) || at(b),
-            Term::Pre(a) => at(a),
-            _ => false,
-        };
-        init.push(v);
-    }
-    init
 }
 
 /// The signal denoted by the root of `expr` under `env`.

@@ -11,5 +11,5 @@ pub mod falsify;
 pub mod random;
 pub mod signal;
 
-pub use eval::{Assignment, EvalError, eval, eval_delay, eval_signal, free_names, initial_values};
+pub use eval::{Assignment, EvalError, eval, eval_delay, eval_signal, free_names};
 pub use signal::{Signal, Time, format_time};
