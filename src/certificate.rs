@@ -143,9 +143,9 @@ pub enum Proof {
         zero: Box<Proof>,
     },
     /// `inv = 1*` at every scan of a program, by induction over scans: `base` proves
-    /// `inv` at the first scan (`inv` with each `pre f` replaced by the value `f` has
-    /// before it, from the hypotheses read the same way) equal to `1*`, and `step`
-    /// proves `pre inv ⇒ inv`.
+    /// `1* ⇒ inv` at the first scan (`inv` with each `pre f` replaced by the value `f`
+    /// has before it, from the hypotheses read the same way), and `step` proves
+    /// `pre inv ⇒ inv`.
     Induction {
         /// The invariant.
         inv: Expr,

@@ -39,7 +39,7 @@ pub use crate::certificate::{
     Axiom, Certificate, Cmp, KernelError, Proof, Rel, Rule, Source, Step, Use,
 };
 use crate::term::{
-    Delay, Expr, Id, Language, Symbol, Term, and, fold_delay, initial_values, instantiate,
+    Delay, Expr, Id, Language, Symbol, Term, and, at_first_scan, fold_delay, instantiate,
     is_delay_node, matches, mentions_pre, not, or, root, same, same_tree, subterm,
 };
 
@@ -116,22 +116,6 @@ fn pointwise_law(law: &Axiom) -> bool {
     law.signal_conditions.is_empty() && plain(&law.lhs) && plain(&law.rhs)
 }
 
-/// `e` at the first scan: every `pre f` replaced by the value `f` has before it
-/// (names, timers and memories 0).
-fn at_first_scan(e: &Expr) -> Expr {
-    let init = initial_values(e);
-    let mut out = Expr::default();
-    let mut ids: Vec<Id> = Vec::with_capacity(e.as_ref().len());
-    for (i, node) in e.as_ref().iter().enumerate() {
-        let node = match node {
-            Term::Pre(_) if init[i] => Term::One,
-            Term::Pre(_) => Term::Zero,
-            n => n.clone().map_children(|c| ids[usize::from(c)]),
-        };
-        ids.push(out.add(node));
-    }
-    subterm(&out, root(&out))
-}
 
 /// A rewrite rule `from → to` after choosing how a law is used.
 struct Oriented {
@@ -208,9 +192,8 @@ impl Kernel {
     /// A kernel for a program's scan runs (`pre` in hypotheses and terms, induction
     /// over scans); otherwise as [`Kernel::new`].
     pub fn for_scans(laws: Vec<Axiom>, hypotheses: Vec<Axiom>) -> Result<Kernel> {
-        let (plain, with_pre): (Vec<Axiom>, Vec<Axiom>) = hypotheses
-            .into_iter()
-            .partition(|h| !mentions_pre(&h.lhs) && !mentions_pre(&h.rhs));
+        let (plain, with_pre): (Vec<Axiom>, Vec<Axiom>) =
+            hypotheses.into_iter().partition(|h| !mentions_pre(&h.lhs) && !mentions_pre(&h.rhs));
         let mut kernel = Kernel::new(laws, plain)?;
         for h in with_pre {
             check_signal_term(&h.name, &h.lhs, &[])?;
@@ -357,7 +340,7 @@ impl Kernel {
         }
     }
 
-    /// `inv = 1*` at every scan, from `inv` at the first scan (checked against the
+    /// `inv = 1*` at every scan, from `1* ⇒ inv` at the first scan (checked against the
     /// hypotheses as they read there) and `pre inv ⇒ inv`.
     fn induction(
         &self,
@@ -379,9 +362,9 @@ impl Kernel {
         let first = Kernel { hyps: first_hyps.collect(), first_scan: true, ..self.clone() };
         let one = crate::term::constant(true);
         let b = first.replay(base, lemmas)?;
-        if !b.proves(&at_first_scan(inv), Rel::Eq, &one) {
+        if !b.proves(&one, Rel::Implies, &at_first_scan(inv)) {
             return Err(KernelError::Mismatch(format!(
-                "the base case proves `{} {:?} {}`, not `{} = 1*`",
+                "the base case proves `{} {:?} {}`, not `1* ⇒ {}`",
                 b.lhs,
                 b.rel,
                 b.rhs,
@@ -392,7 +375,9 @@ impl Kernel {
         let mut pre_inv = inv.clone();
         pre_inv.add(Term::Pre(root(inv)));
         if !s.proves(&pre_inv, Rel::Implies, inv) {
-            return Err(KernelError::Mismatch(format!("the step does not prove `pre {inv} ⇒ {inv}`")));
+            return Err(KernelError::Mismatch(format!(
+                "the step does not prove `pre {inv} ⇒ {inv}`"
+            )));
         }
         Ok(merge(Theorem { lhs: inv.clone(), rel: Rel::Eq, rhs: one, ..b }, &s))
     }

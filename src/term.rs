@@ -214,9 +214,10 @@ pub fn is_delay_node(node: &Term) -> bool {
     matches!(node, Term::Delay(_) | Term::DMax(_) | Term::DMin(_) | Term::DAdd(_))
 }
 
-/// Is this node a timer or a memory (an atom of the Boolean skeleton)?
+/// Is this node a timer, a memory or a previous-scan value (an atom of the Boolean
+/// skeleton whose value is not a function of the present instant)?
 pub fn is_temporal_node(node: &Term) -> bool {
-    matches!(node, Term::Ton(_) | Term::Tof(_) | Term::Sr(_) | Term::Rs(_))
+    matches!(node, Term::Ton(_) | Term::Tof(_) | Term::Sr(_) | Term::Rs(_) | Term::Pre(_))
 }
 
 /// Does the term mention `pre` anywhere?
@@ -403,6 +404,23 @@ pub fn initial_values(e: &Expr) -> Vec<bool> {
         init.push(v);
     }
     init
+}
+
+/// `e` at the first scan: every `pre f` replaced by the value `f` has before it
+/// (names, timers and memories 0).
+pub fn at_first_scan(e: &Expr) -> Expr {
+    let init = initial_values(e);
+    let mut out = Expr::default();
+    let mut ids: Vec<Id> = Vec::with_capacity(e.as_ref().len());
+    for (i, node) in e.as_ref().iter().enumerate() {
+        let node = match node {
+            Term::Pre(_) if init[i] => Term::One,
+            Term::Pre(_) => Term::Zero,
+            n => n.clone().map_children(|c| ids[usize::from(c)]),
+        };
+        ids.push(out.add(node));
+    }
+    subterm(&out, root(&out))
 }
 
 /// The constant `1*` or `0*` as a whole term.

@@ -6,11 +6,11 @@
 
 use crate::diag::{Diagnostic, Sources};
 use crate::kernel::{Axiom, Cmp, Rel};
-use crate::term::{Expr, Symbol, matches, root};
 use crate::semantics::falsify::{self, Condition, Relation, SampleError, Witness};
 use crate::syntax::{
     self, DelayComparison, Goal, Law, NoProgram, Relation as GoalRelation, SideCondition, Statement,
 };
+use crate::term::{Expr, Symbol, matches, root};
 
 /// Matches a law's side against a whole ground term, extending `sigma` (the search and
 /// the script checker find instances with it; the kernel re-checks every use).

@@ -988,10 +988,7 @@ impl<'a> Compiler<'a> {
     fn bounds(&self, rhs: &L) -> Option<(Option<L>, Option<L>)> {
         let mut names = Vec::new();
         rhs.names(&mut names);
-        let pres: Vec<&String> = names
-            .iter()
-            .filter(|n| self.pre_of.contains_key(*n))
-            .collect();
+        let pres: Vec<&String> = names.iter().filter(|n| self.pre_of.contains_key(*n)).collect();
         if pres.is_empty() {
             return None;
         }

@@ -625,6 +625,37 @@ pub enum Failure {
     Limit(String),
 }
 
+/// The Boolean views of `goal` and of the constraints (hypotheses equating two atoms
+/// merged into classes), and each atom's representative.
+fn skeleton(
+    goal: &Expr,
+    constraints: &[Constraint],
+    atoms: &mut Atoms,
+) -> (Vec<Constraint>, B, Vec<(B, B)>, Vec<usize>) {
+    let mut constraints = constraints.to_vec();
+    atoms.view(goal, root(goal));
+    register(atoms, &constraints);
+    atoms.merge_equal(&mut constraints);
+    let goal_view = atoms.view(goal, root(goal));
+    let reps: Vec<usize> = (0..atoms.terms.len()).map(|i| atoms.rep(i)).collect();
+    let views: Vec<(B, B)> = constraints
+        .iter()
+        .map(|c| (atoms.view(&c.lhs, root(&c.lhs)), atoms.view(&c.rhs, root(&c.rhs))))
+        .collect();
+    (constraints, goal_view, views, reps)
+}
+
+/// A model of the skeleton in which `goal` is 1: each atom's value, by its printed form.
+pub fn model_of(
+    goal: &Expr,
+    constraints: &[Constraint],
+    atoms: &mut Atoms,
+) -> Option<HashMap<String, bool>> {
+    let (constraints, goal_view, views, reps) = skeleton(goal, constraints, atoms);
+    let model = satisfiable(&goal_view, &constraints, &views, &reps)?;
+    Some(model.into_iter().enumerate().map(|(i, v)| (atoms.terms[i].to_string(), v)).collect())
+}
+
 /// Decides `goal = 0*` over the skeleton with a SAT solver; if valid, builds a case-split proof.
 pub fn prove_zero(
     goal: &Expr,
@@ -633,21 +664,12 @@ pub fn prove_zero(
     max_leaves: usize,
     deadline: Instant,
 ) -> Result<Proof, Failure> {
-    let mut constraints = constraints.to_vec();
-    atoms.view(goal, root(goal));
-    register(atoms, &constraints);
-    atoms.merge_equal(&mut constraints);
+    let (constraints, goal_view, views, reps) = skeleton(goal, constraints, atoms);
     let constraints = &constraints[..];
-    let goal_view = atoms.view(goal, root(goal));
-    let reps: Vec<usize> = (0..atoms.terms.len()).map(|i| atoms.rep(i)).collect();
     let mut members = vec![Vec::new(); reps.len()];
     for (i, r) in reps.iter().enumerate() {
         members[*r].push(i);
     }
-    let views: Vec<(B, B)> = constraints
-        .iter()
-        .map(|c| (atoms.view(&c.lhs, root(&c.lhs)), atoms.view(&c.rhs, root(&c.rhs))))
-        .collect();
     let mut occurs = vec![Vec::new(); reps.len()];
     for (i, (l, r)) in views.iter().enumerate() {
         let mut found = Vec::new();

@@ -9,6 +9,7 @@
 //! with the reason and, when the skeleton has one, a candidate countermodel.
 
 pub mod boolean;
+pub mod induction;
 pub mod explain;
 pub mod normalize;
 pub mod saturate;
@@ -52,6 +53,8 @@ pub enum Method {
     Saturation,
     /// Case splits on the Boolean skeleton.
     CaseSplit,
+    /// Induction over scans with an invariant found by the search.
+    Induction,
 }
 
 /// How a proof attempt ended.
@@ -342,6 +345,16 @@ fn prove_at(
         }
         _ => {}
     }
+    // What the program did in earlier scans: an inductive invariant.
+    if let Err(boolean::Failure::Countermodel(_)) = &cases
+        && depth == 0
+        && ctx.scans
+    {
+        let share = Instant::now() + budget.time / 4;
+        if let Some(proved) = induction::prove(ctx, goal, budget, share.min(deadline)) {
+            return Outcome::Proved(Box::new(proved));
+        }
+    }
     // Larger rule sets may still find a proof (or a shorter one).
     // When a (long) case proof exists, a shorter one is looked for only in small cones:
     // in large ones the bigger rule sets rarely close and would cost the whole budget.
@@ -505,6 +518,70 @@ fn bridge(
     Err(explain::ExplainError(format!("no local proof of `{x} = {y}`")))
 }
 
+/// A hypothesis as a constraint of the Boolean skeleton.
+fn constraint(h: &Axiom) -> boolean::Constraint {
+    boolean::Constraint {
+        source: Source::Hypothesis,
+        name: h.name.clone(),
+        raw: (h.lhs.clone(), h.rhs.clone()),
+        lhs: h.lhs.clone(),
+        rel: h.rel,
+        rhs: h.rhs.clone(),
+        conditions: Vec::new(),
+        premises: Vec::new(),
+    }
+}
+
+/// The cone's hypotheses as constraints, and the laws' instances for the atoms of the
+/// hypotheses and of `terms` (one whose side conditions on signals are not proved is
+/// left out).
+fn constraints_for(
+    ctx: &Context,
+    cone: &[Axiom],
+    terms: &[&Expr],
+    atoms: &mut boolean::Atoms,
+    budget: Budget,
+    depth: usize,
+) -> Vec<boolean::Constraint> {
+    let mut constraints: Vec<boolean::Constraint> = cone.iter().map(constraint).collect();
+    // Register the atoms of the terms and the hypotheses, then instantiate the laws for them.
+    let mut probe = constraints.clone();
+    probe.extend(
+        terms.iter().map(|t| constraint(&Axiom::ground("", (*t).clone(), Rel::Eq, (*t).clone()))),
+    );
+    boolean::register(atoms, &probe);
+    for mut c in boolean::law_instances(&ctx.laws, atoms, 2_000) {
+        // A law with side conditions on signals is used only where they are proved.
+        if !c.conditions.is_empty() {
+            if depth > 0 {
+                continue;
+            }
+            let small = Budget { time: budget.time / 20, ..budget };
+            for (l, rel, r) in &c.conditions {
+                let key = format!("{l} {rel:?} {r}");
+                let known = ctx.premises.lock().ok().and_then(|m| m.get(&key).cloned());
+                let proof = known.unwrap_or_else(|| {
+                    let sub = Obligation { lhs: l.clone(), rel: *rel, rhs: r.clone() };
+                    let proof = match prove_at(ctx, &sub, small, depth + 1, &mut |_| false) {
+                        Outcome::Proved(p) => p.certificate.main,
+                        Outcome::Unknown { .. } => None,
+                    };
+                    if let Ok(mut m) = ctx.premises.lock() {
+                        m.insert(key, proof.clone());
+                    }
+                    proof
+                });
+                c.premises.extend(proof);
+            }
+            if c.premises.len() != c.conditions.len() {
+                continue;
+            }
+        }
+        constraints.push(c);
+    }
+    constraints
+}
+
 /// The goal as `f·¬g = 0*` (both ways for an equation), proved by cases on the skeleton.
 fn prove_by_cases(
     ctx: &Context,
@@ -523,61 +600,7 @@ fn prove_by_cases(
     for (f, g) in &directions {
         let zero_goal = and_not(f, g);
         let mut atoms = boolean::Atoms::default();
-        let mut constraints: Vec<boolean::Constraint> = cone
-            .iter()
-            .map(|h| boolean::Constraint {
-                source: Source::Hypothesis,
-                name: h.name.clone(),
-                raw: (h.lhs.clone(), h.rhs.clone()),
-                lhs: h.lhs.clone(),
-                rel: h.rel,
-                rhs: h.rhs.clone(),
-                conditions: Vec::new(),
-                premises: Vec::new(),
-            })
-            .collect();
-        // Register the atoms of the goal and the hypotheses, then instantiate the laws for them.
-        let mut probe = constraints.clone();
-        probe.push(boolean::Constraint {
-            source: Source::Hypothesis,
-            name: String::new(),
-            raw: (zero_goal.clone(), zero_goal.clone()),
-            lhs: zero_goal.clone(),
-            rel: Rel::Eq,
-            rhs: zero_goal.clone(),
-            conditions: Vec::new(),
-            premises: Vec::new(),
-        });
-        boolean::register(&mut atoms, &probe);
-        for mut c in boolean::law_instances(&ctx.laws, &mut atoms, 2_000) {
-            // A law with side conditions on signals is used only where they are proved.
-            if !c.conditions.is_empty() {
-                if depth > 0 {
-                    continue;
-                }
-                let small = Budget { time: budget.time / 20, ..budget };
-                for (l, rel, r) in &c.conditions {
-                    let key = format!("{l} {rel:?} {r}");
-                    let known = ctx.premises.lock().ok().and_then(|m| m.get(&key).cloned());
-                    let proof = known.unwrap_or_else(|| {
-                        let sub = Obligation { lhs: l.clone(), rel: *rel, rhs: r.clone() };
-                        let proof = match prove_at(ctx, &sub, small, depth + 1, &mut |_| false) {
-                            Outcome::Proved(p) => p.certificate.main,
-                            Outcome::Unknown { .. } => None,
-                        };
-                        if let Ok(mut m) = ctx.premises.lock() {
-                            m.insert(key, proof.clone());
-                        }
-                        proof
-                    });
-                    c.premises.extend(proof);
-                }
-                if c.premises.len() != c.conditions.len() {
-                    continue;
-                }
-            }
-            constraints.push(c);
-        }
+        let constraints = constraints_for(ctx, cone, &[&zero_goal], &mut atoms, budget, depth);
         let proof =
             boolean::prove_zero(&zero_goal, &constraints, &mut atoms, max_leaves, deadline)?;
         proofs.push(Proof::ImpliesByZero(Box::new(proof)));

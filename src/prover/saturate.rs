@@ -200,8 +200,7 @@ pub fn rules_for(laws: &[Axiom]) -> Vec<Rule> {
     for law in laws {
         // `pre` terms are atoms of the search (rewriting under `pre` needs care the
         // e-graph's congruence does not take), so the laws of `pre` stay out of it.
-        if !law.signal_conditions.is_empty() || mentions_pre(&law.lhs) || mentions_pre(&law.rhs)
-        {
+        if !law.signal_conditions.is_empty() || mentions_pre(&law.lhs) || mentions_pre(&law.rhs) {
             continue;
         }
         let vars: Vec<Symbol> = law.signal_vars.iter().chain(&law.delay_vars).cloned().collect();

@@ -625,6 +625,7 @@ impl Session {
                 let method = match proved.method {
                     prover::Method::Saturation => "by rewriting",
                     prover::Method::CaseSplit => "by cases",
+                    prover::Method::Induction => "by induction over scans",
                 };
                 format!(
                     "proved {name}: {statement}  ({method}, kernel-checked, {}; `trace` shows the proof)\n",

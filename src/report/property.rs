@@ -143,6 +143,7 @@ pub fn check_property(
                 method: match proved.method {
                     prover::Method::Saturation => "saturation".into(),
                     prover::Method::CaseSplit => "case-split".into(),
+                    prover::Method::Induction => "induction".into(),
                 },
                 lines: trace::render(&proved, goal.rel, &style),
                 length: trace::length(&proved),

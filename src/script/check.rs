@@ -20,18 +20,18 @@ use crate::kernel::{
     Axiom, Certificate, Kernel, KernelError, Proof, Rel, Rule, Source, Step, Theorem, Use,
 };
 use crate::ladder::CompiledProgram;
-use crate::term::instantiate;
-use crate::theory::match_side;
 use crate::prover::saturate::{self, Closed, Limits};
 use crate::prover::{self, Budget, Context, Obligation, Outcome, explain, normalize};
 use crate::syntax::{
     Claim, Goal, Notation, Relation, RuleRef, ScriptProof, Statement, goal_to_string,
     term_to_string,
 };
+use crate::term::instantiate;
 use crate::term::{
     Expr, Id, Language, Term, and, and_not, constant, is_delay_node, root, same, subterm,
 };
 use crate::theory;
+use crate::theory::match_side;
 
 use super::error::{FailedStep, ScriptError};
 
@@ -556,8 +556,7 @@ impl Checker {
     ) -> Vec<Proof> {
         let mut out = Vec::new();
         for (l, rel, r) in &axiom.signal_conditions {
-            let (Some(lhs), Some(rhs)) = (instantiate(l, sigma), instantiate(r, sigma))
-            else {
+            let (Some(lhs), Some(rhs)) = (instantiate(l, sigma), instantiate(r, sigma)) else {
                 return Vec::new();
             };
             let small = Budget { time: self.budget.time / 4, ..self.budget };

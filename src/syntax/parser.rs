@@ -382,12 +382,7 @@ impl Parser {
         if matches!(&self.peek().tok, Tok::Ident(n) if n == "pre")
             && matches!(
                 self.peek_at(1),
-                Tok::Ident(_)
-                    | Tok::Quoted(_)
-                    | Tok::LParen
-                    | Tok::Not
-                    | Tok::Zero
-                    | Tok::One
+                Tok::Ident(_) | Tok::Quoted(_) | Tok::LParen | Tok::Not | Tok::Zero | Tok::One
             )
         {
             let start = self.bump().span;

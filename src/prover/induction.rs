@@ -1,0 +1,331 @@
+//! Induction over scans (untrusted search): an inductive strengthening of a program property, found Houdini-style over clauses of the program's state bits, and the certificate `Proof::Induction` the kernel checks.
+//!
+//! A property `f ⇒ g` of a program often holds only because of what earlier scans did.
+//! The search looks for an invariant `Inv = C1 · C2 · … · Cn`, where `C1` is the goal
+//! itself (`¬f + g`) and the other clauses are candidates over the program's *state
+//! bits* (the names `X` whose previous value `pre X` the equations read): every `X`,
+//! `¬X`, and every disjunction of two of them. Candidates are pruned on the Boolean
+//! skeleton (the cone's equations and the laws' instances, SAT by varisat):
+//!
+//! 1. *base*: a model of the hypotheses at the first scan (each `pre f` replaced by
+//!    the value `f` has before it) where some candidate is 0 removes every candidate
+//!    0 in it, until no such model exists;
+//! 2. *step*: a model where every candidate held at the previous scan (`pre Ci`, with
+//!    `pre` pushed down to the state bits) and one fails now removes every candidate
+//!    that fails in it, until the set is inductive.
+//!
+//! If the goal's clause survives, the set is minimised (a clause goes if the rest is
+//! still inductive) and the certificate is built: a lemma `inv: Inv = 1*` by
+//! [`Proof::Induction`] (base and step by case splits on the skeleton, the step after
+//! the chain `pre Inv = …` of `pre` laws), and the goal from the lemma by cases.
+//! Everything is re-checked by the kernel; a failure anywhere is "no proof".
+
+use std::collections::{BTreeSet, HashMap};
+use std::time::Instant;
+
+use super::{Budget, Context, Method, Obligation, Proved, boolean, constraint, constraints_for};
+use crate::kernel::{Axiom, Certificate, Proof, Rel, Rule, Source, Step, Use};
+use crate::term::{
+    Expr, Id, Language as _, Term, and, and_not, at_first_scan, constant, mentions_pre, not, or,
+    root, subterm,
+};
+
+/// At most this many state bits take part in candidate clauses.
+const MAX_STATE: usize = 16;
+
+/// At most this many rounds of pruning (each one SAT call).
+const MAX_ROUNDS: usize = 200;
+
+/// The name the invariant lemma has in certificates and traces.
+pub const LEMMA: &str = "inv";
+
+/// Tries to prove `goal` by induction over scans (a program's context only).
+pub fn prove(ctx: &Context, goal: &Obligation, budget: Budget, deadline: Instant) -> Option<Proved> {
+    if !ctx.scans {
+        return None;
+    }
+    let cone: Vec<Axiom> = ctx.cone(&[&goal.lhs, &goal.rhs], None).into_iter().cloned().collect();
+    let goals = goal_clauses(goal);
+    let state = state_bits(&cone, goal);
+    let mut candidates: Vec<Expr> = goals.clone();
+    candidates.extend(clauses(&state));
+    let first: Vec<Axiom> = cone
+        .iter()
+        .map(|h| Axiom::ground(h.name.clone(), at_first_scan(&h.lhs), h.rel, at_first_scan(&h.rhs)))
+        .collect();
+    // Base: drop what fails at the first scan.
+    let mut atoms0 = boolean::Atoms::default();
+    let refs: Vec<&Expr> = candidates.iter().collect();
+    let base_constraints = constraints_for(ctx, &first, &refs, &mut atoms0, budget, 1);
+    let mut rounds = 0;
+    loop {
+        rounds += 1;
+        if rounds > MAX_ROUNDS || Instant::now() > deadline {
+            return None;
+        }
+        let fails = not(&product(&candidates.iter().map(at_first_scan).collect::<Vec<_>>()));
+        let Some(model) = boolean::model_of(&fails, &base_constraints, &mut atoms0) else {
+            break;
+        };
+        candidates.retain(|c| value(&at_first_scan(c), &model) != Some(false));
+        if !goals.iter().all(|g| candidates.iter().any(|c| c == g)) {
+            debug("the goal fails at the first scan");
+            return None;
+        }
+    }
+    // Step: drop what is not preserved, until the rest is inductive.
+    let mut atoms = boolean::Atoms::default();
+    let pres: Vec<Expr> = candidates.iter().map(|c| push_pre(&pre(c)).0).collect();
+    let refs: Vec<&Expr> = candidates.iter().chain(&pres).collect();
+    let step_constraints = constraints_for(ctx, &cone, &refs, &mut atoms, budget, 1);
+    let inductive = |set: &[Expr], atoms: &mut boolean::Atoms| -> Option<HashMap<String, bool>> {
+        let before: Vec<Expr> = set.iter().map(|c| push_pre(&pre(c)).0).collect();
+        boolean::model_of(&and_not(&product(&before), &product(set)), &step_constraints, atoms)
+    };
+    loop {
+        rounds += 1;
+        if rounds > MAX_ROUNDS || Instant::now() > deadline {
+            return None;
+        }
+        let Some(model) = inductive(&candidates, &mut atoms) else { break };
+        let before = candidates.len();
+        candidates.retain(|c| value(c, &model) != Some(false));
+        if candidates.len() == before || !goals.iter().all(|g| candidates.contains(g)) {
+            debug(&format!("step: {} of {before} left", candidates.len()));
+            return None;
+        }
+    }
+    // Minimise: a clause goes when the others are still inductive.
+    let mut k = goals.len();
+    while k < candidates.len() {
+        if Instant::now() > deadline {
+            return None;
+        }
+        let mut fewer = candidates.clone();
+        fewer.remove(k);
+        if inductive(&fewer, &mut atoms).is_none() {
+            candidates = fewer;
+        } else {
+            k += 1;
+        }
+    }
+    debug(&format!("invariant: {}", product(&candidates)));
+    let c = certificate(ctx, goal, &cone, &first, &candidates, budget, deadline);
+    debug(&format!("certificate: {}", c.is_some()));
+    c
+}
+
+fn debug(s: &str) {
+    if std::env::var("II_DEBUG").is_ok() {
+        eprintln!("induction: {s}");
+    }
+}
+
+/// The goal's clauses: `¬f + g` (and `¬g + f` for an equation).
+fn goal_clauses(goal: &Obligation) -> Vec<Expr> {
+    let mut out = vec![or(&not(&goal.lhs), &goal.rhs)];
+    if goal.rel == Rel::Eq {
+        out.push(or(&not(&goal.rhs), &goal.lhs));
+    }
+    out
+}
+
+/// The state bits: names whose previous value the cone reads, the goal's names first.
+fn state_bits(cone: &[Axiom], goal: &Obligation) -> Vec<String> {
+    let mut read: BTreeSet<String> = BTreeSet::new();
+    for h in cone {
+        for side in [&h.lhs, &h.rhs] {
+            for t in side.as_ref() {
+                if let Term::Pre(a) = t
+                    && let Term::Name(n) = &side[*a]
+                {
+                    read.insert(n.as_str().to_string());
+                }
+            }
+        }
+    }
+    let mut out: Vec<String> = Vec::new();
+    for side in [&goal.lhs, &goal.rhs] {
+        for t in side.as_ref() {
+            if let Term::Name(n) = t
+                && read.contains(n.as_str())
+                && !out.iter().any(|o| o == n.as_str())
+            {
+                out.push(n.as_str().to_string());
+            }
+        }
+    }
+    out.extend(read.into_iter().filter(|n| !out.contains(n)).collect::<Vec<_>>());
+    out.truncate(MAX_STATE);
+    out
+}
+
+/// Every literal and every disjunction of two literals over the state bits.
+fn clauses(state: &[String]) -> Vec<Expr> {
+    let lits: Vec<Expr> = state
+        .iter()
+        .flat_map(|n| [crate::term::name(n), not(&crate::term::name(n))])
+        .collect();
+    let mut out = lits.clone();
+    for i in 0..lits.len() {
+        for j in (i + 1)..lits.len() {
+            if i / 2 != j / 2 {
+                out.push(or(&lits[i], &lits[j]));
+            }
+        }
+    }
+    out
+}
+
+/// `c1 · c2 · …` (`1*` for none).
+fn product(cs: &[Expr]) -> Expr {
+    cs.iter().skip(1).fold(cs.first().cloned().unwrap_or_else(|| constant(true)), |a, c| and(&a, c))
+}
+
+/// `pre e`.
+fn pre(e: &Expr) -> Expr {
+    let mut out = e.clone();
+    out.add(Term::Pre(root(e)));
+    out
+}
+
+/// The value of a Boolean combination of atoms under a model (by the atoms' printed form).
+fn value(e: &Expr, model: &HashMap<String, bool>) -> Option<bool> {
+    fn go(e: &Expr, id: Id, model: &HashMap<String, bool>) -> Option<bool> {
+        Some(match &e[id] {
+            Term::Zero => false,
+            Term::One => true,
+            Term::Not(a) => !go(e, *a, model)?,
+            Term::And([a, b]) => go(e, *a, model)? && go(e, *b, model)?,
+            Term::Or([a, b]) => go(e, *a, model)? || go(e, *b, model)?,
+            _ => *model.get(&subterm(e, id).to_string())?,
+        })
+    }
+    go(e, root(e), model)
+}
+
+/// `pre` pushed down through `·`, `+`, `¬` and the constants to the atoms, with the
+/// chain of `pre` law steps from `e` to the result.
+pub fn push_pre(e: &Expr) -> (Expr, Vec<Step>) {
+    let mut whole = e.clone();
+    let mut steps = Vec::new();
+    while let Some(path) = pushable(&whole, root(&whole), &mut Vec::new()) {
+        let at = locate(&whole, &path);
+        let Term::Pre(inner) = whole[at] else { break };
+        let (law, replacement) = match &whole[inner] {
+            Term::Zero => ("pre_zero", constant(false)),
+            Term::One => ("pre_one", constant(true)),
+            Term::Not(a) => ("pre_not", not(&pre(&subterm(&whole, *a)))),
+            Term::And([a, b]) => {
+                ("pre_and", and(&pre(&subterm(&whole, *a)), &pre(&subterm(&whole, *b))))
+            }
+            Term::Or([a, b]) => {
+                ("pre_or", or(&pre(&subterm(&whole, *a)), &pre(&subterm(&whole, *b))))
+            }
+            _ => break,
+        };
+        whole = super::normalize::replace_at(&whole, &path, &replacement);
+        steps.push(Step {
+            path,
+            rule: Rule::Cite(Source::Law, law.into(), Use::Forward),
+            after: whole.clone(),
+            subst: Vec::new(),
+            premises: Vec::new(),
+        });
+    }
+    (whole, steps)
+}
+
+/// The path to the outermost `pre` whose argument is `·`, `+`, `¬` or a constant.
+fn pushable(e: &Expr, id: Id, path: &mut Vec<usize>) -> Option<Vec<usize>> {
+    if let Term::Pre(a) = &e[id]
+        && matches!(e[*a], Term::Zero | Term::One | Term::Not(_) | Term::And(_) | Term::Or(_))
+    {
+        return Some(path.clone());
+    }
+    for (i, c) in e[id].children().iter().enumerate() {
+        path.push(i);
+        let found = pushable(e, *c, path);
+        path.pop();
+        if found.is_some() {
+            return found;
+        }
+    }
+    None
+}
+
+fn locate(e: &Expr, path: &[usize]) -> Id {
+    path.iter().fold(root(e), |id, &i| e[id].children()[i])
+}
+
+/// The certificate: the invariant lemma by induction, then the goal from it by cases.
+fn certificate(
+    ctx: &Context,
+    goal: &Obligation,
+    cone: &[Axiom],
+    first: &[Axiom],
+    clauses: &[Expr],
+    budget: Budget,
+    deadline: Instant,
+) -> Option<Proved> {
+    let inv = product(clauses);
+    let leaves = budget.cases;
+    // Base: `1* ⇒ Inv` at the first scan, from `1*·¬Inv = 0*`.
+    let inv0 = at_first_scan(&inv);
+    let one = constant(true);
+    let base_goal = and_not(&one, &inv0);
+    let mut atoms = boolean::Atoms::default();
+    let base_c = constraints_for(ctx, first, &[&base_goal], &mut atoms, budget, 1);
+    let base = boolean::prove_zero(&base_goal, &base_c, &mut atoms, leaves, deadline)
+        .map_err(|e| debug(&format!("base: {e:?}")))
+        .ok()?;
+    // Step: `pre Inv = P` by the laws of `pre`, then `P ⇒ Inv` by cases.
+    let (p, chain) = push_pre(&pre(&inv));
+    let step_goal = and_not(&p, &inv);
+    let mut atoms = boolean::Atoms::default();
+    let step_c = constraints_for(ctx, cone, &[&step_goal], &mut atoms, budget, 1);
+    let step = boolean::prove_zero(&step_goal, &step_c, &mut atoms, leaves, deadline)
+        .map_err(|e| debug(&format!("step: {e:?}")))
+        .ok()?;
+    let step = Proof::Trans(
+        Box::new(Proof::Chain { start: pre(&inv), steps: chain }),
+        Box::new(Proof::ImpliesByZero(Box::new(step))),
+    );
+    let lemma = Proof::Induction {
+        inv: inv.clone(),
+        base: Box::new(Proof::ImpliesByZero(Box::new(base))),
+        step: Box::new(step),
+    };
+    // The goal from `inv = 1*`.
+    let mut uses = vec![boolean::Constraint {
+        source: Source::Lemma,
+        name: LEMMA.into(),
+        ..constraint(&Axiom::ground(LEMMA, inv.clone(), Rel::Eq, one.clone()))
+    }];
+    uses.extend(cone.iter().filter(|h| !mentions_pre(&h.lhs) && !mentions_pre(&h.rhs)).map(constraint));
+    let mut directions = vec![(goal.lhs.clone(), goal.rhs.clone())];
+    if goal.rel == Rel::Eq {
+        directions.push((goal.rhs.clone(), goal.lhs.clone()));
+    }
+    let mut proofs = Vec::new();
+    for (f, g) in &directions {
+        let zero = and_not(f, g);
+        let mut atoms = boolean::Atoms::default();
+        let proof = boolean::prove_zero(&zero, &uses, &mut atoms, leaves, deadline)
+            .map_err(|e| debug(&format!("goal: {e:?}")))
+            .ok()?;
+        proofs.push(Proof::ImpliesByZero(Box::new(proof)));
+    }
+    let main = match (proofs.pop(), proofs.pop()) {
+        (Some(second), Some(first)) => Proof::Antisym(Box::new(first), Box::new(second)),
+        (Some(only), None) => only,
+        _ => return None,
+    };
+    let certificate = Certificate { lemmas: vec![(LEMMA.into(), lemma)], main: Some(main) };
+    let theorem = ctx
+        .kernel
+        .check_goal(&certificate, &goal.lhs, goal.rel, &goal.rhs)
+        .map_err(|e| debug(&format!("kernel: {e}")))
+        .ok()?;
+    Some(Proved { theorem, certificate, method: Method::Induction, lines: vec![] })
+}
