@@ -614,10 +614,14 @@ fn check_program(label: &str, text: &str, program: &LdProgram, seed: u64) -> Fig
         }
     }
     for src in &known {
-        if let Src::Bit(n) | Src::Pre(n) = src
-            && !sim.bits().contains_key(n)
-        {
-            fail(&mut fig, format!("{n} is not a bit of the program"));
+        match src {
+            Src::Bit(n) if !sim.bits().contains_key(n) => {
+                fail(&mut fig, format!("{n} is not a bit of the program"))
+            }
+            Src::Edge(k) if sim.edge_memory(*k).is_none() => {
+                fail(&mut fig, format!("element {k} has no edge memory"))
+            }
+            _ => {}
         }
     }
     let mut prev: BTreeMap<String, bool> = BTreeMap::new();
@@ -655,7 +659,7 @@ fn check_program(label: &str, text: &str, program: &LdProgram, seed: u64) -> Fig
         for (v, src) in values.iter_mut().zip(&known) {
             *v = match src {
                 Src::Bit(n) => sim.bit(n),
-                Src::Pre(n) => prev.get(n).copied().unwrap_or(false),
+                Src::Edge(k) => sim.edge_memory(*k).unwrap_or(false),
             };
         }
         fig.scans += 1;
@@ -741,6 +745,10 @@ fn unroll_agrees(
     }
     for (name, _) in &model.defs {
         let Some(values) = u.signals.get(name) else { continue };
+        // Edge memories are not bits of the program (their equations are checked above).
+        if matches!(compiled.signals.get(name), Some(SignalKind::EdgeMemory { .. })) {
+            continue;
+        }
         for (k, v) in values.iter().enumerate() {
             let sim = bits[k].get(name).copied().unwrap_or(false);
             if *v != sim {

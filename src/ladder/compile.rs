@@ -136,6 +136,8 @@ pub enum SignalKind {
         rung: usize,
         /// The element keyword (`OSR`, `OSF`, `ODR`, `COIL` for a toggle).
         element: String,
+        /// The element's position among all the program's elements, in file order.
+        index: usize,
     },
     /// The output of an element the algebra cannot express; unconstrained.
     Fresh {
@@ -588,7 +590,8 @@ impl<'a> Compiler<'a> {
         let m = self.unique(&canonical(base));
         let rung = self.rung().number;
         let element = e.kind.keyword().to_string();
-        self.fresh.insert(m.clone(), SignalKind::EdgeMemory { rung, element });
+        let index = self.program.elements().position(|x| std::ptr::eq(x, e)).unwrap_or(usize::MAX);
+        self.fresh.insert(m.clone(), SignalKind::EdgeMemory { rung, element, index });
         let pre = self.pre_name(&m);
         let bounds = self.bounds(input);
         self.pending.push(Pending { var: m, rhs: input.clone(), bounds, recurrence: None });

@@ -195,6 +195,13 @@ impl Simulator {
         self.scans
     }
 
+    /// The hidden edge memory of the `k`-th element of the program (file order): the
+    /// power an OSR, OSF, ODR or toggle coil saw at the last scan (a best guess where
+    /// that power is not exact, like every bit).
+    pub fn edge_memory(&self, k: usize) -> Option<bool> {
+        self.hidden.get(k).map(|(on, _)| *on)
+    }
+
     /// Every bit: the program's contact and coil names and every input given so far.
     pub fn bits(&self) -> &BTreeMap<String, bool> {
         &self.bits

@@ -34,6 +34,9 @@ pub enum Node {
     Ton(usize, u32, usize),
     /// `f/d`: f, n, state slot (0: f never true; else 1 + scans since f was last true, capped).
     Tof(usize, u32, usize),
+    /// `pre f`: f, state slot (f's value at the previous scan; before the first, the
+    /// value f has with every variable, timer and memory 0).
+    Pre(usize, usize),
 }
 
 /// Where the value of a known name comes from at each scan.
@@ -41,8 +44,8 @@ pub enum Node {
 pub enum Src {
     /// The simulator's bit at the end of this scan.
     Bit(String),
-    /// The simulator's bit at the end of the previous scan (0 at the first).
-    Pre(String),
+    /// The simulator's hidden edge memory of the `k`-th element (file order).
+    Edge(usize),
 }
 
 /// Why a hypothesis was not checked.
@@ -109,13 +112,21 @@ impl Hyp {
         let mut n_state = 0;
         let mut skip = None;
         let mut temporal_free = false;
+        // Each `pre` slot's value before the first scan.
+        let mut init: Vec<(usize, u32)> = Vec::new();
         let mut build = |e: &Expr, nodes: &mut Vec<Node>| -> usize {
             let base = nodes.len();
             let terms = e.as_ref();
+            // Each node's value before the first scan: every variable, timer and memory
+            // 0, the Boolean operators applied (semantics.md).
+            let mut before: Vec<bool> = Vec::with_capacity(terms.len());
             // Whether each node lies under a timer or memory.
             let mut under = vec![false; terms.len()];
             for (i, t) in terms.iter().enumerate().rev() {
-                let temporal = matches!(t, Term::Ton(_) | Term::Tof(_) | Term::Sr(_) | Term::Rs(_));
+                let temporal = matches!(
+                    t,
+                    Term::Ton(_) | Term::Tof(_) | Term::Sr(_) | Term::Rs(_) | Term::Pre(_)
+                );
                 for ch in t.children() {
                     under[usize::from(*ch)] |= under[i] || temporal;
                 }
@@ -163,17 +174,33 @@ impl Hyp {
                                 });
                                 Node::Free(k)
                             }
-                            Some(SignalKind::Previous { of }) => {
-                                Node::Known(slot(known, Src::Pre(of.clone())))
+                            Some(SignalKind::EdgeMemory { index, .. }) => {
+                                Node::Known(slot(known, Src::Edge(*index)))
                             }
                             _ => Node::Known(slot(known, Src::Bit(s.to_string()))),
                         }
+                    }
+                    Term::Pre(a) => {
+                        n_state += 1;
+                        let v = before[usize::from(*a)];
+                        init.push((n_state - 1, u32::from(v)));
+                        Node::Pre(at(a), n_state - 1)
                     }
                     // Delays are read by their timer only.
                     Term::Delay(_) | Term::DMax(_) | Term::DMin(_) | Term::DAdd(_) => {
                         Node::Const(false)
                     }
                 };
+                let b = |id: &ii_prove::term::Id| before[usize::from(*id)];
+                let value = match t {
+                    Term::One => true,
+                    Term::Not(a) => !b(a),
+                    Term::And([x, y]) => b(x) && b(y),
+                    Term::Or([x, y]) => b(x) || b(y),
+                    Term::Pre(a) => b(a),
+                    _ => false,
+                };
+                before.push(value);
                 nodes.push(node);
             }
             nodes.len() - 1
@@ -199,7 +226,13 @@ impl Hyp {
             rhs,
             n_free: free.len(),
             temporal_free,
-            states: [vec![0; n_state]].into_iter().collect(),
+            states: {
+                let mut start = vec![0; n_state];
+                for (slot, v) in init {
+                    start[slot] = v;
+                }
+                [start].into_iter().collect()
+            },
             skip,
             checked_scans: 0,
             has_timer,
@@ -242,6 +275,11 @@ impl Hyp {
                         stats.ton_on += 1;
                     }
                     on
+                }
+                Node::Pre(f, st) => {
+                    let v = state[st] == 1;
+                    state[st] = u32::from(vals[f]);
+                    v
                 }
                 Node::Tof(f, n, st) => {
                     if vals[f] {
