@@ -10,11 +10,11 @@ use std::path::{Path, PathBuf};
 use ii_prove::diag::Sources;
 use ii_prove::kernel::Rel;
 use ii_prove::ladder::{
-    CompiledProgram, ElementKind, HypothesisKind, LdProgram, SignalKind, decode_latin1,
+    CompiledProgram, EdgeKind, ElementKind, HypothesisKind, LdProgram, SignalKind, decode_latin1,
     program_to_ii, read_ldmicro,
 };
 use ii_prove::syntax::{
-    Lookup, NoProgram, Notation, Relation, Scope, parse_document, term_to_string,
+    Lookup, NoProgram, Notation, Relation, Scans, Scope, parse_document, term_to_string,
 };
 use ii_prove::term::{Expr, same};
 
@@ -82,7 +82,7 @@ fn water_equations_follow_the_paper() {
     let expected = [
         ("L01", "RDemand = (XL_flow + XH_flow) · ¬XSP_fail"),
         ("L02", "RPrio2 = XLine_swap · ¬XL2_fail + XL1_fail"),
-        ("L03", "RL1_Prod = RS(¬RPrio2, ¬(RDemand · ¬XL1_fail · ¬pre_RL2_Prod))"),
+        ("L03", "RL1_Prod = RS(¬RPrio2, ¬(RDemand · ¬XL1_fail · ¬pre RL2_Prod))"),
         ("L04", "RL2_Prod = RS(RPrio2, ¬(RDemand · ¬XL2_fail · ¬RL1_Prod))"),
         ("L05", "YL1_up = RL1_Prod"),
         ("L06a", "YL1_pump = 5s/RL1_Prod"),
@@ -100,15 +100,19 @@ fn water_equations_follow_the_paper() {
     assert_eq!(
         names(&c),
         [
-            "L01", "L02", "L03", "L03_hi", "L04", "L05", "L06a", "L06b", "L07", "L08a", "L08b",
-            "L09", "L10"
+            "L01", "L02", "L03", "L03_scan", "L03_hi", "L04", "L04_scan", "L05", "L06a",
+            "L06b", "L07", "L08a", "L08b", "L09", "L10"
         ]
     );
     assert!(c.warnings.is_empty(), "{:?}", c.warnings);
+    // The read of RL2_Prod before its rung is its previous-scan value, exactly.
+    assert!(stmt(&c, "L03").contains("pre RL2_Prod"), "{}", stmt(&c, "L03"));
     assert_eq!(
-        c.signals.get("pre_RL2_Prod"),
-        Some(&SignalKind::Previous { of: "RL2_Prod".into() })
+        stmt(&c, "L03_scan"),
+        "RL1_Prod = (¬RPrio2 + pre RL1_Prod) · RDemand · ¬XL1_fail · ¬pre RL2_Prod"
     );
+    assert_eq!(c.hypothesis("L03_scan").map(|h| h.kind), Some(HypothesisKind::Recurrence));
+    assert!(!c.signals.contains_key("pre_RL2_Prod"));
     assert_eq!(c.signals.get("XL_flow"), Some(&SignalKind::Input));
     assert_eq!(c.signals.get("YL1_pump"), Some(&SignalKind::Output));
     assert_eq!(c.signals.get("RL1_Prod"), Some(&SignalKind::Relay));
@@ -149,7 +153,7 @@ fn water_axioms_are_ground() {
 fn other_examples_compile_to_readable_memories() {
     let ex = |f: &str| compile(&load(&root().join("examples").join(f)).expect("parses"));
     let c = ex("motor.ld");
-    assert_eq!(stmt(&c, "L01"), "YMotor = RS(XStart, XStop + XOverload + pre_RTripped)");
+    assert_eq!(stmt(&c, "L01"), "YMotor = RS(XStart, XStop + XOverload + pre RTripped)");
     assert_eq!(stmt(&c, "L01_hi"), "YMotor ⇒ RS(XStart, XStop + XOverload)");
     assert_eq!(stmt(&c, "L03"), "RTripped = RS(XOverload, XReset · ¬XOverload)", "reset rung last");
     let c = ex("conveyor.ld");
@@ -157,7 +161,7 @@ fn other_examples_compile_to_readable_memories() {
     assert_eq!(stmt(&c, "L02"), "YConv2 = RRun/10s");
     assert_eq!(stmt(&c, "L03"), "YConv1 = 2s/(RRun · YConv2)");
     let c = ex("traffic.ld");
-    assert_eq!(stmt(&c, "L01"), "RRed_done = 5s/(XRun · ¬pre_RNext)");
+    assert_eq!(stmt(&c, "L01"), "RRed_done = 5s/(XRun · ¬pre RNext)");
     assert_eq!(stmt(&c, "L01_hi"), "RRed_done ⇒ 5s/XRun");
 }
 
@@ -170,14 +174,14 @@ fn names_resolve_exactly_unprefixed_ambiguously() {
     assert_eq!(c.lookup("L1_pump"), Lookup::Signal("YL1_pump".into()));
     assert_eq!(c.lookup("L1_Prod"), Lookup::Signal("RL1_Prod".into()));
     assert_eq!(c.lookup("L_flow"), Lookup::Signal("XL_flow".into()));
-    assert_eq!(c.lookup("pre_L2_Prod"), Lookup::Signal("pre_RL2_Prod".into()));
+    // Previous values are `pre` terms, not names.
+    assert_eq!(c.lookup("pre_L2_Prod"), Lookup::Unknown);
     assert_eq!(c.lookup("nothing"), Lookup::Unknown);
     assert_eq!(c.display_name("YL1_pump"), "L1_pump");
-    assert_eq!(c.display_name("pre_RL2_Prod"), "pre_L2_Prod");
     let names = c.names();
     assert!(names.contains(&"L1_pump".to_string()) && names.contains(&"YL1_pump".to_string()));
     let h = c.hypothesis("L03").expect("L03");
-    assert_eq!(p(&c.rename_for_display(&h.rhs)), "RS(¬Prio2, ¬(Demand · ¬L1_fail · ¬pre_L2_Prod))");
+    assert_eq!(p(&c.rename_for_display(&h.rhs)), "RS(¬Prio2, ¬(Demand · ¬L1_fail · ¬pre L2_Prod))");
 
     let amb = compile(&rungs(
         "RUNG\nCONTACTS Xa 0\nCOIL Ya 0 0 0\nEND\nRUNG\nCONTACTS Ya 0\nCOIL Ra 0 0 0\nEND\n",
@@ -216,12 +220,14 @@ fn seal_in_up_to_boolean_equivalence() {
         "RUNG\nPARALLEL\nCONTACTS XS 0\nSERIES\nCONTACTS YQ 0\nCONTACTS XR 1\nEND\nEND\nCOIL YQ 0 0 0\nEND\n",
     ));
     assert_eq!(stmt(&c, "L01"), "YQ = SR(XS, XR)");
-    // Q := (S + Q)·¬R is RS(S, R), with no pre_ left and no bounds.
+    // Q := (S + Q)·¬R is RS(S, R), with no `pre` left and no bounds; its scan
+    // recurrence comes with it.
     let c = compile(&rungs(
         "RUNG\nPARALLEL\nCONTACTS XS 0\nCONTACTS YQ 0\nEND\nCONTACTS XR 1\nCOIL YQ 0 0 0\nEND\n",
     ));
     assert_eq!(stmt(&c, "L01"), "YQ = RS(XS, XR)");
-    assert_eq!(names(&c), ["L01"]);
+    assert_eq!(stmt(&c, "L01_scan"), "YQ = (XS + pre YQ) · ¬XR");
+    assert_eq!(names(&c), ["L01", "L01_scan"]);
     // A pure latch Q := S + Q is SR(S, 0*).
     let c =
         compile(&rungs("RUNG\nPARALLEL\nCONTACTS XS 0\nCONTACTS YQ 0\nEND\nCOIL YQ 0 0 0\nEND\n"));
@@ -230,9 +236,9 @@ fn seal_in_up_to_boolean_equivalence() {
 
 #[test]
 fn non_monotone_self_read_is_pre_with_bounds() {
-    // Q := ¬Q · a (a toggle-ish form): not a memory; exact over pre_YQ, plus bounds.
+    // Q := ¬Q · a (a toggle-ish form): not a memory; exact over pre YQ, plus bounds.
     let c = compile(&rungs("RUNG\nCONTACTS YQ 1\nCONTACTS Xa 0\nCOIL YQ 0 0 0\nEND\n"));
-    assert_eq!(stmt(&c, "L01"), "YQ = ¬pre_YQ · Xa");
+    assert_eq!(stmt(&c, "L01"), "YQ = ¬pre YQ · Xa");
     assert_eq!(stmt(&c, "L01_hi"), "YQ ⇒ Xa");
     assert!(c.hypothesis("L01_lo").is_none(), "0* ⇒ YQ is trivial");
 }
@@ -242,7 +248,7 @@ fn later_rung_read_is_previous_value() {
     let c = compile(&rungs(
         "RUNG\nCONTACTS Xa 0\nCONTACTS Rlater 0\nCOIL Rearly 0 0 0\nEND\nRUNG\nCONTACTS Xb 0\nCOIL Rlater 0 0 0\nEND\nRUNG\nCONTACTS Rlater 1\nCOIL Rsame 0 0 0\nEND\n",
     ));
-    assert_eq!(stmt(&c, "L01"), "Rearly = Xa · pre_Rlater");
+    assert_eq!(stmt(&c, "L01"), "Rearly = Xa · pre Rlater");
     assert!(c.hypothesis("L01_lo").is_none(), "Xa · 0* ⇒ Rearly is trivial");
     assert_eq!(stmt(&c, "L01_hi"), "Rearly ⇒ Xa");
     assert_eq!(stmt(&c, "L02"), "Rlater = Xb");
@@ -254,17 +260,17 @@ fn set_and_reset_coils_in_both_orders() {
     let c = compile(&rungs(
         "RUNG\nCONTACTS XS 0\nCOIL YQ 0 1 0\nEND\nRUNG\nCONTACTS XR 0\nCOIL YQ 0 0 1\nEND\n",
     ));
-    assert_eq!(names(&c), ["L02"], "the memory is stated at its last rung");
+    assert_eq!(names(&c), ["L02", "L02_scan"], "the memory is stated at its last rung");
     assert_eq!(stmt(&c, "L02"), "YQ = RS(XS, XR)");
     let c = compile(&rungs(
         "RUNG\nCONTACTS XR 0\nCOIL YQ 0 0 1\nEND\nRUNG\nCONTACTS XS 0\nCOIL YQ 0 1 0\nEND\n",
     ));
     assert_eq!(stmt(&c, "L02"), "YQ = SR(XS, XR)");
-    // Two set coils sum; a read between the set and the reset rung is exact over pre_YQ.
+    // Two set coils sum; a read between the set and the reset rung is exact over pre YQ.
     let c = compile(&rungs(
         "RUNG\nCONTACTS XS1 0\nCOIL YQ 0 1 0\nEND\nRUNG\nCONTACTS YQ 0\nCOIL Ymid 0 0 0\nEND\nRUNG\nCONTACTS XS2 0\nCOIL YQ 0 1 0\nEND\nRUNG\nCONTACTS XR 0\nCOIL YQ 0 0 1\nEND\n",
     ));
-    assert_eq!(stmt(&c, "L02"), "Ymid = XS1 + pre_YQ");
+    assert_eq!(stmt(&c, "L02"), "Ymid = XS1 + pre YQ");
     assert_eq!(stmt(&c, "L02_lo"), "XS1 ⇒ Ymid");
     assert_eq!(stmt(&c, "L04"), "YQ = RS(XS1 + XS2, XR)");
 }
@@ -323,31 +329,32 @@ fn unsupported_elements_are_fresh_and_reported() {
     let c = compile(&rungs(
         "RUNG\nCONTACTS Xa 0\nOSR\nCOIL Yp 0 0 0\nEND\nRUNG\nCONTACTS Xa 0\nCTU Cpieces 5\nCOIL Yfull 0 0 0\nEND\nRUNG\nGRT Cpieces 3\nCOIL Ymany 0 0 0\nEND\nRUNG\nCONTACTS Xa 0\nRTO Tr 20000\nCOIL Yr 0 0 0\nEND\nRUNG\nCONTACTS Xa 0\nCOIL Yt 0 0 0 1\nEND\nRUNG\nCONTACTS Yt 0\nCOIL Yu 0 0 0\nEND\n",
     ));
-    assert_eq!(stmt(&c, "L01"), "Yp = Xa · OSR_r1");
+    // A one-shot is an edge: its input now and not at the previous scan.
+    assert_eq!(stmt(&c, "L01"), "Yp = Xa · ¬pre Xa");
     assert_eq!(stmt(&c, "L02"), "Yfull = CTU_Cpieces");
     assert_eq!(stmt(&c, "L03"), "Ymany = GRT_r3");
     assert_eq!(stmt(&c, "L04"), "Yr = RTO_Tr");
-    // A toggle flips its bit on an edge of its power: the previous value and the edge.
+    // A toggle flips its bit on a rising edge of its power.
     let toggle = stmt(&c, "L05");
-    assert!(toggle.contains("pre_Yt") && toggle.contains("TOGGLE_r5"), "{toggle}");
+    assert!(toggle.contains("pre Yt") && toggle.contains("pre Xa"), "{toggle}");
     assert_eq!(stmt(&c, "L06"), "Yu = Yt");
     assert_eq!(c.signals.get("Yt"), Some(&SignalKind::Output));
-    assert!(matches!(c.signals.get("OSR_r1"), Some(SignalKind::Fresh { rung: 1, .. })));
+    assert!(!c.signals.contains_key("OSR_r1"));
     let rungs_warned: Vec<usize> = c.warnings.iter().map(|w| w.rung).collect();
-    assert_eq!(rungs_warned, [1, 2, 3, 4, 5]);
+    assert_eq!(rungs_warned, [2, 3, 4]);
     let text = program_to_ii(&c, Notation::Paper);
     assert!(text.contains("// warning: rung 2 (L02): CTU:"), "{text}");
     // With the sources, a warning names its file, line and column.
     let mut s = Sources::new();
     let f = s.add(
         "u.ld",
-        "LDmicro0.1\nCYCLE=10000\nPROGRAM\nRUNG\nCONTACTS Xa 0\nOSR\nCOIL Yp 0 0 0\nEND\n",
+        "LDmicro0.1\nCYCLE=10000\nPROGRAM\nRUNG\nCONTACTS Xa 0\nODF\nCOIL Yp 0 0 0\nEND\n",
     );
     let program = read_ldmicro(&s, f).expect("parses");
     let c = compile(&program);
     assert_eq!(c.warnings[0].line(&s), 6);
     assert!(
-        c.warnings[0].describe(&s).starts_with("u.ld:6:1: rung 1 (L01): OSR:"),
+        c.warnings[0].describe(&s).starts_with("u.ld:6:1: rung 1 (L01): ODF:"),
         "{}",
         c.warnings[0].describe(&s)
     );
@@ -368,7 +375,7 @@ fn a_pre_name_that_clashes_gets_a_suffix() {
     let c = compile(&rungs(
         "RUNG\nCONTACTS Xb 0\nCOIL pre_Rx 0 0 0\nEND\nRUNG\nCONTACTS Rx 0\nCONTACTS pre_Rx 0\nCOIL Ry 0 0 0\nEND\nRUNG\nCONTACTS Xa 0\nCOIL Rx 0 0 0\nEND\n",
     ));
-    assert_eq!(stmt(&c, "L02"), "Ry = pre_Rx_2 · pre_Rx");
+    assert_eq!(stmt(&c, "L02"), "Ry = pre Rx · pre_Rx");
     assert_eq!(c.signals.get("pre_Rx"), Some(&SignalKind::Relay));
 }
 
@@ -380,7 +387,7 @@ fn round_trip(name: &str, c: &CompiledProgram) {
         let mut s = Sources::new();
         let f = s.add(format!("{name}.ii"), text.clone());
         let doc =
-            parse_document(&s, f, &NoProgram).unwrap_or_else(|e| panic!("{name}: {e:?}\n{text}"));
+            parse_document(&s, f, &Scans).unwrap_or_else(|e| panic!("{name}: {e:?}\n{text}"));
         assert_eq!(doc.assumptions.len(), c.hypotheses.len(), "{name}");
         for (a, h) in doc.assumptions.iter().zip(&c.hypotheses) {
             assert_eq!(a.name, h.name, "{name}");
@@ -422,7 +429,14 @@ fn every_unsupported_element_is_reported_with_its_rung() {
             }
             for e in rung.elements() {
                 let exact = e.kind.is_boolean_core()
-                    || matches!(e.kind, ElementKind::MasterRelay | ElementKind::Comment(_));
+                    || matches!(
+                        e.kind,
+                        ElementKind::MasterRelay
+                            | ElementKind::Comment(_)
+                            | ElementKind::Edge {
+                                kind: EdgeKind::Osr | EdgeKind::Osf | EdgeKind::Odr
+                            }
+                    );
                 if !exact {
                     assert!(
                         c.warnings.iter().any(|w| w.rung == rung.number && w.span == e.span),

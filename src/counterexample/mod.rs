@@ -478,14 +478,19 @@ fn exact(
     let mut env = Assignment::new(trace.horizon());
     env.cycle = Some(trace.cycle.clone());
     // Every signal as the run computed it, scan by scan; then each equation must hold
-    // exactly (a read one scan back, `pre`, makes the order of the equations no guide).
+    // exactly at every scan (a read one scan back, `pre`, makes the order of the
+    // equations no guide).
     for (name, values) in &run.signals {
         env.signals.insert(Symbol::from(name.as_str()), trace.signal(values)?);
     }
     for (name, rhs) in &model.defs {
         let s = eval(rhs, &env).map_err(|e| e.to_string())?;
-        if env.signals.get(&Symbol::from(name.as_str())) != Some(&s) {
-            return Err(format!("the equation of `{name}` fails on the exact signals"));
+        let x = env.signals.get(&Symbol::from(name.as_str())).ok_or("a signal is missing")?;
+        if let Some(k) = (0..trace.scans).find(|k| {
+            let t = trace.instant(*k);
+            x.value_at(&t) != s.value_at(&t)
+        }) {
+            return Err(format!("the equation of `{name}` fails at scan {}", k + 1));
         }
     }
     for (l, rel, r) in &model.constraints {
@@ -515,7 +520,13 @@ fn hypotheses_hold(program: &Program, env: &Assignment) -> bool {
             return true; // outside the cone
         }
         match (eval(&h.lhs, env), eval(&h.rhs, env)) {
-            (Ok(a), Ok(b)) => violation(&a, sample_relation(h.rel), &b).is_none(),
+            (Ok(a), Ok(b)) => {
+                let v = violation(&a, sample_relation(h.rel), &b);
+                if std::env::var("II_DEBUG").is_ok() && v.is_some() {
+                    eprintln!("{} fails at {:?}: {a} vs {b}", h.name, v);
+                }
+                v.is_none()
+            }
             _ => false,
         }
     })

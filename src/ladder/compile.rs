@@ -1191,12 +1191,14 @@ pub fn program_to_ii(compiled: &CompiledProgram, notation: Notation) -> String {
     let count =
         |n: usize, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
     out.push_str(&format!(
-        "// {}, {}, {}. pre_X is X's previous-scan value and,\n",
+        "// {}, {}, {}. `pre X` is X's value at the previous scan (0 before the\n",
         count(compiled.hypotheses.len(), "hypothesis", "hypotheses"),
         count(compiled.signals.len(), "signal", "signals"),
         count(compiled.warnings.len(), "warning", "warnings")
     ));
-    out.push_str("// like every fresh signal, is unconstrained.\n");
+    out.push_str(
+        "// first); with it this text describes scans, and reads back with a program.\n",
+    );
     let groups: [(&str, KindFilter); 6] = [
         ("inputs", |k| *k == SignalKind::Input),
         ("outputs", |k| *k == SignalKind::Output),

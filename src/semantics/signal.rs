@@ -411,14 +411,17 @@ impl Signal {
     }
 
     /// `pre f` for scans of length `cycle` (scan `k` is `[k·c, (k+1)·c)`, the first
-    /// `(0, c)`): `f` one cycle earlier, and `init` (its value before the first scan)
-    /// on the first scan.
+    /// `(0, c)`, the last one closed at the horizon): `f` one cycle earlier, and `init`
+    /// (its value before the first scan) on the first scan.
     pub fn delayed(&self, cycle: &Time, init: bool) -> Signal {
         let mut cuts: Vec<Time> = self.breaks.iter().map(|b| b + cycle).collect();
         cuts.push(cycle.clone());
         Signal::from_fn(self.horizon.clone(), cuts, |t| {
-            if t < cycle {
+            if t < cycle || (t == cycle && *t == self.horizon) {
                 init
+            } else if *t == self.horizon {
+                // The horizon belongs to the last scan: one cycle back is the scan before.
+                self.left_limit(&(t - cycle))
             } else if t == cycle {
                 self.open[0]
             } else {

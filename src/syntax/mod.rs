@@ -287,6 +287,23 @@ impl Scope for NoProgram {
     }
 }
 
+/// No program, but signals that are scan runs: `pre` may be used. A `.ii` text that
+/// describes a program's scans (what `ii-prove show` prints) reads back with this scope.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Scans;
+
+impl Scope for Scans {
+    fn lookup(&self, _name: &str) -> Lookup {
+        Lookup::Unknown
+    }
+    fn names(&self) -> Vec<String> {
+        Vec::new()
+    }
+    fn scans(&self) -> bool {
+        true
+    }
+}
+
 /// Reads a whole `.ii` file; names are resolved against `scope` and the file's `input`s.
 pub fn parse_document(
     sources: &Sources,
