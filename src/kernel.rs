@@ -116,7 +116,6 @@ fn pointwise_law(law: &Axiom) -> bool {
     law.signal_conditions.is_empty() && plain(&law.lhs) && plain(&law.rhs)
 }
 
-
 /// A rewrite rule `from → to` after choosing how a law is used.
 struct Oriented {
     from: Expr,

@@ -186,6 +186,61 @@ pub fn check_law(axiom: &Axiom, cases: usize, seed: u64) -> Result<usize, LawFai
     }
 }
 
+/// Checks a law about scans (one with `pre`) on `cases` random scan runs: every
+/// metavariable is a random run of a signal or of its complement (so that its value
+/// before the first scan is 0 or 1), and the law must hold at every scan. `Ok(n)`: it
+/// held on `n` runs; `Err(text)`: the run where it fails.
+pub fn check_scan_law(axiom: &Axiom, cases: usize, seed: u64) -> Result<usize, String> {
+    use crate::semantics::{Assignment, Signal, Time, eval};
+    let mut state = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state
+    };
+    let one = Time::from_integer(1.into());
+    for _ in 0..cases {
+        let scans = 1 + (next() % 12) as usize;
+        let mut env = Assignment::new(Time::from_integer(scans.into()));
+        env.cycle = Some(one.clone());
+        let mut sigma = std::collections::BTreeMap::new();
+        for (i, v) in axiom.signal_vars.iter().enumerate() {
+            let run: Vec<bool> = (0..scans).map(|_| next() % 2 == 1).collect();
+            let changes: Vec<(Time, bool)> = (1..scans)
+                .filter(|k| run[*k] != run[k - 1])
+                .map(|k| (Time::from_integer(k.into()), run[k]))
+                .collect();
+            let signal = Signal::from_steps(env.horizon.clone(), run[0], &changes)
+                .map_err(|e| format!("{e:?}"))?;
+            let name = format!("v{i}");
+            env.signals.insert(Symbol::from(name.as_str()), signal);
+            let term = crate::term::name(&name);
+            let term = if next() % 2 == 1 { crate::term::not(&term) } else { term };
+            sigma.insert(*v, term);
+        }
+        let side = |e: &Expr| crate::term::instantiate(e, &sigma).ok_or("an unbound variable");
+        let (l, r) = (side(&axiom.lhs)?, side(&axiom.rhs)?);
+        let (a, b) = (
+            eval(&l, &env).map_err(|e| e.to_string())?,
+            eval(&r, &env).map_err(|e| e.to_string())?,
+        );
+        for k in 0..scans {
+            let t =
+                if k == 0 { Time::new(1.into(), 2.into()) } else { Time::from_integer(k.into()) };
+            let (x, y) = (a.value_at(&t), b.value_at(&t));
+            let holds = match axiom.rel {
+                Rel::Eq => x == y,
+                Rel::Implies => !x || y,
+            };
+            if !holds {
+                return Err(format!("`{l}` is {x} and `{r}` is {y} at scan {k} of {env}"));
+            }
+        }
+    }
+    Ok(cases)
+}
+
 /// Why a law did not validate.
 #[derive(Clone, Debug)]
 pub enum LawFailure {

@@ -87,6 +87,17 @@ fn show_prints_text_that_parses_back() {
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("water_show.ii");
     std::fs::write(&file, format!("{shown}\nproperty P1a: YL1_pump => 5s/YL1_up\n")).unwrap();
+    // Its previous-scan reads (`pre`) make it a description of scans: read as free
+    // signals it is refused, at the first `pre`, with a located error.
+    let again = ii_prove(&[file.to_str().unwrap()]);
+    assert_eq!(again.status.code(), Some(2), "{}", text(&again.stdout));
+    assert!(text(&again.stderr).contains("needs a program"), "{}", text(&again.stderr));
+    assert!(text(&again.stderr).contains("water_show.ii:"), "{}", text(&again.stderr));
+    // A program without them reads back as free signals.
+    let out = ii_prove(&["show", "examples/early_timer.ld"]);
+    let shown = text(&out.stdout);
+    assert!(shown.lines().filter(|l| l.starts_with("assume")).all(|l| !l.contains("pre ")));
+    std::fs::write(&file, format!("{shown}\nproperty belt: YBelt => XStart\n")).unwrap();
     let again = ii_prove(&[file.to_str().unwrap()]);
     assert_eq!(again.status.code(), Some(0), "{}", text(&again.stderr));
 }

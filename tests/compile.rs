@@ -13,9 +13,7 @@ use ii_prove::ladder::{
     CompiledProgram, EdgeKind, ElementKind, HypothesisKind, LdProgram, SignalKind, decode_latin1,
     program_to_ii, read_ldmicro,
 };
-use ii_prove::syntax::{
-    Lookup, NoProgram, Notation, Relation, Scans, Scope, parse_document, term_to_string,
-};
+use ii_prove::syntax::{Lookup, Notation, Relation, Scans, Scope, parse_document, term_to_string};
 use ii_prove::term::{Expr, same};
 
 /// Compiles a program the compiler must accept (no control flow).
@@ -100,8 +98,8 @@ fn water_equations_follow_the_paper() {
     assert_eq!(
         names(&c),
         [
-            "L01", "L02", "L03", "L03_scan", "L03_hi", "L04", "L04_scan", "L05", "L06a",
-            "L06b", "L07", "L08a", "L08b", "L09", "L10"
+            "L01", "L02", "L03", "L03_scan", "L03_hi", "L04", "L04_scan", "L05", "L06a", "L06b",
+            "L07", "L08a", "L08b", "L09", "L10"
         ]
     );
     assert!(c.warnings.is_empty(), "{:?}", c.warnings);
@@ -386,8 +384,7 @@ fn round_trip(name: &str, c: &CompiledProgram) {
         let text = program_to_ii(c, notation);
         let mut s = Sources::new();
         let f = s.add(format!("{name}.ii"), text.clone());
-        let doc =
-            parse_document(&s, f, &Scans).unwrap_or_else(|e| panic!("{name}: {e:?}\n{text}"));
+        let doc = parse_document(&s, f, &Scans).unwrap_or_else(|e| panic!("{name}: {e:?}\n{text}"));
         assert_eq!(doc.assumptions.len(), c.hypotheses.len(), "{name}");
         for (a, h) in doc.assumptions.iter().zip(&c.hypotheses) {
             assert_eq!(a.name, h.name, "{name}");

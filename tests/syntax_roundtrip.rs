@@ -41,6 +41,9 @@ impl Scope for AnyName {
     fn names(&self) -> Vec<String> {
         Vec::new()
     }
+    fn scans(&self) -> bool {
+        true
+    }
 }
 
 fn same_goal(a: &Goal, b: &Goal) -> bool {

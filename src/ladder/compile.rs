@@ -307,6 +307,8 @@ pub struct CompiledProgram {
     pub timers: TimerModel,
     /// Every TON/TOF compiled as a timer term, in scan order.
     pub timer_info: Vec<TimerInfo>,
+    /// The scan cycle, in µs (what `pre` steps back).
+    pub cycle_us: u64,
     /// The short-name index of [`names`](super::names), built on first use from `signals`.
     pub(super) short_names: std::sync::OnceLock<BTreeMap<String, Vec<String>>>,
 }
@@ -1102,6 +1104,7 @@ impl<'a> Compiler<'a> {
             warnings: self.warnings,
             timers: self.options.timers,
             timer_info: self.timer_info,
+            cycle_us: self.program.cycle_us,
             short_names: std::sync::OnceLock::new(),
         }
     }
@@ -1196,9 +1199,7 @@ pub fn program_to_ii(compiled: &CompiledProgram, notation: Notation) -> String {
         count(compiled.signals.len(), "signal", "signals"),
         count(compiled.warnings.len(), "warning", "warnings")
     ));
-    out.push_str(
-        "// first); with it this text describes scans, and reads back with a program.\n",
-    );
+    out.push_str("// first); with it this text describes scans, and reads back with a program.\n");
     let groups: [(&str, KindFilter); 6] = [
         ("inputs", |k| *k == SignalKind::Input),
         ("outputs", |k| *k == SignalKind::Output),

@@ -625,13 +625,13 @@ pub enum Failure {
     Limit(String),
 }
 
+/// The constraints left (those equating two atoms merged into classes), the Boolean
+/// views of the goal and of each constraint, and each atom's representative.
+type Skeleton = (Vec<Constraint>, B, Vec<(B, B)>, Vec<usize>);
+
 /// The Boolean views of `goal` and of the constraints (hypotheses equating two atoms
 /// merged into classes), and each atom's representative.
-fn skeleton(
-    goal: &Expr,
-    constraints: &[Constraint],
-    atoms: &mut Atoms,
-) -> (Vec<Constraint>, B, Vec<(B, B)>, Vec<usize>) {
+fn skeleton(goal: &Expr, constraints: &[Constraint], atoms: &mut Atoms) -> Skeleton {
     let mut constraints = constraints.to_vec();
     atoms.view(goal, root(goal));
     register(atoms, &constraints);

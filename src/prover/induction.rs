@@ -40,7 +40,12 @@ const MAX_ROUNDS: usize = 200;
 pub const LEMMA: &str = "inv";
 
 /// Tries to prove `goal` by induction over scans (a program's context only).
-pub fn prove(ctx: &Context, goal: &Obligation, budget: Budget, deadline: Instant) -> Option<Proved> {
+pub fn prove(
+    ctx: &Context,
+    goal: &Obligation,
+    budget: Budget,
+    deadline: Instant,
+) -> Option<Proved> {
     if !ctx.scans {
         return None;
     }
@@ -162,10 +167,8 @@ fn state_bits(cone: &[Axiom], goal: &Obligation) -> Vec<String> {
 
 /// Every literal and every disjunction of two literals over the state bits.
 fn clauses(state: &[String]) -> Vec<Expr> {
-    let lits: Vec<Expr> = state
-        .iter()
-        .flat_map(|n| [crate::term::name(n), not(&crate::term::name(n))])
-        .collect();
+    let lits: Vec<Expr> =
+        state.iter().flat_map(|n| [crate::term::name(n), not(&crate::term::name(n))]).collect();
     let mut out = lits.clone();
     for i in 0..lits.len() {
         for j in (i + 1)..lits.len() {
@@ -302,7 +305,9 @@ fn certificate(
         name: LEMMA.into(),
         ..constraint(&Axiom::ground(LEMMA, inv.clone(), Rel::Eq, one.clone()))
     }];
-    uses.extend(cone.iter().filter(|h| !mentions_pre(&h.lhs) && !mentions_pre(&h.rhs)).map(constraint));
+    uses.extend(
+        cone.iter().filter(|h| !mentions_pre(&h.lhs) && !mentions_pre(&h.rhs)).map(constraint),
+    );
     let mut directions = vec![(goal.lhs.clone(), goal.rhs.clone())];
     if goal.rel == Rel::Eq {
         directions.push((goal.rhs.clone(), goal.lhs.clone()));

@@ -9,8 +9,8 @@
 //! with the reason and, when the skeleton has one, a candidate countermodel.
 
 pub mod boolean;
-pub mod induction;
 pub mod explain;
+pub mod induction;
 pub mod normalize;
 pub mod saturate;
 

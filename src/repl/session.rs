@@ -1184,6 +1184,9 @@ impl Session {
                 .map_err(|e| format!("{name}: {e}"))?;
             env.signals.insert(Symbol::from(name.as_str()), signal);
         }
+        if let Some((_, compiled)) = self.program.clone() {
+            return self.simulate_scans(&compiled, terms_text, &given, &env);
+        }
         // Parse the terms; expand defined signals through their equations.
         let mut rows: Vec<(String, Signal)> = given
             .iter()
@@ -1228,6 +1231,90 @@ impl Session {
             out.push_str(&format!("(0 throughout: {})\n", list.join(", ")));
         }
         out.push_str(&format!("horizon {}\n", format_time(&horizon)));
+        Ok(out)
+    }
+
+    /// `simulate` for a loaded program: its equations run scan by scan (the given
+    /// signals read at the start of each scan, every other input 0), the terms drawn.
+    fn simulate_scans(
+        &mut self,
+        compiled: &CompiledProgram,
+        terms_text: &str,
+        given: &[GivenSignal],
+        env: &Assignment,
+    ) -> Result<String, String> {
+        use crate::counterexample::{ScanTrace, unroll};
+        let cycle = Time::new(compiled.cycle_us.into(), 1_000_000u64.into());
+        if compiled.cycle_us == 0 {
+            return Err("the program has a zero cycle time: it has no scans to simulate".into());
+        }
+        let count = (&env.horizon / &cycle).ceil().to_integer();
+        let scans: usize =
+            count.clone().try_into().ok().filter(|n| *n <= 200_000).ok_or_else(|| {
+                format!("{count} scans of the cycle is too long to simulate; give a shorter `for`")
+            })?;
+        let mut inputs = self.inputs.clone();
+        inputs.extend(given.iter().map(|g| g.0.clone()));
+        let mut terms = Vec::new();
+        for text in terms_text.split(',').map(str::trim).filter(|t| !t.is_empty()) {
+            let file = self.source(text);
+            let term = syntax::parse_expression(&self.sources, file, self.scope(), &inputs)
+                .map_err(|errors| self.syntax_errors(errors))?;
+            terms.push(term);
+        }
+        let model = unroll::Model {
+            defs: compiled
+                .hypotheses
+                .iter()
+                .filter(|h| h.kind == crate::ladder::HypothesisKind::Equation)
+                .filter_map(|h| match &h.lhs[root(&h.lhs)] {
+                    Term::Name(n) => Some((n.as_str().to_string(), h.rhs.clone())),
+                    _ => None,
+                })
+                .collect(),
+            constraints: Vec::new(),
+        };
+        let trace = ScanTrace { cycle: cycle.clone(), scans, values: Default::default() };
+        let mut zeros: BTreeSet<String> = BTreeSet::new();
+        let mut free = |_: &mut unroll::Concrete, name: &str, k: usize| match env
+            .signals
+            .get(&Symbol::from(name))
+        {
+            Some(s) => s.value_at(&trace.instant(k)),
+            None => {
+                zeros.insert(name.to_string());
+                false
+            }
+        };
+        let steps_of = |d: &Delay| (d.seconds() / &cycle).ceil().to_integer().try_into().ok();
+        let extra: Vec<&Expr> = terms.iter().collect();
+        let run =
+            unroll::unroll(&mut unroll::Concrete, &model, &extra, scans, &steps_of, &mut free)?;
+        let mut rows: Vec<(String, Signal)> = given
+            .iter()
+            .filter_map(|(n, _, _)| {
+                env.signals.get(&Symbol::from(n.as_str())).map(|s| (self.display(n), s.clone()))
+            })
+            .collect();
+        for (term, values) in terms.iter().zip(&run.extra) {
+            let label = self.term(term);
+            if !rows.iter().any(|(l, _)| *l == label) {
+                rows.push((label, trace.signal(values)?));
+            }
+        }
+        let mut out: String = waveform::draw(&rows, None, waveform::Glyphs::UNICODE)
+            .into_iter()
+            .map(|l| format!("{l}\n"))
+            .collect();
+        let zeros: Vec<String> = zeros.iter().map(|z| self.display(z)).collect();
+        if !zeros.is_empty() {
+            out.push_str(&format!("(0 throughout: {})\n", zeros.join(", ")));
+        }
+        out.push_str(&format!(
+            "horizon {}, {scans} scans of {}\n",
+            format_time(&env.horizon),
+            format_time(&cycle)
+        ));
         Ok(out)
     }
 
