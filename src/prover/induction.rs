@@ -39,12 +39,24 @@ const MAX_ROUNDS: usize = 200;
 /// The name the invariant lemma has in certificates and traces.
 pub const LEMMA: &str = "inv";
 
-/// Tries to prove `goal` by induction over scans (a program's context only).
+/// Tries to prove `goal` by induction over scans (a program's context only); the
+/// invariant is the certificate's lemma [`LEMMA`].
 pub fn prove(
     ctx: &Context,
     goal: &Obligation,
     budget: Budget,
     deadline: Instant,
+) -> Option<Proved> {
+    prove_as(ctx, goal, budget, deadline, LEMMA)
+}
+
+/// [`prove`], with the invariant lemma called `lemma`.
+pub fn prove_as(
+    ctx: &Context,
+    goal: &Obligation,
+    budget: Budget,
+    deadline: Instant,
+    lemma: &str,
 ) -> Option<Proved> {
     if !ctx.scans {
         return None;
@@ -74,7 +86,6 @@ pub fn prove(
         };
         candidates.retain(|c| value(&at_first_scan(c), &model) != Some(false));
         if !goals.iter().all(|g| candidates.iter().any(|c| c == g)) {
-            debug("the goal fails at the first scan");
             return None;
         }
     }
@@ -96,7 +107,6 @@ pub fn prove(
         let before = candidates.len();
         candidates.retain(|c| value(c, &model) != Some(false));
         if candidates.len() == before || !goals.iter().all(|g| candidates.contains(g)) {
-            debug(&format!("step: {} of {before} left", candidates.len()));
             return None;
         }
     }
@@ -114,16 +124,21 @@ pub fn prove(
             k += 1;
         }
     }
-    debug(&format!("invariant: {}", product(&candidates)));
-    let c = certificate(ctx, goal, &cone, &first, &candidates, budget, deadline);
-    debug(&format!("certificate: {}", c.is_some()));
-    c
-}
-
-fn debug(s: &str) {
-    if std::env::var("II_DEBUG").is_ok() {
-        eprintln!("induction: {s}");
+    // The goal's own clauses go too when the others imply them (a shorter invariant).
+    let mut k = 0;
+    while k < goals.len().min(candidates.len()) && candidates.len() > 1 {
+        let mut fewer = candidates.clone();
+        let clause = fewer.remove(k);
+        let implied =
+            boolean::model_of(&and_not(&product(&fewer), &clause), &step_constraints, &mut atoms)
+                .is_none();
+        if implied && inductive(&fewer, &mut atoms).is_none() {
+            candidates = fewer;
+        } else {
+            k += 1;
+        }
     }
+    certificate(ctx, goal, &cone, &first, &candidates, budget, deadline, lemma)
 }
 
 /// The goal's clauses: `¬f + g` (and `¬g + f` for an equation).
@@ -270,6 +285,7 @@ fn certificate(
     clauses: &[Expr],
     budget: Budget,
     deadline: Instant,
+    name: &str,
 ) -> Option<Proved> {
     let inv = product(clauses);
     let leaves = budget.cases;
@@ -279,17 +295,13 @@ fn certificate(
     let base_goal = and_not(&one, &inv0);
     let mut atoms = boolean::Atoms::default();
     let base_c = constraints_for(ctx, first, &[&base_goal], &mut atoms, budget, 1);
-    let base = boolean::prove_zero(&base_goal, &base_c, &mut atoms, leaves, deadline)
-        .map_err(|e| debug(&format!("base: {e:?}")))
-        .ok()?;
+    let base = boolean::prove_zero(&base_goal, &base_c, &mut atoms, leaves, deadline).ok()?;
     // Step: `pre Inv = P` by the laws of `pre`, then `P ⇒ Inv` by cases.
     let (p, chain) = push_pre(&pre(&inv));
     let step_goal = and_not(&p, &inv);
     let mut atoms = boolean::Atoms::default();
     let step_c = constraints_for(ctx, cone, &[&step_goal], &mut atoms, budget, 1);
-    let step = boolean::prove_zero(&step_goal, &step_c, &mut atoms, leaves, deadline)
-        .map_err(|e| debug(&format!("step: {e:?}")))
-        .ok()?;
+    let step = boolean::prove_zero(&step_goal, &step_c, &mut atoms, leaves, deadline).ok()?;
     let step = Proof::Trans(
         Box::new(Proof::Chain { start: pre(&inv), steps: chain }),
         Box::new(Proof::ImpliesByZero(Box::new(step))),
@@ -302,8 +314,8 @@ fn certificate(
     // The goal from `inv = 1*`.
     let mut uses = vec![boolean::Constraint {
         source: Source::Lemma,
-        name: LEMMA.into(),
-        ..constraint(&Axiom::ground(LEMMA, inv.clone(), Rel::Eq, one.clone()))
+        name: name.into(),
+        ..constraint(&Axiom::ground(name, inv.clone(), Rel::Eq, one.clone()))
     }];
     uses.extend(
         cone.iter().filter(|h| !mentions_pre(&h.lhs) && !mentions_pre(&h.rhs)).map(constraint),
@@ -316,9 +328,7 @@ fn certificate(
     for (f, g) in &directions {
         let zero = and_not(f, g);
         let mut atoms = boolean::Atoms::default();
-        let proof = boolean::prove_zero(&zero, &uses, &mut atoms, leaves, deadline)
-            .map_err(|e| debug(&format!("goal: {e:?}")))
-            .ok()?;
+        let proof = boolean::prove_zero(&zero, &uses, &mut atoms, leaves, deadline).ok()?;
         proofs.push(Proof::ImpliesByZero(Box::new(proof)));
     }
     let main = match (proofs.pop(), proofs.pop()) {
@@ -326,11 +336,7 @@ fn certificate(
         (Some(only), None) => only,
         _ => return None,
     };
-    let certificate = Certificate { lemmas: vec![(LEMMA.into(), lemma)], main: Some(main) };
-    let theorem = ctx
-        .kernel
-        .check_goal(&certificate, &goal.lhs, goal.rel, &goal.rhs)
-        .map_err(|e| debug(&format!("kernel: {e}")))
-        .ok()?;
+    let certificate = Certificate { lemmas: vec![(name.into(), lemma)], main: Some(main) };
+    let theorem = ctx.kernel.check_goal(&certificate, &goal.lhs, goal.rel, &goal.rhs).ok()?;
     Some(Proved { theorem, certificate, method: Method::Induction, lines: vec![] })
 }

@@ -162,7 +162,29 @@ fn proof_text(proof: &Proof, sizes: &[usize], style: &Style, indent: &str, out: 
             out.push(format!("{indent}first scan (every previous value 0):"));
             proof_text(base, &[], style, &format!("{indent}  "), out);
             out.push(format!("{indent}step, from the previous scan:"));
-            proof_text(step, &[], style, &format!("{indent}  "), out);
+            let inner = format!("{indent}  ");
+            match &**step {
+                // `pre` pushed down to the state bits: one line.
+                Proof::Trans(chain, rest) if matches!(&**chain, Proof::Chain { .. }) => {
+                    if let Proof::Chain { start, steps } = &**chain {
+                        let mut rules: Vec<String> = Vec::new();
+                        for s in steps {
+                            let label = rule_label(&s.rule);
+                            if !rules.contains(&label) {
+                                rules.push(label);
+                            }
+                        }
+                        out.push(format!("{inner}  {}", style.term(start)));
+                        if let Some(last) = steps.last() {
+                            let after = style.term(&last.after);
+                            out.push(format!("{inner}= {after}   [{}]", rules.join(", ")));
+                        }
+                    }
+                    out.push(format!("{inner}and then"));
+                    proof_text(rest, &[], style, &inner, out);
+                }
+                _ => proof_text(step, &[], style, &inner, out),
+            }
         }
     }
 }

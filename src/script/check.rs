@@ -675,6 +675,46 @@ impl Checker {
                 })?;
                 (justified.proof, justified.lemmas)
             }
+            ScriptProof::Induction(span) => {
+                if !self.ctx.scans {
+                    return Err(ScriptError::BadContext {
+                        span: *span,
+                        reason: "induction over scans needs a program: start the script with \
+                                 a `program \"FILE.ld\"` header"
+                            .into(),
+                    });
+                }
+                let goal = Obligation { lhs: lhs.clone(), rel, rhs: rhs.clone() };
+                let deadline = Instant::now() + self.budget.time;
+                let name = format!("{}_inv", statement.name);
+                let found =
+                    prover::induction::prove_as(&self.ctx, &goal, self.budget, deadline, &name);
+                let Some(Certificate { mut lemmas, main: Some(main) }) =
+                    found.map(|p| p.certificate)
+                else {
+                    return Err(ScriptError::AutoFailed {
+                        span: *span,
+                        goal: goal_text,
+                        reason: "no inductive invariant over the program's state bits was found"
+                            .into(),
+                    });
+                };
+                let (name, invariant) = lemmas.remove(0);
+                if let Proof::Induction { inv, .. } = &invariant {
+                    let (lhs, rhs) = (inv.clone(), constant(true));
+                    let deps = BTreeSet::new();
+                    let proof = invariant.clone();
+                    self.add_proved(ProvedClaim {
+                        name: name.clone(),
+                        lhs,
+                        rel: Rel::Eq,
+                        rhs,
+                        proof,
+                        deps,
+                    });
+                }
+                (main, BTreeSet::from([name]))
+            }
             ScriptProof::Calc { start, start_span, steps, qed } => {
                 // Where must the chain start and end, and how does it close?
                 let meet = and(&lhs, &rhs);

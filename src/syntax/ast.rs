@@ -196,6 +196,8 @@ pub struct AstStep {
 pub enum AstProof {
     /// `by auto`.
     Auto(Span),
+    /// `by induction`: induction over scans, with an invariant the prover finds.
+    Induction(Span),
     /// `by r1, r2`: one step from the left side to the right side with these rules.
     By(Vec<RuleRef>, Span),
     /// `proof start (= term [rules])* qed`.

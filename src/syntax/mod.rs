@@ -216,6 +216,9 @@ pub struct Claim {
 pub enum ScriptProof {
     /// `by auto`: the full prover.
     Auto(Span),
+    /// `by induction`: induction over scans (a script about a program), with an
+    /// invariant the prover finds; it becomes the lemma `NAME_inv`.
+    Induction(Span),
     /// `by r1, r2`: one step from the left side to the right side, with these rules.
     By(Vec<RuleRef>, Span),
     /// `proof START (= TERM [RULES])* qed`: a calculation.

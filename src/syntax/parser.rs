@@ -261,6 +261,11 @@ impl Parser {
             {
                 return Ok(AstProof::Auto(span));
             }
+            if let [only] = rules.as_slice()
+                && only.name == "induction"
+            {
+                return Ok(AstProof::Induction(span));
+            }
             return Ok(AstProof::By(rules, span));
         }
         if self.eat(&Tok::Keyword(Keyword::Proof)).is_none() {

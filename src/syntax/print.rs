@@ -365,6 +365,7 @@ pub fn claim_to_string(statement: &Statement<Claim>, notation: Notation) -> Stri
     out.push('\n');
     match &claim.proof {
         ScriptProof::Auto(_) => out.push_str("by auto\n"),
+        ScriptProof::Induction(_) => out.push_str("by induction\n"),
         ScriptProof::By(rules, _) => out.push_str(&format!("by {}\n", rules_to_string(rules))),
         ScriptProof::Calc { start, steps, .. } => {
             out.push_str("proof\n");

@@ -696,6 +696,7 @@ impl<'a> Resolver<'a> {
     fn proof(&mut self, proof: &AstProof) -> Option<ScriptProof> {
         match proof {
             AstProof::Auto(span) => Some(ScriptProof::Auto(*span)),
+            AstProof::Induction(span) => Some(ScriptProof::Induction(*span)),
             AstProof::By(rules, span) => Some(ScriptProof::By(rules.clone(), *span)),
             AstProof::Calc { start, steps, qed } => {
                 let mut out = Out::default();
