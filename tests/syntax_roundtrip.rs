@@ -65,6 +65,7 @@ fn same_claim(a: &Claim, b: &Claim) -> bool {
     let rules = |r: &[RuleRef]| r.iter().map(|x| x.name.clone()).collect::<Vec<_>>();
     let proofs = match (&a.proof, &b.proof) {
         (ScriptProof::Auto(_), ScriptProof::Auto(_)) => true,
+        (ScriptProof::Induction(_), ScriptProof::Induction(_)) => true,
         (ScriptProof::By(x, _), ScriptProof::By(y, _)) => rules(x) == rules(y),
         (
             ScriptProof::Calc { start: s1, steps: v1, .. },

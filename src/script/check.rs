@@ -607,6 +607,7 @@ impl Checker {
                 ScriptError::OnlyImplication { span, goal: goal.to_string() }
             }
             StepError::Auto(reason) => ScriptError::AutoFailed {
+                method: "auto",
                 span,
                 goal: format!(
                     "{} {} {}",
@@ -693,6 +694,7 @@ impl Checker {
                     found.map(|p| p.certificate)
                 else {
                     return Err(ScriptError::AutoFailed {
+                        method: "induction",
                         span: *span,
                         goal: goal_text,
                         reason: "no inductive invariant over the program's state bits was found"

@@ -62,10 +62,12 @@ pub enum ScriptError {
         /// The goal as printed.
         goal: String,
     },
-    /// `by auto` (or `[auto]`) did not find a proof within its limits.
+    /// `by auto` (or `[auto]`, or `by induction`) did not find a proof within its limits.
     AutoFailed {
-        /// Where `auto` is.
+        /// Where `auto` (or `induction`) is.
         span: Span,
+        /// `auto` or `induction`.
+        method: &'static str,
         /// What it had to prove.
         goal: String,
         /// The prover's reason.
@@ -129,7 +131,9 @@ impl Report for ScriptError {
                     "this step holds only as an implication (`⇒`), not as an equation (goal: {goal})"
                 )
             }
-            ScriptError::AutoFailed { goal, .. } => format!("`auto` found no proof of {goal}"),
+            ScriptError::AutoFailed { goal, method, .. } => {
+                format!("`{method}` found no proof of {goal}")
+            }
             ScriptError::Kernel { name, error, .. } => {
                 format!("the kernel rejects the proof of `{name}`: {error}")
             }

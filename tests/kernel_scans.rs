@@ -1,0 +1,172 @@
+//! The kernel on a program's scans: `pre` is rewritten only by laws that hold before the first scan, induction over scans is checked (base and step) and refused outside programs, and terms are validated.
+
+use std::time::{Duration, Instant};
+
+use ii_prove::diag::Sources;
+use ii_prove::kernel::{
+    Axiom, Certificate, Kernel, KernelError, Proof, Rel, Rule, Source, Step, Use,
+};
+use ii_prove::ladder::{compile, read_ldmicro};
+use ii_prove::prover::{Budget, Context, Obligation, induction};
+use ii_prove::term::{Expr, Symbol, Term, sexp};
+use ii_prove::theory;
+
+fn law(name: &str, lhs: &str, rel: Rel, rhs: &str, vars: &[&str]) -> Axiom {
+    Axiom {
+        signal_vars: vars.iter().map(|v| Symbol::from(*v)).collect(),
+        ..Axiom::ground(name, sexp(lhs), rel, sexp(rhs))
+    }
+}
+
+fn laws() -> Vec<Axiom> {
+    vec![
+        law("and_comm", "(& f g)", Rel::Eq, "(& g f)", &["f", "g"]),
+        law("pre_not", "(pre (! a))", Rel::Eq, "(! (pre a))", &["a"]),
+        law("ton_weaken", "(ton 5s f)", Rel::Implies, "f", &["f"]),
+    ]
+}
+
+fn scan_kernel() -> Kernel {
+    let hyps = vec![Axiom::ground("L01", sexp("X"), Rel::Eq, sexp("(! Y)"))];
+    Kernel::for_scans(laws(), hyps).expect("well-formed axioms")
+}
+
+fn one_step(start: &str, path: &[usize], rule: Rule, after: &str) -> Certificate {
+    let step =
+        Step { path: path.to_vec(), rule, after: sexp(after), subst: vec![], premises: vec![] };
+    Certificate {
+        lemmas: vec![],
+        main: Some(Proof::Chain { start: sexp(start), steps: vec![step] }),
+    }
+}
+
+#[test]
+fn a_hypothesis_does_not_rewrite_under_pre() {
+    // `X = ¬Y` at every scan, but before the first scan X is 0 and ¬Y is 1: `pre X` and
+    // `pre ¬Y` differ at the first scan.
+    let cert = one_step(
+        "(pre X)",
+        &[0],
+        Rule::Cite(Source::Hypothesis, "L01".into(), Use::Forward),
+        "(pre (! Y))",
+    );
+    assert!(matches!(scan_kernel().check(&cert), Err(KernelError::BadPosition(_))));
+    // At the top it does.
+    let cert =
+        one_step("X", &[], Rule::Cite(Source::Hypothesis, "L01".into(), Use::Forward), "(! Y)");
+    assert!(scan_kernel().check(&cert).is_ok());
+}
+
+#[test]
+fn under_pre_only_laws_of_the_boolean_operators_and_pre_rewrite() {
+    let k = scan_kernel();
+    let comm = Rule::Cite(Source::Law, "and_comm".into(), Use::Forward);
+    assert!(k.check(&one_step("(pre (& a b))", &[0], comm, "(pre (& b a))")).is_ok());
+    let pre_not = Rule::Cite(Source::Law, "pre_not".into(), Use::Forward);
+    assert!(k.check(&one_step("(pre (pre (! a)))", &[0], pre_not, "(pre (! (pre a)))")).is_ok());
+    // `5s/f ⇒ f` holds at every scan, not before the first one (where `f` may be 1).
+    let weaken = Rule::Cite(Source::Law, "ton_weaken".into(), Use::Forward);
+    let cert = one_step("(pre (ton 5s f))", &[0], weaken, "(pre f)");
+    assert!(matches!(k.check(&cert), Err(KernelError::BadPosition(_))));
+    // A case assumption is about the present scan.
+    let case = Rule::Case(sexp("a"), true);
+    let cert = one_step("(pre a)", &[0], case, "(pre 1*)");
+    assert!(matches!(k.check(&cert), Err(KernelError::BadPosition(_))));
+}
+
+#[test]
+fn free_signals_have_no_pre() {
+    let hyps = vec![Axiom::ground("H", sexp("X"), Rel::Eq, sexp("(pre Y)"))];
+    assert!(matches!(Kernel::new(laws(), hyps), Err(KernelError::BadAxiom(_))));
+    let free = Kernel::new(laws(), vec![]).expect("kernel");
+    let comm = Rule::Cite(Source::Law, "and_comm".into(), Use::Forward);
+    let cert = one_step("(pre (& a b))", &[0], comm, "(pre (& b a))");
+    assert!(free.check(&cert).is_err());
+}
+
+#[test]
+fn terms_whose_nodes_are_out_of_order_are_refused() {
+    // A node pointing at itself: not a term, whoever built it.
+    let looped: Expr = Expr::from(vec![Term::Name(Symbol::from("a")), Term::Not(1.into())]);
+    let cert =
+        Certificate { lemmas: vec![], main: Some(Proof::Chain { start: looped, steps: vec![] }) };
+    assert!(scan_kernel().check(&cert).is_err());
+}
+
+/// The press of examples/press.ld, its compiled hypotheses, and the prover's
+/// certificate of `RFire ⇒ RArmed` by induction.
+fn press() -> (Context, Obligation, Certificate) {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut sources = Sources::new();
+    let text = std::fs::read_to_string(root.join("examples/press.ld")).expect("readable");
+    let file = sources.add("press.ld", text);
+    let compiled = compile(&read_ldmicro(&sources, file).expect("parses")).expect("compiles");
+    let theory = theory::standard(&mut Sources::new()).expect("theory");
+    let ctx = Context::with_scans(theory.axioms(), compiled.axioms(), true).expect("context");
+    let goal = Obligation { lhs: sexp("RFire"), rel: Rel::Implies, rhs: sexp("RArmed") };
+    let budget = Budget::default();
+    let deadline = Instant::now() + Duration::from_secs(20);
+    let proved = induction::prove(&ctx, &goal, budget, deadline).expect("proved by induction");
+    (ctx, goal, proved.certificate)
+}
+
+fn check(ctx: &Context, goal: &Obligation, cert: &Certificate) -> Result<(), KernelError> {
+    ctx.kernel.check_goal(cert, &goal.lhs, goal.rel, &goal.rhs).map(|_| ())
+}
+
+/// The invariant lemma's parts.
+fn parts(cert: &Certificate) -> (Expr, Proof, Proof) {
+    match &cert.lemmas[0].1 {
+        Proof::Induction { inv, base, step } => (inv.clone(), (**base).clone(), (**step).clone()),
+        other => panic!("not an induction: {other:?}"),
+    }
+}
+
+fn with_lemma(cert: &Certificate, lemma: Proof) -> Certificate {
+    Certificate { lemmas: vec![(cert.lemmas[0].0.clone(), lemma)], main: cert.main.clone() }
+}
+
+#[test]
+fn an_induction_certificate_is_checked_base_and_step() {
+    let (ctx, goal, cert) = press();
+    check(&ctx, &goal, &cert).expect("the kernel accepts it");
+    let (inv, base, step) = parts(&cert);
+    // The step in place of the base, the base in place of the step: both refused.
+    let swapped = Proof::Induction {
+        inv: inv.clone(),
+        base: Box::new(step.clone()),
+        step: Box::new(base.clone()),
+    };
+    assert!(check(&ctx, &goal, &with_lemma(&cert, swapped)).is_err());
+    // Another invariant than the one the base and step prove.
+    let other = Proof::Induction {
+        inv: sexp("(+ RArmed RFire)"),
+        base: Box::new(base.clone()),
+        step: Box::new(step.clone()),
+    };
+    assert!(check(&ctx, &goal, &with_lemma(&cert, other)).is_err());
+    // An induction inside a base case would use the first scan's hypotheses as if they
+    // held at every scan.
+    let nested = Proof::Induction {
+        inv: inv.clone(),
+        base: Box::new(Proof::Induction {
+            inv: inv.clone(),
+            base: Box::new(base.clone()),
+            step: Box::new(step.clone()),
+        }),
+        step: Box::new(step),
+    };
+    assert!(check(&ctx, &goal, &with_lemma(&cert, nested)).is_err());
+}
+
+#[test]
+fn induction_is_refused_for_free_signals() {
+    let (ctx, goal, cert) = press();
+    // The same laws and a hypothesis-free kernel about free signals.
+    let free = Kernel::new(ctx.laws.clone(), vec![]).expect("kernel");
+    assert!(free.check_goal(&cert, &goal.lhs, goal.rel, &goal.rhs).is_err());
+    let (inv, base, step) = parts(&cert);
+    let lemma = Proof::Induction { inv, base: Box::new(base), step: Box::new(step) };
+    let only = Certificate { lemmas: vec![], main: Some(lemma) };
+    assert!(matches!(free.check(&only), Err(KernelError::BadPosition(_))));
+}
