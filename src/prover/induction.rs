@@ -138,7 +138,7 @@ pub fn prove_as(
             k += 1;
         }
     }
-    certificate(ctx, goal, &cone, &first, &candidates, budget, deadline, lemma)
+    certificate(ctx, goal, (&cone, &first), &candidates, (budget, deadline), lemma)
 }
 
 /// The goal's clauses: `¬f + g` (and `¬g + f` for an equation).
@@ -277,14 +277,13 @@ fn locate(e: &Expr, path: &[usize]) -> Id {
 }
 
 /// The certificate: the invariant lemma by induction, then the goal from it by cases.
+/// The hypotheses are `cone` (at every scan) and `first` (as they read at the first scan).
 fn certificate(
     ctx: &Context,
     goal: &Obligation,
-    cone: &[Axiom],
-    first: &[Axiom],
+    (cone, first): (&[Axiom], &[Axiom]),
     clauses: &[Expr],
-    budget: Budget,
-    deadline: Instant,
+    (budget, deadline): (Budget, Instant),
     name: &str,
 ) -> Option<Proved> {
     let inv = product(clauses);
