@@ -16,49 +16,60 @@
 //! Bits are written only by coils (timers, counters, `RES`, `MOVE` and the integer
 //! elements write integers, a separate name space, so a bit and a timer may share a
 //! name). Every bit written by coils is tracked through the scan. Its value at a
-//! point of the scan is a Boolean function of its previous-scan value `pre_X`: each
-//! coil on `X` composes one step (plain `X := i`, negated `X := ¬i`, set
-//! `X := i + X`, reset `X := ¬i · X`, toggle `X := e·¬X + ¬e·X` with `e = i · fresh`
-//! the unknown rising edge of its power). Hence:
+//! point of the scan is a Boolean function of its previous-scan value `pre X`
+//! (`shared/spec/semantics.md`: `X` at the end of the previous scan, 0 before the
+//! first): each coil on `X` composes one step (plain `X := i`, negated `X := ¬i`, set
+//! `X := i + X`, reset `X := ¬i · X`, toggle `X := e·¬X + ¬e·X` with `e = i · ¬pre M`
+//! the rising edge of its power). Hence:
 //!
-//! * before the first coil on `X` a read sees `pre_X` (the previous-scan value);
+//! * before the first coil on `X` a read sees `pre X`, exactly;
 //! * after the last coil on `X` a read sees the signal `X` itself (exact);
 //! * between two coils on `X` (several plain coils, a set rung and a later reset
-//!   rung, …) a read sees the intermediate value, inlined **exactly** (it
-//!   mentions `pre_X` only if a set/reset/toggle coil came first);
+//!   rung, …) a read sees the intermediate value, inlined **exactly**;
 //! * a bit that no coil writes and that is not an input (`X` pins, `I`/`M` Modbus
 //!   bits) keeps its power-up value: reads see `0*`, and `unwritten_X: X = 0*`
 //!   is a hypothesis.
 //!
+//! While the scan is compiled, `pre X` is an internal name (`pre_X`, unique among the
+//! program's names); every emitted term has it replaced by `pre X`.
+//!
+//! # Edges
+//!
+//! A one-shot keeps the power it saw in a hidden bit, 0 at power-up (ldmicro.md §4):
+//! it compiles to a memory `M = i` (an [`SignalKind::EdgeMemory`] named `OSR_r5`,
+//! stated with its rung) and `OSR` is `i · ¬pre M`, `OSF` `¬i · pre M`, `ODR`
+//! `¬(i · ¬pre M)`; when the power is one signal `X`, `pre X` is used directly. A
+//! toggle coil's edge is the same. `ODF` and `OSC` stay fresh.
+//!
 //! # Equations and memories
 //!
-//! At the last coil on `X` the end-of-scan value is `G(pre_X)` (a seal-in contact
-//! reads `pre_X` too). If
-//! `pre_X` does not occur, `X = G` exactly. If it occurs only as a pointwise
-//! Boolean argument and `G0 = G[pre_X:=0*] ⇒ G1 = G[pre_X:=1*]` (checked by truth
-//! table over the rung's atoms, at most [`MAX_ATOMS`](super::logic::MAX_ATOMS)),
-//! then `G = G0 + pre_X · G1`, which is the scan recurrence of `SR(G0, ¬G1)`:
-//! `X` is a memory. It is written in the most readable equivalent form: `RS(S,
-//! ¬Y)` with `Y = G1` and `S` = the factors of `G0` not implied by `G1` (the
-//! `(S + Q)·Y` seal-in), or `SR(S, ¬Y)` with `S = G0` and `Y` = the summands of
-//! `G1` that do not imply `G0` (the `S + Q·Y` form); the form that drops
-//! something wins, then the smaller one, then `SR`. Every candidate is checked
+//! At the last coil on `X` the end-of-scan value is `G(pre X)` (a seal-in contact
+//! reads `pre X` too). If `pre X` does not occur, `X = G` exactly. If it occurs only
+//! as a pointwise Boolean argument and `G0 = G[pre X:=0*] ⇒ G1 = G[pre X:=1*]`
+//! (checked by truth table over the rung's atoms, at most
+//! [`MAX_ATOMS`](super::logic::MAX_ATOMS)), then `G = G0 + pre X · G1`, which is the
+//! scan recurrence of `SR(G0, ¬G1)`: `X` is a memory. It is written in the most
+//! readable equivalent form: `RS(S, ¬Y)` with `Y = G1` and `S` = the factors of `G0`
+//! not implied by `G1` (the `(S + Q)·Y` seal-in), or `SR(S, ¬Y)` with `S = G0` and `Y`
+//! = the summands of `G1` that do not imply `G0` (the `S + Q·Y` form); the form that
+//! drops something wins, then the smaller one, then `SR`. Every candidate is checked
 //! against `G` by truth table before it is used. Set/reset coils are the same
 //! composition, so a set rung followed by a reset rung gives `RS(S, R)` and the
-//! other order `SR(S, R)`; several set (reset) coils sum their powers.
+//! other order `SR(S, R)`; several set (reset) coils sum their powers. The recurrence
+//! itself is stated too, as `Lnn_scan: X = G(pre X)` ([`HypothesisKind::Recurrence`]):
+//! it is what induction over scans reads.
 //!
-//! Otherwise (not monotone, e.g. a coil reading its own complement; or `pre_X`
-//! under a timer) `X = G(pre_X)` with `pre_X` **unconstrained**.
+//! Otherwise (not monotone, e.g. a coil reading its own complement; or `pre X`
+//! under a timer) `X = G(pre X)`.
 //!
 //! # Bounds
 //!
-//! Whenever an emitted equation `X = F` still mentions `pre_` signals, two sound
-//! bounds eliminating them are emitted as well (see
-//! [`eliminate`]): `lo ⇒ X` and `X ⇒ hi`, named
-//! `Lnn_lo` and `Lnn_hi`. Where `p` is a pointwise Boolean argument these are
-//! the Shannon bounds `F[p:=0]·F[p:=1]` and `F[p:=0] + F[p:=1]`; through
-//! memories and timers they use monotonicity (SR/RS monotone in the set,
-//! antitone in the reset). Trivial bounds (`0* ⇒ X`, `X ⇒ 1*`) are not emitted.
+//! Whenever an emitted equation `X = F` mentions `pre`, two bounds free of it are
+//! emitted as well (see [`eliminate`]): `lo ⇒ X` and `X ⇒ hi`, named `Lnn_lo` and
+//! `Lnn_hi`. Where `p` is a pointwise Boolean argument these are the Shannon bounds
+//! `F[p:=0]·F[p:=1]` and `F[p:=0] + F[p:=1]`; through memories and timers they use
+//! monotonicity (SR/RS monotone in the set, antitone in the reset). Trivial bounds
+//! (`0* ⇒ X`, `X ⇒ 1*`) are not emitted.
 //!
 //! # Timers and the rest
 //!
@@ -73,8 +84,7 @@
 //! written by another element (RES, MOVE, a second timer of the same name, …), a
 //! variable delay, a zero delay or a zero cycle, and RTO/RTL/THI/TLO/TCY give a
 //! fresh, unconstrained output. So do counters (orig CTC passes its input,
-//! exactly), one-shots (OSR `IN · fresh`, OSF `¬IN · fresh`, ODR `¬IN + fresh`;
-//! ODF and OSC plain fresh), comparisons (`IN · fresh`) and every peripheral or
+//! exactly), the one-shots ODF and OSC, comparisons (`IN · fresh`) and every peripheral or
 //! control-flow element; integer side effects (MOVE, math, RES) pass the power
 //! and have no Boolean meaning. Every such case is a [`CompileWarning`] naming
 //! the rung and the element: nothing is dropped silently.
@@ -89,9 +99,9 @@
 //! # Names
 //!
 //! Signals keep their exact LDmicro names (a back quote, which `.ii` cannot
-//! quote, becomes `'`). Previous values are `pre_X`; fresh outputs are
-//! `OSR_r5` (keyword and file rung number), `CTU_Cpieces`, `RTO_Tfoo` (keyword
-//! and variable); a clash with a program name adds `_2`, `_3`, …. An
+//! quote, becomes `'`). Edge memories are `OSR_r5` (keyword and file rung number),
+//! fresh outputs `CTU_Cpieces`, `RTO_Tfoo` (keyword and variable), `GEQ_r3`; a clash
+//! with a program name adds `_2`, `_3`, …. An
 //! intermediate value larger than 2 000 nodes is not inlined: reads see a fresh
 //! `X_r7` instead (with a warning). Hypotheses are named after the logic rung
 //! (rungs LDmicro skips as comments are not counted; `L{:02}`, wider for 100
