@@ -159,7 +159,17 @@ impl Kernel {
     /// A kernel trusting these laws and (ground) hypotheses. Rejects malformed
     /// axioms and duplicate names.
     pub fn new(laws: Vec<Axiom>, hypotheses: Vec<Axiom>) -> Result<Kernel> {
-        let mut kernel = Kernel::default();
+        Kernel::build(laws, hypotheses, false)
+    }
+
+    /// A kernel for a program's scan runs (`pre` in hypotheses and terms, induction
+    /// over scans); otherwise as [`Kernel::new`].
+    pub fn for_scans(laws: Vec<Axiom>, hypotheses: Vec<Axiom>) -> Result<Kernel> {
+        Kernel::build(laws, hypotheses, true)
+    }
+
+    fn build(laws: Vec<Axiom>, hypotheses: Vec<Axiom>, scans: bool) -> Result<Kernel> {
+        let mut kernel = Kernel { scans, ..Kernel::default() };
         for (axiom, is_law) in
             laws.into_iter().map(|a| (a, true)).chain(hypotheses.into_iter().map(|a| (a, false)))
         {
@@ -173,6 +183,12 @@ impl Kernel {
                     axiom.name
                 )));
             }
+            if !is_law && !scans && (mentions_pre(&axiom.lhs) || mentions_pre(&axiom.rhs)) {
+                return Err(KernelError::BadAxiom(format!(
+                    "`pre` in hypothesis `{}` about free signals (they have no scans)",
+                    axiom.name
+                )));
+            }
             let name = axiom.name.clone();
             let fresh = !kernel.laws.contains_key(&name) && !kernel.hyps.contains_key(&name);
             let table = if is_law { &mut kernel.laws } else { &mut kernel.hyps };
@@ -180,31 +196,6 @@ impl Kernel {
                 return Err(KernelError::BadAxiom(format!("`{name}` is defined twice")));
             }
         }
-        if kernel.hyps.values().any(|h| mentions_pre(&h.lhs) || mentions_pre(&h.rhs)) {
-            return Err(KernelError::BadAxiom(
-                "`pre` in a hypothesis about free signals (they have no scans)".into(),
-            ));
-        }
-        Ok(kernel)
-    }
-
-    /// A kernel for a program's scan runs (`pre` in hypotheses and terms, induction
-    /// over scans); otherwise as [`Kernel::new`].
-    pub fn for_scans(laws: Vec<Axiom>, hypotheses: Vec<Axiom>) -> Result<Kernel> {
-        let (plain, with_pre): (Vec<Axiom>, Vec<Axiom>) =
-            hypotheses.into_iter().partition(|h| !mentions_pre(&h.lhs) && !mentions_pre(&h.rhs));
-        let mut kernel = Kernel::new(laws, plain)?;
-        for h in with_pre {
-            check_signal_term(&h.name, &h.lhs, &[])?;
-            check_signal_term(&h.name, &h.rhs, &[])?;
-            let ground = h.signal_vars.is_empty() && h.delay_vars.is_empty();
-            let taken = kernel.laws.contains_key(&h.name) || kernel.hyps.contains_key(&h.name);
-            if taken || !ground || !h.signal_conditions.is_empty() {
-                return Err(KernelError::BadAxiom(format!("hypothesis `{}`", h.name)));
-            }
-            kernel.hyps.insert(h.name.clone(), h);
-        }
-        kernel.scans = true;
         Ok(kernel)
     }
 
