@@ -330,10 +330,15 @@ const CONTROL_FLOW: &[(&str, &str)] = &[
     ("SLEEP", "the processor sleeps in the middle of the scan"),
 ];
 
-/// Names the outside world writes (ldmicro.md §5): `X` input pins, `I` Modbus discrete
-/// inputs and `M` Modbus coils. Any other bit that no coil writes stays `0*`.
-fn is_external_input(name: &str) -> bool {
-    name.starts_with(['X', 'I', 'M'])
+/// Names the outside world writes: the program's declared inputs if it has them
+/// ([`LdProgram::inputs`], PLCopen), else LDmicro's (ldmicro.md §5): `X` input pins,
+/// `I` Modbus discrete inputs and `M` Modbus coils. Any other bit that no coil writes
+/// stays `0*`.
+fn is_external_input(program: &LdProgram, name: &str) -> bool {
+    match &program.inputs {
+        Some(inputs) => inputs.contains(name),
+        None => name.starts_with(['X', 'I', 'M']),
+    }
 }
 
 /// The canonical `.ii` name of an LDmicro name (a back quote cannot be quoted; it becomes `'`).
@@ -521,7 +526,7 @@ impl<'a> Compiler<'a> {
                 if let ElementKind::Contacts { name, .. } | ElementKind::Coil { name, .. } = &e.kind
                 {
                     let n = canonical(name);
-                    if !self.last_coil.contains_key(&n) && !is_external_input(&n) {
+                    if !self.last_coil.contains_key(&n) && !is_external_input(self.program, &n) {
                         self.unwritten.entry(n).or_insert(rung.number);
                     }
                 }
