@@ -299,6 +299,9 @@ pub struct CompiledProgram {
     pub timers: TimerModel,
     /// Every TON/TOF compiled as a timer term, in scan order.
     pub timer_info: Vec<TimerInfo>,
+    /// Whether names are used exactly, without LDmicro's one-letter kind prefixes being
+    /// dropped for display and lookup (front ends with declared inputs: PLCopen).
+    pub exact_names: bool,
     /// The short-name index of [`names`](super::names), built on first use from `signals`.
     pub(super) short_names: std::sync::OnceLock<BTreeMap<String, Vec<String>>>,
 }
@@ -1055,6 +1058,7 @@ impl<'a> Compiler<'a> {
             warnings: self.warnings,
             timers: self.options.timers,
             timer_info: self.timer_info,
+            exact_names: self.program.inputs.is_some(),
             short_names: std::sync::OnceLock::new(),
         }
     }
@@ -1135,7 +1139,8 @@ type KindFilter = fn(&SignalKind) -> bool;
 pub fn program_to_ii(compiled: &CompiledProgram, notation: Notation) -> String {
     let mut out = String::new();
     out.push_str(&format!(
-        "// Compiled from an LDmicro program by ii-prove (timers: {}).\n",
+        "// Compiled from {} program by ii-prove (timers: {}).\n",
+        if compiled.exact_names { "a PLCopen" } else { "an LDmicro" },
         match compiled.timers {
             TimerModel::Plc => "plc, the scans the runtime counts",
             TimerModel::Ideal => "ideal, the delays as written",

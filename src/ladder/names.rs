@@ -31,6 +31,9 @@ impl CompiledProgram {
     /// kind prefix, `pre_X` becomes `pre_` + the short form of `X`; fresh
     /// signals have none.
     fn short_of(&self, name: &str) -> Option<String> {
+        if self.exact_names {
+            return None;
+        }
         match self.signals.get(name)? {
             SignalKind::Fresh { .. } => None,
             SignalKind::Previous { of } => short_name(of).map(|s| format!("pre_{s}")),

@@ -260,6 +260,8 @@ pub struct Pou {
     pub vars: Vec<Var>,
     /// The first body, if any.
     pub body: Option<Body>,
+    /// What is malformed in this POU's interface or body (reported only when it is checked).
+    pub errors: Vec<PlcError>,
     /// The `pou` start tag.
     pub span: Span,
 }
@@ -398,6 +400,8 @@ pub struct PinIn {
     pub negated: bool,
     /// `edge`.
     pub edge: Edge,
+    /// Whether it is an in-out pin (VAR_IN_OUT: the block may write what is wired to it).
+    pub in_out: bool,
     /// The pin element.
     pub span: Span,
 }
@@ -691,6 +695,7 @@ impl Reader<'_> {
             expr,
             negated: flag(owner, "negated"),
             edge: self.edge(owner, "edge"),
+            in_out: false,
             span: self.tag(owner),
         }
     }
@@ -788,7 +793,8 @@ impl Reader<'_> {
                     for l in children(n, list) {
                         for v in children(l, "variable") {
                             let name = self.required(v, "formalParameter");
-                            inputs.push(self.pin_in(v, name, v));
+                            let pin = self.pin_in(v, name, v);
+                            inputs.push(PinIn { in_out: list == "inOutVariables", ..pin });
                         }
                     }
                 }
@@ -879,6 +885,7 @@ impl Reader<'_> {
 
     fn pou(&mut self, p: Node) -> Pou {
         let name = self.required(p, "name");
+        let before = self.errors.len();
         let kind = match p.attribute("pouType") {
             Some("functionBlock") => PouKind::FunctionBlock,
             Some("function") => PouKind::Function,
@@ -902,7 +909,8 @@ impl Reader<'_> {
             }
         }
         let body = child(p, "body").and_then(|b| self.body(b));
-        Pou { name, kind, vars, body, span: self.tag(p) }
+        let errors = self.errors.split_off(before);
+        Pou { name, kind, vars, body, errors, span: self.tag(p) }
     }
 }
 
@@ -1413,11 +1421,29 @@ fn pick<'p>(
     match (run.as_slice(), programs.as_slice()) {
         ([p], _) => Ok((p, task_of(p))),
         ([], [p]) => Ok((p, None)),
-        ([], []) => Err(vec![PlcError::Unsupported {
-            span: project.span,
-            what: "a project without a program POU".into(),
-            reason: "there is nothing to scan; give a project with a `pou pouType=\"program\"`".into(),
-        }]),
+        ([], []) => {
+            let graphical: Vec<&Pou> = project
+                .pous
+                .iter()
+                .filter(|p| p.body.as_ref().is_some_and(|b| matches!(b.lang, Lang::Ld | Lang::Fbd)))
+                .collect();
+            Err(vec![if graphical.is_empty() {
+                PlcError::Unsupported {
+                    span: project.span,
+                    what: "a project without a program POU".into(),
+                    reason: "there is nothing to scan, and no POU has an LD or FBD body".into(),
+                }
+            } else {
+                PlcError::Unsupported {
+                    span: project.span,
+                    what: "a project without a program POU".into(),
+                    reason: format!(
+                        "choose the function block to check with --pou (candidates: {})",
+                        graphical.iter().map(|p| p.name.as_str()).collect::<Vec<_>>().join(", ")
+                    ),
+                }
+            }])
+        }
         (several, _) if !several.is_empty() => Err(vec![PlcError::Unknown {
             span: project.span,
             kind: "program to check: the tasks run several; choose one with --pou, e.g. --pou".into(),
@@ -1438,6 +1464,9 @@ fn pick<'p>(
 /// Checks the chosen POU and resolves it into a [`PlcProgram`].
 pub fn select(project: &Project, sel: &Selection) -> Result<PlcProgram, Vec<PlcError>> {
     let (pou, task) = pick(project, sel)?;
+    if !pou.errors.is_empty() {
+        return Err(pou.errors.clone());
+    }
     let mut warnings = Vec::new();
     let mut errors = Vec::new();
     let Some(body) = &pou.body else {
@@ -1735,23 +1764,35 @@ pub fn select(project: &Project, sel: &Selection) -> Result<PlcProgram, Vec<PlcE
                         );
                         program.hidden.insert((k, s.output().to_string()), n);
                     }
-                    None if user_pous.contains(&type_name.to_ascii_uppercase()) => {
-                        errors.push(PlcError::Unsupported {
-                            span: o.span,
-                            what: format!("the user block `{type_name}`"),
-                            reason: "user function blocks and functions are not inlined yet; \
-                                     rewrite the call with standard blocks"
-                                .into(),
-                        })
-                    }
                     None if is_known_library_block(type_name) => {}
-                    None => errors.push(PlcError::Unsupported {
-                        span: o.span,
-                        what: format!("the block `{type_name}`"),
-                        reason:
-                            "neither a standard block the prover knows nor a POU of the project"
-                                .into(),
-                    }),
+                    None => {
+                        // An opaque block (a user POU, a vendor library block): it can
+                        // change the program's variables only through in-out pins (the
+                        // globals it might write are inputs already).
+                        let user = user_pous.contains(&type_name.to_ascii_uppercase());
+                        let what = if user { "user block" } else { "library block" };
+                        let wired =
+                            |p: &&PinIn| p.in_out && (!p.conns.is_empty() || p.expr.is_some());
+                        match inputs.iter().find(wired) {
+                            Some(p) => errors.push(PlcError::Unsupported {
+                                span: p.span,
+                                what: format!(
+                                    "the in-out pin `{}` of the {what} `{type_name}`",
+                                    p.name
+                                ),
+                                reason: "the block may write what is wired to it, and its body is \
+                                         not modelled"
+                                    .into(),
+                            }),
+                            None => warnings.push(PlcError::Note {
+                                span: o.span,
+                                message: format!(
+                                    "the {what} `{type_name}` is not modelled: its Boolean outputs \
+                                     are unconstrained signals"
+                                ),
+                            }),
+                        }
+                    }
                 }
                 for p in inputs.iter().filter(|p| p.edge != Edge::None) {
                     let n = hide(&mut taken, format!("_TRIG{}_{}", o.id, p.name));
