@@ -546,6 +546,10 @@ pub fn lower(p: &PlcProgram) -> Result<Lowered, Vec<PlcError>> {
         visiting: BTreeSet::new(),
         errors: Vec::new(),
     };
+    let file_span = p.pou.span;
+    for (x, latch) in &p.latches {
+        l.coil(contact(latch, false, file_span), x, CoilKind::Normal, file_span);
+    }
     for &k in &p.order {
         l.statement(k);
     }

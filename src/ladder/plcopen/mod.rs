@@ -1271,8 +1271,15 @@ pub struct PlcProgram {
     pub hidden: BTreeMap<(usize, String), String>,
     /// Resolved operands of contacts, coils and variable objects, by object index.
     pub operands: BTreeMap<usize, Operand>,
-    /// Declared names the outside world writes (inputs, globals, `%I`/`%M` located variables).
+    /// The names the outside world writes at the start of every scan: declared inputs
+    /// (input, in-out, external and global variables, `%I`/`%M` located variables, BOOLs
+    /// declared TRUE that nothing writes), and for each such variable the program also
+    /// writes, its latch instead (see `latches`).
     pub inputs: BTreeSet<String>,
+    /// Inputs the program also writes: variable → the hidden name of the value latched
+    /// from outside at the start of the scan (`In0_IN`); reads before the program's
+    /// first write see the latch, not the previous scan.
+    pub latches: BTreeMap<String, String>,
     /// Warnings.
     pub warnings: Vec<PlcError>,
 }
@@ -1576,6 +1583,7 @@ pub fn select(project: &Project, sel: &Selection) -> Result<PlcProgram, Vec<PlcE
         hidden: BTreeMap::new(),
         operands: BTreeMap::new(),
         inputs,
+        latches: BTreeMap::new(),
         warnings: Vec::new(),
     };
     // Check every wire, block type and operand.
@@ -1837,9 +1845,57 @@ pub fn select(project: &Project, sel: &Selection) -> Result<PlcProgram, Vec<PlcE
     if !errors.is_empty() {
         return Err(errors);
     }
+    let written: BTreeSet<String> = program
+        .operands
+        .iter()
+        .filter(|(k, _)| {
+            matches!(
+                program.obj(**k).map(|o| &o.kind),
+                Some(ObjKind::Coil { .. } | ObjKind::OutVar { .. } | ObjKind::InOutVar { .. })
+            )
+        })
+        .filter_map(|(_, op)| match op {
+            Operand::Bool(n) => Some(n.clone()),
+            _ => None,
+        })
+        .collect();
+    // A BOOL declared TRUE: unwritten, it is a free input (sound); written, its first
+    // scan would read TRUE where the scan model starts every bit at 0.
+    for v in program.vars.values() {
+        if v.ty == Ty::Bool
+            && v.init.as_deref().is_some_and(is_true)
+            && !program.inputs.contains(&v.name)
+        {
+            if written.contains(&v.name) {
+                errors.push(PlcError::Unsupported {
+                    span: v.span,
+                    what: format!("the initial value TRUE of `{}`", v.name),
+                    reason: "the program writes it, and the scan model starts every written bit at FALSE".into(),
+                });
+            } else {
+                program.inputs.insert(v.name.clone());
+            }
+        }
+    }
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    // Inputs the program also writes are latched from outside at the start of every scan.
+    let written: Vec<String> = written.into_iter().filter(|n| program.inputs.contains(n)).collect();
+    for x in written {
+        let latch = hide(&mut taken, format!("{x}_IN"));
+        program.inputs.remove(&x);
+        program.inputs.insert(latch.clone());
+        program.latches.insert(x, latch);
+    }
     program.order_statements(&mut warnings);
     program.warnings = warnings;
     Ok(program)
+}
+
+/// Whether an initial value is TRUE.
+pub fn is_true(init: &str) -> bool {
+    matches!(init.trim().to_ascii_uppercase().as_str(), "TRUE" | "1" | "BOOL#TRUE" | "BOOL#1")
 }
 
 fn is_member(n: &str) -> bool {

@@ -54,7 +54,7 @@ impl PlcSimulator {
             });
             bits.insert(v.name.clone(), init);
         }
-        for n in p.hidden.values() {
+        for n in p.hidden.values().chain(p.latches.values()) {
             bits.insert(n.clone(), false);
         }
         PlcSimulator {
@@ -77,6 +77,11 @@ impl PlcSimulator {
             if self.p.is_input(n) {
                 self.bits.insert(n.clone(), *v);
             }
+        }
+        // A latched input is the outside value at the start of the scan.
+        for (x, latch) in &self.p.latches {
+            let v = self.bit(latch);
+            self.bits.insert(x.clone(), v);
         }
         self.called.clear();
         self.edges.clear();
