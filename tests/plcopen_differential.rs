@@ -5,7 +5,7 @@
 //! the LDmicro simulator. Hypotheses are evaluated on its scans by
 //! `common/scan_eval.rs` (fresh signals existential, timers by `ceil(d / δ)`).
 //! Only the declared inputs are driven, with values held for random numbers of
-//! scans. `II_PLC_DIFF_PROGRAMS=N` sets the number of random programs (600 by
+//! scans. `II_PLC_DIFF_PROGRAMS=N` sets the number of random programs (2000 by
 //! default), `II_PLC_DIFF_SEED=S` reruns one; failures print the XML and the seed.
 
 mod common;
@@ -139,6 +139,7 @@ impl Gen {
                 let (inst, ty) = self.rng.pick(&self.instances).clone();
                 format!("{inst}.{}", outputs(ty)[0])
             }
+            _ if self.rng.chance(70) => self.rng.pick(INPUTS).to_string(),
             _ => if self.rng.chance(50) { "TRUE" } else { "FALSE" }.into(),
         }
     }
@@ -148,7 +149,7 @@ impl Gen {
         if self.rng.chance(25) {
             s.push_str(r#" negated="true""#);
         }
-        if edge_ok && self.rng.chance(12) {
+        if edge_ok && self.rng.chance(6) {
             s.push_str(if self.rng.chance(50) {
                 r#" edge="rising""#
             } else {
@@ -178,7 +179,7 @@ impl Gen {
         en: bool,
     ) -> (u64, &'static str) {
         let fb = self.rng.chance(50);
-        let ty: &'static str = if fb { *self.rng.pick(FBS) } else { *self.rng.pick(FUNCTIONS) };
+        let ty = if fb { *self.rng.pick(FBS) } else { *self.rng.pick(FUNCTIONS) };
         let mut ins = String::new();
         if en && self.rng.chance(20) {
             let src = *self.rng.pick(sources);
@@ -450,6 +451,12 @@ fn check(xml: &str, seed: u64, fig: &mut Figures, must_load: bool) {
         }
     };
     fig.programs += 1;
+    if std::env::var_os("II_PLC_DIFF_SEED").is_some() {
+        eprintln!(
+            "{xml}\n{}",
+            ii_prove::ladder::program_to_ii(&compiled, ii_prove::syntax::Notation::Paper)
+        );
+    }
     let cycle = plc.cycle_us;
     let mut known: Vec<Src> = Vec::new();
     let mut hyps: Vec<Hyp> =
@@ -545,7 +552,7 @@ fn check(xml: &str, seed: u64, fig: &mut Figures, must_load: bool) {
 }
 
 fn programs() -> u64 {
-    std::env::var("II_PLC_DIFF_PROGRAMS").ok().and_then(|v| v.parse().ok()).unwrap_or(600)
+    std::env::var("II_PLC_DIFF_PROGRAMS").ok().and_then(|v| v.parse().ok()).unwrap_or(2000)
 }
 
 #[test]

@@ -488,12 +488,10 @@ impl<'p> Lower<'p> {
             ObjKind::Coil { input, negated, storage, edge, .. }
             | ObjKind::OutVar { input, negated, storage, edge, .. } => {
                 let power = self.pin_power(input, k);
-                match p.operands.get(&k) {
-                    Some(Operand::Bool(name)) => {
-                        let name = name.clone();
-                        self.assign(power, &name, *negated, *storage, *edge, span);
-                    }
-                    _ => {} // A non-Boolean target: no Boolean effect (its inputs were computed).
+                // A non-Boolean target has no Boolean effect (its inputs were computed).
+                if let Some(Operand::Bool(name)) = p.operands.get(&k) {
+                    let name = name.clone();
+                    self.assign(power, &name, *negated, *storage, *edge, span);
                 }
             }
             ObjKind::InOutVar { input, .. } => {

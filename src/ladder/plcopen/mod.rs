@@ -1400,7 +1400,10 @@ fn pick<'p>(
         span: project.span,
         kind: kind.into(),
         name: name.into(),
-        candidates: pous.iter().map(|p| p.name.clone()).collect(),
+        candidates: match did_you_mean(name, pous.iter().map(|p| p.name.as_str())) {
+            Some(near) => vec![near.to_string()],
+            None => pous.iter().map(|p| p.name.clone()).collect(),
+        },
         ambiguous: false,
     };
     let task_of = |pou: &Pou| {
