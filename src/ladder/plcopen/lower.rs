@@ -16,8 +16,8 @@ use std::collections::{BTreeMap, BTreeSet};
 use super::{Edge, ObjKind, Operand, PinIn, PlcError, PlcProgram, Source, Std, Storage};
 use crate::diag::Span;
 use crate::ladder::ldmicro::{
-    Circuit, CoilKind, EdgeKind, Element, ElementKind, HeaderVersion, LdProgram, Rung, TimerDelay,
-    TimerKind,
+    Circuit, CoilKind, CompareOp, CounterEdge, CounterKind, EdgeKind, Element, ElementKind,
+    HeaderVersion, LdProgram, Operand as LdOperand, Rung, TimerDelay, TimerKind,
 };
 
 /// A lowered program: the rung model and the warnings of reading and lowering.
@@ -96,6 +96,34 @@ fn fresh(keyword: &str, what: &str, span: Span) -> Circuit {
     el(ElementKind::Other { keyword: k, args: vec![what.to_string()] }, span)
 }
 
+/// A Boolean output of a block the algebra does not express: counters and comparisons
+/// as the compiler's own elements (so its warning says what they are), anything else fresh.
+fn opaque(type_name: &str, instance: Option<&str>, pin: &str, span: Span) -> Circuit {
+    let upper = type_name.to_ascii_uppercase();
+    let name = instance.unwrap_or(type_name).to_string();
+    let counter = |kind| ElementKind::Counter {
+        kind,
+        name: name.clone(),
+        limit: LdOperand::Literal(0),
+        init: LdOperand::Literal(0),
+        edge: CounterEdge::Rising,
+    };
+    let compare =
+        |op| ElementKind::Compare { op, a: LdOperand::Literal(0), b: LdOperand::Literal(0) };
+    let kind = match upper.split('_').next().unwrap_or("") {
+        "CTU" => counter(CounterKind::Ctu),
+        "CTD" | "CTUD" => counter(CounterKind::Ctd),
+        "GT" => compare(CompareOp::Grt),
+        "GE" => compare(CompareOp::Geq),
+        "EQ" => compare(CompareOp::Equ),
+        "NE" => compare(CompareOp::Neq),
+        "LT" => compare(CompareOp::Les),
+        "LE" => compare(CompareOp::Leq),
+        _ => return fresh(type_name, &format!("{name}.{pin}"), span),
+    };
+    el(kind, span)
+}
+
 /// `¬c`, pushed down to the contacts.
 fn not(c: Circuit) -> Circuit {
     match c {
@@ -171,7 +199,7 @@ impl<'p> Lower<'p> {
     fn member_writer(&self, inst: &str) -> Option<usize> {
         self.p.objects().iter().enumerate().map(|(j, _)| j).find(|j| {
             matches!(&self.p.obj(*j).map(|o| &o.kind), Some(ObjKind::Block { instance: Some(i), type_name, .. })
-                if i.eq_ignore_ascii_case(inst) && Std::of(type_name).is_some_and(|s| s.is_fb() && s != Std::Tp))
+                if i.eq_ignore_ascii_case(inst) && Std::of(type_name).is_some_and(Std::is_fb))
                 && self.en_const(*j, 0)
         })
     }
@@ -327,7 +355,8 @@ impl<'p> Lower<'p> {
     /// The value of output `pin` of block `k` (calling the block at its first use this scan).
     fn block_output(&mut self, k: usize, pin: &str, span: Span) -> Circuit {
         self.call(k);
-        let Some(ObjKind::Block { type_name, .. }) = self.p.obj(k).map(|o| &o.kind) else {
+        let Some(ObjKind::Block { type_name, instance, .. }) = self.p.obj(k).map(|o| &o.kind)
+        else {
             return el(ElementKind::Open, span);
         };
         let runs = self.en_const(k, 0);
@@ -335,13 +364,13 @@ impl<'p> Lower<'p> {
             return if runs { one() } else { fresh(type_name, "ENO", span) };
         }
         match Std::of(type_name) {
-            Some(s) if runs && s != Std::Tp && s.output().eq_ignore_ascii_case(pin) => {
+            Some(s) if runs && s.output().eq_ignore_ascii_case(pin) => {
                 match self.p.hidden_name(k, s.output()) {
                     Some(n) => contact(n, false, span),
                     None => fresh(type_name, pin, span),
                 }
             }
-            _ => fresh(type_name, pin, span),
+            _ => opaque(type_name, instance.as_deref(), pin, span),
         }
     }
 
