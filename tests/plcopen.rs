@@ -4,8 +4,8 @@ mod common;
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
+use common::{ii_prove, text};
 use ii_prove::diag::{Diagnostic, RenderStyle, Sources, render};
 use ii_prove::ladder::plcopen::{Selection, lower, read_plcopen, select};
 use ii_prove::ladder::{compile, program_to_ii};
@@ -15,18 +15,6 @@ use proptest::prelude::*;
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-fn ii_prove(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ii-prove"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the binary runs")
-}
-
-fn text(out: &[u8]) -> String {
-    String::from_utf8_lossy(out).into_owned()
 }
 
 fn temp(name: &str, content: &str) -> PathBuf {

@@ -9,8 +9,11 @@
 //! default), `II_PLC_DIFF_SEED=S` reruns one; failures print the XML and the seed.
 
 mod common;
+#[path = "common/rng.rs"]
+mod rng;
 #[path = "common/scan_eval.rs"]
 mod scan_eval;
+use rng::Rng;
 use scan_eval::*;
 
 use std::collections::BTreeMap;
@@ -21,33 +24,6 @@ use ii_prove::diag::Sources;
 use ii_prove::ladder::plcopen::{PlcSimulator, Selection, lower, read_plcopen, select};
 use ii_prove::ladder::{SignalKind, compile};
 use ii_prove::term::Term;
-
-/// A small deterministic generator (xorshift64*), seeded per case.
-struct Rng(u64);
-
-impl Rng {
-    fn new(seed: u64) -> Rng {
-        let mut z = seed.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        Rng((z ^ (z >> 31)) | 1)
-    }
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-    fn below(&mut self, n: u64) -> u64 {
-        self.next() % n.max(1)
-    }
-    fn chance(&mut self, percent: u64) -> bool {
-        self.below(100) < percent
-    }
-    fn pick<'a, T>(&mut self, xs: &'a [T]) -> &'a T {
-        &xs[self.below(xs.len() as u64) as usize]
-    }
-}
 
 // ---------------------------------------------------------------- program generator
 

@@ -13,7 +13,9 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use super::{Edge, ObjKind, Operand, PinIn, PlcError, PlcProgram, Source, Std, Storage};
+use super::{
+    Edge, ObjKind, Operand, PinIn, PlcError, PlcProgram, Source, Std, Storage, unconnected,
+};
 use crate::diag::Span;
 use crate::ladder::ldmicro::{
     Circuit, CoilKind, CompareOp, CounterEdge, CounterKind, EdgeKind, Element, ElementKind,
@@ -303,14 +305,7 @@ impl<'p> Lower<'p> {
                 out
             }
             Source::BlockOut(k, pin) => {
-                let (name, negated) = match self.p.obj(k).map(|o| &o.kind) {
-                    Some(ObjKind::Block { outputs, .. }) => {
-                        outputs.get(pin).map_or((String::new(), false), |o| {
-                            (o.name.to_ascii_uppercase(), o.negated)
-                        })
-                    }
-                    _ => (String::new(), false),
-                };
+                let (name, negated) = self.p.output_pin(k, pin);
                 let v = self.block_output(k, &name, span);
                 if negated { not(v) } else { v }
             }
@@ -513,6 +508,9 @@ impl<'p> Lower<'p> {
         let p = self.p;
         let Some(o) = p.obj(k) else { return };
         let span = o.span;
+        if unconnected(&o.kind) {
+            return;
+        }
         match &o.kind {
             ObjKind::Coil { input, negated, storage, edge, .. }
             | ObjKind::OutVar { input, negated, storage, edge, .. } => {

@@ -1346,6 +1346,16 @@ impl PlcProgram {
         }
     }
 
+    /// The name (upper case) and negation of output pin `pin` of block `k`.
+    pub fn output_pin(&self, k: usize, pin: usize) -> (String, bool) {
+        match self.obj(k).map(|o| &o.kind) {
+            Some(ObjKind::Block { outputs, .. }) => outputs
+                .get(pin)
+                .map_or((String::new(), false), |o| (o.name.to_ascii_uppercase(), o.negated)),
+            _ => (String::new(), false),
+        }
+    }
+
     /// The wired `EN` pin of a block, if any.
     pub fn en_pin(&self, k: usize) -> Option<&PinIn> {
         match &self.obj(k)?.kind {
@@ -1894,6 +1904,17 @@ pub fn select(project: &Project, sel: &Selection) -> Result<PlcProgram, Vec<PlcE
     program.order_statements(&mut warnings);
     program.warnings = warnings;
     Ok(program)
+}
+
+/// Whether an assignment (coil, output or in-out variable) has nothing wired to it:
+/// Beremiz generates no statement for it, so it writes nothing.
+pub fn unconnected(kind: &ObjKind) -> bool {
+    match kind {
+        ObjKind::Coil { input, .. }
+        | ObjKind::OutVar { input, .. }
+        | ObjKind::InOutVar { input, .. } => input.conns.is_empty() && input.expr.is_none(),
+        _ => false,
+    }
 }
 
 /// Whether an initial value is TRUE.

@@ -192,14 +192,7 @@ impl PlcSimulator {
             Source::Rail => true,
             Source::Object(k) => self.object(k),
             Source::BlockOut(k, pin) => {
-                let (name, negated) = match self.p.obj(k).map(|o| &o.kind) {
-                    Some(ObjKind::Block { outputs, .. }) => {
-                        outputs.get(pin).map_or((String::new(), false), |o| {
-                            (o.name.to_ascii_uppercase(), o.negated)
-                        })
-                    }
-                    _ => (String::new(), false),
-                };
+                let (name, negated) = self.p.output_pin(k, pin);
                 let v = self.output(k, &name);
                 v != negated
             }
@@ -448,6 +441,9 @@ impl PlcSimulator {
 
     fn statement(&mut self, k: usize) {
         let Some(o) = self.p.obj(k).cloned() else { return };
+        if super::unconnected(&o.kind) {
+            return;
+        }
         match &o.kind {
             ObjKind::Coil { input, negated, storage, edge, .. }
             | ObjKind::OutVar { input, negated, storage, edge, .. } => {
