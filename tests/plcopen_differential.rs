@@ -35,12 +35,24 @@ const PRESETS: &[&str] = &["T#0ms", "T#10ms", "T#15ms", "T#20ms", "T#35ms", "T#5
 const FBS: &[&str] = &["TON", "TOF", "TP", "SR", "RS", "R_TRIG", "F_TRIG", "CTU"];
 const FUNCTIONS: &[&str] = &["AND", "OR", "XOR", "NOT", "SEL", "MOVE", "GT"];
 
+/// The user function block programs may instantiate: inputs `IN0`, `IN1`, outputs
+/// `OUT0`, `OUT1`, a local `L0`.
+const USER_FB: &str = "UserFb";
+const FB_INPUTS: &[&str] = &["IN0", "IN1"];
+const FB_BITS: &[&str] = &["OUT0", "OUT1", "L0"];
+
 struct Gen {
     rng: Rng,
     id: u64,
     body: String,
     instances: Vec<(String, &'static str)>,
     y: i64,
+    /// The names the body reads as inputs, the bits it writes, a bit nothing writes.
+    inputs: &'static [&'static str],
+    bits: &'static [&'static str],
+    ghost: &'static str,
+    /// Whether blocks may be instances of the user function block.
+    user_fb: bool,
 }
 
 fn pins(rng: &mut Rng, ty: &str) -> Vec<&'static str> {
@@ -53,6 +65,7 @@ fn pins(rng: &mut Rng, ty: &str) -> Vec<&'static str> {
         "NOT" | "MOVE" => vec!["IN"],
         "SEL" => vec!["G", "IN0", "IN1"],
         "GT" => vec!["IN1", "IN2"],
+        USER_FB => vec!["IN0", "IN1"],
         _ => {
             let n = 2 + rng.below(2) as usize;
             ["IN1", "IN2", "IN3"][..n].to_vec()
@@ -66,6 +79,7 @@ fn outputs(ty: &str) -> Vec<&'static str> {
         "SR" | "RS" => vec!["Q1"],
         "R_TRIG" | "F_TRIG" => vec!["Q"],
         "CTU" => vec!["Q", "CV"],
+        USER_FB => vec!["OUT0", "OUT1"],
         _ => vec!["OUT"],
     }
 }
@@ -108,14 +122,14 @@ impl Gen {
     /// A Boolean operand: an input, a written bit, the ghost, a constant, or an FB member.
     fn operand(&mut self) -> String {
         match self.rng.below(10) {
-            0..=3 => self.rng.pick(INPUTS).to_string(),
-            4..=6 => self.rng.pick(BITS).to_string(),
-            7 => GHOST.into(),
+            0..=3 => self.rng.pick(self.inputs).to_string(),
+            4..=6 => self.rng.pick(self.bits).to_string(),
+            7 => self.ghost.into(),
             8 if !self.instances.is_empty() => {
                 let (inst, ty) = self.rng.pick(&self.instances).clone();
                 format!("{inst}.{}", outputs(ty)[0])
             }
-            _ if self.rng.chance(70) => self.rng.pick(INPUTS).to_string(),
+            _ if self.rng.chance(70) => self.rng.pick(self.inputs).to_string(),
             _ => if self.rng.chance(50) { "TRUE" } else { "FALSE" }.into(),
         }
     }
@@ -155,7 +169,13 @@ impl Gen {
         en: bool,
     ) -> (u64, &'static str) {
         let fb = self.rng.chance(50);
-        let ty = if fb { *self.rng.pick(FBS) } else { *self.rng.pick(FUNCTIONS) };
+        let ty = if fb && self.user_fb && self.rng.chance(30) {
+            USER_FB
+        } else if fb {
+            *self.rng.pick(FBS)
+        } else {
+            *self.rng.pick(FUNCTIONS)
+        };
         let mut ins = String::new();
         if en && self.rng.chance(20) {
             let src = *self.rng.pick(sources);
@@ -245,7 +265,7 @@ impl Gen {
                 4 => r#" edge="falling""#,
                 _ => "",
             };
-            let v = *self.rng.pick(BITS);
+            let v = *self.rng.pick(self.bits);
             let p = self.pos(500);
             writeln!(
                 self.body,
@@ -305,7 +325,7 @@ impl Gen {
         for _ in 0..1 + self.rng.below(3) {
             let src = *self.rng.pick(&sources);
             let id = self.nid();
-            let v = *self.rng.pick(BITS);
+            let v = *self.rng.pick(self.bits);
             let (p, o) = (self.pos(500), self.order(true));
             let tag = if self.rng.chance(15) { "inOutVariable" } else { "outVariable" };
             let m = if tag == "outVariable" {
@@ -333,17 +353,71 @@ impl Gen {
     }
 }
 
-/// A random PLCopen program: LD or FBD, with its declarations and a task.
-fn random_program(seed: u64) -> String {
-    let mut g =
-        Gen { rng: Rng::new(seed), id: 0, body: String::new(), instances: Vec::new(), y: 0 };
+/// A random body (LD or FBD) over `inputs` and `bits`: the body text, its language and
+/// the declarations of its FB instances.
+fn random_body(
+    rng: Rng,
+    inputs: &'static [&'static str],
+    bits: &'static [&'static str],
+    ghost: &'static str,
+    user_fb: bool,
+) -> (String, &'static str, String, Rng) {
+    let mut g = Gen {
+        rng,
+        id: 0,
+        body: String::new(),
+        instances: Vec::new(),
+        y: 0,
+        inputs,
+        bits,
+        ghost,
+        user_fb,
+    };
     let fbd = g.rng.chance(45);
     for _ in 0..1 + g.rng.below(5) {
         if fbd { g.fbd_network() } else { g.ld_rung() }
     }
-    let lang = if fbd { "FBD" } else { "LD" };
+    let mut decls = String::new();
+    for (inst, ty) in &g.instances {
+        writeln!(
+            decls,
+            r#"<variable name="{inst}"><type><derived name="{ty}"/></type></variable>"#
+        )
+        .unwrap();
+    }
+    (g.body, if fbd { "FBD" } else { "LD" }, decls, g.rng)
+}
+
+fn bools(names: &[&str]) -> String {
+    names
+        .iter()
+        .map(|n| format!(r#"<variable name="{n}"><type><BOOL/></type></variable>"#))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// A random PLCopen program: LD or FBD, with its declarations and a task, and sometimes
+/// a user function block (itself LD or FBD) it instantiates.
+fn random_program(seed: u64) -> String {
+    let mut rng = Rng::new(seed);
+    let user_fb = rng.chance(30);
+    let mut fb_pou = String::new();
+    if user_fb {
+        let (body, lang, decls, r) = random_body(rng, FB_INPUTS, FB_BITS, "G1", false);
+        rng = r;
+        fb_pou = format!(
+            r#"<pou name="{USER_FB}" pouType="functionBlock"><interface><inputVars>{}</inputVars><outputVars>{}</outputVars><localVars>{}
+{decls}</localVars></interface>
+<body><{lang}>
+{body}</{lang}></body></pou>"#,
+            bools(FB_INPUTS),
+            bools(&FB_BITS[..2]),
+            bools(&["L0", "G1"])
+        );
+    }
+    let (body, lang, decls, mut rng) = random_body(rng, INPUTS, BITS, GHOST, user_fb);
     let mut vars = String::new();
-    let located = g.rng.chance(50);
+    let located = rng.chance(50);
     let mut inputs = String::new();
     for (k, n) in INPUTS.iter().enumerate() {
         if located {
@@ -356,14 +430,9 @@ fn random_program(seed: u64) -> String {
             writeln!(inputs, r#"<variable name="{n}"><type><BOOL/></type></variable>"#).unwrap();
         }
     }
-    for n in BITS.iter().chain([&GHOST]) {
-        writeln!(vars, r#"<variable name="{n}"><type><BOOL/></type></variable>"#).unwrap();
-    }
-    for (inst, ty) in &g.instances {
-        writeln!(vars, r#"<variable name="{inst}"><type><derived name="{ty}"/></type></variable>"#)
-            .unwrap();
-    }
-    let cycle = g.rng.pick(&["T#10ms", "T#7ms", "T#20ms"]).to_string();
+    writeln!(vars, "{}", bools(&[BITS, &[GHOST]].concat())).unwrap();
+    vars.push_str(&decls);
+    let cycle = rng.pick(&["T#10ms", "T#7ms", "T#20ms"]).to_string();
     let input_list = if inputs.is_empty() {
         String::new()
     } else {
@@ -378,12 +447,12 @@ fn random_program(seed: u64) -> String {
 <pou name="main" pouType="program"><interface>{input_list}<localVars>
 {vars}</localVars></interface>
 <body><{lang}>
-{}</{lang}></body></pou>
+{body}</{lang}></body></pou>
+{fb_pou}
 </pous></types>
 <instances><configurations><configuration name="C"><resource name="R"><task name="t" priority="0" interval="{cycle}"><pouInstance name="i" typeName="main"/></task></resource></configuration></configurations></instances>
 </project>
-"#,
-        g.body
+"#
     )
 }
 

@@ -48,6 +48,7 @@ struct Lower<'p> {
     trigs: BTreeSet<(usize, String)>,
     visiting: BTreeSet<usize>,
     errors: Vec<PlcError>,
+    warnings: Vec<PlcError>,
 }
 
 fn one() -> Circuit {
@@ -152,6 +153,26 @@ fn xor(a: Circuit, b: Circuit) -> Circuit {
 }
 
 impl<'p> Lower<'p> {
+    fn new(p: &'p PlcProgram) -> Lower<'p> {
+        Lower {
+            p,
+            rungs: Vec::new(),
+            called: BTreeSet::new(),
+            in_progress: BTreeSet::new(),
+            trigs: BTreeSet::new(),
+            visiting: BTreeSet::new(),
+            errors: Vec::new(),
+            warnings: Vec::new(),
+        }
+    }
+
+    /// The statements of the body, in evaluation order.
+    fn run(&mut self) {
+        for &k in &self.p.order {
+            self.statement(k);
+        }
+    }
+
     fn span_of(&self, k: usize) -> Span {
         self.p.obj(k).map_or(Span::new(self.p.file, 0..0), |o| o.span)
     }
@@ -201,7 +222,8 @@ impl<'p> Lower<'p> {
     fn member_writer(&self, inst: &str) -> Option<usize> {
         self.p.objects().iter().enumerate().map(|(j, _)| j).find(|j| {
             matches!(&self.p.obj(*j).map(|o| &o.kind), Some(ObjKind::Block { instance: Some(i), type_name, .. })
-                if i.eq_ignore_ascii_case(inst) && Std::of(type_name).is_some_and(Std::is_fb))
+                if self.p.vars.get(&i.to_ascii_uppercase()).is_some_and(|v| v.name.eq_ignore_ascii_case(inst))
+                    && Std::of(type_name).is_some_and(Std::is_fb))
                 && self.en_const(*j, 0)
         })
     }
@@ -358,6 +380,9 @@ impl<'p> Lower<'p> {
         if pin.eq_ignore_ascii_case("ENO") {
             return if runs { one() } else { fresh(type_name, "ENO", span) };
         }
+        if let Some(var) = self.p.sub_var(k, pin, true).filter(|_| runs) {
+            return contact(var, false, span);
+        }
         match Std::of(type_name) {
             Some(s) if runs && s.output().eq_ignore_ascii_case(pin) => {
                 match self.p.hidden_name(k, s.output()) {
@@ -438,6 +463,19 @@ impl<'p> Lower<'p> {
                 let inst = instance.clone().unwrap_or_default();
                 let kind = if s == Std::Ton { TimerKind::Ton } else { TimerKind::Tof };
                 let (delay, adjust) = match delay {
+                    // PT = 0 still takes one scan (the starting scan never switches):
+                    // the delay of one cycle, counted exactly.
+                    Some(0) => {
+                        self.warnings.push(PlcError::Note {
+                            span,
+                            message: format!(
+                                "{} {inst} has PT = 0: matiec's timer still switches one scan \
+                                 later, so it is compiled with the delay of one cycle",
+                                type_name.to_ascii_uppercase()
+                            ),
+                        });
+                        (TimerDelay::Micros(p.cycle_us), 0)
+                    }
                     Some(us) => {
                         let scans = timer_scans(us, p.cycle_us);
                         let floor = us.checked_div(p.cycle_us).unwrap_or(0);
@@ -476,6 +514,23 @@ impl<'p> Lower<'p> {
                 let kind = if s == Std::RTrig { EdgeKind::Osr } else { EdgeKind::Osf };
                 let out = and(vec![clk, el(ElementKind::Edge { kind }, span)]);
                 self.coil(out, &hidden("Q"), CoilKind::Normal, span);
+            }
+            // An inlined user function block: its inputs are assigned, then its body runs.
+            None if runs && p.subs.contains_key(&k) => {
+                for pin in inputs {
+                    let n = pin.name.to_ascii_uppercase();
+                    if let (Some(var), Some(v)) = (p.sub_var(k, &n, false), vals.get(&n)) {
+                        self.coil(v.clone(), var, CoilKind::Normal, span);
+                    }
+                }
+                if let Some(child) = p.subs.get(&k) {
+                    let mut sub = Lower::new(child);
+                    sub.rungs = std::mem::take(&mut self.rungs);
+                    sub.run();
+                    self.rungs = std::mem::take(&mut sub.rungs);
+                    self.errors.append(&mut sub.errors);
+                    self.warnings.append(&mut sub.warnings);
+                }
             }
             // Not interpreted (or run under a wired EN): only its inputs were computed.
             None => {}
@@ -562,22 +617,12 @@ impl<'p> Lower<'p> {
 
 /// Lowers a checked program into rungs, in evaluation order. Never panics.
 pub fn lower(p: &PlcProgram) -> Result<Lowered, Vec<PlcError>> {
-    let mut l = Lower {
-        p,
-        rungs: Vec::new(),
-        called: BTreeSet::new(),
-        in_progress: BTreeSet::new(),
-        trigs: BTreeSet::new(),
-        visiting: BTreeSet::new(),
-        errors: Vec::new(),
-    };
+    let mut l = Lower::new(p);
     let file_span = p.pou.span;
     for (x, latch) in &p.latches {
         l.coil(contact(latch, false, file_span), x, CoilKind::Normal, file_span);
     }
-    for &k in &p.order {
-        l.statement(k);
-    }
+    l.run();
     if !l.errors.is_empty() {
         l.errors.dedup();
         return Err(l.errors);
@@ -591,5 +636,7 @@ pub fn lower(p: &PlcProgram) -> Result<Lowered, Vec<PlcError>> {
         warnings: Vec::new(),
         inputs: Some(p.inputs.clone()),
     };
-    Ok(Lowered { ld, warnings: p.warnings.clone() })
+    let mut warnings = p.warnings.clone();
+    warnings.append(&mut l.warnings);
+    Ok(Lowered { ld, warnings })
 }

@@ -1280,6 +1280,9 @@ pub struct PlcProgram {
     /// from outside at the start of the scan (`In0_IN`); reads before the program's
     /// first write see the latch, not the previous scan.
     pub latches: BTreeMap<String, String>,
+    /// User function blocks inlined per instance: block index → the instance's body,
+    /// its names prefixed with the instance's (`Pump0_Running`).
+    pub subs: BTreeMap<usize, PlcProgram>,
     /// Warnings.
     pub warnings: Vec<PlcError>,
 }
@@ -1489,18 +1492,11 @@ pub fn select(project: &Project, sel: &Selection) -> Result<PlcProgram, Vec<PlcE
     }
     let mut warnings = Vec::new();
     let mut errors = Vec::new();
-    let Some(body) = &pou.body else {
+    if pou.body.is_none() {
         return Err(vec![PlcError::Unsupported {
             span: pou.span,
             what: format!("POU `{}` without a body", pou.name),
             reason: "there is nothing to scan".into(),
-        }]);
-    };
-    if !matches!(body.lang, Lang::Ld | Lang::Fbd) {
-        return Err(vec![PlcError::Unsupported {
-            span: body.span,
-            what: format!("the {} body of `{}`", body.lang.as_str(), pou.name),
-            reason: "only LD and FBD bodies are read".into(),
         }]);
     }
     // The cycle: --cycle, else the task interval, else the default.
@@ -1530,6 +1526,46 @@ pub fn select(project: &Project, sel: &Selection) -> Result<PlcProgram, Vec<PlcE
             DEFAULT_CYCLE_US
         }
     };
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    let mut program = check_pou(project, pou, cycle_us, 0)?;
+    warnings.append(&mut program.warnings);
+    program.warnings = warnings;
+    Ok(program)
+}
+
+/// How deep user function blocks are inlined into each other.
+const MAX_INLINE_DEPTH: usize = 8;
+
+/// Checks one POU's body: names, wires, blocks (inlining user function blocks), order.
+/// `depth` > 0 for the body of an inlined function block, whose interface variables
+/// are then written by the caller, not by the outside world.
+fn check_pou(
+    project: &Project,
+    pou: &Pou,
+    cycle_us: u64,
+    depth: usize,
+) -> Result<PlcProgram, Vec<PlcError>> {
+    let mut warnings = Vec::new();
+    let mut errors = Vec::new();
+    if !pou.errors.is_empty() {
+        return Err(pou.errors.clone());
+    }
+    let Some(body) = &pou.body else {
+        return Err(vec![PlcError::Unsupported {
+            span: pou.span,
+            what: format!("POU `{}` without a body", pou.name),
+            reason: "there is nothing to scan".into(),
+        }]);
+    };
+    if !matches!(body.lang, Lang::Ld | Lang::Fbd) {
+        return Err(vec![PlcError::Unsupported {
+            span: body.span,
+            what: format!("the {} body of `{}`", body.lang.as_str(), pou.name),
+            reason: "only LD and FBD bodies are read".into(),
+        }]);
+    }
     // Names: POU variables shadow globals; case-insensitive; two spellings of one name are ambiguous.
     let mut vars: BTreeMap<String, Var> = BTreeMap::new();
     let mut spellings: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
@@ -1544,14 +1580,10 @@ pub fn select(project: &Project, sel: &Selection) -> Result<PlcProgram, Vec<PlcE
     let mut inputs = BTreeSet::new();
     for v in vars.values() {
         let addr = v.address.as_deref().unwrap_or("").to_ascii_uppercase();
-        let external = matches!(
-            v.class,
-            VarClass::Input
-                | VarClass::InOut
-                | VarClass::External
-                | VarClass::Global
-                | VarClass::Access
-        ) || addr.starts_with("%I")
+        let interface = matches!(v.class, VarClass::Input | VarClass::InOut) && depth == 0;
+        let external = interface
+            || matches!(v.class, VarClass::External | VarClass::Global | VarClass::Access)
+            || addr.starts_with("%I")
             || addr.starts_with("%M");
         if external {
             inputs.insert(v.name.clone());
@@ -1597,6 +1629,7 @@ pub fn select(project: &Project, sel: &Selection) -> Result<PlcProgram, Vec<PlcE
         operands: BTreeMap::new(),
         inputs,
         latches: BTreeMap::new(),
+        subs: BTreeMap::new(),
         warnings: Vec::new(),
     };
     // Check every wire, block type and operand.
@@ -1786,6 +1819,39 @@ pub fn select(project: &Project, sel: &Selection) -> Result<PlcProgram, Vec<PlcE
                         program.hidden.insert((k, s.output().to_string()), n);
                     }
                     None if is_known_library_block(type_name) => {}
+                    None if let Some(child) = inline(
+                        project,
+                        type_name,
+                        instance.as_deref(),
+                        &program,
+                        cycle_us,
+                        depth,
+                        &mut warnings,
+                        o.span,
+                    )
+                    .transpose()
+                    .unwrap_or_else(|mut e| {
+                        errors.append(&mut e);
+                        None
+                    }) =>
+                    {
+                        for n in child.names() {
+                            if !taken.insert(n.to_ascii_uppercase()) {
+                                errors.push(PlcError::Unsupported {
+                                    span: o.span,
+                                    what: format!(
+                                        "the instance `{}` of `{type_name}`",
+                                        instance.as_deref().unwrap_or("")
+                                    ),
+                                    reason: format!(
+                                        "its variable `{n}` clashes with a name of the program"
+                                    ),
+                                });
+                            }
+                        }
+                        program.inputs.extend(child.inputs.iter().cloned());
+                        program.subs.insert(k, child);
+                    }
                     None => {
                         // An opaque block (a user POU, a vendor library block): it can
                         // change the program's variables only through in-out pins (the
@@ -1920,6 +1986,106 @@ pub fn unconnected(kind: &ObjKind) -> bool {
 /// Whether an initial value is TRUE.
 pub fn is_true(init: &str) -> bool {
     matches!(init.trim().to_ascii_uppercase().as_str(), "TRUE" | "1" | "BOOL#TRUE" | "BOOL#1")
+}
+
+/// The body of a user function block instance, checked and with its names prefixed,
+/// when it can be inlined: an LD/FBD function block without in-out variables, whose
+/// body writes no input (a global), instantiated by a declared instance of its type.
+#[allow(clippy::too_many_arguments)]
+fn inline(
+    project: &Project,
+    type_name: &str,
+    instance: Option<&str>,
+    program: &PlcProgram,
+    cycle_us: u64,
+    depth: usize,
+    warnings: &mut Vec<PlcError>,
+    span: Span,
+) -> Option<Result<PlcProgram, Vec<PlcError>>> {
+    let fb = project
+        .pous
+        .iter()
+        .find(|p| p.name.eq_ignore_ascii_case(type_name) && p.kind == PouKind::FunctionBlock)?;
+    let graphical = fb.body.as_ref().is_some_and(|b| matches!(b.lang, Lang::Ld | Lang::Fbd));
+    let inst = program.vars.get(&instance?.to_ascii_uppercase())?;
+    let typed = matches!(&inst.ty, Ty::Derived(t) if t.eq_ignore_ascii_case(type_name));
+    if !graphical || !typed || fb.vars.iter().any(|v| v.class == VarClass::InOut) {
+        return None;
+    }
+    if depth + 1 > MAX_INLINE_DEPTH {
+        return Some(Err(vec![PlcError::Unsupported {
+            span,
+            what: format!("the user block `{type_name}`"),
+            reason: format!(
+                "function blocks nest more than {MAX_INLINE_DEPTH} deep (a recursive type?)"
+            ),
+        }]));
+    }
+    let mut child = match check_pou(project, fb, cycle_us, depth + 1) {
+        Ok(c) => c,
+        Err(e) => return Some(Err(e)),
+    };
+    if !child.latches.is_empty() {
+        return None;
+    }
+    warnings.append(&mut child.warnings);
+    child.prefix_names(&format!("{}_", inst.name));
+    Some(Ok(child))
+}
+
+impl PlcProgram {
+    /// Prefixes every name this body owns (not the globals it refers to), recursively.
+    fn prefix_names(&mut self, prefix: &str) {
+        let mut map: BTreeMap<String, String> = BTreeMap::new();
+        for v in self.vars.values_mut() {
+            if !matches!(v.class, VarClass::External | VarClass::Global | VarClass::Access) {
+                let new = format!("{prefix}{}", v.name);
+                map.insert(v.name.clone(), new.clone());
+                v.name = new;
+            }
+        }
+        let rename = |n: &String| map.get(n).cloned().unwrap_or_else(|| n.clone());
+        for op in self.operands.values_mut() {
+            match op {
+                Operand::Bool(n) => *n = rename(n),
+                Operand::Member(i, _) => *i = rename(i),
+                _ => {}
+            }
+        }
+        for h in self.hidden.values_mut() {
+            *h = format!("{prefix}{h}");
+        }
+        self.inputs = self.inputs.iter().map(rename).collect();
+        for sub in self.subs.values_mut() {
+            sub.prefix_names(prefix);
+        }
+    }
+
+    /// Every name this body owns (its variables and hidden variables, recursively).
+    pub fn names(&self) -> Vec<String> {
+        let mut out: Vec<String> = self
+            .vars
+            .values()
+            .filter(|v| {
+                !matches!(v.class, VarClass::External | VarClass::Global | VarClass::Access)
+            })
+            .map(|v| v.name.clone())
+            .chain(self.hidden.values().cloned())
+            .collect();
+        for sub in self.subs.values() {
+            out.extend(sub.names());
+        }
+        out
+    }
+
+    /// The variable of an inlined block's interface (`IN1` of the instance at `k`), if
+    /// it is a BOOL of that class.
+    pub fn sub_var(&self, k: usize, pin: &str, output: bool) -> Option<&str> {
+        let v = self.subs.get(&k)?.vars.get(&pin.to_ascii_uppercase())?;
+        let class_ok =
+            if output { v.class == VarClass::Output } else { v.class == VarClass::Input };
+        (class_ok && v.ty == Ty::Bool).then_some(v.name.as_str())
+    }
 }
 
 fn is_member(n: &str) -> bool {

@@ -39,6 +39,8 @@ pub struct PlcSimulator {
     /// Blocks whose EN was off in this scan (their outputs kept).
     scans: u64,
     unknown: BTreeSet<String>,
+    /// The simulators of inlined function block instances (they run on this one's bits).
+    subs: BTreeMap<usize, PlcSimulator>,
 }
 
 impl PlcSimulator {
@@ -57,7 +59,13 @@ impl PlcSimulator {
         for n in p.hidden.values().chain(p.latches.values()) {
             bits.insert(n.clone(), false);
         }
+        let subs: BTreeMap<usize, PlcSimulator> =
+            p.subs.iter().map(|(k, child)| (*k, PlcSimulator::new(child))).collect();
+        for sub in subs.values() {
+            bits.extend(sub.bits.iter().map(|(n, v)| (n.clone(), *v)));
+        }
         PlcSimulator {
+            subs,
             p: p.clone(),
             bits,
             timers: BTreeMap::new(),
@@ -83,6 +91,12 @@ impl PlcSimulator {
             let v = self.bit(latch);
             self.bits.insert(x.clone(), v);
         }
+        self.body();
+        self.scans += 1;
+    }
+
+    /// One execution of the body: every statement in evaluation order.
+    fn body(&mut self) {
         self.called.clear();
         self.edges.clear();
         self.in_progress.clear();
@@ -90,7 +104,6 @@ impl PlcSimulator {
         for k in order {
             self.statement(k);
         }
-        self.scans += 1;
     }
 
     /// A bit's value at the end of the last scan.
@@ -246,6 +259,9 @@ impl PlcSimulator {
         let enabled = self.call(k);
         if pin.eq_ignore_ascii_case("ENO") {
             return enabled;
+        }
+        if let Some(var) = self.p.sub_var(k, pin, true) {
+            return self.bit(var);
         }
         match self.p.std_block(k) {
             Some(s) if s.output().eq_ignore_ascii_case(pin) => {
@@ -430,7 +446,22 @@ impl PlcSimulator {
                     self.memory.insert(key, clk);
                     self.set_hidden(k, "Q", clk && !m);
                 }
-                None => {}
+                None => {
+                    // An inlined user function block: inputs assigned, then its body runs
+                    // on the same bits, at this scan's time.
+                    for (n, v) in &values {
+                        if let Some(var) = self.p.sub_var(k, n, false) {
+                            self.bits.insert(var.to_string(), *v);
+                        }
+                    }
+                    if let Some(mut sub) = self.subs.remove(&k) {
+                        sub.bits = std::mem::take(&mut self.bits);
+                        sub.scans = self.scans;
+                        sub.body();
+                        self.bits = std::mem::take(&mut sub.bits);
+                        self.subs.insert(k, sub);
+                    }
+                }
             }
         }
         self.edges.insert((k, "ENO".into()), en);
