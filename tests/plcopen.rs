@@ -274,3 +274,54 @@ fn the_cycle_default_is_documented_in_a_warning() {
     assert!(text(&out.stderr).contains("20 ms"), "{}", text(&out.stderr));
     let _ = Path::new("unused");
 }
+
+#[test]
+fn user_function_blocks_are_inlined_per_instance() {
+    // A seal-in drawn once as a function block, used for two motors.
+    let fb = r#"<pou name="SealIn" pouType="functionBlock"><interface>
+<inputVars><variable name="Start"><type><BOOL/></type></variable><variable name="Stop"><type><BOOL/></type></variable></inputVars>
+<outputVars><variable name="Run"><type><BOOL/></type></variable></outputVars></interface>
+<body><LD>
+<leftPowerRail localId="1"><position x="0" y="0"/><connectionPointOut/></leftPowerRail>
+<contact localId="2"><position x="10" y="0"/><connectionPointIn><connection refLocalId="1"/></connectionPointIn><connectionPointOut/><variable>Start</variable></contact>
+<contact localId="3"><position x="10" y="20"/><connectionPointIn><connection refLocalId="1"/></connectionPointIn><connectionPointOut/><variable>Run</variable></contact>
+<contact localId="4" negated="true"><position x="20" y="0"/><connectionPointIn><connection refLocalId="2"/><connection refLocalId="3"/></connectionPointIn><connectionPointOut/><variable>Stop</variable></contact>
+<coil localId="5"><position x="30" y="0"/><connectionPointIn><connection refLocalId="4"/></connectionPointIn><connectionPointOut/><variable>Run</variable></coil>
+</LD></body></pou>"#;
+    let block = |id: u64, inst: &str, start: u64, stop: u64, y: i64| {
+        format!(
+            r#"<block localId="{id}" typeName="SealIn" instanceName="{inst}"><position x="100" y="{y}"/><inputVariables><variable formalParameter="Start"><connectionPointIn><connection refLocalId="{start}"/></connectionPointIn></variable><variable formalParameter="Stop"><connectionPointIn><connection refLocalId="{stop}"/></connectionPointIn></variable></inputVariables><inOutVariables/><outputVariables><variable formalParameter="Run"><connectionPointOut/></variable></outputVariables></block>"#
+        )
+    };
+    let program = format!(
+        r#"<?xml version="1.0"?>
+<project xmlns="http://www.plcopen.org/xml/tc6_0201"><types><pous>
+<pou name="main" pouType="program"><interface>
+<inputVars><variable name="Go"><type><BOOL/></type></variable><variable name="Halt"><type><BOOL/></type></variable></inputVars>
+<localVars><variable name="M1"><type><derived name="SealIn"/></type></variable><variable name="M2"><type><derived name="SealIn"/></type></variable>
+<variable name="Both"><type><BOOL/></type></variable></localVars></interface>
+<body><FBD>
+<inVariable localId="1"><position x="0" y="0"/><connectionPointOut/><expression>Go</expression></inVariable>
+<inVariable localId="2"><position x="0" y="10"/><connectionPointOut/><expression>Halt</expression></inVariable>
+{}
+{}
+<block localId="20" typeName="AND"><position x="200" y="0"/><inputVariables><variable formalParameter="IN1"><connectionPointIn><connection refLocalId="10" formalParameter="Run"/></connectionPointIn></variable><variable formalParameter="IN2"><connectionPointIn><connection refLocalId="11" formalParameter="Run"/></connectionPointIn></variable></inputVariables><inOutVariables/><outputVariables><variable formalParameter="OUT"><connectionPointOut/></variable></outputVariables></block>
+<outVariable localId="21"><position x="300" y="0"/><connectionPointIn><connection refLocalId="20" formalParameter="OUT"/></connectionPointIn><expression>Both</expression></outVariable>
+</FBD></body></pou>
+{fb}
+</pous></types>
+<instances><configurations><configuration name="C"><resource name="R"><task name="t" priority="0" interval="T#10ms"><pouInstance name="i" typeName="main"/></task></resource></configuration></configurations></instances></project>"#,
+        block(10, "M1", 1, 2, 0),
+        block(11, "M2", 1, 2, 50)
+    );
+    let path = temp("inline.xml", &program);
+    let out = ii_prove(&["show", path.to_str().unwrap()]);
+    let shown = text(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(shown.contains("M1_Run = RS(M1_Start, M1_Stop)"), "{shown}");
+    assert!(shown.contains("M2_Run = RS(M2_Start, M2_Stop)"), "{shown}");
+    let props =
+        temp("inline.ii", "property halted: Halt => !Both\nproperty same: M1_Run = M2_Run\n");
+    let out = ii_prove(&[path.to_str().unwrap(), props.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0), "{}{}", text(&out.stdout), text(&out.stderr));
+}

@@ -1502,17 +1502,20 @@ pub fn select(project: &Project, sel: &Selection) -> Result<PlcProgram, Vec<PlcE
     // The cycle: --cycle, else the task interval, else the default.
     let cycle_us = match (sel.cycle_us, task.and_then(|t| t.interval.as_ref())) {
         (Some(c), _) => c,
-        (None, Some((text, span))) => match parse_duration(text) {
-            Some(c) if c > 0 => c,
-            _ => {
-                errors.push(PlcError::Malformed {
-                    span: *span,
-                    what: format!("task interval `{text}`"),
-                    expected: "a positive duration such as `T#20ms` (or give --cycle)".into(),
-                });
-                DEFAULT_CYCLE_US
+        // `T#20ms`, 1.0's `00:00:00.020000`, or a bare `20ms`.
+        (None, Some((text, span))) => {
+            match parse_duration(text).or_else(|| parse_duration(&format!("T#{}", text.trim()))) {
+                Some(c) if c > 0 => c,
+                _ => {
+                    errors.push(PlcError::Malformed {
+                        span: *span,
+                        what: format!("task interval `{text}`"),
+                        expected: "a positive duration such as `T#20ms` (or give --cycle)".into(),
+                    });
+                    DEFAULT_CYCLE_US
+                }
             }
-        },
+        }
         (None, None) => {
             warnings.push(PlcError::Note {
                 span: pou.span,
