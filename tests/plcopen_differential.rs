@@ -53,6 +53,8 @@ struct Gen {
     ghost: &'static str,
     /// Whether blocks may be instances of the user function block.
     user_fb: bool,
+    /// Every position 0,0 (the statements then run in document order).
+    no_layout: bool,
 }
 
 fn pins(rng: &mut Rng, ty: &str) -> Vec<&'static str> {
@@ -91,6 +93,10 @@ impl Gen {
     }
 
     fn pos(&mut self, x: i64) -> String {
+        if self.no_layout {
+            // CODESYS writes 0,0 everywhere: document order.
+            return r#"<position x="0" y="0"/>"#.into();
+        }
         let jitter = if self.rng.chance(20) { self.rng.below(12) as i64 } else { 0 };
         format!(r#"<position x="{x}" y="{}"/>"#, self.y + jitter)
     }
@@ -372,7 +378,9 @@ fn random_body(
         bits,
         ghost,
         user_fb,
+        no_layout: false,
     };
+    g.no_layout = g.rng.chance(15);
     let fbd = g.rng.chance(45);
     for _ in 0..1 + g.rng.below(5) {
         if fbd { g.fbd_network() } else { g.ld_rung() }

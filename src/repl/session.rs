@@ -372,7 +372,7 @@ impl Session {
         if path.is_empty() {
             return "error: expected `load FILE.ii`\n".into();
         }
-        if path.ends_with(".ld") {
+        if report::is_ladder(path) {
             return self.load_program(path);
         }
         let file = match report::read_source(&mut self.sources, path) {

@@ -375,7 +375,7 @@ pub fn classify(files: &[String]) -> Result<Inputs, InputError> {
 
 /// Does the file look like a ladder program: LDmicro by its first bytes, PLCopen by its
 /// root element, else LDmicro by its name?
-fn is_ladder(path: &str) -> bool {
+pub fn is_ladder(path: &str) -> bool {
     use std::io::Read;
     let mut head = [0u8; 4096];
     let n = std::fs::File::open(path).and_then(|mut f| f.read(&mut head)).unwrap_or(0);
