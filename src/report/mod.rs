@@ -752,6 +752,9 @@ pub struct LoadedProgram {
     pub program: crate::ladder::LdProgram,
     /// For a PLCopen file, the checked POU (for its own scan simulator).
     pub plcopen: Option<crate::ladder::plcopen::PlcProgram>,
+    /// The reader's own warnings (PLCopen: order, cycle, unmodelled blocks), rendered
+    /// with file and line; the compiler's are in `compiled.warnings`.
+    pub notes: Vec<String>,
     /// The compiled equations, bounds, signals and warnings.
     pub compiled: crate::ladder::CompiledProgram,
     /// The warnings, rendered with file and line.
@@ -802,19 +805,20 @@ pub fn load_program_with(
         (crate::ladder::read_ldmicro(sources, file).map_err(diagnostics)?, None, Vec::new())
     };
     let compiled = crate::ladder::compile_with(&program, options).map_err(diagnostics)?;
-    let mut warnings: Vec<String> = located
+    let notes: Vec<String> = located
         .iter()
         .map(|w| match &w.location {
             Some(l) => format!("{l}: {}", w.message),
             None => w.message.clone(),
         })
         .collect();
+    let mut warnings = notes.clone();
     warnings.extend(compiled.warnings.iter().map(|w| w.describe(sources)));
     located.extend(compiled.warnings.iter().map(|w| WarningReport {
         message: crate::diag::Report::message(w),
         location: Some(Location::of(sources, w.span)),
     }));
-    Ok(LoadedProgram { program, plcopen: plc, compiled, warnings, located })
+    Ok(LoadedProgram { program, plcopen: plc, notes, compiled, warnings, located })
 }
 
 /// The session for `ii-prove PROGRAM.ld PROPS.ii…`: the properties are goals about the
@@ -908,7 +912,8 @@ pub fn show_program(program: &str, opts: &Options) -> Result<String, InputError>
     let mut sources = Sources::new();
     let loaded = load_program_with(&mut sources, program, &compile_options(opts), &opts.plcopen)
         .map_err(|d| fail(&sources, d, opts))?;
-    Ok(crate::ladder::program_to_ii(&loaded.compiled, opts.notation()))
+    let notes: String = loaded.notes.iter().map(|n| format!("// warning: {n}\n")).collect();
+    Ok(notes + &crate::ladder::program_to_ii(&loaded.compiled, opts.notation()))
 }
 
 fn finish(
