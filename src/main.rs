@@ -23,8 +23,8 @@ Exit status:
 /// Proves safety properties of ladder programs in the II algebra of binary signals.
 ///
 /// `ii-prove PROGRAM.ld PROPS.ii` proves the properties of PROPS.ii about the
-/// compiled program (the program is recognised by its content, wherever it
-/// stands); `ii-prove FILE.ii…` proves properties about the free signals the
+/// compiled program, an LDmicro file or a PLCopen XML project (recognised by its
+/// content, wherever it stands); `ii-prove FILE.ii…` proves properties about the free signals the
 /// files declare with `input`.
 ///
 /// A property of a program holds when, on every run, it holds at every scan up to
@@ -37,7 +37,8 @@ Exit status:
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
-    /// A ladder program (.ld) and property files (.ii), or property files alone.
+    /// A ladder program (LDmicro .ld or PLCopen .xml) and property files (.ii), or
+    /// property files alone.
     files: Vec<String>,
     /// Print each kernel-checked proof as a calculation.
     #[arg(long)]

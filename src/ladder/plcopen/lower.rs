@@ -460,7 +460,10 @@ impl<'p> Lower<'p> {
             Some(s @ (Std::Ton | Std::Tof)) => {
                 let input = value(self, "IN");
                 let delay = preset;
-                let inst = instance.clone().unwrap_or_default();
+                // The instance's variable name (prefixed inside an inlined block).
+                let inst = instance.as_deref().map_or_else(String::new, |i| {
+                    p.vars.get(&i.to_ascii_uppercase()).map_or(i.to_string(), |v| v.name.clone())
+                });
                 let kind = if s == Std::Ton { TimerKind::Ton } else { TimerKind::Tof };
                 let (delay, adjust) = match delay {
                     // PT = 0 still takes one scan (the starting scan never switches):

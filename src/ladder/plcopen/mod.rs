@@ -1647,6 +1647,20 @@ fn check_pou(
         taken.insert(name.to_ascii_uppercase());
         name
     };
+    // One block per function block instance: a second call of the same instance would
+    // share its state in ways the rung model does not follow.
+    let mut called: BTreeMap<String, Span> = BTreeMap::new();
+    for o in objects {
+        if let ObjKind::Block { instance: Some(inst), .. } = &o.kind
+            && called.insert(inst.to_ascii_uppercase(), o.span).is_some()
+        {
+            errors.push(PlcError::Unsupported {
+                span: o.span,
+                what: format!("a second call of the instance `{inst}`"),
+                reason: "another block already calls it; give each block its own instance".into(),
+            });
+        }
+    }
     for (k, o) in objects.iter().enumerate() {
         let mut pins: Vec<&PinIn> = Vec::new();
         match &o.kind {
