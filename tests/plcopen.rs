@@ -325,3 +325,52 @@ fn user_function_blocks_are_inlined_per_instance() {
     let out = ii_prove(&[path.to_str().unwrap(), props.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(0), "{}{}", text(&out.stdout), text(&out.stderr));
 }
+
+/// `In → TYPE(PT) → Out` at a 10 ms cycle.
+fn timer_program(ty: &str, pt: &str) -> String {
+    format!(
+        r#"<?xml version="1.0"?>
+<project xmlns="http://www.plcopen.org/xml/tc6_0201"><types><pous>
+<pou name="main" pouType="program"><interface>
+<inputVars><variable name="In"><type><BOOL/></type></variable></inputVars>
+<localVars><variable name="T"><type><derived name="{ty}"/></type></variable><variable name="Out"><type><BOOL/></type></variable></localVars></interface>
+<body><LD>
+<leftPowerRail localId="1"><position x="0" y="0"/><connectionPointOut/></leftPowerRail>
+<contact localId="2"><position x="10" y="0"/><connectionPointIn><connection refLocalId="1"/></connectionPointIn><connectionPointOut/><variable>In</variable></contact>
+<inVariable localId="3"><position x="10" y="20"/><connectionPointOut/><expression>{pt}</expression></inVariable>
+<block localId="4" typeName="{ty}" instanceName="T"><position x="20" y="0"/><inputVariables><variable formalParameter="IN"><connectionPointIn><connection refLocalId="2"/></connectionPointIn></variable><variable formalParameter="PT"><connectionPointIn><connection refLocalId="3"/></connectionPointIn></variable></inputVariables><inOutVariables/><outputVariables><variable formalParameter="Q"><connectionPointOut/></variable><variable formalParameter="ET"><connectionPointOut/></variable></outputVariables></block>
+<coil localId="5"><position x="30" y="0"/><connectionPointIn><connection refLocalId="4" formalParameter="Q"/></connectionPointIn><connectionPointOut/><variable>Out</variable></coil>
+</LD></body></pou></pous></types>
+<instances><configurations><configuration name="C"><resource name="R"><task name="t" priority="0" interval="T#10ms"><pouInstance name="i" typeName="main"/></task></resource></configuration></configurations></instances></project>"#
+    )
+}
+
+/// `Out` at each scan of the PLCopen simulator for these values of `In`.
+fn run_timer(ty: &str, pt: &str, ins: &[u8]) -> String {
+    let mut sources = Sources::new();
+    let file = sources.add("t.xml", timer_program(ty, pt));
+    let p = read_plcopen(&sources, file).and_then(|p| select(&p, &Selection::default())).unwrap();
+    let mut sim = ii_prove::ladder::plcopen::PlcSimulator::new(&p);
+    ins.iter()
+        .map(|i| {
+            sim.step(&[("In".to_string(), *i == 1)].into_iter().collect());
+            if sim.bit("Out") { '1' } else { '0' }
+        })
+        .collect()
+}
+
+#[test]
+fn the_simulator_times_ton_and_tof_as_matiec_on_a_10ms_tick() {
+    // TON: on at the first scan whose time is ≥ start + PT, never at the starting scan.
+    assert_eq!(run_timer("TON", "T#0ms", &[1, 1, 1, 0, 1, 1]), "011001");
+    assert_eq!(run_timer("TON", "T#15ms", &[1, 1, 1, 1, 0]), "00110");
+    assert_eq!(run_timer("TON", "T#20ms", &[1, 1, 1, 1, 0]), "00110");
+    assert_eq!(run_timer("TON", "T#21ms", &[1, 1, 1, 1, 0]), "00010");
+    // TOF: on with its input, and for P = max(1, ceil(PT / cycle)) scans after it falls.
+    assert_eq!(run_timer("TOF", "T#15ms", &[0, 1, 0, 0, 0, 0]), "011100");
+    assert_eq!(run_timer("TOF", "T#0ms", &[1, 0, 0]), "110");
+    // The compiled equation says the same: P scans, d = P · cycle.
+    let out =
+        ii_prove(&["show", temp("ton15.xml", &timer_program("TON", "T#15ms")).to_str().unwrap()]);
+    assert!(text(&out.stdout).contains("T_Q = 20ms/In"), "{}", text(&out.stdout));
+}
