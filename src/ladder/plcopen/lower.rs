@@ -49,6 +49,15 @@ struct Lower<'p> {
     visiting: BTreeSet<usize>,
     errors: Vec<PlcError>,
     warnings: Vec<PlcError>,
+    /// Names a coil has written so far in the scan.
+    emitted: BTreeSet<String>,
+    /// Function outputs inlined into their one reader.
+    inlined: BTreeMap<usize, Circuit>,
+    /// Functions whose output was read while their inputs were computed (feedback).
+    fed_back: BTreeSet<usize>,
+    /// The block called as a statement of its own (its reader comes later, after other
+    /// statements: never inlined).
+    direct: Option<usize>,
 }
 
 fn one() -> Circuit {
@@ -163,6 +172,88 @@ impl<'p> Lower<'p> {
             visiting: BTreeSet::new(),
             errors: Vec::new(),
             warnings: Vec::new(),
+            emitted: BTreeSet::new(),
+            inlined: BTreeMap::new(),
+            fed_back: BTreeSet::new(),
+            direct: None,
+        }
+    }
+
+    /// Whether the value of the object at `k` is read exactly once per scan: one wire
+    /// from it, into a block, an output variable, a coil that feeds nothing, or a contact
+    /// whose own value is read exactly once (not into a connector, whose continuations
+    /// may be read by several statements, nor a coil chain, which re-reads it).
+    fn single_use(&self, k: usize) -> bool {
+        self.read_once(k, 0)
+    }
+
+    fn read_once(&self, k: usize, depth: usize) -> bool {
+        let Some(id) = self.p.obj(k).map(|o| o.id) else { return false };
+        if depth > 64 {
+            return false;
+        }
+        let mut readers = Vec::new();
+        for (j, o) in self.p.objects().iter().enumerate() {
+            let pins: Vec<&PinIn> = match &o.kind {
+                ObjKind::Contact { input, .. }
+                | ObjKind::Coil { input, .. }
+                | ObjKind::OutVar { input, .. }
+                | ObjKind::InOutVar { input, .. }
+                | ObjKind::Connector { input, .. } => vec![input],
+                ObjKind::Block { inputs, .. } => inputs.iter().collect(),
+                _ => Vec::new(),
+            };
+            let n = pins.iter().flat_map(|p| &p.conns).filter(|c| c.from == id).count();
+            readers.extend(std::iter::repeat_n(j, n));
+        }
+        let [j] = readers.as_slice() else { return false };
+        match self.p.obj(*j).map(|o| &o.kind) {
+            Some(ObjKind::Block { .. } | ObjKind::OutVar { .. } | ObjKind::InOutVar { .. }) => true,
+            Some(ObjKind::Coil { .. }) => self.nothing_reads(*j),
+            Some(ObjKind::Contact { .. }) => self.read_once(*j, depth + 1),
+            _ => false,
+        }
+    }
+
+    /// Whether no object reads the value of the object at `k` (right rails do not read).
+    fn nothing_reads(&self, k: usize) -> bool {
+        let Some(id) = self.p.obj(k).map(|o| o.id) else { return true };
+        !self.p.objects().iter().any(|o| match &o.kind {
+            ObjKind::Contact { input, .. }
+            | ObjKind::Coil { input, .. }
+            | ObjKind::OutVar { input, .. }
+            | ObjKind::InOutVar { input, .. }
+            | ObjKind::Connector { input, .. } => input.conns.iter().any(|c| c.from == id),
+            ObjKind::Block { inputs, .. } => {
+                inputs.iter().any(|p| p.conns.iter().any(|c| c.from == id))
+            }
+            _ => false,
+        })
+    }
+
+    /// Whether every bit `c` reads is settled: a declared variable or input (nothing
+    /// writes one between a block call and the statement that triggered it), or a
+    /// hidden variable already written in this scan.
+    fn settled(&self, c: &Circuit) -> bool {
+        c.elements().iter().all(|e| match &e.kind {
+            ElementKind::Contacts { name, .. } => {
+                self.emitted.contains(name)
+                    || self.p.vars.values().any(|v| v.name == *name)
+                    || self.p.inputs.contains(name)
+            }
+            _ => true,
+        })
+    }
+
+    /// A function's output: inlined into its one reader when nothing it reads can change
+    /// before that reader runs, else a hidden variable written here.
+    fn function_out(&mut self, k: usize, out: Circuit, span: Span) {
+        let inline = self.direct != Some(k) && !self.fed_back.contains(&k);
+        if inline && self.single_use(k) && self.settled(&out) {
+            self.inlined.insert(k, out);
+        } else {
+            let name = self.p.hidden_name(k, "OUT").unwrap_or_default().to_string();
+            self.coil(out, &name, CoilKind::Normal, span);
         }
     }
 
@@ -183,6 +274,7 @@ impl<'p> Lower<'p> {
     }
 
     fn coil(&mut self, power: Circuit, name: &str, kind: CoilKind, span: Span) {
+        self.emitted.insert(name.to_string());
         let c = el(ElementKind::Coil { name: name.to_string(), kind }, span);
         let body = match power {
             Circuit::Series(mut v) => {
@@ -371,7 +463,13 @@ impl<'p> Lower<'p> {
 
     /// The value of output `pin` of block `k` (calling the block at its first use this scan).
     fn block_output(&mut self, k: usize, pin: &str, span: Span) -> Circuit {
+        if self.in_progress.contains(&k) {
+            self.fed_back.insert(k);
+        }
         self.call(k);
+        if let Some(c) = self.inlined.get(&k).filter(|_| !pin.eq_ignore_ascii_case("ENO")) {
+            return c.clone();
+        }
         let Some(ObjKind::Block { type_name, instance, .. }) = self.p.obj(k).map(|o| &o.kind)
         else {
             return el(ElementKind::Open, span);
@@ -443,19 +541,19 @@ impl<'p> Lower<'p> {
                         it.fold(first, xor)
                     }
                 };
-                self.coil(out, &hidden("OUT"), CoilKind::Normal, span);
+                self.function_out(k, out, span);
             }
             Some(s @ (Std::Not | Std::Move)) => {
                 let v = value(self, "IN");
                 let v = if s == Std::Not { not(v) } else { v };
-                self.coil(v, &hidden("OUT"), CoilKind::Normal, span);
+                self.function_out(k, v, span);
             }
             Some(Std::Sel) => {
                 let g = value(self, "G");
                 let a = value(self, "IN0");
                 let b = value(self, "IN1");
                 let out = or(vec![and(vec![not(g.clone()), a]), and(vec![g, b])]);
-                self.coil(out, &hidden("OUT"), CoilKind::Normal, span);
+                self.function_out(k, out, span);
             }
             Some(s @ (Std::Ton | Std::Tof)) => {
                 let input = value(self, "IN");
@@ -529,8 +627,10 @@ impl<'p> Lower<'p> {
                 if let Some(child) = p.subs.get(&k) {
                     let mut sub = Lower::new(child);
                     sub.rungs = std::mem::take(&mut self.rungs);
+                    sub.emitted = std::mem::take(&mut self.emitted);
                     sub.run();
                     self.rungs = std::mem::take(&mut sub.rungs);
+                    self.emitted = std::mem::take(&mut sub.emitted);
                     self.errors.append(&mut sub.errors);
                     self.warnings.append(&mut sub.warnings);
                 }
@@ -586,7 +686,11 @@ impl<'p> Lower<'p> {
                     self.assign(power, &name, false, Storage::None, Edge::None, span);
                 }
             }
-            ObjKind::Block { .. } => self.call(k),
+            ObjKind::Block { .. } => {
+                self.direct = Some(k);
+                self.call(k);
+                self.direct = None;
+            }
             ObjKind::Connector { input, .. } => {
                 let _ = self.pin_power(input, k);
             }
