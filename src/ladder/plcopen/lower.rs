@@ -157,6 +157,14 @@ fn not(c: Circuit) -> Circuit {
     }
 }
 
+/// `R_TRIG(v).Q` or `F_TRIG(v).Q` as matiec defines them (`Q := CLK ∧ ¬M; M := CLK`, with
+/// `CLK = ¬v` for F_TRIG, `M` FALSE at power-up): a rising one-shot of `v` or of `¬v`.
+/// (An F_TRIG pulses at the first scan when `v` is FALSE; a one-shot of `¬v` does too.)
+fn trig(edge: Edge, v: Circuit, span: Span) -> Circuit {
+    let clk = if edge == Edge::Falling { not(v) } else { v };
+    and(vec![clk, el(ElementKind::Edge { kind: EdgeKind::Osr }, span)])
+}
+
 fn xor(a: Circuit, b: Circuit) -> Circuit {
     or(vec![and(vec![a.clone(), not(b.clone())]), and(vec![not(a), b])])
 }
@@ -386,16 +394,14 @@ impl<'p> Lower<'p> {
 
     /// `v` through the hidden edge detector of `(k, pin)`, computed once per scan at its first use.
     fn edge(&mut self, k: usize, pin: &str, edge: Edge, v: Circuit, span: Span) -> Circuit {
-        let kind = match edge {
-            Edge::None => return v,
-            Edge::Rising => EdgeKind::Osr,
-            Edge::Falling => EdgeKind::Osf,
-        };
+        if edge == Edge::None {
+            return v;
+        }
         let Some(name) = self.p.hidden_name(k, pin).map(str::to_string) else {
             return fresh("EDGE", pin, span);
         };
         if self.trigs.insert((k, pin.to_string())) {
-            let power = and(vec![v, el(ElementKind::Edge { kind }, span)]);
+            let power = trig(edge, v, span);
             self.coil(power, &name, CoilKind::Normal, span);
         }
         contact(&name, false, span)
@@ -612,9 +618,8 @@ impl<'p> Lower<'p> {
             }
             Some(s @ (Std::RTrig | Std::FTrig)) => {
                 let clk = value(self, "CLK");
-                let kind = if s == Std::RTrig { EdgeKind::Osr } else { EdgeKind::Osf };
-                let out = and(vec![clk, el(ElementKind::Edge { kind }, span)]);
-                self.coil(out, &hidden("Q"), CoilKind::Normal, span);
+                let edge = if s == Std::RTrig { Edge::Rising } else { Edge::Falling };
+                self.coil(trig(edge, clk, span), &hidden("Q"), CoilKind::Normal, span);
             }
             // An inlined user function block: its inputs are assigned, then its body runs.
             None if runs && p.subs.contains_key(&k) => {
@@ -713,11 +718,7 @@ impl<'p> Lower<'p> {
             (_, Storage::Reset) => CoilKind::Reset,
             _ => CoilKind::Normal,
         };
-        let power = match edge {
-            Edge::None => power,
-            Edge::Rising => and(vec![power, el(ElementKind::Edge { kind: EdgeKind::Osr }, span)]),
-            Edge::Falling => and(vec![power, el(ElementKind::Edge { kind: EdgeKind::Osf }, span)]),
-        };
+        let power = if edge == Edge::None { power } else { trig(edge, power, span) };
         self.coil(power, name, kind, span);
     }
 }
