@@ -515,6 +515,19 @@ fn check(xml: &str, seed: u64, fig: &mut Figures, must_load: bool) {
     let mut hyps: Vec<Hyp> =
         compiled.hypotheses.iter().map(|h| Hyp::new(h, &compiled, cycle, &mut known)).collect();
     let mut sim = PlcSimulator::new(&plc);
+    // Every one-shot of the lowering names an edge detector of the simulator.
+    let one_shots = lowered
+        .ld
+        .elements()
+        .filter(|e| matches!(e.kind, ii_prove::ladder::ElementKind::Edge { .. }))
+        .count();
+    if one_shots != lowered.edges.len()
+        || lowered.edges.iter().any(|(path, k, pin)| sim.edge_memory_of(path, *k, pin).is_none())
+    {
+        fig.failures
+            .push(format!("seed {seed}: the one-shots and their edge detectors differ\n{xml}"));
+        return;
+    }
     for src in &known {
         if let Src::Bit(n) | Src::Pre(n) = src
             && !sim.bits().contains_key(n)

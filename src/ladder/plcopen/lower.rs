@@ -28,7 +28,14 @@ pub struct Lowered {
     pub ld: LdProgram,
     /// Warnings (order decisions, defaults), each located in the XML.
     pub warnings: Vec<PlcError>,
+    /// For each one-shot element of `ld`, in file order, the edge detector it stands for:
+    /// the path of inlined block indices, the owning object and the pin (see
+    /// [`PlcSimulator::edge_memory_of`](super::PlcSimulator::edge_memory_of)).
+    pub edges: Vec<EdgeKey>,
 }
+
+/// Which edge detector of a PLCopen program a one-shot element stands for.
+pub type EdgeKey = (Vec<usize>, usize, String);
 
 /// The number of scans a TON/TOF with preset `pt_us` counts on a `cycle_us` tick (matiec's
 /// time-based blocks: the output changes at the first scan whose time is `≥ start + PT`,
@@ -55,6 +62,10 @@ struct Lower<'p> {
     inlined: BTreeMap<usize, Circuit>,
     /// Functions whose output was read while their inputs were computed (feedback).
     fed_back: BTreeSet<usize>,
+    /// The path of inlined block indices to this body.
+    path: Vec<usize>,
+    /// The edge detectors of the one-shot elements emitted so far, in order.
+    edges: Vec<EdgeKey>,
     /// The block called as a statement of its own (its reader comes later, after other
     /// statements: never inlined).
     direct: Option<usize>,
@@ -184,7 +195,15 @@ impl<'p> Lower<'p> {
             inlined: BTreeMap::new(),
             fed_back: BTreeSet::new(),
             direct: None,
+            path: Vec::new(),
+            edges: Vec::new(),
         }
+    }
+
+    /// `trig(edge, v)`, recording which detector of the program it stands for.
+    fn trig_of(&mut self, owner: usize, pin: &str, edge: Edge, v: Circuit, span: Span) -> Circuit {
+        self.edges.push((self.path.clone(), owner, pin.to_string()));
+        trig(edge, v, span)
     }
 
     /// Whether the value of the object at `k` is read exactly once per scan: one wire
@@ -401,7 +420,7 @@ impl<'p> Lower<'p> {
             return fresh("EDGE", pin, span);
         };
         if self.trigs.insert((k, pin.to_string())) {
-            let power = trig(edge, v, span);
+            let power = self.trig_of(k, pin, edge, v, span);
             self.coil(power, &name, CoilKind::Normal, span);
         }
         contact(&name, false, span)
@@ -619,7 +638,8 @@ impl<'p> Lower<'p> {
             Some(s @ (Std::RTrig | Std::FTrig)) => {
                 let clk = value(self, "CLK");
                 let edge = if s == Std::RTrig { Edge::Rising } else { Edge::Falling };
-                self.coil(trig(edge, clk, span), &hidden("Q"), CoilKind::Normal, span);
+                let q = self.trig_of(k, "M", edge, clk, span);
+                self.coil(q, &hidden("Q"), CoilKind::Normal, span);
             }
             // An inlined user function block: its inputs are assigned, then its body runs.
             None if runs && p.subs.contains_key(&k) => {
@@ -633,9 +653,12 @@ impl<'p> Lower<'p> {
                     let mut sub = Lower::new(child);
                     sub.rungs = std::mem::take(&mut self.rungs);
                     sub.emitted = std::mem::take(&mut self.emitted);
+                    sub.edges = std::mem::take(&mut self.edges);
+                    sub.path = [self.path.as_slice(), &[k]].concat();
                     sub.run();
                     self.rungs = std::mem::take(&mut sub.rungs);
                     self.emitted = std::mem::take(&mut sub.emitted);
+                    self.edges = std::mem::take(&mut sub.edges);
                     self.errors.append(&mut sub.errors);
                     self.warnings.append(&mut sub.warnings);
                 }
@@ -681,14 +704,14 @@ impl<'p> Lower<'p> {
                 // A non-Boolean target has no Boolean effect (its inputs were computed).
                 if let Some(Operand::Bool(name)) = p.operands.get(&k) {
                     let name = name.clone();
-                    self.assign(power, &name, *negated, *storage, *edge, span);
+                    self.assign(k, power, &name, *negated, *storage, *edge, span);
                 }
             }
             ObjKind::InOutVar { input, .. } => {
                 let power = self.pin_power(input, k);
                 if let Some(Operand::Bool(name)) = p.operands.get(&k) {
                     let name = name.clone();
-                    self.assign(power, &name, false, Storage::None, Edge::None, span);
+                    self.assign(k, power, &name, false, Storage::None, Edge::None, span);
                 }
             }
             ObjKind::Block { .. } => {
@@ -703,8 +726,10 @@ impl<'p> Lower<'p> {
         }
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn assign(
         &mut self,
+        k: usize,
         power: Circuit,
         name: &str,
         negated: bool,
@@ -718,7 +743,8 @@ impl<'p> Lower<'p> {
             (_, Storage::Reset) => CoilKind::Reset,
             _ => CoilKind::Normal,
         };
-        let power = if edge == Edge::None { power } else { trig(edge, power, span) };
+        let power =
+            if edge == Edge::None { power } else { self.trig_of(k, "COIL", edge, power, span) };
         self.coil(power, name, kind, span);
     }
 }
@@ -746,5 +772,5 @@ pub fn lower(p: &PlcProgram) -> Result<Lowered, Vec<PlcError>> {
     };
     let mut warnings = p.warnings.clone();
     warnings.append(&mut l.warnings);
-    Ok(Lowered { ld, warnings })
+    Ok(Lowered { ld, warnings, edges: l.edges })
 }

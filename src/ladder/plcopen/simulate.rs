@@ -126,6 +126,17 @@ impl PlcSimulator {
         self.scans
     }
 
+    /// The memory (`M`, the input it saw at its last evaluation, FALSE before) of the
+    /// edge detector `pin` of object `owner` in the inlined body at `path` (`""` for a
+    /// contact or variable, `"COIL"` for a coil, `"M"` for an R_TRIG/F_TRIG block, the
+    /// pin name for a block input): what a one-shot of the lowering remembers.
+    pub fn edge_memory_of(&self, path: &[usize], owner: usize, pin: &str) -> Option<bool> {
+        match path.split_first() {
+            Some((k, rest)) => self.subs.get(k)?.edge_memory_of(rest, owner, pin),
+            None => Some(self.memory.get(&(owner, pin.to_string())).copied().unwrap_or(false)),
+        }
+    }
+
     /// Names written from values the simulator does not model (counters, comparisons…).
     pub fn unknown(&self) -> &BTreeSet<String> {
         &self.unknown
