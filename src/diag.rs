@@ -190,6 +190,8 @@ pub enum Diagnostic {
     Syntax(crate::syntax::SyntaxError),
     /// A ladder file is malformed, or the compiler reports something about it.
     Ladder(crate::ladder::LadderError),
+    /// A PLCopen XML file is malformed, or uses something the prover does not model.
+    Plcopen(crate::ladder::plcopen::PlcError),
     /// A proof script's step does not follow, or its calculation misses the goal.
     Script(crate::script::ScriptError),
 }
@@ -200,6 +202,7 @@ impl Diagnostic {
             Diagnostic::Io(e) => e,
             Diagnostic::Syntax(e) => e,
             Diagnostic::Ladder(e) => e,
+            Diagnostic::Plcopen(e) => e,
             Diagnostic::Script(e) => e,
         }
     }
@@ -232,6 +235,12 @@ impl From<crate::syntax::SyntaxError> for Diagnostic {
 impl From<crate::script::ScriptError> for Diagnostic {
     fn from(e: crate::script::ScriptError) -> Self {
         Diagnostic::Script(e)
+    }
+}
+
+impl From<crate::ladder::plcopen::PlcError> for Diagnostic {
+    fn from(e: crate::ladder::plcopen::PlcError) -> Self {
+        Diagnostic::Plcopen(e)
     }
 }
 

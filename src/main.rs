@@ -23,8 +23,8 @@ Exit status:
 /// Proves safety properties of ladder programs in the II algebra of binary signals.
 ///
 /// `ii-prove PROGRAM.ld PROPS.ii` proves the properties of PROPS.ii about the
-/// compiled program (the program is recognised by its content, wherever it
-/// stands); `ii-prove FILE.ii…` proves properties about the free signals the
+/// compiled program, an LDmicro file or a PLCopen XML project (recognised by its
+/// content, wherever it stands); `ii-prove FILE.ii…` proves properties about the free signals the
 /// files declare with `input`.
 ///
 /// A property of a program holds when, on every run, it holds at every scan up to
@@ -37,7 +37,8 @@ Exit status:
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
-    /// A ladder program (.ld) and property files (.ii), or property files alone.
+    /// A ladder program (LDmicro .ld or PLCopen .xml) and property files (.ii), or
+    /// property files alone.
     files: Vec<String>,
     /// Print each kernel-checked proof as a calculation.
     #[arg(long)]
@@ -88,9 +89,32 @@ struct Compilation {
     /// scan early); `ideal`, the paper's idealisation, the delay as written.
     #[arg(long, value_enum, default_value_t = Timers::Plc)]
     timers: Timers,
+    /// For a PLCopen XML program: the POU to check (default: the program the
+    /// configuration's task runs, or the only program).
+    #[arg(long, value_name = "NAME")]
+    pou: Option<String>,
+    /// For a PLCopen XML program: the scan cycle, `20ms`, `T#20ms`, `500us` (default: the
+    /// task's interval, else 20 ms with a warning).
+    #[arg(long, value_parser = parse_cycle, value_name = "DURATION")]
+    cycle: Option<u64>,
+}
+
+/// A scan cycle in µs: an IEC literal (`T#20ms`) or a plain duration (`20ms`).
+fn parse_cycle(text: &str) -> Result<u64, String> {
+    let us = ii_prove::ladder::plcopen::parse_duration(text).or_else(|| {
+        humantime::parse_duration(text).ok().and_then(|d| u64::try_from(d.as_micros()).ok())
+    });
+    match us {
+        Some(us) if us > 0 => Ok(us),
+        _ => Err(format!("`{text}` is not a positive duration such as `20ms` or `T#20ms`")),
+    }
 }
 
 impl Compilation {
+    fn selection(&self) -> ii_prove::ladder::plcopen::Selection {
+        ii_prove::ladder::plcopen::Selection { pou: self.pou.clone(), cycle_us: self.cycle }
+    }
+
     fn model(&self) -> TimerModel {
         match self.timers {
             Timers::Plc => TimerModel::Plc,
@@ -208,7 +232,11 @@ fn main() -> ExitCode {
             };
         }
         Some(Command::Check { files, notation, compilation }) => {
-            let opts = Options { timers: compilation.model(), ..opts(notation.ascii) };
+            let opts = Options {
+                timers: compilation.model(),
+                plcopen: compilation.selection(),
+                ..opts(notation.ascii)
+            };
             let run = script::check_files(&files, &opts);
             for error in &run.errors {
                 console::err(error);
@@ -216,7 +244,11 @@ fn main() -> ExitCode {
             Ok((script::render_text(&run), run.exit_code()))
         }
         Some(Command::Show { program, notation, compilation }) => {
-            let opts = Options { timers: compilation.model(), ..opts(notation.ascii) };
+            let opts = Options {
+                timers: compilation.model(),
+                plcopen: compilation.selection(),
+                ..opts(notation.ascii)
+            };
             report::show_program(&program, &opts).map(|t| (t, 0))
         }
         Some(Command::Completions { shell }) => {
@@ -267,6 +299,7 @@ fn prove(cli: Cli) -> ExitCode {
         only: cli.only.clone(),
         deny_vacuous: cli.deny.contains(&Deny::Vacuous),
         timers: cli.compilation.model(),
+        plcopen: cli.compilation.selection(),
         jobs: cli.jobs.map_or_else(
             || std::thread::available_parallelism().map_or(1, usize::from),
             usize::from,

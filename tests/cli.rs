@@ -1,22 +1,14 @@
 //! The command line end to end: exit codes in both modes, `show`, `axioms`, JSON, and the
 //! length of the water plant's proofs against the paper's.
 
+mod common;
+
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Command;
+
+use common::{ii_prove, text};
 
 use ii_prove::report::{self, Options, Status};
-
-fn ii_prove(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ii-prove"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the binary runs")
-}
-
-fn text(out: &[u8]) -> String {
-    String::from_utf8_lossy(out).into_owned()
-}
 
 #[test]
 fn free_mode_exit_0_when_everything_is_proved() {

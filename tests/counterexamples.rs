@@ -78,6 +78,7 @@ fn water_faulty_overlap_replays_on_the_scan_simulator() {
     let goal = report::obligation(&doc.properties[0].value);
     let session = counterexample::Program {
         ld: &loaded.program,
+        plcopen: loaded.plcopen.as_ref(),
         compiled: &loaded.compiled,
         assumptions: &[],
     };

@@ -34,8 +34,11 @@
 #![warn(missing_docs)]
 
 mod common;
+#[path = "common/rng.rs"]
+mod rng;
 #[path = "common/scan_eval.rs"]
 mod scan_eval;
+use rng::Rng;
 use scan_eval::*;
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -53,36 +56,6 @@ use ii_prove::ladder::{
 use ii_prove::term::{Expr, Term};
 use num_rational::BigRational;
 use num_traits::ToPrimitive;
-
-// ---------------------------------------------------------------- randomness
-
-/// A small deterministic generator (xorshift64*), seeded per case.
-struct Rng(u64);
-
-impl Rng {
-    fn new(seed: u64) -> Rng {
-        // splitmix64 of the seed, so that neighbouring seeds give unrelated streams.
-        let mut z = seed.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        Rng((z ^ (z >> 31)) | 1)
-    }
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-    fn below(&mut self, n: u64) -> u64 {
-        self.next() % n.max(1)
-    }
-    fn chance(&mut self, percent: u64) -> bool {
-        self.below(100) < percent
-    }
-    fn pick<'a, T>(&mut self, xs: &'a [T]) -> &'a T {
-        &xs[self.below(xs.len() as u64) as usize]
-    }
-}
 
 // ---------------------------------------------------------------- program generator
 
@@ -723,8 +696,13 @@ fn unroll_agrees(
     use ii_prove::counterexample::unroll::{Concrete, unroll};
     let heads: Vec<Expr> = compiled.hypotheses.iter().map(|h| h.lhs.clone()).collect();
     let refs: Vec<&Expr> = heads.iter().collect();
-    let model =
-        ii_prove::counterexample::Program { ld: program, compiled, assumptions: &[] }.model(&refs);
+    let model = ii_prove::counterexample::Program {
+        ld: program,
+        plcopen: None,
+        compiled,
+        assumptions: &[],
+    }
+    .model(&refs);
     let cycle = BigRational::new(cycle_us.into(), 1_000_000u64.into());
     let steps_of =
         |d: &ii_prove::term::Delay| (d.seconds() / &cycle).floor().to_integer().to_usize();

@@ -49,7 +49,9 @@ use num_integer::Integer;
 use num_traits::ToPrimitive;
 
 use crate::kernel::{Axiom, Rel};
-use crate::ladder::{CompiledProgram, HypothesisKind, LdProgram, SignalKind, Simulator};
+use crate::ladder::{
+    CompiledProgram, HypothesisKind, LdProgram, ScanSimulator, SignalKind, Simulator,
+};
 use crate::prover::Obligation;
 use crate::semantics::falsify::violation;
 use crate::semantics::{Assignment, Signal, Time, eval, format_time};
@@ -157,8 +159,10 @@ pub enum Verdict {
 
 /// The program a property is about.
 pub struct Program<'a> {
-    /// The LDmicro program (for the simulator).
+    /// The rung model (for the LDmicro simulator; a PLCopen program's lowering).
     pub ld: &'a LdProgram,
+    /// A PLCopen program: candidates are confirmed on its own simulator instead.
+    pub plcopen: Option<&'a crate::ladder::plcopen::PlcProgram>,
     /// Its compiled equations.
     pub compiled: &'a CompiledProgram,
     /// The `assume` statements.
@@ -384,7 +388,10 @@ fn simulate(
     goal: &Obligation,
     trace: &ScanTrace,
 ) -> Result<(Option<usize>, Values), String> {
-    let mut sim = Simulator::new(program.ld);
+    let mut sim: Box<dyn ScanSimulator> = match program.plcopen {
+        Some(p) => Box::new(crate::ladder::plcopen::PlcSimulator::new(p)),
+        None => Box::new(Simulator::new(program.ld)),
+    };
     // The program's inputs, and free names of the `.ii` files the program does not know.
     let mut inputs: Vec<&String> = program
         .compiled

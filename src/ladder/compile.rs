@@ -319,6 +319,9 @@ pub struct CompiledProgram {
     pub timer_info: Vec<TimerInfo>,
     /// The scan cycle, in µs (what `pre` steps back).
     pub cycle_us: u64,
+    /// Whether names are used exactly, without LDmicro's one-letter kind prefixes being
+    /// dropped for display and lookup (front ends with declared inputs: PLCopen).
+    pub exact_names: bool,
     /// The short-name index of [`names`](super::names), built on first use from `signals`.
     pub(super) short_names: std::sync::OnceLock<BTreeMap<String, Vec<String>>>,
 }
@@ -350,10 +353,15 @@ const CONTROL_FLOW: &[(&str, &str)] = &[
     ("SLEEP", "the processor sleeps in the middle of the scan"),
 ];
 
-/// Names the outside world writes (ldmicro.md §5): `X` input pins, `I` Modbus discrete
-/// inputs and `M` Modbus coils. Any other bit that no coil writes stays `0*`.
-fn is_external_input(name: &str) -> bool {
-    name.starts_with(['X', 'I', 'M'])
+/// Names the outside world writes: the program's declared inputs if it has them
+/// ([`LdProgram::inputs`], PLCopen), else LDmicro's (ldmicro.md §5): `X` input pins,
+/// `I` Modbus discrete inputs and `M` Modbus coils. Any other bit that no coil writes
+/// stays `0*`.
+fn is_external_input(program: &LdProgram, name: &str) -> bool {
+    match &program.inputs {
+        Some(inputs) => inputs.contains(name),
+        None => name.starts_with(['X', 'I', 'M']),
+    }
 }
 
 /// The canonical `.ii` name of an LDmicro name (a back quote cannot be quoted; it becomes `'`).
@@ -548,7 +556,7 @@ impl<'a> Compiler<'a> {
                 if let ElementKind::Contacts { name, .. } | ElementKind::Coil { name, .. } = &e.kind
                 {
                     let n = canonical(name);
-                    if !self.last_coil.contains_key(&n) && !is_external_input(&n) {
+                    if !self.last_coil.contains_key(&n) && !is_external_input(self.program, &n) {
                         self.unwritten.entry(n).or_insert(rung.number);
                     }
                 }
@@ -1115,6 +1123,7 @@ impl<'a> Compiler<'a> {
             timers: self.options.timers,
             timer_info: self.timer_info,
             cycle_us: self.program.cycle_us,
+            exact_names: self.program.inputs.is_some(),
             short_names: std::sync::OnceLock::new(),
         }
     }
@@ -1195,7 +1204,8 @@ type KindFilter = fn(&SignalKind) -> bool;
 pub fn program_to_ii(compiled: &CompiledProgram, notation: Notation) -> String {
     let mut out = String::new();
     out.push_str(&format!(
-        "// Compiled from an LDmicro program by ii-prove (timers: {}).\n",
+        "// Compiled from {} program by ii-prove (timers: {}).\n",
+        if compiled.exact_names { "a PLCopen" } else { "an LDmicro" },
         match compiled.timers {
             TimerModel::Plc => "plc, the scans the runtime counts",
             TimerModel::Ideal => "ideal, the delays as written",

@@ -82,6 +82,9 @@ pub struct LdProgram {
     pub rungs: Vec<Rung>,
     /// Warnings (lines skipped before `PROGRAM`, `PLACEHOLDER`s, …); never errors.
     pub warnings: Vec<LadderError>,
+    /// The bits the outside world writes, for front ends that declare them (PLCopen
+    /// input variables); `None`: LDmicro's rule, names starting with `X`, `I` or `M`.
+    pub inputs: Option<BTreeSet<String>>,
 }
 
 /// One rung: a series circuit between the power rails.
@@ -1320,6 +1323,7 @@ pub fn read_ldmicro(sources: &Sources, file: FileId) -> Result<LdProgram, Vec<La
             io_list,
             rungs,
             warnings: p.warnings,
+            inputs: None,
         }),
         _ => Err(p.errors),
     }

@@ -1,4 +1,4 @@
-//! Ladder front ends: LDmicro `.ld` files read into an AST ([`ldmicro`]) and run by a reference scan-cycle simulator ([`simulate`]).
+//! Ladder front ends over one scan model: LDmicro `.ld` files read into an AST ([`ldmicro`]) and run by a reference scan-cycle simulator ([`simulate`]), PLCopen XML read and lowered into the same rung model ([`plcopen`]); [`compile`] is the one compiler.
 //!
 //! The reader never panics; every problem it finds is a [`LadderError`] with a
 //! [`Span`] into the source text, rendered by [`crate::diag::render`].
@@ -7,6 +7,7 @@ pub mod compile;
 pub mod ldmicro;
 pub mod logic;
 pub mod names;
+pub mod plcopen;
 pub mod simulate;
 
 pub use compile::{
@@ -22,6 +23,41 @@ pub use names::short_name;
 pub use simulate::{Simulator, run};
 
 use crate::diag::{Report, Severity, Span};
+
+/// A reference scan simulator of a front end: the counterexample search confirms
+/// candidates on it, the differential tests check the compiled equations against it.
+pub trait ScanSimulator {
+    /// Runs one scan with these input values.
+    fn step(&mut self, inputs: &std::collections::BTreeMap<String, bool>);
+    /// A bit's value at the end of the last scan.
+    fn bit(&self, name: &str) -> bool;
+    /// Whether the simulator computes the bit.
+    fn is_known(&self, name: &str) -> bool;
+}
+
+impl ScanSimulator for Simulator {
+    fn step(&mut self, inputs: &std::collections::BTreeMap<String, bool>) {
+        Simulator::step(self, inputs)
+    }
+    fn bit(&self, name: &str) -> bool {
+        Simulator::bit(self, name)
+    }
+    fn is_known(&self, name: &str) -> bool {
+        Simulator::is_known(self, name)
+    }
+}
+
+impl ScanSimulator for plcopen::PlcSimulator {
+    fn step(&mut self, inputs: &std::collections::BTreeMap<String, bool>) {
+        plcopen::PlcSimulator::step(self, inputs)
+    }
+    fn bit(&self, name: &str) -> bool {
+        plcopen::PlcSimulator::bit(self, name)
+    }
+    fn is_known(&self, name: &str) -> bool {
+        plcopen::PlcSimulator::is_known(self, name)
+    }
+}
 
 /// A malformed ladder file, or something the reader or compiler reports about it.
 ///

@@ -30,6 +30,9 @@ impl CompiledProgram {
     /// The short form of a signal of this program: program bits lose their
     /// kind prefix; fresh signals and edge memories have none.
     fn short_of(&self, name: &str) -> Option<String> {
+        if self.exact_names {
+            return None;
+        }
         match self.signals.get(name)? {
             SignalKind::Fresh { .. } | SignalKind::EdgeMemory { .. } => None,
             _ => short_name(name),

@@ -17,6 +17,7 @@ pub(super) struct SearchKit {
     assumed: Vec<Axiom>,
     program: Option<CompiledProgram>,
     ladder: Option<LdProgram>,
+    plcopen: Option<crate::ladder::plcopen::PlcProgram>,
     opts: Options,
 }
 
@@ -37,9 +38,12 @@ impl SearchKit {
             None => e.clone(),
         };
         let program = match (&self.program, &self.ladder) {
-            (Some(compiled), Some(ld)) => {
-                Some(counterexample::Program { ld, compiled, assumptions: &self.assumed })
-            }
+            (Some(compiled), Some(ld)) => Some(counterexample::Program {
+                ld,
+                plcopen: self.plcopen.as_ref(),
+                compiled,
+                assumptions: &self.assumed,
+            }),
             _ => None,
         };
         job(&self.assumed, &self.opts, &rename, program.as_ref())
@@ -72,14 +76,15 @@ impl SearchKit {
     pub(super) fn new(
         assumptions: &[Statement<Goal>],
         program: Option<&CompiledProgram>,
-        ladder: Option<&LdProgram>,
+        ladder: Option<(&LdProgram, Option<&crate::ladder::plcopen::PlcProgram>)>,
         notation: Notation,
         timeout: Duration,
     ) -> SearchKit {
         SearchKit {
             assumed: assumptions.iter().map(assumption).collect(),
             program: program.cloned(),
-            ladder: ladder.cloned(),
+            ladder: ladder.map(|(l, _)| l.clone()),
+            plcopen: ladder.and_then(|(_, p)| p.cloned()),
             opts: Options { timeout, ascii: notation == Notation::Ascii, ..Options::default() },
         }
     }

@@ -60,6 +60,8 @@ pub struct Session {
     program: Option<(String, CompiledProgram)>,
     /// The loaded program as read (the scan simulator replays counterexamples on it).
     ladder: Option<crate::ladder::LdProgram>,
+    /// A PLCopen program's checked POU, for its own simulator.
+    plcopen: Option<crate::ladder::plcopen::PlcProgram>,
     program_hypotheses: Vec<Axiom>,
 }
 
@@ -168,6 +170,7 @@ impl Session {
             counter: 0,
             program: None,
             ladder: None,
+            plcopen: None,
             program_hypotheses: Vec::new(),
         })
     }
@@ -370,7 +373,7 @@ impl Session {
         if path.is_empty() {
             return "error: expected `load FILE.ii`\n".into();
         }
-        if path.ends_with(".ld") {
+        if report::is_ladder(path) {
             return self.load_program(path);
         }
         let file = match report::read_source(&mut self.sources, path) {
@@ -476,6 +479,7 @@ impl Session {
         self.program_hypotheses = compiled.axioms();
         self.program = Some((absolute, compiled));
         self.ladder = Some(loaded.program);
+        self.plcopen = loaded.plcopen;
         if let Err(e) = self.rebuild() {
             self.program = None;
             self.ladder = None;
@@ -666,7 +670,8 @@ impl Session {
     /// What the command line's counterexample search needs, owned by a worker thread.
     fn search_kit(&self, timeout: Duration) -> SearchKit {
         let program = self.program.as_ref().map(|(_, c)| c);
-        SearchKit::new(&self.assumptions, program, self.ladder.as_ref(), self.notation, timeout)
+        let ladder = self.ladder.as_ref().map(|l| (l, self.plcopen.as_ref()));
+        SearchKit::new(&self.assumptions, program, ladder, self.notation, timeout)
     }
 
     fn calculation(&self, open: &Open) -> String {

@@ -50,6 +50,8 @@ pub struct Options {
     pub timers: crate::ladder::TimerModel,
     /// Properties checked at once (threads); results are reported in file order.
     pub jobs: usize,
+    /// For a PLCopen program: which POU (`--pou`) and which cycle (`--cycle`).
+    pub plcopen: crate::ladder::plcopen::Selection,
 }
 
 impl Default for Options {
@@ -62,6 +64,7 @@ impl Default for Options {
             deny_vacuous: false,
             timers: crate::ladder::TimerModel::default(),
             jobs: 1,
+            plcopen: Default::default(),
         }
     }
 }
@@ -348,7 +351,8 @@ pub struct Inputs {
 
 /// Sorts the command line's files into a ladder program and property files, wherever
 /// the program stands: a file is a program when its text starts with an LDmicro
-/// header (`LDmicro0.1`, `LDmicro0.2`) or, failing that, its name ends in `.ld`. Two
+/// header (`LDmicro0.1`, `LDmicro0.2`), or it is a PLCopen XML project (root
+/// `project` in a TC6 namespace), or, failing that, its name ends in `.ld`. Two
 /// programs are refused.
 pub fn classify(files: &[String]) -> Result<Inputs, InputError> {
     let mut inputs = Inputs::default();
@@ -369,14 +373,17 @@ pub fn classify(files: &[String]) -> Result<Inputs, InputError> {
     Ok(inputs)
 }
 
-/// Does the file look like an LDmicro program (by its first bytes, else its name)?
-fn is_ladder(path: &str) -> bool {
+/// Does the file look like a ladder program: LDmicro by its first bytes, PLCopen by its
+/// root element, else LDmicro by its name?
+pub fn is_ladder(path: &str) -> bool {
     use std::io::Read;
-    let mut head = [0u8; 64];
+    let mut head = [0u8; 4096];
     let n = std::fs::File::open(path).and_then(|mut f| f.read(&mut head)).unwrap_or(0);
     let text = head[..n].strip_prefix(b"\xef\xbb\xbf").unwrap_or(&head[..n]);
     let start = text.iter().position(|b| !b.is_ascii_whitespace()).unwrap_or(text.len());
-    text[start..].starts_with(b"LDmicro") || path.to_ascii_lowercase().ends_with(".ld")
+    text[start..].starts_with(b"LDmicro")
+        || crate::ladder::plcopen::is_plcopen(&String::from_utf8_lossy(text))
+        || path.to_ascii_lowercase().ends_with(".ld")
 }
 
 /// What a run tells as it goes: the command line prints each result as soon as it is
@@ -741,8 +748,13 @@ pub fn compile_options(opts: &Options) -> crate::ladder::CompileOptions {
 
 /// A ladder program read and compiled, with its sources for diagnostics.
 pub struct LoadedProgram {
-    /// The program as read (for the scan simulator).
+    /// The program as read (LDmicro) or lowered (PLCopen): what the compiler read.
     pub program: crate::ladder::LdProgram,
+    /// For a PLCopen file, the checked POU (for its own scan simulator).
+    pub plcopen: Option<crate::ladder::plcopen::PlcProgram>,
+    /// The reader's own warnings (PLCopen: order, cycle, unmodelled blocks), rendered
+    /// with file and line; the compiler's are in `compiled.warnings`.
+    pub notes: Vec<String>,
     /// The compiled equations, bounds, signals and warnings.
     pub compiled: crate::ladder::CompiledProgram,
     /// The warnings, rendered with file and line.
@@ -751,28 +763,62 @@ pub struct LoadedProgram {
     pub located: Vec<WarningReport>,
 }
 
-/// Reads and compiles an LDmicro program registered under `path`.
+/// Reads and compiles a ladder program (LDmicro or PLCopen) registered under `path`.
 pub fn load_program(
     sources: &mut Sources,
     path: &str,
     options: &crate::ladder::CompileOptions,
 ) -> Result<LoadedProgram, Vec<Diagnostic>> {
+    load_program_with(sources, path, options, &Default::default())
+}
+
+/// [`load_program`], choosing the POU and cycle of a PLCopen program.
+pub fn load_program_with(
+    sources: &mut Sources,
+    path: &str,
+    options: &crate::ladder::CompileOptions,
+    selection: &crate::ladder::plcopen::Selection,
+) -> Result<LoadedProgram, Vec<Diagnostic>> {
+    use crate::diag::Report as _;
+    use crate::ladder::plcopen;
     let file = read_source(sources, path).map_err(|d| vec![d])?;
     let diagnostics = |errors: Vec<crate::ladder::LadderError>| {
         errors.into_iter().map(Diagnostic::from).collect::<Vec<_>>()
     };
-    let program = crate::ladder::read_ldmicro(sources, file).map_err(diagnostics)?;
+    let plc_diagnostics = |errors: Vec<plcopen::PlcError>| {
+        errors.into_iter().map(Diagnostic::from).collect::<Vec<_>>()
+    };
+    let (program, plc, mut located) = if plcopen::is_plcopen(sources.text(file)) {
+        let project = plcopen::read_plcopen(sources, file).map_err(plc_diagnostics)?;
+        let plc = plcopen::select(&project, selection).map_err(plc_diagnostics)?;
+        let lowered = plcopen::lower(&plc).map_err(plc_diagnostics)?;
+        let notes: Vec<WarningReport> = lowered
+            .warnings
+            .iter()
+            .map(|w| WarningReport {
+                message: w.message(),
+                location: w.span().map(|s| Location::of(sources, s)),
+            })
+            .collect();
+        (lowered.ld, Some(plc), notes)
+    } else {
+        (crate::ladder::read_ldmicro(sources, file).map_err(diagnostics)?, None, Vec::new())
+    };
     let compiled = crate::ladder::compile_with(&program, options).map_err(diagnostics)?;
-    let warnings = compiled.warnings.iter().map(|w| w.describe(sources)).collect();
-    let located = compiled
-        .warnings
+    let notes: Vec<String> = located
         .iter()
-        .map(|w| WarningReport {
-            message: crate::diag::Report::message(w),
-            location: Some(Location::of(sources, w.span)),
+        .map(|w| match &w.location {
+            Some(l) => format!("{l}: {}", w.message),
+            None => w.message.clone(),
         })
         .collect();
-    Ok(LoadedProgram { program, compiled, warnings, located })
+    let mut warnings = notes.clone();
+    warnings.extend(compiled.warnings.iter().map(|w| w.describe(sources)));
+    located.extend(compiled.warnings.iter().map(|w| WarningReport {
+        message: crate::diag::Report::message(w),
+        location: Some(Location::of(sources, w.span)),
+    }));
+    Ok(LoadedProgram { program, plcopen: plc, notes, compiled, warnings, located })
 }
 
 /// The session for `ii-prove PROGRAM.ld PROPS.ii…`: the properties are goals about the
@@ -794,7 +840,7 @@ pub fn run_program_with(
 ) -> Result<RunReport, InputError> {
     let mut sources = Sources::new();
     let theory = theory::standard(&mut sources).map_err(|d| fail(&sources, d, opts))?;
-    let loaded = load_program(&mut sources, program, &compile_options(opts))
+    let loaded = load_program_with(&mut sources, program, &compile_options(opts), &opts.plcopen)
         .map_err(|d| fail(&sources, d, opts))?;
     let compiled = &loaded.compiled;
     let docs = read_documents(&mut sources, paths, compiled, opts)?;
@@ -816,8 +862,12 @@ pub fn run_program_with(
         hypotheses.extend(assumed.iter().cloned());
         let ctx = Context::with_scans(theory.axioms(), hypotheses.clone(), true)
             .map_err(|e| InputError { rendered: format!("error: {path}: {e}\n") })?;
-        let session =
-            counterexample::Program { ld: &loaded.program, compiled, assumptions: &assumed };
+        let session = counterexample::Program {
+            ld: &loaded.program,
+            plcopen: loaded.plcopen.as_ref(),
+            compiled,
+            assumptions: &assumed,
+        };
         // Consistency: an `assume` that no run of the program satisfies makes every
         // property hold vacuously.
         let mut inconsistent = None;
@@ -860,9 +910,10 @@ pub fn run_program_with(
 /// `ii-prove show PROGRAM`: the compiled equations and bounds as `.ii` text.
 pub fn show_program(program: &str, opts: &Options) -> Result<String, InputError> {
     let mut sources = Sources::new();
-    let loaded = load_program(&mut sources, program, &compile_options(opts))
+    let loaded = load_program_with(&mut sources, program, &compile_options(opts), &opts.plcopen)
         .map_err(|d| fail(&sources, d, opts))?;
-    Ok(crate::ladder::program_to_ii(&loaded.compiled, opts.notation()))
+    let notes: String = loaded.notes.iter().map(|n| format!("// warning: {n}\n")).collect();
+    Ok(notes + &crate::ladder::program_to_ii(&loaded.compiled, opts.notation()))
 }
 
 fn finish(

@@ -4,6 +4,7 @@ use std::path::{Path, PathBuf};
 
 /// Every file under `dir` (recursively) whose name ends in `.ext`, sorted; none if
 /// `dir` does not exist.
+#[allow(dead_code)]
 pub fn files_with(dir: &Path, ext: &str) -> Vec<PathBuf> {
     fn walk(dir: &Path, ext: &str, out: &mut Vec<PathBuf>) {
         let Ok(entries) = std::fs::read_dir(dir) else { return };
@@ -19,4 +20,20 @@ pub fn files_with(dir: &Path, ext: &str) -> Vec<PathBuf> {
     walk(dir, ext, &mut out);
     out.sort();
     out
+}
+
+/// Runs the `ii-prove` binary in the crate's root folder.
+#[allow(dead_code)]
+pub fn ii_prove(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_ii-prove"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("the binary runs")
+}
+
+/// Captured output as text.
+#[allow(dead_code)]
+pub fn text(out: &[u8]) -> String {
+    String::from_utf8_lossy(out).into_owned()
 }

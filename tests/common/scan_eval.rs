@@ -40,7 +40,7 @@ pub enum Node {
 }
 
 /// Where the value of a known name comes from at each scan.
-#[derive(Clone, PartialEq, Eq, PartialOrd, Ord)]
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Src {
     /// The simulator's bit at the end of this scan.
     Bit(String),

@@ -1,0 +1,522 @@
+//! A reference scan simulator of PLCopen LD/FBD programs, written from the format note (§5–§8) and matiec's standard function blocks, over the PLCopen objects directly (not through the rung model).
+//!
+//! One [`PlcSimulator::step`] is one scan at time `scan × cycle`: inputs are
+//! latched, then the statements run in evaluation order. Values flow along the
+//! wires; a block is called at its first use in the scan (its inputs evaluated
+//! then) and its outputs are kept; a block reached again while its own inputs
+//! are computed (feedback) gives its previous outputs. TON/TOF/TP follow matiec's
+//! time-based state machines on a clock that advances one cycle per scan; SR,
+//! RS, R_TRIG and F_TRIG are their IEC definitions. Counters, comparisons and
+//! other blocks are not modelled: their Boolean outputs read FALSE (the prover
+//! leaves them unconstrained), and names depending on them are reported by
+//! [`PlcSimulator::unknown`].
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use super::{Edge, ObjKind, Operand, PinIn, PlcProgram, Source, Std, Storage};
+
+#[derive(Clone, Copy, Debug, Default)]
+struct Timer {
+    state: u8,
+    prev_in: bool,
+    start: u64,
+    q: bool,
+}
+
+/// The PLCopen scan simulator.
+pub struct PlcSimulator {
+    p: PlcProgram,
+    /// Declared BOOL variables and hidden variables.
+    bits: BTreeMap<String, bool>,
+    timers: BTreeMap<String, Timer>,
+    /// Edge-detector memories (`M` of R_TRIG/F_TRIG), by owner and pin.
+    memory: BTreeMap<(usize, String), bool>,
+    /// Per scan: blocks called, edge values computed.
+    called: BTreeSet<usize>,
+    in_progress: BTreeSet<usize>,
+    edges: BTreeMap<(usize, String), bool>,
+    visiting: BTreeSet<usize>,
+    /// Blocks whose EN was off in this scan (their outputs kept).
+    scans: u64,
+    unknown: BTreeSet<String>,
+    /// The simulators of inlined function block instances (they run on this one's bits).
+    subs: BTreeMap<usize, PlcSimulator>,
+}
+
+impl PlcSimulator {
+    /// A simulator at power-up: every BOOL at its initial value (FALSE unless declared).
+    pub fn new(p: &PlcProgram) -> PlcSimulator {
+        let mut bits = BTreeMap::new();
+        for v in p.vars.values().filter(|v| v.ty == super::Ty::Bool) {
+            let init = v.init.as_deref().is_some_and(|i| {
+                matches!(
+                    i.trim().to_ascii_uppercase().as_str(),
+                    "TRUE" | "1" | "BOOL#TRUE" | "BOOL#1"
+                )
+            });
+            bits.insert(v.name.clone(), init);
+        }
+        for n in p.hidden.values().chain(p.latches.values()) {
+            bits.insert(n.clone(), false);
+        }
+        let subs: BTreeMap<usize, PlcSimulator> =
+            p.subs.iter().map(|(k, child)| (*k, PlcSimulator::new(child))).collect();
+        for sub in subs.values() {
+            bits.extend(sub.bits.iter().map(|(n, v)| (n.clone(), *v)));
+        }
+        PlcSimulator {
+            subs,
+            p: p.clone(),
+            bits,
+            timers: BTreeMap::new(),
+            memory: BTreeMap::new(),
+            called: BTreeSet::new(),
+            in_progress: BTreeSet::new(),
+            edges: BTreeMap::new(),
+            visiting: BTreeSet::new(),
+            scans: 0,
+            unknown: BTreeSet::new(),
+        }
+    }
+
+    /// Runs one scan with the given input values (missing inputs keep their value).
+    pub fn step(&mut self, inputs: &BTreeMap<String, bool>) {
+        for (n, v) in inputs {
+            if self.p.is_input(n) {
+                self.bits.insert(n.clone(), *v);
+            }
+        }
+        // A latched input is the outside value at the start of the scan.
+        for (x, latch) in &self.p.latches {
+            let v = self.bit(latch);
+            self.bits.insert(x.clone(), v);
+        }
+        self.body();
+        self.scans += 1;
+    }
+
+    /// One execution of the body: every statement in evaluation order.
+    fn body(&mut self) {
+        self.called.clear();
+        self.edges.clear();
+        self.in_progress.clear();
+        let order = self.p.order.clone();
+        for k in order {
+            self.statement(k);
+        }
+    }
+
+    /// A bit's value at the end of the last scan.
+    pub fn bit(&self, name: &str) -> bool {
+        self.bits.get(name).copied().unwrap_or(false)
+    }
+
+    /// Every bit (declared BOOLs and hidden variables).
+    pub fn bits(&self) -> &BTreeMap<String, bool> {
+        &self.bits
+    }
+
+    /// Whether the simulator has the bit.
+    pub fn is_known(&self, name: &str) -> bool {
+        self.bits.contains_key(name)
+    }
+
+    /// Scans run so far.
+    pub fn scans(&self) -> u64 {
+        self.scans
+    }
+
+    /// The memory (`M`, the input it saw at its last evaluation, FALSE before) of the
+    /// edge detector `pin` of object `owner` in the inlined body at `path` (`""` for a
+    /// contact or variable, `"COIL"` for a coil, `"M"` for an R_TRIG/F_TRIG block, the
+    /// pin name for a block input): what a one-shot of the lowering remembers.
+    pub fn edge_memory_of(&self, path: &[usize], owner: usize, pin: &str) -> Option<bool> {
+        match path.split_first() {
+            Some((k, rest)) => self.subs.get(k)?.edge_memory_of(rest, owner, pin),
+            None => Some(self.memory.get(&(owner, pin.to_string())).copied().unwrap_or(false)),
+        }
+    }
+
+    /// Names written from values the simulator does not model (counters, comparisons…).
+    pub fn unknown(&self) -> &BTreeSet<String> {
+        &self.unknown
+    }
+
+    fn now(&self) -> u64 {
+        self.scans.saturating_mul(self.p.cycle_us)
+    }
+
+    fn operand(&mut self, op: &Operand) -> bool {
+        match op {
+            Operand::Bool(n) => self.bit(n),
+            Operand::Const(b) => *b,
+            Operand::Member(inst, pin) => {
+                let name = format!("{inst}_{pin}");
+                let hidden =
+                    self.p.hidden.values().find(|h| h.eq_ignore_ascii_case(&name)).cloned();
+                hidden.is_some_and(|h| self.bit(&h))
+            }
+            Operand::Duration(_) | Operand::Other(_) => false,
+        }
+    }
+
+    fn resolve(&self, text: &str) -> Operand {
+        let upper = text.trim().to_ascii_uppercase();
+        match upper.as_str() {
+            "TRUE" => Operand::Const(true),
+            "FALSE" => Operand::Const(false),
+            _ => match self.p.vars.get(&upper) {
+                Some(v) if v.ty == super::Ty::Bool => Operand::Bool(v.name.clone()),
+                _ => Operand::Other(text.to_string()),
+            },
+        }
+    }
+
+    /// The value at a consumer pin: the OR of its wires (unconnected: FALSE).
+    fn pin_power(&mut self, pin: &PinIn) -> bool {
+        if let Some((text, _)) = &pin.expr {
+            let op = self.resolve(text);
+            return self.operand(&op);
+        }
+        let mut any = false;
+        for c in &pin.conns {
+            if let Some(src) = self.p.source(c) {
+                // Every wire is evaluated (for its block calls), then ORed.
+                any |= self.source(src, 0);
+            }
+        }
+        any
+    }
+
+    fn trigger(&mut self, owner: usize, pin: &str, edge: Edge, v: bool) -> bool {
+        if edge == Edge::None {
+            return v;
+        }
+        let key = (owner, pin.to_string());
+        if let Some(q) = self.edges.get(&key) {
+            return *q;
+        }
+        let m = self.memory.get(&key).copied().unwrap_or(false);
+        // R_TRIG: Q := CLK ∧ ¬M; M := CLK. F_TRIG: Q := ¬CLK ∧ ¬M; M := ¬CLK.
+        let clk = if edge == Edge::Rising { v } else { !v };
+        let q = clk && !m;
+        self.memory.insert(key.clone(), clk);
+        self.edges.insert(key, q);
+        if let Some(h) = self.p.hidden_name(owner, pin).map(str::to_string) {
+            self.bits.insert(h, q);
+        }
+        q
+    }
+
+    fn source(&mut self, src: Source, depth: usize) -> bool {
+        if depth > 10_000 {
+            return false;
+        }
+        match src {
+            Source::Rail => true,
+            Source::Object(k) => self.object(k),
+            Source::BlockOut(k, pin) => {
+                let (name, negated) = self.p.output_pin(k, pin);
+                let v = self.output(k, &name);
+                v != negated
+            }
+            Source::BlockPin(k, pin) => self.output(k, pin),
+        }
+    }
+
+    fn object(&mut self, k: usize) -> bool {
+        if !self.visiting.insert(k) {
+            return false;
+        }
+        let v = self.object_value(k);
+        self.visiting.remove(&k);
+        v
+    }
+
+    fn object_value(&mut self, k: usize) -> bool {
+        let Some(o) = self.p.obj(k).cloned() else { return false };
+        let op = self.p.operands.get(&k).cloned();
+        match &o.kind {
+            ObjKind::Contact { negated, edge, input, .. } => {
+                let pred = self.pin_power(input);
+                let v = op.as_ref().is_some_and(|op| self.operand(op));
+                let v = self.trigger(k, "", *edge, v != *negated);
+                pred && v
+            }
+            ObjKind::Coil { input, .. } | ObjKind::Connector { input, .. } => self.pin_power(input),
+            ObjKind::InVar { negated, edge, .. } => {
+                let v = op.as_ref().is_some_and(|op| self.operand(op));
+                self.trigger(k, "", *edge, v != *negated)
+            }
+            ObjKind::InOutVar { .. } | ObjKind::OutVar { .. } => {
+                op.as_ref().is_some_and(|op| self.operand(op))
+            }
+            _ => false,
+        }
+    }
+
+    fn en(&mut self, k: usize) -> bool {
+        match self.p.en_pin(k).cloned() {
+            Some(pin) => {
+                let v = self.pin_power(&pin);
+                self.trigger(k, "EN", pin.edge, v != pin.negated)
+            }
+            None => true,
+        }
+    }
+
+    /// Output `pin` of block `k`, calling it at its first use.
+    fn output(&mut self, k: usize, pin: &str) -> bool {
+        let enabled = self.call(k);
+        if pin.eq_ignore_ascii_case("ENO") {
+            return enabled;
+        }
+        if let Some(var) = self.p.sub_var(k, pin, true) {
+            return self.bit(var);
+        }
+        match self.p.std_block(k) {
+            Some(s) if s.output().eq_ignore_ascii_case(pin) => {
+                self.p.hidden_name(k, s.output()).is_some_and(|h| self.bit(h))
+            }
+            _ => false,
+        }
+    }
+
+    fn input(&mut self, k: usize, name: &str) -> bool {
+        match self.p.pin(k, name).cloned() {
+            Some(pin) => {
+                let v = self.pin_power(&pin);
+                let v = v != pin.negated;
+                self.trigger(k, &pin.name.to_ascii_uppercase(), pin.edge, v)
+            }
+            None => false,
+        }
+    }
+
+    fn preset(&mut self, k: usize) -> u64 {
+        let Some(pin) = self.p.pin(k, "PT").cloned() else { return 0 };
+        if let Some((text, _)) = &pin.expr {
+            return super::parse_duration(text).unwrap_or(0);
+        }
+        let mut us = 0;
+        for c in &pin.conns {
+            match self.p.source(c) {
+                Some(Source::Object(j)) => {
+                    if let Some(Operand::Duration(d)) = self.p.operands.get(&j) {
+                        us = *d;
+                    }
+                }
+                Some(src @ (Source::BlockOut(..) | Source::BlockPin(..))) => {
+                    let _ = self.source(src, 0);
+                }
+                _ => {}
+            }
+        }
+        us
+    }
+
+    fn set_hidden(&mut self, k: usize, pin: &str, v: bool) {
+        if let Some(h) = self.p.hidden_name(k, pin).map(str::to_string) {
+            self.bits.insert(h, v);
+        }
+    }
+
+    /// Calls block `k` once per scan; returns its ENO.
+    fn call(&mut self, k: usize) -> bool {
+        if self.called.contains(&k) || self.in_progress.contains(&k) {
+            return self.edges.get(&(k, "ENO".into())).copied().unwrap_or(false);
+        }
+        self.in_progress.insert(k);
+        let std = self.p.std_block(k);
+        let inst = match self.p.obj(k).map(|o| &o.kind) {
+            Some(ObjKind::Block { instance, .. }) => {
+                instance.clone().unwrap_or_default().to_ascii_uppercase()
+            }
+            _ => String::new(),
+        };
+        // Inputs are evaluated whether or not the block runs (their blocks are called).
+        let names: Vec<PinIn> = match self.p.obj(k).map(|o| &o.kind) {
+            Some(ObjKind::Block { inputs, .. }) => inputs.clone(),
+            _ => Vec::new(),
+        };
+        // Two passes, as the generated code runs: first every block call and edge
+        // detector the inputs reach, in wire order; then the inputs are read.
+        let _ = self.en(k);
+        for pin in &names {
+            match pin.name.to_ascii_uppercase().as_str() {
+                "EN" => {}
+                "PT" => {
+                    let _ = self.preset(k);
+                }
+                n => {
+                    let _ = self.input(k, n);
+                }
+            }
+        }
+        let en = self.en(k);
+        let mut values: BTreeMap<String, bool> = BTreeMap::new();
+        let mut preset = 0;
+        for pin in &names {
+            let n = pin.name.to_ascii_uppercase();
+            if n == "EN" {
+                continue;
+            }
+            if n == "PT" {
+                preset = self.preset(k);
+                continue;
+            }
+            let v = self.input(k, &n);
+            values.insert(n, v);
+        }
+        let get = |n: &str| values.get(n).copied().unwrap_or(false);
+        if en {
+            let now = self.now();
+            match std {
+                Some(Std::And) => {
+                    let v = self.p.data_inputs(k).iter().all(|p| get(&p.name.to_ascii_uppercase()));
+                    self.set_hidden(k, "OUT", v);
+                }
+                Some(Std::Or) => {
+                    let v = self.p.data_inputs(k).iter().any(|p| get(&p.name.to_ascii_uppercase()));
+                    self.set_hidden(k, "OUT", v);
+                }
+                Some(Std::Xor) => {
+                    let v = self
+                        .p
+                        .data_inputs(k)
+                        .iter()
+                        .fold(false, |acc, p| acc != get(&p.name.to_ascii_uppercase()));
+                    self.set_hidden(k, "OUT", v);
+                }
+                Some(Std::Not) => self.set_hidden(k, "OUT", !get("IN")),
+                Some(Std::Move) => self.set_hidden(k, "OUT", get("IN")),
+                Some(Std::Sel) => {
+                    let v = if get("G") { get("IN1") } else { get("IN0") };
+                    self.set_hidden(k, "OUT", v);
+                }
+                Some(s @ (Std::Ton | Std::Tof | Std::Tp)) => {
+                    let input = get("IN");
+                    let t = self.timers.entry(inst).or_default();
+                    let due = t.start.saturating_add(preset) <= now;
+                    match s {
+                        Std::Ton => {
+                            if t.state == 0 && !t.prev_in && input {
+                                t.state = 1;
+                                t.q = false;
+                                t.start = now;
+                            } else if !input {
+                                t.q = false;
+                                t.state = 0;
+                            } else if t.state == 1 && due {
+                                t.state = 2;
+                                t.q = true;
+                            }
+                        }
+                        Std::Tof => {
+                            if t.state == 0 && t.prev_in && !input {
+                                t.state = 1;
+                                t.start = now;
+                            } else if input {
+                                t.state = 0;
+                            } else if t.state == 1 && due {
+                                t.state = 2;
+                            }
+                            t.q = input || t.state == 1;
+                        }
+                        _ => {
+                            if t.state == 0 && !t.prev_in && input {
+                                t.state = 1;
+                                t.q = true;
+                                t.start = now;
+                            } else if t.state == 1 && due {
+                                t.state = 2;
+                                t.q = false;
+                            }
+                            if t.state == 2 && !input {
+                                t.state = 0;
+                            }
+                        }
+                    }
+                    t.prev_in = input;
+                    let q = t.q;
+                    self.set_hidden(k, "Q", q);
+                }
+                Some(s @ (Std::Sr | Std::Rs)) => {
+                    let (set, reset) = if s == Std::Sr { ("S1", "R") } else { ("S", "R1") };
+                    let (sv, rv) = (get(set), get(reset));
+                    self.set_hidden(k, set, sv);
+                    self.set_hidden(k, reset, rv);
+                    let q = self.p.hidden_name(k, "Q1").is_some_and(|h| self.bit(h));
+                    let q = if s == Std::Sr { sv || (!rv && q) } else { !rv && (sv || q) };
+                    self.set_hidden(k, "Q1", q);
+                }
+                Some(s @ (Std::RTrig | Std::FTrig)) => {
+                    let key = (k, "M".to_string());
+                    let m = self.memory.get(&key).copied().unwrap_or(false);
+                    let clk = if s == Std::RTrig { get("CLK") } else { !get("CLK") };
+                    self.memory.insert(key, clk);
+                    self.set_hidden(k, "Q", clk && !m);
+                }
+                None => {
+                    // An inlined user function block: inputs assigned, then its body runs
+                    // on the same bits, at this scan's time.
+                    for (n, v) in &values {
+                        if let Some(var) = self.p.sub_var(k, n, false) {
+                            self.bits.insert(var.to_string(), *v);
+                        }
+                    }
+                    if let Some(mut sub) = self.subs.remove(&k) {
+                        sub.bits = std::mem::take(&mut self.bits);
+                        sub.scans = self.scans;
+                        sub.body();
+                        self.bits = std::mem::take(&mut sub.bits);
+                        self.subs.insert(k, sub);
+                    }
+                }
+            }
+        }
+        self.edges.insert((k, "ENO".into()), en);
+        self.in_progress.remove(&k);
+        self.called.insert(k);
+        en
+    }
+
+    fn statement(&mut self, k: usize) {
+        let Some(o) = self.p.obj(k).cloned() else { return };
+        if super::unconnected(&o.kind) {
+            return;
+        }
+        match &o.kind {
+            ObjKind::Coil { input, negated, storage, edge, .. }
+            | ObjKind::OutVar { input, negated, storage, edge, .. } => {
+                let _ = self.pin_power(input);
+                let power = self.pin_power(input);
+                if let Some(Operand::Bool(name)) = self.p.operands.get(&k).cloned() {
+                    let power = self.trigger(k, "COIL", *edge, power);
+                    let old = self.bit(&name);
+                    let new = match (negated, storage) {
+                        (true, _) => !power,
+                        (_, Storage::Set) => old || power,
+                        (_, Storage::Reset) => old && !power,
+                        _ => power,
+                    };
+                    self.bits.insert(name, new);
+                }
+            }
+            ObjKind::InOutVar { input, .. } => {
+                let _ = self.pin_power(input);
+                let power = self.pin_power(input);
+                if let Some(Operand::Bool(name)) = self.p.operands.get(&k).cloned() {
+                    self.bits.insert(name, power);
+                }
+            }
+            ObjKind::Block { .. } => {
+                self.call(k);
+            }
+            ObjKind::Connector { input, .. } => {
+                let _ = self.pin_power(input);
+            }
+            _ => {}
+        }
+    }
+}

@@ -1,0 +1,376 @@
+//! The PLCopen XML front end end to end: the corpus loads or is refused with located errors, the reader never panics, the water plant drawn in LD and FBD proves what `water.ld` proves, the command line (`show`, `--pou`, `--cycle`, errors).
+
+mod common;
+
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+
+use common::{ii_prove, text};
+use ii_prove::diag::{Diagnostic, RenderStyle, Sources, render};
+use ii_prove::ladder::plcopen::{Selection, lower, read_plcopen, select};
+use ii_prove::ladder::{compile, program_to_ii};
+use ii_prove::report;
+use ii_prove::syntax::Notation;
+use proptest::prelude::*;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn temp(name: &str, content: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("ii-prove-plcopen-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, content).unwrap();
+    path
+}
+
+// ---------------------------------------------------------------- corpus
+
+/// Loaded / refused counts over `tests/data/plcopen/corpus` (recorded in the README).
+const CORPUS_LOADED: usize = 66;
+const CORPUS_REFUSED: usize = 18;
+
+#[test]
+fn every_corpus_file_loads_or_is_refused_with_located_errors() {
+    let files = common::files_with(&root().join("tests/data/plcopen/corpus"), "xml");
+    assert_eq!(files.len(), 84, "the corpus has 84 files");
+    let (mut loaded, mut refused) = (0, 0);
+    let mut reasons: BTreeSet<String> = BTreeSet::new();
+    for f in &files {
+        let path = f.to_str().unwrap();
+        let mut sources = Sources::new();
+        match report::load_program(&mut sources, path, &Default::default()) {
+            Ok(l) => {
+                loaded += 1;
+                let shown = program_to_ii(&l.compiled, Notation::Paper);
+                assert!(shown.contains("Compiled from a PLCopen program"), "{path}");
+            }
+            Err(diagnostics) => {
+                refused += 1;
+                for d in &diagnostics {
+                    assert!(d.span().is_some(), "{path}: unlocated: {}", d.message());
+                    let shown = render(d, &sources, RenderStyle::default());
+                    assert!(shown.contains(".xml:") && shown.contains('^'), "{path}: {shown}");
+                }
+                reasons.insert(diagnostics[0].message());
+            }
+        }
+    }
+    eprintln!("corpus: {loaded} loaded, {refused} refused; reasons: {reasons:#?}");
+    assert_eq!((loaded, refused), (CORPUS_LOADED, CORPUS_REFUSED));
+}
+
+// ---------------------------------------------------------------- no panic
+
+fn exercise(text: &str) {
+    let mut sources = Sources::new();
+    let file = sources.add("fuzz.xml", text.to_string());
+    let result = read_plcopen(&sources, file)
+        .and_then(|p| select(&p, &Selection::default()))
+        .and_then(|p| lower(&p));
+    match result {
+        Ok(l) => {
+            let _ = compile(&l.ld);
+        }
+        Err(errors) => {
+            assert!(!errors.is_empty());
+            for e in errors {
+                let _ = render(&Diagnostic::Plcopen(e), &sources, RenderStyle::default());
+            }
+        }
+    }
+}
+
+fn water_ld() -> String {
+    std::fs::read_to_string(root().join("examples/water_ld.xml")).unwrap()
+}
+
+fn water_fbd() -> String {
+    std::fs::read_to_string(root().join("examples/water_fbd.xml")).unwrap()
+}
+
+#[test]
+fn known_troublemakers_do_not_panic() {
+    for t in [
+        "",
+        "<",
+        "\u{feff}",
+        "<project/>",
+        r#"<project xmlns="http://www.plcopen.org/xml/tc6_0201"/>"#,
+        r#"<project xmlns="http://www.plcopen.org/xml/tc6_0201"><types><pous><pou name="p" pouType="program"><body><LD><coil localId="1"><connectionPointIn><connection refLocalId="1"/></connectionPointIn><variable>x</variable></coil></LD></body></pou></pous></types></project>"#,
+        r#"<project xmlns="http://www.plcopen.org/xml/tc6_0201"><types><pous><pou name="p" pouType="program"><interface><localVars><variable name="x"><type><BOOL/></type></variable></localVars></interface><body><LD><contact localId="1"><connectionPointIn><connection refLocalId="2"/></connectionPointIn><variable>x</variable></contact><contact localId="2"><connectionPointIn><connection refLocalId="1"/></connectionPointIn><variable>x</variable></contact><coil localId="3"><connectionPointIn><connection refLocalId="2"/></connectionPointIn><variable>x</variable></coil></LD></body></pou></pous></types></project>"#,
+    ] {
+        exercise(t);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    #[test]
+    fn arbitrary_strings_do_not_panic(text in any::<String>()) {
+        exercise(&text);
+    }
+
+    #[test]
+    fn damaged_examples_do_not_panic(cut in 0usize..40_000, at in 0usize..40_000, with in "[ -~]{0,8}", fbd in any::<bool>()) {
+        let base = if fbd { water_fbd() } else { water_ld() };
+        let mut s = base.clone();
+        let at = at % s.len().max(1);
+        if s.is_char_boundary(at) {
+            s.insert_str(at, &with);
+        }
+        let cut = cut % s.len().max(1);
+        if s.is_char_boundary(cut) {
+            exercise(&s[..cut]);
+        }
+        exercise(&s);
+        // Ids, names and modifiers changed in place.
+        for (from, to) in [("refLocalId=\"3\"", "refLocalId=\"999\""), ("negated=\"true\"", "edge=\"rising\""), ("L1_Prod<", "L1_Prdo<"), ("typeName=\"TON\"", "typeName=\"TOF\""), ("T#5s", "T#x")] {
+            exercise(&base.replacen(from, to, 1 + at % 3));
+        }
+    }
+}
+
+// ---------------------------------------------------------------- the water plant
+
+fn verdicts(args: &[&str]) -> Vec<(String, String)> {
+    let out = ii_prove(args);
+    text(&out.stdout)
+        .lines()
+        .filter_map(|l| {
+            let mut w = l.split_whitespace();
+            let (name, verdict) = (w.next()?, w.next()?);
+            matches!(verdict, "proved" | "refuted" | "unknown")
+                .then(|| (name.to_string(), verdict.to_string()))
+        })
+        .collect()
+}
+
+/// The laws (not program hypotheses) a proof's trace cites.
+fn laws(args: &[&str], property: &str) -> BTreeSet<String> {
+    let mut a = args.to_vec();
+    a.extend(["--trace", "--only", property]);
+    let out = text(&ii_prove(&a).stdout);
+    out.split(['[', ']', ',', ' ', ';'])
+        .map(str::trim)
+        .filter(|w| w.chars().next().is_some_and(|c| c.is_ascii_lowercase()) && w.contains('_'))
+        .map(str::to_string)
+        .collect()
+}
+
+#[test]
+fn the_water_plant_in_ld_and_fbd_proves_what_water_ld_proves() {
+    let reference = verdicts(&["examples/water.ld", "examples/water.ii"]);
+    assert!(reference.iter().all(|(_, v)| v == "proved"), "{reference:?}");
+    for xml in ["examples/water_ld.xml", "examples/water_fbd.xml"] {
+        assert_eq!(verdicts(&[xml, "examples/water.ii"]), reference, "{xml}");
+        let out = ii_prove(&[xml, "examples/water.ii"]);
+        assert_eq!(out.status.code(), Some(0));
+        assert!(text(&out.stderr).trim().is_empty(), "{xml}: no warnings: {}", text(&out.stderr));
+    }
+    // The LD drawing is proved with the same laws as the LDmicro program.
+    for p in ["P1a", "P2", "P3", "P4a"] {
+        let a = laws(&["examples/water.ld", "examples/water.ii"], p);
+        let b = laws(&["examples/water_ld.xml", "examples/water.ii"], p);
+        assert_eq!(a, b, "{p}");
+    }
+}
+
+#[test]
+fn the_faulty_drawing_is_refuted_with_a_counterexample_the_plcopen_simulator_confirms() {
+    let out = ii_prove(&["examples/water_ld_faulty.xml", "examples/water.ii", "--only", "P2"]);
+    assert_eq!(out.status.code(), Some(1));
+    let stdout = text(&out.stdout);
+    assert!(stdout.contains("refuted"), "{stdout}");
+    assert!(stdout.contains("by the scan simulator"), "{stdout}");
+}
+
+// ---------------------------------------------------------------- command line
+
+#[test]
+fn show_prints_the_equations_of_a_plcopen_program() {
+    let out = ii_prove(&["show", "examples/water_ld.xml"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let stdout = text(&out.stdout);
+    assert!(stdout.contains("assume L06: T1_Q = 5s/L1_Prod"), "{stdout}");
+    assert!(
+        stdout.contains("input H_flow, L1_fail, L2_fail, L_flow, Line_swap, SP_fail"),
+        "{stdout}"
+    );
+}
+
+#[test]
+fn a_plcopen_file_is_recognised_by_content_whatever_its_name() {
+    let renamed = temp("plant.txt", &water_ld());
+    let out = ii_prove(&["examples/water.ii", renamed.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0), "{}{}", text(&out.stdout), text(&out.stderr));
+}
+
+#[test]
+fn cycle_changes_the_timer_count_and_pou_chooses_the_program() {
+    let out = ii_prove(&["show", "--cycle", "3ms", "examples/water_ld.xml"]);
+    let stdout = text(&out.stdout);
+    assert!(stdout.contains("P = 1667 scans"), "{stdout}");
+    assert!(stdout.contains("T1_Q = 5.001s/L1_Prod"), "{stdout}");
+    let two = water_ld().replace(
+        "</pous>",
+        r#"<pou name="other" pouType="program"><body><LD/></body></pou></pous>"#,
+    );
+    let two = temp(
+        "two.xml",
+        &two.replace(
+            r#"<pouInstance name="instance0" typeName="water"/>"#,
+            r#"<pouInstance name="a" typeName="water"/><pouInstance name="b" typeName="other"/>"#,
+        ),
+    );
+    let out = ii_prove(&["show", two.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = text(&out.stderr);
+    assert!(stderr.contains("--pou") && stderr.contains("water, other"), "{stderr}");
+    let out = ii_prove(&["show", "--pou", "water", two.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let out = ii_prove(&["show", "--pou", "wtaer", two.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(text(&out.stderr).contains("did you mean `water`?"), "{}", text(&out.stderr));
+}
+
+#[test]
+fn errors_name_line_and_column_and_exit_2() {
+    let bad = temp(
+        "bad.xml",
+        &water_ld().replacen("<variable>L1_Prod</variable>", "<variable>L1_Prdo</variable>", 1),
+    );
+    let out = ii_prove(&[bad.to_str().unwrap(), "examples/water.ii"]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = text(&out.stderr);
+    assert!(stderr.contains("unknown variable `L1_Prdo`"), "{stderr}");
+    assert!(stderr.contains("bad.xml:") && stderr.contains('^'), "{stderr}");
+    assert!(stderr.contains("did you mean `L1_Prod`?"), "{stderr}");
+    let broken = temp("broken.xml", &water_ld()[..2000]);
+    let out = ii_prove(&["show", broken.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(text(&out.stderr).contains("malformed XML"), "{}", text(&out.stderr));
+    let stray = temp(
+        "stray.xml",
+        &water_ld().replacen(
+            "<rightPowerRail",
+            "<jump localId=\"900\" label=\"x\"/><rightPowerRail",
+            1,
+        ),
+    );
+    let out = ii_prove(&["show", stray.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(text(&out.stderr).contains("`jump` is not supported"), "{}", text(&out.stderr));
+}
+
+#[test]
+fn the_cycle_default_is_documented_in_a_warning() {
+    let untasked = water_ld().replace(r#" interval="T#10ms""#, "");
+    let path = temp("untasked.xml", &untasked);
+    let out = ii_prove(&[path.to_str().unwrap(), "examples/water.ii"]);
+    assert_eq!(out.status.code(), Some(0));
+    assert!(text(&out.stderr).contains("20 ms"), "{}", text(&out.stderr));
+    let _ = Path::new("unused");
+}
+
+#[test]
+fn user_function_blocks_are_inlined_per_instance() {
+    // A seal-in drawn once as a function block, used for two motors.
+    let fb = r#"<pou name="SealIn" pouType="functionBlock"><interface>
+<inputVars><variable name="Start"><type><BOOL/></type></variable><variable name="Stop"><type><BOOL/></type></variable></inputVars>
+<outputVars><variable name="Run"><type><BOOL/></type></variable></outputVars></interface>
+<body><LD>
+<leftPowerRail localId="1"><position x="0" y="0"/><connectionPointOut/></leftPowerRail>
+<contact localId="2"><position x="10" y="0"/><connectionPointIn><connection refLocalId="1"/></connectionPointIn><connectionPointOut/><variable>Start</variable></contact>
+<contact localId="3"><position x="10" y="20"/><connectionPointIn><connection refLocalId="1"/></connectionPointIn><connectionPointOut/><variable>Run</variable></contact>
+<contact localId="4" negated="true"><position x="20" y="0"/><connectionPointIn><connection refLocalId="2"/><connection refLocalId="3"/></connectionPointIn><connectionPointOut/><variable>Stop</variable></contact>
+<coil localId="5"><position x="30" y="0"/><connectionPointIn><connection refLocalId="4"/></connectionPointIn><connectionPointOut/><variable>Run</variable></coil>
+</LD></body></pou>"#;
+    let block = |id: u64, inst: &str, start: u64, stop: u64, y: i64| {
+        format!(
+            r#"<block localId="{id}" typeName="SealIn" instanceName="{inst}"><position x="100" y="{y}"/><inputVariables><variable formalParameter="Start"><connectionPointIn><connection refLocalId="{start}"/></connectionPointIn></variable><variable formalParameter="Stop"><connectionPointIn><connection refLocalId="{stop}"/></connectionPointIn></variable></inputVariables><inOutVariables/><outputVariables><variable formalParameter="Run"><connectionPointOut/></variable></outputVariables></block>"#
+        )
+    };
+    let program = format!(
+        r#"<?xml version="1.0"?>
+<project xmlns="http://www.plcopen.org/xml/tc6_0201"><types><pous>
+<pou name="main" pouType="program"><interface>
+<inputVars><variable name="Go"><type><BOOL/></type></variable><variable name="Halt"><type><BOOL/></type></variable></inputVars>
+<localVars><variable name="M1"><type><derived name="SealIn"/></type></variable><variable name="M2"><type><derived name="SealIn"/></type></variable>
+<variable name="Both"><type><BOOL/></type></variable></localVars></interface>
+<body><FBD>
+<inVariable localId="1"><position x="0" y="0"/><connectionPointOut/><expression>Go</expression></inVariable>
+<inVariable localId="2"><position x="0" y="10"/><connectionPointOut/><expression>Halt</expression></inVariable>
+{}
+{}
+<block localId="20" typeName="AND"><position x="200" y="0"/><inputVariables><variable formalParameter="IN1"><connectionPointIn><connection refLocalId="10" formalParameter="Run"/></connectionPointIn></variable><variable formalParameter="IN2"><connectionPointIn><connection refLocalId="11" formalParameter="Run"/></connectionPointIn></variable></inputVariables><inOutVariables/><outputVariables><variable formalParameter="OUT"><connectionPointOut/></variable></outputVariables></block>
+<outVariable localId="21"><position x="300" y="0"/><connectionPointIn><connection refLocalId="20" formalParameter="OUT"/></connectionPointIn><expression>Both</expression></outVariable>
+</FBD></body></pou>
+{fb}
+</pous></types>
+<instances><configurations><configuration name="C"><resource name="R"><task name="t" priority="0" interval="T#10ms"><pouInstance name="i" typeName="main"/></task></resource></configuration></configurations></instances></project>"#,
+        block(10, "M1", 1, 2, 0),
+        block(11, "M2", 1, 2, 50)
+    );
+    let path = temp("inline.xml", &program);
+    let out = ii_prove(&["show", path.to_str().unwrap()]);
+    let shown = text(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(shown.contains("M1_Run = RS(M1_Start, M1_Stop)"), "{shown}");
+    assert!(shown.contains("M2_Run = RS(M2_Start, M2_Stop)"), "{shown}");
+    let props =
+        temp("inline.ii", "property halted: Halt => !Both\nproperty same: M1_Run = M2_Run\n");
+    let out = ii_prove(&[path.to_str().unwrap(), props.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0), "{}{}", text(&out.stdout), text(&out.stderr));
+}
+
+/// `In → TYPE(PT) → Out` at a 10 ms cycle.
+fn timer_program(ty: &str, pt: &str) -> String {
+    format!(
+        r#"<?xml version="1.0"?>
+<project xmlns="http://www.plcopen.org/xml/tc6_0201"><types><pous>
+<pou name="main" pouType="program"><interface>
+<inputVars><variable name="In"><type><BOOL/></type></variable></inputVars>
+<localVars><variable name="T"><type><derived name="{ty}"/></type></variable><variable name="Out"><type><BOOL/></type></variable></localVars></interface>
+<body><LD>
+<leftPowerRail localId="1"><position x="0" y="0"/><connectionPointOut/></leftPowerRail>
+<contact localId="2"><position x="10" y="0"/><connectionPointIn><connection refLocalId="1"/></connectionPointIn><connectionPointOut/><variable>In</variable></contact>
+<inVariable localId="3"><position x="10" y="20"/><connectionPointOut/><expression>{pt}</expression></inVariable>
+<block localId="4" typeName="{ty}" instanceName="T"><position x="20" y="0"/><inputVariables><variable formalParameter="IN"><connectionPointIn><connection refLocalId="2"/></connectionPointIn></variable><variable formalParameter="PT"><connectionPointIn><connection refLocalId="3"/></connectionPointIn></variable></inputVariables><inOutVariables/><outputVariables><variable formalParameter="Q"><connectionPointOut/></variable><variable formalParameter="ET"><connectionPointOut/></variable></outputVariables></block>
+<coil localId="5"><position x="30" y="0"/><connectionPointIn><connection refLocalId="4" formalParameter="Q"/></connectionPointIn><connectionPointOut/><variable>Out</variable></coil>
+</LD></body></pou></pous></types>
+<instances><configurations><configuration name="C"><resource name="R"><task name="t" priority="0" interval="T#10ms"><pouInstance name="i" typeName="main"/></task></resource></configuration></configurations></instances></project>"#
+    )
+}
+
+/// `Out` at each scan of the PLCopen simulator for these values of `In`.
+fn run_timer(ty: &str, pt: &str, ins: &[u8]) -> String {
+    let mut sources = Sources::new();
+    let file = sources.add("t.xml", timer_program(ty, pt));
+    let p = read_plcopen(&sources, file).and_then(|p| select(&p, &Selection::default())).unwrap();
+    let mut sim = ii_prove::ladder::plcopen::PlcSimulator::new(&p);
+    ins.iter()
+        .map(|i| {
+            sim.step(&[("In".to_string(), *i == 1)].into_iter().collect());
+            if sim.bit("Out") { '1' } else { '0' }
+        })
+        .collect()
+}
+
+#[test]
+fn the_simulator_times_ton_and_tof_as_matiec_on_a_10ms_tick() {
+    // TON: on at the first scan whose time is ≥ start + PT, never at the starting scan.
+    assert_eq!(run_timer("TON", "T#0ms", &[1, 1, 1, 0, 1, 1]), "011001");
+    assert_eq!(run_timer("TON", "T#15ms", &[1, 1, 1, 1, 0]), "00110");
+    assert_eq!(run_timer("TON", "T#20ms", &[1, 1, 1, 1, 0]), "00110");
+    assert_eq!(run_timer("TON", "T#21ms", &[1, 1, 1, 1, 0]), "00010");
+    // TOF: on with its input, and for P = max(1, ceil(PT / cycle)) scans after it falls.
+    assert_eq!(run_timer("TOF", "T#15ms", &[0, 1, 0, 0, 0, 0]), "011100");
+    assert_eq!(run_timer("TOF", "T#0ms", &[1, 0, 0]), "110");
+    // The compiled equation says the same: P scans, d = P · cycle.
+    let out =
+        ii_prove(&["show", temp("ton15.xml", &timer_program("TON", "T#15ms")).to_str().unwrap()]);
+    assert!(text(&out.stdout).contains("T_Q = 20ms/In"), "{}", text(&out.stdout));
+}

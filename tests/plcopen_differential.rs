@@ -1,0 +1,678 @@
+//! Differential test of the PLCopen front end: every hypothesis the one rung compiler derives from a lowered PLCopen program must hold at every scan of random runs of the PLCopen scan simulator, for random LD and FBD programs (every supported element kind), the examples and the corpus files that load.
+//!
+//! The reference is [`PlcSimulator`], written over the PLCopen objects from the
+//! format note and matiec's function blocks, independently of the lowering and of
+//! the LDmicro simulator. Hypotheses are evaluated on its scans by
+//! `common/scan_eval.rs` (fresh signals existential, timers by `ceil(d / δ)`).
+//! Only the declared inputs are driven, with values held for random numbers of
+//! scans. `II_PLC_DIFF_PROGRAMS=N` sets the number of random programs (2000 by
+//! default), `II_PLC_DIFF_SEED=S` reruns one; failures print the XML and the seed.
+
+mod common;
+#[path = "common/rng.rs"]
+mod rng;
+#[path = "common/scan_eval.rs"]
+mod scan_eval;
+use rng::Rng;
+use scan_eval::*;
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::Path;
+
+use ii_prove::diag::Sources;
+use ii_prove::ladder::plcopen::{PlcSimulator, Selection, lower, read_plcopen, select};
+use ii_prove::ladder::{SignalKind, compile};
+use ii_prove::term::Term;
+
+// ---------------------------------------------------------------- program generator
+
+const INPUTS: &[&str] = &["In0", "In1", "In2", "In3"];
+const BITS: &[&str] = &["B0", "B1", "B2", "Q0", "Q1"];
+/// Declared, never written: stays FALSE.
+const GHOST: &str = "G0";
+const PRESETS: &[&str] = &["T#0ms", "T#10ms", "T#15ms", "T#20ms", "T#35ms", "T#50ms"];
+const FBS: &[&str] = &["TON", "TOF", "TP", "SR", "RS", "R_TRIG", "F_TRIG", "CTU"];
+const FUNCTIONS: &[&str] = &["AND", "OR", "XOR", "NOT", "SEL", "MOVE", "GT"];
+
+/// The user function block programs may instantiate: inputs `IN0`, `IN1`, outputs
+/// `OUT0`, `OUT1`, a local `L0`.
+const USER_FB: &str = "UserFb";
+const FB_INPUTS: &[&str] = &["IN0", "IN1"];
+const FB_BITS: &[&str] = &["OUT0", "OUT1", "L0"];
+
+struct Gen {
+    rng: Rng,
+    id: u64,
+    body: String,
+    instances: Vec<(String, &'static str)>,
+    y: i64,
+    /// The names the body reads as inputs, the bits it writes, a bit nothing writes.
+    inputs: &'static [&'static str],
+    bits: &'static [&'static str],
+    ghost: &'static str,
+    /// Whether blocks may be instances of the user function block.
+    user_fb: bool,
+    /// Every position 0,0 (the statements then run in document order).
+    no_layout: bool,
+}
+
+fn pins(rng: &mut Rng, ty: &str) -> Vec<&'static str> {
+    match ty {
+        "TON" | "TOF" | "TP" => vec!["IN", "PT"],
+        "SR" => vec!["S1", "R"],
+        "RS" => vec!["S", "R1"],
+        "R_TRIG" | "F_TRIG" => vec!["CLK"],
+        "CTU" => vec!["CU", "R", "PV"],
+        "NOT" | "MOVE" => vec!["IN"],
+        "SEL" => vec!["G", "IN0", "IN1"],
+        "GT" => vec!["IN1", "IN2"],
+        USER_FB => vec!["IN0", "IN1"],
+        _ => {
+            let n = 2 + rng.below(2) as usize;
+            ["IN1", "IN2", "IN3"][..n].to_vec()
+        }
+    }
+}
+
+fn outputs(ty: &str) -> Vec<&'static str> {
+    match ty {
+        "TON" | "TOF" | "TP" => vec!["Q", "ET"],
+        "SR" | "RS" => vec!["Q1"],
+        "R_TRIG" | "F_TRIG" => vec!["Q"],
+        "CTU" => vec!["Q", "CV"],
+        USER_FB => vec!["OUT0", "OUT1"],
+        _ => vec!["OUT"],
+    }
+}
+
+impl Gen {
+    fn nid(&mut self) -> u64 {
+        self.id += 1;
+        self.id
+    }
+
+    fn pos(&mut self, x: i64) -> String {
+        if self.no_layout {
+            // CODESYS writes 0,0 everywhere: document order.
+            return r#"<position x="0" y="0"/>"#.into();
+        }
+        let jitter = if self.rng.chance(20) { self.rng.below(12) as i64 } else { 0 };
+        format!(r#"<position x="{x}" y="{}"/>"#, self.y + jitter)
+    }
+
+    fn order(&mut self, fbd: bool) -> String {
+        if fbd && self.rng.chance(15) {
+            format!(r#" executionOrderId="{}""#, self.rng.below(4))
+        } else {
+            String::new()
+        }
+    }
+
+    fn conn(refs: &[(u64, Option<&str>)]) -> String {
+        if refs.is_empty() {
+            return "<connectionPointIn/>".into();
+        }
+        let mut s = String::from("<connectionPointIn>");
+        for (r, f) in refs {
+            match f {
+                Some(f) => write!(s, r#"<connection refLocalId="{r}" formalParameter="{f}"/>"#),
+                None => write!(s, r#"<connection refLocalId="{r}"/>"#),
+            }
+            .unwrap();
+        }
+        s.push_str("</connectionPointIn>");
+        s
+    }
+
+    /// A Boolean operand: an input, a written bit, the ghost, a constant, or an FB member.
+    fn operand(&mut self) -> String {
+        match self.rng.below(10) {
+            0..=3 => self.rng.pick(self.inputs).to_string(),
+            4..=6 => self.rng.pick(self.bits).to_string(),
+            7 => self.ghost.into(),
+            8 if !self.instances.is_empty() => {
+                let (inst, ty) = self.rng.pick(&self.instances).clone();
+                format!("{inst}.{}", outputs(ty)[0])
+            }
+            _ if self.rng.chance(70) => self.rng.pick(self.inputs).to_string(),
+            _ => if self.rng.chance(50) { "TRUE" } else { "FALSE" }.into(),
+        }
+    }
+
+    fn modifiers(&mut self, edge_ok: bool) -> String {
+        let mut s = String::new();
+        if self.rng.chance(25) {
+            s.push_str(r#" negated="true""#);
+        }
+        if edge_ok && self.rng.chance(6) {
+            s.push_str(if self.rng.chance(50) {
+                r#" edge="rising""#
+            } else {
+                r#" edge="falling""#
+            });
+        }
+        s
+    }
+
+    fn in_var(&mut self, expr: &str, fbd: bool) -> u64 {
+        let id = self.nid();
+        let m = if self.rng.chance(10) { self.modifiers(true) } else { String::new() };
+        let (p, o) = (self.pos(20), self.order(fbd));
+        writeln!(
+            self.body,
+            r#"<inVariable localId="{id}"{m}{o}>{p}<connectionPointOut/><expression>{expr}</expression></inVariable>"#
+        )
+        .unwrap();
+        id
+    }
+
+    /// A block fed from `sources`; returns its id and type.
+    fn block(
+        &mut self,
+        sources: &mut Vec<(u64, Option<&'static str>)>,
+        fbd: bool,
+        en: bool,
+    ) -> (u64, &'static str) {
+        let fb = self.rng.chance(50);
+        let ty = if fb && self.user_fb && self.rng.chance(30) {
+            USER_FB
+        } else if fb {
+            *self.rng.pick(FBS)
+        } else {
+            *self.rng.pick(FUNCTIONS)
+        };
+        let mut ins = String::new();
+        if en && self.rng.chance(20) {
+            let src = *self.rng.pick(sources);
+            write!(ins, r#"<variable formalParameter="EN">{}</variable>"#, Gen::conn(&[src]))
+                .unwrap();
+        }
+        for pin in pins(&mut self.rng, ty) {
+            let refs = match pin {
+                "PT" => {
+                    let preset = *self.rng.pick(PRESETS);
+                    vec![(self.in_var(preset, fbd), None)]
+                }
+                "PV" => vec![(self.in_var("3", fbd), None)],
+                _ if self.rng.chance(10) => Vec::new(),
+                _ => vec![*self.rng.pick(sources)],
+            };
+            let m = if matches!(pin, "PT" | "PV") { String::new() } else { self.modifiers(true) };
+            write!(ins, r#"<variable formalParameter="{pin}"{m}>{}</variable>"#, Gen::conn(&refs))
+                .unwrap();
+        }
+        let id = self.nid();
+        let inst = if fb {
+            let name = format!("{}{}", ty.replace('_', ""), id);
+            self.instances.push((name.clone(), ty));
+            format!(r#" instanceName="{name}""#)
+        } else {
+            String::new()
+        };
+        let mut outs = String::new();
+        if en {
+            outs.push_str(r#"<variable formalParameter="ENO"><connectionPointOut/></variable>"#);
+        }
+        for o in outputs(ty) {
+            let neg = if self.rng.chance(10) { r#" negated="true""# } else { "" };
+            write!(
+                outs,
+                r#"<variable formalParameter="{o}"{neg}><connectionPointOut/></variable>"#
+            )
+            .unwrap();
+        }
+        let (p, o) = (self.pos(200), self.order(fbd));
+        writeln!(
+            self.body,
+            r#"<block localId="{id}" typeName="{ty}"{inst}{o}>{p}<inputVariables>{ins}</inputVariables><inOutVariables/><outputVariables>{outs}</outputVariables></block>"#
+        )
+        .unwrap();
+        let out = outputs(ty)[0];
+        sources.push((id, Some(out)));
+        if en && self.rng.chance(30) {
+            sources.push((id, Some("ENO")));
+        }
+        (id, ty)
+    }
+
+    fn ld_rung(&mut self) {
+        let rail = self.nid();
+        let p = self.pos(0);
+        writeln!(self.body, r#"<leftPowerRail localId="{rail}">{p}<connectionPointOut formalParameter=""/></leftPowerRail>"#).unwrap();
+        let mut nodes: Vec<(u64, Option<&'static str>)> = vec![(rail, None)];
+        for _ in 0..1 + self.rng.below(5) {
+            if self.rng.chance(20) {
+                self.block(&mut nodes, false, true);
+                continue;
+            }
+            let k = 1 + usize::from(self.rng.chance(25)) + usize::from(self.rng.chance(10));
+            let refs: Vec<_> = (0..k).map(|_| *self.rng.pick(&nodes)).collect();
+            let id = self.nid();
+            let (m, v) = (self.modifiers(true), self.operand());
+            let p = self.pos(100);
+            writeln!(
+                self.body,
+                r#"<contact localId="{id}"{m}>{p}{}<connectionPointOut/><variable>{v}</variable></contact>"#,
+                Gen::conn(&refs)
+            )
+            .unwrap();
+            nodes.push((id, None));
+        }
+        for _ in 0..1 + self.rng.below(2) {
+            let k = 1 + usize::from(self.rng.chance(20));
+            let refs: Vec<_> = (0..k).map(|_| *self.rng.pick(&nodes)).collect();
+            let id = self.nid();
+            let m = match self.rng.below(8) {
+                0 => r#" negated="true""#,
+                1 => r#" storage="set""#,
+                2 => r#" storage="reset""#,
+                3 => r#" edge="rising""#,
+                4 => r#" edge="falling""#,
+                _ => "",
+            };
+            let v = *self.rng.pick(self.bits);
+            let p = self.pos(500);
+            writeln!(
+                self.body,
+                r#"<coil localId="{id}"{m}>{p}{}<connectionPointOut/><variable>{v}</variable></coil>"#,
+                Gen::conn(&refs)
+            )
+            .unwrap();
+            // Coil chains: a later coil may be fed by this one.
+            nodes.push((id, None));
+        }
+        self.y += 100;
+    }
+
+    fn fbd_network(&mut self) {
+        let mut sources: Vec<(u64, Option<&'static str>)> = Vec::new();
+        for _ in 0..2 + self.rng.below(3) {
+            let v = self.operand();
+            let id = self.in_var(&v, true);
+            sources.push((id, None));
+        }
+        // Feedback: an input may be fed by a block drawn later (resolved at the end).
+        let feedback = self.rng.chance(15);
+        let mut later = Vec::new();
+        for _ in 0..1 + self.rng.below(4) {
+            let (id, ty) = self.block(&mut sources, true, false);
+            later.push((id, outputs(ty)[0]));
+        }
+        if self.rng.chance(20) {
+            let name = format!("link{}", self.id);
+            let src = *self.rng.pick(&sources);
+            let (c, k) = (self.nid(), self.nid());
+            let p = self.pos(300);
+            writeln!(
+                self.body,
+                r#"<connector localId="{c}" name="{name}">{p}{}</connector>"#,
+                Gen::conn(&[src])
+            )
+            .unwrap();
+            writeln!(self.body, r#"<continuation localId="{k}" name="{name}">{p}<connectionPointOut/></continuation>"#).unwrap();
+            sources.push((k, None));
+        }
+        if feedback {
+            let (id, out) = *self.rng.pick(&later);
+            let pin = self.rng.pick(&["IN1", "IN2"]).to_string();
+            let and = self.nid();
+            let p = self.pos(250);
+            let src = *self.rng.pick(&sources);
+            writeln!(
+                self.body,
+                r#"<block localId="{and}" typeName="OR">{p}<inputVariables><variable formalParameter="{pin}">{}</variable><variable formalParameter="IN9">{}</variable></inputVariables><inOutVariables/><outputVariables><variable formalParameter="OUT"><connectionPointOut/></variable></outputVariables></block>"#,
+                Gen::conn(&[(id, Some(out))]),
+                Gen::conn(&[src])
+            )
+            .unwrap();
+            sources.push((and, Some("OUT")));
+        }
+        for _ in 0..1 + self.rng.below(3) {
+            let src = *self.rng.pick(&sources);
+            let id = self.nid();
+            let v = *self.rng.pick(self.bits);
+            let (p, o) = (self.pos(500), self.order(true));
+            let tag = if self.rng.chance(15) { "inOutVariable" } else { "outVariable" };
+            let m = if tag == "outVariable" {
+                match self.rng.below(8) {
+                    0 => r#" negated="true""#,
+                    1 => r#" storage="set""#,
+                    2 => r#" storage="reset""#,
+                    _ => "",
+                }
+            } else {
+                ""
+            };
+            let out = if tag == "inOutVariable" { "<connectionPointOut/>" } else { "" };
+            writeln!(
+                self.body,
+                r#"<{tag} localId="{id}"{m}{o}>{p}{}{out}<expression>{v}</expression></{tag}>"#,
+                Gen::conn(&[src])
+            )
+            .unwrap();
+            if tag == "inOutVariable" {
+                sources.push((id, None));
+            }
+        }
+        self.y += 100;
+    }
+}
+
+/// A random body (LD or FBD) over `inputs` and `bits`: the body text, its language and
+/// the declarations of its FB instances.
+fn random_body(
+    rng: Rng,
+    inputs: &'static [&'static str],
+    bits: &'static [&'static str],
+    ghost: &'static str,
+    user_fb: bool,
+) -> (String, &'static str, String, Rng) {
+    let mut g = Gen {
+        rng,
+        id: 0,
+        body: String::new(),
+        instances: Vec::new(),
+        y: 0,
+        inputs,
+        bits,
+        ghost,
+        user_fb,
+        no_layout: false,
+    };
+    g.no_layout = g.rng.chance(15);
+    let fbd = g.rng.chance(45);
+    for _ in 0..1 + g.rng.below(5) {
+        if fbd { g.fbd_network() } else { g.ld_rung() }
+    }
+    let mut decls = String::new();
+    for (inst, ty) in &g.instances {
+        writeln!(
+            decls,
+            r#"<variable name="{inst}"><type><derived name="{ty}"/></type></variable>"#
+        )
+        .unwrap();
+    }
+    (g.body, if fbd { "FBD" } else { "LD" }, decls, g.rng)
+}
+
+fn bools(names: &[&str]) -> String {
+    names
+        .iter()
+        .map(|n| format!(r#"<variable name="{n}"><type><BOOL/></type></variable>"#))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// A random PLCopen program: LD or FBD, with its declarations and a task, and sometimes
+/// a user function block (itself LD or FBD) it instantiates.
+fn random_program(seed: u64) -> String {
+    let mut rng = Rng::new(seed);
+    let user_fb = rng.chance(30);
+    let mut fb_pou = String::new();
+    if user_fb {
+        let (body, lang, decls, r) = random_body(rng, FB_INPUTS, FB_BITS, "G1", false);
+        rng = r;
+        fb_pou = format!(
+            r#"<pou name="{USER_FB}" pouType="functionBlock"><interface><inputVars>{}</inputVars><outputVars>{}</outputVars><localVars>{}
+{decls}</localVars></interface>
+<body><{lang}>
+{body}</{lang}></body></pou>"#,
+            bools(FB_INPUTS),
+            bools(&FB_BITS[..2]),
+            bools(&["L0", "G1"])
+        );
+    }
+    let (body, lang, decls, mut rng) = random_body(rng, INPUTS, BITS, GHOST, user_fb);
+    let mut vars = String::new();
+    let located = rng.chance(50);
+    let mut inputs = String::new();
+    for (k, n) in INPUTS.iter().enumerate() {
+        if located {
+            writeln!(
+                vars,
+                r#"<variable name="{n}" address="%IX0.{k}"><type><BOOL/></type></variable>"#
+            )
+            .unwrap();
+        } else {
+            writeln!(inputs, r#"<variable name="{n}"><type><BOOL/></type></variable>"#).unwrap();
+        }
+    }
+    writeln!(vars, "{}", bools(&[BITS, &[GHOST]].concat())).unwrap();
+    vars.push_str(&decls);
+    let cycle = rng.pick(&["T#10ms", "T#7ms", "T#20ms"]).to_string();
+    let input_list = if inputs.is_empty() {
+        String::new()
+    } else {
+        format!("<inputVars>\n{inputs}</inputVars>")
+    };
+    format!(
+        r#"<?xml version="1.0" encoding="UTF-8"?>
+<project xmlns="http://www.plcopen.org/xml/tc6_0201">
+<fileHeader companyName="test" productName="test" productVersion="1" creationDateTime="2026-01-01T00:00:00"/>
+<contentHeader name="random"><coordinateInfo><fbd><scaling x="1" y="1"/></fbd><ld><scaling x="1" y="1"/></ld><sfc><scaling x="1" y="1"/></sfc></coordinateInfo></contentHeader>
+<types><dataTypes/><pous>
+<pou name="main" pouType="program"><interface>{input_list}<localVars>
+{vars}</localVars></interface>
+<body><{lang}>
+{body}</{lang}></body></pou>
+{fb_pou}
+</pous></types>
+<instances><configurations><configuration name="C"><resource name="R"><task name="t" priority="0" interval="{cycle}"><pouInstance name="i" typeName="main"/></task></resource></configuration></configurations></instances>
+</project>
+"#
+    )
+}
+
+// ---------------------------------------------------------------- the check
+
+#[derive(Default, Debug)]
+struct Figures {
+    programs: u64,
+    refused: u64,
+    scans: u64,
+    checked: u64,
+    skipped: u64,
+    timer_fired: u64,
+    failures: Vec<String>,
+}
+
+/// Loads `xml`, compiles it, runs it on the simulator with random inputs and checks
+/// every hypothesis at every scan. `Err` on a disagreement.
+fn check(xml: &str, seed: u64, fig: &mut Figures, must_load: bool) {
+    let mut sources = Sources::new();
+    let file = sources.add("random.xml", xml);
+    let loaded = read_plcopen(&sources, file)
+        .and_then(|p| select(&p, &Selection::default()))
+        .and_then(|p| lower(&p).map(|l| (p, l)));
+    let (plc, lowered) = match loaded {
+        Ok(x) => x,
+        Err(e) => {
+            fig.refused += 1;
+            if must_load {
+                fig.failures.push(format!("seed {seed}: refused: {e:?}\n{xml}"));
+            }
+            return;
+        }
+    };
+    let compiled = match compile(&lowered.ld) {
+        Ok(c) => c,
+        Err(e) => {
+            fig.failures
+                .push(format!("seed {seed}: the compiler refused the lowering: {e:?}\n{xml}"));
+            return;
+        }
+    };
+    fig.programs += 1;
+    if std::env::var_os("II_PLC_DIFF_SEED").is_some() {
+        eprintln!(
+            "{xml}\n{}",
+            ii_prove::ladder::program_to_ii(&compiled, ii_prove::syntax::Notation::Paper)
+        );
+    }
+    let cycle = plc.cycle_us;
+    let mut known: Vec<Src> = Vec::new();
+    let mut hyps: Vec<Hyp> =
+        compiled.hypotheses.iter().map(|h| Hyp::new(h, &compiled, cycle, &mut known)).collect();
+    let mut sim = PlcSimulator::new(&plc);
+    // Every one-shot of the lowering names an edge detector of the simulator.
+    let one_shots = lowered
+        .ld
+        .elements()
+        .filter(|e| matches!(e.kind, ii_prove::ladder::ElementKind::Edge { .. }))
+        .count();
+    if one_shots != lowered.edges.len()
+        || lowered.edges.iter().any(|(path, k, pin)| sim.edge_memory_of(path, *k, pin).is_none())
+    {
+        fig.failures
+            .push(format!("seed {seed}: the one-shots and their edge detectors differ\n{xml}"));
+        return;
+    }
+    // The compiler's edge memories are the one-shots' hidden bits: element k of the
+    // lowered program (file order) is the j-th one-shot, the j-th edge detector.
+    let edge_of: BTreeMap<usize, usize> = lowered
+        .ld
+        .elements()
+        .enumerate()
+        .filter(|(_, e)| matches!(e.kind, ii_prove::ladder::ElementKind::Edge { .. }))
+        .map(|(k, _)| k)
+        .enumerate()
+        .map(|(j, k)| (k, j))
+        .collect();
+    for src in &known {
+        let missing = match src {
+            Src::Bit(n) => {
+                !sim.bits().contains_key(n)
+                    && !matches!(compiled.signals.get(n), Some(SignalKind::Input))
+            }
+            Src::Edge(k) => !edge_of.contains_key(k),
+        };
+        if missing {
+            fig.failures.push(format!("seed {seed}: {src:?} is not known to the simulator\n{xml}"));
+            return;
+        }
+    }
+    for h in &compiled.hypotheses {
+        for side in [&h.lhs, &h.rhs] {
+            for node in side.as_ref() {
+                if let Term::Name(n) = node
+                    && !compiled.signals.contains_key(n.as_str())
+                {
+                    fig.failures
+                        .push(format!("seed {seed}: {}: {n} is not a signal\n{xml}", h.name));
+                    return;
+                }
+            }
+        }
+    }
+    // Inputs are what the program declares; everything the compiler calls an input must be one.
+    for (n, k) in &compiled.signals {
+        if *k == SignalKind::Input && !plc.is_input(n) {
+            fig.failures
+                .push(format!("seed {seed}: {n} is compiled as an input but is not one\n{xml}"));
+            return;
+        }
+    }
+    let driven: Vec<String> = plc.inputs.iter().cloned().collect();
+    let mut rng = Rng::new(seed ^ 0x51A7);
+    let mut current: BTreeMap<String, bool> = driven.iter().map(|n| (n.clone(), false)).collect();
+    let mut hold: BTreeMap<String, u64> = driven.iter().map(|n| (n.clone(), 0)).collect();
+    let mut prev: BTreeMap<String, bool> = BTreeMap::new();
+    let mut values = vec![false; known.len()];
+    let mut vals = Vec::new();
+    let mut stats = TimerStats::default();
+    for scan in 0..160 {
+        for n in &driven {
+            let h = hold.get_mut(n).expect("driven");
+            if *h == 0 {
+                current.insert(n.clone(), rng.chance(50));
+                let long = if rng.chance(40) { 2 } else { 12 };
+                *h = 1 + rng.below(long);
+            }
+            *h -= 1;
+        }
+        sim.step(&current);
+        for (v, src) in values.iter_mut().zip(&known) {
+            *v = match src {
+                Src::Bit(n) => sim
+                    .bits()
+                    .get(n)
+                    .copied()
+                    .unwrap_or_else(|| current.get(n).copied().unwrap_or(false)),
+                Src::Edge(k) => {
+                    let (path, owner, pin) = &lowered.edges[edge_of[k]];
+                    sim.edge_memory_of(path, *owner, pin).unwrap_or(false)
+                }
+            };
+        }
+        fig.scans += 1;
+        for h in hyps.iter_mut() {
+            if !h.scan(&values, &mut vals, &mut stats) {
+                let bits: Vec<String> =
+                    sim.bits().iter().map(|(n, v)| format!("{n}={}", u8::from(*v))).collect();
+                let pre: Vec<String> =
+                    prev.iter().map(|(n, v)| format!("{n}={}", u8::from(*v))).collect();
+                fig.failures.push(format!(
+                    "seed {seed}: {}: {} fails at scan {scan}; bits: {}; previous: {}\n{}\n{xml}",
+                    h.name,
+                    h.text,
+                    bits.join(" "),
+                    pre.join(" "),
+                    ii_prove::ladder::program_to_ii(&compiled, ii_prove::syntax::Notation::Paper)
+                ));
+                return;
+            }
+        }
+        prev = sim.bits().clone();
+    }
+    for h in &hyps {
+        if h.skip.is_some() {
+            fig.skipped += 1;
+        } else {
+            fig.checked += 1;
+            fig.timer_fired += u64::from(h.has_timer && h.timer_fired);
+        }
+    }
+}
+
+fn programs() -> u64 {
+    std::env::var("II_PLC_DIFF_PROGRAMS").ok().and_then(|v| v.parse().ok()).unwrap_or(2000)
+}
+
+#[test]
+fn random_programs_agree_with_the_simulator() {
+    let mut fig = Figures::default();
+    let seeds: Vec<u64> = match std::env::var("II_PLC_DIFF_SEED").ok().and_then(|v| v.parse().ok())
+    {
+        Some(s) => vec![s],
+        None => (0..programs()).collect(),
+    };
+    for seed in seeds {
+        let xml = random_program(seed);
+        check(&xml, seed, &mut fig, true);
+        if fig.failures.len() >= 3 {
+            break;
+        }
+    }
+    eprintln!(
+        "plcopen differential: {} programs ({} refused), {} scans, {} hypotheses checked ({} skipped), {} timer hypotheses fired",
+        fig.programs, fig.refused, fig.scans, fig.checked, fig.skipped, fig.timer_fired
+    );
+    assert!(fig.failures.is_empty(), "{}", fig.failures.join("\n\n"));
+    assert!(fig.timer_fired > 0 || fig.programs < 50, "no timer ever fired");
+}
+
+#[test]
+fn examples_and_corpus_agree_with_the_simulator() {
+    let mut fig = Figures::default();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = common::files_with(&root.join("examples"), "xml");
+    files.extend(common::files_with(&root.join("tests/data/plcopen/corpus"), "xml"));
+    for (k, f) in files.iter().enumerate() {
+        let Ok(text) = std::fs::read_to_string(f) else { continue };
+        let is_example = f.starts_with(root.join("examples"));
+        check(&text, k as u64, &mut fig, is_example);
+    }
+    eprintln!("plcopen differential on files: {fig:?}");
+    assert!(fig.failures.is_empty(), "{}", fig.failures.join("\n\n"));
+}
