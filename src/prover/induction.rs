@@ -319,22 +319,11 @@ fn certificate(
     uses.extend(
         cone.iter().filter(|h| !mentions_pre(&h.lhs) && !mentions_pre(&h.rhs)).map(constraint),
     );
-    let mut directions = vec![(goal.lhs.clone(), goal.rhs.clone())];
-    if goal.rel == Rel::Eq {
-        directions.push((goal.rhs.clone(), goal.lhs.clone()));
-    }
-    let mut proofs = Vec::new();
-    for (f, g) in &directions {
-        let zero = and_not(f, g);
+    let main = super::both_ways(goal, &mut |zero| {
         let mut atoms = boolean::Atoms::default();
-        let proof = boolean::prove_zero(&zero, &uses, &mut atoms, leaves, deadline).ok()?;
-        proofs.push(Proof::ImpliesByZero(Box::new(proof)));
-    }
-    let main = match (proofs.pop(), proofs.pop()) {
-        (Some(second), Some(first)) => Proof::Antisym(Box::new(first), Box::new(second)),
-        (Some(only), None) => only,
-        _ => return None,
-    };
+        boolean::prove_zero(zero, &uses, &mut atoms, leaves, deadline)
+    })
+    .ok()?;
     let certificate = Certificate { lemmas: vec![(name.into(), lemma)], main: Some(main) };
     let theorem = ctx.kernel.check_goal(&certificate, &goal.lhs, goal.rel, &goal.rhs).ok()?;
     Some(Proved { theorem, certificate, method: Method::Induction, lines: vec![] })

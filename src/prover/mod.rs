@@ -582,6 +582,22 @@ fn constraints_for(
     constraints
 }
 
+/// `f ⇒ g` from a proof of `f·¬g = 0*` by `prove`, and `f = g` from both directions.
+fn both_ways<E>(
+    goal: &Obligation,
+    prove: &mut dyn FnMut(&Expr) -> Result<Proof, E>,
+) -> Result<Proof, E> {
+    let one = |f: &Expr, g: &Expr, prove: &mut dyn FnMut(&Expr) -> Result<Proof, E>| {
+        prove(&and_not(f, g)).map(|p| Proof::ImpliesByZero(Box::new(p)))
+    };
+    let forward = one(&goal.lhs, &goal.rhs, prove)?;
+    if goal.rel == Rel::Implies {
+        return Ok(forward);
+    }
+    let backward = one(&goal.rhs, &goal.lhs, prove)?;
+    Ok(Proof::Antisym(Box::new(forward), Box::new(backward)))
+}
+
 /// The goal as `f·¬g = 0*` (both ways for an equation), proved by cases on the skeleton.
 fn prove_by_cases(
     ctx: &Context,
@@ -591,27 +607,11 @@ fn prove_by_cases(
     budget: Budget,
     depth: usize,
 ) -> Result<Proved, boolean::Failure> {
-    let max_leaves = budget.cases;
-    let mut directions = vec![(goal.lhs.clone(), goal.rhs.clone())];
-    if goal.rel == Rel::Eq {
-        directions.push((goal.rhs.clone(), goal.lhs.clone()));
-    }
-    let mut proofs = Vec::new();
-    for (f, g) in &directions {
-        let zero_goal = and_not(f, g);
+    let main = both_ways(goal, &mut |zero_goal| {
         let mut atoms = boolean::Atoms::default();
-        let constraints = constraints_for(ctx, cone, &[&zero_goal], &mut atoms, budget, depth);
-        let proof =
-            boolean::prove_zero(&zero_goal, &constraints, &mut atoms, max_leaves, deadline)?;
-        proofs.push(Proof::ImpliesByZero(Box::new(proof)));
-    }
-    let main = if proofs.len() == 2 {
-        let second = proofs.pop().expect("two directions");
-        let first = proofs.pop().expect("two directions");
-        Proof::Antisym(Box::new(first), Box::new(second))
-    } else {
-        proofs.pop().expect("one direction")
-    };
+        let constraints = constraints_for(ctx, cone, &[zero_goal], &mut atoms, budget, depth);
+        boolean::prove_zero(zero_goal, &constraints, &mut atoms, budget.cases, deadline)
+    })?;
     let certificate = Certificate { lemmas: vec![], main: Some(main) };
     match ctx.kernel.check_goal(&certificate, &goal.lhs, goal.rel, &goal.rhs) {
         Ok(theorem) => {
