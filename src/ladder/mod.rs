@@ -1,4 +1,4 @@
-//! Ladder front ends over one scan model: LDmicro `.ld` files read into an AST ([`ldmicro`]) and run by a reference scan-cycle simulator ([`simulate`]), PLCopen XML read and lowered into the same rung model ([`plcopen`]); [`compile`] is the one compiler.
+//! Ladder front ends over one scan model: LDmicro `.ld` files read into an AST ([`ldmicro`]) and run by a reference scan-cycle simulator ([`simulate`]), PLCopen XML read and lowered into the same rung model ([`plcopen`]); [`compile()`] is the one compiler.
 //!
 //! The reader never panics; every problem it finds is a [`LadderError`] with a
 //! [`Span`] into the source text, rendered by [`crate::diag::render`].

@@ -1,0 +1,1244 @@
+//! Selection: one POU of a project checked, with its names, wires, inputs, hidden variables and evaluation order resolved into a `PlcProgram`.
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use super::*;
+use crate::diag::{FileId, Span, did_you_mean};
+
+/// The standard blocks the prover interprets (`shared/formats/plcopen-xml.md` §5.4).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Std {
+    /// `AND`, `OR`, `XOR` over `IN1..INn`; `NOT`, `MOVE` of `IN`; `SEL(G, IN0, IN1)`.
+    And,
+    /// Or.
+    Or,
+    /// Xor.
+    Xor,
+    /// Not.
+    Not,
+    /// Move.
+    Move,
+    /// Sel.
+    Sel,
+    /// On-delay timer.
+    Ton,
+    /// Off-delay timer.
+    Tof,
+    /// Pulse timer (its output is unconstrained for the prover).
+    Tp,
+    /// Set-dominant latch.
+    Sr,
+    /// Reset-dominant latch.
+    Rs,
+    /// Rising-edge detector.
+    RTrig,
+    /// Falling-edge detector.
+    FTrig,
+}
+
+impl Std {
+    /// The block type of a `typeName`, if it is one the prover interprets.
+    pub fn of(type_name: &str) -> Option<Std> {
+        Some(match type_name.to_ascii_uppercase().as_str() {
+            "AND" => Std::And,
+            "OR" => Std::Or,
+            "XOR" => Std::Xor,
+            "NOT" => Std::Not,
+            "MOVE" => Std::Move,
+            "SEL" => Std::Sel,
+            "TON" => Std::Ton,
+            "TOF" => Std::Tof,
+            "TP" => Std::Tp,
+            "SR" => Std::Sr,
+            "RS" => Std::Rs,
+            "R_TRIG" => Std::RTrig,
+            "F_TRIG" => Std::FTrig,
+            _ => return None,
+        })
+    }
+    /// Whether it is a function block (has an instance and state).
+    pub fn is_fb(self) -> bool {
+        matches!(self, Std::Ton | Std::Tof | Std::Tp | Std::Sr | Std::Rs | Std::RTrig | Std::FTrig)
+    }
+    /// Its Boolean output pin.
+    pub fn output(self) -> &'static str {
+        match self {
+            Std::And | Std::Or | Std::Xor | Std::Not | Std::Move | Std::Sel => "OUT",
+            Std::Sr | Std::Rs => "Q1",
+            _ => "Q",
+        }
+    }
+}
+
+/// Standard blocks whose outputs the prover does not interpret (counters, comparisons,
+/// arithmetic, conversions…): Boolean outputs are unconstrained, others are ignored.
+pub fn is_known_library_block(type_name: &str) -> bool {
+    const KNOWN: &[&str] = &[
+        "CTU",
+        "CTD",
+        "CTUD",
+        "GT",
+        "GE",
+        "EQ",
+        "NE",
+        "LE",
+        "LT",
+        "ADD",
+        "SUB",
+        "MUL",
+        "DIV",
+        "MOD",
+        "EXPT",
+        "ABS",
+        "SQRT",
+        "MAX",
+        "MIN",
+        "LIMIT",
+        "MUX",
+        "SHL",
+        "SHR",
+        "ROL",
+        "ROR",
+        "RTC",
+        "SEMA",
+        "LN",
+        "LOG",
+        "EXP",
+        "SIN",
+        "COS",
+        "TAN",
+        "ASIN",
+        "ACOS",
+        "ATAN",
+        "TRUNC",
+        "LEN",
+        "LEFT",
+        "RIGHT",
+        "MID",
+        "CONCAT",
+        "INSERT",
+        "DELETE",
+        "REPLACE",
+        "FIND",
+        "CTU_DINT",
+        "CTU_UDINT",
+        "CTU_LINT",
+        "CTU_ULINT",
+        "CTD_DINT",
+        "CTD_UDINT",
+        "CTD_LINT",
+        "CTD_ULINT",
+        "CTUD_DINT",
+        "CTUD_UDINT",
+        "CTUD_LINT",
+        "CTUD_ULINT",
+    ];
+    let upper = type_name.to_ascii_uppercase();
+    KNOWN.contains(&upper.as_str()) || upper.contains("_TO_") || upper.starts_with("TRUNC")
+}
+
+/// What a wire reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Source {
+    /// The left rail: TRUE.
+    Rail,
+    /// Object index `usize` (a contact, coil, in/inOut variable).
+    Object(usize),
+    /// Output pin `pin` (index into the block's outputs) of the block at object index.
+    BlockOut(usize, usize),
+    /// An unconnected block output chosen by the wire: `(block, pin name)` (e.g. `ENO` not drawn).
+    BlockPin(usize, &'static str),
+}
+
+/// A resolved operand of a contact, coil or variable object.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Operand {
+    /// A declared BOOL variable, by its declared name.
+    Bool(String),
+    /// A Boolean output of a modelled FB instance: `(instance, pin)`, read as its hidden variable.
+    Member(String, String),
+    /// The literal TRUE or FALSE.
+    Const(bool),
+    /// A duration literal (µs).
+    Duration(u64),
+    /// A variable or literal that is not Boolean (integers, times, unmodelled members).
+    Other(String),
+}
+
+/// How evaluation order was decided (§8).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OrderRule {
+    /// `executionOrderId` on every statement.
+    ExecutionOrder,
+    /// Beremiz's geometric rule (rows top to bottom, then left to right).
+    Layout,
+    /// Document order (no positions, CODESYS).
+    Document,
+}
+
+/// A checked program POU ready to lower or simulate.
+#[derive(Clone, Debug)]
+pub struct PlcProgram {
+    /// The file.
+    pub file: FileId,
+    /// The POU.
+    pub pou: Pou,
+    /// The scan period in µs.
+    pub cycle_us: u64,
+    /// Declared variables visible in the POU, by upper-case name.
+    pub vars: BTreeMap<String, Var>,
+    /// Object index by `localId`.
+    pub index: BTreeMap<u64, usize>,
+    /// The statements (coils, out/inOut variables, blocks, connectors) in evaluation order.
+    pub order: Vec<usize>,
+    /// The rule that produced `order`.
+    pub rule: OrderRule,
+    /// Hidden variable names: `(object, pin)` → name (pin `""` for a contact's or variable's edge).
+    pub hidden: BTreeMap<(usize, String), String>,
+    /// Resolved operands of contacts, coils and variable objects, by object index.
+    pub operands: BTreeMap<usize, Operand>,
+    /// The names the outside world writes at the start of every scan: declared inputs
+    /// (input, in-out, external and global variables, `%I`/`%M` located variables, BOOLs
+    /// declared TRUE that nothing writes), and for each such variable the program also
+    /// writes, its latch instead (see `latches`).
+    pub inputs: BTreeSet<String>,
+    /// Inputs the program also writes: variable → the hidden name of the value latched
+    /// from outside at the start of the scan (`In0_IN`); reads before the program's
+    /// first write see the latch, not the previous scan.
+    pub latches: BTreeMap<String, String>,
+    /// User function blocks inlined per instance: block index → the instance's body,
+    /// its names prefixed with the instance's (`Pump0_Running`).
+    pub subs: BTreeMap<usize, PlcProgram>,
+    /// Warnings.
+    pub warnings: Vec<PlcError>,
+}
+
+/// What the user asks for: which POU, which cycle.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Selection {
+    /// `--pou NAME`.
+    pub pou: Option<String>,
+    /// `--cycle`, in µs.
+    pub cycle_us: Option<u64>,
+}
+
+/// The cycle used when neither the task nor the command line gives one (Beremiz's default task interval is 20 ms... the OpenPLC runtime's default tick).
+pub const DEFAULT_CYCLE_US: u64 = 20_000;
+
+impl PlcProgram {
+    /// The objects of the body.
+    pub fn objects(&self) -> &[Obj] {
+        self.pou.body.as_ref().map_or(&[], |b| &b.objects)
+    }
+
+    /// The object at index `k`.
+    pub fn obj(&self, k: usize) -> Option<&Obj> {
+        self.objects().get(k)
+    }
+
+    /// The hidden variable of `(object, pin)`.
+    pub fn hidden_name(&self, k: usize, pin: &str) -> Option<&str> {
+        self.hidden.get(&(k, pin.to_string())).map(String::as_str)
+    }
+
+    /// The producer of a wire.
+    pub fn source(&self, c: &Conn) -> Option<Source> {
+        let k = *self.index.get(&c.from)?;
+        let o = self.obj(k)?;
+        match &o.kind {
+            ObjKind::LeftRail => Some(Source::Rail),
+            ObjKind::Block { outputs, .. } => {
+                let pin = match &c.formal {
+                    Some(f) => outputs.iter().position(|p| p.name.eq_ignore_ascii_case(f)),
+                    None => outputs.iter().position(|p| !p.name.eq_ignore_ascii_case("ENO")),
+                };
+                match (pin, &c.formal) {
+                    (Some(p), _) => Some(Source::BlockOut(k, p)),
+                    (None, Some(f)) if f.eq_ignore_ascii_case("ENO") => {
+                        Some(Source::BlockPin(k, "ENO"))
+                    }
+                    (None, None) => {
+                        outputs.iter().position(|_| true).map(|p| Source::BlockOut(k, p))
+                    }
+                    _ => None,
+                }
+            }
+            ObjKind::Continuation { name } => {
+                // The connector of the same name produces it: read through its input.
+                let j = self.objects().iter().position(
+                    |o| matches!(&o.kind, ObjKind::Connector { name: n, .. } if n.eq_ignore_ascii_case(name)),
+                )?;
+                Some(Source::Object(j))
+            }
+            ObjKind::RightRail | ObjKind::Ignored | ObjKind::ControlFlow { .. } => None,
+            _ => Some(Source::Object(k)),
+        }
+    }
+
+    /// The name (upper case) and negation of output pin `pin` of block `k`.
+    pub fn output_pin(&self, k: usize, pin: usize) -> (String, bool) {
+        match self.obj(k).map(|o| &o.kind) {
+            Some(ObjKind::Block { outputs, .. }) => outputs
+                .get(pin)
+                .map_or((String::new(), false), |o| (o.name.to_ascii_uppercase(), o.negated)),
+            _ => (String::new(), false),
+        }
+    }
+
+    /// The wired `EN` pin of a block, if any.
+    pub fn en_pin(&self, k: usize) -> Option<&PinIn> {
+        match &self.obj(k)?.kind {
+            ObjKind::Block { inputs, .. } => inputs.iter().find(|p| {
+                p.name.eq_ignore_ascii_case("EN") && (!p.conns.is_empty() || p.expr.is_some())
+            }),
+            _ => None,
+        }
+    }
+
+    /// The input pin `name` of block `k`.
+    pub fn pin<'a>(&'a self, k: usize, name: &str) -> Option<&'a PinIn> {
+        match &self.obj(k)?.kind {
+            ObjKind::Block { inputs, .. } => {
+                inputs.iter().find(|p| p.name.eq_ignore_ascii_case(name))
+            }
+            _ => None,
+        }
+    }
+
+    /// The Boolean data inputs of an `AND`/`OR`/`XOR` block: `IN1`, `IN2`, … (every non-EN input).
+    pub fn data_inputs(&self, k: usize) -> Vec<&PinIn> {
+        match self.obj(k).map(|o| &o.kind) {
+            Some(ObjKind::Block { inputs, .. }) => {
+                inputs.iter().filter(|p| !p.name.eq_ignore_ascii_case("EN")).collect()
+            }
+            _ => Vec::new(),
+        }
+    }
+
+    /// The interpreted standard block at `k`, if it is one.
+    pub fn std_block(&self, k: usize) -> Option<Std> {
+        match &self.obj(k)?.kind {
+            ObjKind::Block { type_name, .. } => Std::of(type_name),
+            _ => None,
+        }
+    }
+
+    /// Whether a declared name is an input the outside world writes.
+    pub fn is_input(&self, name: &str) -> bool {
+        self.inputs.contains(name)
+    }
+}
+
+/// Picks the program to check: `--pou`, else the POU the configuration's task runs, else the only program.
+fn pick<'p>(
+    project: &'p Project,
+    sel: &Selection,
+) -> Result<(&'p Pou, Option<&'p Task>), Vec<PlcError>> {
+    let programs: Vec<&Pou> = project.pous.iter().filter(|p| p.kind == PouKind::Program).collect();
+    let candidates = |kind: &str, name: &str, pous: &[&Pou]| PlcError::Unknown {
+        span: project.span,
+        kind: kind.into(),
+        name: name.into(),
+        candidates: match did_you_mean(name, pous.iter().map(|p| p.name.as_str())) {
+            Some(near) => vec![near.to_string()],
+            None => pous.iter().map(|p| p.name.clone()).collect(),
+        },
+        ambiguous: false,
+    };
+    let task_of = |pou: &Pou| {
+        project
+            .tasks
+            .iter()
+            .find(|t| t.instances.iter().any(|(_, ty, _)| ty.eq_ignore_ascii_case(&pou.name)))
+    };
+    if let Some(want) = &sel.pou {
+        let found: Vec<&Pou> =
+            project.pous.iter().filter(|p| p.name.eq_ignore_ascii_case(want)).collect();
+        return match found.as_slice() {
+            [p] => Ok((p, task_of(p))),
+            [] => Err(vec![candidates("POU (--pou)", want, &programs)]),
+            many => Err(vec![PlcError::Unknown {
+                span: project.span,
+                kind: "POU (--pou)".into(),
+                name: want.clone(),
+                candidates: many.iter().map(|p| p.name.clone()).collect(),
+                ambiguous: true,
+            }]),
+        };
+    }
+    let run: Vec<&Pou> = programs.iter().copied().filter(|p| task_of(p).is_some()).collect();
+    match (run.as_slice(), programs.as_slice()) {
+        ([p], _) => Ok((p, task_of(p))),
+        ([], [p]) => Ok((p, None)),
+        ([], []) => {
+            let graphical: Vec<&Pou> = project
+                .pous
+                .iter()
+                .filter(|p| p.body.as_ref().is_some_and(|b| matches!(b.lang, Lang::Ld | Lang::Fbd)))
+                .collect();
+            Err(vec![if graphical.is_empty() {
+                PlcError::Unsupported {
+                    span: project.span,
+                    what: "a project without a program POU".into(),
+                    reason: "there is nothing to scan, and no POU has an LD or FBD body".into(),
+                }
+            } else {
+                PlcError::Unsupported {
+                    span: project.span,
+                    what: "a project without a program POU".into(),
+                    reason: format!(
+                        "choose the function block to check with --pou (candidates: {})",
+                        graphical.iter().map(|p| p.name.as_str()).collect::<Vec<_>>().join(", ")
+                    ),
+                }
+            }])
+        }
+        (several, _) if !several.is_empty() => Err(vec![PlcError::Unknown {
+            span: project.span,
+            kind: "program to check: the tasks run several; choose one with --pou, e.g. --pou".into(),
+            name: several[0].name.clone(),
+            candidates: several.iter().map(|p| p.name.clone()).collect(),
+            ambiguous: true,
+        }]),
+        (_, all) => Err(vec![PlcError::Unknown {
+            span: project.span,
+            kind: "program to check: no task runs one and there are several; choose one with --pou, e.g. --pou".into(),
+            name: all[0].name.clone(),
+            candidates: all.iter().map(|p| p.name.clone()).collect(),
+            ambiguous: true,
+        }]),
+    }
+}
+
+/// Checks the chosen POU and resolves it into a [`PlcProgram`].
+pub fn select(project: &Project, sel: &Selection) -> Result<PlcProgram, Vec<PlcError>> {
+    let (pou, task) = pick(project, sel)?;
+    if !pou.errors.is_empty() {
+        return Err(pou.errors.clone());
+    }
+    let mut warnings = Vec::new();
+    let mut errors = Vec::new();
+    if pou.body.is_none() {
+        return Err(vec![PlcError::Unsupported {
+            span: pou.span,
+            what: format!("POU `{}` without a body", pou.name),
+            reason: "there is nothing to scan".into(),
+        }]);
+    }
+    // The cycle: --cycle, else the task interval, else the default.
+    let cycle_us = match (sel.cycle_us, task.and_then(|t| t.interval.as_ref())) {
+        (Some(c), _) => c,
+        // `T#20ms`, 1.0's `00:00:00.020000`, or a bare `20ms`.
+        (None, Some((text, span))) => {
+            match parse_duration(text).or_else(|| parse_duration(&format!("T#{}", text.trim()))) {
+                Some(c) if c > 0 => c,
+                _ => {
+                    errors.push(PlcError::Malformed {
+                        span: *span,
+                        what: format!("task interval `{text}`"),
+                        expected: "a positive duration such as `T#20ms` (or give --cycle)".into(),
+                    });
+                    DEFAULT_CYCLE_US
+                }
+            }
+        }
+        (None, None) => {
+            warnings.push(PlcError::Note {
+                span: pou.span,
+                message: format!(
+                    "no task with an interval runs `{}`: the scan cycle is taken to be {} ms \
+                     (give --cycle to choose it)",
+                    pou.name,
+                    DEFAULT_CYCLE_US / 1000
+                ),
+            });
+            DEFAULT_CYCLE_US
+        }
+    };
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    let mut program = check_pou(project, pou, cycle_us, 0)?;
+    warnings.append(&mut program.warnings);
+    program.warnings = warnings;
+    Ok(program)
+}
+
+/// How deep user function blocks are inlined into each other.
+const MAX_INLINE_DEPTH: usize = 8;
+
+/// Checks one POU's body: names, wires, blocks (inlining user function blocks), order.
+/// `depth` > 0 for the body of an inlined function block, whose interface variables
+/// are then written by the caller, not by the outside world.
+fn check_pou(
+    project: &Project,
+    pou: &Pou,
+    cycle_us: u64,
+    depth: usize,
+) -> Result<PlcProgram, Vec<PlcError>> {
+    let mut warnings = Vec::new();
+    let mut errors = Vec::new();
+    if !pou.errors.is_empty() {
+        return Err(pou.errors.clone());
+    }
+    let Some(body) = &pou.body else {
+        return Err(vec![PlcError::Unsupported {
+            span: pou.span,
+            what: format!("POU `{}` without a body", pou.name),
+            reason: "there is nothing to scan".into(),
+        }]);
+    };
+    if !matches!(body.lang, Lang::Ld | Lang::Fbd) {
+        return Err(vec![PlcError::Unsupported {
+            span: body.span,
+            what: format!("the {} body of `{}`", body.lang.as_str(), pou.name),
+            reason: "only LD and FBD bodies are read".into(),
+        }]);
+    }
+    // Names: POU variables shadow globals; case-insensitive; two spellings of one name are ambiguous.
+    let mut vars: BTreeMap<String, Var> = BTreeMap::new();
+    let mut spellings: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for v in &pou.vars {
+        let key = v.name.to_ascii_uppercase();
+        spellings.entry(key.clone()).or_default().insert(v.name.clone());
+        vars.insert(key, v.clone());
+    }
+    for v in &project.globals {
+        vars.entry(v.name.to_ascii_uppercase()).or_insert_with(|| v.clone());
+    }
+    let mut inputs = BTreeSet::new();
+    for v in vars.values() {
+        let addr = v.address.as_deref().unwrap_or("").to_ascii_uppercase();
+        let interface = matches!(v.class, VarClass::Input | VarClass::InOut) && depth == 0;
+        let external = interface
+            || matches!(v.class, VarClass::External | VarClass::Global | VarClass::Access)
+            || addr.starts_with("%I")
+            || addr.starts_with("%M");
+        if external {
+            inputs.insert(v.name.clone());
+        }
+    }
+    let objects = &body.objects;
+    let mut index = BTreeMap::new();
+    for (k, o) in objects.iter().enumerate() {
+        if matches!(o.kind, ObjKind::Ignored) {
+            continue;
+        }
+        if let Some(first) = index.insert(o.id, k) {
+            errors.push(PlcError::Malformed {
+                span: o.span,
+                what: format!(
+                    "two objects with `localId=\"{}\"` (the first at object {})",
+                    o.id,
+                    first + 1
+                ),
+                expected: "unique ids".into(),
+            });
+        }
+        if let ObjKind::ControlFlow { tag } = &o.kind {
+            errors.push(PlcError::Unsupported {
+                span: o.span,
+                what: format!("`{tag}`"),
+                reason: "control flow inside a body skips statements; ii-prove models a plain scan"
+                    .into(),
+            });
+        }
+    }
+    let user_pous: BTreeSet<String> =
+        project.pous.iter().map(|p| p.name.to_ascii_uppercase()).collect();
+    let mut program = PlcProgram {
+        file: project.file,
+        pou: pou.clone(),
+        cycle_us,
+        vars,
+        index,
+        order: Vec::new(),
+        rule: OrderRule::Document,
+        hidden: BTreeMap::new(),
+        operands: BTreeMap::new(),
+        inputs,
+        latches: BTreeMap::new(),
+        subs: BTreeMap::new(),
+        warnings: Vec::new(),
+    };
+    // Check every wire, block type and operand.
+    let mut taken: BTreeSet<String> = program.vars.keys().cloned().collect();
+    let hide = |taken: &mut BTreeSet<String>, base: String| -> String {
+        let mut name = base.clone();
+        let mut k = 2;
+        while taken.contains(&name.to_ascii_uppercase()) {
+            name = format!("{base}_{k}");
+            k += 1;
+        }
+        taken.insert(name.to_ascii_uppercase());
+        name
+    };
+    // One block per function block instance: a second call of the same instance would
+    // share its state in ways the rung model does not follow.
+    let mut called: BTreeMap<String, Span> = BTreeMap::new();
+    for o in objects {
+        if let ObjKind::Block { instance: Some(inst), .. } = &o.kind
+            && called.insert(inst.to_ascii_uppercase(), o.span).is_some()
+        {
+            errors.push(PlcError::Unsupported {
+                span: o.span,
+                what: format!("a second call of the instance `{inst}`"),
+                reason: "another block already calls it; give each block its own instance".into(),
+            });
+        }
+    }
+    for (k, o) in objects.iter().enumerate() {
+        let mut pins: Vec<&PinIn> = Vec::new();
+        match &o.kind {
+            ObjKind::Contact { var, edge, input, .. } => {
+                pins.push(input);
+                if body.lang == Lang::Fbd {
+                    errors.push(fbd_only(o));
+                }
+                match program.operand(&var.0, var.1, &spellings) {
+                    Ok(op @ (Operand::Bool(_) | Operand::Member(..) | Operand::Const(_))) => {
+                        program.operands.insert(k, op);
+                    }
+                    Ok(Operand::Other(n)) if is_member(&n) => {
+                        program.operands.insert(k, Operand::Other(n));
+                    }
+                    Ok(_) => errors.push(not_bool(var)),
+                    Err(e) => errors.push(e),
+                }
+                if *edge != Edge::None {
+                    let n = hide(&mut taken, format!("_TRIG{}", o.id));
+                    program.hidden.insert((k, String::new()), n);
+                }
+            }
+            ObjKind::Coil { var, negated, storage, edge, input } => {
+                pins.push(input);
+                if body.lang == Lang::Fbd {
+                    errors.push(fbd_only(o));
+                }
+                if *negated && (*storage != Storage::None || *edge != Edge::None) {
+                    errors.push(PlcError::Unsupported {
+                        span: o.span,
+                        what: "a negated coil with a storage or edge modifier".into(),
+                        reason:
+                            "the combination has no agreed meaning (Beremiz lets `negated` win)"
+                                .into(),
+                    });
+                }
+                match program.operand(&var.0, var.1, &spellings) {
+                    Ok(op @ Operand::Bool(_)) => {
+                        program.operands.insert(k, op);
+                    }
+                    Ok(_) => errors.push(PlcError::Unsupported {
+                        span: var.1,
+                        what: format!("a coil on `{}`", var.0),
+                        reason: "a coil must write a declared BOOL variable of the POU".into(),
+                    }),
+                    Err(e) => errors.push(e),
+                }
+            }
+            ObjKind::InVar { expr, edge, .. } => {
+                match program.operand(&expr.0, expr.1, &spellings) {
+                    Ok(op) => {
+                        program.operands.insert(k, op);
+                    }
+                    Err(e) => errors.push(e),
+                }
+                if *edge != Edge::None {
+                    let n = hide(&mut taken, format!("_TRIG{}", o.id));
+                    program.hidden.insert((k, String::new()), n);
+                }
+            }
+            ObjKind::OutVar { expr, input, negated, storage, edge } => {
+                pins.push(input);
+                if *negated && (*storage != Storage::None || *edge != Edge::None) {
+                    errors.push(PlcError::Unsupported {
+                        span: o.span,
+                        what: "a negated output with a storage or edge modifier".into(),
+                        reason: "the combination has no agreed meaning".into(),
+                    });
+                }
+                match program.operand(&expr.0, expr.1, &spellings) {
+                    Ok(Operand::Const(_) | Operand::Duration(_) | Operand::Member(..)) => errors
+                        .push(PlcError::Unsupported {
+                            span: expr.1,
+                            what: format!("an assignment to `{}`", expr.0),
+                            reason: "an output variable must name a declared variable".into(),
+                        }),
+                    Ok(op) => {
+                        program.operands.insert(k, op);
+                    }
+                    Err(e) => errors.push(e),
+                }
+            }
+            ObjKind::InOutVar { expr, input } => {
+                pins.push(input);
+                match program.operand(&expr.0, expr.1, &spellings) {
+                    Ok(op @ (Operand::Bool(_) | Operand::Other(_))) => {
+                        program.operands.insert(k, op);
+                    }
+                    Ok(_) => errors.push(not_bool(expr)),
+                    Err(e) => errors.push(e),
+                }
+            }
+            ObjKind::Connector { input, .. } => pins.push(input),
+            ObjKind::Block { type_name, instance, inputs, outputs } => {
+                pins.extend(inputs);
+                if let Some(p) = outputs.iter().find(|p| p.expr.is_some()) {
+                    errors.push(PlcError::Unsupported {
+                        span: p.span,
+                        what: "an expression on a block's output pin".into(),
+                        reason: "wire the output to an `outVariable` instead".into(),
+                    });
+                }
+                match Std::of(type_name) {
+                    Some(s) if s.is_fb() => {
+                        let Some(inst) = instance else {
+                            errors.push(PlcError::Malformed {
+                                span: o.span,
+                                what: format!("a `{type_name}` block without `instanceName`"),
+                                expected: "the name of its instance variable".into(),
+                            });
+                            continue;
+                        };
+                        let declared = program.vars.get(&inst.to_ascii_uppercase());
+                        let inst_name = declared.map_or(inst.clone(), |v| v.name.clone());
+                        match declared.map(|v| &v.ty) {
+                            Some(Ty::Derived(t)) if t.eq_ignore_ascii_case(type_name) => {}
+                            _ => {
+                                errors.push(PlcError::Unknown {
+                                    span: o.span,
+                                    kind: format!("{type_name} instance"),
+                                    name: inst.clone(),
+                                    candidates: program
+                                        .vars
+                                        .values()
+                                        .filter(|v| matches!(&v.ty, Ty::Derived(t) if t.eq_ignore_ascii_case(type_name)))
+                                        .map(|v| v.name.clone())
+                                        .collect(),
+                                    ambiguous: false,
+                                });
+                                continue;
+                            }
+                        }
+                        let mut pins_of = vec![s.output().to_string()];
+                        if matches!(s, Std::Sr) {
+                            pins_of.extend(["S1".into(), "R".into()]);
+                        }
+                        if matches!(s, Std::Rs) {
+                            pins_of.extend(["S".into(), "R1".into()]);
+                        }
+                        for pin in pins_of {
+                            if program
+                                .hidden
+                                .values()
+                                .any(|h| h.eq_ignore_ascii_case(&format!("{inst_name}_{pin}")))
+                            {
+                                // A second block on the same instance shares its hidden variables.
+                                let existing = program
+                                    .hidden
+                                    .iter()
+                                    .find(|(_, h)| {
+                                        h.eq_ignore_ascii_case(&format!("{inst_name}_{pin}"))
+                                    })
+                                    .map(|(_, h)| h.clone())
+                                    .unwrap_or_default();
+                                program.hidden.insert((k, pin), existing);
+                                continue;
+                            }
+                            let n = hide(&mut taken, format!("{inst_name}_{pin}"));
+                            program.hidden.insert((k, pin), n);
+                        }
+                    }
+                    Some(s) => {
+                        let n = hide(
+                            &mut taken,
+                            format!(
+                                "_TMP_{}{}_{}",
+                                type_name.to_ascii_uppercase(),
+                                o.id,
+                                s.output()
+                            ),
+                        );
+                        program.hidden.insert((k, s.output().to_string()), n);
+                    }
+                    None if is_known_library_block(type_name) => {}
+                    None if let Some(child) = inline(
+                        project,
+                        type_name,
+                        instance.as_deref(),
+                        &program,
+                        cycle_us,
+                        depth,
+                        &mut warnings,
+                        o.span,
+                    )
+                    .transpose()
+                    .unwrap_or_else(|mut e| {
+                        errors.append(&mut e);
+                        None
+                    }) =>
+                    {
+                        for n in child.names() {
+                            if !taken.insert(n.to_ascii_uppercase()) {
+                                errors.push(PlcError::Unsupported {
+                                    span: o.span,
+                                    what: format!(
+                                        "the instance `{}` of `{type_name}`",
+                                        instance.as_deref().unwrap_or("")
+                                    ),
+                                    reason: format!(
+                                        "its variable `{n}` clashes with a name of the program"
+                                    ),
+                                });
+                            }
+                        }
+                        program.inputs.extend(child.inputs.iter().cloned());
+                        program.subs.insert(k, child);
+                    }
+                    None => {
+                        // An opaque block (a user POU, a vendor library block): it can
+                        // change the program's variables only through in-out pins (the
+                        // globals it might write are inputs already).
+                        let user = user_pous.contains(&type_name.to_ascii_uppercase());
+                        let what = if user { "user block" } else { "library block" };
+                        let wired =
+                            |p: &&PinIn| p.in_out && (!p.conns.is_empty() || p.expr.is_some());
+                        match inputs.iter().find(wired) {
+                            Some(p) => errors.push(PlcError::Unsupported {
+                                span: p.span,
+                                what: format!(
+                                    "the in-out pin `{}` of the {what} `{type_name}`",
+                                    p.name
+                                ),
+                                reason: "the block may write what is wired to it, and its body is \
+                                         not modelled"
+                                    .into(),
+                            }),
+                            None => warnings.push(PlcError::Note {
+                                span: o.span,
+                                message: format!(
+                                    "the {what} `{type_name}` is not modelled: its Boolean outputs \
+                                     are unconstrained signals"
+                                ),
+                            }),
+                        }
+                    }
+                }
+                for p in inputs.iter().filter(|p| p.edge != Edge::None) {
+                    let n = hide(&mut taken, format!("_TRIG{}_{}", o.id, p.name));
+                    program.hidden.insert((k, p.name.to_ascii_uppercase()), n);
+                }
+            }
+            _ => {}
+        }
+        for p in pins {
+            if body.lang == Lang::Fbd && p.conns.len() > 1 {
+                errors.push(PlcError::Unsupported {
+                    span: p.span,
+                    what: "several wires into one FBD input".into(),
+                    reason: "a wired OR exists only in LD; use an OR block".into(),
+                });
+            }
+            for c in &p.conns {
+                if program.source(c).is_none() {
+                    let what = match program.index.get(&c.from).and_then(|j| program.obj(*j)) {
+                        Some(o) => format!(
+                            "a wire from `{}` {} (pin `{}`)",
+                            o.tag(),
+                            c.from,
+                            c.formal.as_deref().unwrap_or("")
+                        ),
+                        None => format!("a wire from `refLocalId=\"{}\"`", c.from),
+                    };
+                    errors.push(PlcError::Malformed {
+                        span: c.span,
+                        what,
+                        expected: "the localId of an object with an output (and, for a block, one of its output pins)".into(),
+                    });
+                }
+            }
+            if let Some((text, span)) = &p.expr
+                && let Err(e) = program.operand(text, *span, &spellings)
+            {
+                errors.push(e);
+            }
+        }
+    }
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    let written: BTreeSet<String> = program
+        .operands
+        .iter()
+        .filter(|(k, _)| {
+            matches!(
+                program.obj(**k).map(|o| &o.kind),
+                Some(ObjKind::Coil { .. } | ObjKind::OutVar { .. } | ObjKind::InOutVar { .. })
+            )
+        })
+        .filter_map(|(_, op)| match op {
+            Operand::Bool(n) => Some(n.clone()),
+            _ => None,
+        })
+        .collect();
+    // A BOOL declared TRUE: unwritten, it is a free input (sound); written, its first
+    // scan would read TRUE where the scan model starts every bit at 0.
+    for v in program.vars.values() {
+        if v.ty == Ty::Bool
+            && v.init.as_deref().is_some_and(is_true)
+            && !program.inputs.contains(&v.name)
+        {
+            if written.contains(&v.name) {
+                errors.push(PlcError::Unsupported {
+                    span: v.span,
+                    what: format!("the initial value TRUE of `{}`", v.name),
+                    reason: "the program writes it, and the scan model starts every written bit at FALSE".into(),
+                });
+            } else {
+                program.inputs.insert(v.name.clone());
+            }
+        }
+    }
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    // Inputs the program also writes are latched from outside at the start of every scan.
+    let written: Vec<String> = written.into_iter().filter(|n| program.inputs.contains(n)).collect();
+    for x in written {
+        let latch = hide(&mut taken, format!("{x}_IN"));
+        program.inputs.remove(&x);
+        program.inputs.insert(latch.clone());
+        program.latches.insert(x, latch);
+    }
+    program.order_statements(&mut warnings);
+    program.warnings = warnings;
+    Ok(program)
+}
+
+/// Whether an assignment (coil, output or in-out variable) has nothing wired to it:
+/// Beremiz generates no statement for it, so it writes nothing.
+pub fn unconnected(kind: &ObjKind) -> bool {
+    match kind {
+        ObjKind::Coil { input, .. }
+        | ObjKind::OutVar { input, .. }
+        | ObjKind::InOutVar { input, .. } => input.conns.is_empty() && input.expr.is_none(),
+        _ => false,
+    }
+}
+
+/// Whether an initial value is TRUE.
+pub fn is_true(init: &str) -> bool {
+    matches!(init.trim().to_ascii_uppercase().as_str(), "TRUE" | "1" | "BOOL#TRUE" | "BOOL#1")
+}
+
+/// The body of a user function block instance, checked and with its names prefixed,
+/// when it can be inlined: an LD/FBD function block without in-out variables, whose
+/// body writes no input (a global), instantiated by a declared instance of its type.
+#[allow(clippy::too_many_arguments)]
+fn inline(
+    project: &Project,
+    type_name: &str,
+    instance: Option<&str>,
+    program: &PlcProgram,
+    cycle_us: u64,
+    depth: usize,
+    warnings: &mut Vec<PlcError>,
+    span: Span,
+) -> Option<Result<PlcProgram, Vec<PlcError>>> {
+    let fb = project
+        .pous
+        .iter()
+        .find(|p| p.name.eq_ignore_ascii_case(type_name) && p.kind == PouKind::FunctionBlock)?;
+    let graphical = fb.body.as_ref().is_some_and(|b| matches!(b.lang, Lang::Ld | Lang::Fbd));
+    let inst = program.vars.get(&instance?.to_ascii_uppercase())?;
+    let typed = matches!(&inst.ty, Ty::Derived(t) if t.eq_ignore_ascii_case(type_name));
+    if !graphical || !typed || fb.vars.iter().any(|v| v.class == VarClass::InOut) {
+        return None;
+    }
+    if depth + 1 > MAX_INLINE_DEPTH {
+        return Some(Err(vec![PlcError::Unsupported {
+            span,
+            what: format!("the user block `{type_name}`"),
+            reason: format!(
+                "function blocks nest more than {MAX_INLINE_DEPTH} deep (a recursive type?)"
+            ),
+        }]));
+    }
+    let mut child = match check_pou(project, fb, cycle_us, depth + 1) {
+        Ok(c) => c,
+        Err(e) => return Some(Err(e)),
+    };
+    if !child.latches.is_empty() {
+        return None;
+    }
+    warnings.append(&mut child.warnings);
+    child.prefix_names(&format!("{}_", inst.name));
+    Some(Ok(child))
+}
+
+impl PlcProgram {
+    /// Prefixes every name this body owns (not the globals it refers to), recursively.
+    fn prefix_names(&mut self, prefix: &str) {
+        let mut map: BTreeMap<String, String> = BTreeMap::new();
+        for v in self.vars.values_mut() {
+            if !matches!(v.class, VarClass::External | VarClass::Global | VarClass::Access) {
+                let new = format!("{prefix}{}", v.name);
+                map.insert(v.name.clone(), new.clone());
+                v.name = new;
+            }
+        }
+        let rename = |n: &String| map.get(n).cloned().unwrap_or_else(|| n.clone());
+        for op in self.operands.values_mut() {
+            match op {
+                Operand::Bool(n) => *n = rename(n),
+                Operand::Member(i, _) => *i = rename(i),
+                _ => {}
+            }
+        }
+        for h in self.hidden.values_mut() {
+            *h = format!("{prefix}{h}");
+        }
+        self.inputs = self.inputs.iter().map(rename).collect();
+        for sub in self.subs.values_mut() {
+            sub.prefix_names(prefix);
+        }
+    }
+
+    /// Every name this body owns (its variables and hidden variables, recursively).
+    pub fn names(&self) -> Vec<String> {
+        let mut out: Vec<String> = self
+            .vars
+            .values()
+            .filter(|v| {
+                !matches!(v.class, VarClass::External | VarClass::Global | VarClass::Access)
+            })
+            .map(|v| v.name.clone())
+            .chain(self.hidden.values().cloned())
+            .collect();
+        for sub in self.subs.values() {
+            out.extend(sub.names());
+        }
+        out
+    }
+
+    /// The variable of an inlined block's interface (`IN1` of the instance at `k`), if
+    /// it is a BOOL of that class.
+    pub fn sub_var(&self, k: usize, pin: &str, output: bool) -> Option<&str> {
+        let v = self.subs.get(&k)?.vars.get(&pin.to_ascii_uppercase())?;
+        let class_ok =
+            if output { v.class == VarClass::Output } else { v.class == VarClass::Input };
+        (class_ok && v.ty == Ty::Bool).then_some(v.name.as_str())
+    }
+}
+
+fn is_member(n: &str) -> bool {
+    n.contains('.')
+}
+
+fn fbd_only(o: &Obj) -> PlcError {
+    PlcError::Unsupported {
+        span: o.span,
+        what: format!("a `{}` in an FBD body", o.tag()),
+        reason: "contacts and coils belong to LD bodies".into(),
+    }
+}
+
+fn not_bool(var: &(String, Span)) -> PlcError {
+    PlcError::Unsupported {
+        span: var.1,
+        what: format!("the operand `{}`", var.0),
+        reason: "a contact reads a BOOL variable or a Boolean output of a standard block".into(),
+    }
+}
+
+impl PlcProgram {
+    /// Resolves the text of an operand.
+    fn operand(
+        &self,
+        text: &str,
+        span: Span,
+        spellings: &BTreeMap<String, BTreeSet<String>>,
+    ) -> Result<Operand, PlcError> {
+        let t = text.trim();
+        let upper = t.to_ascii_uppercase();
+        match upper.as_str() {
+            "TRUE" | "BOOL#TRUE" | "BOOL#1" => return Ok(Operand::Const(true)),
+            "FALSE" | "BOOL#FALSE" | "BOOL#0" => return Ok(Operand::Const(false)),
+            _ => {}
+        }
+        if let Some(us) = parse_duration(t) {
+            return Ok(Operand::Duration(us));
+        }
+        if t.starts_with(|c: char| {
+            c.is_ascii_digit() || c == '-' || c == '+' || c == '\'' || c == '"'
+        }) || upper.contains('#')
+        {
+            return Ok(Operand::Other(t.to_string()));
+        }
+        if let Some(addr) = t.strip_prefix('%') {
+            let found = self.vars.values().find(|v| {
+                v.address
+                    .as_deref()
+                    .is_some_and(|a| a.trim_start_matches('%').eq_ignore_ascii_case(addr))
+            });
+            return match found {
+                Some(v) if v.ty == Ty::Bool => Ok(Operand::Bool(v.name.clone())),
+                Some(v) => Ok(Operand::Other(v.name.clone())),
+                None => Err(PlcError::Unsupported {
+                    span,
+                    what: format!("the direct address `{t}`"),
+                    reason: "no declared variable is located there; declare one with this address"
+                        .into(),
+                }),
+            };
+        }
+        let is_ident = |s: &str| {
+            let mut cs = s.chars();
+            cs.next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+                && cs.all(|c| c.is_ascii_alphanumeric() || c == '_')
+        };
+        if let Some((inst, pin)) = t.split_once('.')
+            && is_ident(inst)
+            && is_ident(pin)
+        {
+            let Some(v) = self.vars.get(&inst.to_ascii_uppercase()) else {
+                return Err(self.unknown(span, inst, spellings));
+            };
+            return Ok(match &v.ty {
+                Ty::Derived(ty) => match Std::of(ty) {
+                    Some(s) if s.is_fb() && s.output().eq_ignore_ascii_case(pin) => {
+                        Operand::Member(v.name.clone(), s.output().to_string())
+                    }
+                    _ => Operand::Other(format!("{}.{pin}", v.name)),
+                },
+                _ => Operand::Other(format!("{}.{pin}", v.name)),
+            });
+        }
+        if !is_ident(t) {
+            return Ok(Operand::Other(t.to_string()));
+        }
+        if let Some(s) = spellings.get(&upper).filter(|s| s.len() > 1) {
+            return Err(PlcError::Unknown {
+                span,
+                kind: "variable".into(),
+                name: t.to_string(),
+                candidates: s.iter().cloned().collect(),
+                ambiguous: true,
+            });
+        }
+        match self.vars.get(&upper) {
+            Some(v) if v.ty == Ty::Bool => Ok(Operand::Bool(v.name.clone())),
+            Some(v) => Ok(Operand::Other(v.name.clone())),
+            None => Err(self.unknown(span, t, spellings)),
+        }
+    }
+
+    fn unknown(&self, span: Span, name: &str, _s: &BTreeMap<String, BTreeSet<String>>) -> PlcError {
+        let names: Vec<&str> = self.vars.values().map(|v| v.name.as_str()).collect();
+        PlcError::Unknown {
+            span,
+            kind: "variable".into(),
+            name: name.to_string(),
+            candidates: did_you_mean(name, names).map(str::to_string).into_iter().collect(),
+            ambiguous: false,
+        }
+    }
+
+    /// Orders the statements as Beremiz's `PLCGenerator.ComputeProgram` does (§8).
+    fn order_statements(&mut self, warnings: &mut Vec<PlcError>) {
+        let objects = self.objects();
+        let mut ordered: Vec<(u64, usize)> = Vec::new();
+        let mut outputs: Vec<usize> = Vec::new();
+        let mut blocks: Vec<usize> = Vec::new();
+        let mut connectors: Vec<usize> = Vec::new();
+        for (k, o) in objects.iter().enumerate() {
+            match &o.kind {
+                ObjKind::OutVar { .. } | ObjKind::InOutVar { .. } | ObjKind::Block { .. }
+                    if o.order > 0 =>
+                {
+                    ordered.push((o.order, k))
+                }
+                ObjKind::OutVar { .. } | ObjKind::InOutVar { .. } | ObjKind::Coil { .. } => {
+                    outputs.push(k)
+                }
+                ObjKind::Block { .. } => blocks.push(k),
+                ObjKind::Connector { .. } => connectors.push(k),
+                _ => {}
+            }
+        }
+        ordered.sort();
+        let positioned = outputs.iter().chain(&blocks).all(|k| objects[*k].pos.is_some());
+        let distinct: BTreeSet<(i64, i64)> =
+            outputs.iter().chain(&blocks).filter_map(|k| objects[*k].pos).collect();
+        let layout = positioned && distinct.len() > 1;
+        let rule = if !ordered.is_empty() && outputs.is_empty() && blocks.is_empty() {
+            OrderRule::ExecutionOrder
+        } else if layout {
+            OrderRule::Layout
+        } else {
+            OrderRule::Document
+        };
+        if layout {
+            let mut rows_of = |list: &mut Vec<usize>| {
+                let amb = geometric(list, objects);
+                if let Some((a, b)) = amb {
+                    warnings.push(PlcError::Note {
+                        span: objects[b].span,
+                        message: format!(
+                            "evaluation order: this `{}` and the `{}` at line-of-sight (object {}) lie \
+                             within 10 units of height of each other, so they count as one row and are \
+                             ordered left to right (Beremiz's rule); move one to make the order explicit",
+                            objects[b].tag(),
+                            objects[a].tag(),
+                            objects[a].id
+                        ),
+                    });
+                }
+            };
+            rows_of(&mut outputs);
+            rows_of(&mut blocks);
+        } else if outputs.len() + blocks.len() > 1 {
+            let span = self.pou.body.as_ref().map_or(self.pou.span, |b| b.span);
+            warnings.push(PlcError::Note {
+                span,
+                message: "evaluation order: the objects have no distinct positions, so the \
+                          statements run in document order"
+                    .into(),
+            });
+        }
+        let mut order: Vec<usize> = ordered.into_iter().map(|(_, k)| k).collect();
+        order.extend(outputs);
+        order.extend(blocks);
+        order.extend(connectors);
+        self.order = order;
+        self.rule = rule;
+    }
+}
+
+/// Sorts `list` as Beremiz's `SortInstances` does: rows of objects within 10 units
+/// of height, top to bottom, each left to right. Returns a pair whose order depended
+/// on the 10-unit row rule (different heights, same row), if any.
+fn geometric(list: &mut [usize], objects: &[Obj]) -> Option<(usize, usize)> {
+    let pos = |k: usize| objects[k].pos.unwrap_or((0, 0));
+    list.sort_by_key(|k| (pos(*k).1, pos(*k).0));
+    let mut rows: Vec<Vec<usize>> = Vec::new();
+    for &k in list.iter() {
+        match rows.last_mut() {
+            Some(row) if (pos(k).1 - pos(row[0]).1).abs() < 10 => row.push(k),
+            _ => rows.push(vec![k]),
+        }
+    }
+    let mut ambiguous = None;
+    for row in &mut rows {
+        row.sort_by_key(|k| pos(*k).0);
+        for w in row.windows(2) {
+            if pos(w[0]).1 != pos(w[1]).1 && ambiguous.is_none() {
+                ambiguous = Some((w[0], w[1]));
+            }
+        }
+    }
+    for (slot, k) in list.iter_mut().zip(rows.into_iter().flatten()) {
+        *slot = k;
+    }
+    ambiguous
+}
