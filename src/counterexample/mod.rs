@@ -296,11 +296,7 @@ pub fn refute(program: &Program, goal: &Obligation, limits: Limits) -> Verdict {
                         unconfirmed = Some((c, why));
                     }
                 }
-                Err(e) => {
-                    if std::env::var("II_DEBUG").is_ok() {
-                        eprintln!("grid {grid} k {k}: {e}");
-                    }
-                }
+                Err(_) => {}
             }
         }
     }
@@ -527,13 +523,7 @@ fn hypotheses_hold(program: &Program, env: &Assignment) -> bool {
             return true; // outside the cone
         }
         match (eval(&h.lhs, env), eval(&h.rhs, env)) {
-            (Ok(a), Ok(b)) => {
-                let v = violation(&a, sample_relation(h.rel), &b);
-                if std::env::var("II_DEBUG").is_ok() && v.is_some() {
-                    eprintln!("{} fails at {:?}: {a} vs {b}", h.name, v);
-                }
-                v.is_none()
-            }
+            (Ok(a), Ok(b)) => violation(&a, sample_relation(h.rel), &b).is_none(),
             _ => false,
         }
     })
