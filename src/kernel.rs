@@ -350,16 +350,12 @@ impl Kernel {
             (n.clone(), h)
         });
         let first = Kernel { hyps: first_hyps.collect(), first_scan: true, ..self.clone() };
-        let one = crate::term::constant(true);
+        let (one, inv0) = (crate::term::constant(true), at_first_scan(inv));
         let b = first.replay(base, lemmas)?;
-        if !b.proves(&one, Rel::Implies, &at_first_scan(inv)) {
-            return Err(KernelError::Mismatch(format!(
-                "the base case proves `{} {:?} {}`, not `1* ⇒ {}`",
-                b.lhs,
-                b.rel,
-                b.rhs,
-                at_first_scan(inv)
-            )));
+        if !b.proves(&one, Rel::Implies, &inv0) {
+            let (l, rel, r) = (&b.lhs, b.rel, &b.rhs);
+            let got = format!("`{l} {rel:?} {r}`");
+            return Err(KernelError::Mismatch(format!("the base proves {got}, not `1* ⇒ {inv0}`")));
         }
         let s = self.replay(step, lemmas)?;
         let mut pre_inv = inv.clone();
