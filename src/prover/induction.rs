@@ -64,81 +64,112 @@ pub fn prove_as(
     let cone: Vec<Axiom> = ctx.cone(&[&goal.lhs, &goal.rhs], None).into_iter().cloned().collect();
     let goals = goal_clauses(goal);
     let state = state_bits(&cone, goal);
-    let mut candidates: Vec<Expr> = goals.clone();
-    candidates.extend(clauses(&state));
+    let mut candidates: Vec<Clause> = goals.iter().map(|g| Clause::new(g, true)).collect();
+    candidates.extend(clauses(&state).iter().map(|c| Clause::new(c, false)));
     let first: Vec<Axiom> = cone
         .iter()
         .map(|h| Axiom::ground(h.name.clone(), at_first_scan(&h.lhs), h.rel, at_first_scan(&h.rhs)))
         .collect();
+    let mut rounds = 0;
     // Base: drop what fails at the first scan.
     let mut atoms0 = boolean::Atoms::default();
-    let refs: Vec<&Expr> = candidates.iter().collect();
+    let refs: Vec<&Expr> = candidates.iter().map(|c| &c.first).collect();
     let base_constraints = constraints_for(ctx, &first, &refs, &mut atoms0, budget, 1);
-    let mut rounds = 0;
-    loop {
-        rounds += 1;
-        if rounds > MAX_ROUNDS || Instant::now() > deadline {
-            return None;
-        }
-        let fails = not(&product(&candidates.iter().map(at_first_scan).collect::<Vec<_>>()));
-        let Some(model) = boolean::model_of(&fails, &base_constraints, &mut atoms0) else {
-            break;
-        };
-        candidates.retain(|c| value(&at_first_scan(c), &model) != Some(false));
-        if !goals.iter().all(|g| candidates.iter().any(|c| c == g)) {
-            return None;
-        }
-    }
+    let fails_first = |set: &[Clause], atoms: &mut boolean::Atoms| {
+        let at_first: Vec<Expr> = set.iter().map(|c| c.first.clone()).collect();
+        boolean::model_of(&not(&product(&at_first)), &base_constraints, atoms)
+    };
+    prune(
+        &mut candidates,
+        &mut rounds,
+        deadline,
+        |c| &c.first,
+        |set| fails_first(set, &mut atoms0),
+    )?;
     // Step: drop what is not preserved, until the rest is inductive.
     let mut atoms = boolean::Atoms::default();
-    let pres: Vec<Expr> = candidates.iter().map(|c| push_pre(&pre(c)).0).collect();
-    let refs: Vec<&Expr> = candidates.iter().chain(&pres).collect();
+    let refs: Vec<&Expr> = candidates.iter().flat_map(|c| [&c.now, &c.before]).collect();
     let step_constraints = constraints_for(ctx, &cone, &refs, &mut atoms, budget, 1);
-    let inductive = |set: &[Expr], atoms: &mut boolean::Atoms| -> Option<HashMap<String, bool>> {
-        let before: Vec<Expr> = set.iter().map(|c| push_pre(&pre(c)).0).collect();
-        boolean::model_of(&and_not(&product(&before), &product(set)), &step_constraints, atoms)
+    let inductive = |set: &[Clause], atoms: &mut boolean::Atoms| {
+        let now: Vec<Expr> = set.iter().map(|c| c.now.clone()).collect();
+        let before: Vec<Expr> = set.iter().map(|c| c.before.clone()).collect();
+        boolean::model_of(&and_not(&product(&before), &product(&now)), &step_constraints, atoms)
     };
-    loop {
-        rounds += 1;
-        if rounds > MAX_ROUNDS || Instant::now() > deadline {
-            return None;
-        }
-        let Some(model) = inductive(&candidates, &mut atoms) else { break };
-        let before = candidates.len();
-        candidates.retain(|c| value(c, &model) != Some(false));
-        if candidates.len() == before || !goals.iter().all(|g| candidates.contains(g)) {
-            return None;
-        }
-    }
-    // Minimise: a clause goes when the others are still inductive.
-    let mut k = goals.len();
-    while k < candidates.len() {
-        if Instant::now() > deadline {
-            return None;
-        }
-        let mut fewer = candidates.clone();
-        fewer.remove(k);
-        if inductive(&fewer, &mut atoms).is_none() {
-            candidates = fewer;
-        } else {
-            k += 1;
-        }
-    }
-    // The goal's own clauses go too when the others imply them (a shorter invariant).
-    let mut k = 0;
-    while k < goals.len().min(candidates.len()) && candidates.len() > 1 {
-        let mut fewer = candidates.clone();
-        let clause = fewer.remove(k);
-        let implied =
-            boolean::model_of(&and_not(&product(&fewer), &clause), &step_constraints, &mut atoms)
+    prune(&mut candidates, &mut rounds, deadline, |c| &c.now, |set| inductive(set, &mut atoms))?;
+    // Minimise: a clause goes when the others are still inductive; then one of the
+    // goal's own clauses when the others also imply it (a shorter invariant).
+    for goals_now in [false, true] {
+        let mut k = 0;
+        while k < candidates.len() && candidates.len() > 1 {
+            if Instant::now() > deadline {
+                return None;
+            }
+            if candidates[k].goal != goals_now {
+                k += 1;
+                continue;
+            }
+            let mut fewer = candidates.clone();
+            let dropped = fewer.remove(k);
+            let rest: Vec<Expr> = fewer.iter().map(|c| c.now.clone()).collect();
+            let implied = !dropped.goal
+                || boolean::model_of(
+                    &and_not(&product(&rest), &dropped.now),
+                    &step_constraints,
+                    &mut atoms,
+                )
                 .is_none();
-        if implied && inductive(&fewer, &mut atoms).is_none() {
-            candidates = fewer;
-        } else {
-            k += 1;
+            if implied && inductive(&fewer, &mut atoms).is_none() {
+                candidates = fewer;
+            } else {
+                k += 1;
+            }
         }
     }
+    let candidates: Vec<Expr> = candidates.into_iter().map(|c| c.now).collect();
     certificate(ctx, goal, (&cone, &first), &candidates, (budget, deadline), lemma)
+}
+
+/// A candidate clause: as it reads now, at the first scan, and at the previous scan
+/// (`pre` pushed down to its atoms); `goal` for the goal's own clauses.
+#[derive(Clone)]
+struct Clause {
+    now: Expr,
+    first: Expr,
+    before: Expr,
+    goal: bool,
+}
+
+impl Clause {
+    fn new(c: &Expr, goal: bool) -> Clause {
+        Clause { now: c.clone(), first: at_first_scan(c), before: push_pre(&pre(c)).0, goal }
+    }
+}
+
+/// Removes every candidate that is 0 in a model `model_of` finds, until it finds none;
+/// `None` when a goal clause goes, nothing goes, or the limits are reached.
+fn prune(
+    candidates: &mut Vec<Clause>,
+    rounds: &mut usize,
+    deadline: Instant,
+    reading: fn(&Clause) -> &Expr,
+    mut model_of: impl FnMut(&[Clause]) -> Option<HashMap<String, bool>>,
+) -> Option<()> {
+    loop {
+        *rounds += 1;
+        if *rounds > MAX_ROUNDS || Instant::now() > deadline {
+            return None;
+        }
+        let Some(model) = model_of(candidates) else { return Some(()) };
+        let before = candidates.len();
+        let fails = |c: &Clause| value(reading(c), &model) == Some(false);
+        if candidates.iter().any(|c| c.goal && fails(c)) {
+            return None;
+        }
+        candidates.retain(|c| !fails(c));
+        if candidates.len() == before {
+            return None;
+        }
+    }
 }
 
 /// The goal's clauses: `¬f + g` (and `¬g + f` for an equation).
