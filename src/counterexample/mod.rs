@@ -177,23 +177,27 @@ fn names_of(e: &Expr, into: &mut BTreeSet<String>) {
     }
 }
 
+/// The program's equations `X = term` in scan order (what a scan computes).
+pub fn equations(compiled: &CompiledProgram) -> Vec<(String, &Expr)> {
+    compiled
+        .hypotheses
+        .iter()
+        .filter(|h| h.kind == HypothesisKind::Equation && h.rel == Rel::Eq)
+        .filter_map(|h| match &h.lhs[root(&h.lhs)] {
+            Term::Name(n) => Some((n.as_str().to_string(), &h.rhs)),
+            _ => None,
+        })
+        .collect()
+}
+
 impl Program<'_> {
-    /// The cone of `terms`: equations in scan order, `pre_` names, assumptions touching it.
+    /// The cone of `terms`: equations in scan order and the assumptions touching it.
     pub fn model(&self, terms: &[&Expr]) -> Model {
         let mut reached = BTreeSet::new();
         for t in terms {
             names_of(t, &mut reached);
         }
-        let defs_all: Vec<(String, &Expr)> = self
-            .compiled
-            .hypotheses
-            .iter()
-            .filter(|h| h.kind == HypothesisKind::Equation && h.rel == Rel::Eq)
-            .filter_map(|h| match &h.lhs[root(&h.lhs)] {
-                Term::Name(n) => Some((n.as_str().to_string(), &h.rhs)),
-                _ => None,
-            })
-            .collect();
+        let defs_all = equations(self.compiled);
         let mut taken_a = vec![false; self.assumptions.len()];
         loop {
             let before = reached.len();
@@ -245,7 +249,7 @@ fn whole(d: &Delay, unit: &Time) -> Option<usize> {
 /// A timer's delay in scans: `d / c` rounded up. Each scan is read at its start, so
 /// `d/f` is on from the (⌈d/c⌉+1)-th consecutive scan of `f` and `f/d` stays on ⌈d/c⌉
 /// scans after `f` falls (the same count for delays that are whole scans).
-fn scans_of(d: &Delay, cycle: &Time) -> Option<usize> {
+pub fn scans_of(d: &Delay, cycle: &Time) -> Option<usize> {
     (d.seconds() / cycle).ceil().to_integer().to_usize()
 }
 

@@ -1248,7 +1248,7 @@ impl Session {
         given: &[GivenSignal],
         env: &Assignment,
     ) -> Result<String, String> {
-        use crate::counterexample::{ScanTrace, unroll};
+        use crate::counterexample::{ScanTrace, equations, scans_of, unroll};
         let cycle = Time::new(compiled.cycle_us.into(), 1_000_000u64.into());
         if compiled.cycle_us == 0 {
             return Err("the program has a zero cycle time: it has no scans to simulate".into());
@@ -1267,18 +1267,8 @@ impl Session {
                 .map_err(|errors| self.syntax_errors(errors))?;
             terms.push(term);
         }
-        let model = unroll::Model {
-            defs: compiled
-                .hypotheses
-                .iter()
-                .filter(|h| h.kind == crate::ladder::HypothesisKind::Equation)
-                .filter_map(|h| match &h.lhs[root(&h.lhs)] {
-                    Term::Name(n) => Some((n.as_str().to_string(), h.rhs.clone())),
-                    _ => None,
-                })
-                .collect(),
-            constraints: Vec::new(),
-        };
+        let defs = equations(compiled).into_iter().map(|(n, e)| (n, e.clone())).collect();
+        let model = unroll::Model { defs, constraints: Vec::new() };
         let trace = ScanTrace { cycle: cycle.clone(), scans, values: Default::default() };
         let mut zeros: BTreeSet<String> = BTreeSet::new();
         let mut free = |_: &mut unroll::Concrete, name: &str, k: usize| match env
@@ -1291,7 +1281,7 @@ impl Session {
                 false
             }
         };
-        let steps_of = |d: &Delay| (d.seconds() / &cycle).ceil().to_integer().try_into().ok();
+        let steps_of = |d: &Delay| scans_of(d, &cycle);
         let extra: Vec<&Expr> = terms.iter().collect();
         let run =
             unroll::unroll(&mut unroll::Concrete, &model, &extra, scans, &steps_of, &mut free)?;
