@@ -153,8 +153,14 @@ pub enum Verdict {
         /// Which rung's abstraction is responsible, and how.
         why: String,
     },
-    /// Nothing found within the limits.
-    NotFound(String),
+    /// Nothing found: why, and whether every run the search meant to try was tried
+    /// (`false` when the deadline cut it short).
+    NotFound {
+        /// What was searched.
+        why: String,
+        /// Every planned run was checked.
+        complete: bool,
+    },
 }
 
 /// The program a property is about.
@@ -256,7 +262,10 @@ pub fn scans_of(d: &Delay, cycle: &Time) -> Option<usize> {
 /// Looks for a counterexample of `goal` on `program`, confirmed twice.
 pub fn refute(program: &Program, goal: &Obligation, limits: Limits) -> Verdict {
     let Some(cycle) = program.cycle() else {
-        return Verdict::NotFound("the program has a zero cycle time".into());
+        return Verdict::NotFound {
+            why: "the program has a zero cycle time".into(),
+            complete: true,
+        };
     };
     let model = program.model(&[&goal.lhs, &goal.rhs]);
     let delays = model.delays([&goal.lhs, &goal.rhs].into_iter());
@@ -273,17 +282,19 @@ pub fn refute(program: &Program, goal: &Obligation, limits: Limits) -> Verdict {
     let mut unconfirmed: Option<(Box<Counterexample>, String)> = None;
     let mut tried = 0usize;
     let mut checked = 0usize;
+    let mut complete = true;
     for grid in grids {
         let k_max = (3 * longest / grid + 4).min(limits.max_steps);
         if k_max * grid > limits.max_scans {
             continue;
         }
-        checked = checked.max(k_max * grid);
         let steps_of = |d: &Delay| scans_of(d, &cycle).map(|n| n / grid);
         for k in 1..=k_max {
             if Instant::now() > limits.deadline {
+                complete = false;
                 break;
             }
+            checked = checked.max(k * grid);
             let Some(step_trace) = bmc(&model, goal, k, &steps_of) else { continue };
             tried += 1;
             let mut trace =
@@ -306,10 +317,14 @@ pub fn refute(program: &Program, goal: &Obligation, limits: Limits) -> Verdict {
     }
     match unconfirmed {
         Some((candidate, why)) => Verdict::Unconfirmed { candidate, why },
-        None => Verdict::NotFound(format!(
-            "bounded model checking found no counterexample in runs of up to {checked} scans ({} s; {tried} candidates rejected)",
-            format_time(&(&cycle * Time::from_integer(checked.into())))
-        )),
+        None => Verdict::NotFound {
+            why: format!(
+                "bounded model checking found no counterexample in runs of up to {checked} scans ({} s; {tried} candidates rejected{})",
+                format_time(&(&cycle * Time::from_integer(checked.into()))),
+                if complete { "" } else { "; stopped at the time limit" }
+            ),
+            complete,
+        },
     }
 }
 

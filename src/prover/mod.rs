@@ -18,7 +18,7 @@ use std::collections::BTreeSet;
 use std::time::{Duration, Instant};
 
 use crate::kernel::{self, Axiom, Certificate, Kernel, KernelError, Proof, Rel, Source, Theorem};
-use crate::term::{Expr, Symbol, Term, and_not, mentions_pre, root};
+use crate::term::{Delay, Expr, Symbol, Term, and_not, mentions_pre, root};
 
 use saturate::{Closed, Limits};
 
@@ -104,6 +104,8 @@ pub struct Context {
     index: ConeIndex,
     /// A program's context: signals are scan runs (induction over scans is available).
     pub scans: bool,
+    /// A program's scan cycle, for the laws that need it (see [`kernel::CYCLE`]).
+    pub cycle: Option<Delay>,
 }
 
 impl Context {
@@ -134,7 +136,13 @@ impl Context {
         };
         let index = ConeIndex::new(&hypotheses);
         let premises = Default::default();
-        Ok(Context { kernel, laws, hypotheses, rules, premises, index, scans })
+        Ok(Context { kernel, laws, hypotheses, rules, premises, index, scans, cycle: None })
+    }
+
+    /// The same context with the program's scan cycle.
+    pub fn with_cycle(self, cycle: Delay) -> Context {
+        let kernel = self.kernel.with_cycle(cycle.clone());
+        Context { kernel, cycle: Some(cycle), ..self }
     }
 
     /// The hypotheses in the cone of influence of `terms` (see [`cone_of_influence`]),
@@ -317,17 +325,21 @@ fn prove_at(
     let tier_limits = |tier: usize| match tier {
         0 => Limits { time: budget.time / 20, nodes: budget.nodes / 6, ..limits },
         1 => Limits { time: budget.time / 10, nodes: budget.nodes / 3, ..limits },
-        _ => Limits { time: budget.time / 4, ..limits },
+        _ => limits,
     };
-    let attempt = |tier: usize, rules: &[saturate::Rule], saturation: &mut String| {
-        let limits = tier_limits(tier);
+    // Whether a run stopped on its time or node limit rather than closing, saturating
+    // or running out of iterations.
+    let exhausted = std::cell::Cell::new(false);
+    let attempt = |tier: usize, rules: &[saturate::Rule], saturation: &mut String, time| {
+        let limits = Limits { time, ..tier_limits(tier) };
         let mut run = saturate::saturate(&goal.lhs, goal.rel, &goal.rhs, &cone, rules, limits);
         *saturation = format!("saturation stopped ({}, {} e-nodes)", run.stop, run.nodes);
+        exhausted.set(run.hit_limit);
         let closed = run.closed?;
         certify_saturation(ctx, goal, &cone, &mut run.egraph, closed, limits)
     };
     // Cheap rule sets first: they give the shortest proofs when they close.
-    if let Some(proved) = attempt(0, &tiers[0], &mut saturation) {
+    if let Some(proved) = attempt(0, &tiers[0], &mut saturation, tier_limits(0).time) {
         return Outcome::Proved(Box::new(proved));
     }
     // The Boolean skeleton decides; a short case proof is accepted at once.
@@ -374,11 +386,24 @@ fn prove_at(
             candidate: Some(candidate.clone()),
         };
     }
+    // For a program, the larger rule sets share one slice of the budget, and a run
+    // that stops on its time or node limit ends the escalation: the case split, the
+    // invariant search and bounded model checking have had their turn, and a larger
+    // set on the same hypotheses only grows the e-graph faster. A free-signal goal,
+    // whose proofs are algebra, gives each larger set its own share.
+    let larger_until = Instant::now() + budget.time / LARGER_TIERS_SHARE;
     for (tier, rules) in tiers.iter().enumerate().skip(1) {
-        if Instant::now() > deadline || depth > 0 {
+        let now = Instant::now();
+        let spent = ctx.scans && (exhausted.get() || now >= larger_until);
+        if now > deadline || depth > 0 || (tier > 1 && spent) {
             break;
         }
-        if let Some(proved) = attempt(tier, rules, &mut saturation) {
+        let time = match tier {
+            1 => tier_limits(1).time,
+            _ if ctx.scans => larger_until - now,
+            _ => budget.time / 4,
+        };
+        if let Some(proved) = attempt(tier, rules, &mut saturation, time) {
             let better = match &cases {
                 Ok(c) => case_leaves(c) > proved.lines.len(),
                 Err(_) => true,
@@ -431,6 +456,10 @@ fn quick_proof(
     let deadline = deadline.min(Instant::now() + budget.time / 10);
     prove_by_cases(ctx, goal, cone, deadline, budget, depth).ok()
 }
+
+/// For a program, the larger rule sets together may use `1 / LARGER_TIERS_SHARE` of
+/// the budget.
+const LARGER_TIERS_SHARE: u32 = 10;
 
 /// E-nodes of a goal-directed saturation attempt: when a small cone closes the goal,
 /// it does so in a small e-graph.
@@ -529,6 +558,7 @@ fn constraint(h: &Axiom) -> boolean::Constraint {
         rhs: h.rhs.clone(),
         conditions: Vec::new(),
         premises: Vec::new(),
+        shifted: false,
     }
 }
 
@@ -550,7 +580,7 @@ fn constraints_for(
         terms.iter().map(|t| constraint(&Axiom::ground("", (*t).clone(), Rel::Eq, (*t).clone()))),
     );
     boolean::register(atoms, &probe);
-    for mut c in boolean::law_instances(&ctx.laws, atoms, 2_000) {
+    for mut c in boolean::law_instances(&ctx.laws, ctx.cycle.as_ref(), atoms, 2_000) {
         // A law with side conditions on signals is used only where they are proved.
         if !c.conditions.is_empty() {
             if depth > 0 {
@@ -579,8 +609,15 @@ fn constraints_for(
         }
         constraints.push(c);
     }
+    // What the hypotheses said at the previous scan, for the signals read through `pre`.
+    if ctx.scans {
+        constraints.extend(boolean::shifted(cone, atoms, SHIFT_ROUNDS));
+    }
     constraints
 }
+
+/// How many steps of definitions [`boolean::shifted`] follows back from a `pre`.
+const SHIFT_ROUNDS: usize = 3;
 
 /// `f ⇒ g` from a proof of `f·¬g = 0*` by `prove`, and `f = g` from both directions.
 fn both_ways<E>(
@@ -608,9 +645,18 @@ fn prove_by_cases(
     depth: usize,
 ) -> Result<Proved, boolean::Failure> {
     let main = both_ways(goal, &mut |zero_goal| {
+        // `pre` pushed down to the atoms first, as in the hypotheses one scan earlier.
+        let (pushed, push) = induction::push_pre(zero_goal);
         let mut atoms = boolean::Atoms::default();
-        let constraints = constraints_for(ctx, cone, &[zero_goal], &mut atoms, budget, depth);
-        boolean::prove_zero(zero_goal, &constraints, &mut atoms, budget.cases, deadline)
+        let constraints = constraints_for(ctx, cone, &[&pushed], &mut atoms, budget, depth);
+        let proof = boolean::prove_zero(&pushed, &constraints, &mut atoms, budget.cases, deadline)?;
+        Ok(match push.is_empty() {
+            true => proof,
+            false => {
+                let push = Proof::Chain { start: zero_goal.clone(), steps: push };
+                Proof::Trans(Box::new(push), Box::new(proof))
+            }
+        })
     })?;
     let certificate = Certificate { lemmas: vec![], main: Some(main) };
     match ctx.kernel.check_goal(&certificate, &goal.lhs, goal.rel, &goal.rhs) {

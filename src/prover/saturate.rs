@@ -285,6 +285,8 @@ pub struct Saturation {
     pub nodes: usize,
     /// Time spent.
     pub elapsed: Duration,
+    /// Whether the run stopped on its time or node limit.
+    pub hit_limit: bool,
 }
 
 /// The pairs of terms whose merging proves `lhs rel rhs`.
@@ -323,6 +325,7 @@ pub fn saturate(
             stop: "closed".into(),
             nodes,
             elapsed: started.elapsed(),
+            hit_limit: false,
         };
     }
     let watch = ids.clone();
@@ -348,10 +351,12 @@ pub fn saturate(
         Some(StopReason::Other(s)) => s.clone(),
         None => "stopped".to_string(),
     };
+    let hit_limit =
+        matches!(runner.stop_reason, Some(StopReason::NodeLimit(_) | StopReason::TimeLimit(_)));
     let egraph = runner.egraph;
     let closed = closed_in(&egraph);
     let nodes = egraph.total_number_of_nodes();
-    Saturation { egraph, closed, stop, nodes, elapsed: started.elapsed() }
+    Saturation { egraph, closed, stop, nodes, elapsed: started.elapsed(), hit_limit }
 }
 
 /// A pattern's size, each delay-arithmetic subterm counted as one node: it folds to

@@ -56,10 +56,13 @@ pub fn attempt(
     // When the Boolean skeleton has a model the property is likely false, and the
     // larger rule sets are slow to give up: look for a counterexample before them.
     let mut refuted = None;
+    // A first look that tried every run it planned need not be repeated.
+    let mut first_look = None;
     let outcome = prover::prove_with(ctx, goal, budget, &mut |_| {
         match search((Instant::now() + FIRST_LOOK).min(end)) {
             Search::Refuted(c) => refuted = Some(c),
-            Search::Unconfirmed { .. } | Search::NotFound(_) => {}
+            found @ Search::NotFound { complete: true, .. } => first_look = Some(found),
+            Search::Unconfirmed { .. } | Search::NotFound { .. } => {}
         }
         refuted.is_some()
     });
@@ -73,13 +76,15 @@ pub fn attempt(
             // At least a small share of the limit even when the proof search used
             // all of its own.
             let floor = Instant::now() + opts.timeout.mul_f64(1.0 - PROOF_SHARE);
-            match search((Instant::now() + limit).min(end.max(floor))) {
+            let found =
+                first_look.unwrap_or_else(|| search((Instant::now() + limit).min(end.max(floor))));
+            match found {
                 Search::Refuted(c) => Attempt::Refuted(c),
                 Search::Unconfirmed { candidate, why } => Attempt::Unknown {
                     reason: format!("{reason}; {why}"),
                     candidate: Some(candidate),
                 },
-                Search::NotFound(why) => {
+                Search::NotFound { why, .. } => {
                     let hint = candidate_hint(&style, candidate.as_deref());
                     Attempt::Unknown { reason: format!("{reason}; {why}{hint}"), candidate: None }
                 }
@@ -101,7 +106,7 @@ pub fn refute(
     let deadline = Instant::now() + limit.min(opts.timeout);
     match search_counterexample(goal, hypotheses, opts, rename, program, deadline) {
         Search::Refuted(c) => Some(c),
-        Search::Unconfirmed { .. } | Search::NotFound(_) => None,
+        Search::Unconfirmed { .. } | Search::NotFound { .. } => None,
     }
 }
 
@@ -187,8 +192,9 @@ enum Search {
     Refuted(CounterexampleReport),
     /// Violates the compiled terms, but the scan simulator does not reproduce it.
     Unconfirmed { candidate: CounterexampleReport, why: String },
-    /// Nothing found within the limits, and why.
-    NotFound(String),
+    /// Nothing found within the limits, and why; `complete` when the deadline did not
+    /// cut the search short.
+    NotFound { why: String, complete: bool },
 }
 
 /// Looks for a counterexample until `deadline`: bounded model checking over scans
@@ -211,7 +217,7 @@ fn search_counterexample(
                 candidate: program_counterexample(session, goal, &candidate, opts, rename),
                 why,
             },
-            Verdict::NotFound(why) => Search::NotFound(why),
+            Verdict::NotFound { why, complete } => Search::NotFound { why, complete },
         };
     }
     let conditions: Vec<Condition> = hypotheses
@@ -229,13 +235,19 @@ fn search_counterexample(
             let witness = simplified(goal, *witness, hypotheses);
             Search::Refuted(counterexample(goal, &witness, opts, rename))
         }
-        Ok(Err(_)) => Search::NotFound("a sampled witness was not confirmed exactly".into()),
-        Ok(Ok(n)) => Search::NotFound(format!("no counterexample among {n} random exact signals")),
-        Err(falsify::SampleError::TooFewSamples { valid, .. }) => Search::NotFound(format!(
+        Ok(Err(_)) => not_found("a sampled witness was not confirmed exactly".into()),
+        Ok(Ok(n)) => not_found(format!("no counterexample among {n} random exact signals")),
+        Err(falsify::SampleError::TooFewSamples { valid, .. }) => not_found(format!(
             "no counterexample among {valid} random exact signals that satisfy the assumptions"
         )),
-        Err(falsify::SampleError::Eval(why)) => Search::NotFound(why),
+        Err(falsify::SampleError::Eval(why)) => not_found(why),
     }
+}
+
+/// A free-signal search's result without a counterexample. Sampling with a deadline
+/// is never repeated, so it counts as incomplete.
+fn not_found(why: String) -> Search {
+    Search::NotFound { why, complete: false }
 }
 
 /// The prover's Boolean model, as a hint.
