@@ -5,9 +5,10 @@
 //! [`Proof`], [`Step`]), and the reasons it gives for a rejection ([`KernelError`]).
 //! Keeping the format apart keeps `kernel.rs` to its logic.
 
+use std::collections::BTreeMap;
 use std::fmt;
 
-use crate::term::{Expr, Symbol};
+use crate::term::{Delay, Expr, Symbol, Term};
 
 /// The relation a theorem, law or hypothesis states between two signals.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -63,7 +64,24 @@ impl Axiom {
         let (delay_conditions, signal_conditions) = (Vec::new(), Vec::new());
         Axiom { name, lhs, rel, rhs, signal_vars, delay_vars, delay_conditions, signal_conditions }
     }
+
+    /// Binds [`CYCLE`] to a program's scan cycle in an instance's substitution when the
+    /// law names it and matching left it unbound (it is in no side of the law).
+    pub fn bind_cycle(&self, cycle: Option<&Delay>, sigma: &mut BTreeMap<Symbol, Expr>) {
+        let var = Symbol::from(CYCLE);
+        if let Some(c) = cycle
+            && self.delay_vars.contains(&var)
+            && !sigma.contains_key(&var)
+        {
+            sigma.insert(var, Expr::from(vec![Term::Delay(c.clone())]));
+        }
+    }
 }
+
+/// The delay variable that, when a law names it in its side conditions only, stands
+/// for the program's scan cycle (`d/f ⇒ pre f if d >= cycle`). Without a cycle such a
+/// law is never used.
+pub const CYCLE: &str = "cycle";
 
 /// How a cited statement `l R r` is used in one rewrite step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -36,11 +36,11 @@
 use std::collections::{BTreeMap, BTreeSet};
 
 pub use crate::certificate::{
-    Axiom, Certificate, Cmp, KernelError, Proof, Rel, Rule, Source, Step, Use,
+    Axiom, CYCLE, Certificate, Cmp, KernelError, Proof, Rel, Rule, Source, Step, Use,
 };
 use crate::term::{
-    Delay, Expr, Id, Language, Symbol, Term, and, at_first_scan, fold_delay, instantiate,
-    is_delay_node, matches, mentions_pre, not, or, root, same, same_tree, subterm,
+    Delay, Expr, Id, Language, Symbol, Term, and, at_first_scan, fold_delay, initially,
+    instantiate, is_delay_node, matches, mentions_pre, not, or, root, same, same_tree, subterm,
 };
 
 /// A checked statement. Only this module can create one.
@@ -100,6 +100,8 @@ pub struct Kernel {
     scans: bool,
     /// Checking the base of an induction: the hypotheses hold at the first scan only.
     first_scan: bool,
+    /// A program's scan cycle: the value of `cycle` in laws' side conditions.
+    cycle: Option<Delay>,
 }
 
 /// A law that holds before the first scan too (only `·`, `+`, `¬`, `pre` and constants,
@@ -114,6 +116,13 @@ fn pointwise_law(law: &Axiom) -> bool {
         })
     };
     law.signal_conditions.is_empty() && plain(&law.lhs) && plain(&law.rhs)
+}
+
+/// Does a ground fact hold before the first scan (every variable, timer and memory 0)?
+fn holds_initially(fact: &Axiom) -> bool {
+    let (l, r) = (initially(&fact.lhs), initially(&fact.rhs));
+    let ground = fact.signal_vars.is_empty() && fact.delay_vars.is_empty();
+    ground && if fact.rel == Rel::Eq { l == r } else { !l || r }
 }
 
 /// A rewrite rule `from → to` after choosing how a law is used.
@@ -168,28 +177,27 @@ impl Kernel {
         Kernel::build(laws, hypotheses, true)
     }
 
+    /// The same kernel with the program's scan cycle, for the laws that need it.
+    pub fn with_cycle(self, cycle: Delay) -> Kernel {
+        Kernel { cycle: Some(cycle), ..self }
+    }
+
     fn build(laws: Vec<Axiom>, hypotheses: Vec<Axiom>, scans: bool) -> Result<Kernel> {
         let mut kernel = Kernel { scans, ..Kernel::default() };
         for (axiom, is_law) in
             laws.into_iter().map(|a| (a, true)).chain(hypotheses.into_iter().map(|a| (a, false)))
         {
-            check_signal_term(&axiom.name, &axiom.lhs, &axiom.delay_vars)?;
-            check_signal_term(&axiom.name, &axiom.rhs, &axiom.delay_vars)?;
+            let name = axiom.name.clone();
+            check_signal_term(&name, &axiom.lhs, &axiom.delay_vars)?;
+            check_signal_term(&name, &axiom.rhs, &axiom.delay_vars)?;
             let ground = axiom.signal_vars.is_empty() && axiom.delay_vars.is_empty();
             let ground_hypothesis = ground && axiom.signal_conditions.is_empty();
             if !is_law && !ground_hypothesis {
-                return Err(KernelError::BadAxiom(format!(
-                    "hypothesis `{}` is not ground",
-                    axiom.name
-                )));
+                return Err(KernelError::BadAxiom(format!("hypothesis `{name}` is not ground")));
             }
             if !is_law && !scans && (mentions_pre(&axiom.lhs) || mentions_pre(&axiom.rhs)) {
-                return Err(KernelError::BadAxiom(format!(
-                    "`pre` in hypothesis `{}` about free signals (they have no scans)",
-                    axiom.name
-                )));
+                return Err(KernelError::BadAxiom(format!("`pre` in `{name}` about free signals")));
             }
-            let name = axiom.name.clone();
             let fresh = !kernel.laws.contains_key(&name) && !kernel.hyps.contains_key(&name);
             let table = if is_law { &mut kernel.laws } else { &mut kernel.hyps };
             if !fresh || table.insert(name.clone(), axiom).is_some() {
@@ -204,9 +212,7 @@ impl Kernel {
     fn admit(&self, what: &str, e: &Expr) -> Result<()> {
         check_signal_term(what, e, &[])?;
         if !self.scans && mentions_pre(e) {
-            return Err(KernelError::BadPosition(format!(
-                "{what} uses `pre`, which free signals do not have"
-            )));
+            return Err(KernelError::BadPosition(format!("{what} uses `pre`: free signals")));
         }
         Ok(())
     }
@@ -283,9 +289,7 @@ impl Kernel {
                 let a = self.replay(p, lemmas)?;
                 let b = self.replay(q, lemmas)?;
                 if !same(&a.rhs, &b.lhs) {
-                    return Err(KernelError::Mismatch(
-                        "transitivity through different terms".into(),
-                    ));
+                    return Err(KernelError::Mismatch("transitivity through other terms".into()));
                 }
                 let rel = if a.rel == Rel::Eq && b.rel == Rel::Eq { Rel::Eq } else { Rel::Implies };
                 let rhs = b.rhs.clone();
@@ -295,9 +299,7 @@ impl Kernel {
                 let a = self.replay(p, lemmas)?;
                 let b = self.replay(q, lemmas)?;
                 if !(same(&a.lhs, &b.rhs) && same(&a.rhs, &b.lhs)) {
-                    return Err(KernelError::Mismatch(
-                        "antisymmetry of unrelated statements".into(),
-                    ));
+                    return Err(KernelError::Mismatch("antisymmetry of unrelated facts".into()));
                 }
                 Ok(merge(Theorem { rel: Rel::Eq, ..a }, &b))
             }
@@ -447,13 +449,6 @@ impl Kernel {
                 Ok(Rel::Eq)
             }
             Rule::Cite(source, name, how) => {
-                let law = self.laws.get(name).filter(|_| *source == Source::Law);
-                if position.under_pre && !law.is_some_and(pointwise_law) {
-                    return Err(KernelError::BadPosition(format!(
-                        "under `pre` only laws of `·`, `+`, `¬` and `pre` rewrite (the value \
-                         before the first scan); `{name}` does not"
-                    )));
-                }
                 let lemma = lemmas.get(name).filter(|_| *source == Source::Lemma);
                 let lemma_axiom =
                     lemma.map(|t| Axiom::ground(name, t.lhs.clone(), t.rel, t.rhs.clone()));
@@ -463,11 +458,24 @@ impl Kernel {
                     Source::Lemma => lemma_axiom.as_ref(),
                 }
                 .ok_or_else(|| KernelError::UnknownRule(format!("{source:?} {name}")))?;
+                // Under `pre` (the previous scan, or before the first): laws that hold
+                // there too, and outside a base case facts true before the first scan.
+                let before_first = match source {
+                    Source::Law => pointwise_law(axiom),
+                    _ => !self.first_scan && holds_initially(axiom),
+                };
+                if position.under_pre && !before_first {
+                    return Err(KernelError::BadPosition(format!(
+                        "under `pre` only laws of `·`, `+`, `¬` and `pre` and facts true \
+                         before the first scan rewrite; `{name}` is neither"
+                    )));
+                }
                 let vars: Vec<Symbol> =
                     axiom.signal_vars.iter().chain(&axiom.delay_vars).cloned().collect();
                 let rule = orient(&axiom.lhs, axiom.rel, &axiom.rhs, *how, name)?;
-                let sigma =
+                let mut sigma =
                     instance(&rule, &vars, &axiom.delay_vars, &old, &new, &step.subst, name)?;
+                axiom.bind_cycle(self.cycle.as_ref(), &mut sigma);
                 let rel = position_rel(&rule, position)?;
                 check_delay_conditions(axiom, &sigma)?;
                 let wanted = axiom.signal_conditions.len();

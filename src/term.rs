@@ -406,6 +406,11 @@ pub fn initial_values(e: &Expr) -> Vec<bool> {
     init
 }
 
+/// The value of `e` before the first scan.
+pub fn initially(e: &Expr) -> bool {
+    initial_values(e)[usize::from(root(e))]
+}
+
 /// `e` at the first scan: every `pre f` replaced by the value `f` has before it
 /// (names, timers and memories 0).
 pub fn at_first_scan(e: &Expr) -> Expr {

@@ -5,12 +5,12 @@
 //! against the exact semantics (the test suite runs it on every law).
 
 use crate::diag::{Diagnostic, Sources};
-use crate::kernel::{Axiom, Cmp, Rel};
+use crate::kernel::{Axiom, CYCLE, Cmp, Rel};
 use crate::semantics::falsify::{self, Condition, Relation, SampleError, Witness};
 use crate::syntax::{
     self, DelayComparison, Goal, Law, NoProgram, Relation as GoalRelation, SideCondition, Statement,
 };
-use crate::term::{Expr, Symbol, matches, root};
+use crate::term::{Delay, Expr, Symbol, Term, matches, root};
 
 /// Matches a law's side against a whole ground term, extending `sigma` (the search and
 /// the script checker find instances with it; the kernel re-checks every use).
@@ -200,11 +200,30 @@ pub fn check_scan_law(axiom: &Axiom, cases: usize, seed: u64) -> Result<usize, S
         state
     };
     let one = Time::from_integer(1.into());
-    for _ in 0..cases {
+    let on_a_side =
+        |v: &Symbol| [&axiom.lhs, &axiom.rhs].iter().any(|e| e.as_ref().contains(&Term::Name(*v)));
+    let cycle = Delay::new(one.clone()).map_err(|e| e.to_string())?;
+    let (mut valid, mut tries) = (0, 0);
+    while valid < cases {
+        tries += 1;
+        if tries > 20 * cases {
+            return Err(format!("only {valid} of {tries} runs satisfy the side conditions"));
+        }
         let scans = 1 + (next() % 12) as usize;
         let mut env = Assignment::new(Time::from_integer(scans.into()));
         env.cycle = Some(one.clone());
         let mut sigma = std::collections::BTreeMap::new();
+        // Delays of a quarter cycle to four cycles; `cycle` itself is one.
+        for v in axiom.delay_vars.iter().filter(|v| on_a_side(v) || v.as_str() != CYCLE) {
+            let quarters = Time::new((1 + next() % 16).into(), 4.into());
+            let d = Delay::new(quarters).map_err(|e| e.to_string())?;
+            sigma.insert(*v, Expr::from(vec![Term::Delay(d)]));
+        }
+        axiom.bind_cycle(Some(&cycle), &mut sigma);
+        if !crate::kernel::delay_conditions_hold(axiom, &sigma) {
+            continue;
+        }
+        valid += 1;
         for (i, v) in axiom.signal_vars.iter().enumerate() {
             let run: Vec<bool> = (0..scans).map(|_| next() % 2 == 1).collect();
             let changes: Vec<(Time, bool)> = (1..scans)

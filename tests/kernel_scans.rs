@@ -4,11 +4,11 @@ use std::time::{Duration, Instant};
 
 use ii_prove::diag::Sources;
 use ii_prove::kernel::{
-    Axiom, Certificate, Kernel, KernelError, Proof, Rel, Rule, Source, Step, Use,
+    Axiom, Certificate, Cmp, Kernel, KernelError, Proof, Rel, Rule, Source, Step, Use,
 };
 use ii_prove::ladder::{compile, read_ldmicro};
 use ii_prove::prover::{Budget, Context, Obligation, induction};
-use ii_prove::term::{Expr, Symbol, Term, sexp};
+use ii_prove::term::{Delay, Expr, Symbol, Term, sexp};
 use ii_prove::theory;
 
 fn law(name: &str, lhs: &str, rel: Rel, rhs: &str, vars: &[&str]) -> Axiom {
@@ -41,7 +41,7 @@ fn one_step(start: &str, path: &[usize], rule: Rule, after: &str) -> Certificate
 }
 
 #[test]
-fn a_hypothesis_does_not_rewrite_under_pre() {
+fn a_hypothesis_false_before_the_first_scan_does_not_rewrite_under_pre() {
     // `X = ¬Y` at every scan, but before the first scan X is 0 and ¬Y is 1: `pre X` and
     // `pre ¬Y` differ at the first scan.
     let cert = one_step(
@@ -55,6 +55,26 @@ fn a_hypothesis_does_not_rewrite_under_pre() {
     let cert =
         one_step("X", &[], Rule::Cite(Source::Hypothesis, "L01".into(), Use::Forward), "(! Y)");
     assert!(scan_kernel().check(&cert).is_ok());
+}
+
+#[test]
+fn a_fact_true_before_the_first_scan_rewrites_under_pre() {
+    // `Q = A · ¬B` holds at every scan and before the first (0 = 0 · 1): at the previous
+    // scan too, so `pre Q = pre (A · ¬B)`; an implication only at a monotone position.
+    let hyps = vec![
+        Axiom::ground("L02", sexp("Q"), Rel::Eq, sexp("(& A (! B))")),
+        Axiom::ground("B01", sexp("Q"), Rel::Implies, sexp("A")),
+        Axiom::ground("B02", sexp("(! Q)"), Rel::Implies, sexp("B")),
+    ];
+    let k = Kernel::for_scans(laws(), hyps).expect("kernel");
+    let cite = |name: &str, how| Rule::Cite(Source::Hypothesis, name.into(), how);
+    let eq = one_step("(pre Q)", &[0], cite("L02", Use::Forward), "(pre (& A (! B)))");
+    assert!(k.check(&eq).is_ok());
+    let meet = one_step("(pre Q)", &[0], cite("B01", Use::Meet), "(pre (& Q A))");
+    assert!(k.check(&meet).is_ok());
+    // `¬Q ⇒ B` fails before the first scan (¬0 = 1, B = 0).
+    let early = one_step("(pre (! Q))", &[0], cite("B02", Use::Meet), "(pre (& (! Q) B))");
+    assert!(matches!(k.check(&early), Err(KernelError::BadPosition(_))));
 }
 
 #[test]
@@ -72,6 +92,36 @@ fn under_pre_only_laws_of_the_boolean_operators_and_pre_rewrite() {
     let case = Rule::Case(sexp("a"), true);
     let cert = one_step("(pre a)", &[0], case, "(pre 1*)");
     assert!(matches!(k.check(&cert), Err(KernelError::BadPosition(_))));
+}
+
+#[test]
+fn a_law_about_the_cycle_needs_the_programs_cycle() {
+    // `d/f ⇒ pre f if d ≥ cycle`: `cycle`, named in the condition only, is the kernel's.
+    let ton_pre = Axiom {
+        signal_vars: vec![Symbol::from("f")],
+        delay_vars: vec![Symbol::from("d"), Symbol::from("cycle")],
+        delay_conditions: vec![(sexp("d"), Cmp::Ge, sexp("cycle"))],
+        ..Axiom::ground("ton_pre", sexp("(ton d f)"), Rel::Implies, sexp("(pre f)"))
+    };
+    let kernel = Kernel::for_scans(vec![ton_pre], vec![]).expect("kernel");
+    let ms = |n: u64| Delay::from_micros(n * 1_000).unwrap();
+    let cite = Rule::Cite(Source::Law, "ton_pre".into(), Use::Meet);
+    let step = |delay: &str| {
+        let start = format!("(ton {delay} X)");
+        one_step(&start, &[], cite.clone(), &format!("(& {start} (pre X))"))
+    };
+    assert!(kernel.clone().with_cycle(ms(10)).check(&step("20ms")).is_ok());
+    assert!(kernel.clone().with_cycle(ms(20)).check(&step("20ms")).is_ok());
+    // A delay shorter than the cycle, or no cycle at all: refused.
+    let short = kernel.clone().with_cycle(ms(50)).check(&step("20ms"));
+    assert!(matches!(short, Err(KernelError::SideCondition(_))), "{short:?}");
+    assert!(kernel.check(&step("20ms")).is_err());
+    // Nor can a certificate choose the cycle itself.
+    let mut claimed = step("20ms");
+    if let Some(Proof::Chain { steps, .. }) = &mut claimed.main {
+        steps[0].subst = vec![(Symbol::from("cycle"), sexp("1ms"))];
+    }
+    assert!(kernel.clone().with_cycle(ms(50)).check(&claimed).is_err());
 }
 
 #[test]

@@ -105,6 +105,25 @@ fn the_papers_false_forms_are_rejected_with_a_witness() {
 }
 
 #[test]
+fn false_laws_about_scans_are_rejected_on_scan_runs() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/false_scan_laws");
+    let mut rejected = 0;
+    for entry in std::fs::read_dir(&dir).expect("the folder exists") {
+        let path = entry.unwrap().path();
+        let mut sources = Sources::new();
+        let file = sources.add(path.display().to_string(), std::fs::read_to_string(&path).unwrap());
+        let laws = theory::read(&sources, file).expect("false laws still parse");
+        assert!(!laws.is_empty(), "{} has no law", path.display());
+        for law in laws {
+            let result = theory::check_scan_law(&law.axiom, CASES, 7);
+            assert!(result.is_err(), "{} was not rejected: {result:?}", law.axiom.name);
+            rejected += 1;
+        }
+    }
+    assert!(rejected >= 3);
+}
+
+#[test]
 fn every_law_is_restated_as_a_property_that_the_cli_proves() {
     // tests/verdicts.rs proves these files; here we check they cover the whole registry.
     // The laws of `pre` are about scans: tests/data/proves_programs/scan_laws.ii restates

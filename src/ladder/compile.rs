@@ -327,6 +327,11 @@ pub struct CompiledProgram {
 }
 
 impl CompiledProgram {
+    /// The scan cycle as a delay (`None` for a zero cycle).
+    pub fn cycle(&self) -> Option<crate::term::Delay> {
+        crate::term::Delay::from_micros(self.cycle_us).ok()
+    }
+
     /// Every hypothesis as a ground kernel axiom.
     pub fn axioms(&self) -> Vec<Axiom> {
         self.hypotheses.iter().map(Hypothesis::axiom).collect()

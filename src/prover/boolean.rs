@@ -15,8 +15,11 @@ use std::time::Instant;
 use varisat::{ExtendFormula, Lit, Solver};
 
 use crate::kernel::{self, Axiom, Proof, Rel, Rule, Source, Step, Use};
-use crate::term::{Expr, Id, Language, Symbol, Term, and, constant, root, subterm};
+use crate::term::{
+    Expr, Id, Language, Symbol, Term, and, constant, initially, mentions_pre, root, subterm,
+};
 
+use super::induction::{pre, push_pre};
 use super::normalize::replace_at;
 
 /// A statement that holds at every instant: a hypothesis, a law instance or a lemma.
@@ -38,6 +41,9 @@ pub struct Constraint {
     pub conditions: Vec<(Expr, Rel, Expr)>,
     /// Proofs of `conditions`, in order.
     pub premises: Vec<Proof>,
+    /// The hypothesis `raw` one scan earlier: `lhs` and `rhs` are `pre` of its sides
+    /// with `pre` pushed down to the atoms, and the citation rewrites under `pre`.
+    pub shifted: bool,
 }
 
 /// A Boolean view of a term: atoms are opaque; paths match the term's.
@@ -76,6 +82,7 @@ impl Atoms {
                 )
             };
             let definitional = c.source == Source::Hypothesis
+                && !c.shifted
                 && c.rel == Rel::Eq
                 && atomic(&c.lhs)
                 && atomic(&c.rhs);
@@ -189,7 +196,12 @@ pub fn register(atoms: &mut Atoms, constraints: &[Constraint]) {
 /// Instances of the laws for the atoms present: every law side with a temporal
 /// root (or a `·`/`+` of two of them) is matched against the atoms, in two rounds
 /// so that atoms introduced by instances get their own lemmas.
-pub fn law_instances(laws: &[Axiom], atoms: &mut Atoms, limit: usize) -> Vec<Constraint> {
+pub fn law_instances(
+    laws: &[Axiom],
+    cycle: Option<&crate::term::Delay>,
+    atoms: &mut Atoms,
+    limit: usize,
+) -> Vec<Constraint> {
     let mut out: Vec<Constraint> = Vec::new();
     let mut seen = std::collections::HashSet::new();
     for _round in 0..2 {
@@ -220,10 +232,11 @@ pub fn law_instances(laws: &[Axiom], atoms: &mut Atoms, limit: usize) -> Vec<Con
                 }
                 sigmas.extend(extended);
             }
-            for sigma in sigmas {
+            for mut sigma in sigmas {
                 if out.len() >= limit {
                     return out;
                 }
+                law.bind_cycle(cycle, &mut sigma);
                 if !kernel::delay_conditions_hold(law, &sigma) {
                     continue;
                 }
@@ -262,9 +275,79 @@ pub fn law_instances(laws: &[Axiom], atoms: &mut Atoms, limit: usize) -> Vec<Con
                     rhs: fr,
                     conditions,
                     premises: Vec::new(),
+                    shifted: false,
                 });
             }
         }
+    }
+    out
+}
+
+/// The hypotheses one scan earlier, for the signals the atoms read through `pre`:
+/// `pre l rel pre r` with `pre` pushed down to the atoms, for each hypothesis `l rel r`
+/// that mentions such a signal, has no `pre` itself and holds before the first scan
+/// (so that it holds at the previous scan even at the first). A definition `X = e`
+/// taken this way brings in the signals of `e`, for `rounds` rounds.
+pub fn shifted(cone: &[Axiom], atoms: &mut Atoms, rounds: usize) -> Vec<Constraint> {
+    let mut wanted: std::collections::BTreeSet<Symbol> = atoms
+        .terms
+        .iter()
+        .filter_map(|a| match &a[root(a)] {
+            Term::Pre(x) => match a[*x] {
+                Term::Name(n) => Some(n),
+                _ => None,
+            },
+            _ => None,
+        })
+        .collect();
+    let names = |e: &Expr| {
+        e.as_ref()
+            .iter()
+            .filter_map(|t| match t {
+                Term::Name(n) => Some(*n),
+                _ => None,
+            })
+            .collect::<Vec<Symbol>>()
+    };
+    let mut taken = vec![false; cone.len()];
+    let mut out = Vec::new();
+    for _ in 0..rounds {
+        let mut more = Vec::new();
+        for (h, done) in cone.iter().zip(taken.iter_mut()) {
+            let (li, ri) = (initially(&h.lhs), initially(&h.rhs));
+            let holds = if h.rel == Rel::Eq { li == ri } else { !li || ri };
+            let mentioned = names(&h.lhs).into_iter().chain(names(&h.rhs));
+            if *done
+                || !holds
+                || mentions_pre(&h.lhs)
+                || mentions_pre(&h.rhs)
+                || !mentioned.into_iter().any(|n| wanted.contains(&n))
+            {
+                continue;
+            }
+            *done = true;
+            if h.rel == Rel::Eq && matches!(h.lhs[root(&h.lhs)], Term::Name(_)) {
+                more.extend(names(&h.rhs));
+            }
+            let (lhs, rhs) = (push_pre(&pre(&h.lhs)).0, push_pre(&pre(&h.rhs)).0);
+            atoms.view(&lhs, root(&lhs));
+            atoms.view(&rhs, root(&rhs));
+            out.push(Constraint {
+                source: Source::Hypothesis,
+                name: h.name.clone(),
+                raw: (h.lhs.clone(), h.rhs.clone()),
+                lhs,
+                rel: h.rel,
+                rhs,
+                conditions: Vec::new(),
+                premises: Vec::new(),
+                shifted: true,
+            });
+        }
+        if more.is_empty() {
+            break;
+        }
+        wanted.extend(more);
     }
     out
 }
@@ -590,19 +673,39 @@ impl Search<'_> {
         }
         // Cite the constraint (through its raw, unevaluated-delay form).
         let (raw_from, raw_to) = if forward { (&c.raw.0, &c.raw.1) } else { (&c.raw.1, &c.raw.0) };
-        align_delays(&mut whole, &[1], from_term, raw_from, &mut steps);
         let (how, result_raw) = match (c.rel, forward) {
             (Rel::Eq, true) => (Use::Forward, raw_to.clone()),
             (Rel::Eq, false) => (Use::Backward, raw_to.clone()),
             (Rel::Implies, _) => (Use::Meet, and(&c.raw.0, &c.raw.1)),
         };
-        whole = replace_at(&whole, &[1], &result_raw);
-        steps.push(Step {
-            premises: c.premises.clone(),
-            ..step(vec![1], Rule::Cite(c.source, c.name.clone(), how), whole.clone())
-        });
-        let result = fold_delays(&result_raw);
-        align_delays(&mut whole, &[1], &result_raw, &result, &mut steps);
+        let cite = Rule::Cite(c.source, c.name.clone(), how);
+        if c.shifted {
+            // Back from the atoms to `pre` of the side, the hypothesis under `pre`, and
+            // `pre` pushed down again.
+            let (pushed, push) = push_pre(&pre(raw_from));
+            let sub = |s: Step, whole: &mut Expr, steps: &mut Vec<Step>| {
+                *whole = replace_at(whole, &[1], &s.after);
+                steps.push(Step {
+                    path: [vec![1], s.path.clone()].concat(),
+                    after: whole.clone(),
+                    ..s
+                });
+            };
+            for s in reverse(&pushed, push) {
+                sub(s, &mut whole, &mut steps);
+            }
+            whole = replace_at(&whole, &[1], &pre(&result_raw));
+            steps.push(step(vec![1, 0], cite, whole.clone()));
+            for s in push_pre(&pre(&result_raw)).1 {
+                sub(s, &mut whole, &mut steps);
+            }
+        } else {
+            align_delays(&mut whole, &[1], from_term, raw_from, &mut steps);
+            whole = replace_at(&whole, &[1], &result_raw);
+            steps.push(Step { premises: c.premises.clone(), ..step(vec![1], cite, whole.clone()) });
+            let result = fold_delays(&result_raw);
+            align_delays(&mut whole, &[1], &result_raw, &result, &mut steps);
+        }
         // The result evaluates to 0*.
         let result_view = match (c.rel, forward) {
             (Rel::Eq, true) => r.clone(),

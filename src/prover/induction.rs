@@ -232,7 +232,7 @@ fn product(cs: &[Expr]) -> Expr {
 }
 
 /// `pre e`.
-fn pre(e: &Expr) -> Expr {
+pub fn pre(e: &Expr) -> Expr {
     let mut out = e.clone();
     out.add(Term::Pre(root(e)));
     out

@@ -322,6 +322,9 @@ impl Session {
         let scans = self.program.is_some();
         let mut checker = Checker::with_scans(self.theory.axioms(), hypotheses, scans)
             .map_err(|e| e.to_string())?;
+        if let Some(cycle) = self.program.as_ref().and_then(|(_, c)| c.cycle()) {
+            checker = checker.with_cycle(cycle);
+        }
         checker.proved = std::mem::take(&mut self.checker.proved);
         checker.failed = std::mem::take(&mut self.checker.failed);
         checker.notation = self.notation;

@@ -9,7 +9,7 @@
 use crate::kernel::{Proof, Rel, Rule, Source, Step};
 use crate::prover::Proved;
 use crate::syntax::{Notation, term_to_string};
-use crate::term::Expr;
+use crate::term::{Expr, Language};
 
 /// How to print terms: notation and display names.
 pub struct Style<'a> {
@@ -202,12 +202,33 @@ fn start_of(proof: &Proof) -> Option<&Expr> {
     }
 }
 
+/// Whether a `pre` lies on the way from the root of `e` down `path`.
+fn under_pre(e: &Expr, path: &[usize]) -> bool {
+    let mut id = crate::term::root(e);
+    for &i in path {
+        if matches!(e[id], crate::term::Term::Pre(_)) {
+            return true;
+        }
+        match e[id].children().get(i) {
+            Some(c) => id = *c,
+            None => return false,
+        }
+    }
+    false
+}
+
 /// What closes a one-line case: the statements it cites, or the goal itself.
 fn closing(leaf: &Proof) -> String {
     let Proof::Chain { steps, .. } = leaf else { return String::new() };
     let mut rules: Vec<String> = Vec::new();
     for s in steps {
-        let label = rule_label(&s.rule);
+        let mut label = rule_label(&s.rule);
+        // A hypothesis cited under `pre` is what it said at the previous scan.
+        let earlier = matches!(s.rule, Rule::Cite(Source::Hypothesis | Source::Lemma, ..))
+            && under_pre(&s.after, &s.path);
+        if earlier {
+            label.push_str(" at the previous scan");
+        }
         if !is_bookkeeping(&s.rule) && !rules.contains(&label) {
             rules.push(label);
         }

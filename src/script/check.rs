@@ -203,10 +203,18 @@ impl Checker {
         })
     }
 
+    /// The same checker with the program's scan cycle (for the laws that need it).
+    pub fn with_cycle(self, cycle: crate::term::Delay) -> Checker {
+        Checker { ctx: self.ctx.with_cycle(cycle), ..self }
+    }
+
     /// An independent copy (same axioms, claims and settings), e.g. for a worker thread.
     pub fn snapshot(&self) -> Result<Checker, KernelError> {
         let (laws, hypotheses) = (self.ctx.laws.clone(), self.ctx.hypotheses.clone());
         let mut copy = Checker::with_scans(laws, hypotheses, self.ctx.scans)?;
+        if let Some(cycle) = &self.ctx.cycle {
+            copy = copy.with_cycle(cycle.clone());
+        }
         copy.proved = self.proved.clone();
         copy.failed = self.failed.clone();
         copy.budget = self.budget;

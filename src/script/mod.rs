@@ -17,7 +17,6 @@ pub use check::{Checked, Checker, Justified, ProvedClaim, Site, StepError};
 pub use error::{FailedStep, ScriptError};
 
 use crate::diag::{Diagnostic, FileId, RenderStyle, Sources, Span, render};
-use crate::kernel::Axiom;
 use crate::ladder::CompiledProgram;
 use crate::report::{self, Options};
 use crate::syntax::lexer::{self, Keyword, Tok};
@@ -56,19 +55,25 @@ impl ScriptRun {
 }
 
 /// The checker for a script document: the standard laws, the program's equations and
-/// bounds (`program_hypotheses`, for a script about a program's scans) and the
+/// bounds (for a script about a `program`'s scans, with its cycle) and the
 /// document's `assume`s.
 pub fn checker_for(
     theory: &Theory,
     doc: &Document,
-    program_hypotheses: Option<Vec<Axiom>>,
+    program: Option<&CompiledProgram>,
 ) -> Result<Checker, ScriptError> {
-    let scans = program_hypotheses.is_some();
-    let mut hypotheses = program_hypotheses.unwrap_or_default();
+    let mut hypotheses = program.map(CompiledProgram::axioms).unwrap_or_default();
     hypotheses.extend(report::assumptions(doc));
-    Checker::with_scans(theory.axioms(), hypotheses, scans).map_err(|e| ScriptError::BadContext {
-        span: doc.assumptions.first().map_or(Span::new(doc.file, 0..0), |s| s.span),
-        reason: format!("the hypotheses cannot be loaded: {e}"),
+    let checker =
+        Checker::with_scans(theory.axioms(), hypotheses, program.is_some()).map_err(|e| {
+            ScriptError::BadContext {
+                span: doc.assumptions.first().map_or(Span::new(doc.file, 0..0), |s| s.span),
+                reason: format!("the hypotheses cannot be loaded: {e}"),
+            }
+        })?;
+    Ok(match program.and_then(CompiledProgram::cycle) {
+        Some(cycle) => checker.with_cycle(cycle),
+        None => checker,
     })
 }
 
@@ -84,8 +89,7 @@ pub fn check_document(
 ) -> (Vec<ClaimReport>, Vec<ScriptError>) {
     let mut reports = Vec::new();
     let mut errors = Vec::new();
-    let hypotheses = program.map(CompiledProgram::axioms);
-    let mut checker = match checker_for(theory, doc, hypotheses) {
+    let mut checker = match checker_for(theory, doc, program) {
         Ok(c) => c,
         Err(e) => return (reports, vec![e]),
     };
