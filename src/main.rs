@@ -174,7 +174,7 @@ enum Command {
         /// A .ii file to load first.
         file: Option<String>,
     },
-    /// Print a ladder program's compiled equations and bounds as `.ii` text.
+    /// Print a ladder program's compiled equations and recurrences as `.ii` text.
     Show {
         /// The ladder program (.ld).
         program: String,

@@ -1,4 +1,4 @@
-//! Differential test of the rung compiler against the scan simulator: every compiled equation and bound must hold at every scan of random runs of random LDmicro programs (every element kind of `formats/ldmicro.md` §4) and of the examples, data cases and corpus.
+//! Differential test of the rung compiler against the scan simulator: every compiled equation and recurrence must hold at every scan of random runs of random LDmicro programs (every element kind of `formats/ldmicro.md` §4) and of the examples, data cases and corpus.
 //!
 //! The reference is [`Simulator`] (written from the format note, §6). The
 //! hypotheses are evaluated on its scans by an evaluator written here from

@@ -1,4 +1,4 @@
-//! The rung compiler: an LDmicro program ([`LdProgram`]) → ground hypotheses of the II algebra (equations and sound bounds) that hold at every scan of what the PLC runs (`shared/spec/semantics.md`, "Programs, scan by scan").
+//! The rung compiler: an LDmicro program ([`LdProgram`]) → ground hypotheses of the II algebra (exact equations) that hold at every scan of what the PLC runs (`shared/spec/semantics.md`, "Programs, scan by scan").
 //!
 //! # Model
 //!
@@ -62,14 +62,10 @@
 //! Otherwise (not monotone, e.g. a coil reading its own complement; or `pre X`
 //! under a timer) `X = G(pre X)`.
 //!
-//! # Bounds
-//!
-//! Whenever an emitted equation `X = F` mentions `pre`, two bounds free of it are
-//! emitted as well (see [`eliminate`]): `lo ⇒ X` and `X ⇒ hi`, named `Lnn_lo` and
-//! `Lnn_hi`. Where `p` is a pointwise Boolean argument these are the Shannon bounds
-//! `F[p:=0]·F[p:=1]` and `F[p:=0] + F[p:=1]`; through memories and timers they use
-//! monotonicity (SR/RS monotone in the set, antitone in the reset). Trivial bounds
-//! (`0* ⇒ X`, `X ⇒ 1*`) are not emitted.
+//! No bounds free of `pre` are emitted beside an equation that mentions it: what they
+//! would say (`L03_hi: X ⇒ RS(s, r')`, say) follows from the exact equation, and the
+//! prover derives it where a proof needs it (by the Boolean skeleton, or by
+//! induction over scans with the memories' scan laws).
 //!
 //! # Timers and the rest
 //!
@@ -106,7 +102,7 @@
 //! `X_r7` instead (with a warning). Hypotheses are named after the logic rung
 //! (rungs LDmicro skips as comments are not counted; `L{:02}`, wider for 100
 //! rungs or more): a rung yielding one equation gives `L06`, several give `L06a`,
-//! `L06b`, … in coil order, and the bounds are `L03_lo`/`L03_hi`. An equation
+//! `L06b`, … in coil order, and a recurrence is `L03_scan`. An equation
 //! is stated at the rung of the variable's *last* coil, so a set rung followed
 //! by a reset rung yields one memory, named after the reset rung, and the set
 //! rung's name is unused.
@@ -119,7 +115,7 @@ use super::ldmicro::{
     Circuit, CoilKind, CounterKind, EdgeKind, Element, ElementKind, LdProgram, Rung, TimerDelay,
     TimerKind,
 };
-use super::logic::{L, MAX_BOUND_SIZE, Tables, eliminate, factors, product, simp, sum, summands};
+use super::logic::{L, Tables, factors, product, simp, sum, summands};
 use crate::diag::{Report, Severity, Sources, Span};
 use crate::kernel::{Axiom, Rel};
 use crate::syntax::print::{
@@ -173,16 +169,12 @@ pub enum HypothesisKind {
     /// `X = G(pre X)`: a memory's value from its previous-scan value (the same rung as its
     /// `SR`/`RS` equation, named `Lnn_scan`).
     Recurrence,
-    /// `lo ⇒ X`: a consequence of the equation free of `pre` (whatever the previous scan).
-    LowerBound,
-    /// `X ⇒ hi`: a consequence of the equation free of `pre` (whatever the previous scan).
-    UpperBound,
 }
 
 /// One compiled fact about the program.
 #[derive(Clone, Debug)]
 pub struct Hypothesis {
-    /// The name printed in proof traces (`L06a`, `L03_hi`).
+    /// The name printed in proof traces (`L06a`, `L03_scan`).
     pub name: String,
     /// File rung number (1-based, comment rungs counted).
     pub rung: usize,
@@ -307,7 +299,7 @@ pub struct TimerInfo {
 /// A compiled program: hypotheses in rung order, every signal, and warnings.
 #[derive(Clone, Debug, Default)]
 pub struct CompiledProgram {
-    /// Equations and bounds, in rung order.
+    /// Equations and recurrences, in rung order.
     pub hypotheses: Vec<Hypothesis>,
     /// Every canonical signal name (program bits, `pre_` and fresh signals) and its kind.
     pub signals: BTreeMap<String, SignalKind>,
@@ -412,7 +404,6 @@ pub fn compile_with(
 struct Pending {
     var: String,
     rhs: L,
-    bounds: Option<(Option<L>, Option<L>)>,
     /// For a memory, its scan recurrence `X = G(pre X)` (what induction over scans reads).
     recurrence: Option<L>,
 }
@@ -618,8 +609,7 @@ impl<'a> Compiler<'a> {
         let index = self.program.elements().position(|x| std::ptr::eq(x, e)).unwrap_or(usize::MAX);
         self.fresh.insert(m.clone(), SignalKind::EdgeMemory { rung, element, index });
         let pre = self.pre_name(&m);
-        let bounds = self.bounds(input);
-        self.pending.push(Pending { var: m, rhs: input.clone(), bounds, recurrence: None });
+        self.pending.push(Pending { var: m, rhs: input.clone(), recurrence: None });
         L::Var(pre)
     }
 
@@ -976,9 +966,8 @@ impl<'a> Compiler<'a> {
         if self.last_coil.get(&x) == Some(&k) {
             let rhs = self.finish_var(&pre, g.clone(), dominant);
             self.current.insert(x.clone(), L::Var(x.clone()));
-            let bounds = self.bounds(&rhs);
             let recurrence = (rhs != g).then_some(g);
-            self.pending.push(Pending { var: x, rhs, bounds, recurrence });
+            self.pending.push(Pending { var: x, rhs, recurrence });
         } else if g.size() > MAX_INLINE {
             let name = self.unique(&format!("{x}_r{}", self.rung().number));
             let rung = self.rung().number;
@@ -1013,21 +1002,6 @@ impl<'a> Compiler<'a> {
         memory_form(&g, pre, g0, g1, prefer_rs).unwrap_or(g)
     }
 
-    fn bounds(&self, rhs: &L) -> Option<(Option<L>, Option<L>)> {
-        let mut names = Vec::new();
-        rhs.names(&mut names);
-        let pres: Vec<&String> = names.iter().filter(|n| self.pre_of.contains_key(*n)).collect();
-        if pres.is_empty() {
-            return None;
-        }
-        let (mut lo, mut hi) = (Some(rhs.clone()), Some(rhs.clone()));
-        for p in pres {
-            lo = lo.map(|e| eliminate(&e, p, false)).filter(|e| e.size() <= MAX_BOUND_SIZE);
-            hi = hi.map(|e| eliminate(&e, p, true)).filter(|e| e.size() <= MAX_BOUND_SIZE);
-        }
-        Some((lo.filter(|e| *e != L::Zero), hi.filter(|e| *e != L::One)))
-    }
-
     fn flush_rung(&mut self) {
         let pending = std::mem::take(&mut self.pending);
         if pending.is_empty() {
@@ -1056,16 +1030,6 @@ impl<'a> Compiler<'a> {
             if let Some(g) = recurrence {
                 let n = format!("{name}_scan");
                 push(n, HypothesisKind::Recurrence, var.clone(), Rel::Eq, g);
-            }
-            if let Some((lo, hi)) = p.bounds {
-                if let Some(lo) = lo {
-                    let n = format!("{name}_lo");
-                    push(n, HypothesisKind::LowerBound, lo.to_expr(), Rel::Implies, var.clone());
-                }
-                if let Some(hi) = hi {
-                    let n = format!("{name}_hi");
-                    push(n, HypothesisKind::UpperBound, var.clone(), Rel::Implies, hi.to_expr());
-                }
             }
         }
     }

@@ -17,9 +17,6 @@ use crate::term::{Builder, Delay, Expr, Id, Term, root};
 /// The most atoms a truth table is built for (2^16 rows, 1024 words).
 pub const MAX_ATOMS: usize = 16;
 
-/// The largest term (in nodes) the bound elimination produces; bigger bounds are dropped.
-pub const MAX_BOUND_SIZE: usize = 20_000;
-
 /// A working term.
 #[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum L {
@@ -518,45 +515,6 @@ pub fn sum(xs: Vec<L>) -> L {
     xs.into_iter().fold(L::Zero, L::or)
 }
 
-/// A term below `e` whatever the signal `p` is (`upper = false`), or above it
-/// (`upper = true`); `p` no longer occurs in the result.
-///
-/// Where `p` occurs in `e` only as a pointwise Boolean argument, this is the
-/// Shannon bound `e[p:=0]·e[p:=1]` (resp. `e[p:=0] + e[p:=1]`). Otherwise the
-/// bound is taken through the structure: every operator of the algebra is
-/// monotone in each argument except `¬` (antitone) and the reset of
-/// `SR`/`RS` (antitone), so the bound of each argument with the right polarity
-/// gives a bound of the whole.
-pub fn eliminate(e: &L, p: &str, upper: bool) -> L {
-    if !e.mentions(p) {
-        return e.clone();
-    }
-    if !e.mentions_temporally(p) {
-        let e0 = e.subst(p, &L::Zero);
-        let e1 = e.subst(p, &L::One);
-        return simp(&if upper { e0.or(e1) } else { e0.and(e1) });
-    }
-    let r = match e {
-        L::Zero | L::One => e.clone(),
-        L::Var(_) => {
-            if upper {
-                L::One
-            } else {
-                L::Zero
-            }
-        }
-        L::Not(x) => eliminate(x, p, !upper).negate(),
-        L::And(xs) => L::And(xs.iter().map(|x| eliminate(x, p, upper)).collect()),
-        L::Or(xs) => L::Or(xs.iter().map(|x| eliminate(x, p, upper)).collect()),
-        L::Ton(d, x) => L::Ton(d.clone(), Box::new(eliminate(x, p, upper))),
-        L::Tof(x, d) => L::Tof(Box::new(eliminate(x, p, upper)), d.clone()),
-        L::Sr(s, r) => L::Sr(Box::new(eliminate(s, p, upper)), Box::new(eliminate(r, p, !upper))),
-        L::Rs(s, r) => L::Rs(Box::new(eliminate(s, p, upper)), Box::new(eliminate(r, p, !upper))),
-        L::Pre(x) => L::Pre(Box::new(eliminate(x, p, upper))),
-    };
-    simp(&r)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -574,18 +532,6 @@ mod tests {
         let e = v("s").and(v("r").negate()).or(v("r").negate());
         assert_eq!(simp(&e), v("r").negate());
         assert_eq!(simp(&e.negate()), v("r"));
-    }
-
-    #[test]
-    fn shannon_and_structural_bounds() {
-        // e = a·p + b·¬p: lower a·b, upper a + b.
-        let e = v("a").and(v("p")).or(v("b").and(v("p").negate()));
-        assert_eq!(eliminate(&e, "p", false), v("b").and(v("a")));
-        assert_eq!(eliminate(&e, "p", true), v("b").or(v("a")));
-        let d: Delay = "1s".parse().unwrap();
-        let t = L::Ton(d.clone(), Box::new(v("a").and(v("p").negate())));
-        assert_eq!(eliminate(&t, "p", true), L::Ton(d, Box::new(v("a"))));
-        assert_eq!(eliminate(&t, "p", false), L::Zero);
     }
 
     #[test]

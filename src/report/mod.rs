@@ -822,7 +822,7 @@ pub fn load_program_with(
 }
 
 /// The session for `ii-prove PROGRAM.ld PROPS.ii…`: the properties are goals about the
-/// compiled program, whose equations and bounds are the hypotheses.
+/// compiled program, whose equations and recurrences are the hypotheses.
 pub fn run_program(
     program: &str,
     paths: &[String],
@@ -910,7 +910,7 @@ pub fn run_program_with(
     Ok(report)
 }
 
-/// `ii-prove show PROGRAM`: the compiled equations and bounds as `.ii` text.
+/// `ii-prove show PROGRAM`: the compiled equations and recurrences as `.ii` text.
 pub fn show_program(program: &str, opts: &Options) -> Result<String, InputError> {
     let mut sources = Sources::new();
     let loaded = load_program_with(&mut sources, program, &compile_options(opts), &opts.plcopen)

@@ -78,7 +78,7 @@ pub fn checker_for(
 }
 
 /// Checks every claim of one parsed script; returns the reports and the errors.
-/// `program` is the compiled program of a `program` header: its equations and bounds are
+/// `program` is the compiled program of a `program` header: its equations and recurrences are
 /// hypotheses and its short names are shown in messages.
 pub fn check_document(
     theory: &Theory,

@@ -255,7 +255,7 @@ pub trait Scope {
     fn lookup(&self, name: &str) -> Lookup;
     /// Every signal name of the program (for "did you mean" and for listing).
     fn names(&self) -> Vec<String>;
-    /// The names of the program's own hypotheses (rung equations and bounds), which
+    /// The names of the program's own hypotheses (rung equations and recurrences), which
     /// an `assume` may not reuse.
     fn hypothesis_names(&self) -> Vec<String> {
         Vec::new()
