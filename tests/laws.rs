@@ -76,29 +76,21 @@ fn boolean_laws_hold_on_every_constant_assignment() {
 
 #[test]
 fn the_papers_false_forms_are_rejected_with_a_witness() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/false_laws");
     let mut rejected = 0;
-    for entry in std::fs::read_dir(&dir).expect("the folder exists") {
-        let path = entry.unwrap().path();
-        let mut sources = Sources::new();
-        let file = sources.add(path.display().to_string(), std::fs::read_to_string(&path).unwrap());
-        let laws = theory::read(&sources, file).expect("false laws still parse");
-        assert!(!laws.is_empty(), "{} has no law", path.display());
-        for law in laws {
-            match theory::check_law(&law.axiom, CASES, 7) {
-                Err(LawFailure::Witness(w)) => {
-                    // The witness is confirmed by exact evaluation.
-                    let l = eval(&law.axiom.lhs, &w.assignment).unwrap();
-                    let r = eval(&law.axiom.rhs, &w.assignment).unwrap();
-                    assert_eq!((l.value_at(&w.time), r.value_at(&w.time)), (w.lhs, w.rhs));
-                    match law.axiom.rel {
-                        Rel::Eq => assert_ne!(w.lhs, w.rhs),
-                        Rel::Implies => assert!(w.lhs && !w.rhs),
-                    }
-                    rejected += 1;
+    for law in laws_in_folder("tests/data/false_laws") {
+        match theory::check_law(&law.axiom, CASES, 7) {
+            Err(LawFailure::Witness(w)) => {
+                // The witness is confirmed by exact evaluation.
+                let l = eval(&law.axiom.lhs, &w.assignment).unwrap();
+                let r = eval(&law.axiom.rhs, &w.assignment).unwrap();
+                assert_eq!((l.value_at(&w.time), r.value_at(&w.time)), (w.lhs, w.rhs));
+                match law.axiom.rel {
+                    Rel::Eq => assert_ne!(w.lhs, w.rhs),
+                    Rel::Implies => assert!(w.lhs && !w.rhs),
                 }
-                other => panic!("{} was not rejected: {other:?}", law.axiom.name),
+                rejected += 1;
             }
+            other => panic!("{} was not rejected: {other:?}", law.axiom.name),
         }
     }
     assert!(rejected >= 8);
@@ -106,21 +98,28 @@ fn the_papers_false_forms_are_rejected_with_a_witness() {
 
 #[test]
 fn false_laws_about_scans_are_rejected_on_scan_runs() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/false_scan_laws");
     let mut rejected = 0;
+    for law in laws_in_folder("tests/data/false_scan_laws") {
+        let result = theory::check_scan_law(&law.axiom, CASES, 7);
+        assert!(result.is_err(), "{} was not rejected: {result:?}", law.axiom.name);
+        rejected += 1;
+    }
+    assert!(rejected >= 3);
+}
+
+/// The laws of every theory file in `folder` (relative to the crate), each file non-empty.
+fn laws_in_folder(folder: &str) -> Vec<theory::LawEntry> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(folder);
+    let mut all = Vec::new();
     for entry in std::fs::read_dir(&dir).expect("the folder exists") {
         let path = entry.unwrap().path();
         let mut sources = Sources::new();
         let file = sources.add(path.display().to_string(), std::fs::read_to_string(&path).unwrap());
         let laws = theory::read(&sources, file).expect("false laws still parse");
         assert!(!laws.is_empty(), "{} has no law", path.display());
-        for law in laws {
-            let result = theory::check_scan_law(&law.axiom, CASES, 7);
-            assert!(result.is_err(), "{} was not rejected: {result:?}", law.axiom.name);
-            rejected += 1;
-        }
+        all.extend(laws);
     }
-    assert!(rejected >= 3);
+    all
 }
 
 #[test]
