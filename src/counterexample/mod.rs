@@ -3,11 +3,11 @@
 //! # Method
 //!
 //! The property's cone of influence (the equations of every signal it reads, closed
-//! under `pre_X → X`, and the `assume` statements that touch it) is unrolled over
+//! under `pre X → X`, and the `assume` statements that touch it) is unrolled over
 //! *steps* ([`unroll`](mod@unroll)) and handed to a SAT solver (varisat), for 1, 2, … steps up
 //! to a bound (3× the longest timer plus 4 steps), asking for a violation at the last
 //! step. Inputs (and the outputs of elements the algebra cannot express) are free at
-//! each step, `pre_X` is `X` at the previous step, timers count steps.
+//! each step, `pre X` is `X` at the previous step, timers count steps.
 //!
 //! A step is `m` scans, where `m` is the greatest common divisor of every timer's
 //! delay in scans (one scan when there are no timers): inputs change only at step
@@ -24,9 +24,9 @@
 //! 1. *exactly*: the inputs become exact [`Signal`]s with breakpoints at scan
 //!    boundaries, every compiled signal is computed from its equation with
 //!    [`semantics::eval`](fn@crate::semantics::eval), every hypothesis of the cone
-//!    (equations, bounds, assumptions) is checked on the whole horizon, `pre_X` is
-//!    checked to be `X` one cycle earlier at every scan instant, and the property must
-//!    fail at the violating scan's instant;
+//!    (equations, recurrences, assumptions) is checked at every scan instant, with
+//!    every signal taken from the run and `pre X` as `X` one cycle earlier, and the
+//!    property must fail at the violating scan's instant;
 //! 2. *by the scan simulator* ([`Simulator`]): the same inputs, one `step` per scan,
 //!    and the property (its timers read per scan) must fail at some scan.
 //!
