@@ -613,7 +613,7 @@ fn constraints_for(
         constraints.push(c);
     }
     // What the hypotheses said at the previous scan, for the signals read through `pre`.
-    if ctx.scans && std::env::var("II_NOSHIFT").is_err() {
+    if ctx.scans {
         constraints.extend(boolean::shifted(cone, atoms, SHIFT_ROUNDS));
     }
     constraints
