@@ -42,7 +42,7 @@
 
 pub mod unroll;
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::time::Instant;
 
 use num_integer::Integer;
@@ -193,30 +193,51 @@ pub fn equations(compiled: &CompiledProgram) -> Vec<(String, &Expr)> {
 impl Program<'_> {
     /// The cone of `terms`: equations in scan order and the assumptions touching it.
     pub fn model(&self, terms: &[&Expr]) -> Model {
+        let defs_all = equations(self.compiled);
+        // Which equations define each name, and which assumptions mention it: the cone
+        // is a closure over names, walked once (a worklist, not a pass per layer).
+        let mut defines: HashMap<&str, Vec<usize>> = HashMap::new();
+        for (i, (name, _)) in defs_all.iter().enumerate() {
+            defines.entry(name.as_str()).or_default().push(i);
+        }
+        let mentioned: Vec<BTreeSet<String>> = self
+            .assumptions
+            .iter()
+            .map(|a| {
+                let mut m = BTreeSet::new();
+                names_of(&a.lhs, &mut m);
+                names_of(&a.rhs, &mut m);
+                m
+            })
+            .collect();
+        let mut mentioning: HashMap<&str, Vec<usize>> = HashMap::new();
+        for (i, m) in mentioned.iter().enumerate() {
+            for n in m {
+                mentioning.entry(n.as_str()).or_default().push(i);
+            }
+        }
         let mut reached = BTreeSet::new();
         for t in terms {
             names_of(t, &mut reached);
         }
-        let defs_all = equations(self.compiled);
+        let mut pending: Vec<String> = reached.iter().cloned().collect();
         let mut taken_a = vec![false; self.assumptions.len()];
-        loop {
-            let before = reached.len();
-            for (name, rhs) in &defs_all {
-                if reached.contains(name) {
-                    names_of(rhs, &mut reached);
-                }
+        while let Some(name) = pending.pop() {
+            let mut found = BTreeSet::new();
+            for &i in defines.get(name.as_str()).map_or(&[][..], Vec::as_slice) {
+                names_of(defs_all[i].1, &mut found);
             }
-            for (i, a) in self.assumptions.iter().enumerate() {
-                let mut m = BTreeSet::new();
-                names_of(&a.lhs, &mut m);
-                names_of(&a.rhs, &mut m);
-                if !taken_a[i] && m.iter().any(|n| reached.contains(n)) {
+            for &i in mentioning.get(name.as_str()).map_or(&[][..], Vec::as_slice) {
+                if !taken_a[i] {
                     taken_a[i] = true;
-                    reached.extend(m);
+                    found.extend(mentioned[i].iter().cloned());
                 }
             }
-            if reached.len() == before {
-                break;
+            for n in found {
+                if !reached.contains(&n) {
+                    reached.insert(n.clone());
+                    pending.push(n);
+                }
             }
         }
         Model {
