@@ -806,6 +806,45 @@ fn bounded(
     Some((cnf, u.extra))
 }
 
+/// [`vacuity`] for a model without assumptions: its equations define every signal from
+/// the free ones, so any run of the free signals is a run (the scan-by-scan check is
+/// satisfiable), and the long scan-by-scan unrolling is built only for the signals the
+/// coarse grid finds constant. (It unrolls whenever the coarse grid does: both read the
+/// same equations in the same order, and a delay in whole coarse steps is one in scans.)
+fn unconstrained(
+    model: &Model,
+    read: &[String],
+    cycle: &Time,
+    grid: usize,
+    k_scans: usize,
+    k: usize,
+) -> Vacuity {
+    const MAX_STEPS: usize = 64;
+    if k > MAX_STEPS {
+        return Vacuity::default();
+    }
+    let Some((mut coarse, coarse_values)) = bounded(model, read, cycle, grid, k) else {
+        return Vacuity::default();
+    };
+    let on_coarse: Vec<Option<bool>> =
+        coarse_values.iter().map(|c| forced(&mut coarse, c)).collect();
+    let mut constants = Vec::new();
+    if on_coarse.iter().any(Option::is_some) {
+        let Some((mut fine, fine_values)) = bounded(model, read, cycle, 1, k_scans) else {
+            return Vacuity::default();
+        };
+        for ((n, c), f) in read.iter().zip(&on_coarse).zip(&fine_values) {
+            if let Some(v) = *c
+                && forced(&mut fine, f) == Some(v)
+            {
+                constants.push((n.clone(), v));
+            }
+        }
+    }
+    let horizon = Some(cycle * Time::from_integer((k * grid).into()));
+    Vacuity { inconsistent: false, constants, horizon }
+}
+
 /// The constant value `values` has in every model of `cnf`, if any.
 fn forced(cnf: &mut Cnf, values: &[varisat::Lit]) -> Option<bool> {
     let some_one = cnf.or_all(values);
@@ -842,6 +881,9 @@ pub fn vacuity(program: &Program, terms: &[&Expr]) -> Vacuity {
     const MAX_STEPS: usize = 64;
     // Consistency, scan by scan: a statement about every PLC run.
     let k_scans = (3 * longest + 4).min(MAX_STEPS);
+    if model.constraints.is_empty() {
+        return unconstrained(&model, &read, &cycle, grid, k_scans, 3 * longest / grid + 4);
+    }
     let Some((mut fine, fine_values)) = bounded(&model, &read, &cycle, 1, k_scans) else {
         return Vacuity::default();
     };
