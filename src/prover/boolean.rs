@@ -50,12 +50,12 @@ enum B {
     Or(Box<B>, Box<B>),
 }
 
-/// The atoms met so far, by their printed form.
+/// The atoms met so far, by their tree (a canonical copy: equal trees, equal keys).
 #[derive(Default, Debug)]
 pub struct Atoms {
     /// Each atom's term.
     pub terms: Vec<Expr>,
-    index: HashMap<String, usize>,
+    index: HashMap<Expr, usize>,
     /// Towards the representative of the atom's class: the next atom and the
     /// hypothesis (`a = b`, used forward or backward) that rewrites this one into it.
     link: Vec<Option<(usize, String, Use)>>,
@@ -128,7 +128,7 @@ impl Atoms {
     }
 
     fn intern(&mut self, e: &Expr) -> usize {
-        let key = e.to_string();
+        let key = subterm(e, root(e));
         if let Some(&i) = self.index.get(&key) {
             return i;
         }
@@ -234,8 +234,8 @@ pub fn law_instances(laws: &[Axiom], atoms: &mut Atoms, limit: usize) -> Vec<Con
                     continue;
                 };
                 let (fl, fr) = (fold_delays(&l), fold_delays(&r));
-                if fl.to_string() == fr.to_string() || !seen.insert(format!("{} {l} {r}", law.name))
-                {
+                let key = (law.name.clone(), subterm(&l, root(&l)), subterm(&r, root(&r)));
+                if crate::term::same(&fl, &fr) || !seen.insert(key) {
                     continue;
                 }
                 let mut conditions = Vec::new();
