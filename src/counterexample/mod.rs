@@ -193,13 +193,10 @@ pub fn equations(compiled: &CompiledProgram) -> Vec<(String, &Expr)> {
 impl Program<'_> {
     /// The cone of `terms`: equations in scan order and the assumptions touching it.
     pub fn model(&self, terms: &[&Expr]) -> Model {
-        let defs_all = equations(self.compiled);
-        // Which equations define each name, and which assumptions mention it: the cone
-        // is a closure over names, walked once (a worklist, not a pass per layer).
-        let mut defines: HashMap<&str, Vec<usize>> = HashMap::new();
-        for (i, (name, _)) in defs_all.iter().enumerate() {
-            defines.entry(name.as_str()).or_default().push(i);
-        }
+        // The cone is a closure over names, walked once (a worklist) with the program's
+        // equation index (built once per program) and the assumptions indexed here.
+        let index = self.compiled.equation_index();
+        let hypotheses = &self.compiled.hypotheses;
         let mentioned: Vec<BTreeSet<String>> = self
             .assumptions
             .iter()
@@ -222,10 +219,12 @@ impl Program<'_> {
         }
         let mut pending: Vec<String> = reached.iter().cloned().collect();
         let mut taken_a = vec![false; self.assumptions.len()];
+        let mut taken_defs = Vec::new();
         while let Some(name) = pending.pop() {
             let mut found = BTreeSet::new();
-            for &i in defines.get(name.as_str()).map_or(&[][..], Vec::as_slice) {
-                names_of(defs_all[i].1, &mut found);
+            for &i in index.defining.get(name.as_str()).map_or(&[][..], Vec::as_slice) {
+                taken_defs.push(i);
+                names_of(&hypotheses[index.equations[i].1].rhs, &mut found);
             }
             for &i in mentioning.get(name.as_str()).map_or(&[][..], Vec::as_slice) {
                 if !taken_a[i] {
@@ -240,11 +239,14 @@ impl Program<'_> {
                 }
             }
         }
+        taken_defs.sort_unstable();
         Model {
-            defs: defs_all
+            defs: taken_defs
                 .into_iter()
-                .filter(|(n, _)| reached.contains(n))
-                .map(|(n, e)| (n, e.clone()))
+                .map(|i| {
+                    let (n, h) = &index.equations[i];
+                    (n.clone(), hypotheses[*h].rhs.clone())
+                })
                 .collect(),
             constraints: self
                 .assumptions
