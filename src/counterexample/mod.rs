@@ -828,23 +828,60 @@ fn unconstrained(
     let Some((mut coarse, coarse_values)) = bounded(model, read, cycle, grid, k) else {
         return Vacuity::default();
     };
-    let on_coarse: Vec<Option<bool>> =
-        coarse_values.iter().map(|c| forced(&mut coarse, c)).collect();
+    let all: Vec<usize> = (0..read.len()).collect();
+    let on_coarse = forced_each(&mut coarse, &coarse_values, &all);
     let mut constants = Vec::new();
-    if on_coarse.iter().any(Option::is_some) {
+    let candidates: Vec<usize> = all.into_iter().filter(|&i| on_coarse[i].is_some()).collect();
+    if !candidates.is_empty() {
         let Some((mut fine, fine_values)) = bounded(model, read, cycle, 1, k_scans) else {
             return Vacuity::default();
         };
-        for ((n, c), f) in read.iter().zip(&on_coarse).zip(&fine_values) {
-            if let Some(v) = *c
-                && forced(&mut fine, f) == Some(v)
+        let on_fine = forced_each(&mut fine, &fine_values, &candidates);
+        for i in candidates {
+            if let Some(v) = on_coarse[i]
+                && on_fine[i] == Some(v)
             {
-                constants.push((n.clone(), v));
+                constants.push((read[i].clone(), v));
             }
         }
     }
     let horizon = Some(cycle * Time::from_integer((k * grid).into()));
     Vacuity { inconsistent: false, constants, horizon }
+}
+
+/// [`forced`] for the signals `which` of `values` (one list of literals per signal;
+/// `None` for the others). Each model the solver finds shows which signals it sets 1 or
+/// 0 somewhere, and those need no query of their own: the answers are [`forced`]'s.
+fn forced_each(cnf: &mut Cnf, values: &[Vec<varisat::Lit>], which: &[usize]) -> Vec<Option<bool>> {
+    let (mut ones, mut zeros) = (vec![false; values.len()], vec![false; values.len()]);
+    let mut out = vec![None; values.len()];
+    let seen = |model: &BTreeSet<varisat::Lit>, ones: &mut [bool], zeros: &mut [bool]| {
+        for (i, lits) in values.iter().enumerate() {
+            ones[i] |= lits.iter().any(|l| model.contains(l));
+            zeros[i] |= lits.iter().any(|l| !model.contains(l));
+        }
+    };
+    for &i in which {
+        if !ones[i] {
+            let some_one = cnf.or_all(&values[i]);
+            match cnf.solve(&[some_one]) {
+                None => {
+                    out[i] = Some(false);
+                    continue;
+                }
+                Some(model) => seen(&model, &mut ones, &mut zeros),
+            }
+        }
+        if !zeros[i] {
+            let negs: Vec<varisat::Lit> = values[i].iter().map(|v| !*v).collect();
+            let some_zero = cnf.or_all(&negs);
+            match cnf.solve(&[some_zero]) {
+                None => out[i] = Some(true),
+                Some(model) => seen(&model, &mut ones, &mut zeros),
+            }
+        }
+    }
+    out
 }
 
 /// The constant value `values` has in every model of `cnf`, if any.
