@@ -451,7 +451,7 @@ fn quick_proof(
 const QUICK_NODES: usize = 1_500;
 
 /// Above this many nearest hypotheses, the quick methods skip saturation.
-const QUICK_SATURATION_CONE: usize = 16;
+const QUICK_SATURATION_CONE: usize = 8;
 
 /// How many steps of dependence from its own signals a side condition's proof may use.
 const SIDE_CONDITION_REACH: usize = 4;
