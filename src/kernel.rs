@@ -293,7 +293,7 @@ impl Kernel {
                 }
                 let rel = if a.rel == Rel::Eq && b.rel == Rel::Eq { Rel::Eq } else { Rel::Implies };
                 let rhs = b.rhs.clone();
-                Ok(merge(Theorem { rel, rhs, ..a }, &b))
+                Ok(merge(Theorem { rel, rhs, ..a }, b))
             }
             Proof::Antisym(p, q) => {
                 let a = self.replay(p, lemmas)?;
@@ -301,7 +301,7 @@ impl Kernel {
                 if !(same(&a.lhs, &b.rhs) && same(&a.rhs, &b.lhs)) {
                     return Err(KernelError::Mismatch("antisymmetry of unrelated facts".into()));
                 }
-                Ok(merge(Theorem { rel: Rel::Eq, ..a }, &b))
+                Ok(merge(Theorem { rel: Rel::Eq, ..a }, b))
             }
             Proof::ImpliesByMeet(p) => {
                 let thm = self.replay(p, lemmas)?;
@@ -367,7 +367,7 @@ impl Kernel {
                 "the step does not prove `pre {inv} ⇒ {inv}`"
             )));
         }
-        Ok(merge(Theorem { lhs: inv.clone(), rel: Rel::Eq, rhs: one, ..b }, &s))
+        Ok(merge(Theorem { lhs: inv.clone(), rel: Rel::Eq, rhs: one, ..b }, s))
     }
 
     fn chain(
@@ -512,14 +512,19 @@ impl Kernel {
     }
 }
 
-fn merge(mut a: Theorem, b: &Theorem) -> Theorem {
-    for (atom, v) in &b.local {
-        if !a.local.iter().any(|(x, w)| same(x, atom) && w == v) {
-            a.local.push((atom.clone(), *v));
-        }
+/// `a`'s statement with both theorems' assumptions (the smaller sets join the larger).
+fn merge(mut a: Theorem, mut b: Theorem) -> Theorem {
+    if !b.local.is_empty() {
+        let key = |(x, v): &(Expr, bool)| (subterm(x, root(x)), *v);
+        let mut known: std::collections::HashSet<(Expr, bool)> = a.local.iter().map(key).collect();
+        b.local.into_iter().filter(|l| known.insert(key(l))).for_each(|l| a.local.push(l));
     }
-    a.laws.extend(b.laws.iter().cloned());
-    a.hyps.extend(b.hyps.iter().cloned());
+    for (mine, theirs) in [(&mut a.laws, &mut b.laws), (&mut a.hyps, &mut b.hyps)] {
+        if mine.len() < theirs.len() {
+            std::mem::swap(mine, theirs);
+        }
+        mine.extend(std::mem::take(theirs));
+    }
     a
 }
 
@@ -531,7 +536,7 @@ fn case_split(atom: &Expr, one: Theorem, zero: Theorem) -> Result<Theorem> {
         thm.local.iter().filter(|(a, v)| !(same(a, atom) && *v == value)).cloned().collect()
     };
     let (rest_one, rest_zero) = (without(&one, true), without(&zero, false));
-    Ok(merge(Theorem { local: rest_one, ..one }, &Theorem { local: rest_zero, ..zero }))
+    Ok(merge(Theorem { local: rest_one, ..one }, Theorem { local: rest_zero, ..zero }))
 }
 
 /// Where a subterm sits: may an implication be used there, and is it pointwise?

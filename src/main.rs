@@ -304,6 +304,7 @@ fn prove(cli: Cli) -> ExitCode {
             || std::thread::available_parallelism().map_or(1, usize::from),
             usize::from,
         ),
+        proof_text: cli.trace || cli.json || cli.format == Format::Json,
     };
     let format = if cli.json { Format::Json } else { cli.format };
     let (vcd, wavedrom) = (cli.vcd.as_deref(), cli.wavedrom.as_deref());

@@ -42,7 +42,7 @@
 
 pub mod unroll;
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::time::Instant;
 
 use num_integer::Integer;
@@ -199,37 +199,60 @@ pub fn equations(compiled: &CompiledProgram) -> Vec<(String, &Expr)> {
 impl Program<'_> {
     /// The cone of `terms`: equations in scan order and the assumptions touching it.
     pub fn model(&self, terms: &[&Expr]) -> Model {
+        // The cone is a closure over names, walked once (a worklist) with the program's
+        // equation index (built once per program) and the assumptions indexed here.
+        let index = self.compiled.equation_index();
+        let hypotheses = &self.compiled.hypotheses;
+        let mentioned: Vec<BTreeSet<String>> = self
+            .assumptions
+            .iter()
+            .map(|a| {
+                let mut m = BTreeSet::new();
+                names_of(&a.lhs, &mut m);
+                names_of(&a.rhs, &mut m);
+                m
+            })
+            .collect();
+        let mut mentioning: HashMap<&str, Vec<usize>> = HashMap::new();
+        for (i, m) in mentioned.iter().enumerate() {
+            for n in m {
+                mentioning.entry(n.as_str()).or_default().push(i);
+            }
+        }
         let mut reached = BTreeSet::new();
         for t in terms {
             names_of(t, &mut reached);
         }
-        let defs_all = equations(self.compiled);
+        let mut pending: Vec<String> = reached.iter().cloned().collect();
         let mut taken_a = vec![false; self.assumptions.len()];
-        loop {
-            let before = reached.len();
-            for (name, rhs) in &defs_all {
-                if reached.contains(name) {
-                    names_of(rhs, &mut reached);
-                }
+        let mut taken_defs = Vec::new();
+        while let Some(name) = pending.pop() {
+            let mut found = BTreeSet::new();
+            for &i in index.defining.get(name.as_str()).map_or(&[][..], Vec::as_slice) {
+                taken_defs.push(i);
+                names_of(&hypotheses[index.equations[i].1].rhs, &mut found);
             }
-            for (i, a) in self.assumptions.iter().enumerate() {
-                let mut m = BTreeSet::new();
-                names_of(&a.lhs, &mut m);
-                names_of(&a.rhs, &mut m);
-                if !taken_a[i] && m.iter().any(|n| reached.contains(n)) {
+            for &i in mentioning.get(name.as_str()).map_or(&[][..], Vec::as_slice) {
+                if !taken_a[i] {
                     taken_a[i] = true;
-                    reached.extend(m);
+                    found.extend(mentioned[i].iter().cloned());
                 }
             }
-            if reached.len() == before {
-                break;
+            for n in found {
+                if !reached.contains(&n) {
+                    reached.insert(n.clone());
+                    pending.push(n);
+                }
             }
         }
+        taken_defs.sort_unstable();
         Model {
-            defs: defs_all
+            defs: taken_defs
                 .into_iter()
-                .filter(|(n, _)| reached.contains(n))
-                .map(|(n, e)| (n, e.clone()))
+                .map(|i| {
+                    let (n, h) = &index.equations[i];
+                    (n.clone(), hypotheses[*h].rhs.clone())
+                })
                 .collect(),
             constraints: self
                 .assumptions
@@ -800,6 +823,82 @@ fn bounded(
     Some((cnf, u.extra))
 }
 
+/// [`vacuity`] for a model without assumptions: its equations define every signal from
+/// the free ones, so any run of the free signals is a run (the scan-by-scan check is
+/// satisfiable), and the long scan-by-scan unrolling is built only for the signals the
+/// coarse grid finds constant. (It unrolls whenever the coarse grid does: both read the
+/// same equations in the same order, and a delay in whole coarse steps is one in scans.)
+fn unconstrained(
+    model: &Model,
+    read: &[String],
+    cycle: &Time,
+    grid: usize,
+    k_scans: usize,
+    k: usize,
+) -> Vacuity {
+    const MAX_STEPS: usize = 64;
+    if k > MAX_STEPS {
+        return Vacuity::default();
+    }
+    let Some((mut coarse, coarse_values)) = bounded(model, read, cycle, grid, k) else {
+        return Vacuity::default();
+    };
+    let all: Vec<usize> = (0..read.len()).collect();
+    let on_coarse = forced_each(&mut coarse, &coarse_values, &all);
+    let mut constants = Vec::new();
+    let candidates: Vec<usize> = all.into_iter().filter(|&i| on_coarse[i].is_some()).collect();
+    if !candidates.is_empty() {
+        let Some((mut fine, fine_values)) = bounded(model, read, cycle, 1, k_scans) else {
+            return Vacuity::default();
+        };
+        let on_fine = forced_each(&mut fine, &fine_values, &candidates);
+        for i in candidates {
+            if let Some(v) = on_coarse[i]
+                && on_fine[i] == Some(v)
+            {
+                constants.push((read[i].clone(), v));
+            }
+        }
+    }
+    let horizon = Some(cycle * Time::from_integer((k * grid).into()));
+    Vacuity { inconsistent: false, constants, horizon }
+}
+
+/// [`forced`] for the signals `which` of `values` (one list of literals per signal;
+/// `None` for the others). Each model the solver finds shows which signals it sets 1 or
+/// 0 somewhere, and those need no query of their own: the answers are [`forced`]'s.
+fn forced_each(cnf: &mut Cnf, values: &[Vec<varisat::Lit>], which: &[usize]) -> Vec<Option<bool>> {
+    let (mut ones, mut zeros) = (vec![false; values.len()], vec![false; values.len()]);
+    let mut out = vec![None; values.len()];
+    let seen = |model: &BTreeSet<varisat::Lit>, ones: &mut [bool], zeros: &mut [bool]| {
+        for (i, lits) in values.iter().enumerate() {
+            ones[i] |= lits.iter().any(|l| model.contains(l));
+            zeros[i] |= lits.iter().any(|l| !model.contains(l));
+        }
+    };
+    for &i in which {
+        if !ones[i] {
+            let some_one = cnf.or_all(&values[i]);
+            match cnf.solve(&[some_one]) {
+                None => {
+                    out[i] = Some(false);
+                    continue;
+                }
+                Some(model) => seen(&model, &mut ones, &mut zeros),
+            }
+        }
+        if !zeros[i] {
+            let negs: Vec<varisat::Lit> = values[i].iter().map(|v| !*v).collect();
+            let some_zero = cnf.or_all(&negs);
+            match cnf.solve(&[some_zero]) {
+                None => out[i] = Some(true),
+                Some(model) => seen(&model, &mut ones, &mut zeros),
+            }
+        }
+    }
+    out
+}
+
 /// The constant value `values` has in every model of `cnf`, if any.
 fn forced(cnf: &mut Cnf, values: &[varisat::Lit]) -> Option<bool> {
     let some_one = cnf.or_all(values);
@@ -836,6 +935,9 @@ pub fn vacuity(program: &Program, terms: &[&Expr]) -> Vacuity {
     const MAX_STEPS: usize = 64;
     // Consistency, scan by scan: a statement about every PLC run.
     let k_scans = (3 * longest + 4).min(MAX_STEPS);
+    if model.constraints.is_empty() {
+        return unconstrained(&model, &read, &cycle, grid, k_scans, 3 * longest / grid + 4);
+    }
     let Some((mut fine, fine_values)) = bounded(&model, &read, &cycle, 1, k_scans) else {
         return Vacuity::default();
     };

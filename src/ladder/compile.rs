@@ -122,7 +122,7 @@ use crate::syntax::print::{
     GoalKeyword, Notation, delay_to_string, goal_statement_to_string, name_to_string,
 };
 use crate::syntax::{Goal, Relation, Statement};
-use crate::term::{Delay, Expr};
+use crate::term::{Delay, Expr, Term, root};
 
 /// What a signal of a compiled program is.
 #[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
@@ -316,6 +316,17 @@ pub struct CompiledProgram {
     pub exact_names: bool,
     /// The short-name index of [`names`](super::names), built on first use from `signals`.
     pub(super) short_names: std::sync::OnceLock<BTreeMap<String, Vec<String>>>,
+    /// The equations' index ([`CompiledProgram::equation_index`]), built on first use.
+    pub(super) equation_index: std::sync::OnceLock<EquationIndex>,
+}
+
+/// The program's equations `X = term` in scan order, and which define each name.
+#[derive(Clone, Debug, Default)]
+pub struct EquationIndex {
+    /// Per equation in scan order: the name it defines and the index of its hypothesis.
+    pub equations: Vec<(String, usize)>,
+    /// Per name: the positions in `equations` of those that define it.
+    pub defining: std::collections::HashMap<String, Vec<usize>>,
 }
 
 impl CompiledProgram {
@@ -327,6 +338,25 @@ impl CompiledProgram {
     /// Every hypothesis as a ground kernel axiom.
     pub fn axioms(&self) -> Vec<Axiom> {
         self.hypotheses.iter().map(Hypothesis::axiom).collect()
+    }
+
+    /// The equations `X = term` (kind equation, `=`, a name on the left) in scan order,
+    /// indexed by name; built once.
+    pub fn equation_index(&self) -> &EquationIndex {
+        self.equation_index.get_or_init(|| {
+            let mut index = EquationIndex::default();
+            for (i, h) in self.hypotheses.iter().enumerate() {
+                if h.kind != HypothesisKind::Equation || h.rel != Rel::Eq {
+                    continue;
+                }
+                if let Term::Name(n) = &h.lhs[root(&h.lhs)] {
+                    let at = index.equations.len();
+                    index.defining.entry(n.as_str().to_string()).or_default().push(at);
+                    index.equations.push((n.as_str().to_string(), i));
+                }
+            }
+            index
+        })
     }
 
     /// The hypothesis called `name`.
@@ -1094,6 +1124,7 @@ impl<'a> Compiler<'a> {
             cycle_us: self.program.cycle_us,
             exact_names: self.program.inputs.is_some(),
             short_names: std::sync::OnceLock::new(),
+            equation_index: std::sync::OnceLock::new(),
         }
     }
 }

@@ -56,12 +56,12 @@ enum B {
     Or(Box<B>, Box<B>),
 }
 
-/// The atoms met so far, by their printed form.
+/// The atoms met so far, by their tree (a canonical copy: equal trees, equal keys).
 #[derive(Default, Debug)]
 pub struct Atoms {
     /// Each atom's term.
     pub terms: Vec<Expr>,
-    index: HashMap<String, usize>,
+    index: HashMap<Expr, usize>,
     /// Towards the representative of the atom's class: the next atom and the
     /// hypothesis (`a = b`, used forward or backward) that rewrites this one into it.
     link: Vec<Option<(usize, String, Use)>>,
@@ -135,7 +135,7 @@ impl Atoms {
     }
 
     fn intern(&mut self, e: &Expr) -> usize {
-        let key = e.to_string();
+        let key = subterm(e, root(e));
         if let Some(&i) = self.index.get(&key) {
             return i;
         }
@@ -247,8 +247,8 @@ pub fn law_instances(
                     continue;
                 };
                 let (fl, fr) = (fold_delays(&l), fold_delays(&r));
-                if fl.to_string() == fr.to_string() || !seen.insert(format!("{} {l} {r}", law.name))
-                {
+                let key = (law.name.clone(), subterm(&l, root(&l)), subterm(&r, root(&r)));
+                if crate::term::same(&fl, &fr) || !seen.insert(key) {
                     continue;
                 }
                 let mut conditions = Vec::new();
@@ -536,15 +536,31 @@ struct Search<'a> {
     reps: Vec<usize>,
     /// The atoms of each class, by representative.
     members: Vec<Vec<usize>>,
-    /// The constraints that mention each class, by representative.
+    /// The constraints that mention each class, by representative (in constraint order).
     occurs: Vec<Vec<usize>>,
+    /// The atoms of the goal, in order.
+    goal_atoms: Vec<usize>,
+    /// The atoms of each constraint, in order (left side, then right side).
+    atoms_of: Vec<Vec<usize>>,
+    /// Per constraint: the unassigned classes (representatives) one of whose values
+    /// violates it under the current assignment. Kept up to date for the constraints
+    /// of each class the search assigns, so unit propagation never rescans them all.
+    violators: Vec<Vec<usize>>,
+    /// The constraints whose `violators` are not empty.
+    units: std::collections::BTreeSet<usize>,
     leaves: usize,
     max_leaves: usize,
     deadline: Instant,
 }
 
 impl Search<'_> {
-    fn prove(&mut self, sigma: &mut Vec<Option<bool>>) -> Result<Proof, String> {
+    /// A proof of the goal under `sigma`; `changed`: the class the caller just assigned
+    /// (`None` at the root). Only the constraints on that class can change.
+    fn prove(
+        &mut self,
+        sigma: &mut Vec<Option<bool>>,
+        changed: Option<usize>,
+    ) -> Result<Proof, String> {
         if Instant::now() > self.deadline {
             return Err("time limit".into());
         }
@@ -557,16 +573,34 @@ impl Search<'_> {
         if evaluate(&mut whole, &[], &self.goal, sigma, self.atoms, &mut steps) == Some(false) {
             return Ok(Proof::Chain { start: self.goal_term.clone(), steps });
         }
-        for (c, (l, r)) in self.constraints.iter().zip(&self.views) {
-            let (vl, vr) = (eval3(l, sigma), eval3(r, sigma));
-            let violated = match c.rel {
-                Rel::Eq => vl.is_some() && vr.is_some() && vl != vr,
-                Rel::Implies => vl == Some(true) && vr == Some(false),
-            };
-            if violated {
-                return Ok(self.contradiction(c, l, r, sigma));
-            }
+        // The caller's assignment violated no constraint, so a violated one (the first
+        // in order) mentions the class just assigned.
+        let violated = match changed {
+            None => (0..self.constraints.len()).find(|&i| self.violated(i, sigma)),
+            Some(k) => self.occurs[k].iter().copied().find(|&i| self.violated(i, sigma)),
+        };
+        if let Some(i) = violated {
+            let (l, r) = &self.views[i];
+            return Ok(self.contradiction(&self.constraints[i], l, r, sigma));
         }
+        let touched: Vec<usize> = match changed {
+            None => (0..self.constraints.len()).collect(),
+            Some(k) => self.occurs[k].clone(),
+        };
+        let mut saved = Vec::with_capacity(touched.len());
+        for i in touched {
+            let now = self.violators_of(i, sigma);
+            saved.push((i, self.replace_violators(i, now)));
+        }
+        let result = self.split(sigma);
+        for (i, old) in saved.into_iter().rev() {
+            self.replace_violators(i, old);
+        }
+        result
+    }
+
+    /// The case split at a node that neither the goal nor a constraint closes.
+    fn split(&mut self, sigma: &mut Vec<Option<bool>>) -> Result<Proof, String> {
         let next =
             self.unit_atom(sigma).or_else(|| first_unassigned(&self.goal, sigma)).or_else(|| {
                 self.views.iter().find_map(|(l, r)| {
@@ -581,16 +615,52 @@ impl Search<'_> {
         let Some(atom) = next else {
             return Err("the skeleton has a countermodel".into());
         };
+        let class = self.reps[atom];
         self.set(sigma, atom, Some(true));
-        let one = self.prove(sigma);
+        let one = self.prove(sigma, Some(class));
         self.set(sigma, atom, Some(false));
-        let zero = self.prove(sigma);
+        let zero = self.prove(sigma, Some(class));
         self.set(sigma, atom, None);
         Ok(Proof::CaseSplit {
-            atom: self.atoms.terms[self.reps[atom]].clone(),
+            atom: self.atoms.terms[class].clone(),
             one: Box::new(one?),
             zero: Box::new(zero?),
         })
+    }
+
+    /// Sets constraint `i`'s violators, keeping `units` in step; returns the old ones.
+    fn replace_violators(&mut self, i: usize, now: Vec<usize>) -> Vec<usize> {
+        if now.is_empty() {
+            self.units.remove(&i);
+        } else {
+            self.units.insert(i);
+        }
+        std::mem::replace(&mut self.violators[i], now)
+    }
+
+    /// The unassigned classes of constraint `i` one of whose values violates it.
+    fn violators_of(&self, i: usize, sigma: &mut [Option<bool>]) -> Vec<usize> {
+        let mut out = Vec::new();
+        let (l, r) = &self.views[i];
+        if eval3(l, sigma).is_some() && eval3(r, sigma).is_some() {
+            return out;
+        }
+        for &a in &self.atoms_of[i] {
+            let class = self.reps[a];
+            if sigma[a].is_some() || out.contains(&class) {
+                continue;
+            }
+            for value in [true, false] {
+                self.set(sigma, a, Some(value));
+                let hit = self.violated(i, sigma);
+                self.set(sigma, a, None);
+                if hit {
+                    out.push(class);
+                    break;
+                }
+            }
+        }
+        out
     }
 
     /// Assigns a value to every atom of `atom`'s class.
@@ -617,38 +687,59 @@ impl Search<'_> {
             || self.occurs[self.reps[atom]].iter().any(|&i| self.violated(i, sigma))
     }
 
+    /// Where a class first stands among the candidates of [`Search::unit_atom`]: the
+    /// goal's atoms in order, then the atoms of each undecided constraint in order.
+    fn position(&self, class: usize, sigma: &[Option<bool>]) -> (usize, usize, usize) {
+        if let Some(p) = self.goal_atoms.iter().position(|a| self.reps[*a] == class) {
+            return (0, p, 0);
+        }
+        for &i in &self.occurs[class] {
+            let (l, r) = &self.views[i];
+            if eval3(l, sigma).is_none() || eval3(r, sigma).is_none() {
+                let at = self.atoms_of[i].iter().position(|a| self.reps[*a] == class);
+                return (1, i, at.unwrap_or(0));
+            }
+        }
+        (2, 0, 0)
+    }
+
     /// An unassigned atom of the goal or a constraint one of whose values closes the
     /// branch at once, so that splitting on it costs one short case (unit propagation).
-    /// Atoms that close the branch for both values come first.
+    /// Atoms that close the branch for both values come first, then the order of the
+    /// goal and the constraints. Only the goal's classes and the constraints' known
+    /// violators can close it, so only they are tried.
     fn unit_atom(&self, sigma: &mut [Option<bool>]) -> Option<usize> {
-        // Candidates: the goal's atoms, and those of constraints not yet decided.
-        let mut candidates: Vec<usize> = Vec::new();
-        atoms_in(&self.goal, &mut candidates);
-        for (l, r) in &self.views {
-            if eval3(l, sigma).is_none() || eval3(r, sigma).is_none() {
-                atoms_in(l, &mut candidates);
-                atoms_in(r, &mut candidates);
+        let mut classes: Vec<usize> = Vec::new();
+        for &a in &self.goal_atoms {
+            if sigma[a].is_none() {
+                classes.push(self.reps[a]);
             }
+        }
+        for &i in &self.units {
+            classes.extend(self.violators[i].iter().copied());
         }
         let mut seen = std::collections::HashSet::new();
-        let mut unit = None;
-        for atom in candidates {
-            if sigma[atom].is_some() || !seen.insert(atom) {
+        let mut both: Option<((usize, usize, usize), usize)> = None;
+        let mut unit: Option<((usize, usize, usize), usize)> = None;
+        for class in classes {
+            if !seen.insert(class) {
                 continue;
             }
-            self.set(sigma, atom, Some(true));
-            let one = self.closes_by(atom, sigma);
-            self.set(sigma, atom, Some(false));
-            let zero = self.closes_by(atom, sigma);
-            self.set(sigma, atom, None);
-            if one && zero {
-                return Some(atom);
+            self.set(sigma, class, Some(true));
+            let one = self.closes_by(class, sigma);
+            self.set(sigma, class, Some(false));
+            let zero = self.closes_by(class, sigma);
+            self.set(sigma, class, None);
+            if !(one || zero) {
+                continue;
             }
-            if (one || zero) && unit.is_none() {
-                unit = Some(atom);
+            let at = (self.position(class, sigma), class);
+            let best = if one && zero { &mut both } else { &mut unit };
+            if best.is_none_or(|b| at.0 < b.0) {
+                *best = Some(at);
             }
         }
-        unit
+        both.or(unit).map(|(_, class)| class)
     }
 
     /// `G = G·1* = G·0* = 0*`, where `1* = … = 0*` runs through the violated constraint.
@@ -790,21 +881,36 @@ pub fn prove_zero(
             model.into_iter().enumerate().map(|(i, v)| (atoms.terms[i].clone(), v)).collect();
         return Err(Failure::Countermodel(assignment));
     }
+    let mut goal_atoms = Vec::new();
+    atoms_in(&goal_view, &mut goal_atoms);
+    let atoms_of: Vec<Vec<usize>> = views
+        .iter()
+        .map(|(l, r)| {
+            let mut found = Vec::new();
+            atoms_in(l, &mut found);
+            atoms_in(r, &mut found);
+            found
+        })
+        .collect();
     let mut search = Search {
         goal: goal_view,
         goal_term: goal.clone(),
         constraints,
+        violators: vec![Vec::new(); views.len()],
+        units: Default::default(),
         views,
         atoms,
         members,
         occurs,
         reps,
+        goal_atoms,
+        atoms_of,
         leaves: 0,
         max_leaves,
         deadline,
     };
     let mut sigma = vec![None; search.atoms.terms.len()];
-    search.prove(&mut sigma).map(prune).map_err(Failure::Limit)
+    search.prove(&mut sigma, None).map(prune).map_err(Failure::Limit)
 }
 
 /// Does any step of the proof rewrite with the case assumption on `atom`?

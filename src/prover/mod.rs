@@ -148,14 +148,20 @@ impl Context {
     /// The hypotheses in the cone of influence of `terms` (see [`cone_of_influence`]),
     /// at most `depth` steps of signal dependence away when a depth is given.
     pub fn cone(&self, terms: &[&Expr], depth: Option<usize>) -> Vec<&Axiom> {
-        self.index.cone(&self.hypotheses, terms, depth, false)
+        self.index.cone(&self.hypotheses, terms, depth, false, None)
+    }
+
+    /// Does the cone of influence of `terms` hold more than `n` hypotheses? (Stops
+    /// looking once it has found `n + 1`.)
+    fn cone_exceeds(&self, terms: &[&Expr], n: usize) -> bool {
+        self.index.cone(&self.hypotheses, terms, None, false, Some(n)).len() > n
     }
 
     /// A tighter cone for goal-directed attempts: a bound `X ⇒ e` or `e ⇒ X` of a signal
     /// `X` that has a definition `X = …` joins only when `X` itself is reached (while
     /// `X` is outside, the bound constrains nothing the goal reads).
     fn near_cone(&self, terms: &[&Expr], depth: usize) -> Vec<&Axiom> {
-        self.index.cone(&self.hypotheses, terms, Some(depth), true)
+        self.index.cone(&self.hypotheses, terms, Some(depth), true, None)
     }
 }
 
@@ -208,13 +214,15 @@ impl ConeIndex {
         ConeIndex { concerns, anchored, mentions }
     }
 
-    /// Breadth first from the names of `terms`, one layer per step of dependence.
+    /// Breadth first from the names of `terms`, one layer per step of dependence;
+    /// with a `cap`, it stops once more than `cap` hypotheses are taken.
     fn cone<'a>(
         &self,
         hypotheses: &'a [Axiom],
         terms: &[&Expr],
         depth: Option<usize>,
         tight: bool,
+        cap: Option<usize>,
     ) -> Vec<&'a Axiom> {
         let index = if tight { &self.anchored } else { &self.concerns };
         let mut reached = BTreeSet::new();
@@ -230,6 +238,9 @@ impl ConeIndex {
                 for &i in index.get(n).map_or(&[][..], Vec::as_slice) {
                     if taken.insert(i) {
                         next.extend(self.mentions[i].iter().filter(|m| reached.insert(**m)));
+                        if cap.is_some_and(|c| taken.len() > c) {
+                            return taken.into_iter().map(|i| &hypotheses[i]).collect();
+                        }
                     }
                 }
             }
@@ -252,7 +263,7 @@ fn names(e: &Expr, into: &mut BTreeSet<Symbol>) {
 /// signal `Q` the cone reaches, and any other hypothesis that mentions one, in the
 /// order of `hypotheses`. ([`Context::cone`] does the same with an index built once.)
 pub fn cone_of_influence<'a>(hypotheses: &'a [Axiom], terms: &[&Expr]) -> Vec<&'a Axiom> {
-    ConeIndex::new(hypotheses).cone(hypotheses, terms, None, false)
+    ConeIndex::new(hypotheses).cone(hypotheses, terms, None, false, None)
 }
 
 /// Tries to prove the goal within the budget.
@@ -290,13 +301,12 @@ fn prove_at(
     let started = Instant::now();
     let deadline = started + budget.time;
     let goal_terms = [&goal.lhs, &goal.rhs];
-    let cone: Vec<Axiom> = ctx.cone(&goal_terms, None).into_iter().cloned().collect();
     // Goal-directed first: the hypotheses about the goal's own signals, then those one
     // and two steps further, … (deeper signals stay opaque atoms), widened while the
     // abstraction has a model, with the quick methods only. A proof from fewer
     // hypotheses is a proof; the kernel checks it in the whole context.
     // A side condition of a law (depth > 0) is a local fact: only the nearest
-    // hypotheses are tried for it.
+    // hypotheses are tried for it. The whole cone is collected only when these fail.
     let mut reach = 1;
     let mut previous = 0;
     while Instant::now() < deadline {
@@ -307,7 +317,7 @@ fn prove_at(
             };
         }
         let small: Vec<Axiom> = ctx.near_cone(&goal_terms, reach).into_iter().cloned().collect();
-        if small.len() >= cone.len() || (small.len() == previous && reach > 1) {
+        if !ctx.cone_exceeds(&goal_terms, small.len()) || (small.len() == previous && reach > 1) {
             break;
         }
         previous = small.len();
@@ -316,6 +326,7 @@ fn prove_at(
         }
         reach *= 2;
     }
+    let cone: Vec<Axiom> = ctx.cone(&goal_terms, None).into_iter().cloned().collect();
     let limits = Limits { time: budget.time / 6, nodes: budget.nodes, ..Limits::default() };
     let mut terms: Vec<&Expr> = vec![&goal.lhs, &goal.rhs];
     terms.extend(cone.iter().flat_map(|h| [&h.lhs, &h.rhs]));
@@ -445,8 +456,11 @@ fn quick_proof(
     let limits = Limits { time: budget.time / 50, nodes: QUICK_NODES, ..Limits::default() };
     let mut terms: Vec<&Expr> = vec![&goal.lhs, &goal.rhs];
     terms.extend(cone.iter().flat_map(|h| [&h.lhs, &h.rhs]));
-    // Side conditions (depth > 0) are decided on the Boolean skeleton alone.
-    let tiers = if depth == 0 { saturate::tiers(&ctx.rules, &terms) } else { Vec::new() };
+    // Side conditions (depth > 0) are decided on the Boolean skeleton alone, and so are
+    // goals whose nearest hypotheses are many (a chain of implications): there the case
+    // split's unit propagation walks the chain, and saturation seldom closes.
+    let saturating = depth == 0 && cone.len() <= QUICK_SATURATION_CONE;
+    let tiers = if saturating { saturate::tiers(&ctx.rules, &terms) } else { Vec::new() };
     if let Some(rules) = tiers.first() {
         let mut run = saturate::saturate(&goal.lhs, goal.rel, &goal.rhs, cone, rules, limits);
         if let Some(closed) = run.closed
@@ -467,6 +481,9 @@ const LARGER_TIERS_SHARE: u32 = 10;
 /// E-nodes of a goal-directed saturation attempt: when a small cone closes the goal,
 /// it does so in a small e-graph.
 const QUICK_NODES: usize = 1_500;
+
+/// Above this many nearest hypotheses, the quick methods skip saturation.
+const QUICK_SATURATION_CONE: usize = 8;
 
 /// How many steps of dependence from its own signals a side condition's proof may use.
 const SIDE_CONDITION_REACH: usize = 4;

@@ -52,6 +52,9 @@ pub struct Options {
     pub jobs: usize,
     /// For a PLCopen program: which POU (`--pou`) and which cycle (`--cycle`).
     pub plcopen: crate::ladder::plcopen::Selection,
+    /// Render each proof's printed lines and atomic steps into the report (the JSON
+    /// output and `--trace` show them; without, a trace keeps its method and length).
+    pub proof_text: bool,
 }
 
 impl Default for Options {
@@ -65,6 +68,7 @@ impl Default for Options {
             timers: crate::ladder::TimerModel::default(),
             jobs: 1,
             plcopen: Default::default(),
+            proof_text: true,
         }
     }
 }

@@ -150,12 +150,20 @@ pub fn check_property(
                     prover::Method::CaseSplit => "case-split".into(),
                     prover::Method::Induction => "induction".into(),
                 },
-                lines: trace::render(&proved, goal.rel, &style),
+                lines: if opts.proof_text {
+                    trace::render(&proved, goal.rel, &style)
+                } else {
+                    Vec::new()
+                },
                 length: trace::length(&proved),
-                steps: trace::atomic_steps(&proved, &style)
-                    .into_iter()
-                    .map(|(rule, kind, term)| StepReport { rule, kind: kind.into(), term })
-                    .collect(),
+                steps: if opts.proof_text {
+                    trace::atomic_steps(&proved, &style)
+                        .into_iter()
+                        .map(|(rule, kind, term)| StepReport { rule, kind: kind.into(), term })
+                        .collect()
+                } else {
+                    Vec::new()
+                },
                 hypotheses: proved.theorem.hypotheses_used().iter().cloned().collect(),
                 laws: proved.theorem.laws_used().iter().cloned().collect(),
             });
