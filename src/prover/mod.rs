@@ -97,7 +97,7 @@ pub struct Context {
     pub laws: Vec<Axiom>,
     /// The hypotheses (also in the kernel).
     pub hypotheses: Vec<Axiom>,
-    rules: Vec<saturate::Rule>,
+    rules: saturate::RuleSet,
     /// Side conditions already attempted, with their proofs (shared by every goal).
     premises: std::sync::Mutex<std::collections::HashMap<String, Option<Proof>>>,
     /// Which hypotheses concern each signal (for cones of influence).
@@ -127,7 +127,7 @@ impl Context {
         } else {
             Kernel::new(laws.clone(), hypotheses.clone())?
         };
-        let rules = saturate::rules_for(&laws);
+        let rules = saturate::RuleSet::new(&laws);
         // The search uses the laws of `pre` only where signals are scan runs.
         let laws = if scans {
             laws

@@ -393,13 +393,64 @@ fn pattern_ops(p: &PatternAst<Term>) -> u8 {
     }))
 }
 
+/// The search rules of a set of laws, with what [`tiers`] needs to know of each: built
+/// once per context.
+pub struct RuleSet {
+    rules: Vec<Rule>,
+    shapes: Vec<Shape>,
+}
+
+/// A rule's temporal operators on each side, and its class: 0 shrinks terms, 1 is a
+/// permutation (commutativity, associativity), 2 grows a term by at most two nodes,
+/// 3 grows it more (or is not a pattern rule).
+#[derive(Clone, Copy)]
+struct Shape {
+    from_ops: u8,
+    to_ops: u8,
+    class: usize,
+}
+
+impl RuleSet {
+    /// The rules of `laws` ([`rules_for`]) and their shapes.
+    pub fn new(laws: &[Axiom]) -> RuleSet {
+        let rules = rules_for(laws);
+        let shapes = rules
+            .iter()
+            .map(|r| {
+                let (Some(l), Some(rt)) =
+                    (r.searcher.get_pattern_ast(), r.applier.get_pattern_ast())
+                else {
+                    return Shape { from_ops: 0, to_ops: 0, class: 3 };
+                };
+                let (a, b) = (pattern_size(l), pattern_size(rt));
+                let mut lv: Vec<String> = l.as_ref().iter().map(|n| format!("{n:?}")).collect();
+                let mut rv: Vec<String> = rt.as_ref().iter().map(|n| format!("{n:?}")).collect();
+                lv.sort();
+                rv.sort();
+                let class = if lv == rv {
+                    1
+                } else if b < a {
+                    0
+                } else if b <= a + 2 {
+                    2
+                } else {
+                    3
+                };
+                Shape { from_ops: pattern_ops(l), to_ops: pattern_ops(rt), class }
+            })
+            .collect();
+        RuleSet { rules, shapes }
+    }
+}
+
 /// The rules in growing sets, restricted to the temporal operators present in
 /// `terms`: first the rules that shrink terms, then with the permutations
 /// (commutativity, associativity), then with rules that grow a term by at most
 /// two nodes, then everything; each of the last two followed, if that adds any, by
 /// the same with the operators the laws reach from those present. Small sets give
 /// short proofs quickly when they suffice; the last set is the whole relevant rule set.
-pub fn tiers(rules: &[Rule], terms: &[&Expr]) -> Vec<Vec<Rule>> {
+pub fn tiers(set: &RuleSet, terms: &[&Expr]) -> Vec<Vec<Rule>> {
+    let rules = &set.rules;
     let present = terms.iter().fold(0u8, |acc, t| acc | temporal_ops(t.as_ref().iter()));
     // The operators reachable from those present by rules that rewrite one of them
     // into another: `RS(s, r) = SR(s·¬r, r)` brings the SR laws to a goal about RS
@@ -407,44 +458,21 @@ pub fn tiers(rules: &[Rule], terms: &[&Expr]) -> Vec<Vec<Rule>> {
     let mut reachable = present;
     loop {
         let before = reachable;
-        for r in rules {
-            if let (Some(l), Some(rt)) = (r.searcher.get_pattern_ast(), r.applier.get_pattern_ast())
-                && pattern_ops(l) != 0
-                && pattern_ops(l) & !reachable == 0
-            {
-                reachable |= pattern_ops(rt);
+        for s in &set.shapes {
+            if s.from_ops != 0 && s.from_ops & !reachable == 0 {
+                reachable |= s.to_ops;
             }
         }
         if reachable == before {
             break;
         }
     }
-    let class = |r: &Rule, ops: u8| {
-        let (Some(l), Some(rt)) = (r.searcher.get_pattern_ast(), r.applier.get_pattern_ast())
-        else {
-            return 3;
-        };
-        if (pattern_ops(l) | pattern_ops(rt)) & !ops != 0 {
-            return usize::MAX;
-        }
-        let (a, b) = (pattern_size(l), pattern_size(rt));
-        let mut lv: Vec<String> = l.as_ref().iter().map(|n| format!("{n:?}")).collect();
-        let mut rv: Vec<String> = rt.as_ref().iter().map(|n| format!("{n:?}")).collect();
-        lv.sort();
-        rv.sort();
-        if lv == rv {
-            1
-        } else if b < a {
-            0
-        } else if b <= a + 2 {
-            2
-        } else {
-            3
-        }
+    let class = |s: &Shape, ops: u8| {
+        if (s.from_ops | s.to_ops) & !ops != 0 { usize::MAX } else { s.class }
     };
-    let classes: Vec<usize> = rules.iter().map(|r| class(r, present)).collect();
+    let classes: Vec<usize> = set.shapes.iter().map(|s| class(s, present)).collect();
     let reachable_classes: Option<Vec<usize>> =
-        (reachable != present).then(|| rules.iter().map(|r| class(r, reachable)).collect());
+        (reachable != present).then(|| set.shapes.iter().map(|s| class(s, reachable)).collect());
     let tier = |max: usize, classes: &[usize]| {
         rules
             .iter()
