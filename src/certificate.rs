@@ -8,7 +8,7 @@
 use std::collections::BTreeMap;
 use std::fmt;
 
-use crate::term::{Delay, Expr, Symbol, Term};
+use crate::term::{Delay, Expr, Symbol, Term, initially};
 
 /// The relation a theorem, law or hypothesis states between two signals.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -63,6 +63,14 @@ impl Axiom {
         let (signal_vars, delay_vars) = (Vec::new(), Vec::new());
         let (delay_conditions, signal_conditions) = (Vec::new(), Vec::new());
         Axiom { name, lhs, rel, rhs, signal_vars, delay_vars, delay_conditions, signal_conditions }
+    }
+
+    /// Does this ground fact hold before the first scan (every variable, timer and
+    /// memory 0), so that at the previous scan too, even at the first one?
+    pub fn holds_initially(&self) -> bool {
+        let (l, r) = (initially(&self.lhs), initially(&self.rhs));
+        let ground = self.signal_vars.is_empty() && self.delay_vars.is_empty();
+        ground && if self.rel == Rel::Eq { l == r } else { !l || r }
     }
 
     /// Binds [`CYCLE`] to a program's scan cycle in an instance's substitution when the

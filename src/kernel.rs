@@ -39,8 +39,8 @@ pub use crate::certificate::{
     Axiom, CYCLE, Certificate, Cmp, KernelError, Proof, Rel, Rule, Source, Step, Use,
 };
 use crate::term::{
-    Delay, Expr, Id, Language, Symbol, Term, and, at_first_scan, fold_delay, initially,
-    instantiate, is_delay_node, matches, mentions_pre, not, or, root, same, same_tree, subterm,
+    Delay, Expr, Id, Language, Symbol, Term, and, at_first_scan, fold_delay, instantiate,
+    is_delay_node, matches, mentions_pre, not, or, root, same, same_tree, subterm,
 };
 
 /// A checked statement. Only this module can create one.
@@ -79,6 +79,12 @@ impl Theorem {
     pub fn hypotheses_used(&self) -> &BTreeSet<String> {
         &self.hyps
     }
+    /// Records that this theorem also rests on the laws and hypotheses `used` rests on.
+    fn rests_on(&mut self, used: &Theorem) {
+        self.laws.extend(used.laws.iter().cloned());
+        self.hyps.extend(used.hyps.iter().cloned());
+    }
+
     /// Does this theorem establish `lhs rel rhs` about whole signals?
     /// An equation also establishes the implication.
     pub fn proves(&self, lhs: &Expr, rel: Rel, rhs: &Expr) -> bool {
@@ -116,13 +122,6 @@ fn pointwise_law(law: &Axiom) -> bool {
         })
     };
     law.signal_conditions.is_empty() && plain(&law.lhs) && plain(&law.rhs)
-}
-
-/// Does a ground fact hold before the first scan (every variable, timer and memory 0)?
-fn holds_initially(fact: &Axiom) -> bool {
-    let (l, r) = (initially(&fact.lhs), initially(&fact.rhs));
-    let ground = fact.signal_vars.is_empty() && fact.delay_vars.is_empty();
-    ground && if fact.rel == Rel::Eq { l == r } else { !l || r }
 }
 
 /// A rewrite rule `from → to` after choosing how a law is used.
@@ -244,10 +243,7 @@ impl Kernel {
             .as_ref()
             .ok_or_else(|| KernelError::NotTheGoal("the certificate has no main proof".into()))?;
         let mut thm = self.replay(main, &lemmas)?;
-        for used in lemmas.values() {
-            thm.laws.extend(used.laws.iter().cloned());
-            thm.hyps.extend(used.hyps.iter().cloned());
-        }
+        lemmas.values().for_each(|used| thm.rests_on(used));
         Ok(thm)
     }
 
@@ -462,7 +458,7 @@ impl Kernel {
                 // there too, and outside a base case facts true before the first scan.
                 let before_first = match source {
                     Source::Law => pointwise_law(axiom),
-                    _ => !self.first_scan && holds_initially(axiom),
+                    _ => !self.first_scan && axiom.holds_initially(),
                 };
                 if position.under_pre && !before_first {
                     return Err(KernelError::BadPosition(format!(
@@ -493,15 +489,13 @@ impl Kernel {
                             "`{name}` needs `{want_l} {rel:?} {want_r}`"
                         )));
                     }
-                    thm.laws.extend(got.laws.iter().cloned());
-                    thm.hyps.extend(got.hyps.iter().cloned());
+                    thm.rests_on(&got);
                 }
                 match (source, lemma) {
                     (Source::Law, _) => thm.laws.insert(name.clone()),
                     (Source::Hypothesis, _) => thm.hyps.insert(name.clone()),
                     (Source::Lemma, Some(used)) => {
-                        thm.laws.extend(used.laws.iter().cloned());
-                        thm.hyps.extend(used.hyps.iter().cloned());
+                        thm.rests_on(used);
                         true
                     }
                     (Source::Lemma, None) => false,

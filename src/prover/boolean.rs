@@ -15,9 +15,7 @@ use std::time::Instant;
 use varisat::{ExtendFormula, Lit, Solver};
 
 use crate::kernel::{self, Axiom, Proof, Rel, Rule, Source, Step, Use};
-use crate::term::{
-    Expr, Id, Language, Symbol, Term, and, constant, initially, mentions_pre, root, subterm,
-};
+use crate::term::{Expr, Id, Language, Symbol, Term, and, constant, mentions_pre, root, subterm};
 
 use super::induction::{pre, push_pre};
 use super::normalize::replace_at;
@@ -301,24 +299,18 @@ pub fn shifted(cone: &[Axiom], atoms: &mut Atoms, rounds: usize) -> Vec<Constrai
         })
         .collect();
     let names = |e: &Expr| {
-        e.as_ref()
-            .iter()
-            .filter_map(|t| match t {
-                Term::Name(n) => Some(*n),
-                _ => None,
-            })
-            .collect::<Vec<Symbol>>()
+        let mut set = std::collections::BTreeSet::new();
+        super::names(e, &mut set);
+        set
     };
     let mut taken = vec![false; cone.len()];
     let mut out = Vec::new();
     for _ in 0..rounds {
         let mut more = Vec::new();
         for (h, done) in cone.iter().zip(taken.iter_mut()) {
-            let (li, ri) = (initially(&h.lhs), initially(&h.rhs));
-            let holds = if h.rel == Rel::Eq { li == ri } else { !li || ri };
             let mentioned = names(&h.lhs).into_iter().chain(names(&h.rhs));
             if *done
-                || !holds
+                || !h.holds_initially()
                 || mentions_pre(&h.lhs)
                 || mentions_pre(&h.rhs)
                 || !mentioned.into_iter().any(|n| wanted.contains(&n))
