@@ -5,8 +5,9 @@
 //! [`Proof`], [`Step`]), and the reasons it gives for a rejection ([`KernelError`]).
 //! Keeping the format apart keeps `kernel.rs` to its logic.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
+use std::sync::Arc;
 
 use crate::term::{Delay, Expr, Symbol, Term, initially};
 
@@ -190,6 +191,95 @@ pub enum Proof {
     ImpliesByMeet(Box<Proof>),
     /// `f ⇒ g` from a proof of `f·¬g = 0*`.
     ImpliesByZero(Box<Proof>),
+}
+
+impl Proof {
+    /// Calls `f` on every step of the proof, premises of steps included.
+    pub fn for_each_step_mut(&mut self, f: &mut dyn FnMut(&mut Step)) {
+        match self {
+            Proof::Chain { steps, .. } => {
+                for s in steps {
+                    f(s);
+                    s.premises.iter_mut().for_each(|p| p.for_each_step_mut(f));
+                }
+            }
+            Proof::CaseSplit { one: p, zero: q, .. }
+            | Proof::Induction { base: p, step: q, .. }
+            | Proof::Antisym(p, q)
+            | Proof::Trans(p, q) => {
+                p.for_each_step_mut(f);
+                q.for_each_step_mut(f);
+            }
+            Proof::Symm(p) | Proof::ImpliesByMeet(p) | Proof::ImpliesByZero(p) => {
+                p.for_each_step_mut(f)
+            }
+        }
+    }
+
+    /// The names of the lemmas the proof cites.
+    pub fn lemmas_cited(&self) -> BTreeSet<String> {
+        let mut names = BTreeSet::new();
+        // A copy walked mutably: the visitor is shared with the relabelling of traces.
+        self.clone().for_each_step_mut(&mut |s| {
+            if let Rule::Cite(Source::Lemma, name, _) = &s.rule {
+                names.insert(name.clone());
+            }
+        });
+        names
+    }
+}
+
+/// What a theorem rests on: the laws and hypotheses it cites by name, and what the
+/// shared lemmas it cites rest on. The kernel keeps it for reports; it decides nothing.
+#[derive(Clone, Debug, Default)]
+pub struct Uses {
+    /// Laws cited.
+    pub laws: BTreeSet<String>,
+    /// Hypotheses cited.
+    pub hyps: BTreeSet<String>,
+    /// What each shared lemma cited rests on (shared, not copied).
+    pub lemmas: Vec<Arc<Uses>>,
+}
+
+impl Uses {
+    /// Adds what `other` rests on (the smaller sets join the larger).
+    pub fn absorb(&mut self, mut other: Uses) {
+        for (mine, theirs) in [(&mut self.laws, &mut other.laws), (&mut self.hyps, &mut other.hyps)]
+        {
+            if mine.len() < theirs.len() {
+                std::mem::swap(mine, theirs);
+            }
+            mine.extend(std::mem::take(theirs));
+        }
+        self.lemmas.append(&mut other.lemmas);
+    }
+
+    /// Every law and every hypothesis, through the lemmas too.
+    pub fn all(&self) -> (BTreeSet<String>, BTreeSet<String>) {
+        let (mut laws, mut hyps) = (self.laws.clone(), self.hyps.clone());
+        let mut seen = BTreeSet::new();
+        let mut stack: Vec<&Uses> = self.lemmas.iter().map(|u| &**u).collect();
+        while let Some(u) = stack.pop() {
+            if seen.insert(u as *const Uses) {
+                laws.extend(u.laws.iter().cloned());
+                hyps.extend(u.hyps.iter().cloned());
+                stack.extend(u.lemmas.iter().map(|u| &**u));
+            }
+        }
+        (laws, hyps)
+    }
+}
+
+impl Drop for Uses {
+    /// Drops a long chain of lemmas one link at a time, not by recursion.
+    fn drop(&mut self) {
+        let mut stack = std::mem::take(&mut self.lemmas);
+        while let Some(u) = stack.pop() {
+            if let Ok(mut u) = Arc::try_unwrap(u) {
+                stack.append(&mut u.lemmas);
+            }
+        }
+    }
 }
 
 /// A certificate with named lemmas, checked in order before the main proof.

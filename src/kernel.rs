@@ -27,6 +27,7 @@
 //! | antisymmetry | `a ⇒ b` and `b ⇒ a` | `a = b` |
 //! | implication from meet | `f·g = f` | `f ⇒ g` |
 //! | implication from zero | `f·¬g = 0*` | `f ⇒ g` |
+//! | shared lemma | a theorem this kernel checked before ([`Kernel::check_using`]) | the same, cited as a step |
 //!
 //! Laws and hypotheses are the kernel's axioms, given to [`Kernel::new`] and listed by
 //! [`Kernel::laws`] and [`Kernel::hypotheses`]; every theorem records which it used.
@@ -34,9 +35,11 @@
 #![forbid(unsafe_code)]
 
 use std::collections::{BTreeMap, BTreeSet};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 pub use crate::certificate::{
-    Axiom, CYCLE, Certificate, Cmp, KernelError, Proof, Rel, Rule, Source, Step, Use,
+    Axiom, CYCLE, Certificate, Cmp, KernelError, Proof, Rel, Rule, Source, Step, Use, Uses,
 };
 use crate::term::{
     Delay, Expr, Id, Language, Symbol, Term, and, at_first_scan, fold_delay, instantiate,
@@ -50,9 +53,14 @@ pub struct Theorem {
     rel: Rel,
     rhs: Expr,
     local: Vec<(Expr, bool)>,
-    laws: BTreeSet<String>,
-    hyps: BTreeSet<String>,
+    /// The laws, hypotheses and shared lemmas it rests on.
+    uses: Uses,
+    /// The kernel that checked it.
+    kernel: u64,
 }
+
+/// Theorems by lemma name.
+pub type Lemmas = BTreeMap<String, Arc<Theorem>>;
 
 impl Theorem {
     /// Left side.
@@ -71,18 +79,19 @@ impl Theorem {
     pub fn local(&self) -> &[(Expr, bool)] {
         &self.local
     }
-    /// The laws this theorem depends on.
-    pub fn laws_used(&self) -> &BTreeSet<String> {
-        &self.laws
+    /// The laws and the hypotheses this theorem depends on, through its shared lemmas too.
+    pub fn axioms_used(&self) -> (BTreeSet<String>, BTreeSet<String>) {
+        self.uses.all()
     }
-    /// The hypotheses this theorem depends on.
-    pub fn hypotheses_used(&self) -> &BTreeSet<String> {
-        &self.hyps
-    }
-    /// Records that this theorem also rests on the laws and hypotheses `used` rests on.
-    fn rests_on(&mut self, used: &Theorem) {
-        self.laws.extend(used.laws.iter().cloned());
-        self.hyps.extend(used.hyps.iter().cloned());
+
+    /// This theorem if it establishes `lhs rel rhs` about whole signals.
+    pub fn expect(self, lhs: &Expr, rel: Rel, rhs: &Expr) -> Result<Theorem> {
+        if self.proves(lhs, rel, rhs) {
+            return Ok(self);
+        }
+        let (l, r, n) = (&self.lhs, &self.rhs, self.local.len());
+        let got = format!("`{l} {:?} {r}` under {n} case assumption(s)", self.rel);
+        Err(KernelError::NotTheGoal(format!("proved {got}, wanted `{lhs} {rel:?} {rhs}`")))
     }
 
     /// Does this theorem establish `lhs rel rhs` about whole signals?
@@ -108,7 +117,12 @@ pub struct Kernel {
     first_scan: bool,
     /// A program's scan cycle: the value of `cycle` in laws' side conditions.
     cycle: Option<Delay>,
+    /// This kernel's identity: only its own theorems are lemmas to it.
+    id: u64,
 }
+
+/// The next kernel's identity.
+static KERNELS: AtomicU64 = AtomicU64::new(1);
 
 /// A law that holds before the first scan too (only `·`, `+`, `¬`, `pre` and constants,
 /// no side conditions): the only kind of rewrite allowed under `pre`.
@@ -178,11 +192,12 @@ impl Kernel {
 
     /// The same kernel with the program's scan cycle, for the laws that need it.
     pub fn with_cycle(self, cycle: Delay) -> Kernel {
-        Kernel { cycle: Some(cycle), ..self }
+        Kernel { cycle: Some(cycle), id: KERNELS.fetch_add(1, Ordering::Relaxed), ..self }
     }
 
     fn build(laws: Vec<Axiom>, hypotheses: Vec<Axiom>, scans: bool) -> Result<Kernel> {
-        let mut kernel = Kernel { scans, ..Kernel::default() };
+        let id = KERNELS.fetch_add(1, Ordering::Relaxed);
+        let mut kernel = Kernel { scans, id, ..Kernel::default() };
         for (axiom, is_law) in
             laws.into_iter().map(|a| (a, true)).chain(hypotheses.into_iter().map(|a| (a, false)))
         {
@@ -228,13 +243,22 @@ impl Kernel {
 
     /// Replays a certificate: its lemmas in order, then its main proof.
     pub fn check(&self, cert: &Certificate) -> Result<Theorem> {
-        let mut lemmas: BTreeMap<String, Theorem> = BTreeMap::new();
+        self.check_using(cert, Lemmas::new())
+    }
+
+    /// [`Kernel::check`], where the proofs may also cite `known`: theorems this kernel
+    /// checked before (another kernel's are refused).
+    pub fn check_using(&self, cert: &Certificate, known: Lemmas) -> Result<Theorem> {
+        if let Some((name, _)) = known.iter().find(|(_, t)| t.kernel != self.id) {
+            return Err(KernelError::Mismatch(format!("lemma `{name}` is another context's")));
+        }
+        let mut lemmas = known;
         for (name, proof) in &cert.lemmas {
             let thm = self.replay(proof, &lemmas)?;
             if !thm.local.is_empty() {
                 return Err(KernelError::Mismatch(format!("lemma `{name}` is only local")));
             }
-            if lemmas.insert(name.clone(), thm).is_some() {
+            if lemmas.insert(name.clone(), Arc::new(thm)).is_some() {
                 return Err(KernelError::Mismatch(format!("lemma `{name}` twice")));
             }
         }
@@ -243,7 +267,7 @@ impl Kernel {
             .as_ref()
             .ok_or_else(|| KernelError::NotTheGoal("the certificate has no main proof".into()))?;
         let mut thm = self.replay(main, &lemmas)?;
-        lemmas.values().for_each(|used| thm.rests_on(used));
+        thm.uses.lemmas.extend(lemmas.values().map(|t| Arc::new(t.uses.clone())));
         Ok(thm)
     }
 
@@ -256,15 +280,10 @@ impl Kernel {
         rhs: &Expr,
     ) -> Result<Theorem> {
         let thm = self.check(cert)?;
-        if thm.proves(lhs, rel, rhs) {
-            return Ok(thm);
-        }
-        let (l, r, n) = (&thm.lhs, &thm.rhs, thm.local.len());
-        let got = format!("`{l} {:?} {r}` under {n} case assumption(s)", thm.rel);
-        Err(KernelError::NotTheGoal(format!("proved {got}, wanted `{lhs} {rel:?} {rhs}`")))
+        thm.expect(lhs, rel, rhs)
     }
 
-    fn replay(&self, proof: &Proof, lemmas: &BTreeMap<String, Theorem>) -> Result<Theorem> {
+    fn replay(&self, proof: &Proof, lemmas: &Lemmas) -> Result<Theorem> {
         match proof {
             Proof::Chain { start, steps } => self.chain(start, steps, lemmas),
             Proof::CaseSplit { atom, one, zero } => {
@@ -335,7 +354,7 @@ impl Kernel {
         inv: &Expr,
         base: &Proof,
         step: &Proof,
-        lemmas: &BTreeMap<String, Theorem>,
+        lemmas: &Lemmas,
     ) -> Result<Theorem> {
         if !self.scans || self.first_scan {
             return Err(KernelError::BadPosition(
@@ -366,20 +385,15 @@ impl Kernel {
         Ok(merge(Theorem { lhs: inv.clone(), rel: Rel::Eq, rhs: one, ..b }, s))
     }
 
-    fn chain(
-        &self,
-        start: &Expr,
-        steps: &[Step],
-        lemmas: &BTreeMap<String, Theorem>,
-    ) -> Result<Theorem> {
+    fn chain(&self, start: &Expr, steps: &[Step], lemmas: &Lemmas) -> Result<Theorem> {
         self.admit("the start of a chain", start)?;
         let mut thm = Theorem {
             lhs: start.clone(),
             rel: Rel::Eq,
             rhs: start.clone(),
             local: Vec::new(),
-            laws: BTreeSet::new(),
-            hyps: BTreeSet::new(),
+            uses: Uses::default(),
+            kernel: self.id,
         };
         for step in steps {
             let rel = self.step(&mut thm, step, lemmas)?;
@@ -392,12 +406,7 @@ impl Kernel {
     }
 
     /// Checks one step from `thm.rhs` to `step.after`; records what it used.
-    fn step(
-        &self,
-        thm: &mut Theorem,
-        step: &Step,
-        lemmas: &BTreeMap<String, Theorem>,
-    ) -> Result<Rel> {
+    fn step(&self, thm: &mut Theorem, step: &Step, lemmas: &Lemmas) -> Result<Rel> {
         let before = &thm.rhs;
         let (target, position) = locate(before, &step.path)?;
         self.admit("the result of a step", &step.after)?;
@@ -489,13 +498,13 @@ impl Kernel {
                             "`{name}` needs `{want_l} {rel:?} {want_r}`"
                         )));
                     }
-                    thm.rests_on(&got);
+                    thm.uses.absorb(got.uses.clone());
                 }
                 match (source, lemma) {
-                    (Source::Law, _) => thm.laws.insert(name.clone()),
-                    (Source::Hypothesis, _) => thm.hyps.insert(name.clone()),
+                    (Source::Law, _) => thm.uses.laws.insert(name.clone()),
+                    (Source::Hypothesis, _) => thm.uses.hyps.insert(name.clone()),
                     (Source::Lemma, Some(used)) => {
-                        thm.rests_on(used);
+                        thm.uses.lemmas.push(Arc::new(used.uses.clone()));
                         true
                     }
                     (Source::Lemma, None) => false,
@@ -513,12 +522,7 @@ fn merge(mut a: Theorem, mut b: Theorem) -> Theorem {
         let mut known: std::collections::HashSet<(Expr, bool)> = a.local.iter().map(key).collect();
         b.local.into_iter().filter(|l| known.insert(key(l))).for_each(|l| a.local.push(l));
     }
-    for (mine, theirs) in [(&mut a.laws, &mut b.laws), (&mut a.hyps, &mut b.hyps)] {
-        if mine.len() < theirs.len() {
-            std::mem::swap(mine, theirs);
-        }
-        mine.extend(std::mem::take(theirs));
-    }
+    a.uses.absorb(std::mem::take(&mut b.uses));
     a
 }
 

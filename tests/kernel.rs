@@ -1,7 +1,8 @@
 //! The kernel accepts correct certificates and fails closed on every kind of bad one.
 
 use ii_prove::kernel::{
-    Axiom, Certificate, Cmp, Kernel, KernelError, Proof, Rel, Rule, Source, Step, Use,
+    Axiom, Certificate, Cmp, Kernel, KernelError, Lemmas, Proof, Rel, Rule, Source, Step, Theorem,
+    Use,
 };
 use ii_prove::term::{Expr, Symbol, sexp};
 
@@ -71,7 +72,7 @@ fn accepts_the_paper_proof_of_p1() {
     let thm = kernel().check(&chain("L1_pump", p1_steps())).expect("checks");
     assert!(thm.proves(&sexp("L1_pump"), Rel::Implies, &sexp("(ton 5s L1_up)")));
     assert!(thm.proves(&sexp("L1_pump"), Rel::Eq, &sexp("(ton 5s L1_up)")));
-    assert_eq!(thm.hypotheses_used().len(), 2);
+    assert_eq!(thm.axioms_used().1.len(), 2);
 }
 
 #[test]
@@ -328,7 +329,7 @@ fn lemmas_are_checked_and_cited() {
     };
     let cert = Certificate { lemmas: vec![("P1".into(), lemma)], main: Some(main.clone()) };
     let thm = kernel().check(&cert).expect("checks");
-    assert!(thm.hypotheses_used().contains("L06"));
+    assert!(thm.axioms_used().1.contains("L06"));
     let missing = Certificate { lemmas: vec![], main: Some(main) };
     assert!(matches!(kernel().check(&missing), Err(KernelError::UnknownRule(_))));
 }
@@ -357,4 +358,35 @@ fn a_signal_variable_never_binds_a_delay() {
     );
     assert!(k.check(&cert).is_err());
     let _unused: Option<Expr> = None;
+}
+
+#[test]
+fn a_shared_lemma_is_cited_only_by_the_kernel_that_checked_it() {
+    // `L1_pump = 5s/L1_up`, checked once and kept.
+    let k = kernel();
+    let p1 = std::sync::Arc::new(k.check(&chain("L1_pump", p1_steps())).expect("checks"));
+    let uses_p1 = chain(
+        "(& L1_pump a)",
+        vec![step(&[0], cite(Source::Lemma, "P1", Use::Forward), "(& (ton 5s L1_up) a)")],
+    );
+    let known = |t: &std::sync::Arc<Theorem>| -> Lemmas { [("P1".to_string(), t.clone())].into() };
+    let thm = k.check_using(&uses_p1, known(&p1)).expect("its own theorem");
+    assert!(thm.proves(&sexp("(& L1_pump a)"), Rel::Eq, &sexp("(& (ton 5s L1_up) a)")));
+    // What the lemma rests on, the theorem rests on.
+    assert!(thm.axioms_used().1.contains("L06") && thm.axioms_used().1.contains("L05"));
+    // Without it, or from another kernel with the same axioms, the citation is unknown.
+    assert!(matches!(k.check(&uses_p1), Err(KernelError::UnknownRule(_))));
+    let other = kernel();
+    assert!(matches!(other.check_using(&uses_p1, known(&p1)), Err(KernelError::Mismatch(_))));
+    // A long chain of lemmas drops without exhausting the stack.
+    let again = chain(
+        "L1_pump",
+        vec![step(&[], cite(Source::Lemma, "P1", Use::Forward), "(ton 5s L1_up)")],
+    );
+    let mut last = p1;
+    for _ in 0..100_000 {
+        let next = k.check_using(&again, known(&last)).expect("checks");
+        last = std::sync::Arc::new(next);
+    }
+    drop(last);
 }

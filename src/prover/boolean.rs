@@ -46,7 +46,7 @@ pub struct Constraint {
 
 /// A Boolean view of a term: atoms are opaque; paths match the term's.
 #[derive(Clone, Debug)]
-enum B {
+pub(super) enum B {
     Const(bool),
     Atom(usize),
     Not(Box<B>),
@@ -132,7 +132,7 @@ impl Atoms {
         i
     }
 
-    fn intern(&mut self, e: &Expr) -> usize {
+    pub(super) fn intern(&mut self, e: &Expr) -> usize {
         let key = subterm(e, root(e));
         if let Some(&i) = self.index.get(&key) {
             return i;
@@ -142,7 +142,7 @@ impl Atoms {
         self.terms.len() - 1
     }
 
-    fn view(&mut self, e: &Expr, id: Id) -> B {
+    pub(super) fn view(&mut self, e: &Expr, id: Id) -> B {
         match &e[id] {
             Term::Zero => B::Const(false),
             Term::One => B::Const(true),
@@ -154,7 +154,7 @@ impl Atoms {
     }
 }
 
-fn eval3(b: &B, sigma: &[Option<bool>]) -> Option<bool> {
+pub(super) fn eval3(b: &B, sigma: &[Option<bool>]) -> Option<bool> {
     match b {
         B::Const(v) => Some(*v),
         B::Atom(i) => sigma[*i],
@@ -506,7 +506,7 @@ fn reverse(start: &Expr, steps: Vec<Step>) -> Vec<Step> {
         .collect()
 }
 
-fn atoms_in(b: &B, out: &mut Vec<usize>) {
+pub(super) fn atoms_in(b: &B, out: &mut Vec<usize>) {
     match b {
         B::Const(_) => {}
         B::Atom(i) => out.push(*i),

@@ -357,5 +357,11 @@ fn certificate(
     .ok()?;
     let certificate = Certificate { lemmas: vec![(name.into(), lemma)], main: Some(main) };
     let theorem = ctx.kernel.check_goal(&certificate, &goal.lhs, goal.rel, &goal.rhs).ok()?;
-    Some(Proved { theorem, certificate, method: Method::Induction, lines: vec![] })
+    Some(Proved {
+        theorem,
+        certificate,
+        method: Method::Induction,
+        lines: vec![],
+        shared: Default::default(),
+    })
 }

@@ -11,6 +11,7 @@
 pub mod boolean;
 pub mod explain;
 pub mod induction;
+pub mod lemmas;
 pub mod normalize;
 pub mod saturate;
 
@@ -42,6 +43,8 @@ pub struct Proved {
     pub certificate: Certificate,
     /// Which method found it.
     pub method: Method,
+    /// The shared lemmas it cites ([`lemmas`]), by name.
+    pub shared: kernel::Lemmas,
     /// How many atomic steps of the main chain form each printed line (saturation proofs).
     pub lines: Vec<usize>,
 }
@@ -102,6 +105,11 @@ pub struct Context {
     premises: std::sync::Mutex<std::collections::HashMap<String, Option<Proof>>>,
     /// Which hypotheses concern each signal (for cones of influence).
     index: ConeIndex,
+    /// What literals force through the hypotheses, with the lemmas proved so far.
+    lemmas: lemmas::Store,
+    /// Whether proofs may cite those shared lemmas (a proof script's proofs stand
+    /// alone, so its checker's context does not).
+    pub shared_lemmas: bool,
     /// A program's context: signals are scan runs (induction over scans is available).
     pub scans: bool,
     /// A program's scan cycle, for the laws that need it (see [`kernel::CYCLE`]).
@@ -136,7 +144,20 @@ impl Context {
         };
         let index = ConeIndex::new(&hypotheses);
         let premises = Default::default();
-        Ok(Context { kernel, laws, hypotheses, rules, premises, index, scans, cycle: None })
+        let lemmas = lemmas::Store::default();
+        let shared_lemmas = true;
+        Ok(Context {
+            kernel,
+            laws,
+            hypotheses,
+            rules,
+            premises,
+            index,
+            lemmas,
+            shared_lemmas,
+            scans,
+            cycle: None,
+        })
     }
 
     /// The same context with the program's scan cycle.
@@ -172,6 +193,8 @@ struct ConeIndex {
     concerns: std::collections::HashMap<Symbol, Vec<usize>>,
     anchored: std::collections::HashMap<Symbol, Vec<usize>>,
     mentions: Vec<Vec<Symbol>>,
+    /// The hypotheses that mention each signal.
+    mentioning: std::collections::HashMap<Symbol, Vec<usize>>,
 }
 
 impl ConeIndex {
@@ -183,6 +206,7 @@ impl ConeIndex {
         let defined: BTreeSet<Symbol> = hypotheses.iter().filter_map(definition).collect();
         let mut concerns: std::collections::HashMap<Symbol, Vec<usize>> = Default::default();
         let mut anchored: std::collections::HashMap<Symbol, Vec<usize>> = Default::default();
+        let mut mentioning: std::collections::HashMap<Symbol, Vec<usize>> = Default::default();
         let mut mentions = Vec::with_capacity(hypotheses.len());
         for (i, h) in hypotheses.iter().enumerate() {
             let mut named = BTreeSet::new();
@@ -209,9 +233,21 @@ impl ConeIndex {
                     }
                 }
             }
+            named.iter().for_each(|n| mentioning.entry(*n).or_default().push(i));
             mentions.push(named.into_iter().collect());
         }
-        ConeIndex { concerns, anchored, mentions }
+        ConeIndex { concerns, anchored, mentions, mentioning }
+    }
+
+    /// The hypotheses that mention a signal of `e`, in order, each once.
+    fn mentioning(&self, e: &Expr) -> Vec<usize> {
+        let mut named = BTreeSet::new();
+        names(e, &mut named);
+        let mut out: Vec<usize> =
+            named.iter().filter_map(|n| self.mentioning.get(n)).flatten().copied().collect();
+        out.sort_unstable();
+        out.dedup();
+        out
     }
 
     /// Breadth first from the names of `terms`, one layer per step of dependence;
@@ -542,7 +578,13 @@ fn certify_saturation(
         };
         let certificate = Certificate { lemmas: vec![], main: Some(main) };
         if let Ok(theorem) = ctx.kernel.check_goal(&certificate, &goal.lhs, goal.rel, &goal.rhs) {
-            return Some(Proved { theorem, certificate, method: Method::Saturation, lines });
+            return Some(Proved {
+                theorem,
+                certificate,
+                method: Method::Saturation,
+                lines,
+                shared: Default::default(),
+            });
         }
     }
     None
@@ -639,6 +681,13 @@ fn constraints_for(
 /// How many steps of definitions [`boolean::shifted`] follows back from a `pre`.
 const SHIFT_ROUNDS: usize = 3;
 
+/// The lemmas of `offered` that the certificate cites.
+fn cited_lemmas(certificate: &Certificate, mut offered: kernel::Lemmas) -> kernel::Lemmas {
+    let names = certificate.main.as_ref().map(Proof::lemmas_cited).unwrap_or_default();
+    offered.retain(|name, _| names.contains(name));
+    offered
+}
+
 /// `f ⇒ g` from a proof of `f·¬g = 0*` by `prove`, and `f = g` from both directions.
 fn both_ways<E>(
     goal: &Obligation,
@@ -664,11 +713,19 @@ fn prove_by_cases(
     budget: Budget,
     depth: usize,
 ) -> Result<Proved, boolean::Failure> {
+    let mut shared = kernel::Lemmas::new();
     let main = both_ways(goal, &mut |zero_goal| {
         // `pre` pushed down to the atoms first, as in the hypotheses one scan earlier.
         let (pushed, push) = induction::push_pre(zero_goal);
         let mut atoms = boolean::Atoms::default();
-        let constraints = constraints_for(ctx, cone, &[&pushed], &mut atoms, budget, depth);
+        let mut constraints = constraints_for(ctx, cone, &[&pushed], &mut atoms, budget, depth);
+        // What the goal's literals force far away, as shared lemmas.
+        if ctx.shared_lemmas
+            && let Term::And([f, _]) = &pushed[root(&pushed)]
+        {
+            let f = crate::term::subterm(&pushed, *f);
+            constraints.extend(ctx.lemmas.for_goal(ctx, &f, &atoms, &mut shared));
+        }
         let proof = boolean::prove_zero(&pushed, &constraints, &mut atoms, budget.cases, deadline)?;
         Ok(match push.is_empty() {
             true => proof,
@@ -679,10 +736,19 @@ fn prove_by_cases(
         })
     })?;
     let certificate = Certificate { lemmas: vec![], main: Some(main) };
-    match ctx.kernel.check_goal(&certificate, &goal.lhs, goal.rel, &goal.rhs) {
-        Ok(theorem) => {
-            Ok(Proved { theorem, certificate, method: Method::CaseSplit, lines: vec![] })
-        }
+    let cited = cited_lemmas(&certificate, shared);
+    match ctx
+        .kernel
+        .check_using(&certificate, cited.clone())
+        .and_then(|t| t.expect(&goal.lhs, goal.rel, &goal.rhs))
+    {
+        Ok(theorem) => Ok(Proved {
+            theorem,
+            certificate,
+            method: Method::CaseSplit,
+            lines: vec![],
+            shared: cited,
+        }),
         Err(e) => Err(boolean::Failure::Limit(format!("the kernel rejected the case split: {e}"))),
     }
 }

@@ -144,6 +144,12 @@ pub fn check_property(
     match attempt(ctx, &goal, hypotheses, opts, rename, program) {
         Attempt::Proved(proved) => {
             report.status = Status::Proved;
+            // Through shared lemmas a theorem may rest on much of the program: the sets
+            // are gathered only for a report that shows them.
+            let (laws, hypotheses) = match opts.proof_text {
+                true => proved.theorem.axioms_used(),
+                false => Default::default(),
+            };
             report.trace = Some(TraceReport {
                 method: match proved.method {
                     prover::Method::Saturation => "saturation".into(),
@@ -164,8 +170,8 @@ pub fn check_property(
                 } else {
                     Vec::new()
                 },
-                hypotheses: proved.theorem.hypotheses_used().iter().cloned().collect(),
-                laws: proved.theorem.laws_used().iter().cloned().collect(),
+                hypotheses: hypotheses.into_iter().collect(),
+                laws: laws.into_iter().collect(),
             });
         }
         Attempt::Refuted(c) => {

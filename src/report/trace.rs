@@ -301,7 +301,21 @@ pub fn render(proved: &Proved, goal: Rel, style: &Style) -> Vec<String> {
         out.push(format!("lemma {name}:"));
         proof_text(lemma, &[], style, "    ", &mut out);
     }
-    if let Some(main) = &proved.certificate.main {
+    // A shared lemma is cited by its statement, as the reader's names print it.
+    let statement = |t: &crate::kernel::Theorem| {
+        format!("{} {} {}", style.term(t.lhs()), style.implies(), style.term(t.rhs()))
+    };
+    let mut main = proved.certificate.main.clone();
+    if let Some(main) = main.as_mut().filter(|_| !proved.shared.is_empty()) {
+        main.for_each_step_mut(&mut |s| {
+            if let Rule::Cite(Source::Lemma, name, _) = &mut s.rule
+                && let Some(t) = proved.shared.get(name.as_str())
+            {
+                *name = statement(t);
+            }
+        });
+    }
+    if let Some(main) = &main {
         proof_text(main, &proved.lines, style, "    ", &mut out);
         let theorem = &proved.theorem;
         let closing = match main {
@@ -318,6 +332,18 @@ pub fn render(proved: &Proved, goal: Rel, style: &Style) -> Vec<String> {
                 style.term(theorem.rhs())
             ));
         }
+    }
+    // Each shared lemma in one line: what it rests on, folded.
+    for t in proved.shared.values() {
+        let hyps: Vec<String> = t.axioms_used().1.into_iter().collect();
+        let shown = match hyps.len() {
+            0..=4 => hyps.join(", "),
+            n => format!("{}, {}, …, {} ({n} hypotheses)", hyps[0], hyps[1], hyps[n - 1]),
+        };
+        out.push(format!(
+            "    where {}   [forced through {shown}; a lemma checked once for the program]",
+            statement(t)
+        ));
     }
     out
 }

@@ -192,8 +192,11 @@ impl Checker {
         hypotheses: Vec<Axiom>,
         scans: bool,
     ) -> Result<Checker, KernelError> {
+        // A script's proofs stand alone: they cite no lemma shared between goals.
+        let mut ctx = Context::with_scans(laws, hypotheses, scans)?;
+        ctx.shared_lemmas = false;
         Ok(Checker {
-            ctx: Context::with_scans(laws, hypotheses, scans)?,
+            ctx,
             proved: Vec::new(),
             failed: BTreeSet::new(),
             budget: Budget::default(),
