@@ -191,94 +191,135 @@ pub fn register(atoms: &mut Atoms, constraints: &[Constraint]) {
     }
 }
 
+/// The laws' temporal pieces, and the instances found for each single atom so far:
+/// built once per context and shared by every goal.
+pub struct LawIndex {
+    /// Each law's temporal subpatterns ([`temporal_pieces`]), by law.
+    pieces: Vec<Vec<Expr>>,
+    /// The instances a piece matched on one atom gives, by atom.
+    singles: std::sync::Mutex<HashMap<Expr, std::sync::Arc<Vec<Constraint>>>>,
+}
+
+impl LawIndex {
+    /// The index of `laws`.
+    pub fn new(laws: &[Axiom]) -> LawIndex {
+        LawIndex { pieces: laws.iter().map(temporal_pieces).collect(), singles: Default::default() }
+    }
+}
+
 /// Instances of the laws for the atoms present: every law side with a temporal
 /// root (or a `·`/`+` of two of them) is matched against the atoms, in two rounds
-/// so that atoms introduced by instances get their own lemmas.
+/// so that atoms introduced by instances get their own lemmas. What one atom gives
+/// alone is kept in `index` for the next goal; pairs of atoms are matched each time.
 pub fn law_instances(
     laws: &[Axiom],
+    index: &LawIndex,
     cycle: Option<&crate::term::Delay>,
     atoms: &mut Atoms,
     limit: usize,
 ) -> Vec<Constraint> {
     let mut out: Vec<Constraint> = Vec::new();
     let mut seen = std::collections::HashSet::new();
+    let mut keep = |c: Constraint, atoms: &mut Atoms, out: &mut Vec<Constraint>| {
+        let key =
+            (c.name.clone(), subterm(&c.raw.0, root(&c.raw.0)), subterm(&c.raw.1, root(&c.raw.1)));
+        if seen.insert(key) {
+            atoms.view(&c.lhs, root(&c.lhs));
+            atoms.view(&c.rhs, root(&c.rhs));
+            out.push(c);
+        }
+    };
+    let mut done = 0;
     for _round in 0..2 {
         let pool: Vec<Expr> = atoms.terms.clone();
         let temporal: Vec<&Expr> =
             pool.iter().filter(|a| !matches!(a[root(a)], Term::Name(_))).collect();
-        for law in laws {
-            let pieces = temporal_pieces(law);
-            if pieces.is_empty() {
-                continue;
-            }
-            let mut sigmas: Vec<BTreeMap<Symbol, Expr>> = Vec::new();
-            for atom in &temporal {
-                let mut sigma = BTreeMap::new();
-                if crate::theory::match_side(law, &pieces[0], atom, &mut sigma) {
-                    sigmas.push(sigma);
-                }
-            }
-            if let Some(second) = pieces.get(1) {
-                let mut extended = Vec::new();
-                for sigma in &sigmas {
-                    for atom in &temporal {
-                        let mut s = sigma.clone();
-                        if crate::theory::match_side(law, second, atom, &mut s) {
-                            extended.push(s);
-                        }
+        // One atom alone, from the index (computed once per atom and context).
+        for atom in pool[done..].iter().filter(|a| !matches!(a[root(a)], Term::Name(_))) {
+            let known = index.singles.lock().ok().and_then(|m| m.get(atom).cloned());
+            let singles = known.unwrap_or_else(|| {
+                let mut found = Vec::new();
+                for (law, pieces) in laws.iter().zip(&index.pieces) {
+                    let mut sigma = BTreeMap::new();
+                    if let Some(first) = pieces.first()
+                        && crate::theory::match_side(law, first, atom, &mut sigma)
+                    {
+                        found.extend(instance(law, cycle, sigma));
                     }
                 }
-                sigmas.extend(extended);
-            }
-            for mut sigma in sigmas {
+                let found = std::sync::Arc::new(found);
+                if let Ok(mut m) = index.singles.lock() {
+                    m.insert(atom.clone(), found.clone());
+                }
+                found
+            });
+            for c in singles.iter() {
                 if out.len() >= limit {
                     return out;
                 }
-                law.bind_cycle(cycle, &mut sigma);
-                if !kernel::delay_conditions_hold(law, &sigma) {
+                keep(c.clone(), atoms, &mut out);
+            }
+        }
+        done = pool.len();
+        // Two atoms, for the laws with two temporal pieces.
+        for (law, pieces) in laws.iter().zip(&index.pieces) {
+            let [first, second] = &pieces[..] else { continue };
+            for a in &temporal {
+                let mut sigma = BTreeMap::new();
+                if !crate::theory::match_side(law, first, a, &mut sigma) {
                     continue;
                 }
-                let (Some(l), Some(r)) = (
-                    crate::term::instantiate(&law.lhs, &sigma),
-                    crate::term::instantiate(&law.rhs, &sigma),
-                ) else {
-                    continue;
-                };
-                let (fl, fr) = (fold_delays(&l), fold_delays(&r));
-                let key = (law.name.clone(), subterm(&l, root(&l)), subterm(&r, root(&r)));
-                if crate::term::same(&fl, &fr) || !seen.insert(key) {
-                    continue;
-                }
-                let mut conditions = Vec::new();
-                for (cl, rel, cr) in &law.signal_conditions {
-                    match (
-                        crate::term::instantiate(cl, &sigma),
-                        crate::term::instantiate(cr, &sigma),
-                    ) {
-                        (Some(a), Some(b)) => conditions.push((a, *rel, b)),
-                        _ => break,
+                for b in &temporal {
+                    let mut s = sigma.clone();
+                    if crate::theory::match_side(law, second, b, &mut s)
+                        && let Some(c) = instance(law, cycle, s)
+                    {
+                        if out.len() >= limit {
+                            return out;
+                        }
+                        keep(c, atoms, &mut out);
                     }
                 }
-                if conditions.len() != law.signal_conditions.len() {
-                    continue;
-                }
-                atoms.view(&fl, root(&fl));
-                atoms.view(&fr, root(&fr));
-                out.push(Constraint {
-                    source: Source::Law,
-                    name: law.name.clone(),
-                    raw: (l, r),
-                    lhs: fl,
-                    rel: law.rel,
-                    rhs: fr,
-                    conditions,
-                    premises: Vec::new(),
-                    shifted: false,
-                });
             }
         }
     }
     out
+}
+
+/// The law's instance under `sigma`, unless a variable is unbound, a delay condition
+/// fails or the two sides are the same.
+fn instance(
+    law: &Axiom,
+    cycle: Option<&crate::term::Delay>,
+    mut sigma: BTreeMap<Symbol, Expr>,
+) -> Option<Constraint> {
+    law.bind_cycle(cycle, &mut sigma);
+    if !kernel::delay_conditions_hold(law, &sigma) {
+        return None;
+    }
+    let l = crate::term::instantiate(&law.lhs, &sigma)?;
+    let r = crate::term::instantiate(&law.rhs, &sigma)?;
+    let (fl, fr) = (fold_delays(&l), fold_delays(&r));
+    if crate::term::same(&fl, &fr) {
+        return None;
+    }
+    let mut conditions = Vec::new();
+    for (cl, rel, cr) in &law.signal_conditions {
+        let a = crate::term::instantiate(cl, &sigma)?;
+        let b = crate::term::instantiate(cr, &sigma)?;
+        conditions.push((a, *rel, b));
+    }
+    Some(Constraint {
+        source: Source::Law,
+        name: law.name.clone(),
+        raw: (l, r),
+        lhs: fl,
+        rel: law.rel,
+        rhs: fr,
+        conditions,
+        premises: Vec::new(),
+        shifted: false,
+    })
 }
 
 /// The hypotheses one scan earlier, for the signals the atoms read through `pre`:

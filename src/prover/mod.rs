@@ -101,6 +101,8 @@ pub struct Context {
     /// The hypotheses (also in the kernel).
     pub hypotheses: Vec<Axiom>,
     rules: saturate::RuleSet,
+    /// The laws' instances on single atoms, found once.
+    law_index: boolean::LawIndex,
     /// Side conditions already attempted, with their proofs (shared by every goal).
     premises: std::sync::Mutex<std::collections::HashMap<String, Option<Proof>>>,
     /// Which hypotheses concern each signal (for cones of influence).
@@ -143,6 +145,7 @@ impl Context {
             laws.into_iter().filter(|l| !mentions_pre(&l.lhs) && !mentions_pre(&l.rhs)).collect()
         };
         let index = ConeIndex::new(&hypotheses);
+        let law_index = boolean::LawIndex::new(&laws);
         let premises = Default::default();
         let lemmas = lemmas::Store::default();
         let shared_lemmas = true;
@@ -151,6 +154,7 @@ impl Context {
             laws,
             hypotheses,
             rules,
+            law_index,
             premises,
             index,
             lemmas,
@@ -163,7 +167,9 @@ impl Context {
     /// The same context with the program's scan cycle.
     pub fn with_cycle(self, cycle: Delay) -> Context {
         let kernel = self.kernel.with_cycle(cycle.clone());
-        Context { kernel, cycle: Some(cycle), ..self }
+        // Instances found so far may depend on the cycle.
+        let law_index = boolean::LawIndex::new(&self.laws);
+        Context { kernel, law_index, cycle: Some(cycle), ..self }
     }
 
     /// The hypotheses in the cone of influence of `terms` (see [`cone_of_influence`]),
@@ -642,7 +648,8 @@ fn constraints_for(
         terms.iter().map(|t| constraint(&Axiom::ground("", (*t).clone(), Rel::Eq, (*t).clone()))),
     );
     boolean::register(atoms, &probe);
-    for mut c in boolean::law_instances(&ctx.laws, ctx.cycle.as_ref(), atoms, 2_000) {
+    for mut c in boolean::law_instances(&ctx.laws, &ctx.law_index, ctx.cycle.as_ref(), atoms, 2_000)
+    {
         // A law with side conditions on signals is used only where they are proved.
         if !c.conditions.is_empty() {
             if depth > 0 {
