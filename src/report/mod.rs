@@ -864,7 +864,7 @@ pub fn run_program_with(
         let assumed = assumptions(doc);
         let mut hypotheses = compiled.axioms();
         hypotheses.extend(assumed.iter().cloned());
-        let mut ctx = Context::with_scans(theory.axioms(), hypotheses.clone(), true)
+        let mut ctx = Context::with_scans(theory.axioms(), hypotheses, true)
             .map_err(|e| InputError { rendered: format!("error: {path}: {e}\n") })?;
         if let Some(cycle) = compiled.cycle() {
             ctx = ctx.with_cycle(cycle);
@@ -900,7 +900,7 @@ pub fn run_program_with(
         }
         let check = |statement: &crate::syntax::Statement<Goal>| {
             let mut report =
-                check_property(&ctx, statement, &hypotheses, opts, &rename, Some(&session));
+                check_property(&ctx, statement, &ctx.hypotheses, opts, &rename, Some(&session));
             report.location = Some(Location::of(&sources, statement.span));
             flag_vacuity(&mut report, inconsistent.as_deref(), || {
                 forced_constants(&session, &obligation(&statement.value), &rename, opts)
