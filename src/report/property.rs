@@ -73,9 +73,9 @@ pub fn attempt(
         Outcome::Proved(proved) => Attempt::Proved(proved),
         Outcome::Unknown { reason, candidate } => {
             let limit = if program.is_some() { PROGRAM_SEARCH } else { FREE_SEARCH };
-            // At least a small share of the limit even when the proof search used
-            // all of its own.
-            let floor = Instant::now() + opts.timeout.mul_f64(1.0 - PROOF_SHARE);
+            // A short look even when the proof search ran to the end of the limit,
+            // so that the property ends within `--timeout` and a twentieth.
+            let floor = Instant::now() + opts.timeout.mul_f64(LAST_LOOK);
             let found =
                 first_look.unwrap_or_else(|| search((Instant::now() + limit).min(end.max(floor))));
             match found {
@@ -189,6 +189,9 @@ pub fn check_property(
 
 /// The share of `--timeout` the proof search may use.
 const PROOF_SHARE: f64 = 0.7;
+/// The share of `--timeout` the counterexample search still gets when the proof search
+/// used all the time there was.
+const LAST_LOOK: f64 = 0.03;
 /// How long the first look for a counterexample may take, when the prover's quick
 /// methods found a model of the Boolean skeleton.
 const FIRST_LOOK: Duration = Duration::from_secs(2);
