@@ -154,6 +154,15 @@ impl Atoms {
     }
 }
 
+/// Is `l rel r` false under the (partial) assignment?
+pub(super) fn violated(rel: Rel, l: &B, r: &B, sigma: &[Option<bool>]) -> bool {
+    let (vl, vr) = (eval3(l, sigma), eval3(r, sigma));
+    match rel {
+        Rel::Eq => vl.is_some() && vr.is_some() && vl != vr,
+        Rel::Implies => vl == Some(true) && vr == Some(false),
+    }
+}
+
 pub(super) fn eval3(b: &B, sigma: &[Option<bool>]) -> Option<bool> {
     match b {
         B::Const(v) => Some(*v),
@@ -706,11 +715,7 @@ impl Search<'_> {
     /// Is constraint `i` violated under the assignment?
     fn violated(&self, i: usize, sigma: &[Option<bool>]) -> bool {
         let (l, r) = &self.views[i];
-        let (vl, vr) = (eval3(l, sigma), eval3(r, sigma));
-        match self.constraints[i].rel {
-            Rel::Eq => vl.is_some() && vr.is_some() && vl != vr,
-            Rel::Implies => vl == Some(true) && vr == Some(false),
-        }
+        violated(self.constraints[i].rel, l, r, sigma)
     }
 
     /// Does the assignment close the branch at once (the goal is `0*`, or a constraint

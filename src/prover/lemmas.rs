@@ -21,7 +21,7 @@ use std::time::{Duration, Instant};
 use crate::kernel::{Axiom, Certificate, Lemmas, Proof, Rel, Source, Theorem};
 use crate::term::{Expr, Term, and_not, not, root, subterm};
 
-use super::boolean::{self, Atoms, B, Constraint, atoms_in, eval3};
+use super::boolean::{self, Atoms, B, Constraint, atoms_in, violated};
 use super::{Context, constraint};
 
 /// The closures met so far, by seed, and their lemmas.
@@ -86,14 +86,8 @@ impl Store {
             wanted.dedup();
             for i in wanted {
                 let Some(theorem) = closure.lemma(ctx, i) else { continue };
-                let name = format!("{} ⇒ {}", closure.seed, closure.forced[i].literal);
-                let axiom = Axiom::ground(
-                    &name,
-                    closure.seed.clone(),
-                    Rel::Implies,
-                    closure.forced[i].literal.clone(),
-                );
-                out.push(Constraint { source: Source::Lemma, ..constraint(&axiom) });
+                let (name, c) = closure.citation(i);
+                out.push(c);
                 known.insert(name, theorem);
             }
         }
@@ -194,15 +188,15 @@ fn propagate(ctx: &Context, atom: &Expr, value: bool) -> Closure {
     Closure { seed: literal(atom, value), forced, index, lemmas }
 }
 
-fn violated(rel: Rel, l: &B, r: &B, sigma: &[Option<bool>]) -> bool {
-    let (vl, vr) = (eval3(l, sigma), eval3(r, sigma));
-    match rel {
-        Rel::Eq => vl.is_some() && vr.is_some() && vl != vr,
-        Rel::Implies => vl == Some(true) && vr == Some(false),
-    }
-}
-
 impl Closure {
+    /// The lemma of forced literal `i` as the case split cites it: its name and constraint.
+    fn citation(&self, i: usize) -> (String, Constraint) {
+        let literal = &self.forced[i].literal;
+        let name = format!("{} ⇒ {literal}", self.seed);
+        let axiom = Axiom::ground(&name, self.seed.clone(), Rel::Implies, literal.clone());
+        (name, Constraint { source: Source::Lemma, ..constraint(&axiom) })
+    }
+
     /// The kernel's theorem `seed ⇒ ℓ` for forced literal `i`, proving first the lemmas
     /// it rests on (in the order they were forced, so each proof finds its own).
     fn lemma(&self, ctx: &Context, i: usize) -> Option<Arc<Theorem>> {
@@ -235,14 +229,8 @@ impl Closure {
         let mut constraints = vec![constraint(&ctx.hypotheses[f.reason])];
         let mut known = Lemmas::new();
         for &j in &f.after {
-            let name = format!("{} ⇒ {}", self.seed, self.forced[j].literal);
-            let axiom = Axiom::ground(
-                &name,
-                self.seed.clone(),
-                Rel::Implies,
-                self.forced[j].literal.clone(),
-            );
-            constraints.push(Constraint { source: Source::Lemma, ..constraint(&axiom) });
+            let (name, c) = self.citation(j);
+            constraints.push(c);
             known.insert(name, lemmas[j].clone()?);
         }
         let goal = and_not(&self.seed, &f.literal);
