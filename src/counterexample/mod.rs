@@ -870,11 +870,32 @@ fn bounded(
     Some((cnf, u.extra))
 }
 
+/// Per name of `read`: whether 64 pseudo-random runs of the model (free values drawn
+/// at each of `k` steps of `grid` scans) show it both 1 and 0. Each such run satisfies
+/// [`bounded`]'s formula for the same steps, so a signal they show varying is forced
+/// by no check on those steps (all `false` when the model does not unroll).
+fn varying(model: &Model, read: &[String], cycle: &Time, grid: usize, k: usize) -> Vec<bool> {
+    let exprs: Vec<Expr> = read.iter().map(|n| crate::term::name(n)).collect();
+    let refs: Vec<&Expr> = exprs.iter().collect();
+    let steps_of = |d: &Delay| scans_of(d, cycle).map(|n| n / grid);
+    let mut runs = unroll::Runs64::default();
+    match unroll(&mut runs, model, &refs, k, &steps_of, &mut |b, _, _| b.random()) {
+        Ok(u) => u
+            .extra
+            .iter()
+            .map(|v| v.iter().any(|x| *x != 0) && v.iter().any(|x| *x != !0))
+            .collect(),
+        Err(_) => vec![false; read.len()],
+    }
+}
+
 /// [`vacuity`] for a model without assumptions: its equations define every signal from
 /// the free ones, so any run of the free signals is a run (the scan-by-scan check is
-/// satisfiable), and the long scan-by-scan unrolling is built only for the signals the
-/// coarse grid finds constant. (It unrolls whenever the coarse grid does: both read the
-/// same equations in the same order, and a delay in whole coarse steps is one in scans.)
+/// satisfiable). The solver is asked only about the signals random runs on the coarse
+/// grid do not show varying ([`varying`]), and the long scan-by-scan unrolling is built
+/// only for the signals the coarse grid finds constant and random runs scan by scan do
+/// not show varying. (It unrolls whenever the coarse grid does: both read the same
+/// equations in the same order, and a delay in whole coarse steps is one in scans.)
 fn unconstrained(
     model: &Model,
     read: &[String],
@@ -886,13 +907,24 @@ fn unconstrained(
     if k > MAX_STEPS {
         return Vacuity::default();
     }
+    let horizon = Some(cycle * Time::from_integer((k * grid).into()));
+    // Random runs settle most signals; only the others need the solver.
+    let on_grid = varying(model, read, cycle, grid, k);
+    let open: Vec<usize> = (0..read.len()).filter(|&i| !on_grid[i]).collect();
+    if open.is_empty() {
+        return Vacuity { inconsistent: false, constants: Vec::new(), horizon };
+    }
     let Some((mut coarse, coarse_values)) = bounded(model, read, cycle, grid, k) else {
         return Vacuity::default();
     };
-    let all: Vec<usize> = (0..read.len()).collect();
-    let on_coarse = forced_each(&mut coarse, &coarse_values, &all);
+    let on_coarse = forced_each(&mut coarse, &coarse_values, &open);
     let mut constants = Vec::new();
-    let candidates: Vec<usize> = all.into_iter().filter(|&i| on_coarse[i].is_some()).collect();
+    let mut candidates: Vec<usize> =
+        open.iter().copied().filter(|&i| on_coarse[i].is_some()).collect();
+    if !candidates.is_empty() {
+        let on_scans = varying(model, read, cycle, 1, k_scans);
+        candidates.retain(|&i| !on_scans[i]);
+    }
     if !candidates.is_empty() {
         let Some((mut fine, fine_values)) = bounded(model, read, cycle, 1, k_scans) else {
             return Vacuity::default();
@@ -906,7 +938,6 @@ fn unconstrained(
             }
         }
     }
-    let horizon = Some(cycle * Time::from_integer((k * grid).into()));
     Vacuity { inconsistent: false, constants, horizon }
 }
 
