@@ -1075,10 +1075,14 @@ pub fn vacuity_cached(program: &Program, terms: &[&Expr], cache: &VacuityCache) 
     let read = read_names(terms);
     let cone = |n: &String| program.cone(&[&crate::term::name(n)], VACUITY_CONE);
     let mut delays = Model::default().delays(terms.iter().copied());
+    // The cones built here, for the checks below.
+    let mut built: HashMap<&String, Model> = HashMap::new();
     for n in &read {
         let of_cone = cached(&cache.cones, n.clone(), || {
             let model = cone(n);
-            model.constraints.is_empty().then(|| model.delays(std::iter::empty()))
+            let delays = model.constraints.is_empty().then(|| model.delays(std::iter::empty()));
+            built.insert(n, model);
+            delays
         });
         match of_cone {
             Some(d) => delays.extend(d),
@@ -1093,7 +1097,7 @@ pub fn vacuity_cached(program: &Program, terms: &[&Expr], cache: &VacuityCache) 
     for n in &read {
         let forced = cached(&cache.forced, (n.clone(), steps), || {
             let v = unconstrained(
-                &cone(n),
+                &built.remove(n).unwrap_or_else(|| cone(n)),
                 std::slice::from_ref(n),
                 &cycle,
                 steps.grid,
