@@ -352,3 +352,120 @@ fn a_property_over_forced_constants_is_flagged_vacuous() {
 fn path_helper_points_into_the_repository() {
     assert!(Path::new(&path("examples/water_faulty.ld")).exists());
 }
+
+/// An LDmicro program: a chain `Chain1 … ChainN` (`Chain_i = Chain_{i−1} · Go_i`, one
+/// rung each, in scan order), then `Armed = ChainN · Arm`, a local interlock
+/// `Clash = Armed · ¬Arm` (0 in every run), and `Timed`, the chain's end through a timer.
+fn long_chain(n: usize) -> String {
+    let mut ld = String::from("LDmicro0.2\nCYCLE=10000\n\nPROGRAM\n");
+    for i in 1..=n {
+        let from = if i == 1 { "XIn".to_string() } else { format!("RChain{}", i - 1) };
+        ld.push_str(&format!(
+            "RUNG\n    CONTACTS {from} 0\n    CONTACTS XGo{i} 0\n    COIL RChain{i} 0 0 0\nEND\n"
+        ));
+    }
+    ld.push_str(&format!(
+        "RUNG\n    CONTACTS RChain{n} 0\n    CONTACTS XArm 0\n    COIL RArmed 0 0 0\nEND\n"
+    ));
+    ld.push_str("RUNG\n    CONTACTS RArmed 0\n    CONTACTS XArm 1\n    COIL RClash 0 0 0\nEND\n");
+    ld.push_str(&format!(
+        "RUNG\n    CONTACTS RChain{n} 0\n    TON TChain 50000\n    COIL RTimed 0 0 0\nEND\n"
+    ));
+    ld
+}
+
+/// Writes `long_chain(n)` and `props` into a fresh directory; the two paths.
+fn long_chain_files(name: &str, n: usize, props: &str) -> (String, String) {
+    let dir = std::env::temp_dir().join(format!("ii-prove-vacuity-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (ld, ii) = (dir.join("chain.ld"), dir.join("chain.ii"));
+    std::fs::write(&ld, long_chain(n)).unwrap();
+    std::fs::write(&ii, props).unwrap();
+    (ld.display().to_string(), ii.display().to_string())
+}
+
+#[test]
+fn a_constant_forced_locally_is_found_beyond_the_vacuity_cone() {
+    const N: usize = 600;
+    let props =
+        "property clash_needs_chain: Clash => Chain600\nproperty armed_needs_arm: Armed => Arm\n";
+    let (ld, ii) = long_chain_files("forced", N, props);
+    // The cone of `Clash` is far larger than the vacuity check's cut.
+    let mut sources = Sources::new();
+    let loaded = load_program(&mut sources, &ld, &Default::default()).expect("loads");
+    let session = counterexample::Program {
+        ld: &loaded.program,
+        plcopen: None,
+        compiled: &loaded.compiled,
+        assumptions: &[],
+    };
+    let clash = ii_prove::term::name("RClash");
+    assert!(session.model(&[&clash]).defs.len() > 2 * counterexample::VACUITY_CONE);
+    let run = report::run_program(&ld, &[ii], &opts()).unwrap_or_else(|e| panic!("{}", e.rendered));
+    let clash = &run.properties[0];
+    assert_eq!(clash.status, Status::Proved, "{:?}", clash.reason);
+    assert!(clash.vacuous, "{:?}", clash.vacuity);
+    assert!(clash.vacuity.as_deref().unwrap_or("").contains("Clash = 0*"), "{:?}", clash.vacuity);
+    // `Armed` reads the end of the chain and is not constant: no warning.
+    let armed = &run.properties[1];
+    assert_eq!(armed.status, Status::Proved, "{:?}", armed.reason);
+    assert!(!armed.vacuous, "{:?}", armed.vacuity);
+}
+
+#[test]
+fn the_cut_cone_never_invents_a_constant() {
+    // The cut cone stops long before the chain's start; neither the chain's end nor
+    // the timer after it is constant.
+    const N: usize = 600;
+    let props = "property timed_needs_chain: Timed => Chain600\nproperty chain_end: Chain600 . Go600 => Chain600\n";
+    let (ld, ii) = long_chain_files("free", N, props);
+    let run = report::run_program(&ld, &[ii], &opts()).unwrap_or_else(|e| panic!("{}", e.rendered));
+    for p in &run.properties {
+        assert_eq!(p.status, Status::Proved, "{}: {:?}", p.name, p.reason);
+        assert!(!p.vacuous, "{}: {:?}", p.name, p.vacuity);
+    }
+}
+
+#[test]
+fn the_cached_vacuity_check_agrees_with_the_whole_cone_on_small_programs() {
+    let cases = [
+        (
+            "tests/data/refutes_programs/traffic_greens_overlap.ld",
+            "Ns_green . Ew_green",
+            "Run = 0*",
+        ),
+        ("examples/water.ld", "L1_pump . L2_pump", "SP_fail = 0*"),
+        ("examples/water_faulty.ld", "L1_up + L2_down", "L1_fail = 1*"),
+    ];
+    let (chain, _) = long_chain_files("small", 5, "");
+    let cases = cases.map(|(ld, term, a)| (path(ld), term, a));
+    let mut constants = 0;
+    for (ld, term, assumption) in cases.into_iter().chain([(chain, "Clash + Timed", "In = 1*")]) {
+        let mut sources = Sources::new();
+        let loaded = load_program(&mut sources, &ld, &Default::default()).expect("loads");
+        let text = format!("assume a: {assumption}\nproperty p: {term} = 0*\n");
+        let file = sources.add("p.ii", text);
+        let doc = syntax::parse_document(&sources, file, &loaded.compiled).expect("parses");
+        let goal = report::obligation(&doc.properties[0].value);
+        let assumed = report::assumptions(&doc);
+        for assumptions in [&[][..], &assumed[..]] {
+            let session = counterexample::Program {
+                ld: &loaded.program,
+                plcopen: None,
+                compiled: &loaded.compiled,
+                assumptions,
+            };
+            let cache = counterexample::VacuityCache::default();
+            let exact = counterexample::vacuity(&session, &[&goal.lhs, &goal.rhs]);
+            for _ in 0..2 {
+                let cached =
+                    counterexample::vacuity_cached(&session, &[&goal.lhs, &goal.rhs], &cache);
+                assert_eq!(cached.constants, exact.constants, "{ld}");
+                assert_eq!(cached.horizon, exact.horizon, "{ld}");
+            }
+            constants += exact.constants.len();
+        }
+    }
+    // Some constants are found, with and without assumptions.
+    assert!(constants >= 3, "{constants}");
+}

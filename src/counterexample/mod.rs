@@ -42,7 +42,8 @@
 
 pub mod unroll;
 
-use std::collections::{BTreeMap, BTreeSet, HashMap};
+use std::collections::{BTreeMap, BTreeSet, HashMap, VecDeque};
+use std::sync::Mutex;
 use std::time::Instant;
 
 use num_integer::Integer;
@@ -199,8 +200,18 @@ pub fn equations(compiled: &CompiledProgram) -> Vec<(String, &Expr)> {
 impl Program<'_> {
     /// The cone of `terms`: equations in scan order and the assumptions touching it.
     pub fn model(&self, terms: &[&Expr]) -> Model {
-        // The cone is a closure over names, walked once (a worklist) with the program's
-        // equation index (built once per program) and the assumptions indexed here.
+        self.cone(terms, usize::MAX)
+    }
+
+    /// [`model`](Self::model) cut after `cap` equations: the names are expanded breadth
+    /// first from those `terms` read (all the equations of a name at once), and once
+    /// `cap` equations are taken the names not yet expanded stay undefined, so the
+    /// model leaves them free (any value at every step). Every run of the program is
+    /// then a run of the cut model, whose runs may be more.
+    pub fn cone(&self, terms: &[&Expr], cap: usize) -> Model {
+        // The cone is a closure over names, walked once (a breadth-first worklist) with
+        // the program's equation index (built once per program) and the assumptions
+        // indexed here.
         let index = self.compiled.equation_index();
         let hypotheses = &self.compiled.hypotheses;
         let mentioned: Vec<BTreeSet<String>> = self
@@ -223,10 +234,13 @@ impl Program<'_> {
         for t in terms {
             names_of(t, &mut reached);
         }
-        let mut pending: Vec<String> = reached.iter().cloned().collect();
+        let mut pending: VecDeque<String> = reached.iter().cloned().collect();
         let mut taken_a = vec![false; self.assumptions.len()];
         let mut taken_defs = Vec::new();
-        while let Some(name) = pending.pop() {
+        while let Some(name) = pending.pop_front() {
+            if taken_defs.len() >= cap {
+                break;
+            }
             let mut found = BTreeSet::new();
             for &i in index.defining.get(name.as_str()).map_or(&[][..], Vec::as_slice) {
                 taken_defs.push(i);
@@ -241,7 +255,7 @@ impl Program<'_> {
             for n in found {
                 if !reached.contains(&n) {
                     reached.insert(n.clone());
-                    pending.push(n);
+                    pending.push_back(n);
                 }
             }
         }
@@ -789,6 +803,39 @@ fn minimise(trace: &mut ScanTrace, keep: &dyn Fn(&ScanTrace) -> bool, limits: Li
     }
 }
 
+/// The longest run a vacuity check unrolls, in steps.
+const MAX_STEPS: usize = 64;
+
+/// The runs a vacuity check unrolls, from the delays of its model: `k` steps of `grid`
+/// scans (3× the longest timer plus 4 steps; the grid divides every delay, one scan
+/// when some delay is not a whole number of scans) and `k_scans` single scans (3× the
+/// longest timer plus 4, at most [`MAX_STEPS`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+struct Steps {
+    grid: usize,
+    k_scans: usize,
+    k: usize,
+}
+
+impl Steps {
+    fn of(delays: &[Delay], cycle: &Time) -> Steps {
+        let scans: Vec<usize> = delays.iter().filter_map(|d| scans_of(d, cycle)).collect();
+        let exact_grid = delays.iter().all(|d| whole(d, cycle).is_some());
+        let grid = if exact_grid { scans.iter().fold(0usize, |g, n| g.gcd(n)).max(1) } else { 1 };
+        let longest = scans.iter().copied().max().unwrap_or(0);
+        Steps { grid, k_scans: (3 * longest + 4).min(MAX_STEPS), k: 3 * longest / grid + 4 }
+    }
+}
+
+/// The names `terms` read, sorted.
+fn read_names(terms: &[&Expr]) -> Vec<String> {
+    let mut read = BTreeSet::new();
+    for t in terms {
+        names_of(t, &mut read);
+    }
+    read.into_iter().collect()
+}
+
 /// What the hypotheses force, found by bounded search over scans.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Vacuity {
@@ -823,11 +870,32 @@ fn bounded(
     Some((cnf, u.extra))
 }
 
+/// Per name of `read`: whether 64 pseudo-random runs of the model (free values drawn
+/// at each of `k` steps of `grid` scans) show it both 1 and 0. Each such run satisfies
+/// [`bounded`]'s formula for the same steps, so a signal they show varying is forced
+/// by no check on those steps (all `false` when the model does not unroll).
+fn varying(model: &Model, read: &[String], cycle: &Time, grid: usize, k: usize) -> Vec<bool> {
+    let exprs: Vec<Expr> = read.iter().map(|n| crate::term::name(n)).collect();
+    let refs: Vec<&Expr> = exprs.iter().collect();
+    let steps_of = |d: &Delay| scans_of(d, cycle).map(|n| n / grid);
+    let mut runs = unroll::Runs64::default();
+    match unroll(&mut runs, model, &refs, k, &steps_of, &mut |b, _, _| b.random()) {
+        Ok(u) => u
+            .extra
+            .iter()
+            .map(|v| v.iter().any(|x| *x != 0) && v.iter().any(|x| *x != !0))
+            .collect(),
+        Err(_) => vec![false; read.len()],
+    }
+}
+
 /// [`vacuity`] for a model without assumptions: its equations define every signal from
 /// the free ones, so any run of the free signals is a run (the scan-by-scan check is
-/// satisfiable), and the long scan-by-scan unrolling is built only for the signals the
-/// coarse grid finds constant. (It unrolls whenever the coarse grid does: both read the
-/// same equations in the same order, and a delay in whole coarse steps is one in scans.)
+/// satisfiable). The solver is asked only about the signals random runs on the coarse
+/// grid do not show varying ([`varying`]), and the long scan-by-scan unrolling is built
+/// only for the signals the coarse grid finds constant and random runs scan by scan do
+/// not show varying. (It unrolls whenever the coarse grid does: both read the same
+/// equations in the same order, and a delay in whole coarse steps is one in scans.)
 fn unconstrained(
     model: &Model,
     read: &[String],
@@ -836,17 +904,27 @@ fn unconstrained(
     k_scans: usize,
     k: usize,
 ) -> Vacuity {
-    const MAX_STEPS: usize = 64;
     if k > MAX_STEPS {
         return Vacuity::default();
+    }
+    let horizon = Some(cycle * Time::from_integer((k * grid).into()));
+    // Random runs settle most signals; only the others need the solver.
+    let on_grid = varying(model, read, cycle, grid, k);
+    let open: Vec<usize> = (0..read.len()).filter(|&i| !on_grid[i]).collect();
+    if open.is_empty() {
+        return Vacuity { inconsistent: false, constants: Vec::new(), horizon };
     }
     let Some((mut coarse, coarse_values)) = bounded(model, read, cycle, grid, k) else {
         return Vacuity::default();
     };
-    let all: Vec<usize> = (0..read.len()).collect();
-    let on_coarse = forced_each(&mut coarse, &coarse_values, &all);
+    let on_coarse = forced_each(&mut coarse, &coarse_values, &open);
     let mut constants = Vec::new();
-    let candidates: Vec<usize> = all.into_iter().filter(|&i| on_coarse[i].is_some()).collect();
+    let mut candidates: Vec<usize> =
+        open.iter().copied().filter(|&i| on_coarse[i].is_some()).collect();
+    if !candidates.is_empty() {
+        let on_scans = varying(model, read, cycle, 1, k_scans);
+        candidates.retain(|&i| !on_scans[i]);
+    }
     if !candidates.is_empty() {
         let Some((mut fine, fine_values)) = bounded(model, read, cycle, 1, k_scans) else {
             return Vacuity::default();
@@ -860,7 +938,6 @@ fn unconstrained(
             }
         }
     }
-    let horizon = Some(cycle * Time::from_integer((k * grid).into()));
     Vacuity { inconsistent: false, constants, horizon }
 }
 
@@ -921,22 +998,10 @@ fn forced(cnf: &mut Cnf, values: &[varisat::Lit]) -> Option<bool> {
 pub fn vacuity(program: &Program, terms: &[&Expr]) -> Vacuity {
     let Some(cycle) = program.cycle() else { return Vacuity::default() };
     let model = program.model(terms);
-    let delays = model.delays(terms.iter().copied());
-    let scans: Vec<usize> = delays.iter().filter_map(|d| scans_of(d, &cycle)).collect();
-    let grid = scans.iter().fold(0usize, |g, n| g.gcd(n)).max(1);
-    let exact_grid = delays.iter().all(|d| whole(d, &cycle).is_some());
-    let grid = if exact_grid { grid } else { 1 };
-    let longest = scans.iter().copied().max().unwrap_or(0);
-    let mut read = BTreeSet::new();
-    for t in terms {
-        names_of(t, &mut read);
-    }
-    let read: Vec<String> = read.into_iter().collect();
-    const MAX_STEPS: usize = 64;
-    // Consistency, scan by scan: a statement about every PLC run.
-    let k_scans = (3 * longest + 4).min(MAX_STEPS);
+    let Steps { grid, k_scans, k } = Steps::of(&model.delays(terms.iter().copied()), &cycle);
+    let read = read_names(terms);
     if model.constraints.is_empty() {
-        return unconstrained(&model, &read, &cycle, grid, k_scans, 3 * longest / grid + 4);
+        return unconstrained(&model, &read, &cycle, grid, k_scans, k);
     }
     let Some((mut fine, fine_values)) = bounded(&model, &read, &cycle, 1, k_scans) else {
         return Vacuity::default();
@@ -946,7 +1011,6 @@ pub fn vacuity(program: &Program, terms: &[&Expr]) -> Vacuity {
         return Vacuity { inconsistent: true, constants: Vec::new(), horizon };
     }
     // Constants: runs long enough for every timer, confirmed scan by scan.
-    let k = 3 * longest / grid + 4;
     if k > MAX_STEPS {
         return Vacuity::default();
     }
@@ -962,5 +1026,92 @@ pub fn vacuity(program: &Program, terms: &[&Expr]) -> Vacuity {
         }
     }
     let horizon = Some(&cycle * Time::from_integer((k * grid).into()));
+    Vacuity { inconsistent: false, constants, horizon }
+}
+
+/// The largest cone, in equations, that [`vacuity_cached`] unrolls for one signal.
+pub const VACUITY_CONE: usize = 200;
+
+/// The answers of [`vacuity_cached`] for one program and one set of assumptions (one
+/// property file's session), per signal, shared by its properties and their threads.
+#[derive(Debug, Default)]
+pub struct VacuityCache {
+    /// Per signal: the delays of its cut cone (`None`: the cone touches an assumption).
+    cones: Mutex<HashMap<String, Option<Vec<Delay>>>>,
+    /// Per signal and runs checked: its forced value (`None`: the check could not be built).
+    forced: Mutex<HashMap<(String, Steps), Checked>>,
+}
+
+/// One signal's answer: `Some(forced value, if any)`, `None` when the check could not
+/// be built.
+type Checked = Option<Option<bool>>;
+
+/// The value cached under `key`, or `make`'s, stored (computed outside the lock).
+fn cached<K: Eq + std::hash::Hash, V: Clone>(
+    map: &Mutex<HashMap<K, V>>,
+    key: K,
+    make: impl FnOnce() -> V,
+) -> V {
+    let known = map.lock().unwrap_or_else(|e| e.into_inner()).get(&key).cloned();
+    if let Some(v) = known {
+        return v;
+    }
+    let v = make();
+    map.lock().unwrap_or_else(|e| e.into_inner()).insert(key, v.clone());
+    v
+}
+
+/// [`vacuity`]'s constants for a property, at a cost that does not grow with the
+/// program: each signal `terms` read is checked on its own cone cut after
+/// [`VACUITY_CONE`] equations ([`Program::cone`]: what lies beyond is free), once per
+/// session (`cache`). Every run of the program is a run of the cut cone, so a constant
+/// found there is one of the program; a signal held constant only by equations beyond
+/// the cut is missed. Each signal is checked on the same runs, those [`vacuity`] would
+/// unroll for the union of the cut cones; without a cut (a cone within the cap) the
+/// answer is [`vacuity`]'s. When a cut cone touches an `assume`, the check is
+/// [`vacuity`]'s, on the whole cone.
+pub fn vacuity_cached(program: &Program, terms: &[&Expr], cache: &VacuityCache) -> Vacuity {
+    let Some(cycle) = program.cycle() else { return Vacuity::default() };
+    let read = read_names(terms);
+    let cone = |n: &String| program.cone(&[&crate::term::name(n)], VACUITY_CONE);
+    let mut delays = Model::default().delays(terms.iter().copied());
+    // The cones built here, for the checks below.
+    let mut built: HashMap<&String, Model> = HashMap::new();
+    for n in &read {
+        let of_cone = cached(&cache.cones, n.clone(), || {
+            let model = cone(n);
+            let delays = model.constraints.is_empty().then(|| model.delays(std::iter::empty()));
+            built.insert(n, model);
+            delays
+        });
+        match of_cone {
+            Some(d) => delays.extend(d),
+            None => return vacuity(program, terms),
+        }
+    }
+    let steps = Steps::of(&delays, &cycle);
+    if steps.k > MAX_STEPS {
+        return Vacuity::default();
+    }
+    let mut constants = Vec::new();
+    for n in &read {
+        let forced = cached(&cache.forced, (n.clone(), steps), || {
+            let v = unconstrained(
+                &built.remove(n).unwrap_or_else(|| cone(n)),
+                std::slice::from_ref(n),
+                &cycle,
+                steps.grid,
+                steps.k_scans,
+                steps.k,
+            );
+            v.horizon.is_some().then(|| v.constants.first().map(|c| c.1))
+        });
+        match forced {
+            Some(Some(v)) => constants.push((n.clone(), v)),
+            Some(None) => {}
+            None => return Vacuity::default(),
+        }
+    }
+    let horizon = Some(&cycle * Time::from_integer((steps.k * steps.grid).into()));
     Vacuity { inconsistent: false, constants, horizon }
 }

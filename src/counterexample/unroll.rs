@@ -51,6 +51,44 @@ impl Bits for Concrete {
     }
 }
 
+/// 64 runs at once: bit `i` of a value is its value in run `i`; free values come from
+/// a fixed pseudo-random sequence (xorshift), so the runs are the same on every call.
+pub struct Runs64 {
+    state: u64,
+}
+
+impl Default for Runs64 {
+    fn default() -> Self {
+        Runs64 { state: 0x9e37_79b9_7f4a_7c15 }
+    }
+}
+
+impl Runs64 {
+    /// The next 64 pseudo-random bits.
+    pub fn random(&mut self) -> u64 {
+        self.state ^= self.state << 13;
+        self.state ^= self.state >> 7;
+        self.state ^= self.state << 17;
+        self.state
+    }
+}
+
+impl Bits for Runs64 {
+    type V = u64;
+    fn konst(&mut self, b: bool) -> u64 {
+        if b { !0 } else { 0 }
+    }
+    fn not(&mut self, a: &u64) -> u64 {
+        !a
+    }
+    fn and_all(&mut self, xs: &[u64]) -> u64 {
+        xs.iter().fold(!0, |a, x| a & x)
+    }
+    fn or_all(&mut self, xs: &[u64]) -> u64 {
+        xs.iter().fold(0, |a, x| a | x)
+    }
+}
+
 /// A SAT formula under construction (Tseitin encoding, constants folded).
 pub struct Cnf {
     /// The solver holding the clauses.

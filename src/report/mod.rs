@@ -898,12 +898,15 @@ pub fn run_program_with(
                 inconsistent = Some(text);
             }
         }
+        // The file's properties share the per-signal answers of the vacuity check.
+        let forced = counterexample::VacuityCache::default();
         let check = |statement: &crate::syntax::Statement<Goal>| {
             let mut report =
                 check_property(&ctx, statement, &ctx.hypotheses, opts, &rename, Some(&session));
             report.location = Some(Location::of(&sources, statement.span));
             flag_vacuity(&mut report, inconsistent.as_deref(), || {
-                forced_constants(&session, &obligation(&statement.value), &rename, opts)
+                let goal = obligation(&statement.value);
+                forced_constants(&session, &forced, &goal, &rename, opts)
             });
             report
         };
@@ -933,14 +936,16 @@ fn finish(
     RunReport { program, files, timers: None, warnings, properties, summary, interrupted: false }
 }
 
-/// Signals the property reads that the hypotheses force to a constant (bounded search).
+/// Signals the property reads that the hypotheses force to a constant (bounded search
+/// on each signal's cut cone, answers shared through the session's `cache`).
 fn forced_constants(
     session: &counterexample::Program,
+    cache: &counterexample::VacuityCache,
     goal: &Obligation,
     rename: &dyn Fn(&Expr) -> Expr,
     opts: &Options,
 ) -> Option<String> {
-    let v = counterexample::vacuity(session, &[&goal.lhs, &goal.rhs]);
+    let v = counterexample::vacuity_cached(session, &[&goal.lhs, &goal.rhs], cache);
     if v.constants.is_empty() {
         return None;
     }
