@@ -1030,7 +1030,7 @@ pub fn vacuity(program: &Program, terms: &[&Expr]) -> Vacuity {
 }
 
 /// The largest cone, in equations, that [`vacuity_cached`] unrolls for one signal.
-pub const VACUITY_CONE: usize = 200;
+pub const VACUITY_CONE: usize = 40;
 
 /// The answers of [`vacuity_cached`] for one program and one set of assumptions (one
 /// property file's session), per signal, shared by its properties and their threads.
