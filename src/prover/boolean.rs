@@ -200,26 +200,19 @@ pub fn register(atoms: &mut Atoms, constraints: &[Constraint]) {
     }
 }
 
-/// The laws' temporal pieces, and the instances found for each single atom so far:
-/// built once per context and shared by every goal.
-pub struct LawIndex {
-    /// Each law's temporal subpatterns ([`temporal_pieces`]), by law.
-    pieces: Vec<Vec<Expr>>,
-    /// The instances a piece matched on one atom gives, by atom.
-    singles: std::sync::Mutex<HashMap<Expr, std::sync::Arc<Vec<Constraint>>>>,
-}
+/// The laws' temporal pieces ([`temporal_pieces`]), by law: computed once per context.
+pub struct LawIndex(Vec<Vec<Expr>>);
 
 impl LawIndex {
     /// The index of `laws`.
     pub fn new(laws: &[Axiom]) -> LawIndex {
-        LawIndex { pieces: laws.iter().map(temporal_pieces).collect(), singles: Default::default() }
+        LawIndex(laws.iter().map(temporal_pieces).collect())
     }
 }
 
 /// Instances of the laws for the atoms present: every law side with a temporal
 /// root (or a `·`/`+` of two of them) is matched against the atoms, in two rounds
-/// so that atoms introduced by instances get their own lemmas. What one atom gives
-/// alone is kept in `index` for the next goal; pairs of atoms are matched each time.
+/// so that atoms introduced by instances get their own lemmas.
 pub fn law_instances(
     laws: &[Axiom],
     index: &LawIndex,
@@ -229,66 +222,47 @@ pub fn law_instances(
 ) -> Vec<Constraint> {
     let mut out: Vec<Constraint> = Vec::new();
     let mut seen = std::collections::HashSet::new();
-    let mut keep = |c: Constraint, atoms: &mut Atoms, out: &mut Vec<Constraint>| {
-        let key =
-            (c.name.clone(), subterm(&c.raw.0, root(&c.raw.0)), subterm(&c.raw.1, root(&c.raw.1)));
-        if seen.insert(key) {
-            atoms.view(&c.lhs, root(&c.lhs));
-            atoms.view(&c.rhs, root(&c.rhs));
-            out.push(c);
-        }
-    };
-    let mut done = 0;
     for _round in 0..2 {
         let pool: Vec<Expr> = atoms.terms.clone();
         let temporal: Vec<&Expr> =
             pool.iter().filter(|a| !matches!(a[root(a)], Term::Name(_))).collect();
-        // One atom alone, from the index (computed once per atom and context).
-        for atom in pool[done..].iter().filter(|a| !matches!(a[root(a)], Term::Name(_))) {
-            let known = index.singles.lock().ok().and_then(|m| m.get(atom).cloned());
-            let singles = known.unwrap_or_else(|| {
-                let mut found = Vec::new();
-                for (law, pieces) in laws.iter().zip(&index.pieces) {
-                    let mut sigma = BTreeMap::new();
-                    if let Some(first) = pieces.first()
-                        && crate::theory::match_side(law, first, atom, &mut sigma)
-                    {
-                        found.extend(instance(law, cycle, sigma));
+        for (law, pieces) in laws.iter().zip(&index.0) {
+            let Some(first) = pieces.first() else { continue };
+            let mut sigmas: Vec<BTreeMap<Symbol, Expr>> = Vec::new();
+            for atom in &temporal {
+                let mut sigma = BTreeMap::new();
+                if crate::theory::match_side(law, first, atom, &mut sigma) {
+                    sigmas.push(sigma);
+                }
+            }
+            if let Some(second) = pieces.get(1) {
+                let mut extended = Vec::new();
+                for sigma in &sigmas {
+                    for atom in &temporal {
+                        let mut s = sigma.clone();
+                        if crate::theory::match_side(law, second, atom, &mut s) {
+                            extended.push(s);
+                        }
                     }
                 }
-                let found = std::sync::Arc::new(found);
-                if let Ok(mut m) = index.singles.lock() {
-                    m.insert(atom.clone(), found.clone());
-                }
-                found
-            });
-            for c in singles.iter() {
+                sigmas.extend(extended);
+            }
+            for sigma in sigmas {
                 if out.len() >= limit {
                     return out;
                 }
-                keep(c.clone(), atoms, &mut out);
-            }
-        }
-        done = pool.len();
-        // Two atoms, for the laws with two temporal pieces.
-        for (law, pieces) in laws.iter().zip(&index.pieces) {
-            let [first, second] = &pieces[..] else { continue };
-            for a in &temporal {
-                let mut sigma = BTreeMap::new();
-                if !crate::theory::match_side(law, first, a, &mut sigma) {
+                let Some(c) = instance(law, cycle, sigma) else { continue };
+                let key = (
+                    law.name.clone(),
+                    subterm(&c.raw.0, root(&c.raw.0)),
+                    subterm(&c.raw.1, root(&c.raw.1)),
+                );
+                if !seen.insert(key) {
                     continue;
                 }
-                for b in &temporal {
-                    let mut s = sigma.clone();
-                    if crate::theory::match_side(law, second, b, &mut s)
-                        && let Some(c) = instance(law, cycle, s)
-                    {
-                        if out.len() >= limit {
-                            return out;
-                        }
-                        keep(c, atoms, &mut out);
-                    }
-                }
+                atoms.view(&c.lhs, root(&c.lhs));
+                atoms.view(&c.rhs, root(&c.rhs));
+                out.push(c);
             }
         }
     }

@@ -101,7 +101,7 @@ pub struct Context {
     /// The hypotheses (also in the kernel).
     pub hypotheses: Vec<Axiom>,
     rules: saturate::RuleSet,
-    /// The laws' instances on single atoms, found once.
+    /// The laws' temporal pieces, for their instances on atoms.
     law_index: boolean::LawIndex,
     /// Side conditions already attempted, with their proofs (shared by every goal).
     premises: std::sync::Mutex<std::collections::HashMap<String, Option<Proof>>>,
@@ -167,9 +167,7 @@ impl Context {
     /// The same context with the program's scan cycle.
     pub fn with_cycle(self, cycle: Delay) -> Context {
         let kernel = self.kernel.with_cycle(cycle.clone());
-        // Instances found so far may depend on the cycle.
-        let law_index = boolean::LawIndex::new(&self.laws);
-        Context { kernel, law_index, cycle: Some(cycle), ..self }
+        Context { kernel, cycle: Some(cycle), ..self }
     }
 
     /// The hypotheses in the cone of influence of `terms` (see [`cone_of_influence`]),
