@@ -457,10 +457,11 @@ pub fn or(a: &Expr, b: &Expr) -> Expr {
 
 /// `¬a` as a whole term.
 pub fn not(a: &Expr) -> Expr {
-    let mut out = a.clone();
-    let r = root(&out);
-    out.add(Term::Not(r));
-    out
+    // One node more than `a`, allocated once (kept terms are not twice their size).
+    let mut nodes = Vec::with_capacity(a.as_ref().len() + 1);
+    nodes.extend_from_slice(a.as_ref());
+    nodes.push(Term::Not(root(a)));
+    Expr::from(nodes)
 }
 
 /// `a · ¬b` as a whole term.
