@@ -202,13 +202,13 @@ fn prove_once(label: &str, ctx: &Context, goal: &Obligation, budget: Budget) -> 
     let started = Instant::now();
     let outcome = prover::prove(ctx, goal, budget);
     let elapsed = started.elapsed();
-    let cone = prover::cone_of_influence(&ctx.hypotheses, &[&goal.lhs, &goal.rhs]).len();
+    let cone = prover::cone_of_influence(ctx.hypotheses(), &[&goal.lhs, &goal.rhs]).len();
     match outcome {
         Outcome::Proved(p) => {
             eprintln!(
                 "{label}: proved by {:?} in {elapsed:.2?} ({} hypotheses, cone {cone}, {} cases)",
                 p.method,
-                ctx.hypotheses.len(),
+                ctx.hypotheses().len(),
                 prover::case_leaves(&p),
             );
             Some(elapsed)

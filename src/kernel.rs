@@ -29,8 +29,8 @@
 //! | implication from zero | `f·¬g = 0*` | `f ⇒ g` |
 //! | shared lemma | a theorem this kernel checked before ([`Kernel::check_using`]) | the same, cited as a step |
 //!
-//! Laws and hypotheses are the kernel's axioms, given to [`Kernel::new`] and listed by
-//! [`Kernel::laws`] and [`Kernel::hypotheses`]; every theorem records which it used.
+//! Laws and hypotheses are the kernel's axioms, given to [`Kernel::new`] (the hypotheses
+//! are listed by [`Kernel::hypotheses`]); every theorem records which it used.
 
 #![forbid(unsafe_code)]
 
@@ -110,7 +110,9 @@ type Result<T> = std::result::Result<T, KernelError>;
 #[derive(Clone, Debug, Default)]
 pub struct Kernel {
     laws: BTreeMap<String, Axiom>,
-    hyps: BTreeMap<String, Axiom>,
+    /// The hypotheses in the order given, and their positions by name (shared by copies).
+    hyps: Arc<Vec<Axiom>>,
+    hyp_names: Arc<BTreeMap<String, usize>>,
     /// A program's context: signals are scan runs, so `pre` and induction are available.
     scans: bool,
     /// Checking the base of an induction: the hypotheses hold at the first scan only.
@@ -198,26 +200,31 @@ impl Kernel {
     fn build(laws: Vec<Axiom>, hypotheses: Vec<Axiom>, scans: bool) -> Result<Kernel> {
         let id = KERNELS.fetch_add(1, Ordering::Relaxed);
         let mut kernel = Kernel { scans, id, ..Kernel::default() };
+        let (mut hyps, mut names) = (Vec::new(), BTreeMap::new());
         for (axiom, is_law) in
             laws.into_iter().map(|a| (a, true)).chain(hypotheses.into_iter().map(|a| (a, false)))
         {
             let name = axiom.name.clone();
             check_signal_term(&name, &axiom.lhs, &axiom.delay_vars)?;
             check_signal_term(&name, &axiom.rhs, &axiom.delay_vars)?;
-            let ground = axiom.signal_vars.is_empty() && axiom.delay_vars.is_empty();
-            let ground_hypothesis = ground && axiom.signal_conditions.is_empty();
-            if !is_law && !ground_hypothesis {
+            let vars = axiom.signal_vars.len() + axiom.delay_vars.len();
+            if !is_law && vars + axiom.signal_conditions.len() > 0 {
                 return Err(KernelError::BadAxiom(format!("hypothesis `{name}` is not ground")));
             }
             if !is_law && !scans && (mentions_pre(&axiom.lhs) || mentions_pre(&axiom.rhs)) {
                 return Err(KernelError::BadAxiom(format!("`pre` in `{name}` about free signals")));
             }
-            let fresh = !kernel.laws.contains_key(&name) && !kernel.hyps.contains_key(&name);
-            let table = if is_law { &mut kernel.laws } else { &mut kernel.hyps };
-            if !fresh || table.insert(name.clone(), axiom).is_some() {
+            if kernel.laws.contains_key(&name) || names.contains_key(&name) {
                 return Err(KernelError::BadAxiom(format!("`{name}` is defined twice")));
             }
+            if is_law {
+                kernel.laws.insert(name, axiom);
+            } else {
+                names.insert(name, hyps.len());
+                hyps.push(axiom);
+            }
         }
+        (kernel.hyps, kernel.hyp_names) = (Arc::new(hyps), Arc::new(names));
         Ok(kernel)
     }
 
@@ -231,14 +238,9 @@ impl Kernel {
         Ok(())
     }
 
-    /// Every law the kernel trusts, by name.
-    pub fn laws(&self) -> impl Iterator<Item = &Axiom> {
-        self.laws.values()
-    }
-
-    /// Every hypothesis the kernel trusts, by name.
-    pub fn hypotheses(&self) -> impl Iterator<Item = &Axiom> {
-        self.hyps.values()
+    /// Every hypothesis the kernel trusts, in the order given.
+    pub fn hypotheses(&self) -> &[Axiom] {
+        &self.hyps
     }
 
     /// Replays a certificate: its lemmas in order, then its main proof.
@@ -362,11 +364,7 @@ impl Kernel {
             ));
         }
         self.admit("an invariant", inv)?;
-        let first_hyps = self.hyps.iter().map(|(n, h)| {
-            let h = Axiom::ground(n.clone(), at_first_scan(&h.lhs), h.rel, at_first_scan(&h.rhs));
-            (n.clone(), h)
-        });
-        let first = Kernel { hyps: first_hyps.collect(), first_scan: true, ..self.clone() };
+        let first = Kernel { first_scan: true, ..self.clone() };
         let (one, inv0) = (crate::term::constant(true), at_first_scan(inv));
         let b = first.replay(base, lemmas)?;
         if !b.proves(&one, Rel::Implies, &inv0) {
@@ -457,9 +455,14 @@ impl Kernel {
                 let lemma = lemmas.get(name).filter(|_| *source == Source::Lemma);
                 let lemma_axiom =
                     lemma.map(|t| Axiom::ground(name, t.lhs.clone(), t.rel, t.rhs.clone()));
+                let hyp = self.hyp_names.get(name).map(|&i| &self.hyps[i]);
+                // In a base case a hypothesis reads as at the first scan.
+                let first = hyp.filter(|_| self.first_scan).map(|h| {
+                    Axiom::ground(name, at_first_scan(&h.lhs), h.rel, at_first_scan(&h.rhs))
+                });
                 let axiom = match source {
                     Source::Law => self.laws.get(name),
-                    Source::Hypothesis => self.hyps.get(name),
+                    Source::Hypothesis => first.as_ref().or(hyp),
                     Source::Lemma => lemma_axiom.as_ref(),
                 }
                 .ok_or_else(|| KernelError::UnknownRule(format!("{source:?} {name}")))?;

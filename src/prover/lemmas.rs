@@ -140,7 +140,7 @@ fn propagate(ctx: &Context, atom: &Expr, value: bool) -> Closure {
     'propagation: while let Some(a) = queue.pop_front() {
         for h in ctx.index.mentioning(&atoms.terms[a]) {
             let (l, r, inside) = views.entry(h).or_insert_with(|| {
-                let hyp = &ctx.hypotheses[h];
+                let hyp = &ctx.hypotheses()[h];
                 let (l, r) =
                     (atoms.view(&hyp.lhs, root(&hyp.lhs)), atoms.view(&hyp.rhs, root(&hyp.rhs)));
                 let mut inside = Vec::new();
@@ -151,7 +151,7 @@ fn propagate(ctx: &Context, atom: &Expr, value: bool) -> Closure {
                 (l, r, inside)
             });
             sigma.resize(atoms.terms.len(), None);
-            let rel = ctx.hypotheses[h].rel;
+            let rel = ctx.hypotheses()[h].rel;
             for &b in inside.iter() {
                 if sigma[b].is_some() {
                     continue;
@@ -226,7 +226,7 @@ impl Closure {
     /// literals it read.
     fn prove(&self, ctx: &Context, i: usize, lemmas: &[Option<Arc<Theorem>>]) -> Option<Theorem> {
         let f = &self.forced[i];
-        let mut constraints = vec![constraint(&ctx.hypotheses[f.reason])];
+        let mut constraints = vec![constraint(&ctx.hypotheses()[f.reason])];
         let mut known = Lemmas::new();
         for &j in &f.after {
             let (name, c) = self.citation(j);

@@ -98,8 +98,6 @@ pub struct Context {
     pub kernel: Kernel,
     /// The laws (also in the kernel), for building search rules.
     pub laws: Vec<Axiom>,
-    /// The hypotheses (also in the kernel).
-    pub hypotheses: Vec<Axiom>,
     rules: saturate::RuleSet,
     /// The laws' temporal pieces, for their instances on atoms.
     law_index: boolean::LawIndex,
@@ -132,10 +130,12 @@ impl Context {
         hypotheses: Vec<Axiom>,
         scans: bool,
     ) -> Result<Context, KernelError> {
+        let index = ConeIndex::new(&hypotheses);
+        // The kernel keeps the one copy of the hypotheses.
         let kernel = if scans {
-            Kernel::for_scans(laws.clone(), hypotheses.clone())?
+            Kernel::for_scans(laws.clone(), hypotheses)?
         } else {
-            Kernel::new(laws.clone(), hypotheses.clone())?
+            Kernel::new(laws.clone(), hypotheses)?
         };
         let rules = saturate::RuleSet::new(&laws);
         // The search uses the laws of `pre` only where signals are scan runs.
@@ -144,7 +144,6 @@ impl Context {
         } else {
             laws.into_iter().filter(|l| !mentions_pre(&l.lhs) && !mentions_pre(&l.rhs)).collect()
         };
-        let index = ConeIndex::new(&hypotheses);
         let law_index = boolean::LawIndex::new(&laws);
         let premises = Default::default();
         let lemmas = lemmas::Store::default();
@@ -152,7 +151,6 @@ impl Context {
         Ok(Context {
             kernel,
             laws,
-            hypotheses,
             rules,
             law_index,
             premises,
@@ -164,6 +162,11 @@ impl Context {
         })
     }
 
+    /// The hypotheses, in the order given (the kernel's).
+    pub fn hypotheses(&self) -> &[Axiom] {
+        self.kernel.hypotheses()
+    }
+
     /// The same context with the program's scan cycle.
     pub fn with_cycle(self, cycle: Delay) -> Context {
         let kernel = self.kernel.with_cycle(cycle.clone());
@@ -173,20 +176,20 @@ impl Context {
     /// The hypotheses in the cone of influence of `terms` (see [`cone_of_influence`]),
     /// at most `depth` steps of signal dependence away when a depth is given.
     pub fn cone(&self, terms: &[&Expr], depth: Option<usize>) -> Vec<&Axiom> {
-        self.index.cone(&self.hypotheses, terms, depth, false, None)
+        self.index.cone(self.hypotheses(), terms, depth, false, None)
     }
 
     /// Does the cone of influence of `terms` hold more than `n` hypotheses? (Stops
     /// looking once it has found `n + 1`.)
     fn cone_exceeds(&self, terms: &[&Expr], n: usize) -> bool {
-        self.index.cone(&self.hypotheses, terms, None, false, Some(n)).len() > n
+        self.index.cone(self.hypotheses(), terms, None, false, Some(n)).len() > n
     }
 
     /// A tighter cone for goal-directed attempts: a bound `X ⇒ e` or `e ⇒ X` of a signal
     /// `X` that has a definition `X = …` joins only when `X` itself is reached (while
     /// `X` is outside, the bound constrains nothing the goal reads).
     fn near_cone(&self, terms: &[&Expr], depth: usize) -> Vec<&Axiom> {
-        self.index.cone(&self.hypotheses, terms, Some(depth), true, None)
+        self.index.cone(self.hypotheses(), terms, Some(depth), true, None)
     }
 }
 

@@ -1019,7 +1019,7 @@ impl Session {
             |e: &Expr| e.as_ref().iter().any(|n| matches!(n, Term::Name(s) if *s == symbol));
         let mut defining = Vec::new();
         let mut others = Vec::new();
-        for h in &self.checker.ctx.hypotheses {
+        for h in self.checker.ctx.hypotheses() {
             if matches!(&h.lhs[root(&h.lhs)], Term::Name(s) if *s == symbol) {
                 defining.push(h.name.clone());
             } else if mentions(&h.lhs) || mentions(&h.rhs) {
@@ -1321,7 +1321,7 @@ impl Session {
         let definitions: Vec<(Symbol, Expr)> = self
             .checker
             .ctx
-            .hypotheses
+            .hypotheses()
             .iter()
             .filter(|h| h.rel == Rel::Eq)
             .filter_map(|h| match &h.lhs[root(&h.lhs)] {

@@ -902,7 +902,7 @@ pub fn run_program_with(
         let forced = counterexample::VacuityCache::default();
         let check = |statement: &crate::syntax::Statement<Goal>| {
             let mut report =
-                check_property(&ctx, statement, &ctx.hypotheses, opts, &rename, Some(&session));
+                check_property(&ctx, statement, ctx.hypotheses(), opts, &rename, Some(&session));
             report.location = Some(Location::of(&sources, statement.span));
             flag_vacuity(&mut report, inconsistent.as_deref(), || {
                 let goal = obligation(&statement.value);

@@ -213,7 +213,7 @@ impl Checker {
 
     /// An independent copy (same axioms, claims and settings), e.g. for a worker thread.
     pub fn snapshot(&self) -> Result<Checker, KernelError> {
-        let (laws, hypotheses) = (self.ctx.laws.clone(), self.ctx.hypotheses.clone());
+        let (laws, hypotheses) = (self.ctx.laws.clone(), self.ctx.hypotheses().to_vec());
         let mut copy = Checker::with_scans(laws, hypotheses, self.ctx.scans)?;
         if let Some(cycle) = &self.ctx.cycle {
             copy = copy.with_cycle(cycle.clone());
@@ -263,7 +263,7 @@ impl Checker {
     /// Every name a step may cite: laws, hypotheses, proved claims.
     pub fn rule_names(&self) -> Vec<String> {
         let mut names: Vec<String> = self.ctx.laws.iter().map(|a| a.name.clone()).collect();
-        names.extend(self.ctx.hypotheses.iter().map(|a| a.name.clone()));
+        names.extend(self.ctx.hypotheses().iter().map(|a| a.name.clone()));
         names.extend(self.proved.iter().map(|p| p.name.clone()));
         names
     }
@@ -273,7 +273,7 @@ impl Checker {
         if let Some(law) = self.ctx.laws.iter().find(|a| a.name == name) {
             return Some((Source::Law, law.clone()));
         }
-        if let Some(hyp) = self.ctx.hypotheses.iter().find(|a| a.name == name) {
+        if let Some(hyp) = self.ctx.hypotheses().iter().find(|a| a.name == name) {
             return Some((Source::Hypothesis, hyp.clone()));
         }
         self.proved.iter().find(|p| p.name == name).map(|p| {
