@@ -77,11 +77,8 @@ impl Store {
         let mut out = Vec::new();
         for (atom, value) in literals(f) {
             let closure = self.closure(ctx, &atom, value);
-            let far = |i: &usize| closure.forced[*i].depth > NEAR;
-            let mut wanted: Vec<usize> = (atoms.terms.iter())
-                .filter_map(|t| closure.index.get(t).copied())
-                .filter(far)
-                .collect();
+            let mut wanted: Vec<usize> =
+                atoms.terms.iter().filter_map(|t| closure.index.get(t).copied()).collect();
             wanted.sort_unstable();
             wanted.dedup();
             for i in wanted {
@@ -183,7 +180,17 @@ fn propagate(ctx: &Context, atom: &Expr, value: bool) -> Closure {
             }
         }
     }
-    let index = position.iter().map(|(&a, &i)| (atoms.terms[a].clone(), i)).collect();
+    // Only far literals become lemmas; a seed that forces none keeps nothing.
+    let far = |i: &usize| forced[*i].depth > NEAR;
+    let index: HashMap<Expr, usize> = position
+        .iter()
+        .filter(|(_, i)| far(i))
+        .map(|(&a, &i)| (atoms.terms[a].clone(), i))
+        .collect();
+    if index.is_empty() {
+        forced.clear();
+    }
+    forced.shrink_to_fit();
     let lemmas = Mutex::new(vec![None; forced.len()]);
     Closure { seed: literal(atom, value), forced, index, lemmas }
 }
