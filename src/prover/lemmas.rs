@@ -35,7 +35,8 @@ struct Closure {
     /// The seed as a term: `a` or `¬a`.
     seed: Expr,
     forced: Vec<Forced>,
-    /// Position in `forced`, by the atom's tree.
+    /// Position in `forced` of each literal forced farther than [`NEAR`] (the ones
+    /// offered as lemmas), by the atom's tree.
     index: HashMap<Expr, usize>,
     /// The lemma of each forced literal once proved (`None` until then, or when the
     /// kernel refused it).

@@ -691,6 +691,9 @@ const SHIFT_ROUNDS: usize = 3;
 
 /// The lemmas of `offered` that the certificate cites.
 fn cited_lemmas(certificate: &Certificate, mut offered: kernel::Lemmas) -> kernel::Lemmas {
+    if offered.is_empty() {
+        return offered;
+    }
     let names = certificate.main.as_ref().map(Proof::lemmas_cited).unwrap_or_default();
     offered.retain(|name, _| names.contains(name));
     offered

@@ -74,7 +74,7 @@ pub fn attempt(
         Outcome::Unknown { reason, candidate } => {
             let limit = if program.is_some() { PROGRAM_SEARCH } else { FREE_SEARCH };
             // A short look even when the proof search ran to the end of the limit,
-            // so that the property ends within `--timeout` and a twentieth.
+            // so that the property ends within `--timeout` and `LAST_LOOK` of it.
             let floor = Instant::now() + opts.timeout.mul_f64(LAST_LOOK);
             let found =
                 first_look.unwrap_or_else(|| search((Instant::now() + limit).min(end.max(floor))));
