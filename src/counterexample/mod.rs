@@ -825,6 +825,11 @@ impl Steps {
         let longest = scans.iter().copied().max().unwrap_or(0);
         Steps { grid, k_scans: (3 * longest + 4).min(MAX_STEPS), k: 3 * longest / grid + 4 }
     }
+
+    /// How far the `k` coarse steps reach.
+    fn horizon(&self, cycle: &Time) -> Time {
+        cycle * Time::from_integer((self.k * self.grid).into())
+    }
 }
 
 /// The names `terms` read, sorted.
@@ -896,18 +901,12 @@ fn varying(model: &Model, read: &[String], cycle: &Time, grid: usize, k: usize) 
 /// only for the signals the coarse grid finds constant and random runs scan by scan do
 /// not show varying. (It unrolls whenever the coarse grid does: both read the same
 /// equations in the same order, and a delay in whole coarse steps is one in scans.)
-fn unconstrained(
-    model: &Model,
-    read: &[String],
-    cycle: &Time,
-    grid: usize,
-    k_scans: usize,
-    k: usize,
-) -> Vacuity {
+fn unconstrained(model: &Model, read: &[String], cycle: &Time, steps: Steps) -> Vacuity {
+    let Steps { grid, k_scans, k } = steps;
     if k > MAX_STEPS {
         return Vacuity::default();
     }
-    let horizon = Some(cycle * Time::from_integer((k * grid).into()));
+    let horizon = Some(steps.horizon(cycle));
     // Random runs settle most signals; only the others need the solver.
     let on_grid = varying(model, read, cycle, grid, k);
     let open: Vec<usize> = (0..read.len()).filter(|&i| !on_grid[i]).collect();
@@ -998,10 +997,11 @@ fn forced(cnf: &mut Cnf, values: &[varisat::Lit]) -> Option<bool> {
 pub fn vacuity(program: &Program, terms: &[&Expr]) -> Vacuity {
     let Some(cycle) = program.cycle() else { return Vacuity::default() };
     let model = program.model(terms);
-    let Steps { grid, k_scans, k } = Steps::of(&model.delays(terms.iter().copied()), &cycle);
+    let steps = Steps::of(&model.delays(terms.iter().copied()), &cycle);
+    let Steps { grid, k_scans, k } = steps;
     let read = read_names(terms);
     if model.constraints.is_empty() {
-        return unconstrained(&model, &read, &cycle, grid, k_scans, k);
+        return unconstrained(&model, &read, &cycle, steps);
     }
     let Some((mut fine, fine_values)) = bounded(&model, &read, &cycle, 1, k_scans) else {
         return Vacuity::default();
@@ -1025,8 +1025,7 @@ pub fn vacuity(program: &Program, terms: &[&Expr]) -> Vacuity {
             constants.push((n.clone(), v));
         }
     }
-    let horizon = Some(&cycle * Time::from_integer((k * grid).into()));
-    Vacuity { inconsistent: false, constants, horizon }
+    Vacuity { inconsistent: false, constants, horizon: Some(steps.horizon(&cycle)) }
 }
 
 /// The largest cone, in equations, that [`vacuity_cached`] unrolls for one signal.
@@ -1096,14 +1095,8 @@ pub fn vacuity_cached(program: &Program, terms: &[&Expr], cache: &VacuityCache) 
     let mut constants = Vec::new();
     for n in &read {
         let forced = cached(&cache.forced, (n.clone(), steps), || {
-            let v = unconstrained(
-                &built.remove(n).unwrap_or_else(|| cone(n)),
-                std::slice::from_ref(n),
-                &cycle,
-                steps.grid,
-                steps.k_scans,
-                steps.k,
-            );
+            let model = built.remove(n).unwrap_or_else(|| cone(n));
+            let v = unconstrained(&model, std::slice::from_ref(n), &cycle, steps);
             v.horizon.is_some().then(|| v.constants.first().map(|c| c.1))
         });
         match forced {
@@ -1112,6 +1105,5 @@ pub fn vacuity_cached(program: &Program, terms: &[&Expr], cache: &VacuityCache) 
             None => return Vacuity::default(),
         }
     }
-    let horizon = Some(&cycle * Time::from_integer((steps.k * steps.grid).into()));
-    Vacuity { inconsistent: false, constants, horizon }
+    Vacuity { inconsistent: false, constants, horizon: Some(steps.horizon(&cycle)) }
 }
