@@ -242,8 +242,13 @@ pub struct Uses {
 }
 
 impl Uses {
-    /// Adds what `other` rests on (the smaller sets join the larger).
-    pub fn absorb(&mut self, mut other: Uses) {
+    /// Adds what `other` rests on: its sets join (the smaller into the larger), or, when
+    /// it is shared, it is kept as shared.
+    pub fn absorb(&mut self, other: Arc<Uses>) {
+        let mut other = match Arc::try_unwrap(other) {
+            Ok(other) => other,
+            Err(shared) => return self.lemmas.push(shared),
+        };
         for (mine, theirs) in [(&mut self.laws, &mut other.laws), (&mut self.hyps, &mut other.hyps)]
         {
             if mine.len() < theirs.len() {

@@ -54,7 +54,7 @@ pub struct Theorem {
     rhs: Expr,
     local: Vec<(Expr, bool)>,
     /// The laws, hypotheses and shared lemmas it rests on.
-    uses: Uses,
+    uses: Arc<Uses>,
     /// The kernel that checked it.
     kernel: u64,
 }
@@ -269,7 +269,7 @@ impl Kernel {
             .as_ref()
             .ok_or_else(|| KernelError::NotTheGoal("the certificate has no main proof".into()))?;
         let mut thm = self.replay(main, &lemmas)?;
-        thm.uses.lemmas.extend(lemmas.values().map(|t| Arc::new(t.uses.clone())));
+        Arc::make_mut(&mut thm.uses).lemmas.extend(lemmas.values().map(|t| Arc::clone(&t.uses)));
         Ok(thm)
     }
 
@@ -390,7 +390,7 @@ impl Kernel {
             rel: Rel::Eq,
             rhs: start.clone(),
             local: Vec::new(),
-            uses: Uses::default(),
+            uses: Arc::default(),
             kernel: self.id,
         };
         for step in steps {
@@ -501,13 +501,14 @@ impl Kernel {
                             "`{name}` needs `{want_l} {rel:?} {want_r}`"
                         )));
                     }
-                    thm.uses.absorb(got.uses.clone());
+                    Arc::make_mut(&mut thm.uses).absorb(got.uses);
                 }
+                let uses = Arc::make_mut(&mut thm.uses);
                 match (source, lemma) {
-                    (Source::Law, _) => thm.uses.laws.insert(name.clone()),
-                    (Source::Hypothesis, _) => thm.uses.hyps.insert(name.clone()),
+                    (Source::Law, _) => uses.laws.insert(name.clone()),
+                    (Source::Hypothesis, _) => uses.hyps.insert(name.clone()),
                     (Source::Lemma, Some(used)) => {
-                        thm.uses.lemmas.push(Arc::new(used.uses.clone()));
+                        uses.lemmas.push(Arc::clone(&used.uses));
                         true
                     }
                     (Source::Lemma, None) => false,
@@ -525,7 +526,7 @@ fn merge(mut a: Theorem, mut b: Theorem) -> Theorem {
         let mut known: std::collections::HashSet<(Expr, bool)> = a.local.iter().map(key).collect();
         b.local.into_iter().filter(|l| known.insert(key(l))).for_each(|l| a.local.push(l));
     }
-    a.uses.absorb(std::mem::take(&mut b.uses));
+    Arc::make_mut(&mut a.uses).absorb(std::mem::take(&mut b.uses));
     a
 }
 

@@ -62,6 +62,8 @@ pub struct ConsoleOptions {
 }
 
 struct State {
+    /// What is known so far: the counts, and for a structured format every report (its
+    /// partial document); a streaming format has printed its results already.
     partial: RunReport,
     plan: Vec<(String, Location)>,
     width: usize,
@@ -125,9 +127,8 @@ impl Console {
                 std::process::exit(INTERRUPTED);
             }
             clear_progress(&mut s);
-            s.partial.summary = Summary::of(&s.partial.properties);
             s.partial.interrupted = true;
-            let (done, total) = (s.partial.properties.len(), s.plan.len());
+            let (done, total) = (s.partial.summary.total(), s.plan.len());
             let text = if console.format.streams() {
                 format!(
                     "interrupted after {done} of {total} properties: {}",
@@ -169,7 +170,7 @@ impl Console {
                 let Some(i) = s.current else { continue };
                 let line = format!(
                     "[{}/{}] checking {} ({:.0} s)",
-                    s.partial.properties.len(),
+                    s.partial.summary.total(),
                     s.plan.len(),
                     s.plan[i].0,
                     s.began.elapsed().as_secs_f64().floor()
@@ -224,7 +225,10 @@ impl Observer for Console {
 
     fn finished(&mut self, report: &PropertyReport) {
         let mut s = lock(&self.state);
-        s.partial.properties.push(report.clone());
+        s.partial.summary.count(report);
+        if !self.console.format.streams() {
+            s.partial.properties.push(report.clone());
+        }
         s.current = None;
         let width = s.width;
         let text = match self.console.format {

@@ -22,7 +22,7 @@ fn counterexamples(report: &RunReport) -> Vec<(&str, &CounterexampleReport)> {
     report
         .properties
         .iter()
-        .filter_map(|p| p.counterexample.as_ref().map(|c| (p.name.as_str(), c)))
+        .filter_map(|p| p.counterexample.as_deref().map(|c| (p.name.as_str(), c)))
         .collect()
 }
 

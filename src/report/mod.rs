@@ -219,12 +219,12 @@ pub struct PropertyReport {
     pub reason: Option<String>,
     /// Wall-clock time in milliseconds.
     pub time_ms: f64,
-    /// The checked proof.
-    pub trace: Option<TraceReport>,
+    /// The checked proof (boxed, as the counterexamples: a run keeps every report).
+    pub trace: Option<Box<TraceReport>>,
     /// The counterexample (only for `refuted`: confirmed).
-    pub counterexample: Option<CounterexampleReport>,
+    pub counterexample: Option<Box<CounterexampleReport>>,
     /// For `unknown`: a counterexample that only the exact evaluation confirms.
-    pub candidate: Option<CounterexampleReport>,
+    pub candidate: Option<Box<CounterexampleReport>>,
     /// For `proved`: the property holds only vacuously (see `vacuity`).
     pub vacuous: bool,
     /// Why the property holds vacuously: inconsistent hypotheses, or a signal it reads
@@ -249,15 +249,23 @@ impl Summary {
     /// The counts of `properties`.
     pub fn of(properties: &[PropertyReport]) -> Summary {
         let mut summary = Summary::default();
-        for p in properties {
-            match p.status {
-                Status::Proved => summary.proved += 1,
-                Status::Refuted => summary.refuted += 1,
-                Status::Unknown => summary.unknown += 1,
-            }
-            summary.vacuous += usize::from(p.vacuous);
-        }
+        properties.iter().for_each(|p| summary.count(p));
         summary
+    }
+
+    /// Counts one more property.
+    pub fn count(&mut self, p: &PropertyReport) {
+        match p.status {
+            Status::Proved => self.proved += 1,
+            Status::Refuted => self.refuted += 1,
+            Status::Unknown => self.unknown += 1,
+        }
+        self.vacuous += usize::from(p.vacuous);
+    }
+
+    /// How many properties were counted.
+    pub fn total(&self) -> usize {
+        self.proved + self.refuted + self.unknown
     }
 
     /// Does the run fail: something refuted or unknown, or (when denied) vacuous?

@@ -150,7 +150,7 @@ pub fn check_property(
                 true => proved.theorem.axioms_used(),
                 false => Default::default(),
             };
-            report.trace = Some(TraceReport {
+            report.trace = Some(Box::new(TraceReport {
                 method: match proved.method {
                     prover::Method::Saturation => "saturation".into(),
                     prover::Method::CaseSplit => "case-split".into(),
@@ -172,15 +172,15 @@ pub fn check_property(
                 },
                 hypotheses: hypotheses.into_iter().collect(),
                 laws: laws.into_iter().collect(),
-            });
+            }));
         }
         Attempt::Refuted(c) => {
             report.status = Status::Refuted;
-            report.counterexample = Some(c);
+            report.counterexample = Some(Box::new(c));
         }
         Attempt::Unknown { reason, candidate } => {
             report.reason = Some(reason);
-            report.candidate = candidate;
+            report.candidate = candidate.map(Box::new);
         }
     }
     report.time_ms = started.elapsed().as_secs_f64() * 1e3;
