@@ -875,23 +875,42 @@ fn bounded(
     Some((cnf, u.extra))
 }
 
-/// Per name of `read`: whether 64 pseudo-random runs of the model (free values drawn
-/// at each of `k` steps of `grid` scans) show it both 1 and 0. Each such run satisfies
-/// [`bounded`]'s formula for the same steps, so a signal they show varying is forced
-/// by no check on those steps (all `false` when the model does not unroll).
+/// Batches of 64 pseudo-random runs [`varying`] tries, each only while some signal has
+/// not yet been seen both 1 and 0.
+const RANDOM_BATCHES: u64 = 4;
+
+/// Per name of `read`: whether up to [`RANDOM_BATCHES`] × 64 pseudo-random runs of the
+/// model (free values drawn by [`unroll::Runs64::sticky`] at each of `k` steps of `grid`
+/// scans) show it both 1 and 0. Each such run satisfies [`bounded`]'s formula for the
+/// same steps, so a signal they show varying is forced by no check on those steps (all
+/// `false` when the model does not unroll).
 fn varying(model: &Model, read: &[String], cycle: &Time, grid: usize, k: usize) -> Vec<bool> {
     let exprs: Vec<Expr> = read.iter().map(|n| crate::term::name(n)).collect();
     let refs: Vec<&Expr> = exprs.iter().collect();
     let steps_of = |d: &Delay| scans_of(d, cycle).map(|n| n / grid);
-    let mut runs = unroll::Runs64::default();
-    match unroll(&mut runs, model, &refs, k, &steps_of, &mut |b, _, _| b.random()) {
-        Ok(u) => u
-            .extra
-            .iter()
-            .map(|v| v.iter().any(|x| *x != 0) && v.iter().any(|x| *x != !0))
-            .collect(),
-        Err(_) => vec![false; read.len()],
+    let (mut ones, mut zeros) = (vec![false; read.len()], vec![false; read.len()]);
+    for batch in 0..RANDOM_BATCHES {
+        let mut runs = unroll::Runs64::seeded(batch);
+        // Free values per name, per step, so far (the unrolling asks for them in order).
+        let mut drawn: HashMap<String, Vec<u64>> = HashMap::new();
+        let mut free = |b: &mut unroll::Runs64, n: &str, step: usize| {
+            let values = drawn.entry(n.to_string()).or_default();
+            while values.len() <= step {
+                let next = b.sticky(values.last().copied());
+                values.push(next);
+            }
+            values[step]
+        };
+        let Ok(u) = unroll(&mut runs, model, &refs, k, &steps_of, &mut free) else { break };
+        for (i, v) in u.extra.iter().enumerate() {
+            ones[i] |= v.iter().any(|x| *x != 0);
+            zeros[i] |= v.iter().any(|x| *x != !0);
+        }
+        if ones.iter().zip(&zeros).all(|(o, z)| *o && *z) {
+            break;
+        }
     }
+    ones.iter().zip(&zeros).map(|(o, z)| *o && *z).collect()
 }
 
 /// [`vacuity`] for a model without assumptions: its equations define every signal from

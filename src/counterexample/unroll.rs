@@ -64,12 +64,46 @@ impl Default for Runs64 {
 }
 
 impl Runs64 {
+    /// Runs of another fixed sequence, one per `seed`.
+    pub fn seeded(seed: u64) -> Runs64 {
+        let mut runs = Runs64::default();
+        runs.state ^= seed.wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        if runs.state == 0 {
+            runs.state = 1;
+        }
+        runs
+    }
+
     /// The next 64 pseudo-random bits.
     pub fn random(&mut self) -> u64 {
         self.state ^= self.state << 13;
         self.state ^= self.state >> 7;
         self.state ^= self.state << 17;
         self.state
+    }
+
+    /// The next value of a free signal that was `previous` one step before. The 64 runs
+    /// differ in how often a signal is 1 (in eight groups of eight runs: 1/2, 3/4, 1/4,
+    /// 7/8, 1/8, 15/16, 1/16 and 1/2 of the steps) and in how long it keeps a value
+    /// (within a group, redrawn at every step, at half, a quarter or a sixteenth of
+    /// them), so that some runs make a long conjunction true, or hold an input long
+    /// enough for its timers to expire.
+    pub fn sticky(&mut self, previous: Option<u64>) -> u64 {
+        let r: [u64; 4] = std::array::from_fn(|_| self.random());
+        let (any2, all2) = (r[0] | r[1], r[0] & r[1]);
+        let (any3, all3) = (any2 | r[2], all2 & r[2]);
+        let (any4, all4) = (any3 | r[3], all3 & r[3]);
+        let groups = [r[0], any2, all2, any3, all3, any4, all4, r[1]];
+        let drawn = groups.iter().enumerate().fold(0, |v, (g, x)| v | (x & 0xff << (8 * g)));
+        let Some(previous) = previous else { return drawn };
+        let r: [u64; 4] = std::array::from_fn(|_| self.random());
+        let rates = [!0, r[0], r[0] & r[1], r[0] & r[1] & r[2] & r[3]];
+        // Within each group of eight runs: two per rate.
+        let redraw = rates
+            .iter()
+            .enumerate()
+            .fold(0, |v, (i, x)| v | (x & 0x0303_0303_0303_0303 << (2 * i)));
+        (drawn & redraw) | (previous & !redraw)
     }
 }
 
