@@ -12,6 +12,12 @@ use ii_prove::report::text::Paint;
 use ii_prove::report::{self, Options};
 use ii_prove::{repl, script};
 
+/// Proving allocates many small terms and frees them soon; mimalloc does this faster
+/// than the system allocator.
+#[cfg(feature = "mimalloc")]
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 const EXIT_CODES: &str = "\
 Exit status:
   0    every property was proved
