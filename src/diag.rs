@@ -8,9 +8,10 @@
 
 use std::fmt::Write as _;
 use std::ops::Range;
+use std::sync::OnceLock;
 
 use codespan_reporting::diagnostic as cs;
-use codespan_reporting::files::{Files, SimpleFiles};
+use codespan_reporting::files::{self, Files, SimpleFiles};
 use codespan_reporting::term;
 
 /// Identifies one source text in [`Sources`].
@@ -46,8 +47,34 @@ impl Span {
 #[derive(Default)]
 pub struct Sources {
     files: SimpleFiles<String, String>,
-    /// The same texts as the renderer shows them: see [`visible`].
-    shown: SimpleFiles<String, String>,
+    /// Per file, the text as the renderer shows it (see [`visible`]), made when a
+    /// diagnostic first shows that file.
+    shown: Vec<OnceLock<String>>,
+}
+
+/// [`Sources`] as the renderer reads them: the texts as [`visible`] shows them, with
+/// the line index of the originals (the two have the same byte offsets).
+struct Shown<'a>(&'a Sources);
+
+impl<'a> Files<'a> for Shown<'a> {
+    type FileId = FileId;
+    type Name = &'a str;
+    type Source = &'a str;
+
+    fn name(&'a self, id: FileId) -> Result<&'a str, files::Error> {
+        Ok(self.0.files.get(id)?.name().as_str())
+    }
+    fn source(&'a self, id: FileId) -> Result<&'a str, files::Error> {
+        let text = self.0.files.get(id)?.source();
+        let shown = self.0.shown.get(id).ok_or(files::Error::FileMissing)?;
+        Ok(shown.get_or_init(|| visible(text)).as_str())
+    }
+    fn line_index(&'a self, id: FileId, byte_index: usize) -> Result<usize, files::Error> {
+        self.0.files.line_index(id, byte_index)
+    }
+    fn line_range(&'a self, id: FileId, line_index: usize) -> Result<Range<usize>, files::Error> {
+        self.0.files.line_range(id, line_index)
+    }
 }
 
 impl Sources {
@@ -58,7 +85,7 @@ impl Sources {
     /// Registers a text under the name shown in messages (usually its path).
     pub fn add(&mut self, name: impl Into<String>, text: impl Into<String>) -> FileId {
         let (name, text) = (name.into(), text.into());
-        self.shown.add(name.clone(), visible(&text));
+        self.shown.push(OnceLock::new());
         self.files.add(name, text)
     }
     /// The text of a file.
@@ -288,7 +315,7 @@ pub fn render_report(report: &dyn Report, sources: &Sources, style: RenderStyle)
     if style.ascii {
         config.chars = term::Chars::ascii();
     }
-    match term::emit_into_string(&config, &sources.shown, &out) {
+    match term::emit_into_string(&config, &Shown(sources), &out) {
         Ok(text) => text,
         Err(_) => {
             // A span outside its file is a bug in a front end; still say something useful.
