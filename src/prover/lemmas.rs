@@ -15,19 +15,21 @@
 //! the propagation would not.
 
 use std::collections::{HashMap, VecDeque};
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, OnceLock};
 use std::time::{Duration, Instant};
 
 use crate::kernel::{Axiom, Certificate, Lemmas, Proof, Rel, Source, Theorem};
 use crate::term::{Expr, Term, and_not, not, root, subterm};
 
-use super::boolean::{self, Atoms, B, Constraint, atoms_in, violated};
+use super::boolean::{self, Atoms, Constraint, atoms_in, violated};
 use super::{Context, constraint};
 
 /// The closures met so far, by seed, and their lemmas.
 #[derive(Default)]
 pub struct Store {
-    closures: Mutex<HashMap<(Expr, bool), Arc<Closure>>>,
+    /// Per seed: its closure, computed by the first property that needs it while the
+    /// others that need it wait (a seed may reach the whole program).
+    closures: Mutex<HashMap<(Expr, bool), Arc<OnceLock<Closure>>>>,
 }
 
 /// What one literal forces, in the order propagation found it.
@@ -77,7 +79,8 @@ impl Store {
     ) -> Vec<Constraint> {
         let mut out = Vec::new();
         for (atom, value) in literals(f) {
-            let closure = self.closure(ctx, &atom, value);
+            let cell = self.closure(ctx, &atom, value);
+            let Some(closure) = cell.get() else { continue };
             let mut wanted: Vec<usize> =
                 atoms.terms.iter().filter_map(|t| closure.index.get(t).copied()).collect();
             wanted.sort_unstable();
@@ -92,15 +95,14 @@ impl Store {
         out
     }
 
-    fn closure(&self, ctx: &Context, atom: &Expr, value: bool) -> Arc<Closure> {
-        let key = (atom.clone(), value);
-        if let Some(c) = self.closures.lock().ok().and_then(|m| m.get(&key).cloned()) {
-            return c;
-        }
-        // Computed outside the lock; two threads may both compute it, with one result.
-        let closure = Arc::new(propagate(ctx, atom, value));
-        let mut map = self.closures.lock().unwrap_or_else(|e| e.into_inner());
-        map.entry(key).or_insert(closure).clone()
+    fn closure(&self, ctx: &Context, atom: &Expr, value: bool) -> Arc<OnceLock<Closure>> {
+        let cell = {
+            let mut map = self.closures.lock().unwrap_or_else(|e| e.into_inner());
+            map.entry((atom.clone(), value)).or_default().clone()
+        };
+        // Computed outside the map's lock, once.
+        cell.get_or_init(|| propagate(ctx, atom, value));
+        cell
     }
 }
 
@@ -132,22 +134,21 @@ fn propagate(ctx: &Context, atom: &Expr, value: bool) -> Closure {
     let seed = atoms.intern(atom);
     let mut sigma = vec![Some(value)];
     let mut position: HashMap<usize, usize> = HashMap::new();
-    let mut views: HashMap<usize, (B, B, Vec<usize>)> = HashMap::new();
     let mut forced: Vec<Forced> = Vec::new();
     let mut queue = VecDeque::from([seed]);
     'propagation: while let Some(a) = queue.pop_front() {
         for h in ctx.index.mentioning(&atoms.terms[a]) {
-            let (l, r, inside) = views.entry(h).or_insert_with(|| {
-                let hyp = &ctx.hypotheses()[h];
-                let (l, r) =
-                    (atoms.view(&hyp.lhs, root(&hyp.lhs)), atoms.view(&hyp.rhs, root(&hyp.rhs)));
-                let mut inside = Vec::new();
-                atoms_in(&l, &mut inside);
-                atoms_in(&r, &mut inside);
-                inside.sort_unstable();
-                inside.dedup();
-                (l, r, inside)
-            });
+            // Viewed afresh at each visit: a seed may reach the whole program, and
+            // keeping every view would hold a copy of it.
+            let hyp = &ctx.hypotheses()[h];
+            let (l, r) =
+                (atoms.view(&hyp.lhs, root(&hyp.lhs)), atoms.view(&hyp.rhs, root(&hyp.rhs)));
+            let mut inside = Vec::new();
+            atoms_in(&l, &mut inside);
+            atoms_in(&r, &mut inside);
+            inside.sort_unstable();
+            inside.dedup();
+            let (l, r) = (&l, &r);
             sigma.resize(atoms.terms.len(), None);
             let rel = ctx.hypotheses()[h].rel;
             for &b in inside.iter() {
