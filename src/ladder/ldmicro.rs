@@ -1003,7 +1003,10 @@ impl<'a> Parser<'a> {
             };
             self.pos += 1;
             match line.first() {
-                "END" => return Ok(items),
+                "END" => {
+                    items.shrink_to_fit();
+                    return Ok(items);
+                }
                 "SERIES" => {
                     let inner =
                         self.nested(depth, line, |p, d| p.series(d, "SERIES", line.span(file)))?;
@@ -1050,7 +1053,10 @@ impl<'a> Parser<'a> {
             };
             self.pos += 1;
             match line.first() {
-                "END" => return Ok(branches),
+                "END" => {
+                    branches.shrink_to_fit();
+                    return Ok(branches);
+                }
                 "SERIES" => {
                     let mut inner =
                         self.nested(depth, line, |p, d| p.series(d, "SERIES", line.span(file)))?;

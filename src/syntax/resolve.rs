@@ -121,7 +121,7 @@ impl Nodes {
             }
         }
         let mut new_id = vec![0usize; root + 1];
-        let mut out = Vec::new();
+        let mut out = Vec::with_capacity(keep.iter().filter(|k| **k).count());
         for i in 0..=root {
             if keep[i] {
                 new_id[i] = out.len();
