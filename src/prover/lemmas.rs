@@ -29,8 +29,11 @@ use super::{Context, constraint};
 pub struct Store {
     /// Per seed: its closure, computed by the first property that needs it while the
     /// others that need it wait (a seed may reach the whole program).
-    closures: Mutex<HashMap<(Expr, bool), Arc<OnceLock<Closure>>>>,
+    closures: Mutex<HashMap<(Expr, bool), Arc<Pending>>>,
 }
+
+/// A closure, computed once by whoever asks first.
+type Pending = OnceLock<Closure>;
 
 /// What one literal forces, in the order propagation found it.
 struct Closure {
@@ -95,7 +98,7 @@ impl Store {
         out
     }
 
-    fn closure(&self, ctx: &Context, atom: &Expr, value: bool) -> Arc<OnceLock<Closure>> {
+    fn closure(&self, ctx: &Context, atom: &Expr, value: bool) -> Arc<Pending> {
         let cell = {
             let mut map = self.closures.lock().unwrap_or_else(|e| e.into_inner());
             map.entry((atom.clone(), value)).or_default().clone()
