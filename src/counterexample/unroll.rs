@@ -530,4 +530,43 @@ mod tests {
             }
         }
     }
+
+    /// The runs `sticky` draws differ as documented: each group of eight runs is 1 about
+    /// as often as its bias says, and runs redrawn rarely change value rarely.
+    #[test]
+    fn sticky_runs_differ_in_bias_and_in_how_long_they_hold() {
+        let bias = [0.5, 0.75, 0.25, 0.875, 0.125, 0.9375, 0.0625, 0.5];
+        let steps = 4096;
+        let mut ones = [0usize; 64];
+        let mut changes = [0usize; 64];
+        for seed in 0..4 {
+            let mut runs = Runs64::seeded(seed);
+            let mut previous = None;
+            for _ in 0..steps {
+                let v = runs.sticky(previous);
+                for (lane, count) in ones.iter_mut().enumerate() {
+                    *count += (v >> lane & 1) as usize;
+                    if let Some(p) = previous {
+                        changes[lane] += ((v ^ p) >> lane & 1) as usize;
+                    }
+                }
+                previous = Some(v);
+            }
+        }
+        let total = (4 * steps) as f64;
+        for (lane, &n) in ones.iter().enumerate() {
+            let share = n as f64 / total;
+            let want = bias[lane / 8];
+            assert!(
+                (share - want).abs() < 0.1,
+                "run {lane}: 1 in {share:.3} of the steps, want {want}"
+            );
+        }
+        for group in 0..8 {
+            // Two runs per rate: every step, 1/2, 1/4 and 1/16 of the steps.
+            let at = |i: usize| changes[8 * group + 2 * i] + changes[8 * group + 2 * i + 1];
+            assert!(at(0) > at(1) && at(1) > at(2) && at(2) > at(3), "group {group}: {changes:?}");
+            assert!(at(3) > 0, "group {group}: the slowest runs never change");
+        }
+    }
 }
