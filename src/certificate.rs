@@ -9,7 +9,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
 use std::sync::Arc;
 
-use crate::term::{Delay, Expr, Symbol, Term, initially};
+use crate::term::{Delay, Expr, Symbol, Term, fold_delay, initially, instantiate, root};
 
 /// The relation a theorem, law or hypothesis states between two signals.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -85,6 +85,46 @@ impl Axiom {
             sigma.insert(var, Expr::from(vec![Term::Delay(c.clone())]));
         }
     }
+}
+
+impl Axiom {
+    /// Checks the law's delay side conditions under a substitution: each side, with its
+    /// variables replaced, must fold to a concrete delay, and the comparison must hold.
+    pub fn check_delay_conditions(
+        &self,
+        sigma: &BTreeMap<Symbol, Expr>,
+    ) -> Result<(), KernelError> {
+        for (lhs, cmp, rhs) in &self.delay_conditions {
+            let value = |side: &Expr| -> Result<Delay, KernelError> {
+                let ground = bound(side, sigma)?;
+                fold_delay(&ground, root(&ground)).ok_or_else(|| {
+                    KernelError::SideCondition(format!("`{ground}` is not a concrete delay"))
+                })
+            };
+            let (a, b) = (value(lhs)?, value(rhs)?);
+            let holds = match cmp {
+                Cmp::Ge => a >= b,
+                Cmp::Gt => a > b,
+                Cmp::Le => a <= b,
+                Cmp::Lt => a < b,
+                Cmp::Eq => a == b,
+            };
+            if !holds {
+                return Err(KernelError::SideCondition(format!(
+                    "`{}` needs {a} {cmp:?} {b}",
+                    self.name
+                )));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A law side with its variables replaced; an error if one is unbound.
+pub fn bound(pat: &Expr, sigma: &BTreeMap<Symbol, Expr>) -> Result<Expr, KernelError> {
+    instantiate(pat, sigma).ok_or_else(|| {
+        KernelError::WrongSubstitution("a variable of a side condition is unbound".into())
+    })
 }
 
 /// The delay variable that, when a law names it in its side conditions only, stands

@@ -38,12 +38,13 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 
+use crate::certificate::bound;
 pub use crate::certificate::{
     Axiom, CYCLE, Certificate, Cmp, KernelError, Proof, Rel, Rule, Source, Step, Use, Uses,
 };
 use crate::term::{
-    Delay, Expr, Id, Language, Symbol, Term, and, at_first_scan, fold_delay, instantiate,
-    is_delay_node, matches, mentions_pre, not, or, root, same, same_tree, subterm,
+    Delay, Expr, Id, Language, Symbol, Term, and, at_first_scan, fold_delay, is_delay_node,
+    matches, mentions_pre, not, or, root, same, same_tree, subterm,
 };
 
 /// A checked statement. Only this module can create one.
@@ -485,7 +486,7 @@ impl Kernel {
                     instance(&rule, &vars, &axiom.delay_vars, &old, &new, &step.subst, name)?;
                 axiom.bind_cycle(self.cycle.as_ref(), &mut sigma);
                 let rel = position_rel(&rule, position)?;
-                check_delay_conditions(axiom, &sigma)?;
+                axiom.check_delay_conditions(&sigma)?;
                 let wanted = axiom.signal_conditions.len();
                 if step.premises.len() != wanted {
                     let n = step.premises.len();
@@ -678,42 +679,4 @@ fn instance(
         }
     }
     Ok(sigma)
-}
-
-/// Do a law's delay side conditions hold under a substitution?
-pub fn delay_conditions_hold(law: &Axiom, sigma: &BTreeMap<Symbol, Expr>) -> bool {
-    check_delay_conditions(law, sigma).is_ok()
-}
-
-/// A law side with its variables replaced; an error if one is unbound.
-fn bound(pat: &Expr, sigma: &BTreeMap<Symbol, Expr>) -> Result<Expr> {
-    instantiate(pat, sigma).ok_or_else(|| {
-        KernelError::WrongSubstitution("a variable of a side condition is unbound".into())
-    })
-}
-
-fn check_delay_conditions(law: &Axiom, sigma: &BTreeMap<Symbol, Expr>) -> Result<()> {
-    for (lhs, cmp, rhs) in &law.delay_conditions {
-        let value = |side: &Expr| -> Result<Delay> {
-            let ground = bound(side, sigma)?;
-            fold_delay(&ground, root(&ground)).ok_or_else(|| {
-                KernelError::SideCondition(format!("`{ground}` is not a concrete delay"))
-            })
-        };
-        let (a, b) = (value(lhs)?, value(rhs)?);
-        let holds = match cmp {
-            Cmp::Ge => a >= b,
-            Cmp::Gt => a > b,
-            Cmp::Le => a <= b,
-            Cmp::Lt => a < b,
-            Cmp::Eq => a == b,
-        };
-        if !holds {
-            return Err(KernelError::SideCondition(format!(
-                "`{}` needs {a} {cmp:?} {b}",
-                law.name
-            )));
-        }
-    }
-    Ok(())
 }

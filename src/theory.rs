@@ -220,7 +220,7 @@ pub fn check_scan_law(axiom: &Axiom, cases: usize, seed: u64) -> Result<usize, S
             sigma.insert(*v, Expr::from(vec![Term::Delay(d)]));
         }
         axiom.bind_cycle(Some(&cycle), &mut sigma);
-        if !crate::kernel::delay_conditions_hold(axiom, &sigma) {
+        if axiom.check_delay_conditions(&sigma).is_err() {
             continue;
         }
         valid += 1;

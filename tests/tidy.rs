@@ -24,7 +24,7 @@ fn every_file_opens_with_a_doc_line() {
 fn the_kernel_is_one_small_file_importing_only_terms_and_the_certificate_format() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let kernel = std::fs::read_to_string(root.join("src/kernel.rs")).unwrap();
-    assert!(kernel.lines().count() <= 720, "kernel.rs has {} lines", kernel.lines().count());
+    assert!(kernel.lines().count() <= 700, "kernel.rs has {} lines", kernel.lines().count());
     for line in
         kernel.lines().filter(|l| l.trim_start().starts_with("use ") || l.starts_with("pub use "))
     {

@@ -14,7 +14,7 @@ use std::time::Instant;
 
 use varisat::{ExtendFormula, Lit, Solver};
 
-use crate::kernel::{self, Axiom, Proof, Rel, Rule, Source, Step, Use};
+use crate::kernel::{Axiom, Proof, Rel, Rule, Source, Step, Use};
 use crate::term::{Expr, Id, Language, Symbol, Term, and, constant, mentions_pre, root, subterm};
 
 use super::induction::{pre, push_pre};
@@ -277,7 +277,7 @@ fn instance(
     mut sigma: BTreeMap<Symbol, Expr>,
 ) -> Option<Constraint> {
     law.bind_cycle(cycle, &mut sigma);
-    if !kernel::delay_conditions_hold(law, &sigma) {
+    if law.check_delay_conditions(&sigma).is_err() {
         return None;
     }
     let l = crate::term::instantiate(&law.lhs, &sigma)?;
