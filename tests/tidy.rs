@@ -31,6 +31,7 @@ fn the_kernel_is_one_small_file_importing_only_terms_and_the_certificate_format(
         let allowed = [
             "use std::",
             "use crate::term::",
+            "use crate::certificate::",
             "pub use crate::certificate::",
             "use KernelError::",
             "pub use self::",
