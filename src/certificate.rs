@@ -35,6 +35,19 @@ pub enum Cmp {
     Eq,
 }
 
+impl Cmp {
+    /// Does `a cmp b` hold?
+    pub fn holds(self, a: &Delay, b: &Delay) -> bool {
+        match self {
+            Cmp::Ge => a >= b,
+            Cmp::Gt => a > b,
+            Cmp::Le => a <= b,
+            Cmp::Lt => a < b,
+            Cmp::Eq => a == b,
+        }
+    }
+}
+
 /// An axiom: a law of `theories/` (a schema over metavariables) or a ground
 /// hypothesis (a rung's equation, a bound, an `assume`; no variables).
 #[derive(Clone, Debug)]
@@ -85,9 +98,7 @@ impl Axiom {
             sigma.insert(var, Expr::from(vec![Term::Delay(c.clone())]));
         }
     }
-}
 
-impl Axiom {
     /// Checks the law's delay side conditions under a substitution: each side, with its
     /// variables replaced, must fold to a concrete delay, and the comparison must hold.
     pub fn check_delay_conditions(
@@ -102,14 +113,7 @@ impl Axiom {
                 })
             };
             let (a, b) = (value(lhs)?, value(rhs)?);
-            let holds = match cmp {
-                Cmp::Ge => a >= b,
-                Cmp::Gt => a > b,
-                Cmp::Le => a <= b,
-                Cmp::Lt => a < b,
-                Cmp::Eq => a == b,
-            };
-            if !holds {
+            if !cmp.holds(&a, &b) {
                 return Err(KernelError::SideCondition(format!(
                     "`{}` needs {a} {cmp:?} {b}",
                     self.name

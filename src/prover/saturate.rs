@@ -175,13 +175,7 @@ impl Condition<Term, DelayFold> for DelayCondition {
     fn check(&self, egraph: &mut Graph, _eclass: Id, subst: &Subst) -> bool {
         self.conditions.iter().all(|(l, cmp, r)| {
             match (delay_value(egraph, l, root(l), subst), delay_value(egraph, r, root(r), subst)) {
-                (Some(a), Some(b)) => match cmp {
-                    Cmp::Ge => a >= b,
-                    Cmp::Gt => a > b,
-                    Cmp::Le => a <= b,
-                    Cmp::Lt => a < b,
-                    Cmp::Eq => a == b,
-                },
+                (Some(a), Some(b)) => cmp.holds(&a, &b),
                 _ => false,
             }
         })
