@@ -33,7 +33,7 @@ pub struct Store {
 }
 
 /// A closure, computed once by whoever asks first.
-type Pending = OnceLock<Closure>;
+type Pending = OnceLock<Arc<Closure>>;
 
 /// What one literal forces, in the order propagation found it.
 struct Closure {
@@ -82,8 +82,7 @@ impl Store {
     ) -> Vec<Constraint> {
         let mut out = Vec::new();
         for (atom, value) in literals(f) {
-            let cell = self.closure(ctx, &atom, value);
-            let Some(closure) = cell.get() else { continue };
+            let closure = self.closure(ctx, &atom, value);
             let mut wanted: Vec<usize> =
                 atoms.terms.iter().filter_map(|t| closure.index.get(t).copied()).collect();
             wanted.sort_unstable();
@@ -98,14 +97,13 @@ impl Store {
         out
     }
 
-    fn closure(&self, ctx: &Context, atom: &Expr, value: bool) -> Arc<Pending> {
+    fn closure(&self, ctx: &Context, atom: &Expr, value: bool) -> Arc<Closure> {
         let cell = {
             let mut map = self.closures.lock().unwrap_or_else(|e| e.into_inner());
             map.entry((atom.clone(), value)).or_default().clone()
         };
         // Computed outside the map's lock, once.
-        cell.get_or_init(|| propagate(ctx, atom, value));
-        cell
+        cell.get_or_init(|| Arc::new(propagate(ctx, atom, value))).clone()
     }
 }
 
