@@ -891,15 +891,19 @@ fn varying(model: &Model, read: &[String], cycle: &Time, grid: usize, k: usize) 
     let (mut ones, mut zeros) = (vec![false; read.len()], vec![false; read.len()]);
     for batch in 0..RANDOM_BATCHES {
         let mut runs = unroll::Runs64::seeded(batch);
-        // Free values per name, per step, so far (the unrolling asks for them in order).
-        let mut drawn: HashMap<String, Vec<u64>> = HashMap::new();
-        let mut free = |b: &mut unroll::Runs64, n: &str, step: usize| {
-            let values = drawn.entry(n.to_string()).or_default();
-            while values.len() <= step {
-                let next = b.sticky(values.last().copied());
-                values.push(next);
+        // Each free name's latest value (the unrolling asks for a name's values once
+        // each, step after step).
+        let mut latest: HashMap<String, u64> = HashMap::new();
+        let mut free = |b: &mut unroll::Runs64, n: &str, _step: usize| match latest.get_mut(n) {
+            Some(v) => {
+                *v = b.sticky(Some(*v));
+                *v
             }
-            values[step]
+            None => {
+                let v = b.sticky(None);
+                latest.insert(n.to_string(), v);
+                v
+            }
         };
         let Ok(u) = unroll(&mut runs, model, &refs, k, &steps_of, &mut free) else { break };
         for (i, v) in u.extra.iter().enumerate() {
