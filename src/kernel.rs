@@ -252,8 +252,15 @@ impl Kernel {
     /// [`Kernel::check`], where the proofs may also cite `known`: theorems this kernel
     /// checked before (another kernel's are refused).
     pub fn check_using(&self, cert: &Certificate, known: Lemmas) -> Result<Theorem> {
-        if let Some((name, _)) = known.iter().find(|(_, t)| t.kernel != self.id) {
-            return Err(KernelError::Mismatch(format!("lemma `{name}` is another context's")));
+        for (name, thm) in &known {
+            if thm.kernel != self.id {
+                return Err(KernelError::Mismatch(format!("lemma `{name}` is another context's")));
+            }
+            // A theorem under case assumptions holds only where they do: citing it as a
+            // fact about whole signals would drop them.
+            if !thm.local.is_empty() {
+                return Err(KernelError::Mismatch(format!("lemma `{name}` is only local")));
+            }
         }
         let mut lemmas = known;
         for (name, proof) in &cert.lemmas {

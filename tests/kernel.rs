@@ -390,3 +390,29 @@ fn a_shared_lemma_is_cited_only_by_the_kernel_that_checked_it() {
     }
     drop(last);
 }
+
+#[test]
+fn a_theorem_under_case_assumptions_is_no_lemma() {
+    // `a = 1*` under `a = 1*`, and `a = 0*` under `a = 0*`: each holds only in its case.
+    let k = kernel();
+    let case = |v: bool| {
+        let konst = if v { "1*" } else { "0*" };
+        let thm = k.check(&chain("a", vec![step(&[], Rule::Case(sexp("a"), v), konst)])).unwrap();
+        assert_eq!(thm.local().len(), 1, "the case assumption is kept");
+        std::sync::Arc::new(thm)
+    };
+    let known: Lemmas = [("A1".to_string(), case(true)), ("A0".to_string(), case(false))].into();
+    // 1* = a = 0*, citing both as if they were facts about whole signals.
+    let false_goal = chain(
+        "1*",
+        vec![
+            step(&[], cite(Source::Lemma, "A1", Use::Backward), "a"),
+            step(&[], cite(Source::Lemma, "A0", Use::Forward), "0*"),
+        ],
+    );
+    let refused = k.check_using(&false_goal, known);
+    assert!(matches!(refused, Err(KernelError::Mismatch(ref m)) if m.contains("only local")));
+    // Each alone is refused the same way, whatever the certificate.
+    let only_one: Lemmas = [("A1".to_string(), case(true))].into();
+    assert!(k.check_using(&chain("b", vec![]), only_one).is_err());
+}
