@@ -366,6 +366,8 @@ pub enum KernelError {
     Mismatch(String),
     /// The certificate has no main proof, or proves something else.
     NotTheGoal(String),
+    /// On a program's scans, a delay that is not a whole number of cycles.
+    SubCycleDelay(String),
 }
 
 impl fmt::Display for KernelError {
@@ -383,6 +385,7 @@ impl fmt::Display for KernelError {
             MissingPremise(d) => ("missing premise", d),
             Mismatch(d) => ("proof pieces do not fit", d),
             NotTheGoal(d) => ("not a proof of the goal", d),
+            SubCycleDelay(d) => ("a delay that is not a whole number of scan cycles", d),
         };
         write!(f, "{what}: {detail}")
     }

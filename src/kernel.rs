@@ -168,6 +168,10 @@ fn well_formed(e: &Expr, id: Id, want_delay: bool, delay_vars: &[Symbol]) -> boo
     }
 }
 
+fn bad_axiom(e: KernelError) -> KernelError {
+    KernelError::BadAxiom(e.to_string())
+}
+
 /// Every child precedes its node (so the term is a finite tree, whoever built it).
 fn ordered(e: &Expr) -> bool {
     e.as_ref().iter().enumerate().all(|(i, n)| n.children().iter().all(|c| usize::from(*c) < i))
@@ -184,23 +188,21 @@ impl Kernel {
     /// A kernel trusting these laws and (ground) hypotheses. Rejects malformed
     /// axioms and duplicate names.
     pub fn new(laws: Vec<Axiom>, hypotheses: Vec<Axiom>) -> Result<Kernel> {
-        Kernel::build(laws, hypotheses, false)
+        Kernel::build(laws, hypotheses, None)
     }
 
-    /// A kernel for a program's scan runs (`pre` in hypotheses and terms, induction
-    /// over scans); otherwise as [`Kernel::new`].
-    pub fn for_scans(laws: Vec<Axiom>, hypotheses: Vec<Axiom>) -> Result<Kernel> {
-        Kernel::build(laws, hypotheses, true)
+    /// A kernel for the scan runs of a program with this cycle (`pre` in hypotheses and
+    /// terms, induction over scans, `cycle` in laws' side conditions); otherwise as
+    /// [`Kernel::new`]. Every delay it reasons about, in a hypothesis or in a term of a
+    /// proof, must be a whole number of cycles: only those have one reading on scans.
+    pub fn for_scans(laws: Vec<Axiom>, hypotheses: Vec<Axiom>, cycle: Delay) -> Result<Kernel> {
+        Kernel::build(laws, hypotheses, Some(cycle))
     }
 
-    /// The same kernel with the program's scan cycle, for the laws that need it.
-    pub fn with_cycle(self, cycle: Delay) -> Kernel {
-        Kernel { cycle: Some(cycle), id: KERNELS.fetch_add(1, Ordering::Relaxed), ..self }
-    }
-
-    fn build(laws: Vec<Axiom>, hypotheses: Vec<Axiom>, scans: bool) -> Result<Kernel> {
+    fn build(laws: Vec<Axiom>, hypotheses: Vec<Axiom>, cycle: Option<Delay>) -> Result<Kernel> {
         let id = KERNELS.fetch_add(1, Ordering::Relaxed);
-        let mut kernel = Kernel { scans, id, ..Kernel::default() };
+        let scans = cycle.is_some();
+        let mut kernel = Kernel { scans, cycle, id, ..Kernel::default() };
         let (mut hyps, mut names) = (Vec::new(), BTreeMap::new());
         for (axiom, is_law) in
             laws.into_iter().map(|a| (a, true)).chain(hypotheses.into_iter().map(|a| (a, false)))
@@ -214,6 +216,10 @@ impl Kernel {
             }
             if !is_law && !scans && (mentions_pre(&axiom.lhs) || mentions_pre(&axiom.rhs)) {
                 return Err(KernelError::BadAxiom(format!("`pre` in `{name}` about free signals")));
+            }
+            if !is_law {
+                kernel.whole_cycles(&name, &axiom.lhs).map_err(bad_axiom)?;
+                kernel.whole_cycles(&name, &axiom.rhs).map_err(bad_axiom)?;
             }
             if kernel.laws.contains_key(&name) || names.contains_key(&name) {
                 return Err(KernelError::BadAxiom(format!("`{name}` is defined twice")));
@@ -229,14 +235,29 @@ impl Kernel {
         Ok(kernel)
     }
 
-    /// A term this kernel may reason about: well formed, and without `pre` unless the
-    /// signals are scan runs.
+    /// A term this kernel may reason about: well formed, without `pre` unless the
+    /// signals are scan runs, and on scans with whole-cycle delays only.
     fn admit(&self, what: &str, e: &Expr) -> Result<()> {
         check_signal_term(what, e, &[])?;
         if !self.scans && mentions_pre(e) {
             return Err(KernelError::BadPosition(format!("{what} uses `pre`: free signals")));
         }
-        Ok(())
+        self.whole_cycles(what, e)
+    }
+
+    /// On a program's scans, every delay literal of `e` is a whole number of cycles (a
+    /// shorter or fractional one has no single scan reading, and laws valid in continuous
+    /// time fail for it on scans).
+    fn whole_cycles(&self, what: &str, e: &Expr) -> Result<()> {
+        match &self.cycle {
+            Some(cycle) => match crate::term::sub_cycle_delay(e, cycle) {
+                Some(d) => Err(KernelError::SubCycleDelay(format!(
+                    "{what} has the delay {d}, not a whole number of {cycle} cycles"
+                ))),
+                None => Ok(()),
+            },
+            None => Ok(()),
+        }
     }
 
     /// Every hypothesis the kernel trusts, in the order given.

@@ -102,6 +102,30 @@ impl Delay {
     pub fn dadd(&self, other: &Delay) -> Delay {
         Delay(&self.0 + &other.0)
     }
+
+    /// Is this delay a whole number of `cycle`s? On a program's scans only such delays
+    /// have one reading (`shared/spec/semantics.md`, "Programs, scan by scan").
+    pub fn is_whole_cycles(&self, cycle: &Delay) -> bool {
+        (&self.0 / &cycle.0).is_integer()
+    }
+
+    /// The whole multiples of `cycle` nearest this delay: the largest below it (none when
+    /// it is shorter than one cycle) and the smallest above it.
+    pub fn nearest_whole_cycles(&self, cycle: &Delay) -> (Option<Delay>, Delay) {
+        let n = (&self.0 / &cycle.0).floor();
+        let below = Delay::new(&n * &cycle.0).ok();
+        let above = Delay((n + BigRational::one()) * &cycle.0);
+        (below, above)
+    }
+}
+
+/// Every delay literal of `e` is a whole number of `cycle`s (then so is every delay its
+/// arithmetic computes); the first that is not, otherwise.
+pub fn sub_cycle_delay(e: &Expr, cycle: &Delay) -> Option<Delay> {
+    e.as_ref().iter().find_map(|node| match node {
+        Term::Delay(d) if !d.is_whole_cycles(cycle) => Some(d.clone()),
+        _ => None,
+    })
 }
 
 /// Parses a decimal number (`5`, `0.25`, `1.`) into an exact rational.

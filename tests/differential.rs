@@ -1160,7 +1160,8 @@ fn random_properties_that_hold_are_proved_and_no_false_one_is() {
         programs_used += 1;
         let reads_back = compiled.hypotheses.iter().any(|h| ii_prove::term::mentions_pre(&h.rhs));
         with_pre += usize::from(reads_back);
-        let ctx = Context::with_scans(theory.axioms(), compiled.axioms(), true).expect("context");
+        let cycle = Some(compiled.scan_cycle());
+        let ctx = Context::with_scans(theory.axioms(), compiled.axioms(), cycle).expect("context");
         let mut rng = Rng::new(seed);
         for _ in 0..4 {
             let lit = |rng: &mut Rng| (rng.pick(&bits).clone(), rng.chance(50));

@@ -26,9 +26,13 @@ fn laws() -> Vec<Axiom> {
     ]
 }
 
+fn ms(n: u64) -> Delay {
+    Delay::from_micros(n * 1_000).unwrap()
+}
+
 fn scan_kernel() -> Kernel {
     let hyps = vec![Axiom::ground("L01", sexp("X"), Rel::Eq, sexp("(! Y)"))];
-    Kernel::for_scans(laws(), hyps).expect("well-formed axioms")
+    Kernel::for_scans(laws(), hyps, ms(1)).expect("well-formed axioms")
 }
 
 fn one_step(start: &str, path: &[usize], rule: Rule, after: &str) -> Certificate {
@@ -66,7 +70,7 @@ fn a_fact_true_before_the_first_scan_rewrites_under_pre() {
         Axiom::ground("B01", sexp("Q"), Rel::Implies, sexp("A")),
         Axiom::ground("B02", sexp("(! Q)"), Rel::Implies, sexp("B")),
     ];
-    let k = Kernel::for_scans(laws(), hyps).expect("kernel");
+    let k = Kernel::for_scans(laws(), hyps, ms(10)).expect("kernel");
     let cite = |name: &str, how| Rule::Cite(Source::Hypothesis, name.into(), how);
     let eq = one_step("(pre Q)", &[0], cite("L02", Use::Forward), "(pre (& A (! B)))");
     assert!(k.check(&eq).is_ok());
@@ -103,25 +107,26 @@ fn a_law_about_the_cycle_needs_the_programs_cycle() {
         delay_conditions: vec![(sexp("d"), Cmp::Ge, sexp("cycle"))],
         ..Axiom::ground("ton_pre", sexp("(ton d f)"), Rel::Implies, sexp("(pre f)"))
     };
-    let kernel = Kernel::for_scans(vec![ton_pre], vec![]).expect("kernel");
-    let ms = |n: u64| Delay::from_micros(n * 1_000).unwrap();
+    let kernel = |cycle| Kernel::for_scans(vec![ton_pre.clone()], vec![], cycle).expect("kernel");
     let cite = Rule::Cite(Source::Law, "ton_pre".into(), Use::Meet);
     let step = |delay: &str| {
         let start = format!("(ton {delay} X)");
         one_step(&start, &[], cite.clone(), &format!("(& {start} (pre X))"))
     };
-    assert!(kernel.clone().with_cycle(ms(10)).check(&step("20ms")).is_ok());
-    assert!(kernel.clone().with_cycle(ms(20)).check(&step("20ms")).is_ok());
-    // A delay shorter than the cycle, or no cycle at all: refused.
-    let short = kernel.clone().with_cycle(ms(50)).check(&step("20ms"));
-    assert!(matches!(short, Err(KernelError::SideCondition(_))), "{short:?}");
-    assert!(kernel.check(&step("20ms")).is_err());
+    assert!(kernel(ms(10)).check(&step("20ms")).is_ok());
+    assert!(kernel(ms(20)).check(&step("20ms")).is_ok());
+    // A delay shorter than the cycle is refused (a term has no sub-cycle delay on scans,
+    // and the side condition fails for a shorter whole multiple: none exists), and free
+    // signals have no cycle.
+    let short = kernel(ms(50)).check(&step("20ms"));
+    assert!(matches!(short, Err(KernelError::SubCycleDelay(_))), "{short:?}");
+    assert!(Kernel::new(vec![ton_pre.clone()], vec![]).unwrap().check(&step("20ms")).is_err());
     // Nor can a certificate choose the cycle itself.
     let mut claimed = step("20ms");
     if let Some(Proof::Chain { steps, .. }) = &mut claimed.main {
         steps[0].subst = vec![(Symbol::from("cycle"), sexp("1ms"))];
     }
-    assert!(kernel.clone().with_cycle(ms(50)).check(&claimed).is_err());
+    assert!(kernel(ms(10)).check(&claimed).is_err());
 }
 
 #[test]
@@ -152,7 +157,8 @@ fn press() -> (Context, Obligation, Certificate) {
     let file = sources.add("press.ld", text);
     let compiled = compile(&read_ldmicro(&sources, file).expect("parses")).expect("compiles");
     let theory = theory::standard(&mut Sources::new()).expect("theory");
-    let ctx = Context::with_scans(theory.axioms(), compiled.axioms(), true).expect("context");
+    let cycle = Some(compiled.scan_cycle());
+    let ctx = Context::with_scans(theory.axioms(), compiled.axioms(), cycle).expect("context");
     let goal = Obligation { lhs: sexp("RFire"), rel: Rel::Implies, rhs: sexp("RArmed") };
     let budget = Budget::default();
     let deadline = Instant::now() + Duration::from_secs(20);
@@ -219,4 +225,35 @@ fn induction_is_refused_for_free_signals() {
     let lemma = Proof::Induction { inv, base: Box::new(base), step: Box::new(step) };
     let only = Certificate { lemmas: vec![], main: Some(lemma) };
     assert!(matches!(free.check(&only), Err(KernelError::BadPosition(_))));
+}
+
+#[test]
+fn on_scans_every_delay_is_a_whole_number_of_cycles() {
+    // `d1/(d2/f) = (d1+d2)/f` holds in continuous time; with a 1 s cycle and
+    // d1 = d2 = 0.5s it fails on scans, so such a term is refused wherever it appears.
+    let ton_ton = Axiom {
+        signal_vars: vec![Symbol::from("f")],
+        delay_vars: vec![Symbol::from("d1"), Symbol::from("d2")],
+        ..Axiom::ground(
+            "ton_ton",
+            sexp("(ton d1 (ton d2 f))"),
+            Rel::Eq,
+            sexp("(ton (dadd d1 d2) f)"),
+        )
+    };
+    let cite = Rule::Cite(Source::Law, "ton_ton".into(), Use::Forward);
+    let halves = one_step("(ton 0.5s (ton 0.5s X))", &[], cite.clone(), "(ton (dadd 0.5s 0.5s) X)");
+    let second = Kernel::for_scans(vec![ton_ton.clone()], vec![], ms(1_000)).expect("kernel");
+    let refused = second.check(&halves);
+    assert!(matches!(refused, Err(KernelError::SubCycleDelay(_))), "{refused:?}");
+    // With a 0.5 s cycle the same step is a whole number of cycles, and checks.
+    let half = Kernel::for_scans(vec![ton_ton.clone()], vec![], ms(500)).expect("kernel");
+    assert!(half.check(&halves).is_ok());
+    // Free signals are continuous: the law holds there.
+    assert!(Kernel::new(vec![ton_ton], vec![]).unwrap().check(&halves).is_ok());
+    // A hypothesis with a sub-cycle delay is refused when the kernel is built.
+    let hyp = Axiom::ground("L01", sexp("Y"), Rel::Eq, sexp("(ton 25ms X)"));
+    let built = Kernel::for_scans(laws(), vec![hyp.clone()], ms(10));
+    assert!(matches!(built, Err(KernelError::BadAxiom(_))), "{built:?}");
+    assert!(Kernel::for_scans(laws(), vec![hyp], ms(5)).is_ok());
 }

@@ -106,3 +106,48 @@ fn a_timer_that_does_not_time_what_is_written_is_reported() {
     assert!(loaded.warnings.is_empty(), "{:?}", loaded.warnings);
     assert!(loaded.compiled.timer_info.iter().all(|t| t.scans == 500));
 }
+
+/// Every `refused_properties/NAME.ii` (about `NAME.ld`) writes a delay that is not a
+/// whole number of the program's scan cycles: the run exits with 2, proves nothing, and
+/// the error names the place and the whole multiples around the delay.
+#[test]
+fn delays_between_scan_cycles_are_refused_with_a_located_error() {
+    let files = common::files_with(&data("refused_properties"), "ii");
+    assert!(files.len() >= 3, "only {} cases", files.len());
+    for ii in files {
+        let expected = std::fs::read_to_string(ii.with_extension("expected"))
+            .unwrap_or_else(|_| panic!("{} has no .expected file", ii.display()));
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_ii-prove"))
+            .args(["--color", "never"])
+            .arg(ii.with_extension("ld"))
+            .arg(&ii)
+            .output()
+            .expect("runs");
+        let shown = ii.display();
+        let text = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{shown}: {text}");
+        assert!(out.stdout.is_empty(), "{shown}: {}", String::from_utf8_lossy(&out.stdout));
+        assert!(text.contains('^'), "{shown}: no caret in\n{text}");
+        assert!(!text.contains("unknown signal"), "{shown}: a follow-on error in\n{text}");
+        for fragment in expected.lines().filter(|l| !l.trim().is_empty()) {
+            assert!(text.contains(fragment), "{shown}: expected `{fragment}` in\n{text}");
+        }
+    }
+}
+
+/// `--timers ideal` uses a timer's delay as written, so a delay between whole cycles is
+/// refused with the timer's place; `--timers plc` compiles the scans the runtime counts.
+#[test]
+fn ideal_timers_between_scan_cycles_are_refused() {
+    let path = data("ldmicro/refused_ideal/between.ld");
+    let shown = path.display().to_string();
+    let mut sources = Sources::new();
+    let ideal = CompileOptions { timers: TimerModel::Ideal, ..CompileOptions::default() };
+    let Err(errors) = load_program(&mut sources, &shown, &ideal) else {
+        panic!("{shown} loaded with --timers ideal");
+    };
+    let rendered = render(&errors[0], &sources, RenderStyle { ascii: false });
+    assert!(rendered.contains("between.ld:6:5"), "{rendered}");
+    assert!(rendered.contains("20000 µs and 30000 µs"), "{rendered}");
+    assert!(load_program(&mut sources, &shown, &CompileOptions::default()).is_ok());
+}

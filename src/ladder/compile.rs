@@ -335,6 +335,14 @@ impl CompiledProgram {
         crate::term::Delay::from_micros(self.cycle_us).ok()
     }
 
+    /// The scan cycle the kernel counts delays in. The readers refuse a zero cycle (an
+    /// LDmicro `CYCLE=0`, a PLCopen interval of 0); a program built another way with one
+    /// gets a cycle of 1 µs, which admits only delays of whole microseconds and no law
+    /// whose side condition names the cycle beyond what 1 µs allows.
+    pub fn scan_cycle(&self) -> crate::term::Delay {
+        self.cycle().unwrap_or_else(|| crate::term::Delay::from_micros(1).expect("1 µs"))
+    }
+
     /// Every hypothesis as a ground kernel axiom.
     pub fn axioms(&self) -> Vec<Axiom> {
         self.hypotheses.iter().map(Hypothesis::axiom).collect()
@@ -428,6 +436,9 @@ pub fn compile_with(
     }
     let mut c = Compiler::new(program, *options);
     c.run();
+    if !c.errors.is_empty() {
+        return Err(std::mem::take(&mut c.errors));
+    }
     Ok(c.finish())
 }
 
@@ -469,6 +480,8 @@ struct Compiler<'a> {
     // Output.
     hypotheses: Vec<Hypothesis>,
     warnings: Vec<CompileWarning>,
+    /// What the equations cannot describe soundly with these options: the program is refused.
+    errors: Vec<LadderError>,
     timer_info: Vec<TimerInfo>,
 }
 
@@ -535,6 +548,7 @@ impl<'a> Compiler<'a> {
             pending: Vec::new(),
             hypotheses: Vec::new(),
             warnings: Vec::new(),
+            errors: Vec::new(),
             timer_info: Vec::new(),
         };
         c.prepass();
@@ -897,6 +911,24 @@ impl<'a> Compiler<'a> {
             .filter(|p| *p > 0)
             .and_then(|p| p.checked_mul(cycle))
             .and_then(|d| Delay::from_micros(d).ok());
+        if self.options.timers == TimerModel::Ideal && us % cycle != 0 {
+            // On scans only a whole number of cycles has one reading (semantics.md).
+            let (below, above) = (us / cycle * cycle, (us / cycle + 1) * cycle);
+            let nearest = if below == 0 {
+                format!("the shortest whole multiple is {above} µs")
+            } else {
+                format!("the nearest whole multiples are {below} µs and {above} µs")
+            };
+            self.errors.push(LadderError::Unsupported {
+                span: e.span,
+                keyword: keyword.clone(),
+                reason: format!(
+                    "with --timers ideal the delay is used as written, and {us} µs is not a \
+                     whole number of {cycle} µs scan cycles ({nearest}); the default \
+                     --timers plc uses the scans the runtime counts"
+                ),
+            });
+        }
         let d = match self.options.timers {
             TimerModel::Plc if scans < 1 => None,
             TimerModel::Plc => plc.clone(),

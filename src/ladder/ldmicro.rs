@@ -939,6 +939,14 @@ impl<'a> Parser<'a> {
                         let digits: String =
                             value.chars().take_while(|c| c.is_ascii_digit()).collect();
                         match digits.parse::<u64>() {
+                            Ok(0) => self.errors.push(LadderError::BadArgument {
+                                span: line.span(file),
+                                keyword: "CYCLE".into(),
+                                found: value.trim().to_string(),
+                                expected: "a scan cycle of at least 1 µs (the program runs in \
+                                           scans of this length)"
+                                    .into(),
+                            }),
                             Ok(v) => cycle = Some(v),
                             Err(_) => self.warnings.push(LadderError::IgnoredLine {
                                 span: line.span(file),

@@ -109,4 +109,8 @@ impl Scope for CompiledProgram {
     fn scans(&self) -> bool {
         true
     }
+
+    fn cycle(&self) -> Option<crate::term::Delay> {
+        Some(self.scan_cycle())
+    }
 }

@@ -120,22 +120,22 @@ impl Context {
     /// A context over these laws and hypotheses about free signals; fails if the kernel
     /// refuses an axiom.
     pub fn new(laws: Vec<Axiom>, hypotheses: Vec<Axiom>) -> Result<Context, KernelError> {
-        Context::with_scans(laws, hypotheses, false)
+        Context::with_scans(laws, hypotheses, None)
     }
 
-    /// A context for a program (`scans`: signals are scan runs, with `pre` and induction
-    /// over scans) or for free signals.
+    /// A context for the scans of a program with this cycle (signals are scan runs, with
+    /// `pre` and induction over scans) or, with `None`, for free signals.
     pub fn with_scans(
         laws: Vec<Axiom>,
         hypotheses: Vec<Axiom>,
-        scans: bool,
+        cycle: Option<Delay>,
     ) -> Result<Context, KernelError> {
         let index = ConeIndex::new(&hypotheses);
+        let scans = cycle.is_some();
         // The kernel keeps the one copy of the hypotheses.
-        let kernel = if scans {
-            Kernel::for_scans(laws.clone(), hypotheses)?
-        } else {
-            Kernel::new(laws.clone(), hypotheses)?
+        let kernel = match &cycle {
+            Some(c) => Kernel::for_scans(laws.clone(), hypotheses, c.clone())?,
+            None => Kernel::new(laws.clone(), hypotheses)?,
         };
         let rules = saturate::RuleSet::new(&laws);
         // The search uses the laws of `pre` only where signals are scan runs.
@@ -158,19 +158,13 @@ impl Context {
             lemmas,
             shared_lemmas,
             scans,
-            cycle: None,
+            cycle,
         })
     }
 
     /// The hypotheses, in the order given (the kernel's).
     pub fn hypotheses(&self) -> &[Axiom] {
         self.kernel.hypotheses()
-    }
-
-    /// The same context with the program's scan cycle.
-    pub fn with_cycle(self, cycle: Delay) -> Context {
-        let kernel = self.kernel.with_cycle(cycle.clone());
-        Context { kernel, cycle: Some(cycle), ..self }
     }
 
     /// The hypotheses in the cone of influence of `terms` (see [`cone_of_influence`]),

@@ -319,12 +319,9 @@ impl Session {
             let (lhs, rel, rhs) = theory::goal_parts(&s.value);
             Axiom::ground(s.name.clone(), lhs, rel, rhs)
         }));
-        let scans = self.program.is_some();
-        let mut checker = Checker::with_scans(self.theory.axioms(), hypotheses, scans)
+        let cycle = self.program.as_ref().map(|(_, c)| c.scan_cycle());
+        let mut checker = Checker::with_scans(self.theory.axioms(), hypotheses, cycle)
             .map_err(|e| e.to_string())?;
-        if let Some(cycle) = self.program.as_ref().and_then(|(_, c)| c.cycle()) {
-            checker = checker.with_cycle(cycle);
-        }
         checker.proved = std::mem::take(&mut self.checker.proved);
         checker.failed = std::mem::take(&mut self.checker.failed);
         checker.notation = self.notation;

@@ -872,11 +872,8 @@ pub fn run_program_with(
         let assumed = assumptions(doc);
         let mut hypotheses = compiled.axioms();
         hypotheses.extend(assumed.iter().cloned());
-        let mut ctx = Context::with_scans(theory.axioms(), hypotheses, true)
+        let ctx = Context::with_scans(theory.axioms(), hypotheses, Some(compiled.scan_cycle()))
             .map_err(|e| InputError { rendered: format!("error: {path}: {e}\n") })?;
-        if let Some(cycle) = compiled.cycle() {
-            ctx = ctx.with_cycle(cycle);
-        }
         let session = counterexample::Program {
             ld: &loaded.program,
             plcopen: loaded.plcopen.as_ref(),

@@ -183,17 +183,17 @@ fn rel_symbol(rel: Rel, notation: Notation) -> &'static str {
 impl Checker {
     /// A checker trusting these laws and hypotheses about free signals.
     pub fn new(laws: Vec<Axiom>, hypotheses: Vec<Axiom>) -> Result<Checker, KernelError> {
-        Checker::with_scans(laws, hypotheses, false)
+        Checker::with_scans(laws, hypotheses, None)
     }
 
-    /// A checker for a program's scans (`scans`) or for free signals.
+    /// A checker for the scans of a program with this cycle, or (`None`) for free signals.
     pub fn with_scans(
         laws: Vec<Axiom>,
         hypotheses: Vec<Axiom>,
-        scans: bool,
+        cycle: Option<crate::term::Delay>,
     ) -> Result<Checker, KernelError> {
         // A script's proofs stand alone: they cite no lemma shared between goals.
-        let mut ctx = Context::with_scans(laws, hypotheses, scans)?;
+        let mut ctx = Context::with_scans(laws, hypotheses, cycle)?;
         ctx.shared_lemmas = false;
         Ok(Checker {
             ctx,
@@ -206,18 +206,10 @@ impl Checker {
         })
     }
 
-    /// The same checker with the program's scan cycle (for the laws that need it).
-    pub fn with_cycle(self, cycle: crate::term::Delay) -> Checker {
-        Checker { ctx: self.ctx.with_cycle(cycle), ..self }
-    }
-
     /// An independent copy (same axioms, claims and settings), e.g. for a worker thread.
     pub fn snapshot(&self) -> Result<Checker, KernelError> {
         let (laws, hypotheses) = (self.ctx.laws.clone(), self.ctx.hypotheses().to_vec());
-        let mut copy = Checker::with_scans(laws, hypotheses, self.ctx.scans)?;
-        if let Some(cycle) = &self.ctx.cycle {
-            copy = copy.with_cycle(cycle.clone());
-        }
+        let mut copy = Checker::with_scans(laws, hypotheses, self.ctx.cycle.clone())?;
         copy.proved = self.proved.clone();
         copy.failed = self.failed.clone();
         copy.budget = self.budget;

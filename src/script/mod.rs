@@ -64,16 +64,10 @@ pub fn checker_for(
 ) -> Result<Checker, ScriptError> {
     let mut hypotheses = program.map(CompiledProgram::axioms).unwrap_or_default();
     hypotheses.extend(report::assumptions(doc));
-    let checker =
-        Checker::with_scans(theory.axioms(), hypotheses, program.is_some()).map_err(|e| {
-            ScriptError::BadContext {
-                span: doc.assumptions.first().map_or(Span::new(doc.file, 0..0), |s| s.span),
-                reason: format!("the hypotheses cannot be loaded: {e}"),
-            }
-        })?;
-    Ok(match program.and_then(CompiledProgram::cycle) {
-        Some(cycle) => checker.with_cycle(cycle),
-        None => checker,
+    let cycle = program.map(CompiledProgram::scan_cycle);
+    Checker::with_scans(theory.axioms(), hypotheses, cycle).map_err(|e| ScriptError::BadContext {
+        span: doc.assumptions.first().map_or(Span::new(doc.file, 0..0), |s| s.span),
+        reason: format!("the hypotheses cannot be loaded: {e}"),
     })
 }
 

@@ -264,6 +264,11 @@ pub trait Scope {
     fn scans(&self) -> bool {
         false
     }
+    /// The program's scan cycle, when known: every duration written must then be a whole
+    /// number of cycles (only those have one reading on scans).
+    fn cycle(&self) -> Option<Delay> {
+        None
+    }
 }
 
 /// The answer of a [`Scope`] to a name.
@@ -542,6 +547,15 @@ pub enum SyntaxError {
         /// The statement.
         span: Span,
     },
+    /// In a program's context, a duration that is not a whole number of scan cycles.
+    SubCycleDelay {
+        /// Where.
+        span: Span,
+        /// The duration written.
+        delay: Delay,
+        /// The program's scan cycle.
+        cycle: Delay,
+    },
     /// `pre` in a goal about free signals: it is defined only for a program's scans.
     PreOutsideProgram {
         /// The `pre` term.
@@ -581,6 +595,7 @@ impl SyntaxError {
             | TooLarge { span }
             | AfterNotConcrete { span }
             | LawOutsideTheory { span }
+            | SubCycleDelay { span, .. }
             | PreOutsideProgram { span } => *span,
         }
     }
@@ -667,6 +682,9 @@ impl Report for SyntaxError {
                 "a `law` belongs in a theory file, not in a property file or proof script".into()
             }
             TooLarge { .. } => "this term is too large or too deeply nested".into(),
+            SubCycleDelay { delay, cycle, .. } => format!(
+                "{delay} is not a whole number of scan cycles: the program scans every {cycle}"
+            ),
             PreOutsideProgram { .. } => "`pre` (the value one scan earlier) needs a program: \
                  free signals have no scans; give the program first (`ii-prove PROGRAM FILE.ii`) \
                  or a `program` header"
@@ -703,6 +721,7 @@ impl Report for SyntaxError {
             AfterNotConcrete { .. } => "expected a concrete duration such as `5s`".into(),
             LawOutsideTheory { .. } => "expected `property`, `assume`, `theorem` or `lemma`".into(),
             PreOutsideProgram { .. } => "no program is loaded".into(),
+            SubCycleDelay { .. } => "expected a whole number of cycles".into(),
             _ => String::new(),
         }
     }
@@ -749,6 +768,28 @@ impl Report for SyntaxError {
             UnexpectedChar { .. } => vec![
                 "names with other characters can be written between back quotes: `Xpi@90`".into(),
             ],
+            SubCycleDelay { delay, cycle, .. } => {
+                let (below, above) = delay.nearest_whole_cycles(cycle);
+                let cycles = |d: &Delay| {
+                    let n = (d.seconds() / cycle.seconds()).to_integer();
+                    let plural = if n == 1.into() { "" } else { "s" };
+                    format!("{d} ({n} cycle{plural})")
+                };
+                let nearest = match below {
+                    Some(b) => format!(
+                        "the nearest whole multiples are {} and {}",
+                        cycles(&b),
+                        cycles(&above)
+                    ),
+                    None => format!("the shortest whole multiple is {}", cycles(&above)),
+                };
+                vec![
+                    nearest,
+                    "a timer counts whole scans, so a shorter or fractional delay has no single \
+                     reading on the PLC (docs/semantics.md, \"Programs, scan by scan\")"
+                        .into(),
+                ]
+            }
             _ => Vec::new(),
         }
     }

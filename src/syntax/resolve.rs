@@ -428,7 +428,14 @@ impl<'a> Resolver<'a> {
     /// Resolves a duration expression, folding literal arithmetic.
     fn delay(&mut self, a: &Ast, mode: Mode, out: &mut Out) -> Option<DVal> {
         match &a.kind {
-            AstKind::Duration(d) => Some(DVal::Lit(d.clone())),
+            AstKind::Duration(d) => {
+                if let Some(cycle) = self.scope.cycle().filter(|c| !d.is_whole_cycles(c)) {
+                    let (delay, span) = (d.clone(), a.span);
+                    // Reported; resolving goes on, so no error follows from this one.
+                    self.errors.push(SyntaxError::SubCycleDelay { span, delay, cycle });
+                }
+                Some(DVal::Lit(d.clone()))
+            }
             AstKind::Name(n) if self.is_delay_var(n) => match mode {
                 Mode::Law => {
                     let symbol = Symbol::from(n.as_str());
