@@ -29,6 +29,7 @@
 //! | implication from zero | `f·¬g = 0*` | `f ⇒ g` |
 //! | shared lemma | a theorem this kernel checked before ([`Kernel::check_using`]) | the same, cited as a step |
 //!
+//! On a program's scans ([`Kernel::for_scans`]) every delay is a whole number of cycles.
 //! Laws and hypotheses are the kernel's axioms, given to [`Kernel::new`] (the hypotheses
 //! are listed by [`Kernel::hypotheses`]); every theorem records which it used.
 
@@ -38,10 +39,10 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use crate::certificate::bound;
 pub use crate::certificate::{
     Axiom, CYCLE, Certificate, Cmp, KernelError, Proof, Rel, Rule, Source, Step, Use, Uses,
 };
+use crate::certificate::{KernelError::BadAxiom, bound};
 use crate::term::{
     Delay, Expr, Id, Language, Symbol, Term, and, at_first_scan, fold_delay, is_delay_node,
     matches, mentions_pre, not, or, root, same, same_tree, subterm,
@@ -114,11 +115,10 @@ pub struct Kernel {
     /// The hypotheses in the order given, and their positions by name (shared by copies).
     hyps: Arc<Vec<Axiom>>,
     hyp_names: Arc<BTreeMap<String, usize>>,
-    /// A program's context: signals are scan runs, so `pre` and induction are available.
-    scans: bool,
     /// Checking the base of an induction: the hypotheses hold at the first scan only.
     first_scan: bool,
-    /// A program's scan cycle: the value of `cycle` in laws' side conditions.
+    /// A program's scan cycle (`None`: free signals). Signals are then scan runs, so `pre`
+    /// and induction are available; the value of `cycle` in laws' side conditions.
     cycle: Option<Delay>,
     /// This kernel's identity: only its own theorems are lemmas to it.
     id: u64,
@@ -168,10 +168,6 @@ fn well_formed(e: &Expr, id: Id, want_delay: bool, delay_vars: &[Symbol]) -> boo
     }
 }
 
-fn bad_axiom(e: KernelError) -> KernelError {
-    KernelError::BadAxiom(e.to_string())
-}
-
 /// Every child precedes its node (so the term is a finite tree, whoever built it).
 fn ordered(e: &Expr) -> bool {
     e.as_ref().iter().enumerate().all(|(i, n)| n.children().iter().all(|c| usize::from(*c) < i))
@@ -202,7 +198,7 @@ impl Kernel {
     fn build(laws: Vec<Axiom>, hypotheses: Vec<Axiom>, cycle: Option<Delay>) -> Result<Kernel> {
         let id = KERNELS.fetch_add(1, Ordering::Relaxed);
         let scans = cycle.is_some();
-        let mut kernel = Kernel { scans, cycle, id, ..Kernel::default() };
+        let mut kernel = Kernel { cycle, id, ..Kernel::default() };
         let (mut hyps, mut names) = (Vec::new(), BTreeMap::new());
         for (axiom, is_law) in
             laws.into_iter().map(|a| (a, true)).chain(hypotheses.into_iter().map(|a| (a, false)))
@@ -218,8 +214,10 @@ impl Kernel {
                 return Err(KernelError::BadAxiom(format!("`pre` in `{name}` about free signals")));
             }
             if !is_law {
-                kernel.whole_cycles(&name, &axiom.lhs).map_err(bad_axiom)?;
-                kernel.whole_cycles(&name, &axiom.rhs).map_err(bad_axiom)?;
+                let whole = kernel.whole_cycles(&name, &axiom.lhs);
+                whole
+                    .and(kernel.whole_cycles(&name, &axiom.rhs))
+                    .map_err(|e| BadAxiom(e.to_string()))?;
             }
             if kernel.laws.contains_key(&name) || names.contains_key(&name) {
                 return Err(KernelError::BadAxiom(format!("`{name}` is defined twice")));
@@ -239,25 +237,17 @@ impl Kernel {
     /// signals are scan runs, and on scans with whole-cycle delays only.
     fn admit(&self, what: &str, e: &Expr) -> Result<()> {
         check_signal_term(what, e, &[])?;
-        if !self.scans && mentions_pre(e) {
+        if self.cycle.is_none() && mentions_pre(e) {
             return Err(KernelError::BadPosition(format!("{what} uses `pre`: free signals")));
         }
         self.whole_cycles(what, e)
     }
 
-    /// On a program's scans, every delay literal of `e` is a whole number of cycles (a
-    /// shorter or fractional one has no single scan reading, and laws valid in continuous
-    /// time fail for it on scans).
+    /// On a program's scans every delay literal is a whole number of cycles: only those
+    /// have one reading there (laws of continuous time fail for the others).
     fn whole_cycles(&self, what: &str, e: &Expr) -> Result<()> {
-        match &self.cycle {
-            Some(cycle) => match crate::term::sub_cycle_delay(e, cycle) {
-                Some(d) => Err(KernelError::SubCycleDelay(format!(
-                    "{what} has the delay {d}, not a whole number of {cycle} cycles"
-                ))),
-                None => Ok(()),
-            },
-            None => Ok(()),
-        }
+        let sub = self.cycle.as_ref().and_then(|c| crate::term::sub_cycle_delay(e, c));
+        sub.map_or(Ok(()), |d| Err(KernelError::SubCycleDelay(format!("{what} has the delay {d}"))))
     }
 
     /// Every hypothesis the kernel trusts, in the order given.
@@ -387,7 +377,7 @@ impl Kernel {
         step: &Proof,
         lemmas: &Lemmas,
     ) -> Result<Theorem> {
-        if !self.scans || self.first_scan {
+        if self.cycle.is_none() || self.first_scan {
             return Err(KernelError::BadPosition(
                 "induction over scans needs a program's scans (and not inside a base case)".into(),
             ));

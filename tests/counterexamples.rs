@@ -324,6 +324,43 @@ fn an_assumption_that_contradicts_the_program_is_reported() {
     }
 }
 
+/// A counterexample is a run of the program that satisfies every `assume`, also one about
+/// signals the property does not read: it is shown, and an assumption that no run
+/// satisfies leaves nothing to refute.
+#[test]
+fn a_counterexample_satisfies_every_assumption() {
+    let ld = path("tests/data/refutes_programs/assumption_outside_cone.ld");
+    let ii = path("tests/data/refutes_programs/assumption_outside_cone.ii");
+    let run = report::run_program(&ld, std::slice::from_ref(&ii), &opts()).expect("runs");
+    assert_eq!(run.properties[0].status, Status::Refuted);
+    let json: serde_json::Value = serde_json::from_str(&report::render_json(&run)).unwrap();
+    let signals = json["properties"][0]["counterexample"]["signals"].as_array().unwrap();
+    let b = signals.iter().find(|s| s["name"] == "B").expect("the assumed signal is shown");
+    assert!(b["intervals"].as_array().unwrap().iter().all(|v| v == true), "{b}");
+    assert!(b["points"].as_array().unwrap().iter().all(|v| v == true), "{b}");
+    let dir = std::env::temp_dir().join(format!("ii-prove-cex-assume-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let vcd = dir.join("out.vcd");
+    let out = Command::new(env!("CARGO_BIN_EXE_ii-prove"))
+        .args([&ld, &ii, "--vcd"])
+        .arg(&vcd)
+        .output()
+        .expect("runs");
+    assert_eq!(out.status.code(), Some(1));
+    let text = std::fs::read_to_string(&vcd).expect("written");
+    assert!(text.contains(" B $end"), "{text}");
+    std::fs::remove_dir_all(&dir).ok();
+
+    let ld = path("tests/data/vacuity/contradicts_outside_the_cone.ld");
+    let ii = path("tests/data/vacuity/contradicts_outside_the_cone.ii");
+    let run = report::run_program(&ld, std::slice::from_ref(&ii), &opts()).expect("runs");
+    assert!(run.warnings.iter().any(|w| w.message.contains("contradict")), "{:?}", run.warnings);
+    for p in &run.properties {
+        assert_ne!(p.status, Status::Refuted, "{}: a run that violates `H`", p.name);
+        assert!(p.counterexample.is_none());
+    }
+}
+
 #[test]
 fn a_property_over_forced_constants_is_flagged_vacuous() {
     let run = report::run_program(

@@ -3,7 +3,7 @@
 //! # Method
 //!
 //! The property's cone of influence (the equations of every signal it reads, closed
-//! under `pre X → X`, and the `assume` statements that touch it) is unrolled over
+//! under `pre X → X`, with every `assume` statement and its cone) is unrolled over
 //! *steps* ([`unroll`](mod@unroll)) and handed to a SAT solver (varisat), for 1, 2, … steps up
 //! to a bound (3× the longest timer plus 4 steps), asking for a violation at the last
 //! step. Inputs (and the outputs of elements the algebra cannot express) are free at
@@ -198,9 +198,14 @@ pub fn equations(compiled: &CompiledProgram) -> Vec<(String, &Expr)> {
 }
 
 impl Program<'_> {
-    /// The cone of `terms`: equations in scan order and the assumptions touching it.
+    /// The cone of `terms` and of every assumption: equations in scan order and all the
+    /// assumptions. A run that violates a property counts only if it satisfies every
+    /// `assume` up to that scan, also one about signals the property does not read (it
+    /// may contradict the program, or fix an input the run would otherwise leave free).
     pub fn model(&self, terms: &[&Expr]) -> Model {
-        self.cone(terms, usize::MAX)
+        let mut all = terms.to_vec();
+        all.extend(self.assumptions.iter().flat_map(|a| [&a.lhs, &a.rhs]));
+        self.cone(&all, usize::MAX)
     }
 
     /// [`model`](Self::model) cut after `cap` equations: the names are expanded breadth
