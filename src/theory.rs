@@ -186,11 +186,42 @@ pub fn check_law(axiom: &Axiom, cases: usize, seed: u64) -> Result<usize, LawFai
     }
 }
 
-/// Checks a law about scans (one with `pre`) on `cases` random scan runs: every
-/// metavariable is a random run of a signal or of its complement (so that its value
-/// before the first scan is 0 or 1), and the law must hold at every scan. `Ok(n)`: it
-/// held on `n` runs; `Err(text)`: the run where it fails.
-pub fn check_scan_law(axiom: &Axiom, cases: usize, seed: u64) -> Result<usize, String> {
+/// One random instance of a law on a scan run of a 1 s cycle: its two sides over the
+/// signals `v0`, `v1`, … and their values scan by scan (`runs`; as exact step signals
+/// in `env`).
+#[derive(Clone, Debug)]
+pub struct ScanInstance {
+    /// The left side, instantiated.
+    pub lhs: Expr,
+    /// The right side, instantiated.
+    pub rhs: Expr,
+    /// Each signal's value at each scan.
+    pub runs: std::collections::BTreeMap<String, Vec<bool>>,
+    /// The same runs as exact signals constant on each scan, and the cycle.
+    pub env: crate::semantics::Assignment,
+}
+
+impl ScanInstance {
+    /// The number of scans.
+    pub fn scans(&self) -> usize {
+        self.runs.values().next().map_or(1, Vec::len)
+    }
+
+    /// The instant at which scan `k` (0-based) is read: inside the first scan, then at
+    /// each scan's start (a step signal is right-continuous).
+    pub fn instant(k: usize) -> crate::semantics::Time {
+        use crate::semantics::Time;
+        if k == 0 { Time::new(1.into(), 2.into()) } else { Time::from_integer(k.into()) }
+    }
+}
+
+/// `cases` random instances of a law on scan runs: every signal metavariable is a random
+/// run of a signal or of its complement (so that its value before the first scan is 0 or
+/// 1), every delay one to four whole cycles (on scans a delay is a whole number of
+/// cycles; `cycle` itself is one), and the side conditions hold at every scan (a run
+/// that breaks a signal condition is mended by clearing the value that breaks it, or
+/// drawn again).
+pub fn scan_instances(axiom: &Axiom, cases: usize, seed: u64) -> Result<Vec<ScanInstance>, String> {
     use crate::semantics::{Assignment, Signal, Time, eval};
     let mut state = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
     let mut next = move || {
@@ -203,61 +234,100 @@ pub fn check_scan_law(axiom: &Axiom, cases: usize, seed: u64) -> Result<usize, S
     let on_a_side =
         |v: &Symbol| [&axiom.lhs, &axiom.rhs].iter().any(|e| e.as_ref().contains(&Term::Name(*v)));
     let cycle = Delay::new(one.clone()).map_err(|e| e.to_string())?;
-    let (mut valid, mut tries) = (0, 0);
-    while valid < cases {
+    let (mut out, mut tries) = (Vec::new(), 0);
+    while out.len() < cases {
         tries += 1;
         if tries > 20 * cases {
-            return Err(format!("only {valid} of {tries} runs satisfy the side conditions"));
+            return Err(format!("only {} of {tries} runs satisfy the side conditions", out.len()));
         }
         let scans = 1 + (next() % 12) as usize;
-        let mut env = Assignment::new(Time::from_integer(scans.into()));
-        env.cycle = Some(one.clone());
         let mut sigma = std::collections::BTreeMap::new();
-        // Delays of a quarter cycle to four cycles; `cycle` itself is one.
         for v in axiom.delay_vars.iter().filter(|v| on_a_side(v) || v.as_str() != CYCLE) {
-            let quarters = Time::new((1 + next() % 16).into(), 4.into());
-            let d = Delay::new(quarters).map_err(|e| e.to_string())?;
+            let d = Delay::new(Time::from_integer((1 + next() % 4).into()))
+                .map_err(|e| e.to_string())?;
             sigma.insert(*v, Expr::from(vec![Term::Delay(d)]));
         }
         axiom.bind_cycle(Some(&cycle), &mut sigma);
         if axiom.check_delay_conditions(&sigma).is_err() {
             continue;
         }
-        valid += 1;
+        let mut runs = std::collections::BTreeMap::new();
+        let mut negated = Vec::new();
         for (i, v) in axiom.signal_vars.iter().enumerate() {
-            let run: Vec<bool> = (0..scans).map(|_| next() % 2 == 1).collect();
-            let changes: Vec<(Time, bool)> = (1..scans)
-                .filter(|k| run[*k] != run[k - 1])
-                .map(|k| (Time::from_integer(k.into()), run[k]))
-                .collect();
-            let signal = Signal::from_steps(env.horizon.clone(), run[0], &changes)
-                .map_err(|e| format!("{e:?}"))?;
             let name = format!("v{i}");
-            env.signals.insert(Symbol::from(name.as_str()), signal);
+            runs.insert(name.clone(), (0..scans).map(|_| next() % 2 == 1).collect::<Vec<bool>>());
             let term = crate::term::name(&name);
-            let term = if next() % 2 == 1 { crate::term::not(&term) } else { term };
+            negated.push(next() % 2 == 1);
+            let term = if negated[i] { crate::term::not(&term) } else { term };
             sigma.insert(*v, term);
         }
         let side = |e: &Expr| crate::term::instantiate(e, &sigma).ok_or("an unbound variable");
-        let (l, r) = (side(&axiom.lhs)?, side(&axiom.rhs)?);
-        let (a, b) = (
-            eval(&l, &env).map_err(|e| e.to_string())?,
-            eval(&r, &env).map_err(|e| e.to_string())?,
-        );
-        for k in 0..scans {
-            let t =
-                if k == 0 { Time::new(1.into(), 2.into()) } else { Time::from_integer(k.into()) };
-            let (x, y) = (a.value_at(&t), b.value_at(&t));
-            let holds = match axiom.rel {
-                Rel::Eq => x == y,
-                Rel::Implies => !x || y,
-            };
-            if !holds {
-                return Err(format!("`{l}` is {x} and `{r}` is {y} at scan {k} of {env}"));
+        let conditions: Vec<(Expr, Rel, Expr)> = axiom
+            .signal_conditions
+            .iter()
+            .map(|(l, rel, r)| Ok((side(l)?, *rel, side(r)?)))
+            .collect::<Result<_, String>>()?;
+        for _mend in 0..=8 {
+            let mut env = Assignment::new(Time::from_integer(scans.into()));
+            env.cycle = Some(one.clone());
+            for (name, run) in &runs {
+                let changes: Vec<(Time, bool)> = (1..scans)
+                    .filter(|k| run[*k] != run[k - 1])
+                    .map(|k| (Time::from_integer(k.into()), run[k]))
+                    .collect();
+                let signal = Signal::from_steps(env.horizon.clone(), run[0], &changes)
+                    .map_err(|e| format!("{e:?}"))?;
+                env.signals.insert(Symbol::from(name.as_str()), signal);
+            }
+            let mut broken = Vec::new();
+            for (l, rel, r) in &conditions {
+                let (a, b) = (
+                    eval(l, &env).map_err(|e| e.to_string())?,
+                    eval(r, &env).map_err(|e| e.to_string())?,
+                );
+                broken.extend((0..scans).filter(|k| {
+                    let (x, y) = (
+                        a.value_at(&ScanInstance::instant(*k)),
+                        b.value_at(&ScanInstance::instant(*k)),
+                    );
+                    !(x == y || (*rel == Rel::Implies && !x))
+                }));
+            }
+            if broken.is_empty() {
+                let (lhs, rhs) = (side(&axiom.lhs)?, side(&axiom.rhs)?);
+                out.push(ScanInstance { lhs, rhs, runs, env });
+                break;
+            }
+            // Clear one signal's term at each broken scan (a condition `f·g = 0*`).
+            for k in broken {
+                let i = (next() as usize) % negated.len().max(1);
+                if let Some(run) = runs.get_mut(&format!("v{i}")) {
+                    run[k] = negated[i];
+                }
             }
         }
     }
-    Ok(cases)
+    Ok(out)
+}
+
+/// Checks a law on `cases` random scan runs ([`scan_instances`]; every law: those with
+/// `pre` are about scans only, and the others must hold there too) by exact evaluation
+/// at every scan. `Ok(n)`: it held on `n` runs; `Err(text)`: the run where it fails.
+pub fn check_scan_law(axiom: &Axiom, cases: usize, seed: u64) -> Result<usize, String> {
+    let instances = scan_instances(axiom, cases, seed)?;
+    for inst in &instances {
+        let (l, r) = (&inst.lhs, &inst.rhs);
+        let a = crate::semantics::eval(l, &inst.env).map_err(|e| e.to_string())?;
+        let b = crate::semantics::eval(r, &inst.env).map_err(|e| e.to_string())?;
+        for k in 0..inst.scans() {
+            let t = ScanInstance::instant(k);
+            let (x, y) = (a.value_at(&t), b.value_at(&t));
+            if !(x == y || (axiom.rel == Rel::Implies && !x)) {
+                return Err(format!("`{l}` is {x} and `{r}` is {y} at scan {k} of {}", inst.env));
+            }
+        }
+    }
+    Ok(instances.len())
 }
 
 /// Why a law did not validate.

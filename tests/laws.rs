@@ -1,10 +1,13 @@
-//! Every law of `theories/` holds under the exact semantics; false laws are rejected
-//! with a witness.
+//! Every law of `theories/` holds under the exact semantics, in continuous time and on
+//! scan runs with whole-cycle delays; false laws are rejected with a witness.
 
 use std::path::Path;
 
+use ii_prove::counterexample::scans_of;
+use ii_prove::counterexample::unroll::{Concrete, Model, unroll};
 use ii_prove::diag::Sources;
 use ii_prove::kernel::{Axiom, Rel};
+use ii_prove::semantics::Time;
 use ii_prove::semantics::falsify::violation;
 use ii_prove::semantics::{eval, random::exhaustive_boolean};
 use ii_prove::term::{Term, mentions_pre};
@@ -53,6 +56,59 @@ fn every_law_holds_on_random_exact_signals() {
         }
     }
     assert!(failures.is_empty(), "laws that do not hold:\n{}", failures.join("\n"));
+}
+
+/// On a program's scans every delay is a whole number of cycles. Every law, timer and
+/// memory laws included, holds there under both of the project's readings of a scan
+/// run: the exact evaluator at each scan's instant (`theory::check_scan_law`) and the
+/// counterexample unroller, which counts scans (`d/f` is on from the (d/δ+1)-th
+/// consecutive scan of `f`); and the two readings agree on every side of every instance.
+#[test]
+fn every_law_holds_on_scan_runs_with_whole_cycle_delays() {
+    let mut sources = Sources::new();
+    let theory = theory::standard(&mut sources).expect("the theory files parse");
+    let mut failures = Vec::new();
+    for (i, law) in theory.laws.iter().enumerate() {
+        let place = format!("{} ({}:{})", law.axiom.name, law.file, law.line);
+        if let Err(why) = theory::check_scan_law(&law.axiom, CASES, i as u64 + 101) {
+            failures.push(format!("{place}, exact evaluation: {why}"));
+        }
+        if let Err(why) = counting_scans(&law.axiom, CASES, i as u64 + 101) {
+            failures.push(format!("{place}, counting scans: {why}"));
+        }
+    }
+    assert!(failures.is_empty(), "laws that fail on scans:\n{}", failures.join("\n"));
+}
+
+/// The instances [`theory::check_scan_law`] evaluates exactly, read by the unroller
+/// (counting scans), which must satisfy the law and agree with the exact reading.
+fn counting_scans(axiom: &Axiom, cases: usize, seed: u64) -> Result<(), String> {
+    let cycle = Time::from_integer(1.into());
+    for inst in theory::scan_instances(axiom, cases, seed)? {
+        let (l, r, runs) = (&inst.lhs, &inst.rhs, &inst.runs);
+        let unrolled = unroll(
+            &mut Concrete,
+            &Model::default(),
+            &[l, r],
+            inst.scans(),
+            &|d| scans_of(d, &cycle),
+            &mut |_, name, k| runs.get(name).is_some_and(|v| v[k]),
+        )?;
+        let (a, b) = (eval(l, &inst.env).unwrap(), eval(r, &inst.env).unwrap());
+        for k in 0..inst.scans() {
+            let (x, y) = (unrolled.extra[0][k], unrolled.extra[1][k]);
+            if !(x == y || (axiom.rel == Rel::Implies && !x)) {
+                return Err(format!("`{l}` is {x} and `{r}` is {y} at scan {k} of {runs:?}"));
+            }
+            let t = theory::ScanInstance::instant(k);
+            if (a.value_at(&t), b.value_at(&t)) != (x, y) {
+                return Err(format!(
+                    "the readings of `{l}` / `{r}` differ at scan {k} of {runs:?}"
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 #[test]

@@ -552,9 +552,9 @@ pub enum SyntaxError {
         /// Where.
         span: Span,
         /// The duration written.
-        delay: Delay,
+        delay: Box<Delay>,
         /// The program's scan cycle.
-        cycle: Delay,
+        cycle: Box<Delay>,
     },
     /// `pre` in a goal about free signals: it is defined only for a program's scans.
     PreOutsideProgram {

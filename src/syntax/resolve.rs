@@ -430,7 +430,7 @@ impl<'a> Resolver<'a> {
         match &a.kind {
             AstKind::Duration(d) => {
                 if let Some(cycle) = self.scope.cycle().filter(|c| !d.is_whole_cycles(c)) {
-                    let (delay, span) = (d.clone(), a.span);
+                    let (delay, span, cycle) = (Box::new(d.clone()), a.span, Box::new(cycle));
                     // Reported; resolving goes on, so no error follows from this one.
                     self.errors.push(SyntaxError::SubCycleDelay { span, delay, cycle });
                 }
