@@ -86,16 +86,6 @@ impl Theorem {
         self.uses.all()
     }
 
-    /// This theorem if it establishes `lhs rel rhs` about whole signals.
-    pub fn expect(self, lhs: &Expr, rel: Rel, rhs: &Expr) -> Result<Theorem> {
-        if self.proves(lhs, rel, rhs) {
-            return Ok(self);
-        }
-        let (l, r, n) = (&self.lhs, &self.rhs, self.local.len());
-        let got = format!("`{l} {:?} {r}` under {n} case assumption(s)", self.rel);
-        Err(KernelError::NotTheGoal(format!("proved {got}, wanted `{lhs} {rel:?} {rhs}`")))
-    }
-
     /// Does this theorem establish `lhs rel rhs` about whole signals?
     /// An equation also establishes the implication.
     pub fn proves(&self, lhs: &Expr, rel: Rel, rhs: &Expr) -> bool {
@@ -187,10 +177,8 @@ impl Kernel {
         Kernel::build(laws, hypotheses, None)
     }
 
-    /// A kernel for the scan runs of a program with this cycle (`pre` in hypotheses and
-    /// terms, induction over scans, `cycle` in laws' side conditions); otherwise as
-    /// [`Kernel::new`]. Every delay it reasons about, in a hypothesis or in a term of a
-    /// proof, must be a whole number of cycles: only those have one reading on scans.
+    /// A kernel for the scan runs of a program with this cycle (`pre`, induction over
+    /// scans, `cycle` in laws' side conditions, every delay a whole number of cycles).
     pub fn for_scans(laws: Vec<Axiom>, hypotheses: Vec<Axiom>, cycle: Delay) -> Result<Kernel> {
         Kernel::build(laws, hypotheses, Some(cycle))
     }
@@ -243,8 +231,7 @@ impl Kernel {
         self.whole_cycles(what, e)
     }
 
-    /// On a program's scans every delay literal is a whole number of cycles: only those
-    /// have one reading there (laws of continuous time fail for the others).
+    /// On scans every delay is a whole number of cycles (others have no one reading there).
     fn whole_cycles(&self, what: &str, e: &Expr) -> Result<()> {
         let sub = self.cycle.as_ref().and_then(|c| crate::term::sub_cycle_delay(e, c));
         sub.map_or(Ok(()), |d| Err(KernelError::SubCycleDelay(format!("{what} has the delay {d}"))))
@@ -267,8 +254,7 @@ impl Kernel {
             if thm.kernel != self.id {
                 return Err(KernelError::Mismatch(format!("lemma `{name}` is another context's")));
             }
-            // A theorem under case assumptions holds only where they do: citing it as a
-            // fact about whole signals would drop them.
+            // Under case assumptions it holds only where they do: no fact about whole signals.
             if !thm.local.is_empty() {
                 return Err(KernelError::Mismatch(format!("lemma `{name}` is only local")));
             }
@@ -301,7 +287,20 @@ impl Kernel {
         rhs: &Expr,
     ) -> Result<Theorem> {
         let thm = self.check(cert)?;
-        thm.expect(lhs, rel, rhs)
+        self.vouch(&thm, lhs, rel, rhs).map(|()| thm)
+    }
+
+    /// Is `thm` this kernel's theorem of exactly `lhs rel rhs`? (Asked before "proved".)
+    pub fn vouch(&self, thm: &Theorem, lhs: &Expr, rel: Rel, rhs: &Expr) -> Result<()> {
+        if thm.kernel == self.id && thm.proves(lhs, rel, rhs) {
+            return Ok(());
+        }
+        let (l, r, n) = (&thm.lhs, &thm.rhs, thm.local.len());
+        let got = format!("`{l} {:?} {r}` under {n} case assumption(s)", thm.rel);
+        Err(KernelError::NotTheGoal(format!(
+            "{got} (kernel {}), not `{lhs} {rel:?} {rhs}`",
+            thm.kernel
+        )))
     }
 
     fn replay(&self, proof: &Proof, lemmas: &Lemmas) -> Result<Theorem> {

@@ -416,3 +416,18 @@ fn a_theorem_under_case_assumptions_is_no_lemma() {
     let only_one: Lemmas = [("A1".to_string(), case(true))].into();
     assert!(k.check_using(&chain("b", vec![]), only_one).is_err());
 }
+
+#[test]
+fn a_kernel_vouches_only_for_its_own_theorem_of_the_goal() {
+    let k = kernel();
+    let thm = k.check(&chain("L1_pump", p1_steps())).expect("checks");
+    let (l, r) = (sexp("L1_pump"), sexp("(ton 5s L1_up)"));
+    assert!(k.vouch(&thm, &l, Rel::Eq, &r).is_ok());
+    assert!(k.vouch(&thm, &l, Rel::Implies, &r).is_ok(), "an equation gives the implication");
+    // Another statement, or another kernel with the same axioms (another file's context).
+    assert!(matches!(k.vouch(&thm, &r, Rel::Implies, &l), Err(KernelError::NotTheGoal(_))));
+    assert!(matches!(kernel().vouch(&thm, &l, Rel::Eq, &r), Err(KernelError::NotTheGoal(_))));
+    // A theorem under a case assumption is not one about whole signals.
+    let local = k.check(&chain("a", vec![step(&[], Rule::Case(sexp("a"), true), "1*")])).unwrap();
+    assert!(k.vouch(&local, &sexp("a"), Rel::Eq, &sexp("1*")).is_err());
+}

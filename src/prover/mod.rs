@@ -745,7 +745,7 @@ fn prove_by_cases(
     match ctx
         .kernel
         .check_using(&certificate, cited.clone())
-        .and_then(|t| t.expect(&goal.lhs, goal.rel, &goal.rhs))
+        .and_then(|t| ctx.kernel.vouch(&t, &goal.lhs, goal.rel, &goal.rhs).map(|()| t))
     {
         Ok(theorem) => Ok(Proved {
             theorem,

@@ -70,7 +70,17 @@ pub fn attempt(
         return Attempt::Refuted(c);
     }
     match outcome {
-        Outcome::Proved(proved) => Attempt::Proved(proved),
+        // The search is untrusted: a goal is proved only by a theorem of this context's
+        // kernel that states exactly it.
+        Outcome::Proved(proved) => {
+            match ctx.kernel.vouch(&proved.theorem, &goal.lhs, goal.rel, &goal.rhs) {
+                Ok(()) => Attempt::Proved(proved),
+                Err(e) => Attempt::Unknown {
+                    reason: format!("the search's theorem is refused: {e}"),
+                    candidate: None,
+                },
+            }
+        }
         Outcome::Unknown { reason, candidate } => {
             let limit = if program.is_some() { PROGRAM_SEARCH } else { FREE_SEARCH };
             // A short look even when the proof search ran to the end of the limit,
