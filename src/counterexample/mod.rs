@@ -575,7 +575,10 @@ fn exact(
 }
 
 /// Checks a compiled hypothesis set on the exact signals (every equation and bound).
-fn hypotheses_hold(program: &Program, env: &Assignment) -> bool {
+/// Every compiled hypothesis whose signals the run has holds at every scan of the trace
+/// (read at each scan's instant: the end of the horizon is the start of a scan the trace
+/// does not have).
+fn hypotheses_hold(program: &Program, env: &Assignment, trace: &ScanTrace) -> bool {
     program.compiled.hypotheses.iter().all(|h| {
         let mut names = BTreeSet::new();
         names_of(&h.lhs, &mut names);
@@ -583,10 +586,11 @@ fn hypotheses_hold(program: &Program, env: &Assignment) -> bool {
         if !names.iter().all(|n| env.signals.contains_key(&Symbol::from(n.as_str()))) {
             return true; // outside the cone
         }
-        match (eval(&h.lhs, env), eval(&h.rhs, env)) {
-            (Ok(a), Ok(b)) => violation(&a, sample_relation(h.rel), &b).is_none(),
-            _ => false,
-        }
+        let (Ok(a), Ok(b)) = (eval(&h.lhs, env), eval(&h.rhs, env)) else { return false };
+        (0..trace.scans).all(|k| {
+            let (x, y) = (a.value_at(&trace.instant(k)), b.value_at(&trace.instant(k)));
+            !violated(&mut Concrete, h.rel, &x, &y)
+        })
     })
 }
 
@@ -623,7 +627,7 @@ fn judge(
     trace.truncate(v + 1);
     let run = run_scans(model, goal, &trace)?;
     let (assignment, lhs, rhs) = exact(model, goal, &trace, &run, v)?;
-    if !hypotheses_hold(program, &assignment) {
+    if !hypotheses_hold(program, &assignment, &trace) {
         return Err("a compiled hypothesis fails on the exact signals".into());
     }
     let inputs = program
