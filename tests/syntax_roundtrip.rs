@@ -44,6 +44,11 @@ impl Scope for AnyName {
     fn scans(&self) -> bool {
         true
     }
+    /// A cycle every duration of the repository's files is a whole number of (1 µs), so
+    /// that patterns which need one resolve.
+    fn cycle(&self) -> Option<ii_prove::term::Delay> {
+        ii_prove::term::Delay::from_micros(1).ok()
+    }
 }
 
 fn same_goal(a: &Goal, b: &Goal) -> bool {

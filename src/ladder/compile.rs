@@ -1314,7 +1314,8 @@ pub fn program_to_ii(compiled: &CompiledProgram, notation: Notation) -> String {
             Rel::Eq => Relation::Equals,
             Rel::Implies => Relation::Implies,
         };
-        let goal = Goal { lhs: h.lhs.clone(), relation, rhs: h.rhs.clone(), after: None };
+        let goal =
+            Goal { lhs: h.lhs.clone(), relation, rhs: h.rhs.clone(), after: None, pattern: None };
         let statement =
             Statement { name: h.name.clone(), name_span: dummy, span: dummy, value: goal };
         out.push_str(&goal_statement_to_string(GoalKeyword::Assume, &statement, notation));

@@ -84,6 +84,59 @@ pub enum RelOp {
     Lt,
 }
 
+/// A requirement pattern as written: a property in the words a control engineer uses,
+/// which the resolver compiles to a goal (the catalogue is in the README).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum AstPattern {
+    /// `always f`: `f = 1*`.
+    Always(Ast),
+    /// `never f`: `f = 0*`.
+    Never(Ast),
+    /// `reachable f`: some run makes `f` 1 at some scan (an existence claim).
+    Reachable(Ast),
+    /// `a then b => c`: if `a` at a scan and `b` at the next, then `c` there.
+    Then {
+        /// `a`, at the earlier scan.
+        first: Ast,
+        /// `b`, at the later scan.
+        next: Ast,
+        /// `c`, at the later scan.
+        then: Ast,
+    },
+    /// `whenever a then b within d`: `b` at the scan of `a` or within `d` after it.
+    Within {
+        /// `a`.
+        trigger: Ast,
+        /// `b`.
+        response: Ast,
+        /// `d`.
+        delay: Ast,
+    },
+    /// `b not before d after a`: `b` only once more than `d` has passed since the last `a`.
+    NotBefore {
+        /// `b`.
+        response: Ast,
+        /// `d`.
+        delay: Ast,
+        /// `a`.
+        trigger: Ast,
+    },
+    /// `f at most d`: `f` is never on for longer than `d` at a stretch.
+    AtMost {
+        /// `f`.
+        signal: Ast,
+        /// `d`.
+        delay: Ast,
+    },
+    /// `f at least d once on`: once `f` turns on it stays on for at least `d`.
+    AtLeast {
+        /// `f`.
+        signal: Ast,
+        /// `d`.
+        delay: Ast,
+    },
+}
+
 /// `[after D:] lhs op rhs` as written.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct AstGoal {
@@ -99,6 +152,9 @@ pub struct AstGoal {
     pub rhs: Ast,
     /// The whole goal.
     pub span: Span,
+    /// A requirement pattern: then it says what the goal is, and `lhs`, `op` and `rhs`
+    /// are placeholders.
+    pub pattern: Option<Box<AstPattern>>,
 }
 
 /// Which named statement.

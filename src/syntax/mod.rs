@@ -53,6 +53,7 @@
 pub mod ast;
 pub mod lexer;
 pub mod parser;
+pub mod pattern;
 pub mod print;
 pub mod resolve;
 
@@ -60,6 +61,7 @@ use crate::diag::{FileId, Report, Sources, Span};
 use crate::term::{Delay, Expr, Id, Symbol, Term};
 
 pub use ast::{ClaimKind, RuleRef};
+pub use pattern::Pattern;
 pub use print::{
     GoalKeyword, Notation, claim_to_string, delay_to_string, document_to_string,
     goal_statement_to_string, goal_to_string, law_to_string, step_to_string, term_to_string,
@@ -86,6 +88,8 @@ pub struct Goal {
     /// `after d:` — the goal holds from `d` on: `d/1* · lhs ⇒ rhs`, or
     /// `d/1* · lhs = d/1* · rhs` for an equality.
     pub after: Option<Delay>,
+    /// The requirement pattern it was written as, if any (the goal is its II term).
+    pub pattern: Option<Pattern>,
 }
 
 impl Goal {
@@ -547,6 +551,20 @@ pub enum SyntaxError {
         /// The statement.
         span: Span,
     },
+    /// A pattern that is not a safety property over scans (`eventually`, `until`, …).
+    NotSafety {
+        /// The word.
+        span: Span,
+        /// The word as written.
+        word: String,
+    },
+    /// A requirement pattern where it has no meaning (why).
+    BadPattern {
+        /// The pattern.
+        span: Span,
+        /// Why it is refused here.
+        reason: String,
+    },
     /// In a program's context, a duration that is not a whole number of scan cycles.
     SubCycleDelay {
         /// Where.
@@ -596,6 +614,8 @@ impl SyntaxError {
             | AfterNotConcrete { span }
             | LawOutsideTheory { span }
             | SubCycleDelay { span, .. }
+            | NotSafety { span, .. }
+            | BadPattern { span, .. }
             | PreOutsideProgram { span } => *span,
         }
     }
@@ -682,6 +702,10 @@ impl Report for SyntaxError {
                 "a `law` belongs in a theory file, not in a property file or proof script".into()
             }
             TooLarge { .. } => "this term is too large or too deeply nested".into(),
+            NotSafety { word, .. } => format!(
+                "`{word}` states more than a safety property over scans: no finite run refutes it"
+            ),
+            BadPattern { reason, .. } => reason.clone(),
             SubCycleDelay { delay, cycle, .. } => format!(
                 "{delay} is not a whole number of scan cycles: the program scans every {cycle}"
             ),
@@ -722,6 +746,7 @@ impl Report for SyntaxError {
             LawOutsideTheory { .. } => "expected `property`, `assume`, `theorem` or `lemma`".into(),
             PreOutsideProgram { .. } => "no program is loaded".into(),
             SubCycleDelay { .. } => "expected a whole number of cycles".into(),
+            NotSafety { .. } => "not a safety property".into(),
             _ => String::new(),
         }
     }
@@ -767,6 +792,11 @@ impl Report for SyntaxError {
             ],
             UnexpectedChar { .. } => vec![
                 "names with other characters can be written between back quotes: `Xpi@90`".into(),
+            ],
+            NotSafety { .. } => vec![
+                "ii-prove checks safety properties: every violation shows in a finite run. \
+                 A bounded form is one: `whenever a then b within 10s`, `f at most 30s`"
+                    .into(),
             ],
             SubCycleDelay { delay, cycle, .. } => {
                 let (below, above) = delay.nearest_whole_cycles(cycle);

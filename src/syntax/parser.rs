@@ -6,8 +6,8 @@
 
 use super::SyntaxError;
 use super::ast::{
-    Ast, AstGoal, AstKind, AstProof, AstStatement, AstStep, ClaimKind, Func, NamedKind, RelOp,
-    RuleRef,
+    Ast, AstGoal, AstKind, AstPattern, AstProof, AstStatement, AstStep, ClaimKind, Func, NamedKind,
+    RelOp, RuleRef,
 };
 use super::lexer::{Keyword, Tok, Token};
 use crate::diag::Span;
@@ -305,7 +305,7 @@ impl Parser {
         Ok(rules)
     }
 
-    /// `after D: f => g`, `f => g` or `f = g`.
+    /// `after D: f => g`, `f => g`, `f = g`, or a requirement pattern ([`AstPattern`]).
     pub fn goal(&mut self) -> PResult<AstGoal> {
         let start = self.peek().span;
         if self.eat(&Tok::Keyword(Keyword::After)).is_some() {
@@ -319,8 +319,117 @@ impl Parser {
         }
     }
 
+    /// Is the token at `n` the word `w` (a pattern's word: a name elsewhere)?
+    fn word_at(&self, n: usize, w: &str) -> bool {
+        matches!(self.peek_at(n), Tok::Ident(x) if x == w)
+    }
+
+    /// Does an operand start at `n` (so a word before it is a pattern's, not a name)?
+    fn operand_at(&self, n: usize) -> bool {
+        matches!(
+            self.peek_at(n),
+            Tok::Ident(_)
+                | Tok::Quoted(_)
+                | Tok::LParen
+                | Tok::Not
+                | Tok::Zero
+                | Tok::One
+                | Tok::Duration(_)
+        )
+    }
+
+    fn expect_word(&mut self, w: &str) -> PResult<Span> {
+        if self.word_at(0, w) {
+            return Ok(self.bump().span);
+        }
+        Err(self.unexpected(vec![format!("`{w}`")]))
+    }
+
+    /// A goal that is a pattern, `pattern` its operands; `lhs` and `rhs` repeat its first
+    /// and last operand (only the pattern is read).
+    fn pattern_goal(after: Option<Ast>, start: Span, pattern: AstPattern) -> AstGoal {
+        let (first, last) = match &pattern {
+            AstPattern::Always(f) | AstPattern::Never(f) | AstPattern::Reachable(f) => (f, f),
+            AstPattern::Then { first, then, .. } => (first, then),
+            AstPattern::Within { trigger, delay, .. } => (trigger, delay),
+            AstPattern::NotBefore { response, trigger, .. } => (response, trigger),
+            AstPattern::AtMost { signal, delay } | AstPattern::AtLeast { signal, delay } => {
+                (signal, delay)
+            }
+        };
+        let (lhs, rhs) = (first.clone(), last.clone());
+        let span = start.to(rhs.span);
+        let pattern = Some(Box::new(pattern));
+        AstGoal { after, lhs, op: RelOp::Implies, op_span: start, rhs, span, pattern }
+    }
+
     fn relation(&mut self, after: Option<Ast>) -> PResult<AstGoal> {
+        let start = self.peek().span;
+        // Prefix patterns: `always f`, `never f`, `reachable f`, `whenever a then b within d`.
+        if self.operand_at(1) {
+            for (w, make) in [
+                ("always", AstPattern::Always as fn(Ast) -> AstPattern),
+                ("never", AstPattern::Never),
+                ("reachable", AstPattern::Reachable),
+            ] {
+                if self.word_at(0, w) {
+                    self.bump();
+                    let f = self.expr()?;
+                    return Ok(Parser::pattern_goal(after, start, make(f)));
+                }
+            }
+            if self.word_at(0, "whenever") {
+                self.bump();
+                let trigger = self.expr()?;
+                self.expect_word("then")?;
+                let response = self.expr()?;
+                self.expect_word("within")?;
+                let delay = self.expr()?;
+                let pattern = AstPattern::Within { trigger, response, delay };
+                return Ok(Parser::pattern_goal(after, start, pattern));
+            }
+            for w in ["eventually", "infinitely"] {
+                if self.word_at(0, w) {
+                    return Err(SyntaxError::NotSafety { span: start, word: w.into() });
+                }
+            }
+        }
         let lhs = self.expr()?;
+        // Infix patterns: `a then b => c`, `f at most d`, `f at least d once on`,
+        // `b not before d after a`.
+        if self.word_at(0, "then") {
+            self.bump();
+            let next = self.expr()?;
+            self.expect(Tok::Implies, "`=>`")?;
+            let then = self.expr()?;
+            let pattern = AstPattern::Then { first: lhs, next, then };
+            return Ok(Parser::pattern_goal(after, start, pattern));
+        }
+        if self.word_at(0, "at") && (self.word_at(1, "most") || self.word_at(1, "least")) {
+            self.bump();
+            let most = self.bump().tok == Tok::Ident("most".into());
+            let delay = self.expr()?;
+            let pattern = if most {
+                AstPattern::AtMost { signal: lhs, delay }
+            } else {
+                self.expect_word("once")?;
+                self.expect_word("on")?;
+                AstPattern::AtLeast { signal: lhs, delay }
+            };
+            return Ok(Parser::pattern_goal(after, start, pattern));
+        }
+        if self.word_at(0, "not") && self.word_at(1, "before") {
+            self.bump();
+            self.bump();
+            let delay = self.expr()?;
+            self.expect(Tok::Keyword(Keyword::After), "`after`")?;
+            let trigger = self.expr()?;
+            let pattern = AstPattern::NotBefore { response: lhs, delay, trigger };
+            return Ok(Parser::pattern_goal(after, start, pattern));
+        }
+        if self.word_at(0, "until") {
+            return Err(SyntaxError::NotSafety { span: self.peek().span, word: "until".into() });
+        }
         let op = match self.peek().tok {
             Tok::Implies => RelOp::Implies,
             Tok::Eq => RelOp::Equals,
@@ -333,7 +442,7 @@ impl Parser {
         let op_span = self.bump().span;
         let rhs = self.expr()?;
         let span = lhs.span.to(rhs.span);
-        Ok(AstGoal { after, lhs, op, op_span, rhs, span })
+        Ok(AstGoal { after, lhs, op, op_span, rhs, span, pattern: None })
     }
 
     fn nested<T>(&mut self, f: impl FnOnce(&mut Parser) -> PResult<T>) -> PResult<T> {

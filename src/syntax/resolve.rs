@@ -8,9 +8,12 @@
 
 use std::collections::HashMap;
 
-use super::ast::{Ast, AstGoal, AstKind, AstProof, AstStatement, Func, NamedKind, RelOp};
+use super::ast::{
+    Ast, AstGoal, AstKind, AstPattern, AstProof, AstStatement, Func, NamedKind, RelOp,
+};
 use super::lexer::{Tok, lex};
 use super::parser::Parser;
+use super::pattern::{self, Pattern};
 use super::{
     CalcStep, Claim, Declaration, DelayComparison, Document, Goal, Law, Lookup, Relation, Scope,
     ScriptProof, SideCondition, Statement, SyntaxError,
@@ -509,6 +512,9 @@ impl<'a> Resolver<'a> {
     }
 
     fn goal(&mut self, g: &AstGoal, mode: Mode, out: &mut Out) -> Option<Goal> {
+        if let Some(p) = &g.pattern {
+            return self.pattern(g, p, mode, out);
+        }
         let relation = match g.op {
             RelOp::Implies => Some(Relation::Implies),
             RelOp::Equals => Some(Relation::Equals),
@@ -520,23 +526,75 @@ impl<'a> Resolver<'a> {
                 None
             }
         };
-        let after = match &g.after {
-            None => Some(None),
-            Some(a) => {
-                let mut scratch = Out::default();
-                match self.delay(a, mode, &mut scratch) {
-                    Some(DVal::Lit(d)) => Some(Some(d)),
-                    Some(DVal::Node(_)) => {
-                        self.errors.push(SyntaxError::AfterNotConcrete { span: a.span });
-                        None
-                    }
-                    None => None,
-                }
-            }
-        };
+        let after = self.after(g, mode);
         let lhs = self.signal_expr(&g.lhs, mode, out);
         let rhs = self.signal_expr(&g.rhs, mode, out);
-        Some(Goal { lhs: lhs?, relation: relation?, rhs: rhs?, after: after? })
+        Some(Goal { lhs: lhs?, relation: relation?, rhs: rhs?, after: after?, pattern: None })
+    }
+
+    /// `after D:`'s duration, if any: `Some(None)` without one, `None` after an error.
+    fn after(&mut self, g: &AstGoal, mode: Mode) -> Option<Option<Delay>> {
+        g.after.as_ref().map_or(Some(None), |a| self.concrete_delay(a, mode).map(Some))
+    }
+
+    /// A duration that folds to a literal (an error otherwise).
+    fn concrete_delay(&mut self, a: &Ast, mode: Mode) -> Option<Delay> {
+        match self.delay(a, mode, &mut Out::default()) {
+            Some(DVal::Lit(d)) => Some(d),
+            Some(DVal::Node(_)) => {
+                self.errors.push(SyntaxError::AfterNotConcrete { span: a.span });
+                None
+            }
+            None => None,
+        }
+    }
+
+    /// A requirement pattern, compiled to its goal ([`pattern::compile`]).
+    fn pattern(&mut self, g: &AstGoal, p: &AstPattern, mode: Mode, out: &mut Out) -> Option<Goal> {
+        if mode == Mode::Law {
+            let reason = "a law states `=` or `=>` between terms, not a requirement pattern";
+            self.errors.push(SyntaxError::BadPattern { span: g.span, reason: reason.into() });
+            return None;
+        }
+        let (kind, signals, delay): (Pattern, Vec<&Ast>, Option<&Ast>) = match p {
+            AstPattern::Always(f) => (Pattern::Always, vec![f], None),
+            AstPattern::Never(f) => (Pattern::Never, vec![f], None),
+            AstPattern::Reachable(_) => {
+                let reason = "`reachable f` claims that some run reaches `f`: an existence \
+                              claim, not a safety property over scans, which is all ii-prove \
+                              checks; check `never f` instead: its counterexample is a run \
+                              that reaches `f`, and its proof shows that none does";
+                self.errors.push(SyntaxError::BadPattern { span: g.span, reason: reason.into() });
+                return None;
+            }
+            AstPattern::Then { first, next, then } => {
+                (Pattern::Then, vec![first, next, then], None)
+            }
+            AstPattern::Within { trigger, response, delay } => {
+                (Pattern::Within, vec![trigger, response], Some(delay))
+            }
+            AstPattern::NotBefore { response, delay, trigger } => {
+                (Pattern::NotBefore, vec![response, trigger], Some(delay))
+            }
+            AstPattern::AtMost { signal, delay } => (Pattern::AtMost, vec![signal], Some(delay)),
+            AstPattern::AtLeast { signal, delay } => (Pattern::AtLeast, vec![signal], Some(delay)),
+        };
+        let after = self.after(g, mode);
+        let signals: Vec<Option<Expr>> =
+            signals.into_iter().map(|a| self.signal_expr(a, mode, out)).collect();
+        let delay = delay.map_or(Some(None), |a| self.concrete_delay(a, mode).map(Some));
+        let (after, delay) = (after?, delay?);
+        let signals: Vec<Expr> = signals.into_iter().collect::<Option<_>>()?;
+        let (scans, cycle) = (self.scope.scans(), self.scope.cycle());
+        match pattern::compile(kind, &signals, delay.as_ref(), scans, cycle.as_ref()) {
+            Ok((lhs, relation, rhs)) => {
+                Some(Goal { lhs, relation, rhs, after, pattern: Some(kind) })
+            }
+            Err(reason) => {
+                self.errors.push(SyntaxError::BadPattern { span: g.span, reason });
+                None
+            }
+        }
     }
 
     fn condition(&mut self, g: &AstGoal, out: &mut Out) -> Option<SideCondition> {
