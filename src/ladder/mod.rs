@@ -33,6 +33,12 @@ pub trait ScanSimulator {
     fn bit(&self, name: &str) -> bool;
     /// Whether the simulator computes the bit.
     fn is_known(&self, name: &str) -> bool;
+    /// The hidden memory of the program's `index`-th element (file order of the rung
+    /// model) after the last scan: a one-shot's or toggle's input; `None` when the
+    /// simulator cannot tell which of its memories that element is.
+    fn edge_memory(&self, _index: usize) -> Option<bool> {
+        None
+    }
 }
 
 impl ScanSimulator for Simulator {
@@ -44,6 +50,9 @@ impl ScanSimulator for Simulator {
     }
     fn is_known(&self, name: &str) -> bool {
         Simulator::is_known(self, name)
+    }
+    fn edge_memory(&self, index: usize) -> Option<bool> {
+        Simulator::edge_memory(self, index)
     }
 }
 
