@@ -70,7 +70,8 @@ const READ_BITS: &[&str] = &[
 const COIL_BITS: &[&str] =
     &["Ra", "Rb", "Rc", "Ya", "Yb", "Yc", "Ra", "Rb", "Ya", "pre_Ra", "OSR_r2", "TOGGLE_r3"];
 /// Timer accumulators; `Ra` and `Ya` are also bit names (separate name spaces).
-const TIMERS: &[&str] = &["Ta", "Tb", "Tc", "Ra", "Ya"];
+/// `T1` is also a stage of `SHIFT_REGISTER T 2`, and `Ta` a `PERSIST`ed variable.
+const TIMERS: &[&str] = &["Ta", "Tb", "Tc", "Ra", "Ya", "T1", "T1"];
 const COUNTERS: &[&str] = &["Ca", "Cb"];
 const INTS: &[&str] = &["va", "vb", "Ca", "Ta"];
 const CYCLES: &[u64] = &[10_000, 10_000, 1_000, 5_000, 20_000, 2_500, 100_000, 40_000, 3_333];
@@ -124,7 +125,8 @@ impl Gen {
     }
 
     fn coil(&mut self) -> String {
-        let name = self.rng.pick(COIL_BITS);
+        // Now and then a coil on a Modbus coil, which the compiler must refuse.
+        let name = if self.rng.chance(1) { "Mq" } else { self.rng.pick(COIL_BITS) };
         let (neg, set, reset, toggle) = match self.rng.below(12) {
             0..=4 => (0, 0, 0, 0),
             5 | 6 => (1, 0, 0, 0),
@@ -162,6 +164,9 @@ impl Gen {
                     "MOD va vb 3",
                     "SET_BIT va 1",
                     "SHIFT_REGISTER sr 3",
+                    "SHIFT_REGISTER T 2",
+                    "PERSIST Ta",
+                    "PERSIST T1",
                     "PERSIST va",
                     "NEG vb va",
                 ])
@@ -406,7 +411,7 @@ fn random_program(seed: u64) -> (String, BTreeSet<String>) {
 #[derive(Default, Debug, Clone)]
 struct Figures {
     programs: u64,
-    /// Programs the compiler refused (all with control flow).
+    /// Programs the compiler refused (all with control flow or a coil on an outside bit).
     refused: u64,
     scans: u64,
     /// Scans on which some simulator value was inexact (an unmodelled element's guess).
@@ -466,7 +471,7 @@ impl Figures {
     fn summary(&self) -> String {
         let total = self.checked + self.skipped();
         format!(
-            "{} programs ({} refused, all with control flow), {} scans ({} with inexact simulator values); {} hypotheses checked at \
+            "{} programs ({} refused, all with control flow or a coil on an outside bit), {} scans ({} with inexact simulator values); {} hypotheses checked at \
              every scan ({} hypothesis-scans; {} with fresh signals, {} of them under a timer or \
              memory), {} skipped ({:.3}%: {} too many fresh signals, {} too many states, {} delay); \
              timers: {} TON/TOF terms, {} hypotheses with a timer, on in {} of them, {} scans with a d/f on, {} scans with an f/d holding after \
@@ -502,6 +507,18 @@ fn has_control_flow(p: &LdProgram) -> bool {
     p.elements().any(|e| CONTROL_FLOW.contains(&e.kind.keyword()))
 }
 
+/// A coil on a bit the outside world writes (an input pin, a Modbus input or coil).
+fn writes_an_outside_bit(p: &LdProgram) -> bool {
+    p.elements().any(
+        |e| matches!(&e.kind, ElementKind::Coil { name, .. } if name.starts_with(['X', 'I', 'M'])),
+    )
+}
+
+/// What the compiler must refuse: control flow, and coils on bits written from outside.
+fn must_refuse(p: &LdProgram) -> bool {
+    has_control_flow(p) || writes_an_outside_bit(p)
+}
+
 fn parse(name: &str, text: &str) -> Result<LdProgram, Vec<LadderError>> {
     let mut s = Sources::new();
     let f = s.add(name, text.to_string());
@@ -535,17 +552,17 @@ fn check_program(label: &str, text: &str, program: &LdProgram, seed: u64) -> Fig
         Ok(c) => c,
         Err(errors) => {
             fig.refused = 1;
-            if !has_control_flow(program) {
-                fail(&mut fig, format!("refused without control flow: {errors:?}"));
+            if !must_refuse(program) {
+                fail(
+                    &mut fig,
+                    format!("refused without control flow or an outside bit: {errors:?}"),
+                );
             }
             return fig;
         }
     };
-    if has_control_flow(program) {
-        fail(
-            &mut fig,
-            "a program with control flow compiled; its equations assume a plain scan".into(),
-        );
+    if must_refuse(program) {
+        fail(&mut fig, "a program with control flow or a coil on an outside bit compiled".into());
         return fig;
     }
     // The bits the outside world writes.
@@ -1153,7 +1170,7 @@ fn random_properties_that_hold_are_proved_and_no_false_one_is() {
             .map(|(n, _)| n.clone())
             .filter(|n| !n.contains('\''))
             .collect();
-        if !exact || inputs.len() > 4 || bits.len() < 2 || has_control_flow(&program) {
+        if !exact || inputs.len() > 4 || bits.len() < 2 || must_refuse(&program) {
             continue;
         }
         let Some(scans) = reachable_scans(&program, &inputs, 2_000) else { continue };

@@ -497,9 +497,11 @@ fn simulate(
             // A one-shot's hidden memory is the simulator's memory of that element, never
             // a bit of the same name (the PLC has none).
             let value = match program.compiled.signals.get(n) {
-                Some(SignalKind::EdgeMemory { index, .. }) => sim.edge_memory(*index).ok_or_else(
-                    || format!("the simulator does not show the memory `{n}` of its one-shot"),
-                )?,
+                Some(SignalKind::EdgeMemory { index, .. }) => {
+                    sim.edge_memory(*index).ok_or_else(|| {
+                        format!("the simulator does not show the memory `{n}` of its one-shot")
+                    })?
+                }
                 _ => sim.bit(n),
             };
             seen.entry(n.clone()).or_default().push(value);

@@ -419,6 +419,25 @@ pub fn compile_with(
     let refused: Vec<LadderError> = program
         .elements()
         .filter_map(|e| {
+            if let ElementKind::Coil { name, .. } = &e.kind
+                && is_external_input(program, &canonical(name))
+            {
+                return Some(LadderError::Unsupported {
+                    span: e.span,
+                    keyword: "COIL".into(),
+                    reason: format!(
+                        "`{name}` is also written from outside the program ({}): what a rung \
+                         reads depends on when that write comes, which ii-prove does not \
+                         model; write a relay (`R…`) or an output (`Y…`) instead",
+                        match (&program.inputs, name.chars().next()) {
+                            (Some(_), _) => "a declared input",
+                            (None, Some('X')) => "an input pin",
+                            (None, Some('I')) => "a Modbus discrete input",
+                            _ => "a Modbus coil, which the master writes",
+                        }
+                    ),
+                });
+            }
             let ElementKind::Other { keyword, .. } = &e.kind else { return None };
             let (_, why) = CONTROL_FLOW.iter().find(|(k, _)| k == keyword)?;
             Some(LadderError::Unsupported {
@@ -562,8 +581,11 @@ impl<'a> Compiler<'a> {
 
     fn prepass(&mut self) {
         for e in self.program.elements() {
-            for n in e.names_read().into_iter().chain(e.names_written()) {
+            for n in e.names_read() {
                 self.taken.insert(canonical(n));
+            }
+            for n in e.names_written() {
+                self.taken.insert(canonical(&n));
             }
         }
         self.taken.extend(self.program.signals().iter().map(|s| canonical(s)));
@@ -581,7 +603,7 @@ impl<'a> Compiler<'a> {
                     }
                     _ => {
                         for n in e.names_written() {
-                            *int_writers.entry(canonical(n)).or_default() += 1;
+                            *int_writers.entry(canonical(&n)).or_default() += 1;
                         }
                     }
                 }
@@ -881,7 +903,7 @@ impl<'a> Compiler<'a> {
         let cycle = self.program.cycle_us;
         let why = match (kind, delay) {
             _ if self.shared_timers.contains(&canonical(name)) => Some(format!(
-                "the accumulator {name} is also written by another element (RES, MOVE, another timer)"
+                "the accumulator {name} is also written by another element (RES, MOVE, a SHIFT_REGISTER stage, PERSIST at power-up, another timer, …)"
             )),
             (TimerKind::Ton | TimerKind::Tof, TimerDelay::Variable(v)) => {
                 Some(format!("a delay given by the variable {v} is not a constant"))

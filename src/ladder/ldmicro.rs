@@ -517,20 +517,41 @@ impl Element {
         out
     }
 
-    /// Every variable name (bit or integer) the element writes. For [`ElementKind::Other`]
-    /// this is a best-effort guess (the first argument of destination-first elements).
-    pub fn names_written(&self) -> Vec<&str> {
+    /// Every variable name (bit or integer) the element writes, at a scan or at
+    /// start-up (formats/ldmicro.md §4): a `SHIFT_REGISTER name n` writes `name0` …
+    /// `name{n-1}`, a `PERSIST var` loads `var` at power-up; an element whose writes are
+    /// not listed there (SPI, I²C, steppers, pulse trains, encoders, unknown keywords) is
+    /// taken to write every name among its arguments.
+    pub fn names_written(&self) -> Vec<String> {
         match &self.kind {
             ElementKind::Coil { name, .. }
             | ElementKind::Timer { name, .. }
             | ElementKind::Counter { name, .. }
-            | ElementKind::Res { name } => vec![name],
-            ElementKind::Move { dest, .. } | ElementKind::Math { dest, .. } => vec![dest],
-            ElementKind::Other { keyword, args } if other_writes_first(keyword) => {
-                args.first().map(String::as_str).filter(|a| is_name(a)).into_iter().collect()
-            }
+            | ElementKind::Res { name } => vec![name.clone()],
+            ElementKind::Move { dest, .. } | ElementKind::Math { dest, .. } => vec![dest.clone()],
+            ElementKind::Other { keyword, args } => other_writes(keyword, args),
             _ => Vec::new(),
         }
+    }
+}
+
+/// What an [`ElementKind::Other`] element writes ([`Element::names_written`]).
+fn other_writes(keyword: &str, args: &[String]) -> Vec<String> {
+    let names = |list: &[String]| list.iter().filter(|a| is_name(a)).cloned().collect();
+    match keyword {
+        "SHIFT_REGISTER" => match (args.first(), args.get(1).and_then(|n| n.parse::<u32>().ok())) {
+            (Some(name), Some(stages)) => (0..stages).map(|k| format!("{name}{k}")).collect(),
+            _ => names(args),
+        },
+        "PERSIST" => names(&args[..args.len().min(1)]),
+        k if !other_writes_first(k) => Vec::new(),
+        "UART_RECV" | "READ_ADC" | "RANDOM" | "SEED_RANDOM" | "LOOK_UP_TABLE"
+        | "PIECEWISE_LINEAR" | "STRING" | "7SEGMENTS" | "9SEGMENTS" | "14SEGMENTS"
+        | "16SEGMENTS" | "BUS" | "BIN2BCD" | "BCD2BIN" | "SWAP" | "OPPOSITE" | "NOT" | "NEG"
+        | "SET_BIT" | "CLEAR_BIT" | "RSFR" | "TIME2COUNT" | "MOD" | "AND" | "OR" | "XOR"
+        | "SHL" | "SHR" | "SR0" | "ROL" | "ROR" => names(&args[..args.len().min(1)]),
+        "WSFR" | "SSFR" | "CSFR" | "TSFR" | "TCSFR" => Vec::new(),
+        _ => names(args),
     }
 }
 

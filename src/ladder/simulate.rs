@@ -128,6 +128,12 @@ impl Simulator {
                     sim.control_flow = true;
                     sim.unmodelled.insert(keyword.clone());
                 }
+                // A persistent variable starts with what EEPROM holds: any value.
+                ElementKind::Other { keyword, args } if keyword == "PERSIST" => {
+                    if let Some(var) = args.first() {
+                        sim.unknown.insert(var.clone());
+                    }
+                }
                 ElementKind::Timer { kind: TimerKind::Tof, name, delay, adjust, .. } => {
                     let (p, _) = sim.period(delay, *adjust);
                     sim.ints.insert(name.clone(), p);
@@ -477,9 +483,30 @@ impl Simulator {
             }
             // A label only marks a place to jump to.
             ElementKind::Other { keyword, .. } if keyword == "LABEL" => i,
-            ElementKind::Other { keyword, .. } => {
+            // ldmicro.md §4: on the rising edge of `i`, `name{k} := name{k-1}` for
+            // k = stages-1 down to 1 (`name0` is the program's to set).
+            ElementKind::Other { keyword, args } if keyword == "SHIFT_REGISTER" => {
+                let prev = self.remember(k, i);
+                let stages = args.get(1).and_then(|n| n.parse::<usize>().ok()).unwrap_or(0);
+                let (name, edge) = (args.first().cloned().unwrap_or_default(), i.on && !prev.on);
+                let edge_sure = i.sure && prev.sure;
+                for s in (1..stages).rev() {
+                    let (from, to) = (format!("{name}{}", s - 1), format!("{name}{s}"));
+                    let (v, v_sure) = (self.int(&from), self.is_known(&from));
+                    if edge {
+                        self.set_int(&to, v, v_sure && edge_sure);
+                    } else if !edge_sure {
+                        self.mark(&to, false);
+                    }
+                }
+                i
+            }
+            // Loaded from EEPROM at power-up (see `new`); saving it changes nothing here.
+            ElementKind::Other { keyword, .. } if keyword == "PERSIST" => i,
+            ElementKind::Other { keyword, args } => {
                 self.unmodelled.insert(keyword.clone());
-                for n in e.names_written() {
+                // Whatever it writes is not known: every name among its arguments.
+                for n in args.iter().filter(|a| a.starts_with(|c: char| c.is_ascii_alphabetic())) {
                     if i.on || !i.sure {
                         self.unknown.insert(n.to_string());
                     }
