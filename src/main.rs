@@ -103,6 +103,11 @@ struct Compilation {
     /// task's interval, else 20 ms with a warning).
     #[arg(long, value_parser = parse_cycle, value_name = "DURATION")]
     cycle: Option<u64>,
+    /// For a PLCopen XML program: retained (`retain`/`persistent`) variables start at
+    /// their declared initial values, as after a cold restart (default: with any value,
+    /// as after a warm restart).
+    #[arg(long)]
+    cold_start: bool,
 }
 
 /// A scan cycle in µs: an IEC literal (`T#20ms`) or a plain duration (`20ms`).
@@ -118,7 +123,11 @@ fn parse_cycle(text: &str) -> Result<u64, String> {
 
 impl Compilation {
     fn selection(&self) -> ii_prove::ladder::plcopen::Selection {
-        ii_prove::ladder::plcopen::Selection { pou: self.pou.clone(), cycle_us: self.cycle }
+        ii_prove::ladder::plcopen::Selection {
+            pou: self.pou.clone(),
+            cycle_us: self.cycle,
+            cold_start: self.cold_start,
+        }
     }
 
     fn model(&self) -> TimerModel {

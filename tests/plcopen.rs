@@ -28,8 +28,8 @@ fn temp(name: &str, content: &str) -> PathBuf {
 // ---------------------------------------------------------------- corpus
 
 /// Loaded / refused counts over `tests/data/plcopen/corpus` (recorded in the README).
-const CORPUS_LOADED: usize = 66;
-const CORPUS_REFUSED: usize = 18;
+const CORPUS_LOADED: usize = 68;
+const CORPUS_REFUSED: usize = 16;
 
 #[test]
 fn every_corpus_file_loads_or_is_refused_with_located_errors() {
@@ -373,4 +373,41 @@ fn the_simulator_times_ton_and_tof_as_matiec_on_a_10ms_tick() {
     let out =
         ii_prove(&["show", temp("ton15.xml", &timer_program("TON", "T#15ms")).to_str().unwrap()]);
     assert!(text(&out.stdout).contains("T_Q = 20ms/In"), "{}", text(&out.stdout));
+}
+
+/// Start-up state: a written BOOL declared TRUE starts TRUE; a retained one starts with
+/// any value (warm restart), or its declared value with `--cold-start`. The same seal-in
+/// (`Lamp := (Start + Lamp) · ¬Stop`) gets the verdicts the PLC gives in each case, every
+/// refutation confirmed by the PLCopen simulator from the same start.
+#[test]
+fn start_values_decide_the_verdicts() {
+    let dir = "tests/data/plcopen/start_state";
+    let file = |f: &str| format!("{dir}/{f}");
+    let (needs_start, until_stop) = (file("lamp_needs_start.ii"), file("lamp_until_stop.ii"));
+    for (xml, cold, needs, until) in [
+        ("plain.xml", false, "proved", "refuted"),
+        ("starts_on.xml", false, "refuted", "proved"),
+        ("retained.xml", false, "refuted", "refuted"),
+        ("retained.xml", true, "proved", "refuted"),
+    ] {
+        let program = file(xml);
+        let mut args = vec![program.as_str(), needs_start.as_str(), until_stop.as_str()];
+        if cold {
+            args.push("--cold-start");
+        }
+        let got = verdicts(&args);
+        let want = [("lamp_needs_start", needs), ("lamp_until_stop", until)];
+        let want: Vec<(String, String)> =
+            want.iter().map(|(n, v)| (n.to_string(), v.to_string())).collect();
+        assert_eq!(got, want, "{xml} (cold start: {cold})");
+    }
+    // The warm start is said, at the variable, and the counterexample chooses it.
+    let out = ii_prove(&[&file("retained.xml"), &needs_start]);
+    let (stdout, stderr) = (text(&out.stdout), text(&out.stderr));
+    assert!(
+        stderr.contains("`Lamp` is retained") && stderr.contains("retained.xml:13:"),
+        "{stderr}"
+    );
+    assert!(stdout.contains("Lamp_START"), "{stdout}");
+    assert!(stdout.contains("confirmed by exact evaluation and by the scan simulator"), "{stdout}");
 }

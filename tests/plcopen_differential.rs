@@ -438,8 +438,26 @@ fn random_program(seed: u64) -> String {
             writeln!(inputs, r#"<variable name="{n}"><type><BOOL/></type></variable>"#).unwrap();
         }
     }
-    writeln!(vars, "{}", bools(&[BITS, &[GHOST]].concat())).unwrap();
+    // Start-up state: some bits declared TRUE, some retained (any start value).
+    let mut retained = String::new();
+    for n in BITS {
+        match rng.below(8) {
+            0 => writeln!(
+                vars,
+                r#"<variable name="{n}"><type><BOOL/></type><initialValue><simpleValue value="TRUE"/></initialValue></variable>"#
+            )
+            .unwrap(),
+            1 => writeln!(retained, "{}", bools(&[n])).unwrap(),
+            _ => writeln!(vars, "{}", bools(&[n])).unwrap(),
+        }
+    }
+    writeln!(vars, "{}", bools(&[GHOST])).unwrap();
     vars.push_str(&decls);
+    let retained = if retained.is_empty() {
+        String::new()
+    } else {
+        format!("<localVars retain=\"true\">\n{retained}</localVars>")
+    };
     let cycle = rng.pick(&["T#10ms", "T#7ms", "T#20ms"]).to_string();
     let input_list = if inputs.is_empty() {
         String::new()
@@ -453,7 +471,7 @@ fn random_program(seed: u64) -> String {
 <contentHeader name="random"><coordinateInfo><fbd><scaling x="1" y="1"/></fbd><ld><scaling x="1" y="1"/></ld><sfc><scaling x="1" y="1"/></sfc></coordinateInfo></contentHeader>
 <types><dataTypes/><pous>
 <pou name="main" pouType="program"><interface>{input_list}<localVars>
-{vars}</localVars></interface>
+{vars}</localVars>{retained}</interface>
 <body><{lang}>
 {body}</{lang}></body></pou>
 {fb_pou}

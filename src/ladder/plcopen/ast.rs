@@ -104,6 +104,9 @@ pub struct Var {
     pub address: Option<String>,
     /// The `simpleValue` of its initial value.
     pub init: Option<String>,
+    /// Declared in a `retain="true"` or `persistent="true"` list: after a warm restart
+    /// it keeps the value it had.
+    pub retain: bool,
     /// The `variable` element.
     pub span: Span,
 }

@@ -753,6 +753,23 @@ impl<'p> Lower<'p> {
 pub fn lower(p: &PlcProgram) -> Result<Lowered, Vec<PlcError>> {
     let mut l = Lower::new(p);
     let file_span = p.pou.span;
+    // Start values: on the first scan (STARTED still 0) each such variable is set to its
+    // start value before any statement reads it; STARTED is 1 from then on.
+    if let Some(started) = &p.started {
+        for (x, start) in &p.starts {
+            let first = contact(started, true, file_span);
+            match start {
+                None => l.coil(first, x, CoilKind::Set, file_span),
+                Some(s) => {
+                    let on = and(vec![first.clone(), contact(s, false, file_span)]);
+                    l.coil(on, x, CoilKind::Set, file_span);
+                    let off = and(vec![first, contact(s, true, file_span)]);
+                    l.coil(off, x, CoilKind::Reset, file_span);
+                }
+            }
+        }
+        l.coil(one(), started, CoilKind::Normal, file_span);
+    }
     for (x, latch) in &p.latches {
         l.coil(contact(latch, false, file_span), x, CoilKind::Normal, file_span);
     }

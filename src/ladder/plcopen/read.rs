@@ -317,6 +317,8 @@ impl Reader<'_> {
     }
 
     fn vars(&mut self, list: Node, class: VarClass, out: &mut Vec<Var>) {
+        let kept = |a: &str| list.attribute(a).is_some_and(|v| matches!(v, "true" | "1"));
+        let retain = kept("retain") || kept("persistent");
         for v in children(list, "variable") {
             let name = self.required(v, "name");
             let ty = match child(v, "type").and_then(|t| t.children().find(|c| c.is_element())) {
@@ -332,7 +334,7 @@ impl Reader<'_> {
                 .and_then(|s| s.attribute("value"))
                 .map(str::to_string);
             let address = v.attribute("address").map(str::to_string);
-            out.push(Var { name, class, ty, address, init, span: self.tag(v) });
+            out.push(Var { name, class, ty, address, init, retain, span: self.tag(v) });
         }
     }
 

@@ -206,6 +206,13 @@ pub struct PlcProgram {
     /// from outside at the start of the scan (`In0_IN`); reads before the program's
     /// first write see the latch, not the previous scan.
     pub latches: BTreeMap<String, String>,
+    /// Written BOOLs that do not start FALSE: variable → `None` when it starts TRUE (its
+    /// declared initial value), or the hidden input whose value it starts with (a
+    /// retained variable after a warm restart: any value, `Lamp_START`).
+    pub starts: BTreeMap<String, Option<String>>,
+    /// With `starts`: the hidden relay that is 0 before the first scan and 1 from its
+    /// end on (`STARTED`), so that the first scan can be told from the others.
+    pub started: Option<String>,
     /// User function blocks inlined per instance: block index → the instance's body,
     /// its names prefixed with the instance's (`Pump0_Running`).
     pub subs: BTreeMap<usize, PlcProgram>,
@@ -220,6 +227,9 @@ pub struct Selection {
     pub pou: Option<String>,
     /// `--cycle`, in µs.
     pub cycle_us: Option<u64>,
+    /// `--cold-start`: retained variables start at their declared initial values, as
+    /// after a cold restart (by default they start with any value, as after a warm one).
+    pub cold_start: bool,
 }
 
 /// The cycle used when neither the task nor the command line gives one (Beremiz's default task interval is 20 ms... the OpenPLC runtime's default tick).
@@ -460,6 +470,7 @@ pub fn select(project: &Project, sel: &Selection) -> Result<PlcProgram, Vec<PlcE
     }
     let mut program = check_pou(project, pou, cycle_us, 0)?;
     warnings.append(&mut program.warnings);
+    program.start_retained(sel.cold_start, &mut warnings);
     program.warnings = warnings;
     Ok(program)
 }
@@ -558,6 +569,8 @@ fn check_pou(
         operands: BTreeMap::new(),
         inputs,
         latches: BTreeMap::new(),
+        starts: BTreeMap::new(),
+        started: None,
         subs: BTreeMap::new(),
         warnings: Vec::new(),
     };
@@ -881,22 +894,26 @@ fn check_pou(
             _ => None,
         })
         .collect();
-    // A BOOL declared TRUE: unwritten, it is a free input (sound); written, its first
-    // scan would read TRUE where the scan model starts every bit at 0.
-    for v in program.vars.values() {
-        if v.ty == Ty::Bool
-            && v.init.as_deref().is_some_and(is_true)
-            && !program.inputs.contains(&v.name)
-        {
-            if written.contains(&v.name) {
-                errors.push(PlcError::Unsupported {
-                    span: v.span,
-                    what: format!("the initial value TRUE of `{}`", v.name),
-                    reason: "the program writes it, and the scan model starts every written bit at FALSE".into(),
-                });
-            } else {
-                program.inputs.insert(v.name.clone());
-            }
+    // A BOOL declared TRUE, or retained (any value after a warm restart): unwritten,
+    // it is a free input (sound); written, it starts with that value before the first
+    // scan (`starts`, which the lowering sets on the first scan).
+    let vars: Vec<Var> = program.vars.values().cloned().collect();
+    for v in vars {
+        let starts_true = v.init.as_deref().is_some_and(is_true);
+        if v.ty != Ty::Bool || !(starts_true || v.retain) || program.inputs.contains(&v.name) {
+            continue;
+        }
+        if !written.contains(&v.name) {
+            program.inputs.insert(v.name.clone());
+        } else if v.retain {
+            let start = hide(&mut taken, format!("{}_START", v.name));
+            program.inputs.insert(start.clone());
+            program.starts.insert(v.name.clone(), Some(start));
+        } else {
+            program.starts.insert(v.name.clone(), None);
+        }
+        if program.started.is_none() {
+            program.started = Some(hide(&mut taken, "STARTED".into()));
         }
     }
     if !errors.is_empty() {
@@ -968,7 +985,7 @@ fn inline(
         Ok(c) => c,
         Err(e) => return Some(Err(e)),
     };
-    if !child.latches.is_empty() {
+    if !child.latches.is_empty() || !child.starts.is_empty() {
         return None;
     }
     warnings.append(&mut child.warnings);
@@ -977,6 +994,42 @@ fn inline(
 }
 
 impl PlcProgram {
+    /// After a cold restart (`cold`) a retained variable starts at its declared value;
+    /// otherwise with any value. Either way a note says which, at the variable.
+    fn start_retained(&mut self, cold: bool, warnings: &mut Vec<PlcError>) {
+        let retained: Vec<(String, String)> = self
+            .starts
+            .iter()
+            .filter_map(|(x, s)| s.as_ref().map(|s| (x.clone(), s.clone())))
+            .collect();
+        for (x, start) in retained {
+            let Some(v) = self.vars.values().find(|v| v.name == x) else { continue };
+            let declared = v.init.as_deref().is_some_and(is_true);
+            let message = if cold {
+                format!(
+                    "`{x}` is retained; with --cold-start it starts at its declared value \
+                     ({})",
+                    if declared { "TRUE" } else { "FALSE" }
+                )
+            } else {
+                format!(
+                    "`{x}` is retained: after a warm restart it starts with the value it had, \
+                     so it may be TRUE or FALSE at the first scan (`{start}`); --cold-start \
+                     starts it at its declared value"
+                )
+            };
+            warnings.push(PlcError::Note { span: v.span, message });
+            if cold {
+                self.inputs.remove(&start);
+                if declared {
+                    self.starts.insert(x, None);
+                } else {
+                    self.starts.remove(&x);
+                }
+            }
+        }
+    }
+
     /// Prefixes every name this body owns (not the globals it refers to), recursively.
     fn prefix_names(&mut self, prefix: &str) {
         let mut map: BTreeMap<String, String> = BTreeMap::new();

@@ -56,7 +56,7 @@ impl PlcSimulator {
             });
             bits.insert(v.name.clone(), init);
         }
-        for n in p.hidden.values().chain(p.latches.values()) {
+        for n in p.hidden.values().chain(p.latches.values()).chain(&p.started) {
             bits.insert(n.clone(), false);
         }
         let subs: BTreeMap<usize, PlcSimulator> =
@@ -86,12 +86,24 @@ impl PlcSimulator {
                 self.bits.insert(n.clone(), *v);
             }
         }
+        // A retained variable starts with the value it kept (given as its start input).
+        if self.scans == 0 {
+            for (x, start) in &self.p.starts {
+                if let Some(s) = start {
+                    let v = self.bit(s);
+                    self.bits.insert(x.clone(), v);
+                }
+            }
+        }
         // A latched input is the outside value at the start of the scan.
         for (x, latch) in &self.p.latches {
             let v = self.bit(latch);
             self.bits.insert(x.clone(), v);
         }
         self.body();
+        if let Some(started) = &self.p.started {
+            self.bits.insert(started.clone(), true);
+        }
         self.scans += 1;
     }
 
