@@ -411,3 +411,21 @@ fn start_values_decide_the_verdicts() {
     assert!(stdout.contains("Lamp_START"), "{stdout}");
     assert!(stdout.contains("confirmed by exact evaluation and by the scan simulator"), "{stdout}");
 }
+
+/// An edge contact read on two paths: Beremiz's `PLCGenerator.py` makes one `R_TRIG` per
+/// path (`AddTrigger`, called where each statement is generated), so with `A` written
+/// between the two coils `B` and `C` differ; the program is refused at the contact, not
+/// compiled with one shared detector (which proved `B = C`).
+#[test]
+fn an_edge_contact_on_two_paths_is_refused_at_the_contact() {
+    let out = ii_prove(&[
+        "--color",
+        "never",
+        "show",
+        "tests/data/plcopen/refused/edge_contact_two_paths.xml",
+    ]);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("an edge contact on more than one path"), "{stderr}");
+    assert!(stderr.contains("edge_contact_two_paths.xml:17:9"), "{stderr}");
+}

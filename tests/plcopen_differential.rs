@@ -21,7 +21,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use ii_prove::diag::Sources;
-use ii_prove::ladder::plcopen::{PlcSimulator, Selection, lower, read_plcopen, select};
+use ii_prove::ladder::plcopen::{PlcError, PlcSimulator, Selection, lower, read_plcopen, select};
 use ii_prove::ladder::{SignalKind, compile};
 use ii_prove::term::Term;
 
@@ -507,7 +507,10 @@ fn check(xml: &str, seed: u64, fig: &mut Figures, must_load: bool) {
         Ok(x) => x,
         Err(e) => {
             fig.refused += 1;
-            if must_load {
+            // An edge contact read on several paths is refused (Beremiz makes one edge
+            // detector per path); the generator wires contacts to several readers.
+            let per_path = |x: &PlcError| matches!(x, PlcError::Unsupported { what, .. } if what == "an edge contact on more than one path");
+            if must_load && !e.iter().all(per_path) {
                 fig.failures.push(format!("seed {seed}: refused: {e:?}\n{xml}"));
             }
             return;
@@ -678,6 +681,7 @@ fn random_programs_agree_with_the_simulator() {
     );
     assert!(fig.failures.is_empty(), "{}", fig.failures.join("\n\n"));
     assert!(fig.timer_fired > 0 || fig.programs < 50, "no timer ever fired");
+    assert!(fig.refused * 10 <= fig.programs, "more than a tenth refused: {}", fig.refused);
 }
 
 #[test]

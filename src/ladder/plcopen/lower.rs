@@ -464,6 +464,19 @@ impl<'p> Lower<'p> {
                     None => fresh("CONTACT", &var.0, var.1),
                 };
                 let v = if *negated { not(v) } else { v };
+                // Beremiz's PLCGenerator.py makes one R_TRIG/F_TRIG per path through an
+                // edge contact, each called where its statement is computed: two paths
+                // see the variable at two places of the scan, with two memories.
+                if *edge != Edge::None && !self.single_use(k) {
+                    self.errors.push(PlcError::Unsupported {
+                        span: o.span,
+                        what: "an edge contact on more than one path".into(),
+                        reason: "the generated code makes one edge detector per path, each \
+                                 called at its own statement and with its own memory, which \
+                                 ii-prove does not model yet; give each path its own contact"
+                            .into(),
+                    });
+                }
                 let v = self.edge(k, "", *edge, v, o.span);
                 and(vec![pred, v])
             }
