@@ -108,6 +108,20 @@ struct Compilation {
     /// as after a warm restart).
     #[arg(long)]
     cold_start: bool,
+    /// For a PLCopen XML program whose LD/FBD positions and document order give
+    /// different statement orders: `layout` (by position: Beremiz before 2022, the
+    /// OpenPLC editor) or `document` (Beremiz since 2022). Without it such a file is
+    /// refused.
+    #[arg(long, value_enum, value_name = "ORDER")]
+    order: Option<Order>,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum Order {
+    /// By position: rows top to bottom, each left to right.
+    Layout,
+    /// As the objects appear in the file.
+    Document,
 }
 
 /// A scan cycle in µs: an IEC literal (`T#20ms`) or a plain duration (`20ms`).
@@ -127,6 +141,10 @@ impl Compilation {
             pou: self.pou.clone(),
             cycle_us: self.cycle,
             cold_start: self.cold_start,
+            order: self.order.map(|o| match o {
+                Order::Layout => ii_prove::ladder::plcopen::StatementOrder::Layout,
+                Order::Document => ii_prove::ladder::plcopen::StatementOrder::Document,
+            }),
         }
     }
 

@@ -28,8 +28,8 @@ fn temp(name: &str, content: &str) -> PathBuf {
 // ---------------------------------------------------------------- corpus
 
 /// Loaded / refused counts over `tests/data/plcopen/corpus` (recorded in the README).
-const CORPUS_LOADED: usize = 68;
-const CORPUS_REFUSED: usize = 16;
+const CORPUS_LOADED: usize = 61;
+const CORPUS_REFUSED: usize = 23;
 
 #[test]
 fn every_corpus_file_loads_or_is_refused_with_located_errors() {
@@ -410,6 +410,40 @@ fn start_values_decide_the_verdicts() {
     );
     assert!(stdout.contains("Lamp_START"), "{stdout}");
     assert!(stdout.contains("confirmed by exact evaluation and by the scan simulator"), "{stdout}");
+}
+
+/// Every `refused/NAME.xml` fails to load with exit status 2 and nothing on standard
+/// output, and the error contains every line of `NAME.expected` (message, location).
+#[test]
+fn programs_whose_meaning_depends_on_the_tool_are_refused_with_a_located_error() {
+    let files = common::files_with(&root().join("tests/data/plcopen/refused"), "xml");
+    assert!(files.len() >= 7, "only {} cases", files.len());
+    for path in files {
+        let expected = std::fs::read_to_string(path.with_extension("expected"))
+            .unwrap_or_else(|_| panic!("{} has no .expected file", path.display()));
+        let out = ii_prove(&["show", path.to_str().unwrap()]);
+        let stderr = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{}: {stderr}", path.display());
+        assert!(out.stdout.is_empty(), "{}", path.display());
+        assert!(stderr.contains('^'), "{stderr}");
+        for fragment in expected.lines().filter(|l| !l.trim().is_empty()) {
+            assert!(stderr.contains(fragment), "expected `{fragment}` in\n{stderr}");
+        }
+    }
+}
+
+/// Where positions and document order give different programs, `--order` chooses the
+/// editor: by position `Z` is written before `Y` reads it, in document order after.
+#[test]
+fn order_chooses_the_editor() {
+    let xml = "tests/data/plcopen/refused/order_depends_on_editor.xml";
+    let props = temp("order.ii", "property Same_scan: Y = In\n");
+    let props = props.to_str().unwrap();
+    let layout = ii_prove(&["--order", "layout", xml, props]);
+    assert_eq!(layout.status.code(), Some(0), "{}", text(&layout.stdout));
+    let document = ii_prove(&["--order", "document", xml, props]);
+    assert_eq!(document.status.code(), Some(1), "{}", text(&document.stdout));
+    assert!(text(&document.stdout).contains("refuted"), "{}", text(&document.stdout));
 }
 
 /// An edge contact read on two paths: Beremiz's `PLCGenerator.py` makes one `R_TRIG` per

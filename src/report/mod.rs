@@ -804,6 +804,12 @@ pub fn load_program_with(
         let project = plcopen::read_plcopen(sources, file).map_err(plc_diagnostics)?;
         let plc = plcopen::select(&project, selection).map_err(plc_diagnostics)?;
         let lowered = plcopen::lower(&plc).map_err(plc_diagnostics)?;
+        if selection.order.is_none()
+            && let Some(dispute) = plc.order_dispute()
+            && !same_scan(&lowered.ld, &plc.with_order(plcopen::StatementOrder::Document), options)
+        {
+            return Err(plc_diagnostics(vec![dispute]));
+        }
         let notes: Vec<WarningReport> = lowered
             .warnings
             .iter()
@@ -831,6 +837,49 @@ pub fn load_program_with(
         location: Some(Location::of(sources, w.span)),
     }));
     Ok(LoadedProgram { program, plcopen: plc, notes, compiled, warnings, located })
+}
+
+/// Whether `other` lowers and compiles to the same equations as `program` (up to their
+/// names and order): the two statement orders then do the same on every scan.
+fn same_scan(
+    program: &crate::ladder::LdProgram,
+    other: &crate::ladder::plcopen::PlcProgram,
+    options: &crate::ladder::CompileOptions,
+) -> bool {
+    use crate::ladder::SignalKind;
+    let equations = |p: &crate::ladder::LdProgram| {
+        let compiled = crate::ladder::compile_with(p, options).ok()?;
+        // Compiler-made names carry their rung number: compare them by what they stand for.
+        let canonical = |name: &str| match compiled.signals.get(name) {
+            Some(SignalKind::Fresh { element, .. }) => format!("fresh[{element}]"),
+            Some(SignalKind::EdgeMemory { element, .. }) => format!("edge[{element}]"),
+            _ => name.to_string(),
+        };
+        let mut all: Vec<String> = compiled
+            .hypotheses
+            .iter()
+            .map(|h| {
+                let side = |e| crate::syntax::term_to_string(e, crate::syntax::Notation::Ascii);
+                let text = format!("{} {:?} {}", side(&h.lhs), h.rel, side(&h.rhs));
+                let mut out = String::new();
+                let mut word = String::new();
+                for c in text.chars().chain(std::iter::once(' ')) {
+                    if c.is_alphanumeric() || c == '_' {
+                        word.push(c);
+                    } else {
+                        out.push_str(&canonical(&std::mem::take(&mut word)));
+                        out.push(c);
+                    }
+                }
+                out
+            })
+            .collect();
+        all.sort();
+        Some(all)
+    };
+    let Ok(lowered) = crate::ladder::plcopen::lower(other) else { return false };
+    let (a, b) = (equations(program), equations(&lowered.ld));
+    a.is_some() && a == b
 }
 
 /// The session for `ii-prove PROGRAM.ld PROPS.ii…`: the properties are goals about the

@@ -52,6 +52,10 @@ struct Lower<'p> {
     rungs: Vec<Rung>,
     called: BTreeSet<usize>,
     in_progress: BTreeSet<usize>,
+    /// While the inputs of a block with an `executionOrderId` are computed: blocks not
+    /// yet called are not called, their outputs read as they stand (Beremiz's
+    /// `GenerateBlock(order=True)`); they run at their own place in the order.
+    no_pull: bool,
     trigs: BTreeSet<(usize, String)>,
     visiting: BTreeSet<usize>,
     errors: Vec<PlcError>,
@@ -187,6 +191,7 @@ impl<'p> Lower<'p> {
             rungs: Vec::new(),
             called: BTreeSet::new(),
             in_progress: BTreeSet::new(),
+            no_pull: false,
             trigs: BTreeSet::new(),
             visiting: BTreeSet::new(),
             errors: Vec::new(),
@@ -480,6 +485,19 @@ impl<'p> Lower<'p> {
                 let v = self.edge(k, "", *edge, v, o.span);
                 and(vec![pred, v])
             }
+            ObjKind::Coil { input, .. } if input.conns.len() > 1 => {
+                // Beremiz's generator reads a coil's wires as a series when the coil's
+                // output feeds another element (`GeneratePaths` appends them as a list).
+                self.errors.push(PlcError::Unsupported {
+                    span: o.span,
+                    what: "a coil fed by several wires whose output feeds another element".into(),
+                    reason: "Beremiz and OpenPLC generate code that ANDs the wires into this coil \
+                             where the power flow ORs them; put the OR before a contact, or \
+                             feed the next element from the wires directly"
+                        .into(),
+                });
+                el(ElementKind::Open, o.span)
+            }
             ObjKind::Coil { input, .. } | ObjKind::Connector { input, .. } => {
                 self.pin_power(input, k)
             }
@@ -501,10 +519,14 @@ impl<'p> Lower<'p> {
 
     /// The value of output `pin` of block `k` (calling the block at its first use this scan).
     fn block_output(&mut self, k: usize, pin: &str, span: Span) -> Circuit {
-        if self.in_progress.contains(&k) {
+        let before = self.no_pull && !self.called.contains(&k);
+        if self.in_progress.contains(&k) || before {
+            // Read before its call: its output is the variable as it stands.
             self.fed_back.insert(k);
         }
-        self.call(k);
+        if !before {
+            self.call(k);
+        }
         if let Some(c) = self.inlined.get(&k).filter(|_| !pin.eq_ignore_ascii_case("ENO")) {
             return c.clone();
         }
@@ -540,6 +562,7 @@ impl<'p> Lower<'p> {
         let Some(o) = p.obj(k) else { return };
         let ObjKind::Block { type_name, instance, inputs, .. } = &o.kind else { return };
         let span = o.span;
+        let outer = std::mem::replace(&mut self.no_pull, o.order > 0);
         let runs = self.en_const(k, 0);
         let std = Std::of(type_name).filter(|_| runs);
         // Inputs are computed first, `EN` then the others in document order, as the scan
@@ -679,6 +702,7 @@ impl<'p> Lower<'p> {
             // Not interpreted (or run under a wired EN): only its inputs were computed.
             None => {}
         }
+        self.no_pull = outer;
         self.in_progress.remove(&k);
         self.called.insert(k);
     }

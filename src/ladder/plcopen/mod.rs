@@ -17,7 +17,7 @@ pub mod simulate;
 use crate::diag::{Report, Severity, Span};
 
 pub use ast::*;
-pub use lower::lower;
+pub use lower::{EdgeKey, Lowered, lower};
 pub use read::*;
 pub use select::*;
 pub use simulate::PlcSimulator;

@@ -193,6 +193,11 @@ pub struct PlcProgram {
     pub order: Vec<usize>,
     /// The rule that produced `order`.
     pub rule: OrderRule,
+    /// The same statements in the order Beremiz since its Python 3 port (2022) runs
+    /// them: ordered ones first, then outputs, blocks and connectors in document order
+    /// (its position comparator compares nothing since then). Equal to `order` unless
+    /// positions reorder them.
+    pub document_order: Vec<usize>,
     /// Hidden variable names: `(object, pin)` → name (pin `""` for a contact's or variable's edge).
     pub hidden: BTreeMap<(usize, String), String>,
     /// Resolved operands of contacts, coils and variable objects, by object index.
@@ -230,6 +235,19 @@ pub struct Selection {
     /// `--cold-start`: retained variables start at their declared initial values, as
     /// after a cold restart (by default they start with any value, as after a warm one).
     pub cold_start: bool,
+    /// `--order`: which editor's statement order, when positions and document order
+    /// differ (by default such a file is refused if the two orders compile differently).
+    pub order: Option<StatementOrder>,
+}
+
+/// The statement order of LD/FBD bodies whose positions and document order differ.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StatementOrder {
+    /// By position, rows top to bottom, each left to right (Beremiz before its 2022
+    /// Python 3 port, the OpenPLC editor built on it).
+    Layout,
+    /// Document order (Beremiz since 2022).
+    Document,
 }
 
 /// The cycle used when neither the task nor the command line gives one (Beremiz's default task interval is 20 ms... the OpenPLC runtime's default tick).
@@ -469,6 +487,9 @@ pub fn select(project: &Project, sel: &Selection) -> Result<PlcProgram, Vec<PlcE
         return Err(errors);
     }
     let mut program = check_pou(project, pou, cycle_us, 0)?;
+    if let Some(choice) = sel.order {
+        program.choose_order(choice);
+    }
     warnings.append(&mut program.warnings);
     program.start_retained(sel.cold_start, &mut warnings);
     program.warnings = warnings;
@@ -565,6 +586,7 @@ fn check_pou(
         index,
         order: Vec::new(),
         rule: OrderRule::Document,
+        document_order: Vec::new(),
         hidden: BTreeMap::new(),
         operands: BTreeMap::new(),
         inputs,
@@ -649,7 +671,10 @@ fn check_pou(
                     Err(e) => errors.push(e),
                 }
             }
-            ObjKind::InVar { expr, edge, .. } => {
+            ObjKind::InVar { expr, edge, negated } => {
+                if *negated || *edge != Edge::None {
+                    errors.push(variable_modifier(o, if *negated { "negated" } else { "edge" }));
+                }
                 match program.operand(&expr.0, expr.1, &spellings) {
                     Ok(op) => {
                         program.operands.insert(k, op);
@@ -663,12 +688,13 @@ fn check_pou(
             }
             ObjKind::OutVar { expr, input, negated, storage, edge } => {
                 pins.push(input);
-                if *negated && (*storage != Storage::None || *edge != Edge::None) {
-                    errors.push(PlcError::Unsupported {
-                        span: o.span,
-                        what: "a negated output with a storage or edge modifier".into(),
-                        reason: "the combination has no agreed meaning".into(),
-                    });
+                if *negated || *storage != Storage::None || *edge != Edge::None {
+                    let what = match (negated, storage) {
+                        (true, _) => "negated",
+                        (_, Storage::None) => "edge",
+                        _ => "storage",
+                    };
+                    errors.push(variable_modifier(o, what));
                 }
                 match program.operand(&expr.0, expr.1, &spellings) {
                     Ok(Operand::Const(_) | Operand::Duration(_) | Operand::Member(..)) => errors
@@ -696,6 +722,7 @@ fn check_pou(
             ObjKind::Connector { input, .. } => pins.push(input),
             ObjKind::Block { type_name, instance, inputs, outputs } => {
                 pins.extend(inputs);
+                errors.extend(unconnected_pins(o, type_name, inputs));
                 if let Some(p) = outputs.iter().find(|p| p.expr.is_some()) {
                     errors.push(PlcError::Unsupported {
                         span: p.span,
@@ -1197,6 +1224,48 @@ impl PlcProgram {
         }
     }
 
+    /// This program with the statements of every body in the order `choice` gives.
+    pub fn with_order(&self, choice: StatementOrder) -> PlcProgram {
+        let mut p = self.clone();
+        p.choose_order(choice);
+        p
+    }
+
+    fn choose_order(&mut self, choice: StatementOrder) {
+        if choice == StatementOrder::Document && self.order != self.document_order {
+            self.order = self.document_order.clone();
+            self.rule = OrderRule::Document;
+        }
+        for child in self.subs.values_mut() {
+            child.choose_order(choice);
+        }
+    }
+
+    /// Where the two editors' statement orders first differ, in this body or an inlined
+    /// one: the error to report if the difference changes what the program does.
+    pub fn order_dispute(&self) -> Option<PlcError> {
+        let first = self.order.iter().zip(&self.document_order).find(|(a, b)| a != b);
+        if let Some((a, b)) = first {
+            let (oa, ob) = (&self.objects()[*a], &self.objects()[*b]);
+            return Some(PlcError::Unsupported {
+                span: oa.span,
+                what: format!(
+                    "a statement order that depends on the editor (this `{}` runs before the \
+                     `{}` {} by position, after it in document order, and the program computes \
+                     differently)",
+                    oa.tag(),
+                    ob.tag(),
+                    ob.id
+                ),
+                reason: "Beremiz before 2022 and the OpenPLC editor run statements by position, \
+                         Beremiz since 2022 in document order; choose with `--order layout` or \
+                         `--order document`"
+                    .into(),
+            });
+        }
+        self.subs.values().find_map(PlcProgram::order_dispute)
+    }
+
     /// Orders the statements as Beremiz's `PLCGenerator.ComputeProgram` does (§8).
     fn order_statements(&mut self, warnings: &mut Vec<PlcError>) {
         let objects = self.objects();
@@ -1260,11 +1329,88 @@ impl PlcProgram {
             });
         }
         let mut order: Vec<usize> = ordered.into_iter().map(|(_, k)| k).collect();
+        let mut document = order.clone();
+        document.extend(outputs.iter().copied().collect::<BTreeSet<usize>>());
+        document.extend(blocks.iter().copied().collect::<BTreeSet<usize>>());
+        document.extend(&connectors);
+        self.document_order = document;
         order.extend(outputs);
         order.extend(blocks);
         order.extend(connectors);
         self.order = order;
         self.rule = rule;
+    }
+}
+
+/// The unconnected input pins of a block whose meaning depends on the tool: Beremiz's
+/// generator leaves an unconnected pin out of the call (and drops a function none of
+/// whose inputs is connected, its output then keeping its value), where the standard
+/// gives the pin its default value, FALSE, and applies its modifiers to it.
+fn unconnected_pins(o: &Obj, type_name: &str, inputs: &[PinIn]) -> Vec<PlcError> {
+    let open = |p: &&PinIn| p.conns.is_empty() && p.expr.is_none();
+    let data: Vec<&PinIn> = inputs.iter().filter(|p| !p.name.eq_ignore_ascii_case("EN")).collect();
+    let mut errors = Vec::new();
+    for p in inputs.iter().filter(open) {
+        if p.negated || p.edge != Edge::None {
+            errors.push(PlcError::Unsupported {
+                span: p.span,
+                what: format!("a modifier on the unconnected pin `{}`", p.name),
+                reason: "Beremiz and OpenPLC leave an unconnected pin out of the call, so the \
+                         modifier is lost; the standard applies it to FALSE; connect the pin \
+                         or remove the modifier"
+                    .into(),
+            });
+        }
+    }
+    let function = Std::of(type_name).is_some_and(|s| !s.is_fb());
+    if function && !data.is_empty() && data.iter().all(open) {
+        errors.push(PlcError::Unsupported {
+            span: o.span,
+            what: format!("a `{type_name}` block with no input connected"),
+            reason: "Beremiz and OpenPLC drop the call (its output keeps its value); the \
+                     standard computes it from FALSE inputs; connect an input or remove it"
+                .into(),
+        });
+    } else if Std::of(type_name) == Some(Std::And)
+        && let Some(p) = data.iter().find(|p| open(p))
+    {
+        errors.push(PlcError::Unsupported {
+            span: p.span,
+            what: format!("the unconnected input `{}` of an AND block", p.name),
+            reason: "Beremiz and OpenPLC leave it out of the AND, the standard gives it FALSE \
+                     (the AND is then FALSE); connect it or remove the pin"
+                .into(),
+        });
+    }
+    // matiec compiles a formal call of an extensible function with a gap (IN1, IN3) as a
+    // call with fewer arguments than it counts: the result is undefined.
+    if matches!(Std::of(type_name), Some(Std::Or | Std::Xor))
+        && let Some(p) = data
+            .iter()
+            .zip(data.iter().skip(1))
+            .find_map(|(a, b)| (open(a) && !open(b)).then_some(*a))
+    {
+        errors.push(PlcError::Unsupported {
+            span: p.span,
+            what: format!("the unconnected input `{}` before a connected one", p.name),
+            reason: format!(
+                "matiec compiles such a `{type_name}` call to code that reads an argument it \
+                 was not given; connect it or remove the pin"
+            ),
+        });
+    }
+    errors
+}
+
+/// A modifier on a variable object: its meaning depends on the tool that runs the file.
+fn variable_modifier(o: &Obj, what: &str) -> PlcError {
+    PlcError::Unsupported {
+        span: o.span,
+        what: format!("a `{what}` modifier on an `{}`", o.tag()),
+        reason: "Beremiz and OpenPLC generate code that ignores it (their generator applies \
+                 modifiers only to contacts, coils and block pins) while other tools apply it; \
+                 use a NOT or R_TRIG/F_TRIG block, or the modifier on the block's pin"
+            .into(),
     }
 }
 

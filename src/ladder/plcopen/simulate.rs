@@ -34,6 +34,9 @@ pub struct PlcSimulator {
     /// Per scan: blocks called, edge values computed.
     called: BTreeSet<usize>,
     in_progress: BTreeSet<usize>,
+    /// While the inputs of a block with an `executionOrderId` are read: blocks not yet
+    /// called are not called (their outputs are read as they stand).
+    no_pull: bool,
     edges: BTreeMap<(usize, String), bool>,
     visiting: BTreeSet<usize>,
     /// Blocks whose EN was off in this scan (their outputs kept).
@@ -72,6 +75,7 @@ impl PlcSimulator {
             memory: BTreeMap::new(),
             called: BTreeSet::new(),
             in_progress: BTreeSet::new(),
+            no_pull: false,
             edges: BTreeMap::new(),
             visiting: BTreeSet::new(),
             scans: 0,
@@ -279,7 +283,12 @@ impl PlcSimulator {
 
     /// Output `pin` of block `k`, calling it at its first use.
     fn output(&mut self, k: usize, pin: &str) -> bool {
-        let enabled = self.call(k);
+        let enabled = if self.no_pull && !self.called.contains(&k) && !self.in_progress.contains(&k)
+        {
+            true
+        } else {
+            self.call(k)
+        };
         if pin.eq_ignore_ascii_case("ENO") {
             return enabled;
         }
@@ -339,6 +348,8 @@ impl PlcSimulator {
             return self.edges.get(&(k, "ENO".into())).copied().unwrap_or(false);
         }
         self.in_progress.insert(k);
+        let ordered = self.p.obj(k).is_some_and(|o| o.order > 0);
+        let outer = std::mem::replace(&mut self.no_pull, ordered);
         let std = self.p.std_block(k);
         let inst = match self.p.obj(k).map(|o| &o.kind) {
             Some(ObjKind::Block { instance, .. }) => {
@@ -380,6 +391,7 @@ impl PlcSimulator {
             let v = self.input(k, &n);
             values.insert(n, v);
         }
+        self.no_pull = outer;
         let get = |n: &str| values.get(n).copied().unwrap_or(false);
         if en {
             let now = self.now();

@@ -1,0 +1,211 @@
+"""Runs PLCopen programs on the editors' own toolchain, scan by scan, and records what they do.
+
+Usage: run.py WORK_DIR  (environment: ORACLE_BEREMIZ, ORACLE_MATIEC, ORACLE_PYTHON, and
+ORACLE_ORDER=layout to restore the generator's Python 2 position order, see gen_st.py)
+
+For every `K.xml` in WORK_DIR with a request `K.req.json` (written by the oracle test):
+
+  1. Beremiz's PLCGenerator.py turns the project into ST (`gen_st.py`, one process);
+  2. matiec's `iec2c` turns the ST into C;
+  3. a harness (written here from matiec's generated headers) is compiled with gcc and
+     run: `config_init__()`, then per scan the requested inputs are written, the
+     runtime clock `__CURRENT_TIME` set to scan x cycle, and `config_run__(scan)`
+     called; after each scan the requested values are printed.
+
+The request names what to drive and what to read, in the prover's names:
+  {"pou": "main", "cycle_ns": N, "scans": S,
+   "inputs": {"In0": "0110...", ...},          # value per scan
+   "starts": {"B1": 1, ...},                    # written after init (warm restart)
+   "want": [{"bit": "TON0_Q"},                  # a variable or FB member, by flat name
+            {"edge": [path, localId, field, rank]}]}  # the edge detector Beremiz made
+                                                # for element localId of the POU
+                                                # instance at path (FB instance
+                                                # names), field Q or M
+A flat name is the C member path joined by `_` (matiec upper-cases identifiers), so
+`TON0.Q` is `TON0_Q` and `UF0.TON1.Q` is `UF0_TON1_Q`, the prover's names for them.
+
+The answer `K.out.json` is {"status": "ok", "trace": ["0101", ...]} (one string per
+want, one character per scan) or {"status": "<stage>", "message": ...} when a stage
+refused the program or a name could not be found.
+"""
+import concurrent.futures
+import json
+import os
+import re
+import subprocess
+import sys
+
+BEREMIZ = os.environ.get("ORACLE_BEREMIZ", "")
+MATIEC = os.environ.get("ORACLE_MATIEC", "")
+PYTHON = os.environ.get("ORACLE_PYTHON", sys.executable)
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+STRUCT = re.compile(r"typedef struct \{(.*?)\}\s*(\w+);", re.S)
+FIELD = re.compile(r"__DECLARE_(VAR|LOCATED|EXTERNAL)\((\w+),(\w+)\)|^\s*(\w+)\s+(\w+);", re.M)
+
+
+def structs(*headers):
+    """Struct name -> [(kind, type, field)] from matiec's C headers."""
+    out = {}
+    for h in headers:
+        for body, name in STRUCT.findall(open(h, encoding="utf-8", errors="replace").read()):
+            fields = []
+            for m in FIELD.finditer(body):
+                if m.group(1):
+                    fields.append((m.group(1), m.group(2), m.group(3)))
+                elif m.group(4) not in ("return", "typedef"):
+                    fields.append(("FB", m.group(4), m.group(5)))
+            out[name] = fields
+    return out
+
+
+def leaves(types, ty, path=()):
+    """Every BOOL member reachable from a struct: flat name -> (path, kind)."""
+    out = {}
+    for kind, fty, name in types.get(ty, []):
+        p = path + (name,)
+        if kind == "FB":
+            out.update(leaves(types, fty, p))
+        elif fty == "BOOL":
+            out["_".join(p).upper()] = (p, kind)
+    return out
+
+
+def access(base, path, kind):
+    member = base + "." + ".".join(path) + ".value"
+    return "(*(%s))" % member if kind in ("LOCATED", "EXTERNAL") else "(%s)" % member
+
+
+def struct_at(types, ty, path):
+    for name in path:
+        fields = {f.upper(): t for k, t, f in types.get(ty, []) if k == "FB"}
+        ty = fields.get(name.upper())
+        if ty is None:
+            return None
+    return ty
+
+
+def harness(req, types, prog_type, instance, trigs):
+    flat = leaves(types, prog_type)
+
+    def bit(name):
+        hit = flat.get(name.upper())
+        if hit is None:
+            raise LookupError("no member `%s` in %s" % (name, prog_type))
+        return access(instance, *hit)
+
+    def edge(path, local_id, field, rank):
+        ty = struct_at(types, prog_type, path)
+        if ty is None:
+            raise LookupError("no instance path %s" % path)
+        found = sorted((int(info[4]) if info[1] == "block" else 0, inst.split("@")[0])
+                       for inst, info in trigs.items()
+                       if info[0].split("::")[-1].upper() == ty.upper() and info[2] == str(local_id))
+        if rank >= len(found):
+            raise LookupError("no edge detector %d of element %s of %s" % (rank, local_id, ty))
+        return access(instance, tuple(path) + (found[rank][1], field), "VAR")
+
+    reads = []
+    for w in req["want"]:
+        reads.append(bit(w["bit"]) if "bit" in w else edge(*w["edge"]))
+    scans = req["scans"]
+    lines = [
+        '#include "iec_std_lib.h"',
+        "#define __LOCATED_VAR(type, name, ...) type __##name; type *name = &__##name;",
+        '#include "LOCATED_VARIABLES.h"',
+        "#undef __LOCATED_VAR",
+        '#include "POUS.h"',
+        "#include <stdio.h>",
+        "TIME __CURRENT_TIME;",
+        "BOOL __DEBUG;",
+        "extern unsigned long long common_ticktime__;",
+        "extern %s %s;" % (prog_type, instance),
+        "void config_init__(void);",
+        "void config_run__(unsigned long tick);",
+        "int main(void) {",
+        "  static const char *in[] = {%s};" % ", ".join(
+            '"%s"' % v for v in req["inputs"].values()) if req["inputs"] else "",
+        "  config_init__();",
+    ]
+    for name, v in req.get("starts", {}).items():
+        lines.append("  %s = %d;" % (bit(name), v))
+    lines.append("  for (unsigned long k = 0; k < %d; k++) {" % scans)
+    for j, name in enumerate(req["inputs"]):
+        lines.append("    %s = in[%d][k] == '1';" % (bit(name), j))
+    lines += [
+        "    __CURRENT_TIME.tv_sec = (k * %dULL) / 1000000000ULL;" % req["cycle_ns"],
+        "    __CURRENT_TIME.tv_nsec = (k * %dULL) %% 1000000000ULL;" % req["cycle_ns"],
+        "    config_run__(k);",
+    ]
+    for r in reads:
+        lines.append('    putchar(%s ? \'1\' : \'0\');' % r)
+    lines += ['    putchar(\'\\n\');', "  }", "  return 0;", "}"]
+    return "\n".join(lines) + "\n"
+
+
+def build_and_run(work, k):
+    req = json.load(open(os.path.join(work, k + ".req.json")))
+    cdir = os.path.join(work, k + ".c")
+    os.makedirs(cdir, exist_ok=True)
+    r = subprocess.run([os.path.join(MATIEC, "iec2c"), "-I", os.path.join(MATIEC, "lib"), "-T", cdir,
+                        os.path.join(work, k + ".st")], capture_output=True, text=True, timeout=120)
+    if r.returncode != 0:
+        return {"status": "iec2c", "message": (r.stdout + r.stderr)[-2000:]}
+    types = structs(os.path.join(cdir, "POUS.h"), os.path.join(MATIEC, "lib", "C", "iec_std_FB.h"))
+    resources = [f for f in os.listdir(cdir) if f.endswith(".c") and f not in ("POUS.c",)]
+    instances = []
+    for f in resources:
+        for ty, name in re.findall(r"^(\w+) (\w+__\w+);", open(os.path.join(cdir, f)).read(), re.M):
+            if ty.upper() == req["pou"].upper():
+                instances.append((ty, name))
+    if len(instances) != 1:
+        return {"status": "map", "message": "%d instances of %s" % (len(instances), req["pou"])}
+    prog_type, instance = instances[0]
+    trigs = json.load(open(os.path.join(work, k + ".json")))
+    try:
+        main = harness(req, types, prog_type, instance, trigs)
+    except LookupError as e:
+        return {"status": "map", "message": str(e)}
+    open(os.path.join(cdir, "main.c"), "w").write(main)
+    exe = os.path.join(cdir, "run")
+    sources = [os.path.join(cdir, f) for f in ["main.c"] + resources if f.endswith(".c")]
+    r = subprocess.run(["gcc", "-O0", "-w", "-I", cdir, "-I", os.path.join(MATIEC, "lib", "C"), "-o", exe]
+                       + sources + ["-lm"], capture_output=True, text=True, timeout=300)
+    if r.returncode != 0:
+        return {"status": "gcc", "message": r.stderr[-2000:]}
+    r = subprocess.run([exe], capture_output=True, text=True, timeout=60)
+    if r.returncode != 0:
+        return {"status": "run", "message": "exit %d %s" % (r.returncode, r.stderr[-500:])}
+    rows = r.stdout.split()
+    trace = ["".join(row[j] for row in rows) for j in range(len(req["want"]))]
+    return {"status": "ok", "trace": trace}
+
+
+def main():
+    work = os.path.abspath(sys.argv[1])
+    jobs = sorted(f[:-len(".req.json")] for f in os.listdir(work) if f.endswith(".req.json"))
+    feed = "".join("%s %s %s\n" % tuple(os.path.join(work, k + ext) for ext in (".xml", ".st", ".json"))
+                   for k in jobs)
+    gen = subprocess.run([PYTHON, os.path.join(HERE, "gen_st.py"), BEREMIZ], input=feed,
+                         capture_output=True, text=True)
+    verdicts = gen.stdout.splitlines()
+    if len(verdicts) != len(jobs):
+        sys.exit("gen_st.py answered %d of %d jobs:\n%s" % (len(verdicts), len(jobs), gen.stderr[-3000:]))
+
+    def one(item):
+        k, verdict = item
+        if verdict != "ok":
+            out = {"status": "beremiz", "message": verdict}
+        else:
+            try:
+                out = build_and_run(work, k)
+            except subprocess.TimeoutExpired as e:
+                out = {"status": "timeout", "message": str(e)}
+        json.dump(out, open(os.path.join(work, k + ".out.json"), "w"))
+
+    with concurrent.futures.ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
+        list(pool.map(one, zip(jobs, verdicts)))
+
+
+if __name__ == "__main__":
+    main()
