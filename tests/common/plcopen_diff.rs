@@ -134,7 +134,8 @@ impl Gen {
         if self.rng.chance(25) {
             s.push_str(r#" negated="true""#);
         }
-        if edge_ok && self.rng.chance(6) {
+        // Not both: a negated edge is refused (Beremiz drops the edge).
+        if edge_ok && s.is_empty() && self.rng.chance(6) {
             s.push_str(if self.rng.chance(50) {
                 r#" edge="rising""#
             } else {
@@ -181,9 +182,8 @@ impl Gen {
         let last = all.len() - 1;
         for (j, pin) in all.into_iter().enumerate() {
             // An unconnected pin is left out of the call by Beremiz: only where that means
-            // FALSE (an FB input, the last OR/XOR input, a SEL input), without modifiers.
-            let may_be_open =
-                fb || (j == last && j > 0 && matches!(ty, "OR" | "XOR")) || (j > 0 && ty == "SEL");
+            // FALSE (an FB input, the last OR/XOR input), without modifiers.
+            let may_be_open = fb || (j == last && j > 0 && matches!(ty, "OR" | "XOR"));
             let refs = match pin {
                 "PT" => {
                     let preset = *self.rng.pick(PRESETS);

@@ -77,12 +77,15 @@ def access(base, path, kind):
 
 
 def struct_at(types, ty, path):
+    """The struct type at an instance path, and the path as C spells it."""
+    spelled = []
     for name in path:
-        fields = {f.upper(): t for k, t, f in types.get(ty, []) if k == "FB"}
-        ty = fields.get(name.upper())
+        fields = {f.upper(): (t, f) for k, t, f in types.get(ty, []) if k == "FB"}
+        ty, field = fields.get(name.upper(), (None, None))
         if ty is None:
-            return None
-    return ty
+            return None, None
+        spelled.append(field)
+    return ty, tuple(spelled)
 
 
 def harness(req, types, prog_type, instance, trigs):
@@ -95,7 +98,7 @@ def harness(req, types, prog_type, instance, trigs):
         return access(instance, *hit)
 
     def edge(path, local_id, field, rank):
-        ty = struct_at(types, prog_type, path)
+        ty, path = struct_at(types, prog_type, path)
         if ty is None:
             raise LookupError("no instance path %s" % path)
         found = sorted((int(info[4]) if info[1] == "block" else 0, inst.split("@")[0])

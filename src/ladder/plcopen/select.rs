@@ -625,8 +625,11 @@ fn check_pou(
     for (k, o) in objects.iter().enumerate() {
         let mut pins: Vec<&PinIn> = Vec::new();
         match &o.kind {
-            ObjKind::Contact { var, edge, input, .. } => {
+            ObjKind::Contact { var, edge, input, negated } => {
                 pins.push(input);
+                if *negated && *edge != Edge::None {
+                    errors.push(negated_edge(o.span, "contact"));
+                }
                 if body.lang == Lang::Fbd {
                     errors.push(fbd_only(o));
                 }
@@ -1349,7 +1352,11 @@ impl PlcProgram {
 fn unconnected_pins(o: &Obj, type_name: &str, inputs: &[PinIn]) -> Vec<PlcError> {
     let open = |p: &&PinIn| p.conns.is_empty() && p.expr.is_none();
     let data: Vec<&PinIn> = inputs.iter().filter(|p| !p.name.eq_ignore_ascii_case("EN")).collect();
-    let mut errors = Vec::new();
+    let mut errors: Vec<PlcError> = inputs
+        .iter()
+        .filter(|p| p.negated && p.edge != Edge::None)
+        .map(|p| negated_edge(p.span, "pin"))
+        .collect();
     for p in inputs.iter().filter(open) {
         if p.negated || p.edge != Edge::None {
             errors.push(PlcError::Unsupported {
@@ -1371,35 +1378,39 @@ fn unconnected_pins(o: &Obj, type_name: &str, inputs: &[PinIn]) -> Vec<PlcError>
                      standard computes it from FALSE inputs; connect an input or remove it"
                 .into(),
         });
-    } else if Std::of(type_name) == Some(Std::And)
-        && let Some(p) = data.iter().find(|p| open(p))
-    {
-        errors.push(PlcError::Unsupported {
-            span: p.span,
-            what: format!("the unconnected input `{}` of an AND block", p.name),
-            reason: "Beremiz and OpenPLC leave it out of the AND, the standard gives it FALSE \
-                     (the AND is then FALSE); connect it or remove the pin"
-                .into(),
-        });
-    }
-    // matiec compiles a formal call of an extensible function with a gap (IN1, IN3) as a
-    // call with fewer arguments than it counts: the result is undefined.
-    if matches!(Std::of(type_name), Some(Std::Or | Std::Xor))
-        && let Some(p) = data
-            .iter()
-            .zip(data.iter().skip(1))
-            .find_map(|(a, b)| (open(a) && !open(b)).then_some(*a))
-    {
-        errors.push(PlcError::Unsupported {
-            span: p.span,
-            what: format!("the unconnected input `{}` before a connected one", p.name),
-            reason: format!(
-                "matiec compiles such a `{type_name}` call to code that reads an argument it \
-                 was not given; connect it or remove the pin"
-            ),
-        });
+    } else if function {
+        // The generated call leaves an unconnected input out: a positional call then
+        // shifts the later arguments into its place, a formal call of an extensible
+        // function is compiled by matiec with fewer arguments than it counts, and an AND
+        // loses an operand the standard makes FALSE. Only trailing OR/XOR inputs,
+        // where leaving out is FALSE, agree everywhere.
+        let trailing_ok = matches!(Std::of(type_name), Some(Std::Or | Std::Xor));
+        let last_connected = data.iter().rposition(|p| !open(p)).unwrap_or(0);
+        if let Some((_, p)) =
+            data.iter().enumerate().find(|(j, p)| open(p) && (!trailing_ok || *j < last_connected))
+        {
+            errors.push(PlcError::Unsupported {
+                span: p.span,
+                what: format!("the unconnected input `{}` of the `{type_name}` block", p.name),
+                reason: "Beremiz and OpenPLC leave it out of the call (the arguments after it \
+                         shift, or the result is undefined), where the standard gives it \
+                         FALSE; connect it or remove the pin"
+                    .into(),
+            });
+        }
     }
     errors
+}
+
+/// A contact or pin both negated and edge-triggered.
+fn negated_edge(span: Span, what: &str) -> PlcError {
+    PlcError::Unsupported {
+        span,
+        what: format!("a {what} both negated and edge-triggered"),
+        reason: "Beremiz and OpenPLC apply only the negation (their generator ignores the \
+                 edge then); use an R_TRIG/F_TRIG block and a NOT"
+            .into(),
+    }
 }
 
 /// A modifier on a variable object: its meaning depends on the tool that runs the file.
