@@ -172,6 +172,9 @@ impl Gen {
         } else {
             *self.rng.pick(FUNCTIONS)
         };
+        // Beremiz calls a function with EN/ENO formally, and `NOT(IN := …)` is not ST that
+        // matiec parses (NOT is an operator there): such blocks stay out of the oracle's way.
+        let en = en && ty != "NOT";
         let mut ins = String::new();
         if en && self.rng.chance(20) {
             let src = *self.rng.pick(sources);

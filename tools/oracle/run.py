@@ -155,7 +155,7 @@ def build_and_run(work, k):
     if r.returncode != 0:
         return {"status": "iec2c", "message": (r.stdout + r.stderr)[-2000:]}
     types = structs(os.path.join(cdir, "POUS.h"), os.path.join(MATIEC, "lib", "C", "iec_std_FB.h"))
-    resources = [f for f in os.listdir(cdir) if f.endswith(".c") and f not in ("POUS.c",)]
+    resources = [f for f in os.listdir(cdir) if f.endswith(".c") and f not in ("POUS.c", "main.c", "all.c")]
     instances = []
     for f in resources:
         for ty, name in re.findall(r"^(\w+) (\w+__\w+);", open(os.path.join(cdir, f)).read(), re.M):
@@ -170,10 +170,19 @@ def build_and_run(work, k):
     except LookupError as e:
         return {"status": "map", "message": str(e)}
     open(os.path.join(cdir, "main.c"), "w").write(main)
+    # iec2c appends the names of some globals, with no newline, to the list of located
+    # variables; only the `__LOCATED_VAR(...)` entries are declarations.
+    located = os.path.join(cdir, "LOCATED_VARIABLES.h")
+    if os.path.exists(located):
+        text = open(located).read().replace(")", ")\n")
+        entries = [l for l in text.splitlines() if l.startswith("__LOCATED_VAR(")]
+        open(located, "w").write("".join(e + "\n" for e in entries))
     exe = os.path.join(cdir, "run")
-    sources = [os.path.join(cdir, f) for f in ["main.c"] + resources if f.endswith(".c")]
-    r = subprocess.run(["gcc", "-O0", "-w", "-I", cdir, "-I", os.path.join(MATIEC, "lib", "C"), "-o", exe]
-                       + sources + ["-lm"], capture_output=True, text=True, timeout=300)
+    # One translation unit: the standard library's headers are read once, not per file.
+    unity = os.path.join(cdir, "all.c")
+    open(unity, "w").write("".join('#include "%s"\n' % f for f in sorted(resources) + ["main.c"]))
+    r = subprocess.run(["gcc", "-O0", "-w", "-I", cdir, "-I", os.path.join(MATIEC, "lib", "C"), "-o", exe,
+                        unity, "-lm"], capture_output=True, text=True, timeout=300)
     if r.returncode != 0:
         return {"status": "gcc", "message": r.stderr[-2000:]}
     r = subprocess.run([exe], capture_output=True, text=True, timeout=60)
