@@ -216,13 +216,65 @@ enum Command {
         #[command(flatten)]
         compilation: Compilation,
     },
-    /// Print a shell completion script (e.g. `ii-prove completions bash > ~/.local/share/bash-completion/completions/ii-prove`).
+    /// Print a shell completion script, or install it with `--install` (e.g. `ii-prove completions bash --install`).
     Completions {
         /// The shell.
         shell: clap_complete::Shell,
+        /// Write it where the shell looks for a user's completions (bash:
+        /// `$XDG_DATA_HOME/bash-completion/completions`, zsh: `~/.zfunc`, fish:
+        /// `$XDG_CONFIG_HOME/fish/completions`), creating the folders.
+        #[arg(long)]
+        install: bool,
     },
     /// Print the manual page (roff; `ii-prove man | man -l -`).
     Man,
+}
+
+/// Writes a completion script where `shell` looks for a user's own, creating the
+/// folders; says where, and what else the shell needs.
+fn install_completions(
+    shell: clap_complete::Shell,
+    script: &str,
+) -> Result<String, report::InputError> {
+    use clap_complete::Shell;
+    let error = |text: String| report::InputError { rendered: format!("error: {text}\n") };
+    let env_dir = |var: &str, fallback: &str| -> Result<std::path::PathBuf, report::InputError> {
+        match std::env::var_os(var).filter(|v| !v.is_empty()) {
+            Some(dir) => Ok(dir.into()),
+            None => std::env::var_os("HOME")
+                .filter(|h| !h.is_empty())
+                .map(|h| std::path::Path::new(&h).join(fallback))
+                .ok_or_else(|| error(format!("neither {var} nor HOME is set"))),
+        }
+    };
+    let (path, note) = match shell {
+        Shell::Bash => (
+            env_dir("XDG_DATA_HOME", ".local/share")?.join("bash-completion/completions/ii-prove"),
+            "",
+        ),
+        Shell::Fish => {
+            (env_dir("XDG_CONFIG_HOME", ".config")?.join("fish/completions/ii-prove.fish"), "")
+        }
+        Shell::Zsh => (
+            env_dir("ZDOTDIR", "")?.join(".zfunc/_ii-prove"),
+            "\nadd `fpath=(~/.zfunc $fpath); autoload -Uz compinit; compinit` to ~/.zshrc if it is not there",
+        ),
+        other => {
+            return Err(error(format!(
+                "{other} has no standard folder for completions: `ii-prove completions {other} > FILE` and load FILE from your profile"
+            )));
+        }
+    };
+    let folder = path.parent().unwrap_or(std::path::Path::new("."));
+    let temp = folder.join(".ii-prove-completions.tmp");
+    std::fs::create_dir_all(folder)
+        .and_then(|()| std::fs::write(&temp, script))
+        .and_then(|()| std::fs::rename(&temp, &path))
+        .map_err(|e| {
+            let _ = std::fs::remove_file(&temp);
+            error(format!("cannot write {}: {e}", path.display()))
+        })?;
+    Ok(format!("installed the {shell} completions in {}{note}", path.display()))
 }
 
 /// `--timeout`: a positive duration, in seconds when it has no unit.
@@ -284,10 +336,15 @@ fn main() -> ExitCode {
             };
             report::show_program(&program, &opts).map(|t| (t, 0))
         }
-        Some(Command::Completions { shell }) => {
+        Some(Command::Completions { shell, install }) => {
             let mut script = Vec::new();
             clap_complete::generate(shell, &mut Cli::command(), "ii-prove", &mut script);
-            Ok((String::from_utf8_lossy(&script).into_owned(), 0))
+            let script = String::from_utf8_lossy(&script).into_owned();
+            if install {
+                install_completions(shell, &script).map(|t| (t, 0))
+            } else {
+                Ok((script, 0))
+            }
         }
         Some(Command::Man) => {
             let mut page = Vec::new();

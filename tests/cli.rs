@@ -238,6 +238,20 @@ fn binary_input_is_refused_at_once() {
     let out = ii_prove(&["tests/data/ldmicro/parse_err/nul_byte.ld", "examples/water.ii"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(text(&out.stderr).contains("binary file"));
+    // A binary program with no extension, or named .xml: its error alone, no unknown
+    // signals of the property file after it, and no talk of `.ld` only.
+    let bare = dir.join("program");
+    std::fs::write(&bare, b"\x7fELF\x02\x01\x01\0\0").unwrap();
+    let xml = dir.join("program.xml");
+    std::fs::write(&xml, b"\x7fELF\x02\x01\x01\0\0").unwrap();
+    for program in [&bare, &xml] {
+        let out = ii_prove(&[program.to_str().unwrap(), "examples/water.ii"]);
+        assert_eq!(out.status.code(), Some(2));
+        let stderr = text(&out.stderr);
+        assert!(stderr.contains("binary file") && stderr.contains(".xml"), "{stderr}");
+        assert!(!stderr.contains("unknown signal"), "{stderr}");
+        assert_eq!(stderr.matches("error").count(), 1, "{stderr}");
+    }
 }
 
 #[test]
@@ -374,6 +388,28 @@ fn completions_and_the_manual_page_are_generated() {
         assert!(script.contains("ii-prove") && script.contains("--format"), "{shell}");
     }
     assert_eq!(ii_prove(&["completions", "tcsh"]).status.code(), Some(2));
+    // `--install` on a fresh home: the folders are made, the script is the printed one.
+    let home = temp_dir("completions-home");
+    for (shell, place) in [
+        ("bash", ".local/share/bash-completion/completions/ii-prove"),
+        ("fish", ".config/fish/completions/ii-prove.fish"),
+        ("zsh", ".zfunc/_ii-prove"),
+    ] {
+        let out = Command::new(env!("CARGO_BIN_EXE_ii-prove"))
+            .args(["completions", shell, "--install"])
+            .env("HOME", &home)
+            .env_remove("XDG_DATA_HOME")
+            .env_remove("XDG_CONFIG_HOME")
+            .env_remove("ZDOTDIR")
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(0), "{shell}: {}", text(&out.stderr));
+        let installed = std::fs::read_to_string(home.join(place)).expect("installed");
+        assert_eq!(installed, text(&ii_prove(&["completions", shell]).stdout), "{shell}");
+        assert!(text(&out.stdout).contains(place), "{}", text(&out.stdout));
+    }
+    let out = ii_prove(&["completions", "elvish", "--install"]);
+    assert_eq!(out.status.code(), Some(2));
     let man = ii_prove(&["man"]);
     assert_eq!(man.status.code(), Some(0));
     let page = text(&man.stdout);
@@ -411,7 +447,7 @@ fn the_progress_line_is_not_drawn_when_standard_error_is_not_a_terminal() {
 }
 
 #[test]
-fn ctrl_c_under_junit_writes_the_partial_document() {
+fn ctrl_c_under_junit_writes_the_partial_document_and_marks_the_rest() {
     use std::io::Read;
     use std::process::Stdio;
     let dir = temp_dir("interrupt-junit");
@@ -431,8 +467,14 @@ fn ctrl_c_under_junit_writes_the_partial_document() {
     assert_eq!(child.wait().unwrap().code(), Some(130));
     let doc = roxmltree::Document::parse(&xml).expect("well-formed XML");
     let cases: Vec<_> = doc.descendants().filter(|n| n.has_tag_name("testcase")).collect();
-    assert_eq!(cases.len(), 1, "{xml}");
+    assert_eq!(cases.len(), 2, "{xml}");
     assert_eq!(cases[0].attribute("name"), Some("quick"));
+    assert!(cases[0].children().all(|c| !c.is_element()), "{xml}");
+    // What the run did not finish is marked: a test case in error, counted.
+    assert_eq!(cases[1].attribute("name"), Some("slow"));
+    let error = cases[1].children().find(|c| c.has_tag_name("error")).expect("an error");
+    assert_eq!(error.attribute("type"), Some("interrupted"));
+    assert_eq!(doc.root_element().attribute("errors"), Some("1"), "{xml}");
 }
 
 #[test]

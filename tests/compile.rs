@@ -170,11 +170,24 @@ fn names_resolve_exactly_unprefixed_ambiguously() {
     // Previous values are `pre` terms, not names.
     assert_eq!(c.lookup("pre_L2_Prod"), Lookup::Unknown);
     assert_eq!(c.lookup("nothing"), Lookup::Unknown);
+    // Output spells a name as the user does: short once looked up short, else exact.
     assert_eq!(c.display_name("YL1_pump"), "L1_pump");
     let names = c.names();
     assert!(names.contains(&"L1_pump".to_string()) && names.contains(&"YL1_pump".to_string()));
     let h = c.hypothesis("L03").expect("L03");
-    assert_eq!(p(&c.rename_for_display(&h.rhs)), "RS(¬Prio2, ¬(Demand · ¬L1_fail · ¬pre L2_Prod))");
+    assert_eq!(
+        p(&c.rename_for_display(&h.rhs)),
+        "RS(¬RPrio2, ¬(RDemand · ¬XL1_fail · ¬pre RL2_Prod))",
+        "none of these was written short"
+    );
+    assert_eq!(c.lookup("L2_Prod"), Lookup::Signal("RL2_Prod".into()));
+    assert_eq!(
+        p(&c.rename_for_display(&h.rhs)),
+        "RS(¬RPrio2, ¬(RDemand · ¬XL1_fail · ¬pre L2_Prod))",
+        "L2_Prod now is"
+    );
+    let fresh = water();
+    assert_eq!(fresh.display_name("YL1_pump"), "YL1_pump", "nothing written yet");
 
     let amb = compile(&rungs(
         "RUNG\nCONTACTS Xa 0\nCOIL Ya 0 0 0\nEND\nRUNG\nCONTACTS Ya 0\nCOIL Ra 0 0 0\nEND\n",
@@ -483,6 +496,8 @@ fn property_files_resolve_against_the_compiled_program() {
     let fresh = compile(&rungs("RUNG\nCONTACTS Xa 0\nCTU Cpieces 5\nCOIL Yfull 0 0 0\nEND\n"));
     assert_eq!(fresh.display_name("CTU_Cpieces"), "CTU_Cpieces");
     assert_eq!(fresh.lookup("TU_Cpieces"), Lookup::Unknown);
+    assert_eq!(fresh.display_name("Yfull"), "Yfull");
+    assert_eq!(fresh.lookup("full"), Lookup::Signal("Yfull".into()));
     assert_eq!(fresh.display_name("Yfull"), "full");
 }
 

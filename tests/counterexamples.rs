@@ -60,11 +60,11 @@ fn water_faulty_p2_is_refuted_with_a_confirmed_diagram() {
         })
     };
     let t = c.mark.clone().expect("marked");
-    let (swap, l1, l2) = (sig("Line_swap"), sig("L1_up"), sig("L2_up"));
+    let (swap, l1, l2) = (sig("XLine_swap"), sig("L1_up"), sig("L2_up"));
     assert!(swap.value_at(&t) && !swap.left_limit(&t), "Line_swap rises at the violation");
     assert!(l1.value_at(&t) && l1.left_limit(&t), "line 1 was running and still runs");
     assert!(l2.value_at(&t) && !l2.left_limit(&t), "line 2 starts");
-    assert!(c.diagram.iter().any(|l| l.starts_with("Line_swap")));
+    assert!(c.diagram.iter().any(|l| l.starts_with("XLine_swap")));
     assert!(c.diagram.last().is_some_and(|l| l.contains('▲')));
 }
 
@@ -177,7 +177,7 @@ fn vcd_and_wavedrom_files_read_back() {
     assert_eq!(out.status.code(), Some(1), "{}", String::from_utf8_lossy(&out.stderr));
     let (timescale, vars, changes) = read_vcd(&std::fs::read_to_string(&vcd).unwrap());
     assert_eq!(timescale, "1ms");
-    assert!(vars.values().any(|n| n == "Line_swap") && vars.values().any(|n| n == "L2_up"));
+    assert!(vars.values().any(|n| n == "XLine_swap") && vars.values().any(|n| n == "L2_up"));
     // Replay the dump: at the instant Line_swap rises, L1_up and L2_up are both 1.
     let mut state: BTreeMap<String, bool> = BTreeMap::new();
     let mut overlap = false;
@@ -222,7 +222,7 @@ fn vcd_and_wavedrom_files_read_back() {
     }
     let p2 = groups.iter().find(|g| g[0] == "P2").expect("a group for P2");
     let lanes = p2.as_array().unwrap();
-    let swap = lanes.iter().find(|s| s["name"] == "Line_swap").expect("Line_swap");
+    let swap = lanes.iter().find(|s| s["name"] == "XLine_swap").expect("XLine_swap");
     assert!(swap["wave"].as_str().unwrap().contains("01"));
     // Labels fit their columns: 40 px per column per unit of hscale, ~7 px a character.
     let longest = lanes.last().unwrap()["data"]
@@ -383,6 +383,26 @@ fn a_property_over_forced_constants_is_flagged_vacuous() {
     for p in &water.properties {
         assert!(!p.vacuous, "{}: {:?}", p.name, p.vacuity);
     }
+}
+
+#[test]
+fn a_property_that_states_the_forced_constant_is_not_vacuous() {
+    let (ld, ii) = (
+        path("tests/data/refutes_programs/traffic_greens_overlap.ld"),
+        path("tests/data/vacuity/states_the_constant.ii"),
+    );
+    let run = report::run_program(&ld, std::slice::from_ref(&ii), &opts())
+        .unwrap_or_else(|e| panic!("{}", e.rendered));
+    assert_eq!(run.properties.len(), 3);
+    for p in &run.properties {
+        assert_eq!(p.status, Status::Proved, "{}: {:?}", p.name, p.reason);
+        assert!(!p.vacuous, "{}: {:?}", p.name, p.vacuity);
+    }
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_ii-prove"))
+        .args([ld.as_str(), ii.as_str(), "--deny", "vacuous"])
+        .output()
+        .expect("runs");
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stdout));
 }
 
 #[test]

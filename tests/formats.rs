@@ -150,6 +150,13 @@ fn github_annotations_point_at_the_property() {
     );
     // A workflow command is one line: the diagram's lines are escaped.
     assert!(error.contains("%0A"), "{error}");
+    // Where it fails, as the text report says it, before the diagram.
+    let json: serde_json::Value =
+        serde_json::from_slice(&run(FAULTY, &["--format", "json"]).stdout).unwrap();
+    let p2 = json["properties"].as_array().unwrap().iter().find(|p| p["name"] == "P2").unwrap();
+    let at = format!("at t = {} s", p2["counterexample"]["time"].as_str().unwrap());
+    assert!(error.contains(&format!("counterexample: {at}")), "{error}");
+    assert!(error.contains("confirmed by exact evaluation and by the scan simulator"), "{error}");
     assert_eq!(stdout.lines().filter(|l| l.starts_with("::")).count(), 1, "{stdout}");
     let warned = run(COUNTER, &["--format", "github"]);
     let stdout = text(&warned.stdout);

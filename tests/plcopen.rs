@@ -452,12 +452,7 @@ fn order_chooses_the_editor() {
 /// compiled with one shared detector (which proved `B = C`).
 #[test]
 fn an_edge_contact_on_two_paths_is_refused_at_the_contact() {
-    let out = ii_prove(&[
-        "--color",
-        "never",
-        "show",
-        "tests/data/plcopen/refused/edge_contact_two_paths.xml",
-    ]);
+    let out = ii_prove(&["show", "tests/data/plcopen/refused/edge_contact_two_paths.xml"]);
     let stderr = text(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{stderr}");
     assert!(stderr.contains("an edge contact on more than one path"), "{stderr}");

@@ -113,7 +113,7 @@ fn a_proof_saved_from_the_repl_checks_as_a_script() {
         saved.display()
     );
     let out = run_in(&session, &dir);
-    assert!(out.contains("saved 2 proof(s)"), "{out}");
+    assert!(out.contains("saved 2 proofs to"), "{out}");
     let result = script::check_files(&[saved.display().to_string()], &Options::default());
     assert_eq!(result.exit_code(), 0, "{}", result.errors.join("\n"));
     assert_eq!(result.claims.len(), 2);
@@ -236,7 +236,7 @@ fn save_names_the_program_relative_to_the_saved_script() {
     );
     std::fs::create_dir_all(dir.join("nested")).unwrap();
     let out = run_in(&session, &dir);
-    assert!(out.contains("saved 1 proof(s)"), "{out}");
+    assert!(out.contains("saved 1 proof to"), "{out}");
     let saved = std::fs::read_to_string(dir.join("nested/proofs.ii")).unwrap();
     let header = saved.lines().find(|l| l.starts_with("program ")).expect("a program line");
     assert!(header.starts_with("program \"../"), "{header}");

@@ -75,7 +75,7 @@ fn a_far_literal_is_a_lemma_and_every_order_gives_the_same_proofs() {
     let last = &reference[&format!("Off{n}")];
     // The last unit's proof cites what `Stop` forces at the end of the chain, as one
     // lemma with its hypotheses folded, not a case per link.
-    let lemma = format!("where Stop ⇒ ¬D{n}   [forced through L01, L02, …, L{n} ({n} hypotheses)");
+    let lemma = format!("where Stop ⇒ ¬RD{n}   [forced through L01, L02, …, L{n} ({n} hypotheses)");
     assert!(last.contains(&lemma), "{last}");
     assert!(last.lines().count() < 8, "a short proof, not one line per link:\n{last}");
     // The first units are near the stoppage: their proofs cite no lemma.

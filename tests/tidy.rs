@@ -103,3 +103,24 @@ fn document_links_work_in_a_clone() {
         }
     }
 }
+
+/// The README's "Getting started" block has exactly two commands: one runs the water
+/// example from a fresh clone (through cargo, nothing installed), one runs the tests.
+#[test]
+fn getting_started_has_two_commands_that_need_nothing_installed() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let section = readme.split("## Getting started").nth(1).expect("a Getting started section");
+    let block = section.split("```sh\n").nth(1).and_then(|b| b.split("```").next()).unwrap();
+    let commands: Vec<&str> = block
+        .lines()
+        .map(|l| l.split(" #").next().unwrap_or("").trim())
+        .filter(|l| !l.is_empty())
+        .collect();
+    assert_eq!(commands.len(), 2, "{commands:?}");
+    assert!(commands[0].starts_with("cargo run --release -- examples/water.ld"), "{commands:?}");
+    assert_eq!(commands[1], "cargo test --release");
+    // The test command CI runs is the README's.
+    let ci = std::fs::read_to_string(root.join(".ci/run")).unwrap();
+    assert!(ci.lines().any(|l| l.trim() == commands[1]), ".ci/run does not run `{}`", commands[1]);
+}

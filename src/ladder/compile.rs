@@ -316,6 +316,8 @@ pub struct CompiledProgram {
     pub exact_names: bool,
     /// The short-name index of [`names`](super::names), built on first use from `signals`.
     pub(super) short_names: std::sync::OnceLock<BTreeMap<String, Vec<String>>>,
+    /// The short names a property, script or REPL line has used: those print short.
+    pub(super) spelled_short: super::names::Spellings,
     /// The equations' index ([`CompiledProgram::equation_index`]), built on first use.
     pub(super) equation_index: std::sync::OnceLock<EquationIndex>,
 }
@@ -1178,6 +1180,7 @@ impl<'a> Compiler<'a> {
             cycle_us: self.program.cycle_us,
             exact_names: self.program.inputs.is_some(),
             short_names: std::sync::OnceLock::new(),
+            spelled_short: Default::default(),
             equation_index: std::sync::OnceLock::new(),
         }
     }

@@ -3,7 +3,9 @@
 //! The kind prefixes are those of ldmicro.md §5: `X Y R T C A P I M H`. A short
 //! name resolves when exactly one signal has it; `pre_YL1_pump` is shortened to
 //! `pre_L1_pump` the same way; fresh signals (`CTU_Cpieces`) have no short
-//! form. An exact name always wins.
+//! form. An exact name always wins. Output prints a signal the way the user's text
+//! spells it: short once a property, script or REPL line has named it short, else
+//! exactly as the program declares it (what the user can search for).
 #![warn(missing_docs)]
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -24,6 +26,23 @@ pub fn short_name(name: &str) -> Option<String> {
     let ok = KIND_PREFIXES.contains(&first)
         && rest.chars().next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_');
     ok.then(|| rest.to_string())
+}
+
+/// The short names a user has written, recorded as they resolve (a lookup is `&self`);
+/// the copies of one compiled program (a checker's, a session's) share them.
+#[derive(Clone, Debug, Default)]
+pub struct Spellings(std::sync::Arc<std::sync::Mutex<BTreeSet<String>>>);
+
+impl Spellings {
+    fn insert(&self, name: &str) {
+        if let Ok(mut set) = self.0.lock() {
+            set.insert(name.to_string());
+        }
+    }
+
+    fn contains(&self, name: &str) -> bool {
+        self.0.lock().is_ok_and(|set| set.contains(name))
+    }
 }
 
 impl CompiledProgram {
@@ -52,11 +71,12 @@ impl CompiledProgram {
         })
     }
 
-    /// The name to print for a canonical signal name: the short name when it
-    /// denotes only this signal (and is no other signal's exact name), else the name itself.
+    /// The name to print for a canonical signal name: the short name when the user has
+    /// written it and it denotes only this signal (and is no other signal's exact name),
+    /// else the name itself.
     pub fn display_name(&self, canonical: &str) -> String {
         match self.short_of(canonical) {
-            Some(s) if !self.signals.contains_key(&s) => {
+            Some(s) if !self.signals.contains_key(&s) && self.spelled_short.contains(&s) => {
                 let unique = self.short_index().get(&s).is_some_and(|c| c.len() == 1);
                 if unique { s } else { canonical.to_string() }
             }
@@ -86,7 +106,10 @@ impl Scope for CompiledProgram {
             return Lookup::Signal(name.to_string());
         }
         match self.short_index().get(name) {
-            Some(c) if c.len() == 1 => Lookup::Signal(c[0].clone()),
+            Some(c) if c.len() == 1 => {
+                self.spelled_short.insert(name);
+                Lookup::Signal(c[0].clone())
+            }
             Some(c) if c.len() > 1 => Lookup::Ambiguous(c.clone()),
             _ => Lookup::Unknown,
         }

@@ -5,7 +5,7 @@ use std::io::{self, Write};
 use std::path::PathBuf;
 use std::sync::atomic::Ordering;
 
-use rustyline::completion::Completer;
+use rustyline::completion::{Completer, FilenameCompleter};
 use rustyline::error::ReadlineError;
 use rustyline::highlight::Highlighter;
 use rustyline::hint::Hinter;
@@ -15,12 +15,16 @@ use rustyline::{Config, Editor, Helper};
 
 use super::{CANCEL, Session, gather, reset_cancel};
 
-/// Completes command names at the start of a line, and signal, law, hypothesis
-/// and lemma names elsewhere.
+/// Completes command names at the start of a line, file names after `load` and
+/// `save`, and signal, law, hypothesis and lemma names elsewhere.
 struct Names {
     commands: Vec<String>,
     names: Vec<String>,
+    files: FilenameCompleter,
 }
+
+/// The commands whose argument is a file.
+const FILE_COMMANDS: &[&str] = &["load", "save"];
 
 impl Completer for Names {
     type Candidate = String;
@@ -29,9 +33,14 @@ impl Completer for Names {
         &self,
         line: &str,
         pos: usize,
-        _ctx: &rustyline::Context<'_>,
+        ctx: &rustyline::Context<'_>,
     ) -> rustyline::Result<(usize, Vec<String>)> {
         let before = line.get(..pos).unwrap_or(line);
+        let command = before.split_whitespace().next().unwrap_or("");
+        if FILE_COMMANDS.contains(&command) && before.trim_start().len() > command.len() {
+            let (start, pairs) = self.files.complete(line, pos, ctx)?;
+            return Ok((start, pairs.into_iter().map(|p| p.replacement).collect()));
+        }
         let start = before
             .char_indices()
             .rev()
@@ -88,7 +97,8 @@ pub fn run_interactive(file: Option<&str>) -> io::Result<()> {
     let mut editor: Editor<Names, DefaultHistory> =
         Editor::with_config(config).map_err(io::Error::other)?;
     let commands: Vec<String> = super::COMMANDS.iter().map(|c| c.name.to_string()).collect();
-    editor.set_helper(Some(Names { commands, names: session.completion_names() }));
+    let names = session.completion_names();
+    editor.set_helper(Some(Names { commands, names, files: FilenameCompleter::new() }));
     let history = history_path();
     let _ = editor.load_history(&history);
     let mut stdout = io::stdout();
@@ -126,4 +136,36 @@ pub fn run_interactive(file: Option<&str>) -> io::Result<()> {
     }
     let _ = editor.save_history(&history);
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn complete(line: &str) -> Vec<String> {
+        let names = Names {
+            commands: vec!["load".into(), "lemma".into()],
+            names: vec!["L1_pump".into()],
+            files: FilenameCompleter::new(),
+        };
+        let history = DefaultHistory::new();
+        let ctx = rustyline::Context::new(&history);
+        names.complete(line, line.len(), &ctx).expect("completes").1
+    }
+
+    #[test]
+    fn tab_completes_file_names_after_load_and_save() {
+        let dir = std::env::temp_dir().join(format!("ii-prove-complete-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("water_plant.ld"), "").unwrap();
+        let base = dir.display().to_string();
+        for command in ["load", "save"] {
+            let found = complete(&format!("{command} {base}/water_p"));
+            assert!(found.iter().any(|f| f.ends_with("water_plant.ld")), "{command}: {found:?}");
+        }
+        // Elsewhere: commands first, names after.
+        assert_eq!(complete("lo"), vec!["load".to_string()]);
+        assert_eq!(complete("goal L1_p"), vec!["L1_pump".to_string()]);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }

@@ -65,6 +65,11 @@ pub struct Session {
     program_hypotheses: Vec<Axiom>,
 }
 
+/// `1 hypothesis`, `2 hypotheses`.
+fn counted(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
+}
+
 fn is_ident(s: &str) -> bool {
     let mut chars = s.chars();
     chars.next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
@@ -182,11 +187,8 @@ impl Session {
         names.extend(self.checker.rule_names());
         names.extend(self.properties.iter().map(|p| p.name.clone()));
         if let Some((_, program)) = &self.program {
-            // The program's signals, by the names traces show (and their exact names).
-            for signal in program.signals.keys() {
-                names.push(program.display_name(signal));
-                names.push(signal.clone());
-            }
+            // The program's signals: exact names, and short ones where unambiguous.
+            names.extend(program.names());
         }
         names.push("auto".into());
         names
@@ -435,10 +437,12 @@ impl Session {
         }
         let props: Vec<&str> = doc.properties.iter().map(|p| p.name.as_str()).collect();
         out.push_str(&format!(
-            "loaded {path}: {} input(s), {hyps} hypothes(es), {} propert(ies){}, {checked} claim(s) checked\n",
-            doc.inputs.len(),
-            props.len(),
+            "loaded {path}: {}, {}, {}{}, {} checked\n",
+            counted(doc.inputs.len(), "input", "inputs"),
+            counted(hyps, "hypothesis", "hypotheses"),
+            counted(props.len(), "property", "properties"),
             if props.is_empty() { String::new() } else { format!(" ({})", props.join(", ")) },
+            counted(checked, "claim", "claims"),
         ));
         out
     }
@@ -453,9 +457,21 @@ impl Session {
 
     /// `load PROGRAM.ld`: its compiled rungs become hypotheses, its signals names.
     fn load_program(&mut self, path: &str) -> String {
-        if let Some((loaded, _)) = &self.program {
+        if self.program.is_some() {
+            // Another program: the session starts over on it (the goals, proofs and
+            // properties were about the first), unless it does not load.
+            let mut fresh = match Session::new() {
+                Ok(s) => s,
+                Err(e) => return format!("error: {e}\n"),
+            };
+            fresh.notation = self.notation;
+            let out = fresh.load_program(path);
+            if fresh.program.is_none() {
+                return out;
+            }
+            *self = fresh;
             return format!(
-                "error: the program `{loaded}` is already loaded (one program a session)\n"
+                "the session starts over on {path}: the previous program's goals, proofs and properties are put away\n{out}"
             );
         }
         let loaded = match report::load_program(&mut self.sources, path, &Default::default()) {
@@ -492,7 +508,9 @@ impl Session {
             out.push_str(&format!("warning: {w}\n"));
         }
         out.push_str(&format!(
-            "loaded program {path}: {count} hypotheses (`axioms L` lists them), {signals} signals\n"
+            "loaded program {path}: {} (`axioms L` lists them), {}\n",
+            counted(count, "hypothesis", "hypotheses"),
+            counted(signals, "signal", "signals")
         ));
         out
     }
@@ -1058,7 +1076,7 @@ impl Session {
                 count += 1;
             }
         }
-        out.push_str(&format!("{count} rule(s)\n"));
+        out.push_str(&format!("{}\n", counted(count, "rule", "rules")));
         out
     }
 
@@ -1088,7 +1106,7 @@ impl Session {
             document_to_string(&doc, Notation::Ascii)
         );
         match std::fs::write(path, text) {
-            Ok(()) => format!("saved {} proof(s) to {path}\n", self.done.len()),
+            Ok(()) => format!("saved {} to {path}\n", counted(self.done.len(), "proof", "proofs")),
             Err(e) => format!("error: cannot write `{path}`: {e}\n"),
         }
     }

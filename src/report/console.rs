@@ -12,7 +12,9 @@ use std::time::{Duration, Instant};
 
 use super::formats::{self, Format};
 use super::text::{self, Paint};
-use super::{Location, Observer, Options, PropertyReport, RunReport, Summary, WarningReport};
+use super::{
+    Location, Observer, Options, PropertyReport, RunReport, Summary, Unchecked, WarningReport,
+};
 
 /// The exit status after a closed output pipe.
 pub const BROKEN_PIPE: u8 = 141;
@@ -102,6 +104,7 @@ impl Console {
             properties: Vec::new(),
             summary: Summary::default(),
             interrupted: false,
+            unchecked: Vec::new(),
         };
         let state = State {
             partial,
@@ -128,6 +131,18 @@ impl Console {
             }
             clear_progress(&mut s);
             s.partial.interrupted = true;
+            let unchecked: Vec<Unchecked> = s
+                .plan
+                .iter()
+                .filter(|(name, at)| {
+                    !s.partial
+                        .properties
+                        .iter()
+                        .any(|p| &p.name == name && p.location.as_ref() == Some(at))
+                })
+                .map(|(name, at)| Unchecked { name: name.clone(), location: at.clone() })
+                .collect();
+            s.partial.unchecked = unchecked;
             let (done, total) = (s.partial.summary.total(), s.plan.len());
             let text = if console.format.streams() {
                 format!(

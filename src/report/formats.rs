@@ -3,7 +3,8 @@
 //!
 //! - **JUnit XML**: a `<testsuite>` per property file, a `<testcase>` per property
 //!   (`file` and `line` attributes); a refuted property is a `<failure>` whose text is
-//!   the counterexample, an unknown one is `<skipped>` with the reason, a vacuous proof
+//!   the counterexample, an unknown one is `<skipped>` with the reason, a property an
+//!   interrupted run did not finish is an `<error>`, a vacuous proof
 //!   is a `<failure>` under `--deny vacuous` and noted in `<system-out>` otherwise;
 //!   warnings are the `<system-err>` of the first suite.
 //! - **SARIF 2.1.0**: one run; a result per refuted (`error`) or unknown (`warning`)
@@ -119,18 +120,23 @@ fn write_junit(w: &mut Writer<Vec<u8>>, report: &RunReport, opts: &Options) -> s
     let total_ms: f64 = props.iter().map(|p| p.time_ms).sum();
     // One suite per property file, in the order given.
     let mut files: Vec<&str> = Vec::new();
-    for p in props {
-        let file = p.location.as_ref().map_or("", |l| l.file.as_str());
+    let located = props.iter().map(|p| p.location.as_ref().map_or("", |l| l.file.as_str()));
+    for file in located.chain(report.unchecked.iter().map(|u| u.location.file.as_str())) {
         if !files.contains(&file) {
             files.push(file);
         }
     }
-    let (tests, failures, skips) = (props.len(), count(&failed), count(&skipped));
+    // An interrupted run: each property it did not finish is a test case in error.
+    let unchecked_in = |file: &str| -> Vec<&super::Unchecked> {
+        report.unchecked.iter().filter(|u| u.location.file == file).collect()
+    };
+    let errors = report.unchecked.len();
+    let (tests, failures, skips) = (props.len() + errors, count(&failed), count(&skipped));
     w.create_element("testsuites")
         .with_attribute(("name", "ii-prove"))
         .with_attribute(("tests", tests.to_string().as_str()))
         .with_attribute(("failures", failures.to_string().as_str()))
-        .with_attribute(("errors", "0"))
+        .with_attribute(("errors", errors.to_string().as_str()))
         .with_attribute(("skipped", skips.to_string().as_str()))
         .with_attribute(("time", seconds(total_ms).as_str()))
         .write_inner_content(|w| {
@@ -139,6 +145,7 @@ fn write_junit(w: &mut Writer<Vec<u8>>, report: &RunReport, opts: &Options) -> s
                     .iter()
                     .filter(|p| p.location.as_ref().map_or("", |l| l.file.as_str()) == *file)
                     .collect();
+                let not_run = unchecked_in(file);
                 let ms: f64 = in_file.iter().map(|p| p.time_ms).sum();
                 let suite_name = match &report.program {
                     Some(program) => format!("{program}: {file}"),
@@ -146,12 +153,12 @@ fn write_junit(w: &mut Writer<Vec<u8>>, report: &RunReport, opts: &Options) -> s
                 };
                 w.create_element("testsuite")
                     .with_attribute(("name", suite_name.as_str()))
-                    .with_attribute(("tests", in_file.len().to_string().as_str()))
+                    .with_attribute(("tests", (in_file.len() + not_run.len()).to_string().as_str()))
                     .with_attribute((
                         "failures",
                         in_file.iter().filter(|p| failed(p)).count().to_string().as_str(),
                     ))
-                    .with_attribute(("errors", "0"))
+                    .with_attribute(("errors", not_run.len().to_string().as_str()))
                     .with_attribute((
                         "skipped",
                         in_file.iter().filter(|p| skipped(p)).count().to_string().as_str(),
@@ -160,6 +167,26 @@ fn write_junit(w: &mut Writer<Vec<u8>>, report: &RunReport, opts: &Options) -> s
                     .write_inner_content(|w| {
                         for p in &in_file {
                             write_testcase(w, p, file, opts)?;
+                        }
+                        for u in &not_run {
+                            let line = u.location.line.to_string();
+                            let message = format!(
+                                "the run was interrupted (Ctrl-C) before {} was checked",
+                                u.name
+                            );
+                            w.create_element("testcase")
+                                .with_attribute(("name", u.name.as_str()))
+                                .with_attribute(("classname", *file))
+                                .with_attribute(("file", *file))
+                                .with_attribute(("line", line.as_str()))
+                                .with_attribute(("time", "0.000"))
+                                .write_inner_content(|w| {
+                                    w.create_element("error")
+                                        .with_attribute(("type", "interrupted"))
+                                        .with_attribute(("message", message.as_str()))
+                                        .write_empty()?;
+                                    Ok(())
+                                })?;
                         }
                         if i == 0 && !report.warnings.is_empty() {
                             let text: String =
@@ -344,10 +371,15 @@ pub fn github_property(p: &PropertyReport, width: usize, opts: &Options) -> Stri
             "vacuous" if opts.deny_vacuous => "error",
             _ => "warning",
         };
-        let detail = match (&p.counterexample, &p.candidate) {
-            (Some(c), _) | (None, Some(c)) => format!("\n{}", c.diagram.join("\n")),
-            _ => String::new(),
+        let mut detail: Vec<String> = match (&p.counterexample, &p.candidate) {
+            (Some(c), _) => super::text::counterexample_lines(c),
+            (None, Some(c)) => vec![super::text::candidate_line(c)],
+            _ => Vec::new(),
         };
+        if let Some(c) = p.counterexample.as_ref().or(p.candidate.as_ref()) {
+            detail.extend(c.diagram.iter().cloned());
+        }
+        let detail: String = detail.iter().map(|l| format!("\n{l}")).collect();
         let title = format!("{} {kind}", p.name);
         out.push_str(&command(level, p.location.as_ref(), &title, &format!("{message}{detail}")));
     }

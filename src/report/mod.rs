@@ -13,6 +13,7 @@ pub mod formats;
 mod property;
 pub mod text;
 pub mod trace;
+mod vacuity;
 pub mod waveform;
 
 use property::style_term;
@@ -291,6 +292,18 @@ pub struct RunReport {
     pub summary: Summary,
     /// The run was interrupted (Ctrl-C): `properties` are those finished before.
     pub interrupted: bool,
+    /// When interrupted: the properties it did not finish, in file order.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub unchecked: Vec<Unchecked>,
+}
+
+/// A property an interrupted run did not finish.
+#[derive(Clone, Debug, Serialize)]
+pub struct Unchecked {
+    /// Its name.
+    pub name: String,
+    /// Where it is written.
+    pub location: Location,
 }
 
 impl RunReport {
@@ -313,7 +326,9 @@ pub fn read_source(sources: &mut Sources, path: &str) -> Result<usize, Diagnosti
     let io_error = |reason: String| Diagnostic::Io(IoError { path: path.to_string(), reason });
     let bytes = std::fs::read(path).map_err(|e| io_error(e.to_string()))?;
     if let Some(why) = binary(&bytes) {
-        return Err(io_error(format!("it is a binary file ({why}), not a .ii or .ld text file")));
+        return Err(io_error(format!(
+            "it is a binary file ({why}), not a text file (a program: LDmicro .ld or PLCopen .xml; properties: .ii)"
+        )));
     }
     let text = match String::from_utf8(bytes) {
         Ok(text) => text,
@@ -369,6 +384,12 @@ pub struct Inputs {
 pub fn classify(files: &[String]) -> Result<Inputs, InputError> {
     let mut inputs = Inputs::default();
     for path in files {
+        // A file that cannot be read as text stops the run before anything is parsed:
+        // a program mistaken for properties would bury the error under unknown names.
+        let mut sources = Sources::new();
+        if let Err(e) = read_source(&mut sources, path) {
+            return Err(fail(&sources, vec![e], &Options::default()));
+        }
         if !is_ladder(path) {
             inputs.properties.push(path.clone());
             continue;
@@ -742,7 +763,9 @@ fn forced_by_assumptions(ctx: &Context, goal: &Obligation, opts: &Options) -> Ve
         for value in [false, true] {
             let signal = crate::term::name(&n);
             if proves_quickly(ctx, &signal, &crate::term::constant(value), opts) {
-                forced.push((n.clone(), value));
+                if !vacuity::claimed(goal, &n, value) {
+                    forced.push((n.clone(), value));
+                }
                 break;
             }
         }
@@ -987,7 +1010,16 @@ fn finish(
     properties: Vec<PropertyReport>,
 ) -> RunReport {
     let summary = Summary::of(&properties);
-    RunReport { program, files, timers: None, warnings, properties, summary, interrupted: false }
+    RunReport {
+        program,
+        files,
+        timers: None,
+        warnings,
+        properties,
+        summary,
+        interrupted: false,
+        unchecked: Vec::new(),
+    }
 }
 
 /// Signals the property reads that the hypotheses force to a constant (bounded search
@@ -999,7 +1031,8 @@ fn forced_constants(
     rename: &dyn Fn(&Expr) -> Expr,
     opts: &Options,
 ) -> Option<String> {
-    let v = counterexample::vacuity_cached(session, &[&goal.lhs, &goal.rhs], cache);
+    let mut v = counterexample::vacuity_cached(session, &[&goal.lhs, &goal.rhs], cache);
+    v.constants.retain(|(n, c)| !vacuity::claimed(goal, n, *c));
     if v.constants.is_empty() {
         return None;
     }

@@ -94,20 +94,7 @@ pub fn render_property(p: &PropertyReport, width: usize, opts: &Options, paint: 
         out.push_str(&format!("{:<width$}  {} vacuous: {why}\n", "", paint.warning()));
     }
     if let Some(c) = &p.counterexample {
-        let at = match c.scan {
-            Some(k) => format!("at t = {} s (scan {k})", c.time),
-            None => format!("at t = {}", c.time),
-        };
-        out.push_str(&format!(
-            "    counterexample: {at} the left side is {} and the right side is {}\n",
-            c.lhs as u8, c.rhs as u8
-        ));
-        if let Some(k) = c.simulator_scan {
-            out.push_str(&format!(
-                "    confirmed by exact evaluation and by the scan simulator (violated at scan {k})\n"
-            ));
-        }
-        for line in &c.diagram {
+        for line in counterexample_lines(c).iter().chain(&c.diagram) {
             out.push_str(&format!("    {line}\n"));
         }
     }
@@ -117,12 +104,36 @@ pub fn render_property(p: &PropertyReport, width: usize, opts: &Options, paint: 
     out
 }
 
+/// What a confirmed counterexample shows, before its diagram: where the property
+/// fails, the two sides there, what confirmed it.
+pub fn counterexample_lines(c: &CounterexampleReport) -> Vec<String> {
+    let at = match c.scan {
+        Some(k) => format!("at t = {} s (scan {k})", c.time),
+        None => format!("at t = {}", c.time),
+    };
+    let mut lines = vec![format!(
+        "counterexample: {at} the left side is {} and the right side is {}",
+        c.lhs as u8, c.rhs as u8
+    )];
+    if let Some(k) = c.simulator_scan {
+        lines.push(format!(
+            "confirmed by exact evaluation and by the scan simulator (violated at scan {k})"
+        ));
+    }
+    lines
+}
+
+/// The first line of an unconfirmed counterexample.
+pub fn candidate_line(c: &CounterexampleReport) -> String {
+    format!(
+        "possible counterexample (exact evaluation only, not confirmed by the scan simulator): at t = {} s",
+        c.time
+    )
+}
+
 /// An unconfirmed counterexample, said to be one, with its diagram, indented by `indent`.
 pub fn candidate_text(c: &CounterexampleReport, indent: &str) -> String {
-    let mut out = format!(
-        "{indent}possible counterexample (exact evaluation only, not confirmed by the scan simulator): at t = {} s\n",
-        c.time
-    );
+    let mut out = format!("{indent}{}\n", candidate_line(c));
     for line in &c.diagram {
         out.push_str(&format!("    {line}\n"));
     }
