@@ -103,7 +103,9 @@ def harness(req, types, prog_type, instance, trigs):
             raise LookupError("no instance path %s" % path)
         found = sorted((int(info[4]) if info[1] == "block" else 0, inst.split("@")[0])
                        for inst, info in trigs.items()
-                       if info[0].split("::")[-1].upper() == ty.upper() and info[2] == str(local_id))
+                       # the debug map also lists each detector's output (`F_TRIG2.Q`)
+                       if "." not in inst.split("@")[0]
+                       and info[0].split("::")[-1].upper() == ty.upper() and info[2] == str(local_id))
         if rank >= len(found):
             raise LookupError("no edge detector %d of element %s of %s" % (rank, local_id, ty))
         return access(instance, tuple(path) + (found[rank][1], field), "VAR")
