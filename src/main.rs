@@ -85,6 +85,9 @@ struct Cli {
     /// Write the counterexamples as WaveDrom JSON; `-` for standard output.
     #[arg(long, value_name = "FILE")]
     wavedrom: Option<String>,
+    /// Write the HTML report (as `--format html`) beside any other format; `-` for standard output.
+    #[arg(long, value_name = "FILE")]
+    html: Option<String>,
 }
 
 /// How a ladder program is compiled.
@@ -394,11 +397,18 @@ fn prove(cli: Cli) -> ExitCode {
             || std::thread::available_parallelism().map_or(1, usize::from),
             usize::from,
         ),
-        proof_text: cli.trace || cli.json || cli.format == Format::Json,
+        proof_text: cli.trace
+            || cli.json
+            || matches!(cli.format, Format::Json | Format::Html)
+            || cli.html.is_some(),
     };
     let format = if cli.json { Format::Json } else { cli.format };
-    let (vcd, wavedrom) = (cli.vcd.as_deref(), cli.wavedrom.as_deref());
-    if let Err(e) = report::export::check_outputs(vcd, wavedrom) {
+    let outputs = report::export::Outputs {
+        vcd: cli.vcd.as_deref(),
+        wavedrom: cli.wavedrom.as_deref(),
+        html: cli.html.as_deref(),
+    };
+    if let Err(e) = report::export::check_outputs(&outputs) {
         return fail(e);
     }
     let inputs = match report::classify(&cli.files) {
@@ -419,7 +429,7 @@ fn prove(cli: Cli) -> ExitCode {
             paint: Paint { enabled: color && format == Format::Text },
             quiet: cli.quiet,
             progress: true,
-            results_to_stderr: vcd == Some("-") || wavedrom == Some("-"),
+            results_to_stderr: outputs.to_stdout(),
         },
     );
     console.exit_on_interrupt();
@@ -432,7 +442,7 @@ fn prove(cli: Cli) -> ExitCode {
         Err(e) => return fail(e),
     };
     console.finish(&run);
-    if let Err(e) = report::export::write_files(&run, vcd, wavedrom) {
+    if let Err(e) = report::export::write_files(&run, &outputs, &opts) {
         return fail(e);
     }
     ExitCode::from(u8::from(run.summary.fails(opts.deny_vacuous)))

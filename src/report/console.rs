@@ -105,6 +105,7 @@ impl Console {
             summary: Summary::default(),
             interrupted: false,
             unchecked: Vec::new(),
+            equations: Vec::new(),
         };
         let state = State {
             partial,

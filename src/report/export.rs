@@ -1,4 +1,4 @@
-//! Counterexamples as files: Value Change Dump (`--vcd`, opens in GTKWave) and WaveDrom JSON (`--wavedrom`).
+//! Counterexamples as files: Value Change Dump (`--vcd`, opens in GTKWave) and WaveDrom JSON (`--wavedrom`); where the files a run writes go (`--html` too).
 //!
 //! Both take the signals a counterexample's diagram shows. VCD times are the exact
 //! rational instants scaled to the coarsest timescale (`1 s`, `1 ms`, … `1 fs`) that
@@ -233,20 +233,42 @@ pub fn wavedrom(report: &RunReport) -> Option<String> {
     serde_json::to_string_pretty(&doc).ok()
 }
 
+/// The files a run writes beside its report: `-` is standard output.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Outputs<'a> {
+    /// `--vcd`.
+    pub vcd: Option<&'a str>,
+    /// `--wavedrom`.
+    pub wavedrom: Option<&'a str>,
+    /// `--html`.
+    pub html: Option<&'a str>,
+}
+
+impl Outputs<'_> {
+    fn named(&self) -> [(&'static str, Option<&str>); 3] {
+        [("--vcd", self.vcd), ("--wavedrom", self.wavedrom), ("--html", self.html)]
+    }
+
+    /// Whether one of them goes to standard output (the report then goes to standard error).
+    pub fn to_stdout(&self) -> bool {
+        self.named().iter().any(|(_, p)| *p == Some("-"))
+    }
+}
+
 /// Refuses, before any proof runs, an output path that cannot be written: its folder
 /// is missing or not writable, or it names a folder. `-` (standard output) is fine,
-/// but only for one of the two.
-pub fn check_outputs(
-    vcd_path: Option<&str>,
-    wavedrom_path: Option<&str>,
-) -> Result<(), super::InputError> {
+/// but only for one of them.
+pub fn check_outputs(outputs: &Outputs) -> Result<(), super::InputError> {
     let error = |text: String| super::InputError { rendered: format!("error: {text}\n") };
-    if vcd_path == Some("-") && wavedrom_path == Some("-") {
-        return Err(error(
-            "only one of --vcd and --wavedrom can write to standard output (`-`)".into(),
-        ));
+    let dashes: Vec<&str> =
+        outputs.named().iter().filter(|(_, p)| *p == Some("-")).map(|(f, _)| *f).collect();
+    if dashes.len() > 1 {
+        return Err(error(format!(
+            "only one of {} can write to standard output (`-`)",
+            dashes.join(" and ")
+        )));
     }
-    for path in [vcd_path, wavedrom_path].into_iter().flatten().filter(|p| *p != "-") {
+    for path in outputs.named().into_iter().filter_map(|(_, p)| p).filter(|p| *p != "-") {
         let target = std::path::Path::new(path);
         if target.is_dir() {
             return Err(error(format!("cannot write {path}: it is a directory")));
@@ -266,22 +288,25 @@ pub fn check_outputs(
 
 /// Writes the requested files after a successful run: each is rendered first, then
 /// written whole (to a temporary name, then renamed), so nothing is half written;
-/// `-` writes to standard output. A run without a counterexample writes no file and
-/// says so on standard error.
+/// `-` writes to standard output. A run without a counterexample writes no waveform
+/// file and says so on standard error; the HTML report is always written.
 pub fn write_files(
     report: &RunReport,
-    vcd_path: Option<&str>,
-    wavedrom_path: Option<&str>,
+    outputs: &Outputs,
+    opts: &super::Options,
 ) -> Result<(), super::InputError> {
     let mut files = Vec::new();
     for (path, render) in
-        [(vcd_path, vcd as fn(&RunReport) -> Option<String>), (wavedrom_path, wavedrom)]
+        [(outputs.vcd, vcd as fn(&RunReport) -> Option<String>), (outputs.wavedrom, wavedrom)]
     {
         let Some(path) = path else { continue };
         match render(report) {
             Some(text) => files.push((path, text)),
             None => super::console::err(&format!("note: no counterexample to write to {path}\n")),
         }
+    }
+    if let Some(path) = outputs.html {
+        files.push((path, super::html::html(report, opts)));
     }
     for (path, text) in files {
         if path == "-" {

@@ -10,10 +10,12 @@
 pub mod console;
 pub mod export;
 pub mod formats;
+pub mod html;
 mod property;
 pub mod text;
 pub mod trace;
 mod vacuity;
+use vacuity::{contradictory, flag_vacuity, forced_by_assumptions, forced_constants, forced_text};
 pub mod waveform;
 
 use property::style_term;
@@ -27,7 +29,7 @@ use serde::Serialize;
 use crate::counterexample;
 use crate::diag::{Diagnostic, IoError, RenderStyle, Sources, render};
 use crate::kernel::{Axiom, Rel};
-use crate::prover::{self, Budget, Context, Obligation, Outcome};
+use crate::prover::{Context, Obligation};
 use crate::semantics::format_time;
 use crate::syntax::{self, Document, Goal, NoProgram, Notation, Scope};
 use crate::term::Expr;
@@ -295,6 +297,20 @@ pub struct RunReport {
     /// When interrupted: the properties it did not finish, in file order.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub unchecked: Vec<Unchecked>,
+    /// The program's compiled equations, as the HTML report's appendix shows them.
+    #[serde(skip)]
+    pub equations: Vec<EquationLine>,
+}
+
+/// One compiled equation of the program, as printed, and where it comes from.
+#[derive(Clone, Debug)]
+pub struct EquationLine {
+    /// Its name (`L06a`), as proofs cite it.
+    pub name: String,
+    /// `L1_pump = 5s/L1_Prod`.
+    pub text: String,
+    /// The rung or element it is compiled from.
+    pub location: Location,
 }
 
 /// A property an interrupted run did not finish.
@@ -697,85 +713,6 @@ pub fn run_free_with(
     Ok(finish(None, paths.to_vec(), warnings, properties))
 }
 
-/// Marks what inconsistent hypotheses mean for a property: an unknown one's reason
-/// says so, a proved one is vacuous. Otherwise `forced` (run only for a proved
-/// property) may name signals the hypotheses force to a constant.
-fn flag_vacuity(
-    report: &mut PropertyReport,
-    inconsistent: Option<&str>,
-    forced: impl FnOnce() -> Option<String>,
-) {
-    match report.status {
-        Status::Unknown => {
-            if let (Some(text), Some(reason)) = (inconsistent, &mut report.reason) {
-                reason.push_str(&format!("; {text}"));
-            }
-        }
-        Status::Proved => {
-            let why = inconsistent.map(str::to_string).or_else(forced);
-            report.vacuous = why.is_some();
-            report.vacuity = why;
-        }
-        Status::Refuted => {}
-    }
-}
-
-/// Do the assumptions prove `0* = 1*`? Asked as `n·¬n = n + ¬n` for a name `n` of
-/// each assumption, so that the goal's cone of influence reaches the assumptions.
-fn contradictory(ctx: &Context, hypotheses: &[Axiom], opts: &Options) -> bool {
-    let mut asked = std::collections::BTreeSet::new();
-    hypotheses.iter().any(|h| {
-        let Some(n) = h.lhs.as_ref().iter().chain(h.rhs.as_ref()).find_map(|node| match node {
-            crate::term::Term::Name(n) => Some(*n),
-            _ => None,
-        }) else {
-            return false;
-        };
-        let signal = crate::term::name(n.as_str());
-        let zero = crate::term::and_not(&signal, &signal);
-        let one = crate::term::or(&signal, &crate::term::not(&signal));
-        asked.insert(n) && proves_quickly(ctx, &zero, &one, opts)
-    })
-}
-
-/// Does the prover prove `lhs = rhs` quickly (a short budget, and no larger rule sets
-/// once the Boolean skeleton has a model: this is a check on the assumptions, not a
-/// property)?
-fn proves_quickly(ctx: &Context, lhs: &Expr, rhs: &Expr, opts: &Options) -> bool {
-    let goal = Obligation { lhs: lhs.clone(), rel: Rel::Eq, rhs: rhs.clone() };
-    let budget = Budget { time: opts.timeout.min(VACUITY_CHECK), ..Budget::default() };
-    // A model of the Boolean skeleton is answer enough: no larger rule sets.
-    matches!(prover::prove_with(ctx, &goal, budget, &mut |_| true), Outcome::Proved(_))
-}
-
-/// The signals a goal reads that the assumptions force to a constant (free signals).
-fn forced_by_assumptions(ctx: &Context, goal: &Obligation, opts: &Options) -> Vec<(String, bool)> {
-    let mut read = std::collections::BTreeSet::new();
-    for side in [&goal.lhs, &goal.rhs] {
-        for node in side.as_ref() {
-            if let crate::term::Term::Name(n) = node {
-                read.insert(n.to_string());
-            }
-        }
-    }
-    let mut forced = Vec::new();
-    for n in read {
-        for value in [false, true] {
-            let signal = crate::term::name(&n);
-            if proves_quickly(ctx, &signal, &crate::term::constant(value), opts) {
-                if !vacuity::claimed(goal, &n, value) {
-                    forced.push((n.clone(), value));
-                }
-                break;
-            }
-        }
-    }
-    forced
-}
-
-/// Time for each consistency or constancy check of the assumptions.
-const VACUITY_CHECK: Duration = Duration::from_millis(500);
-
 /// The rung compiler's options a run asks for.
 pub fn compile_options(opts: &Options) -> crate::ladder::CompileOptions {
     crate::ladder::CompileOptions { timers: opts.timers }
@@ -991,6 +928,28 @@ pub fn run_program_with(
     }
     let mut report = finish(Some(program.to_string()), paths.to_vec(), warnings, properties);
     report.timers = Some(opts.timers.as_str());
+    // After the properties are read: names print as they spell them.
+    let style = trace::Style { notation: opts.notation(), rename: &rename };
+    report.equations = compiled
+        .hypotheses
+        .iter()
+        .map(|h| {
+            let rel = match (h.rel, opts.ascii) {
+                (Rel::Eq, _) => "=",
+                (Rel::Implies, false) => "⇒",
+                (Rel::Implies, true) => "=>",
+            };
+            EquationLine {
+                name: h.name.clone(),
+                text: format!(
+                    "{} {rel} {}",
+                    style_term(&style, &h.lhs),
+                    style_term(&style, &h.rhs)
+                ),
+                location: Location::of(&sources, h.span),
+            }
+        })
+        .collect();
     Ok(report)
 }
 
@@ -1019,48 +978,8 @@ fn finish(
         summary,
         interrupted: false,
         unchecked: Vec::new(),
+        equations: Vec::new(),
     }
-}
-
-/// Signals the property reads that the hypotheses force to a constant (bounded search
-/// on each signal's cut cone, answers shared through the session's `cache`).
-fn forced_constants(
-    session: &counterexample::Program,
-    cache: &counterexample::VacuityCache,
-    goal: &Obligation,
-    rename: &dyn Fn(&Expr) -> Expr,
-    opts: &Options,
-) -> Option<String> {
-    let mut v = counterexample::vacuity_cached(session, &[&goal.lhs, &goal.rhs], cache);
-    v.constants.retain(|(n, c)| !vacuity::claimed(goal, n, *c));
-    if v.constants.is_empty() {
-        return None;
-    }
-    let style = trace::Style { notation: opts.notation(), rename };
-    Some(forced_text(&style, &v.constants, v.horizon.as_ref()))
-}
-
-/// "the hypotheses force X = 0*, … in every run": a property reading them may hold
-/// only vacuously. `horizon`: how far a bounded check looked.
-fn forced_text(
-    style: &trace::Style,
-    forced: &[(String, bool)],
-    horizon: Option<&crate::semantics::Time>,
-) -> String {
-    let parts: Vec<String> = forced
-        .iter()
-        .map(|(n, c)| {
-            let value = if *c { "1*" } else { "0*" };
-            format!("{} = {value}", style_term(style, &crate::term::name(n)))
-        })
-        .collect();
-    format!(
-        "the hypotheses force {}{}: the property may hold only vacuously",
-        parts.join(", "),
-        horizon
-            .map(|h| format!(" in every run up to t = {} s", format_time(h)))
-            .unwrap_or_default()
-    )
 }
 
 /// The JSON report (schema: [`RunReport`]).
