@@ -133,7 +133,7 @@ pub fn vcd(report: &RunReport) -> Option<String> {
 }
 
 /// The value just after `t` (on the open interval that starts at `t`).
-fn value_after(s: &Signal, t: &Time) -> bool {
+pub(super) fn value_after(s: &Signal, t: &Time) -> bool {
     let next =
         s.breakpoints().iter().find(|b| *b > t).cloned().unwrap_or_else(|| s.horizon().clone());
     s.value_at(&((t + &next) / Time::from_integer(2.into())))

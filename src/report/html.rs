@@ -12,9 +12,10 @@
 use std::collections::BTreeSet;
 use std::fmt::Write;
 
+use super::export::value_after as after;
 use super::text::{candidate_line, counterexample_lines, summary_line};
 use super::{CounterexampleReport, Options, PropertyReport, RunReport, Status};
-use crate::semantics::{Signal, Time, format_time};
+use crate::semantics::{Time, format_time};
 
 /// Text for HTML: `<`, `>`, `&`, `"` and `'` escaped.
 fn esc(text: &str) -> String {
@@ -234,13 +235,6 @@ fn label(name: &str) -> String {
         Some((side @ ("lhs" | "rhs"), _)) if name.chars().count() > 24 => side.to_string(),
         _ => name.chars().take(40).collect(),
     }
-}
-
-/// The value on the open interval that starts at `t`.
-fn after(s: &Signal, t: &Time) -> bool {
-    let next =
-        s.breakpoints().iter().find(|b| *b > t).cloned().unwrap_or_else(|| s.horizon().clone());
-    s.value_at(&((t + &next) / Time::from_integer(2.into())))
 }
 
 fn float(t: &Time) -> f64 {
