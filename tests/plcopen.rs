@@ -446,6 +446,25 @@ fn order_chooses_the_editor() {
     assert!(text(&document.stdout).contains("refuted"), "{}", text(&document.stdout));
 }
 
+/// Coils 8 units apart in height, and 16 between the first and the last: Beremiz's
+/// position comparison says Y's coil before X's (one row, by x), Z's before Y's, and X's
+/// before Z's (by height), which is no order. What the editor runs is what CPython's sort
+/// makes of it from document order (X, Y, Z): Z, Y, X. Rows formed from the top would give
+/// Y, X, Z, and `Z = Y`; the toolchain oracle found that difference.
+#[test]
+fn a_position_comparison_that_is_no_order_sorts_as_the_editor_does() {
+    let xml = "tests/data/plcopen/order/position_is_no_order.xml";
+    let props = temp("layout.ii", "property z_lags: Z = pre Y\nproperty z_same: Z = Y\n");
+    let out = ii_prove(&["--order", "layout", xml, props.to_str().unwrap()]);
+    let stdout = text(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    let verdict = |name: &str| {
+        stdout.lines().find(|l| l.starts_with(&format!("{name} "))).map(|l| l.to_string())
+    };
+    assert!(verdict("z_lags").is_some_and(|l| l.contains("proved")), "{stdout}");
+    assert!(verdict("z_same").is_some_and(|l| l.contains("refuted")), "{stdout}");
+}
+
 /// An edge contact read on two paths: Beremiz's `PLCGenerator.py` makes one `R_TRIG` per
 /// path (`AddTrigger`, called where each statement is generated), so with `A` written
 /// between the two coils `B` and `C` differ; the program is refused at the contact, not

@@ -957,7 +957,7 @@ fn check_pou(
         program.inputs.insert(latch.clone());
         program.latches.insert(x, latch);
     }
-    program.order_statements(&mut warnings);
+    program.order_statements(&mut warnings)?;
     program.warnings = warnings;
     Ok(program)
 }
@@ -1270,7 +1270,8 @@ impl PlcProgram {
     }
 
     /// Orders the statements as Beremiz's `PLCGenerator.ComputeProgram` does (§8).
-    fn order_statements(&mut self, warnings: &mut Vec<PlcError>) {
+    fn order_statements(&mut self, warnings: &mut Vec<PlcError>) -> Result<(), Vec<PlcError>> {
+        let mut errors = Vec::new();
         let objects = self.objects();
         let mut ordered: Vec<(u64, usize)> = Vec::new();
         let mut outputs: Vec<usize> = Vec::new();
@@ -1305,7 +1306,22 @@ impl PlcProgram {
         };
         if layout {
             let mut rows_of = |list: &mut Vec<usize>| {
-                let amb = geometric(list, objects);
+                let amb = match geometric(list, objects) {
+                    Ok(amb) => amb,
+                    Err((a, b)) => {
+                        errors.push(PlcError::Unsupported {
+                            span: objects[b].span,
+                            what: format!(
+                                "a statement order by position among 64 or more objects where this `{}` and the `{}` {} lie less than 10 units apart in height",
+                                objects[b].tag(),
+                                objects[a].tag(),
+                                objects[a].id
+                            ),
+                            reason: "Beremiz's position comparison is no order there, and what its sort makes of it is not reproduced for so many objects; align the two or move them 10 units apart".into(),
+                        });
+                        None
+                    }
+                };
                 if let Some((a, b)) = amb {
                     warnings.push(PlcError::Note {
                         span: objects[b].span,
@@ -1342,6 +1358,7 @@ impl PlcProgram {
         order.extend(connectors);
         self.order = order;
         self.rule = rule;
+        if errors.is_empty() { Ok(()) } else { Err(errors) }
     }
 }
 
@@ -1425,30 +1442,69 @@ fn variable_modifier(o: &Obj, what: &str) -> PlcError {
     }
 }
 
-/// Sorts `list` as Beremiz's `SortInstances` does: rows of objects within 10 units
-/// of height, top to bottom, each left to right. Returns a pair whose order depended
-/// on the 10-unit row rule (different heights, same row), if any.
-fn geometric(list: &mut [usize], objects: &[Obj]) -> Option<(usize, usize)> {
+/// Sorts `list` as Beremiz's `SortInstances` does: two objects less than 10 units apart
+/// in height by `x`, others by `y`. That comparison is no order (a ~ b and b ~ c by the
+/// 10-unit rule while a < c by height), so the result is the sorting algorithm's:
+/// CPython's `list.sort`, which for fewer than 64 items takes the first run (reversed if
+/// strictly descending) and inserts the rest by binary search. Returns a pair whose order
+/// depended on the 10-unit rule (different heights, one row), if any; `Err` with such a
+/// pair for a longer list, where the merges of the algorithm are not reproduced here.
+fn geometric(
+    list: &mut Vec<usize>,
+    objects: &[Obj],
+) -> Result<Option<(usize, usize)>, (usize, usize)> {
     let pos = |k: usize| objects[k].pos.unwrap_or((0, 0));
-    list.sort_by_key(|k| (pos(*k).1, pos(*k).0));
-    let mut rows: Vec<Vec<usize>> = Vec::new();
-    for &k in list.iter() {
-        match rows.last_mut() {
-            Some(row) if (pos(k).1 - pos(row[0]).1).abs() < 10 => row.push(k),
-            _ => rows.push(vec![k]),
-        }
-    }
+    let lt = |a: usize, b: usize| {
+        let ((ax, ay), (bx, by)) = (pos(a), pos(b));
+        if (ay - by).abs() < 10 { ax < bx } else { ay < by }
+    };
     let mut ambiguous = None;
-    for row in &mut rows {
-        row.sort_by_key(|k| pos(*k).0);
-        for w in row.windows(2) {
-            if pos(w[0]).1 != pos(w[1]).1 && ambiguous.is_none() {
-                ambiguous = Some((w[0], w[1]));
+    for (i, &a) in list.iter().enumerate() {
+        for &b in &list[i + 1..] {
+            let dy = (pos(a).1 - pos(b).1).abs();
+            if dy > 0 && dy < 10 && ambiguous.is_none() {
+                ambiguous = Some((a, b));
             }
         }
     }
-    for (slot, k) in list.iter_mut().zip(rows.into_iter().flatten()) {
-        *slot = k;
+    if list.len() >= 64 {
+        return match ambiguous {
+            Some(pair) => Err(pair),
+            // Without such a pair the comparison is (y, x), an order: any sort agrees.
+            None => {
+                list.sort_by_key(|k| (pos(*k).1, pos(*k).0));
+                Ok(None)
+            }
+        };
     }
-    ambiguous
+    let n = list.len();
+    if n < 2 {
+        return Ok(None);
+    }
+    let mut run = 2;
+    if lt(list[1], list[0]) {
+        while run < n && lt(list[run], list[run - 1]) {
+            run += 1;
+        }
+        list[..run].reverse();
+    } else {
+        while run < n && !lt(list[run], list[run - 1]) {
+            run += 1;
+        }
+    }
+    for start in run..n {
+        let pivot = list[start];
+        let (mut l, mut r) = (0, start);
+        while l < r {
+            let p = l + (r - l) / 2;
+            if lt(pivot, list[p]) {
+                r = p;
+            } else {
+                l = p + 1;
+            }
+        }
+        list.remove(start);
+        list.insert(l, pivot);
+    }
+    Ok(ambiguous)
 }
