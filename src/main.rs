@@ -442,7 +442,7 @@ fn prove(cli: Cli) -> ExitCode {
         Err(e) => return fail(e),
     };
     console.finish(&run);
-    if let Err(e) = report::export::write_files(&run, &outputs, &opts) {
+    if let Err(e) = report::export::write_files(&run, &outputs) {
         return fail(e);
     }
     ExitCode::from(u8::from(run.summary.fails(opts.deny_vacuous)))

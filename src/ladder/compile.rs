@@ -191,6 +191,15 @@ pub struct Hypothesis {
 }
 
 impl Hypothesis {
+    /// The hypothesis as a goal of the `.ii` language (what `show` prints).
+    pub fn goal(&self) -> Goal {
+        let relation = match self.rel {
+            Rel::Eq => Relation::Equals,
+            Rel::Implies => Relation::Implies,
+        };
+        Goal { lhs: self.lhs.clone(), relation, rhs: self.rhs.clone(), after: None, pattern: None }
+    }
+
     /// The hypothesis as a ground kernel axiom.
     pub fn axiom(&self) -> Axiom {
         Axiom::ground(self.name.clone(), self.lhs.clone(), self.rel, self.rhs.clone())
@@ -1335,14 +1344,8 @@ pub fn program_to_ii(compiled: &CompiledProgram, notation: Notation) -> String {
     out.push('\n');
     let dummy = Span::new(0, 0..0);
     for h in &compiled.hypotheses {
-        let relation = match h.rel {
-            Rel::Eq => Relation::Equals,
-            Rel::Implies => Relation::Implies,
-        };
-        let goal =
-            Goal { lhs: h.lhs.clone(), relation, rhs: h.rhs.clone(), after: None, pattern: None };
         let statement =
-            Statement { name: h.name.clone(), name_span: dummy, span: dummy, value: goal };
+            Statement { name: h.name.clone(), name_span: dummy, span: dummy, value: h.goal() };
         out.push_str(&goal_statement_to_string(GoalKeyword::Assume, &statement, notation));
         out.push('\n');
     }

@@ -290,11 +290,7 @@ pub fn check_outputs(outputs: &Outputs) -> Result<(), super::InputError> {
 /// written whole (to a temporary name, then renamed), so nothing is half written;
 /// `-` writes to standard output. A run without a counterexample writes no waveform
 /// file and says so on standard error; the HTML report is always written.
-pub fn write_files(
-    report: &RunReport,
-    outputs: &Outputs,
-    opts: &super::Options,
-) -> Result<(), super::InputError> {
+pub fn write_files(report: &RunReport, outputs: &Outputs) -> Result<(), super::InputError> {
     let mut files = Vec::new();
     for (path, render) in
         [(outputs.vcd, vcd as fn(&RunReport) -> Option<String>), (outputs.wavedrom, wavedrom)]
@@ -306,7 +302,7 @@ pub fn write_files(
         }
     }
     if let Some(path) = outputs.html {
-        files.push((path, super::html::html(report, opts)));
+        files.push((path, super::html::html(report)));
     }
     for (path, text) in files {
         if path == "-" {

@@ -51,7 +51,7 @@ pub fn render(format: Format, report: &RunReport, opts: &Options) -> String {
         Format::Json => super::render_json(report),
         Format::Junit => junit(report, opts),
         Format::Sarif => sarif(report, opts),
-        Format::Html => super::html::html(report, opts),
+        Format::Html => super::html::html(report),
         Format::Github => {
             let mut out: String = report.warnings.iter().map(github_warning).collect();
             let width = super::text::name_width(report.properties.iter().map(|p| p.name.as_str()));

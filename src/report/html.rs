@@ -14,7 +14,7 @@ use std::fmt::Write;
 
 use super::export::value_after as after;
 use super::text::{candidate_line, counterexample_lines, summary_line};
-use super::{CounterexampleReport, Options, PropertyReport, RunReport, Status};
+use super::{CounterexampleReport, PropertyReport, RunReport, Status};
 use crate::semantics::{Time, format_time};
 
 /// Text for HTML: `<`, `>`, `&`, `"` and `'` escaped.
@@ -92,7 +92,7 @@ a { color: #1f5fa8; }
 ";
 
 /// The whole page.
-pub fn html(report: &RunReport, opts: &Options) -> String {
+pub fn html(report: &RunReport) -> String {
     let equations: BTreeSet<&str> = report.equations.iter().map(|e| e.name.as_str()).collect();
     let mut out = String::new();
     let title = match &report.program {
@@ -134,7 +134,7 @@ pub fn html(report: &RunReport, opts: &Options) -> String {
         out.push_str("</ul>\n");
     }
     for p in &report.properties {
-        property(&mut out, p, &equations, opts);
+        property(&mut out, p, &equations);
     }
     appendix(&mut out, report);
     out.push_str("</body>\n</html>\n");
@@ -166,7 +166,7 @@ fn summary_table(out: &mut String, report: &RunReport) {
     out.push_str("</tbody>\n</table>\n");
 }
 
-fn property(out: &mut String, p: &PropertyReport, equations: &BTreeSet<&str>, opts: &Options) {
+fn property(out: &mut String, p: &PropertyReport, equations: &BTreeSet<&str>) {
     let v = verdict(p);
     let _ = writeln!(out, "<section class=\"property {v}\" id=\"{}\">", anchor("p-", &p.name));
     let _ = writeln!(out, "<h2>{} <span class=\"verdict\">{v}</span></h2>", esc(&p.name));
@@ -195,11 +195,11 @@ fn property(out: &mut String, p: &PropertyReport, equations: &BTreeSet<&str>, op
         for line in counterexample_lines(c) {
             let _ = writeln!(out, "<p class=\"counterexample\">{}</p>", esc(&line));
         }
-        diagram(out, c, opts);
+        diagram(out, c);
     }
     if let Some(c) = &p.candidate {
         let _ = writeln!(out, "<p class=\"candidate\">{}</p>", esc(&candidate_line(c)));
-        diagram(out, c, opts);
+        diagram(out, c);
     }
     out.push_str("</section>\n");
 }
@@ -244,7 +244,7 @@ fn float(t: &Time) -> f64 {
 
 /// The counterexample as an SVG timing diagram (a track per signal, the violation
 /// marked), then a table of the values on each piece of the time axis.
-fn diagram(out: &mut String, c: &CounterexampleReport, _opts: &Options) {
+fn diagram(out: &mut String, c: &CounterexampleReport) {
     let Some((_, first)) = c.shown.first() else { return };
     let horizon = first.horizon().clone();
     let h = float(&horizon).max(f64::MIN_POSITIVE);

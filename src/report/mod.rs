@@ -18,7 +18,6 @@ mod vacuity;
 use vacuity::{contradictory, flag_vacuity, forced_by_assumptions, forced_constants, forced_text};
 pub mod waveform;
 
-use property::style_term;
 pub use property::{Attempt, attempt, check_property, refute};
 pub use text::render_text;
 
@@ -28,7 +27,7 @@ use serde::Serialize;
 
 use crate::counterexample;
 use crate::diag::{Diagnostic, IoError, RenderStyle, Sources, render};
-use crate::kernel::{Axiom, Rel};
+use crate::kernel::Axiom;
 use crate::prover::{Context, Obligation};
 use crate::semantics::format_time;
 use crate::syntax::{self, Document, Goal, NoProgram, Notation, Scope};
@@ -929,23 +928,15 @@ pub fn run_program_with(
     let mut report = finish(Some(program.to_string()), paths.to_vec(), warnings, properties);
     report.timers = Some(opts.timers.as_str());
     // After the properties are read: names print as they spell them.
-    let style = trace::Style { notation: opts.notation(), rename: &rename };
     report.equations = compiled
         .hypotheses
         .iter()
         .map(|h| {
-            let rel = match (h.rel, opts.ascii) {
-                (Rel::Eq, _) => "=",
-                (Rel::Implies, false) => "⇒",
-                (Rel::Implies, true) => "=>",
-            };
+            let goal = h.goal();
+            let shown = Goal { lhs: rename(&goal.lhs), rhs: rename(&goal.rhs), ..goal };
             EquationLine {
                 name: h.name.clone(),
-                text: format!(
-                    "{} {rel} {}",
-                    style_term(&style, &h.lhs),
-                    style_term(&style, &h.rhs)
-                ),
+                text: syntax::goal_to_string(&shown, opts.notation()),
                 location: Location::of(&sources, h.span),
             }
         })

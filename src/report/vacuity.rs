@@ -141,109 +141,28 @@ pub(super) fn forced_text(
     )
 }
 
-/// The most atoms a goal may have for the test (2^12 assignments).
+/// The most atoms a goal may have for the test.
 const MAX_ATOMS: usize = 12;
 
-/// Whether the goal, read pointwise, implies `name = value`. False when `name` is not
-/// one of its atoms or it has too many atoms to tell.
+/// Whether the goal, read pointwise, implies `name = value`: the prover's Boolean
+/// skeleton (signals, timers, memories and `pre` terms as atoms) has no model where the
+/// goal holds and `name` differs. False when `name` is not one of its atoms or it has
+/// too many atoms to tell.
 pub(super) fn claimed(goal: &Obligation, name: &str, value: bool) -> bool {
-    let mut atoms: Vec<Atom> = Vec::new();
-    let lhs = Side::of(&goal.lhs, 0, &mut atoms);
-    let rhs = Side::of(&goal.rhs, 1, &mut atoms);
-    let Some(target) = atoms.iter().position(|a| *a == Atom::Name(name.to_string())) else {
+    use crate::term::{and, and_not, not, or};
+    let signal = crate::term::name(name);
+    let reads =
+        |e: &Expr| e.as_ref().iter().any(|n| matches!(n, Term::Name(s) if s.as_str() == name));
+    if !reads(&goal.lhs) && !reads(&goal.rhs) {
         return false;
+    }
+    let (l, r) = (&goal.lhs, &goal.rhs);
+    let violated = match goal.rel {
+        Rel::Eq => or(&and_not(l, r), &and_not(r, l)),
+        Rel::Implies => and_not(l, r),
     };
-    if atoms.len() > MAX_ATOMS {
-        return false;
-    }
-    (0u32..1 << atoms.len()).all(|bits| {
-        let (l, r) = (lhs.eval(bits), rhs.eval(bits));
-        let holds = match goal.rel {
-            Rel::Eq => l == r,
-            Rel::Implies => !l || r,
-        };
-        !holds || (bits >> target & 1 == 1) == value
-    })
-}
-
-/// A free Boolean atom of a goal: a signal, or a non-Boolean subterm (side, node).
-#[derive(PartialEq)]
-enum Atom {
-    Name(String),
-    Opaque(usize, usize),
-}
-
-/// One side of a goal: its nodes, each Boolean node or the index of its atom.
-struct Side {
-    nodes: Vec<Node>,
-}
-
-enum Node {
-    Const(bool),
-    Atom(usize),
-    And(usize, usize),
-    Or(usize, usize),
-    Not(usize),
-}
-
-impl Side {
-    /// The Boolean structure above the root's atoms; nodes only an atom reads (its
-    /// delay, the signal under a timer) are not atoms of the goal.
-    fn of(expr: &Expr, side: usize, atoms: &mut Vec<Atom>) -> Side {
-        let terms = expr.as_ref();
-        let mut boolean = vec![false; terms.len()];
-        if let Some(last) = boolean.last_mut() {
-            *last = true;
-        }
-        for i in (0..terms.len()).rev() {
-            if boolean[i] {
-                match &terms[i] {
-                    Term::And([a, b]) | Term::Or([a, b]) => {
-                        boolean[usize::from(*a)] = true;
-                        boolean[usize::from(*b)] = true;
-                    }
-                    Term::Not(a) => boolean[usize::from(*a)] = true,
-                    _ => {}
-                }
-            }
-        }
-        let mut atom = |a: Atom| match atoms.iter().position(|b| *b == a) {
-            Some(i) => i,
-            None => {
-                atoms.push(a);
-                atoms.len() - 1
-            }
-        };
-        let nodes = terms
-            .iter()
-            .enumerate()
-            .map(|(i, node)| match node {
-                _ if !boolean[i] => Node::Const(false),
-                Term::Zero => Node::Const(false),
-                Term::One => Node::Const(true),
-                Term::And([a, b]) => Node::And(usize::from(*a), usize::from(*b)),
-                Term::Or([a, b]) => Node::Or(usize::from(*a), usize::from(*b)),
-                Term::Not(a) => Node::Not(usize::from(*a)),
-                Term::Name(n) => Node::Atom(atom(Atom::Name(n.to_string()))),
-                _ => Node::Atom(atom(Atom::Opaque(side, i))),
-            })
-            .collect();
-        Side { nodes }
-    }
-
-    /// The root's value when atom `i` is bit `i` of `bits`.
-    fn eval(&self, bits: u32) -> bool {
-        let mut values: Vec<bool> = Vec::with_capacity(self.nodes.len());
-        for node in &self.nodes {
-            let v = match *node {
-                Node::Const(c) => c,
-                Node::Atom(i) => bits >> i & 1 == 1,
-                Node::And(a, b) => values[a] && values[b],
-                Node::Or(a, b) => values[a] || values[b],
-                Node::Not(a) => !values[a],
-            };
-            values.push(v);
-        }
-        values.last().copied().unwrap_or(false)
-    }
+    let differs = if value { not(&signal) } else { signal };
+    let mut atoms = prover::boolean::Atoms::default();
+    let model = prover::boolean::model_of(&and(&not(&violated), &differs), &[], &mut atoms);
+    model.is_none() && atoms.terms.len() <= MAX_ATOMS
 }
