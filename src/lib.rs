@@ -13,6 +13,7 @@ pub mod counterexample;
 pub mod diag;
 pub mod kernel;
 pub mod ladder;
+pub mod program;
 pub mod prover;
 pub mod repl;
 pub mod report;

@@ -1,28 +1,49 @@
-//! Ladder front ends over one scan model: LDmicro `.ld` files read into an AST ([`ldmicro`]) and run by a reference scan-cycle simulator ([`simulate`]), PLCopen XML read and lowered into the same rung model ([`plcopen`]); [`compile()`] is the one compiler.
+//! Ladder front ends: LDmicro `.ld` files read into an AST ([`ldmicro`]), lowered into the scan model ([`lower`]) and run by a reference scan-cycle simulator ([`simulate`]); PLCopen XML read, checked and lowered into the scan model ([`plcopen`]). [`compile()`] lowers and compiles an LDmicro program.
 //!
 //! The reader never panics; every problem it finds is a [`LadderError`] with a
 //! [`Span`] into the source text, rendered by [`crate::diag::render`].
 
-pub mod compile;
 pub mod ldmicro;
-pub mod logic;
-pub mod names;
+pub mod lower;
 pub mod plcopen;
 pub mod simulate;
 
-pub use compile::{
+pub use crate::program::{
     CompileOptions, CompileWarning, CompiledProgram, Hypothesis, HypothesisKind, SignalKind,
-    TimerInfo, TimerModel, compile, compile_with, program_to_ii,
+    TimerInfo, TimerModel, program_to_ii, short_name,
 };
 pub use ldmicro::{
     Circuit, CoilKind, CompareOp, CounterEdge, CounterKind, EdgeKind, Element, ElementKind,
     HeaderVersion, IoEntry, LdProgram, MathOp, Operand, Rung, TimerDelay, TimerKind, decode_latin1,
     read_ldmicro,
 };
-pub use names::short_name;
 pub use simulate::{Simulator, run};
 
 use crate::diag::{Report, Severity, Span};
+
+/// Lowers and compiles an LDmicro program with the default options (PLC timer counts).
+pub fn compile(program: &LdProgram) -> Result<CompiledProgram, Vec<LadderError>> {
+    compile_with(program, &CompileOptions::default())
+}
+
+/// Lowers an LDmicro program into the scan model and compiles it. Never panics. An
+/// element whose effect the equations cannot describe soundly (control flow) refuses
+/// the program with a located error; everything else not expressed exactly is a sound
+/// over-approximation and a warning.
+pub fn compile_with(
+    program: &LdProgram,
+    options: &CompileOptions,
+) -> Result<CompiledProgram, Vec<LadderError>> {
+    let lowered = lower::lower(program)?;
+    crate::program::compile(&lowered, options)
+        .map_err(|errors| errors.into_iter().map(LadderError::from).collect())
+}
+
+impl From<crate::program::CompileError> for LadderError {
+    fn from(e: crate::program::CompileError) -> LadderError {
+        LadderError::Unsupported { span: e.span, keyword: e.keyword, reason: e.reason }
+    }
+}
 
 /// A reference scan simulator of a front end: the counterexample search confirms
 /// candidates on it, the differential tests check the compiled equations against it.

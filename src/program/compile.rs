@@ -1,15 +1,13 @@
-//! The rung compiler: an LDmicro program ([`LdProgram`]) → ground hypotheses of the II algebra (exact equations) that hold at every scan of what the PLC runs (`shared/spec/semantics.md`, "Programs, scan by scan").
+//! The II compiler: a program of the scan model ([`Program`]) → ground hypotheses of the II algebra (exact equations) that hold at every scan of what the PLC runs (`shared/spec/semantics.md`, "Programs, scan by scan").
 //!
 //! # Model
 //!
-//! A scan runs every rung once, top to bottom; inputs are constant during it, and
-//! each read sees the last write before it in the scan. Power flows as in LDmicro
-//! (ldmicro.md §6.2): series is `·`, parallel is `+`, a contact is its signal
-//! or its complement, `SHORT` is `1*`, `OPEN`/`PLACEHOLDER` is `0*`, and
-//! elements after a false still execute: a coil in the middle of a series gets
-//! the power at that point. A rung's rung-in is the master-relay bit, modelled
-//! exactly (§6.6: `MASTER_RELAY` with input `i` makes it `¬mcr + i`; it is `1*`
-//! at the start of every scan).
+//! A scan runs every block once, top to bottom; inputs are constant during it, and
+//! each read sees the last write before it in the scan. Expressions are read as
+//! the algebra reads them: `·`, `+`, `¬`, constants, timers as `d/f` and `f/d`,
+//! one-shots over hidden memories; the front ends turn their languages into them
+//! (LDmicro's power flow, its master relay and its elements: `ladder::lower`;
+//! PLCopen's statements: `ladder::plcopen::lower`).
 //!
 //! # Reads
 //!
@@ -87,10 +85,9 @@
 //!
 //! # Refused
 //!
-//! Elements that change which rungs run (`GOTO`, `GOSUB`, `SUBPROG`/`ENDSUB`,
-//! `RETURN`, `LOCK`, `SLEEP`) refuse the program with a located
-//! [`LadderError::Unsupported`]: equations of a plain top-to-bottom scan would be
-//! wrong for it. `LABEL` alone only marks a place and passes the power.
+//! Under `--timers ideal` a delay that is not a whole number of cycles refuses the
+//! program with a located [`CompileError`]. (The front ends refuse what changes which
+//! blocks run: LDmicro's `GOTO`, `GOSUB`, …)
 //!
 //! # Names
 //!
@@ -110,12 +107,8 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use super::LadderError;
-use super::ldmicro::{
-    Circuit, CoilKind, CounterKind, EdgeKind, Element, ElementKind, LdProgram, Rung, TimerDelay,
-    TimerKind,
-};
 use super::logic::{L, Tables, factors, product, simp, sum, summands};
+use super::{Block, BoolExpr, EdgeKind, Memory, Preset, Program, Stmt, Temp, Timer, WriteKind};
 use crate::diag::{Report, Severity, Sources, Span};
 use crate::kernel::{Axiom, Rel};
 use crate::syntax::print::{
@@ -387,83 +380,30 @@ impl CompiledProgram {
 /// The largest intermediate value (in nodes) inlined into later reads.
 const MAX_INLINE: usize = 2_000;
 
-/// Elements that change which rungs run (or stop the scan): a program using them is
-/// refused, since the equations would describe a plain top-to-bottom scan.
-const CONTROL_FLOW: &[(&str, &str)] = &[
-    ("GOTO", "a jump skips rungs, which then keep their previous values"),
-    ("GOSUB", "a subroutine call runs rungs out of order"),
-    ("SUBPROG", "a subroutine body runs only when called, not in the scan"),
-    ("ENDSUB", "a subroutine body runs only when called, not in the scan"),
-    ("RETURN", "a return skips the rest of a subroutine or of the scan"),
-    ("LOCK", "the program stops scanning here"),
-    ("SLEEP", "the processor sleeps in the middle of the scan"),
-];
-
-/// Names the outside world writes: the program's declared inputs if it has them
-/// ([`LdProgram::inputs`], PLCopen), else LDmicro's (ldmicro.md §5): `X` input pins,
-/// `I` Modbus discrete inputs and `M` Modbus coils. Any other bit that no coil writes
-/// stays `0*`.
-fn is_external_input(program: &LdProgram, name: &str) -> bool {
-    match &program.inputs {
-        Some(inputs) => inputs.contains(name),
-        None => name.starts_with(['X', 'I', 'M']),
-    }
-}
-
-/// The canonical `.ii` name of an LDmicro name (a back quote cannot be quoted; it becomes `'`).
+/// The canonical `.ii` name of a source name (a back quote cannot be quoted; it becomes `'`).
 pub fn canonical(name: &str) -> String {
     name.replace('`', "'")
 }
 
-/// Compiles a program with the default options (PLC timer counts).
-pub fn compile(program: &LdProgram) -> Result<CompiledProgram, Vec<LadderError>> {
-    compile_with(program, &CompileOptions::default())
+/// What the equations cannot describe soundly with the options asked for: the program is
+/// refused, at the element.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct CompileError {
+    /// The element.
+    pub span: Span,
+    /// Its keyword.
+    pub keyword: String,
+    /// Why, and what to do instead.
+    pub reason: String,
 }
 
-/// Compiles a program. Never panics. An element whose effect the equations cannot
-/// describe soundly (control flow) refuses the program with a located error;
-/// everything else not expressed exactly is a sound over-approximation and a warning.
-pub fn compile_with(
-    program: &LdProgram,
+/// Compiles a program. Never panics. Everything not expressed exactly is a sound
+/// over-approximation and a warning; what the options make inexpressible (a delay that is
+/// not a whole number of cycles under `--timers ideal`) refuses the program.
+pub fn compile(
+    program: &Program,
     options: &CompileOptions,
-) -> Result<CompiledProgram, Vec<LadderError>> {
-    let refused: Vec<LadderError> = program
-        .elements()
-        .filter_map(|e| {
-            if let ElementKind::Coil { name, .. } = &e.kind
-                && is_external_input(program, &canonical(name))
-            {
-                return Some(LadderError::Unsupported {
-                    span: e.span,
-                    keyword: "COIL".into(),
-                    reason: format!(
-                        "`{name}` is also written from outside the program ({}): what a rung \
-                         reads depends on when that write comes, which ii-prove does not \
-                         model; write a relay (`R…`) or an output (`Y…`) instead",
-                        match (&program.inputs, name.chars().next()) {
-                            (Some(_), _) => "a declared input",
-                            (None, Some('X')) => "an input pin",
-                            (None, Some('I')) => "a Modbus discrete input",
-                            _ => "a Modbus coil, which the master writes",
-                        }
-                    ),
-                });
-            }
-            let ElementKind::Other { keyword, .. } = &e.kind else { return None };
-            let (_, why) = CONTROL_FLOW.iter().find(|(k, _)| k == keyword)?;
-            Some(LadderError::Unsupported {
-                span: e.span,
-                keyword: keyword.clone(),
-                reason: format!(
-                    "{why}; ii-prove compiles only programs that run every rung once per scan, \
-                     top to bottom"
-                ),
-            })
-        })
-        .collect();
-    if !refused.is_empty() {
-        return Err(refused);
-    }
+) -> Result<CompiledProgram, Vec<CompileError>> {
     let mut c = Compiler::new(program, *options);
     c.run();
     if !c.errors.is_empty() {
@@ -480,13 +420,11 @@ struct Pending {
 }
 
 struct Compiler<'a> {
-    program: &'a LdProgram,
+    program: &'a Program,
     options: CompileOptions,
-    /// Logic rung names by rung index (None for comment rungs).
-    logic: Vec<Option<String>>,
-    /// Per coil-written variable, the global index of its last coil.
-    last_coil: BTreeMap<String, usize>,
-    /// Bits read but never written and not inputs: they stay `0*`; first reading rung.
+    /// Per written variable, the global index of its last write.
+    last_write: BTreeMap<String, usize>,
+    /// Bits read but never written and not inputs: they stay `0*`; first reading block.
     unwritten: BTreeMap<String, usize>,
     /// Timer accumulators written by more than one element.
     shared_timers: BTreeSet<String>,
@@ -499,34 +437,21 @@ struct Compiler<'a> {
     pre_of: BTreeMap<String, String>,
     fresh: BTreeMap<String, SignalKind>,
     // Scan state.
-    coil_index: usize,
-    /// What a read of each coil-written bit sees at this point of the scan, as a
-    /// function of its previous-scan value `pre_X` (the signal `X` after its last coil).
+    write_index: usize,
+    /// What a read of each written bit sees at this point of the scan, as a
+    /// function of its previous-scan value `pre_X` (the signal `X` after its last write).
     current: BTreeMap<String, L>,
-    mcr: L,
-    // Current rung.
-    rung_idx: usize,
+    /// The scan-local values.
+    temps: BTreeMap<Temp, L>,
+    // Current block.
+    block: usize,
     pending: Vec<Pending>,
     // Output.
     hypotheses: Vec<Hypothesis>,
     warnings: Vec<CompileWarning>,
     /// What the equations cannot describe soundly with these options: the program is refused.
-    errors: Vec<LadderError>,
+    errors: Vec<CompileError>,
     timer_info: Vec<TimerInfo>,
-}
-
-/// A circuit of conditions only (no side effects, no state): its output is `input · conductance`.
-fn is_pure(c: &Circuit) -> bool {
-    match c {
-        Circuit::Series(items) | Circuit::Parallel(items) => items.iter().all(is_pure),
-        Circuit::Element(e) => matches!(
-            e.kind,
-            ElementKind::Contacts { .. }
-                | ElementKind::Short
-                | ElementKind::Open
-                | ElementKind::Comment(_)
-        ),
-    }
 }
 
 fn letters(mut k: usize) -> String {
@@ -543,38 +468,46 @@ fn letters(mut k: usize) -> String {
     String::from_utf8(out).unwrap_or_default()
 }
 
+/// Calls `f` on every expression of `e` (itself included), operands first.
+fn walk(e: &BoolExpr, f: &mut dyn FnMut(&BoolExpr)) {
+    match e {
+        BoolExpr::Not(x) => walk(x, f),
+        BoolExpr::And(a, b) => {
+            walk(a, f);
+            walk(b, f);
+        }
+        BoolExpr::Or(xs) => xs.iter().for_each(|x| walk(x, f)),
+        BoolExpr::Timer(t) => walk(&t.input, f),
+        BoolExpr::Edge { input, .. } => walk(input, f),
+        BoolExpr::Const(_) | BoolExpr::Var(_) | BoolExpr::Temp(_) | BoolExpr::Fresh(_) => {}
+    }
+    f(e)
+}
+
+/// The expressions of a statement.
+fn exprs(s: &Stmt) -> Option<&BoolExpr> {
+    match s {
+        Stmt::Let { value, .. } | Stmt::Write { value, .. } => Some(value),
+        Stmt::Warn { .. } => None,
+    }
+}
+
 impl<'a> Compiler<'a> {
-    fn new(program: &'a LdProgram, options: CompileOptions) -> Compiler<'a> {
-        let n_logic = program.rungs.iter().filter(|r| !r.is_comment(&program.version)).count();
-        let width = n_logic.to_string().len().max(2);
-        let mut k = 0;
-        let logic = program
-            .rungs
-            .iter()
-            .map(|r| {
-                if r.is_comment(&program.version) {
-                    None
-                } else {
-                    k += 1;
-                    Some(format!("L{k:0width$}"))
-                }
-            })
-            .collect();
+    fn new(program: &'a Program, options: CompileOptions) -> Compiler<'a> {
         let mut c = Compiler {
             program,
             options,
-            logic,
-            last_coil: BTreeMap::new(),
+            last_write: BTreeMap::new(),
             unwritten: BTreeMap::new(),
             shared_timers: BTreeSet::new(),
             taken: BTreeSet::new(),
             pre_names: BTreeMap::new(),
             pre_of: BTreeMap::new(),
             fresh: BTreeMap::new(),
-            coil_index: 0,
+            write_index: 0,
             current: BTreeMap::new(),
-            mcr: L::One,
-            rung_idx: 0,
+            temps: BTreeMap::new(),
+            block: 0,
             pending: Vec::new(),
             hypotheses: Vec::new(),
             warnings: Vec::new(),
@@ -585,64 +518,37 @@ impl<'a> Compiler<'a> {
         c
     }
 
-    fn live_rungs(&self) -> impl Iterator<Item = (usize, &'a Rung)> + 'a {
-        let version = &self.program.version;
-        self.program.rungs.iter().enumerate().filter(move |(_, r)| !r.is_comment(version))
-    }
-
     fn prepass(&mut self) {
-        for e in self.program.elements() {
-            for n in e.names_read() {
-                self.taken.insert(canonical(n));
-            }
-            for n in e.names_written() {
-                self.taken.insert(canonical(&n));
-            }
-        }
-        self.taken.extend(self.program.signals().iter().map(|s| canonical(s)));
-        // Bits are written only by coils; timers, counters, RES, MOVE and the integer
-        // elements write integers, a separate name space (ldmicro.md §5).
-        let mut int_writers: BTreeMap<String, usize> = BTreeMap::new();
-        let mut k = 0;
-        let rungs: Vec<(usize, &Rung)> = self.live_rungs().collect();
-        for (_, rung) in &rungs {
-            for e in rung.elements() {
-                match &e.kind {
-                    ElementKind::Coil { name, .. } => {
-                        self.last_coil.insert(canonical(name), k);
-                        k += 1;
-                    }
-                    _ => {
-                        for n in e.names_written() {
-                            *int_writers.entry(canonical(&n)).or_default() += 1;
-                        }
-                    }
-                }
+        let program = self.program;
+        self.taken.extend(program.names.iter().cloned());
+        self.taken.extend(program.signals.iter().cloned());
+        let mut timers: BTreeMap<String, usize> = program.integer_writers.clone();
+        for (k, (_, s)) in
+            program.stmts().filter(|(_, s)| matches!(s, Stmt::Write { .. })).enumerate()
+        {
+            if let Stmt::Write { target, .. } = s {
+                self.last_write.insert(target.clone(), k);
             }
         }
-        // A bit that no live coil writes and that is not an input stays 0*: a bit read in
-        // a live rung (first such rung named), or one that occurs only in rungs LDmicro
-        // skips (comment rungs).
-        let live = rungs.iter().map(|(_, r)| *r);
-        for rung in live.chain(&self.program.rungs) {
-            for e in rung.elements() {
-                if let ElementKind::Contacts { name, .. } | ElementKind::Coil { name, .. } = &e.kind
-                {
-                    let n = canonical(name);
-                    if !self.last_coil.contains_key(&n) && !is_external_input(self.program, &n) {
-                        self.unwritten.entry(n).or_insert(rung.number);
-                    }
-                }
+        // A bit that nothing writes and that is not an input stays 0*: a bit read in the
+        // scan (first such block named), or one named only in code the PLC skips.
+        let mut reads: Vec<(String, usize)> = Vec::new();
+        for (b, s) in program.stmts() {
+            if let Some(e) = exprs(s) {
+                walk(e, &mut |x| match x {
+                    BoolExpr::Var(n) => reads.push((n.clone(), b.number)),
+                    BoolExpr::Timer(t) => *timers.entry(t.accumulator.clone()).or_default() += 1,
+                    _ => {}
+                });
             }
         }
-        for e in self.program.elements() {
-            if let ElementKind::Timer { name, .. } = &e.kind
-                && int_writers.get(&canonical(name)).copied().unwrap_or(0) > 1
-            {
-                self.shared_timers.insert(canonical(name));
+        for (n, number) in reads.into_iter().chain(program.skipped.iter().cloned()) {
+            if !self.last_write.contains_key(&n) && !program.inputs.contains(&n) {
+                self.unwritten.entry(n).or_insert(number);
             }
         }
-        let written: Vec<String> = self.last_coil.keys().cloned().collect();
+        self.shared_timers = timers.into_iter().filter(|(_, n)| *n > 1).map(|(t, _)| t).collect();
+        let written: Vec<String> = self.last_write.keys().cloned().collect();
         for x in written {
             let pre = self.pre_name(&x);
             self.current.insert(x, L::Var(pre));
@@ -673,18 +579,17 @@ impl<'a> Compiler<'a> {
         })
     }
 
-    /// The previous-scan value of the power `input` at this point of the scan (LDmicro's
-    /// hidden edge bit, 0 before the first scan): `pre X` when the power is one signal
-    /// `X`, else `pre M` for a new memory `M = input` stated with this rung.
-    fn previous_power(&mut self, e: &Element, base: &str, input: &L) -> L {
+    /// The previous-scan value of the power `input` at this point of the scan (a
+    /// one-shot's hidden bit, 0 before the first scan): `pre X` when the power is one
+    /// signal `X`, else `pre M` for a new memory `M = input` stated with this block.
+    fn previous_power(&mut self, memory: &Memory, input: &L) -> L {
         if let L::Var(x) = input {
             return L::Var(self.pre_name(x));
         }
-        let m = self.unique(&canonical(base));
-        let rung = self.rung().number;
-        let element = e.kind.keyword().to_string();
-        let index = self.program.elements().position(|x| std::ptr::eq(x, e)).unwrap_or(usize::MAX);
-        self.fresh.insert(m.clone(), SignalKind::EdgeMemory { rung, element, index });
+        let m = self.unique(&canonical(&memory.base));
+        let rung = self.block().number;
+        let element = memory.element.clone();
+        self.fresh.insert(m.clone(), SignalKind::EdgeMemory { rung, element, index: memory.index });
         let pre = self.pre_name(&m);
         self.pending.push(Pending { var: m, rhs: input.clone(), recurrence: None });
         L::Var(pre)
@@ -701,34 +606,33 @@ impl<'a> Compiler<'a> {
         name
     }
 
-    fn rung(&self) -> &'a Rung {
-        &self.program.rungs[self.rung_idx]
+    fn block(&self) -> &'a Block {
+        &self.program.blocks[self.block]
     }
 
     fn warn(&mut self, span: Span, element: &str, message: String) {
-        let rung = self.rung();
+        let block = self.block();
         self.warnings.push(CompileWarning {
-            rung: rung.number,
-            logic: self.logic.get(self.rung_idx).cloned().flatten(),
+            rung: block.number,
+            logic: block.label.clone(),
             span,
             element: element.to_string(),
             message,
         });
     }
 
-    fn new_fresh(&mut self, base: &str, e: &Element, why: &str) -> L {
+    fn new_fresh(&mut self, base: &str, keyword: &str, span: Span, why: &str) -> L {
         let base = if base.starts_with(|c: char| c.is_ascii_digit()) {
             format!("_{base}")
         } else {
             base.to_string()
         };
         let name = self.unique(&canonical(&base));
-        let rung = self.rung().number;
-        let keyword = e.kind.keyword().to_string();
-        self.fresh.insert(name.clone(), SignalKind::Fresh { rung, element: keyword.clone() });
+        let rung = self.block().number;
+        self.fresh.insert(name.clone(), SignalKind::Fresh { rung, element: keyword.to_string() });
         self.warn(
-            e.span,
-            &keyword,
+            span,
+            keyword,
             format!("{why}; it is modelled with the unconstrained signal {name}"),
         );
         L::Var(name)
@@ -736,207 +640,97 @@ impl<'a> Compiler<'a> {
 
     fn run(&mut self) {
         let program = self.program;
-        let version = &program.version;
-        for idx in 0..self.program.rungs.len() {
-            self.rung_idx = idx;
-            let rung = self.rung();
-            if rung.is_comment(version) {
-                let extra =
-                    rung.elements().iter().any(|e| !matches!(e.kind, ElementKind::Comment(_)));
-                if extra {
-                    self.warn(
-                        rung.span,
-                        "COMMENT",
-                        "LDmicro skips a rung whose first element is a COMMENT; \
-                         its other elements are not compiled"
-                            .into(),
-                    );
-                }
-                continue;
+        for (idx, block) in program.blocks.iter().enumerate() {
+            self.block = idx;
+            for s in &block.stmts {
+                self.stmt(s);
             }
-            let input = self.mcr.clone();
-            self.circuit(&rung.body, input);
-            self.flush_rung();
+            self.flush_block();
         }
     }
 
-    fn circuit(&mut self, c: &'a Circuit, input: L) -> L {
-        match c {
-            Circuit::Series(items) => {
-                let is_coil = |item: &Circuit| {
-                    matches!(item, Circuit::Element(Element { kind: ElementKind::Coil { .. }, .. }))
-                };
-                let last_other = items.iter().rposition(|item| !is_coil(item)).unwrap_or(0);
-                for item in &items[..last_other] {
-                    if let Circuit::Element(e) = item
-                        && is_coil(item)
-                    {
-                        self.warn(
-                            e.span,
-                            e.kind.keyword(),
-                            "a coil before other elements of its series: LDmicro's editor \
-                             keeps coils at the end of a rung; here the power passes through it \
-                             to them"
-                                .into(),
-                        );
-                    }
-                }
-                items.iter().fold(input, |power, item| self.circuit(item, power))
+    fn stmt(&mut self, s: &Stmt) {
+        match s {
+            Stmt::Let { temp, value } => {
+                let v = self.eval(value);
+                self.temps.insert(*temp, v);
             }
-            Circuit::Parallel(branches) if branches.iter().all(is_pure) => {
-                // Pure conditions: `i · (c1 + c2 + …)`, the readable factored form.
-                let outs: Vec<L> = branches.iter().map(|b| self.circuit(b, L::One)).collect();
-                simp(&input.and(sum(outs)))
+            Stmt::Write { target, kind, value, span } => {
+                let v = self.eval(value);
+                self.write(*span, target, kind, &v);
             }
-            Circuit::Parallel(branches) => {
-                let outs: Vec<L> =
-                    branches.iter().map(|b| self.circuit(b, input.clone())).collect();
-                simp(&sum(outs))
-            }
-            Circuit::Element(e) => self.element(e, input),
+            Stmt::Warn { span, element, message } => self.warn(*span, element, message.clone()),
         }
     }
 
     fn read(&mut self, name: &str) -> L {
-        let name = canonical(name);
-        if let Some(v) = self.current.get(&name) {
+        if let Some(v) = self.current.get(name) {
             return v.clone();
         }
-        L::Var(name)
+        L::Var(name.to_string())
     }
 
-    fn element(&mut self, e: &'a Element, input: L) -> L {
-        match &e.kind {
-            ElementKind::Contacts { name, negated } => {
-                let v = self.read(name);
-                let v = if *negated { v.negate() } else { v };
-                simp(&input.and(v))
+    fn eval(&mut self, e: &BoolExpr) -> L {
+        match e {
+            BoolExpr::Const(true) => L::One,
+            BoolExpr::Const(false) => L::Zero,
+            BoolExpr::Var(n) => self.read(n),
+            BoolExpr::Temp(t) => self.temps.get(t).cloned().unwrap_or(L::Zero),
+            BoolExpr::Not(x) => self.eval(x).negate(),
+            BoolExpr::And(a, b) => {
+                let a = self.eval(a);
+                let b = self.eval(b);
+                simp(&a.and(b))
             }
-            ElementKind::Coil { name, kind } => {
-                self.coil(e, name, *kind, &input);
-                input
+            BoolExpr::Or(xs) => {
+                let outs: Vec<L> = xs.iter().map(|x| self.eval(x)).collect();
+                simp(&sum(outs))
             }
-            ElementKind::Short | ElementKind::Comment(_) => input,
-            ElementKind::Open => L::Zero,
-            ElementKind::Placeholder => {
-                self.warn(e.span, "PLACEHOLDER", "an empty editor slot, read as OPEN (0*)".into());
-                L::Zero
+            BoolExpr::Timer(t) => {
+                let input = self.eval(&t.input);
+                self.timer(t, input)
             }
-            ElementKind::MasterRelay => {
-                self.mcr = simp(&self.mcr.clone().negate().or(input.clone()));
-                input
-            }
-            ElementKind::Timer { kind, name, delay, adjust, adjust_given } => {
-                self.timer(e, *kind, name, delay, (*adjust, *adjust_given), input)
-            }
-            ElementKind::Edge { kind: kind @ (EdgeKind::Osr | EdgeKind::Osf | EdgeKind::Odr) } => {
-                // ldmicro.md §4: a hidden bit keeps the input of the previous scan (0 at
-                // first): OSR `i · ¬pre i`, OSF `¬i · pre i`, ODR `¬(i · ¬pre i)`.
-                let base = format!("{}_r{}", e.kind.keyword(), self.rung().number);
-                let prev = self.previous_power(e, &base, &input);
+            BoolExpr::Edge { kind, input, memory } => {
+                // A hidden bit keeps the input of the previous scan (0 at first): rising
+                // `i · ¬pre i`, falling `¬i · pre i`, not rising `¬(i · ¬pre i)`.
+                let input = self.eval(input);
+                let prev = self.previous_power(memory, &input);
                 match kind {
-                    EdgeKind::Osr => simp(&input.and(prev.negate())),
-                    EdgeKind::Osf => simp(&input.negate().and(prev)),
-                    _ => simp(&input.and(prev.negate()).negate()),
+                    EdgeKind::Rising => simp(&input.and(prev.negate())),
+                    EdgeKind::Falling => simp(&input.negate().and(prev)),
+                    EdgeKind::NotRising => simp(&input.and(prev.negate()).negate()),
                 }
             }
-            ElementKind::Edge { .. } => {
-                let base = format!("{}_r{}", e.kind.keyword(), self.rung().number);
-                self.new_fresh(&base, e, "this one-shot is not expressible in the algebra")
-            }
-            ElementKind::Counter { kind, name, .. } => {
-                if *kind == CounterKind::Ctc && self.program.version.is_orig() {
-                    self.warn(
-                        e.span,
-                        "CTC",
-                        format!(
-                            "the count of {name} is not modelled; the output passes its \
-                             input (orig CTC), exactly"
-                        ),
-                    );
-                    input
-                } else {
-                    let base = format!("{}_{}", e.kind.keyword(), name);
-                    self.new_fresh(&base, e, "a counter is not expressible in the algebra")
-                }
-            }
-            ElementKind::Res { name } => {
-                self.warn(
-                    e.span,
-                    "RES",
-                    format!("resets the count of {name}: no Boolean effect; the power passes"),
-                );
-                input
-            }
-            ElementKind::Compare { .. } => {
-                let base = format!("{}_r{}", e.kind.keyword(), self.rung().number);
-                let f = self.new_fresh(&base, e, "a comparison of integers is not expressible");
-                simp(&input.and(f))
-            }
-            ElementKind::Move { dest, .. } | ElementKind::Math { dest, .. } => {
-                self.warn(
-                    e.span,
-                    e.kind.keyword(),
-                    format!("writes the integer {dest}: no Boolean effect; the power passes"),
-                );
-                input
-            }
-            // A label only marks a place to jump to (jumps are refused, see `compile_with`).
-            ElementKind::Other { keyword, .. } if keyword == "LABEL" => input,
-            ElementKind::Other { keyword, .. } => {
-                if crate::ladder::ldmicro::PASS_THROUGH.contains(&keyword.as_str()) {
-                    self.warn(
-                        e.span,
-                        keyword,
-                        "integer or peripheral operation: no Boolean effect; the power passes"
-                            .into(),
-                    );
-                    input
-                } else {
-                    let why = "an integer, peripheral or text element is not expressible";
-                    let base = format!("{keyword}_r{}", self.rung().number);
-                    self.new_fresh(&base, e, why)
-                }
-            }
+            BoolExpr::Fresh(f) => self.new_fresh(&f.base, &f.keyword, f.span, &f.why),
         }
     }
 
-    fn timer(
-        &mut self,
-        e: &Element,
-        kind: TimerKind,
-        name: &str,
-        delay: &TimerDelay,
-        (adjust, adjust_given): (i64, bool),
-        input: L,
-    ) -> L {
-        let keyword = e.kind.keyword().to_string();
+    fn timer(&mut self, t: &Timer, input: L) -> L {
+        let keyword = t.keyword.clone();
+        let name = &t.accumulator;
         let cycle = self.program.cycle_us;
-        let why = match (kind, delay) {
-            _ if self.shared_timers.contains(&canonical(name)) => Some(format!(
+        let why = match &t.preset {
+            _ if self.shared_timers.contains(name) => Some(format!(
                 "the accumulator {name} is also written by another element (RES, MOVE, a SHIFT_REGISTER stage, PERSIST at power-up, another timer, …)"
             )),
-            (TimerKind::Ton | TimerKind::Tof, TimerDelay::Variable(v)) => {
+            Preset::Variable(v) => {
                 Some(format!("a delay given by the variable {v} is not a constant"))
             }
-            (TimerKind::Ton | TimerKind::Tof, TimerDelay::Micros(0)) => {
-                Some("a zero delay is not a delay".into())
-            }
-            (TimerKind::Ton | TimerKind::Tof, _) if cycle == 0 => {
+            Preset::Micros { us: 0, .. } => Some("a zero delay is not a delay".into()),
+            Preset::Micros { .. } if cycle == 0 => {
                 Some("with a zero cycle the timer never expires".into())
             }
-            (TimerKind::Ton | TimerKind::Tof, TimerDelay::Micros(_)) => None,
-            _ => Some(format!("the {keyword} timer is not expressible in the algebra")),
+            Preset::Micros { .. } => None,
         };
-        let (TimerDelay::Micros(us), None) = (delay, &why) else {
+        let (Preset::Micros { us, adjust, default_of }, None) = (&t.preset, &why) else {
             let why = why.unwrap_or_else(|| "the delay is not expressible".into());
-            return self.new_fresh(&format!("{keyword}_{name}"), e, &why);
+            return self.new_fresh(&format!("{keyword}_{name}"), &keyword, t.span, &why);
         };
-        let us = *us;
-        // ldmicro.md §6.3: the runtime counts P = floor(delay / cycle) + adjust scans; a
-        // TON is on from the (P+1)-th consecutive scan with its input on, a TOF stays on
-        // for P scans after its input falls. On scan runs that is exactly `d/IN` and
-        // `IN/d` with d = P · cycle; with P ≤ 0 the output is the input.
+        let (us, adjust) = (*us, *adjust);
+        // The runtime counts P = floor(delay / cycle) + adjust scans; a TON is on from
+        // the (P+1)-th consecutive scan with its input on, a TOF stays on for P scans
+        // after its input falls. On scan runs that is exactly `d/IN` and `IN/d` with
+        // d = P · cycle; with P ≤ 0 the output is the input.
         let scans = i64::try_from(us / cycle).unwrap_or(i64::MAX).saturating_add(adjust);
         let nominal = Delay::from_micros(us).ok();
         let plc = u64::try_from(scans)
@@ -952,8 +746,8 @@ impl<'a> Compiler<'a> {
             } else {
                 format!("the nearest whole multiples are {below} µs and {above} µs")
             };
-            self.errors.push(LadderError::Unsupported {
-                span: e.span,
+            self.errors.push(CompileError {
+                span: t.span,
                 keyword: keyword.clone(),
                 reason: format!(
                     "with --timers ideal the delay is used as written, and {us} µs is not a \
@@ -969,11 +763,11 @@ impl<'a> Compiler<'a> {
         };
         if d.is_none() && (scans >= 1 || self.options.timers == TimerModel::Ideal) {
             let why = "the delay is too large to express";
-            return self.new_fresh(&format!("{keyword}_{name}"), e, why);
+            return self.new_fresh(&format!("{keyword}_{name}"), &keyword, t.span, why);
         }
         if scans < 1 {
             self.warn(
-                e.span,
+                t.span,
                 &keyword,
                 format!(
                     "the runtime counts P = floor({us} µs / {cycle} µs) {} = {scans} scans: \
@@ -991,23 +785,22 @@ impl<'a> Compiler<'a> {
             let effective = plc.as_ref().map_or_else(String::new, delay_to_string);
             let nominal = nominal.as_ref().map_or_else(|| format!("{us} µs"), delay_to_string);
             self.warn(
-                e.span,
+                t.span,
                 &keyword,
                 format!(
                     "the runtime counts P = floor({us} µs / {cycle} µs) {} = {scans} scans of \
                      the cycle, so {name} times {effective}, not the {nominal} written{}; the \
                      equation uses {effective} (--timers ideal uses {nominal})",
                     signed(adjust),
-                    if !adjust_given {
-                        format!(" (the default adjust of an {} file)", self.program.version.label())
-                    } else {
-                        String::new()
+                    match default_of {
+                        Some(file) => format!(" (the default adjust of an {file} file)"),
+                        None => String::new(),
                     }
                 ),
             );
         }
         self.timer_info.push(TimerInfo {
-            rung: self.rung().number,
+            rung: self.block().number,
             keyword: keyword.clone(),
             name: name.to_string(),
             delay_us: us,
@@ -1015,42 +808,41 @@ impl<'a> Compiler<'a> {
             scans,
             effective: d.clone(),
         });
-        match (d, kind) {
+        match (d, t.on_delay) {
             (None, _) => input,
-            (Some(d), TimerKind::Ton) => simp(&L::Ton(d, Box::new(input))),
-            (Some(d), _) => simp(&L::Tof(Box::new(input), d)),
+            (Some(d), true) => simp(&L::Ton(d, Box::new(input))),
+            (Some(d), false) => simp(&L::Tof(Box::new(input), d)),
         }
     }
 
-    fn coil(&mut self, e: &Element, name: &str, kind: CoilKind, input: &L) {
-        let x = canonical(name);
-        let k = self.coil_index;
-        self.coil_index += 1;
+    fn write(&mut self, span: Span, x: &str, kind: &WriteKind, input: &L) {
+        let x = x.to_string();
+        let k = self.write_index;
+        self.write_index += 1;
         let Some(old) = self.current.get(&x).cloned() else {
             return;
         };
-        // Which coil kind dominates (the last set or reset coil), for the memory's form.
+        // Which write kind dominates (the last set or reset), for the memory's form.
         let dominant = match kind {
-            CoilKind::Set => Some(false),
-            CoilKind::Reset => Some(true),
+            WriteKind::Set => Some(false),
+            WriteKind::Reset => Some(true),
             _ => None,
         };
         let g = match kind {
-            CoilKind::Normal => input.clone(),
-            CoilKind::Negated => input.clone().negate(),
-            // Powers in file order, the kept previous value last: `S1 + S2 + pre_X`.
-            CoilKind::Set => {
+            WriteKind::Assign => input.clone(),
+            WriteKind::AssignNot => input.clone().negate(),
+            // Powers in scan order, the kept previous value last: `S1 + S2 + pre_X`.
+            WriteKind::Set => {
                 let (with_pre, rest): (Vec<L>, Vec<L>) = summands(&old.or(input.clone()))
                     .into_iter()
                     .partition(|t| self.pre_names.get(&x).is_some_and(|p| t.mentions(p)));
                 sum(rest.into_iter().chain(with_pre).collect())
             }
-            CoilKind::Reset => input.clone().negate().and(old),
-            CoilKind::Toggle => {
-                // On a rising edge of the power the bit flips (ldmicro.md §4, COIL
-                // ttrigger): the edge is `i · ¬pre i` over the coil's hidden bit.
-                let base = format!("TOGGLE_r{}", self.rung().number);
-                let prev = self.previous_power(e, &base, input);
+            WriteKind::Reset => input.clone().negate().and(old),
+            WriteKind::Toggle(memory) => {
+                // On a rising edge of the power the bit flips: the edge is `i · ¬pre i`
+                // over the hidden bit.
+                let prev = self.previous_power(memory, input);
                 let edge = simp(&input.clone().and(prev.negate()));
                 let flip = edge.clone().and(old.clone().negate());
                 flip.or(edge.negate().and(old))
@@ -1058,17 +850,17 @@ impl<'a> Compiler<'a> {
         };
         let g = simp(&g);
         let pre = self.pre_names.get(&x).cloned().unwrap_or_default();
-        if self.last_coil.get(&x) == Some(&k) {
+        if self.last_write.get(&x) == Some(&k) {
             let rhs = self.finish_var(&pre, g.clone(), dominant);
             self.current.insert(x.clone(), L::Var(x.clone()));
             let recurrence = (rhs != g).then_some(g);
             self.pending.push(Pending { var: x, rhs, recurrence });
         } else if g.size() > MAX_INLINE {
-            let name = self.unique(&format!("{x}_r{}", self.rung().number));
-            let rung = self.rung().number;
+            let name = self.unique(&format!("{x}_r{}", self.block().number));
+            let rung = self.block().number;
             self.fresh.insert(name.clone(), SignalKind::Fresh { rung, element: "COIL".into() });
             self.warn(
-                e.span,
+                span,
                 "COIL",
                 format!(
                     "the intermediate value of {x} is too large to inline; later reads \
@@ -1097,13 +889,13 @@ impl<'a> Compiler<'a> {
         memory_form(&g, pre, g0, g1, prefer_rs).unwrap_or(g)
     }
 
-    fn flush_rung(&mut self) {
+    fn flush_block(&mut self) {
         let pending = std::mem::take(&mut self.pending);
         if pending.is_empty() {
             return;
         }
-        let rung = self.rung();
-        let base = self.logic.get(self.rung_idx).cloned().flatten().unwrap_or_default();
+        let block = self.block();
+        let base = block.label.clone().unwrap_or_default();
         let several = pending.len() > 1;
         for (k, p) in pending.into_iter().enumerate() {
             let name = if several { format!("{base}{}", letters(k)) } else { base.clone() };
@@ -1113,8 +905,8 @@ impl<'a> Compiler<'a> {
             let mut push = |name: String, kind, lhs: Expr, rel, rhs: Expr| {
                 self.hypotheses.push(Hypothesis {
                     name,
-                    rung: rung.number,
-                    span: rung.span,
+                    rung: block.number,
+                    span: block.span,
                     kind,
                     lhs,
                     rel,
@@ -1132,13 +924,13 @@ impl<'a> Compiler<'a> {
     fn finish(mut self) -> CompiledProgram {
         // A bit nobody writes keeps its power-up value: reads saw `0*`, and the
         // equation lets properties mention it.
-        for (x, rung) in std::mem::take(&mut self.unwritten) {
-            let idx = self.program.rungs.iter().position(|r| r.number == rung).unwrap_or(0);
+        for (x, number) in std::mem::take(&mut self.unwritten) {
+            let block = self.program.blocks.iter().find(|b| b.number == number);
             let name = self.unique(&format!("unwritten_{x}"));
             self.hypotheses.push(Hypothesis {
                 name,
-                rung,
-                span: self.program.rungs.get(idx).map_or(Span::new(0, 0..0), |r| r.span),
+                rung: number,
+                span: block.map_or(Span::new(0, 0..0), |b| b.span),
                 kind: HypothesisKind::Equation,
                 lhs: L::Var(x.clone()).to_expr(),
                 rel: Rel::Eq,
@@ -1147,7 +939,7 @@ impl<'a> Compiler<'a> {
             self.fresh.insert(x, SignalKind::Unwritten);
         }
         let mut signals: BTreeMap<String, SignalKind> = BTreeMap::new();
-        let written: BTreeSet<&String> = self.last_coil.keys().collect();
+        let written: BTreeSet<&String> = self.last_write.keys().collect();
         let classify = |n: &str| -> SignalKind {
             if let Some(k) = self.fresh.get(n) {
                 return k.clone();
@@ -1158,10 +950,8 @@ impl<'a> Compiler<'a> {
                 SignalKind::Input
             }
         };
-        for s in self.program.signals() {
-            let s = canonical(&s);
-            let kind = classify(&s);
-            signals.insert(s, kind);
+        for s in &self.program.signals {
+            signals.insert(s.clone(), classify(s));
         }
         for h in &self.hypotheses {
             for side in [&h.lhs, &h.rhs] {
@@ -1187,14 +977,13 @@ impl<'a> Compiler<'a> {
             timers: self.options.timers,
             timer_info: self.timer_info,
             cycle_us: self.program.cycle_us,
-            exact_names: self.program.inputs.is_some(),
+            exact_names: self.program.exact_names,
             short_names: std::sync::OnceLock::new(),
             spelled_short: Default::default(),
             equation_index: std::sync::OnceLock::new(),
         }
     }
 }
-
 /// An adjust as written in a formula: `+ 5`, `- 1`.
 fn signed(v: i64) -> String {
     if v < 0 { format!("- {}", v.unsigned_abs()) } else { format!("+ {v}") }

@@ -1,0 +1,422 @@
+//! Lowering of an LDmicro program ([`LdProgram`]) into the scan model ([`Program`]): LDmicro's power flow, master relay and elements as blocks of statements, one block per rung.
+//!
+//! Power flows as in LDmicro (ldmicro.md §6.2): series is `·`, parallel is `+`, a
+//! contact is its signal or its complement, `SHORT` is `1*`, `OPEN`/`PLACEHOLDER` is
+//! `0*`, and elements after a false still execute: a coil in the middle of a series
+//! gets the power at that point. The power after each element is a scan-local value
+//! ([`Stmt::Let`]), so every read happens where the PLC makes it. A rung's rung-in is
+//! the master-relay bit, modelled exactly (§6.6: `MASTER_RELAY` with input `i` makes it
+//! `¬mcr + i`; it is `1*` at the start of every scan). Bits are written only by coils
+//! (timers, counters, `RES`, `MOVE` and the integer elements write integers, a separate
+//! name space). A TON/TOF with a literal delay is a timer of the scan model; what the
+//! algebra cannot express is an unconstrained value with the reason (counters, the
+//! one-shots ODF and OSC, comparisons `IN · fresh`, RTO/RTL/THI/TLO/TCY, a timer whose
+//! accumulator another element writes, peripheral and text elements); integer side
+//! effects (MOVE, math, RES) pass the power with a note. Elements that change which
+//! rungs run (`GOTO`, `GOSUB`, `SUBPROG`/`ENDSUB`, `RETURN`, `LOCK`, `SLEEP`) and coils
+//! on bits the outside world writes refuse the program with a located error.
+#![warn(missing_docs)]
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use super::LadderError;
+use super::ldmicro::{
+    Circuit, CoilKind, CounterKind, EdgeKind, Element, ElementKind, LdProgram, TimerDelay,
+    TimerKind,
+};
+use crate::program::{
+    Block, BoolExpr, Fresh, Inputs, Memory, Preset, Program, Stmt, Temp, Timer, WriteKind,
+    canonical,
+};
+
+/// Elements that change which rungs run (or stop the scan): a program using them is
+/// refused, since the equations would describe a plain top-to-bottom scan.
+const CONTROL_FLOW: &[(&str, &str)] = &[
+    ("GOTO", "a jump skips rungs, which then keep their previous values"),
+    ("GOSUB", "a subroutine call runs rungs out of order"),
+    ("SUBPROG", "a subroutine body runs only when called, not in the scan"),
+    ("ENDSUB", "a subroutine body runs only when called, not in the scan"),
+    ("RETURN", "a return skips the rest of a subroutine or of the scan"),
+    ("LOCK", "the program stops scanning here"),
+    ("SLEEP", "the processor sleeps in the middle of the scan"),
+];
+
+/// The bits the outside world writes: the program's declared inputs if it has them, else
+/// LDmicro's rule (ldmicro.md §5).
+fn inputs(program: &LdProgram) -> Inputs {
+    match &program.inputs {
+        Some(set) => Inputs::Declared(set.clone()),
+        None => Inputs::ByPrefix,
+    }
+}
+
+/// Lowers an LDmicro program into the scan model. Never panics; refuses, with located
+/// errors, what a plain top-to-bottom scan cannot describe.
+pub fn lower(program: &LdProgram) -> Result<Program, Vec<LadderError>> {
+    let ins = inputs(program);
+    let refused: Vec<LadderError> = program
+        .elements()
+        .filter_map(|e| {
+            if let ElementKind::Coil { name, .. } = &e.kind
+                && ins.contains(&canonical(name))
+            {
+                return Some(LadderError::Unsupported {
+                    span: e.span,
+                    keyword: "COIL".into(),
+                    reason: format!(
+                        "`{name}` is also written from outside the program ({}): what a rung \
+                         reads depends on when that write comes, which ii-prove does not \
+                         model; write a relay (`R…`) or an output (`Y…`) instead",
+                        match (&program.inputs, name.chars().next()) {
+                            (Some(_), _) => "a declared input",
+                            (None, Some('X')) => "an input pin",
+                            (None, Some('I')) => "a Modbus discrete input",
+                            _ => "a Modbus coil, which the master writes",
+                        }
+                    ),
+                });
+            }
+            let ElementKind::Other { keyword, .. } = &e.kind else { return None };
+            let (_, why) = CONTROL_FLOW.iter().find(|(k, _)| k == keyword)?;
+            Some(LadderError::Unsupported {
+                span: e.span,
+                keyword: keyword.clone(),
+                reason: format!(
+                    "{why}; ii-prove compiles only programs that run every rung once per scan, \
+                     top to bottom"
+                ),
+            })
+        })
+        .collect();
+    if !refused.is_empty() {
+        return Err(refused);
+    }
+    let mut l = Lowering::new(program);
+    l.run();
+    Ok(l.finish(ins))
+}
+
+struct Lowering<'a> {
+    program: &'a LdProgram,
+    /// Each element's position among all the program's elements, in file order (the
+    /// simulator's key of a one-shot's memory).
+    index: BTreeMap<*const Element, usize>,
+    /// Timer accumulators written by more than one element.
+    shared_timers: BTreeSet<String>,
+    blocks: Vec<Block>,
+    stmts: Vec<Stmt>,
+    next_temp: Temp,
+    /// The master-relay bit.
+    mcr: Temp,
+    /// The current rung's number.
+    number: usize,
+}
+
+impl<'a> Lowering<'a> {
+    fn new(program: &'a LdProgram) -> Lowering<'a> {
+        let index = program.elements().enumerate().map(|(k, e)| (e as *const Element, k)).collect();
+        // Bits are written only by coils; timers, counters, RES, MOVE and the integer
+        // elements write integers, a separate name space (ldmicro.md §5).
+        let mut int_writers: BTreeMap<String, usize> = BTreeMap::new();
+        for rung in program.rungs.iter().filter(|r| !r.is_comment(&program.version)) {
+            for e in rung.elements() {
+                if !matches!(e.kind, ElementKind::Coil { .. }) {
+                    for n in e.names_written() {
+                        *int_writers.entry(canonical(&n)).or_default() += 1;
+                    }
+                }
+            }
+        }
+        let shared_timers = program
+            .elements()
+            .filter_map(|e| match &e.kind {
+                ElementKind::Timer { name, .. }
+                    if int_writers.get(&canonical(name)).copied().unwrap_or(0) > 1 =>
+                {
+                    Some(canonical(name))
+                }
+                _ => None,
+            })
+            .collect();
+        Lowering {
+            program,
+            index,
+            shared_timers,
+            blocks: Vec::new(),
+            stmts: Vec::new(),
+            next_temp: 1,
+            mcr: 0,
+            number: 0,
+        }
+    }
+
+    fn run(&mut self) {
+        let program = self.program;
+        let version = &program.version;
+        let n_logic = program.rungs.iter().filter(|r| !r.is_comment(version)).count();
+        let width = n_logic.to_string().len().max(2);
+        self.stmts.push(Stmt::Let { temp: self.mcr, value: BoolExpr::Const(true) });
+        let mut k = 0;
+        for rung in &program.rungs {
+            self.number = rung.number;
+            let label = if rung.is_comment(version) {
+                let extra =
+                    rung.elements().iter().any(|e| !matches!(e.kind, ElementKind::Comment(_)));
+                if extra {
+                    self.warn(
+                        rung.span,
+                        "COMMENT",
+                        "LDmicro skips a rung whose first element is a COMMENT; \
+                         its other elements are not compiled",
+                    );
+                }
+                None
+            } else {
+                k += 1;
+                // The rung-in as the rung starts (a master relay in it changes the bit).
+                let rung_in = self.temp(BoolExpr::Temp(self.mcr));
+                self.circuit(&rung.body, rung_in);
+                Some(format!("L{k:0width$}"))
+            };
+            let stmts = std::mem::take(&mut self.stmts);
+            self.blocks.push(Block { number: rung.number, label, span: rung.span, stmts });
+        }
+    }
+
+    fn finish(self, inputs: Inputs) -> Program {
+        let program = self.program;
+        let version = &program.version;
+        let mut names = BTreeSet::new();
+        for e in program.elements() {
+            names.extend(e.names_read().into_iter().map(canonical));
+            names.extend(e.names_written().iter().map(|n| canonical(n)));
+        }
+        let skipped = program
+            .rungs
+            .iter()
+            .filter(|r| r.is_comment(version))
+            .flat_map(|r| {
+                r.elements().into_iter().filter_map(move |e| match &e.kind {
+                    ElementKind::Contacts { name, .. } | ElementKind::Coil { name, .. } => {
+                        Some((canonical(name), r.number))
+                    }
+                    _ => None,
+                })
+            })
+            .collect();
+        Program {
+            cycle_us: program.cycle_us,
+            blocks: self.blocks,
+            inputs,
+            signals: program.signals().iter().map(|s| canonical(s)).collect(),
+            names,
+            skipped,
+            integer_writers: BTreeMap::new(),
+            exact_names: program.inputs.is_some(),
+        }
+    }
+
+    fn warn(&mut self, span: crate::diag::Span, element: &str, message: &str) {
+        self.stmts.push(Stmt::Warn { span, element: element.into(), message: message.into() });
+    }
+
+    /// A new scan-local value, computed here.
+    fn temp(&mut self, value: BoolExpr) -> BoolExpr {
+        let temp = self.next_temp;
+        self.next_temp += 1;
+        self.stmts.push(Stmt::Let { temp, value });
+        BoolExpr::Temp(temp)
+    }
+
+    fn fresh(&mut self, base: String, e: &Element, why: &str) -> BoolExpr {
+        let fresh = Fresh { base, keyword: e.kind.keyword().into(), why: why.into(), span: e.span };
+        self.temp(BoolExpr::Fresh(Box::new(fresh)))
+    }
+
+    fn memory(&self, base: String, e: &Element) -> Memory {
+        let index = self.index.get(&(e as *const Element)).copied().unwrap_or(usize::MAX);
+        Memory { base, element: e.kind.keyword().into(), index }
+    }
+
+    /// The power out of circuit `c` fed with `input` (a value already computed).
+    fn circuit(&mut self, c: &Circuit, input: BoolExpr) -> BoolExpr {
+        match c {
+            Circuit::Series(items) => {
+                let is_coil = |item: &Circuit| {
+                    matches!(item, Circuit::Element(Element { kind: ElementKind::Coil { .. }, .. }))
+                };
+                let last_other = items.iter().rposition(|item| !is_coil(item)).unwrap_or(0);
+                for item in &items[..last_other] {
+                    if let Circuit::Element(e) = item
+                        && is_coil(item)
+                    {
+                        self.warn(
+                            e.span,
+                            e.kind.keyword(),
+                            "a coil before other elements of its series: LDmicro's editor \
+                             keeps coils at the end of a rung; here the power passes through it \
+                             to them",
+                        );
+                    }
+                }
+                items.iter().fold(input, |power, item| self.circuit(item, power))
+            }
+            Circuit::Parallel(branches) if branches.iter().all(is_pure) => {
+                // Pure conditions: `i · (c1 + c2 + …)`, the readable factored form.
+                let outs: Vec<BoolExpr> =
+                    branches.iter().map(|b| self.circuit(b, BoolExpr::Const(true))).collect();
+                self.temp(BoolExpr::and(input, BoolExpr::Or(outs)))
+            }
+            Circuit::Parallel(branches) => {
+                let outs: Vec<BoolExpr> =
+                    branches.iter().map(|b| self.circuit(b, input.clone())).collect();
+                self.temp(BoolExpr::Or(outs))
+            }
+            Circuit::Element(e) => self.element(e, input),
+        }
+    }
+
+    fn element(&mut self, e: &Element, input: BoolExpr) -> BoolExpr {
+        let number = self.number;
+        match &e.kind {
+            ElementKind::Contacts { name, negated } => {
+                let v = BoolExpr::var(&canonical(name));
+                let v = if *negated { BoolExpr::negate(v) } else { v };
+                self.temp(BoolExpr::and(input, v))
+            }
+            ElementKind::Coil { name, kind } => {
+                let kind = match kind {
+                    CoilKind::Normal => WriteKind::Assign,
+                    CoilKind::Negated => WriteKind::AssignNot,
+                    CoilKind::Set => WriteKind::Set,
+                    CoilKind::Reset => WriteKind::Reset,
+                    CoilKind::Toggle => {
+                        // On a rising edge of the power the bit flips (ldmicro.md §4, COIL
+                        // ttrigger): the edge is `i · ¬pre i` over the coil's hidden bit.
+                        WriteKind::Toggle(self.memory(format!("TOGGLE_r{number}"), e))
+                    }
+                };
+                let target = canonical(name);
+                self.stmts.push(Stmt::Write { target, kind, value: input.clone(), span: e.span });
+                input
+            }
+            ElementKind::Short | ElementKind::Comment(_) => input,
+            ElementKind::Open => BoolExpr::Const(false),
+            ElementKind::Placeholder => {
+                self.warn(e.span, "PLACEHOLDER", "an empty editor slot, read as OPEN (0*)");
+                BoolExpr::Const(false)
+            }
+            ElementKind::MasterRelay => {
+                let mcr =
+                    BoolExpr::Or(vec![BoolExpr::negate(BoolExpr::Temp(self.mcr)), input.clone()]);
+                self.stmts.push(Stmt::Let { temp: self.mcr, value: mcr });
+                input
+            }
+            ElementKind::Timer { kind, name, delay, adjust, adjust_given } => {
+                let keyword = e.kind.keyword();
+                let acc = canonical(name);
+                let why = match kind {
+                    _ if self.shared_timers.contains(&acc) => format!(
+                        "the accumulator {name} is also written by another element (RES, MOVE, a SHIFT_REGISTER stage, PERSIST at power-up, another timer, …)"
+                    ),
+                    TimerKind::Ton | TimerKind::Tof => {
+                        let preset = match delay {
+                            TimerDelay::Micros(us) => Preset::Micros {
+                                us: *us,
+                                adjust: *adjust,
+                                default_of: (!adjust_given).then(|| self.program.version.label()),
+                            },
+                            TimerDelay::Variable(v) => Preset::Variable(v.clone()),
+                        };
+                        let timer = Timer {
+                            on_delay: *kind == TimerKind::Ton,
+                            keyword: keyword.into(),
+                            accumulator: name.clone(),
+                            preset,
+                            input,
+                            span: e.span,
+                        };
+                        return self.temp(BoolExpr::Timer(Box::new(timer)));
+                    }
+                    _ => format!("the {keyword} timer is not expressible in the algebra"),
+                };
+                self.fresh(format!("{keyword}_{name}"), e, &why)
+            }
+            ElementKind::Edge { kind: kind @ (EdgeKind::Osr | EdgeKind::Osf | EdgeKind::Odr) } => {
+                let memory = self.memory(format!("{}_r{number}", e.kind.keyword()), e);
+                let kind = match kind {
+                    EdgeKind::Osr => crate::program::EdgeKind::Rising,
+                    EdgeKind::Osf => crate::program::EdgeKind::Falling,
+                    _ => crate::program::EdgeKind::NotRising,
+                };
+                self.temp(BoolExpr::Edge { kind, input: Box::new(input), memory })
+            }
+            ElementKind::Edge { .. } => {
+                let base = format!("{}_r{number}", e.kind.keyword());
+                self.fresh(base, e, "this one-shot is not expressible in the algebra")
+            }
+            ElementKind::Counter { kind, name, .. } => {
+                if *kind == CounterKind::Ctc && self.program.version.is_orig() {
+                    self.warn(
+                        e.span,
+                        "CTC",
+                        &format!(
+                            "the count of {name} is not modelled; the output passes its \
+                             input (orig CTC), exactly"
+                        ),
+                    );
+                    input
+                } else {
+                    let base = format!("{}_{}", e.kind.keyword(), name);
+                    self.fresh(base, e, "a counter is not expressible in the algebra")
+                }
+            }
+            ElementKind::Res { name } => {
+                let message =
+                    format!("resets the count of {name}: no Boolean effect; the power passes");
+                self.warn(e.span, "RES", &message);
+                input
+            }
+            ElementKind::Compare { .. } => {
+                let base = format!("{}_r{number}", e.kind.keyword());
+                let f = self.fresh(base, e, "a comparison of integers is not expressible");
+                self.temp(BoolExpr::and(input, f))
+            }
+            ElementKind::Move { dest, .. } | ElementKind::Math { dest, .. } => {
+                let message =
+                    format!("writes the integer {dest}: no Boolean effect; the power passes");
+                self.warn(e.span, e.kind.keyword(), &message);
+                input
+            }
+            // A label only marks a place to jump to (jumps are refused, see `lower`).
+            ElementKind::Other { keyword, .. } if keyword == "LABEL" => input,
+            ElementKind::Other { keyword, .. } => {
+                if super::ldmicro::PASS_THROUGH.contains(&keyword.as_str()) {
+                    self.warn(
+                        e.span,
+                        keyword,
+                        "integer or peripheral operation: no Boolean effect; the power passes",
+                    );
+                    input
+                } else {
+                    let why = "an integer, peripheral or text element is not expressible";
+                    self.fresh(format!("{keyword}_r{number}"), e, why)
+                }
+            }
+        }
+    }
+}
+
+/// A circuit of conditions only (no side effects, no state): its output is `input · conductance`.
+fn is_pure(c: &Circuit) -> bool {
+    match c {
+        Circuit::Series(items) | Circuit::Parallel(items) => items.iter().all(is_pure),
+        Circuit::Element(e) => matches!(
+            e.kind,
+            ElementKind::Contacts { .. }
+                | ElementKind::Short
+                | ElementKind::Open
+                | ElementKind::Comment(_)
+        ),
+    }
+}

@@ -1,0 +1,258 @@
+//! The scan model: a program as the PLC runs it, one scan after another — the one representation every front end lowers into, and the only one the II compiler reads.
+//!
+//! A [`Program`] is a sequence of [`Block`]s (an LDmicro rung, a PLCopen statement)
+//! run top to bottom once per scan. Each block is a sequence of [`Stmt`]s: scan-local
+//! values ([`Stmt::Let`], the power at a point of a rung), writes of bits
+//! ([`Stmt::Write`]: assignment, negated assignment, set, reset, toggle) and notes the
+//! front end wants said at that place ([`Stmt::Warn`]). A read ([`BoolExpr::Var`]) sees
+//! the last write before it in the scan, or the previous scan's value; timers, one-shots
+//! and what the algebra cannot express are expressions of their input
+//! ([`BoolExpr::Timer`], [`BoolExpr::Edge`], [`BoolExpr::Fresh`]), so that a front end
+//! never has to pretend to be another language. [`compile`] turns a program into the
+//! equations that hold at every scan.
+#![warn(missing_docs)]
+
+pub mod compile;
+pub mod logic;
+pub mod names;
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use crate::diag::Span;
+
+pub use compile::{
+    CompileError, CompileOptions, CompileWarning, CompiledProgram, EquationIndex, Hypothesis,
+    HypothesisKind, SignalKind, TimerInfo, TimerModel, canonical, compile, program_to_ii,
+};
+pub use names::{Spellings, short_name};
+
+/// A program as the PLC runs it.
+#[derive(Clone, Debug, Default)]
+pub struct Program {
+    /// The scan cycle in µs (what `pre` steps back; timers count it).
+    pub cycle_us: u64,
+    /// The blocks in scan order.
+    pub blocks: Vec<Block>,
+    /// Which bits the outside world writes.
+    pub inputs: Inputs,
+    /// Every bit the source names (canonical names), also in code the PLC skips.
+    pub signals: BTreeSet<String>,
+    /// Every name the source uses, of any kind: names the compiler makes avoid them.
+    pub names: BTreeSet<String>,
+    /// Bits named only in code the PLC skips (an LDmicro comment rung), with the number of
+    /// the first block naming them: they keep their power-up value.
+    pub skipped: Vec<(String, usize)>,
+    /// Per integer variable (a timer's accumulator), how many elements other than timers
+    /// write it: a timer whose accumulator something else writes does not time alone.
+    pub integer_writers: BTreeMap<String, usize>,
+    /// Whether names are used exactly, without LDmicro's one-letter kind prefixes being
+    /// dropped for display and lookup (front ends with declared variables).
+    pub exact_names: bool,
+}
+
+/// Which bits the outside world writes.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub enum Inputs {
+    /// LDmicro's rule (ldmicro.md §5): names starting with `X` (input pins), `I` (Modbus
+    /// discrete inputs) or `M` (Modbus coils).
+    #[default]
+    ByPrefix,
+    /// The declared input variables.
+    Declared(BTreeSet<String>),
+}
+
+impl Inputs {
+    /// Whether the outside world writes `name`.
+    pub fn contains(&self, name: &str) -> bool {
+        match self {
+            Inputs::ByPrefix => name.starts_with(['X', 'I', 'M']),
+            Inputs::Declared(set) => set.contains(name),
+        }
+    }
+}
+
+/// One block of the scan: an LDmicro rung, a PLCopen statement.
+#[derive(Clone, Debug)]
+pub struct Block {
+    /// Its number in the source (1-based; an LDmicro file's rungs, comments counted).
+    pub number: usize,
+    /// The name its equations are stated under (`L06`); `None` for a block the PLC skips.
+    pub label: Option<String>,
+    /// Where it is in the source.
+    pub span: Span,
+    /// What it does, in order.
+    pub stmts: Vec<Stmt>,
+}
+
+/// A scan-local value: the power at some point of a block (never a signal).
+pub type Temp = usize;
+
+/// One step of a block.
+#[derive(Clone, Debug)]
+pub enum Stmt {
+    /// A scan-local value, computed here from what the reads see at this point.
+    Let {
+        /// Its index (unique in the program).
+        temp: Temp,
+        /// Its value.
+        value: BoolExpr,
+    },
+    /// A write of a bit.
+    Write {
+        /// The bit (canonical name).
+        target: String,
+        /// How it is written.
+        kind: WriteKind,
+        /// The power of the write.
+        value: BoolExpr,
+        /// The element that writes (a coil, an output variable).
+        span: Span,
+    },
+    /// A note the front end attaches to this place (an element passed through, …).
+    Warn {
+        /// The element.
+        span: Span,
+        /// Its keyword.
+        element: String,
+        /// What is not modelled, and how it is read instead.
+        message: String,
+    },
+}
+
+/// How a bit is written.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum WriteKind {
+    /// `X := power`.
+    Assign,
+    /// `X := ¬power`.
+    AssignNot,
+    /// `IF power THEN X := 1`.
+    Set,
+    /// `IF power THEN X := 0`.
+    Reset,
+    /// On a rising edge of the power `X` flips (the edge over a hidden memory).
+    Toggle(Memory),
+}
+
+/// The hidden memory of a one-shot: the power it saw at the previous scan, 0 at power-up.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Memory {
+    /// The base of its name (`OSR_r5`).
+    pub base: String,
+    /// The element keyword (`OSR`, `COIL` for a toggle).
+    pub element: String,
+    /// The element's index in the front end's order (its scan simulator's key).
+    pub index: usize,
+}
+
+/// A Boolean value at a point of the scan.
+#[derive(Clone, Debug)]
+pub enum BoolExpr {
+    /// `1*` or `0*`.
+    Const(bool),
+    /// A bit as it stands at this point of the scan.
+    Var(String),
+    /// A scan-local value.
+    Temp(Temp),
+    /// Negation.
+    Not(Box<BoolExpr>),
+    /// Conjunction (the first operand is computed first).
+    And(Box<BoolExpr>, Box<BoolExpr>),
+    /// Disjunction, operands in order.
+    Or(Vec<BoolExpr>),
+    /// An on- or off-delay timer of its input.
+    Timer(Box<Timer>),
+    /// A one-shot of its input.
+    Edge {
+        /// Which one.
+        kind: EdgeKind,
+        /// The power it watches.
+        input: Box<BoolExpr>,
+        /// Its hidden memory.
+        memory: Memory,
+    },
+    /// A value the algebra cannot express: an unconstrained signal, with a warning.
+    Fresh(Box<Fresh>),
+}
+
+impl BoolExpr {
+    /// A bit read.
+    pub fn var(name: &str) -> BoolExpr {
+        BoolExpr::Var(name.to_string())
+    }
+
+    /// `a · b`.
+    pub fn and(a: BoolExpr, b: BoolExpr) -> BoolExpr {
+        BoolExpr::And(Box::new(a), Box::new(b))
+    }
+
+    /// `¬a`.
+    pub fn negate(a: BoolExpr) -> BoolExpr {
+        BoolExpr::Not(Box::new(a))
+    }
+}
+
+/// The one-shots.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EdgeKind {
+    /// Rising: `i · ¬pre i`.
+    Rising,
+    /// Falling: `¬i · pre i`.
+    Falling,
+    /// Not rising: `¬(i · ¬pre i)` (LDmicro's ODR).
+    NotRising,
+}
+
+/// A timer element.
+#[derive(Clone, Debug)]
+pub struct Timer {
+    /// On-delay (TON) or off-delay (TOF).
+    pub on_delay: bool,
+    /// The element keyword (`TON`, `TOF`).
+    pub keyword: String,
+    /// The accumulator (the instance's name).
+    pub accumulator: String,
+    /// The preset.
+    pub preset: Preset,
+    /// Its input.
+    pub input: BoolExpr,
+    /// The element.
+    pub span: Span,
+}
+
+/// A timer's preset.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Preset {
+    /// A literal delay: the runtime counts `P = floor(us / cycle) + adjust` scans.
+    Micros {
+        /// The delay, in µs.
+        us: u64,
+        /// The scan adjust.
+        adjust: i64,
+        /// When the adjust is a default of the file rather than written: which (for the
+        /// warning, "the default adjust of an LDmicro0.1 file").
+        default_of: Option<String>,
+    },
+    /// A delay given by a variable.
+    Variable(String),
+}
+
+/// A value the algebra cannot express.
+#[derive(Clone, Debug)]
+pub struct Fresh {
+    /// The base of the unconstrained signal's name (`CTU_Cpieces`, `GEQ_r3`).
+    pub base: String,
+    /// The element keyword.
+    pub keyword: String,
+    /// Why it is not expressible.
+    pub why: String,
+    /// The element.
+    pub span: Span,
+}
+
+impl Program {
+    /// Every statement, block by block.
+    pub fn stmts(&self) -> impl Iterator<Item = (&Block, &Stmt)> {
+        self.blocks.iter().flat_map(|b| b.stmts.iter().map(move |s| (b, s)))
+    }
+}
