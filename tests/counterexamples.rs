@@ -7,7 +7,6 @@ use std::time::{Duration, Instant};
 
 use ii_prove::counterexample::{self, Limits, Verdict};
 use ii_prove::diag::Sources;
-use ii_prove::ladder::Simulator;
 use ii_prove::report::{self, Options, Status, load_program};
 use ii_prove::semantics::Time;
 use ii_prove::syntax;
@@ -77,8 +76,7 @@ fn water_faulty_overlap_replays_on_the_scan_simulator() {
     let doc = syntax::parse_document(&sources, file, &loaded.compiled).expect("parses");
     let goal = report::obligation(&doc.properties[0].value);
     let session = counterexample::Program {
-        ld: &loaded.program,
-        plcopen: loaded.plcopen.as_ref(),
+        reference: &loaded.reference,
         compiled: &loaded.compiled,
         assumptions: &[],
     };
@@ -93,7 +91,7 @@ fn water_faulty_overlap_replays_on_the_scan_simulator() {
     let scan = c.simulator_scan.expect("the simulator confirms");
     assert_eq!(c.trace.cycle, Time::new(1.into(), 100.into()));
     // Replay independently: one step per scan, inputs from the trace.
-    let mut sim = Simulator::new(&loaded.program);
+    let mut sim = loaded.reference.simulator();
     let mut overlap = None;
     for k in 0..c.trace.scans {
         let inputs: BTreeMap<String, bool> =
@@ -451,8 +449,7 @@ fn a_constant_forced_locally_is_found_beyond_the_vacuity_cone() {
     let mut sources = Sources::new();
     let loaded = load_program(&mut sources, &ld, &Default::default()).expect("loads");
     let session = counterexample::Program {
-        ld: &loaded.program,
-        plcopen: None,
+        reference: &loaded.reference,
         compiled: &loaded.compiled,
         assumptions: &[],
     };
@@ -507,8 +504,7 @@ fn the_cached_vacuity_check_agrees_with_the_whole_cone_on_small_programs() {
         let assumed = report::assumptions(&doc);
         for assumptions in [&[][..], &assumed[..]] {
             let session = counterexample::Program {
-                ld: &loaded.program,
-                plcopen: None,
+                reference: &loaded.reference,
                 compiled: &loaded.compiled,
                 assumptions,
             };

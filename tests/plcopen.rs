@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use common::{ii_prove, text};
 use ii_prove::diag::{Diagnostic, RenderStyle, Sources, render};
 use ii_prove::ladder::plcopen::{Selection, lower, read_plcopen, select};
-use ii_prove::ladder::{compile, program_to_ii};
+use ii_prove::ladder::program_to_ii;
 use ii_prove::report;
 use ii_prove::syntax::Notation;
 use proptest::prelude::*;
@@ -71,7 +71,7 @@ fn exercise(text: &str) {
         .and_then(|p| lower(&p));
     match result {
         Ok(l) => {
-            let _ = compile(&l.ld);
+            let _ = ii_prove::program::compile(&l.program, &Default::default());
         }
         Err(errors) => {
             assert!(!errors.is_empty());

@@ -50,9 +50,7 @@ use num_integer::Integer;
 use num_traits::ToPrimitive;
 
 use crate::kernel::{Axiom, Rel};
-use crate::ladder::{
-    CompiledProgram, HypothesisKind, LdProgram, ScanSimulator, SignalKind, Simulator,
-};
+use crate::ladder::{CompiledProgram, HypothesisKind, Reference, SignalKind};
 use crate::prover::Obligation;
 use crate::semantics::falsify::violation;
 use crate::semantics::{Assignment, Signal, Time, eval, format_time};
@@ -166,10 +164,8 @@ pub enum Verdict {
 
 /// The program a property is about.
 pub struct Program<'a> {
-    /// The rung model (for the LDmicro simulator; a PLCopen program's lowering).
-    pub ld: &'a LdProgram,
-    /// A PLCopen program: candidates are confirmed on its own simulator instead.
-    pub plcopen: Option<&'a crate::ladder::plcopen::PlcProgram>,
+    /// The program as its front end read it: candidates are confirmed on its simulator.
+    pub reference: &'a Reference,
     /// Its compiled equations.
     pub compiled: &'a CompiledProgram,
     /// The `assume` statements.
@@ -284,7 +280,8 @@ impl Program<'_> {
     }
 
     fn cycle(&self) -> Option<Time> {
-        (self.ld.cycle_us > 0).then(|| Time::new(self.ld.cycle_us.into(), 1_000_000u64.into()))
+        (self.compiled.cycle_us > 0)
+            .then(|| Time::new(self.compiled.cycle_us.into(), 1_000_000u64.into()))
     }
 }
 
@@ -445,10 +442,7 @@ fn simulate(
     goal: &Obligation,
     trace: &ScanTrace,
 ) -> Result<(Option<usize>, Values), String> {
-    let mut sim: Box<dyn ScanSimulator> = match program.plcopen {
-        Some(p) => Box::new(crate::ladder::plcopen::PlcSimulator::new(p)),
-        None => Box::new(Simulator::new(program.ld)),
-    };
+    let mut sim = program.reference.simulator();
     // The program's inputs, and free names of the `.ii` files the program does not know.
     let mut inputs: Vec<&String> = program
         .compiled

@@ -45,6 +45,26 @@ impl From<crate::program::CompileError> for LadderError {
     }
 }
 
+/// A program as its front end read it: what its reference scan simulator runs (the
+/// compiler reads the scan model it was lowered into).
+#[derive(Clone, Debug)]
+pub enum Reference {
+    /// An LDmicro program, run by [`Simulator`].
+    Ldmicro(LdProgram),
+    /// A PLCopen program, run by [`plcopen::PlcSimulator`].
+    Plcopen(Box<plcopen::PlcProgram>),
+}
+
+impl Reference {
+    /// A new run of the program's reference simulator, from power-up.
+    pub fn simulator(&self) -> Box<dyn ScanSimulator> {
+        match self {
+            Reference::Ldmicro(p) => Box::new(Simulator::new(p)),
+            Reference::Plcopen(p) => Box::new(plcopen::PlcSimulator::new(p)),
+        }
+    }
+}
+
 /// A reference scan simulator of a front end: the counterexample search confirms
 /// candidates on it, the differential tests check the compiled equations against it.
 pub trait ScanSimulator {

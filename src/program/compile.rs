@@ -108,7 +108,9 @@
 use std::collections::{BTreeMap, BTreeSet};
 
 use super::logic::{L, Tables, factors, product, simp, sum, summands};
-use super::{Block, BoolExpr, EdgeKind, Memory, Preset, Program, Stmt, Temp, Timer, WriteKind};
+use super::{
+    Block, BoolExpr, EdgeKind, Memory, Preset, Program, Stmt, Temp, Timer, WriteKind, walk,
+};
 use crate::diag::{Report, Severity, Sources, Span};
 use crate::kernel::{Axiom, Rel};
 use crate::syntax::print::{
@@ -468,30 +470,6 @@ fn letters(mut k: usize) -> String {
     String::from_utf8(out).unwrap_or_default()
 }
 
-/// Calls `f` on every expression of `e` (itself included), operands first.
-fn walk(e: &BoolExpr, f: &mut dyn FnMut(&BoolExpr)) {
-    match e {
-        BoolExpr::Not(x) => walk(x, f),
-        BoolExpr::And(a, b) => {
-            walk(a, f);
-            walk(b, f);
-        }
-        BoolExpr::Or(xs) => xs.iter().for_each(|x| walk(x, f)),
-        BoolExpr::Timer(t) => walk(&t.input, f),
-        BoolExpr::Edge { input, .. } => walk(input, f),
-        BoolExpr::Const(_) | BoolExpr::Var(_) | BoolExpr::Temp(_) | BoolExpr::Fresh(_) => {}
-    }
-    f(e)
-}
-
-/// The expressions of a statement.
-fn exprs(s: &Stmt) -> Option<&BoolExpr> {
-    match s {
-        Stmt::Let { value, .. } | Stmt::Write { value, .. } => Some(value),
-        Stmt::Warn { .. } => None,
-    }
-}
-
 impl<'a> Compiler<'a> {
     fn new(program: &'a Program, options: CompileOptions) -> Compiler<'a> {
         let mut c = Compiler {
@@ -534,7 +512,7 @@ impl<'a> Compiler<'a> {
         // scan (first such block named), or one named only in code the PLC skips.
         let mut reads: Vec<(String, usize)> = Vec::new();
         for (b, s) in program.stmts() {
-            if let Some(e) = exprs(s) {
+            if let Some(e) = s.expr() {
                 walk(e, &mut |x| match x {
                     BoolExpr::Var(n) => reads.push((n.clone(), b.number)),
                     BoolExpr::Timer(t) => *timers.entry(t.accumulator.clone()).or_default() += 1,

@@ -250,6 +250,66 @@ pub struct Fresh {
     pub span: Span,
 }
 
+/// Calls `f` on every expression of `e` (itself included), operands first.
+pub fn walk(e: &BoolExpr, f: &mut dyn FnMut(&BoolExpr)) {
+    match e {
+        BoolExpr::Not(x) => walk(x, f),
+        BoolExpr::And(a, b) => {
+            walk(a, f);
+            walk(b, f);
+        }
+        BoolExpr::Or(xs) => xs.iter().for_each(|x| walk(x, f)),
+        BoolExpr::Timer(t) => walk(&t.input, f),
+        BoolExpr::Edge { input, .. } => walk(input, f),
+        BoolExpr::Const(_) | BoolExpr::Var(_) | BoolExpr::Temp(_) | BoolExpr::Fresh(_) => {}
+    }
+    f(e)
+}
+
+/// [`walk`], changing each expression in place.
+pub fn walk_mut(e: &mut BoolExpr, f: &mut dyn FnMut(&mut BoolExpr)) {
+    match e {
+        BoolExpr::Not(x) => walk_mut(x, f),
+        BoolExpr::And(a, b) => {
+            walk_mut(a, f);
+            walk_mut(b, f);
+        }
+        BoolExpr::Or(xs) => xs.iter_mut().for_each(|x| walk_mut(x, f)),
+        BoolExpr::Timer(t) => walk_mut(&mut t.input, f),
+        BoolExpr::Edge { input, .. } => walk_mut(input, f),
+        BoolExpr::Const(_) | BoolExpr::Var(_) | BoolExpr::Temp(_) | BoolExpr::Fresh(_) => {}
+    }
+    f(e)
+}
+
+impl Stmt {
+    /// The expression the statement computes, if any.
+    pub fn expr(&self) -> Option<&BoolExpr> {
+        match self {
+            Stmt::Let { value, .. } | Stmt::Write { value, .. } => Some(value),
+            Stmt::Warn { .. } => None,
+        }
+    }
+}
+
+/// Every bit the blocks read or write.
+pub fn bits(blocks: &[Block]) -> BTreeSet<String> {
+    let mut out = BTreeSet::new();
+    for s in blocks.iter().flat_map(|b| &b.stmts) {
+        if let Stmt::Write { target, .. } = s {
+            out.insert(target.clone());
+        }
+        if let Some(e) = s.expr() {
+            walk(e, &mut |x| {
+                if let BoolExpr::Var(n) = x {
+                    out.insert(n.clone());
+                }
+            });
+        }
+    }
+    out
+}
+
 impl Program {
     /// Every statement, block by block.
     pub fn stmts(&self) -> impl Iterator<Item = (&Block, &Stmt)> {

@@ -5,7 +5,7 @@ use std::time::Duration;
 
 use crate::counterexample;
 use crate::kernel::Axiom;
-use crate::ladder::{CompiledProgram, LdProgram};
+use crate::ladder::{CompiledProgram, Reference};
 use crate::report::{self, Options};
 use crate::syntax::{Goal, Notation, Statement};
 use crate::term::Expr;
@@ -16,8 +16,7 @@ use crate::theory;
 pub(super) struct SearchKit {
     assumed: Vec<Axiom>,
     program: Option<CompiledProgram>,
-    ladder: Option<LdProgram>,
-    plcopen: Option<crate::ladder::plcopen::PlcProgram>,
+    reference: Option<Reference>,
     opts: Options,
 }
 
@@ -37,13 +36,10 @@ impl SearchKit {
             Some(c) => c.rename_for_display(e),
             None => e.clone(),
         };
-        let program = match (&self.program, &self.ladder) {
-            (Some(compiled), Some(ld)) => Some(counterexample::Program {
-                ld,
-                plcopen: self.plcopen.as_ref(),
-                compiled,
-                assumptions: &self.assumed,
-            }),
+        let program = match (&self.program, &self.reference) {
+            (Some(compiled), Some(reference)) => {
+                Some(counterexample::Program { reference, compiled, assumptions: &self.assumed })
+            }
             _ => None,
         };
         job(&self.assumed, &self.opts, &rename, program.as_ref())
@@ -76,15 +72,14 @@ impl SearchKit {
     pub(super) fn new(
         assumptions: &[Statement<Goal>],
         program: Option<&CompiledProgram>,
-        ladder: Option<(&LdProgram, Option<&crate::ladder::plcopen::PlcProgram>)>,
+        reference: Option<&Reference>,
         notation: Notation,
         timeout: Duration,
     ) -> SearchKit {
         SearchKit {
             assumed: assumptions.iter().map(assumption).collect(),
             program: program.cloned(),
-            ladder: ladder.map(|(l, _)| l.clone()),
-            plcopen: ladder.and_then(|(_, p)| p.cloned()),
+            reference: reference.cloned(),
             opts: Options { timeout, ascii: notation == Notation::Ascii, ..Options::default() },
         }
     }

@@ -58,10 +58,8 @@ pub struct Session {
     notation: Notation,
     counter: usize,
     program: Option<(String, CompiledProgram)>,
-    /// The loaded program as read (the scan simulator replays counterexamples on it).
-    ladder: Option<crate::ladder::LdProgram>,
-    /// A PLCopen program's checked POU, for its own simulator.
-    plcopen: Option<crate::ladder::plcopen::PlcProgram>,
+    /// The loaded program as read (its scan simulator replays counterexamples).
+    reference: Option<crate::ladder::Reference>,
     program_hypotheses: Vec<Axiom>,
 }
 
@@ -174,8 +172,7 @@ impl Session {
             notation: Notation::Paper,
             counter: 0,
             program: None,
-            ladder: None,
-            plcopen: None,
+            reference: None,
             program_hypotheses: Vec::new(),
         })
     }
@@ -494,11 +491,10 @@ impl Session {
         let (count, signals) = (compiled.hypotheses.len(), compiled.signals.len());
         self.program_hypotheses = compiled.axioms();
         self.program = Some((absolute, compiled));
-        self.ladder = Some(loaded.program);
-        self.plcopen = loaded.plcopen;
+        self.reference = Some(loaded.reference);
         if let Err(e) = self.rebuild() {
             self.program = None;
-            self.ladder = None;
+            self.reference = None;
             self.program_hypotheses.clear();
             let _ = self.rebuild();
             return format!("error: the program's hypotheses are not accepted: {e}\n");
@@ -688,7 +684,7 @@ impl Session {
     /// What the command line's counterexample search needs, owned by a worker thread.
     fn search_kit(&self, timeout: Duration) -> SearchKit {
         let program = self.program.as_ref().map(|(_, c)| c);
-        let ladder = self.ladder.as_ref().map(|l| (l, self.plcopen.as_ref()));
+        let ladder = self.reference.as_ref();
         SearchKit::new(&self.assumptions, program, ladder, self.notation, timeout)
     }
 

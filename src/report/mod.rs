@@ -719,10 +719,10 @@ pub fn compile_options(opts: &Options) -> crate::ladder::CompileOptions {
 
 /// A ladder program read and compiled, with its sources for diagnostics.
 pub struct LoadedProgram {
-    /// The program as read (LDmicro) or lowered (PLCopen): what the compiler read.
-    pub program: crate::ladder::LdProgram,
-    /// For a PLCopen file, the checked POU (for its own scan simulator).
-    pub plcopen: Option<crate::ladder::plcopen::PlcProgram>,
+    /// The program as its front end read it (for its scan simulator).
+    pub reference: crate::ladder::Reference,
+    /// The program in the scan model: what the compiler read.
+    pub scan: crate::program::Program,
     /// The reader's own warnings (PLCopen: order, cycle, unmodelled blocks), rendered
     /// with file and line; the compiler's are in `compiled.warnings`.
     pub notes: Vec<String>,
@@ -759,13 +759,17 @@ pub fn load_program_with(
     let plc_diagnostics = |errors: Vec<plcopen::PlcError>| {
         errors.into_iter().map(Diagnostic::from).collect::<Vec<_>>()
     };
-    let (program, plc, mut located) = if plcopen::is_plcopen(sources.text(file)) {
+    let (reference, scan, mut located) = if plcopen::is_plcopen(sources.text(file)) {
         let project = plcopen::read_plcopen(sources, file).map_err(plc_diagnostics)?;
         let plc = plcopen::select(&project, selection).map_err(plc_diagnostics)?;
         let lowered = plcopen::lower(&plc).map_err(plc_diagnostics)?;
         if selection.order.is_none()
             && let Some(dispute) = plc.order_dispute()
-            && !same_scan(&lowered.ld, &plc.with_order(plcopen::StatementOrder::Document), options)
+            && !same_scan(
+                &lowered.program,
+                &plc.with_order(plcopen::StatementOrder::Document),
+                options,
+            )
         {
             return Err(plc_diagnostics(vec![dispute]));
         }
@@ -777,11 +781,15 @@ pub fn load_program_with(
                 location: w.span().map(|s| Location::of(sources, s)),
             })
             .collect();
-        (lowered.ld, Some(plc), notes)
+        (crate::ladder::Reference::Plcopen(Box::new(plc)), lowered.program, notes)
     } else {
-        (crate::ladder::read_ldmicro(sources, file).map_err(diagnostics)?, None, Vec::new())
+        let ld = crate::ladder::read_ldmicro(sources, file).map_err(diagnostics)?;
+        let scan = crate::ladder::lower::lower(&ld).map_err(diagnostics)?;
+        (crate::ladder::Reference::Ldmicro(ld), scan, Vec::new())
     };
-    let compiled = crate::ladder::compile_with(&program, options).map_err(diagnostics)?;
+    let compiled = crate::program::compile(&scan, options).map_err(|errors| {
+        diagnostics(errors.into_iter().map(crate::ladder::LadderError::from).collect())
+    })?;
     let notes: Vec<String> = located
         .iter()
         .map(|w| match &w.location {
@@ -795,19 +803,19 @@ pub fn load_program_with(
         message: crate::diag::Report::message(w),
         location: Some(Location::of(sources, w.span)),
     }));
-    Ok(LoadedProgram { program, plcopen: plc, notes, compiled, warnings, located })
+    Ok(LoadedProgram { reference, scan, notes, compiled, warnings, located })
 }
 
 /// Whether `other` lowers and compiles to the same equations as `program` (up to their
 /// names and order): the two statement orders then do the same on every scan.
 fn same_scan(
-    program: &crate::ladder::LdProgram,
+    program: &crate::program::Program,
     other: &crate::ladder::plcopen::PlcProgram,
     options: &crate::ladder::CompileOptions,
 ) -> bool {
     use crate::ladder::SignalKind;
-    let equations = |p: &crate::ladder::LdProgram| {
-        let compiled = crate::ladder::compile_with(p, options).ok()?;
+    let equations = |p: &crate::program::Program| {
+        let compiled = crate::program::compile(p, options).ok()?;
         // Compiler-made names carry their rung number: compare them by what they stand for.
         let canonical = |name: &str| match compiled.signals.get(name) {
             Some(SignalKind::Fresh { element, .. }) => format!("fresh[{element}]"),
@@ -837,7 +845,7 @@ fn same_scan(
         Some(all)
     };
     let Ok(lowered) = crate::ladder::plcopen::lower(other) else { return false };
-    let (a, b) = (equations(program), equations(&lowered.ld));
+    let (a, b) = (equations(program), equations(&lowered.program));
     a.is_some() && a == b
 }
 
@@ -883,8 +891,7 @@ pub fn run_program_with(
         let ctx = Context::with_scans(theory.axioms(), hypotheses, Some(compiled.scan_cycle()))
             .map_err(|e| InputError { rendered: format!("error: {path}: {e}\n") })?;
         let session = counterexample::Program {
-            ld: &loaded.program,
-            plcopen: loaded.plcopen.as_ref(),
+            reference: &loaded.reference,
             compiled,
             assumptions: &assumed,
         };

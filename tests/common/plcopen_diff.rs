@@ -11,7 +11,8 @@ use ii_prove::diag::Sources;
 use ii_prove::ladder::plcopen::{
     Lowered, PlcError, PlcProgram, PlcSimulator, Selection, lower, read_plcopen, select,
 };
-use ii_prove::ladder::{CompiledProgram, SignalKind, compile};
+use ii_prove::ladder::{CompiledProgram, SignalKind};
+use ii_prove::program::{BoolExpr, compile, walk};
 use ii_prove::term::Term;
 
 // ---------------------------------------------------------------- program generator
@@ -503,8 +504,8 @@ pub struct Prepared {
     /// The values the hypotheses read, in the order `Hyp::scan` expects them.
     pub known: Vec<Src>,
     pub hyps: Vec<Hyp>,
-    /// Element index of a one-shot in the lowered program → its edge detector (an
-    /// index into `lowered.edges`).
+    /// A one-shot's memory index in the lowered program → its edge detector (an index
+    /// into `lowered.edges`).
     pub edge_of: BTreeMap<usize, usize>,
 }
 
@@ -536,7 +537,7 @@ pub fn prepare(
             return None;
         }
     };
-    let compiled = match compile(&lowered.ld) {
+    let compiled = match compile(&lowered.program, &Default::default()) {
         Ok(c) => c,
         Err(e) => {
             fig.failures
@@ -554,27 +555,18 @@ pub fn prepare(
     let mut known: Vec<Src> = Vec::new();
     let hyps: Vec<Hyp> =
         compiled.hypotheses.iter().map(|h| Hyp::new(h, &compiled, cycle, &mut known)).collect();
-    let one_shots = lowered
-        .ld
-        .elements()
-        .filter(|e| matches!(e.kind, ii_prove::ladder::ElementKind::Edge { .. }))
-        .count();
+    let mut one_shots = 0;
+    for e in lowered.program.blocks.iter().flat_map(|b| &b.stmts).filter_map(|s| s.expr()) {
+        walk(e, &mut |x| one_shots += usize::from(matches!(x, BoolExpr::Edge { .. })));
+    }
     if one_shots != lowered.edges.len() {
         fig.failures
             .push(format!("seed {seed}: the one-shots and their edge detectors differ\n{xml}"));
         return None;
     }
-    // The compiler's edge memories are the one-shots' hidden bits: element k of the
-    // lowered program (file order) is the j-th one-shot, the j-th edge detector.
-    let edge_of: BTreeMap<usize, usize> = lowered
-        .ld
-        .elements()
-        .enumerate()
-        .filter(|(_, e)| matches!(e.kind, ii_prove::ladder::ElementKind::Edge { .. }))
-        .map(|(k, _)| k)
-        .enumerate()
-        .map(|(j, k)| (k, j))
-        .collect();
+    // The compiler's edge memories are the one-shots' hidden bits: the memory with
+    // index j is the j-th edge detector.
+    let edge_of: BTreeMap<usize, usize> = (0..lowered.edges.len()).map(|j| (j, j)).collect();
     if known.iter().any(|src| matches!(src, Src::Edge(k) if !edge_of.contains_key(k))) {
         fig.failures.push(format!("seed {seed}: an edge memory names no one-shot\n{xml}"));
         return None;

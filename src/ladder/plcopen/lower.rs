@@ -1,15 +1,14 @@
-//! Lowering of a checked PLCopen program ([`PlcProgram`]) into the rung model the one rung compiler reads ([`LdProgram`]), statement by statement in evaluation order.
+//! Lowering of a checked PLCopen program ([`PlcProgram`]) into the scan model ([`Program`]), statement by statement in evaluation order.
 //!
-//! Each statement becomes one rung fed by the rail: a coil or output variable is
-//! `power → COIL`, a block call is one rung per output it writes. Block outputs,
-//! FB instance pins and edge detectors are hidden variables written by coils
-//! (`TON0_Q`, `SR0_S1`, `_TMP_AND7_OUT`, `_TRIG12`, see `docs/plcopen.md`), so a
-//! value computed once per scan is read by every consumer, and a read before the
-//! writer sees the previous scan, exactly as in the scan model. Negation of a
-//! compound value is pushed to the contacts (De Morgan). What the algebra cannot
-//! express (TP, counters, comparisons, blocks run under a wired `EN`, non-Boolean
-//! values in a Boolean place) becomes a fresh element, which the compiler turns
-//! into an unconstrained signal with a warning naming the block.
+//! Each statement becomes one block: a coil or output variable is a write of its
+//! power, a block call is one write per output it sets. Block outputs, FB instance
+//! pins and edge detectors are hidden variables (`TON0_Q`, `SR0_S1`, `_TMP_AND7_OUT`,
+//! `_TRIG12`, see `docs/plcopen.md`), so a value computed once per scan is read by
+//! every consumer, and a read before the writer sees the previous scan, exactly as in
+//! the scan model. Negation of a compound value is pushed to the variables (De
+//! Morgan). What the algebra cannot express (TP, counters, comparisons, blocks run
+//! under a wired `EN`, non-Boolean values in a Boolean place) becomes an unconstrained
+//! value, which the compiler names with a warning naming the block.
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -17,18 +16,17 @@ use super::{
     Edge, ObjKind, Operand, PinIn, PlcError, PlcProgram, Source, Std, Storage, unconnected,
 };
 use crate::diag::Span;
-use crate::ladder::ldmicro::{
-    Circuit, CoilKind, CompareOp, CounterEdge, CounterKind, EdgeKind, Element, ElementKind,
-    HeaderVersion, LdProgram, Operand as LdOperand, Rung, TimerDelay, TimerKind,
+use crate::program::{
+    Block, BoolExpr, Fresh, Inputs, Memory, Preset, Program, Stmt, Timer, WriteKind,
 };
 
-/// A lowered program: the rung model and the warnings of reading and lowering.
+/// A lowered program: the scan model and the warnings of reading and lowering.
 pub struct Lowered {
-    /// The rungs, one per statement, in scan order.
-    pub ld: LdProgram,
+    /// The program, one block per statement, in scan order.
+    pub program: Program,
     /// Warnings (order decisions, defaults), each located in the XML.
     pub warnings: Vec<PlcError>,
-    /// For each one-shot element of `ld`, in file order, the edge detector it stands for:
+    /// For each one-shot of `program` (its memory's index), the edge detector it stands for:
     /// the path of inlined block indices, the owning object and the pin (see
     /// [`PlcSimulator::edge_memory_of`](super::PlcSimulator::edge_memory_of)).
     pub edges: Vec<EdgeKey>,
@@ -49,7 +47,7 @@ pub fn timer_scans(pt_us: u64, cycle_us: u64) -> u64 {
 
 struct Lower<'p> {
     p: &'p PlcProgram,
-    rungs: Vec<Rung>,
+    blocks: Vec<Block>,
     called: BTreeSet<usize>,
     in_progress: BTreeSet<usize>,
     /// While the inputs of a block with an `executionOrderId` are computed: blocks not
@@ -63,7 +61,7 @@ struct Lower<'p> {
     /// Names a coil has written so far in the scan.
     emitted: BTreeSet<String>,
     /// Function outputs inlined into their one reader.
-    inlined: BTreeMap<usize, Circuit>,
+    inlined: BTreeMap<usize, BoolExpr>,
     /// Functions whose output was read while their inputs were computed (feedback).
     fed_back: BTreeSet<usize>,
     /// The path of inlined block indices to this body.
@@ -75,112 +73,89 @@ struct Lower<'p> {
     direct: Option<usize>,
 }
 
-fn one() -> Circuit {
-    Circuit::Series(Vec::new())
+fn one() -> BoolExpr {
+    BoolExpr::Const(true)
 }
 
-fn el(kind: ElementKind, span: Span) -> Circuit {
-    Circuit::Element(Element { kind, span })
+fn zero() -> BoolExpr {
+    BoolExpr::Const(false)
 }
 
-fn contact(name: &str, negated: bool, span: Span) -> Circuit {
-    el(ElementKind::Contacts { name: name.to_string(), negated }, span)
+fn contact(name: &str, negated: bool) -> BoolExpr {
+    let v = BoolExpr::var(name);
+    if negated { BoolExpr::negate(v) } else { v }
 }
 
-fn is_one(c: &Circuit) -> bool {
-    matches!(c, Circuit::Series(v) if v.is_empty())
+fn is_one(c: &BoolExpr) -> bool {
+    matches!(c, BoolExpr::Const(true))
 }
 
-fn and(items: Vec<Circuit>) -> Circuit {
-    let mut out = Vec::new();
-    for c in items {
-        match c {
-            Circuit::Series(v) => out.extend(v),
-            c => out.push(c),
-        }
-    }
-    if out.len() == 1 { out.pop().unwrap_or_else(one) } else { Circuit::Series(out) }
+fn and(items: Vec<BoolExpr>) -> BoolExpr {
+    let mut items = items.into_iter().filter(|c| !is_one(c));
+    let first = items.next().unwrap_or_else(one);
+    items.fold(first, BoolExpr::and)
 }
 
-fn or(mut items: Vec<Circuit>) -> Circuit {
+fn or(mut items: Vec<BoolExpr>) -> BoolExpr {
     if items.len() == 1 {
         return items.pop().unwrap_or_else(one);
     }
     if items.iter().any(is_one) {
         return one();
     }
-    Circuit::Parallel(items)
+    BoolExpr::Or(items)
 }
 
-/// A fresh (unconstrained) element named after `keyword`; never one the compiler passes through.
-fn fresh(keyword: &str, what: &str, span: Span) -> Circuit {
-    let mut k = keyword.to_ascii_uppercase();
-    let reserved = ["GOTO", "GOSUB", "SUBPROG", "ENDSUB", "RETURN", "LOCK", "SLEEP", "LABEL"];
-    if crate::ladder::ldmicro::PASS_THROUGH.contains(&k.as_str()) || reserved.contains(&k.as_str())
-    {
-        k.push_str("_BLOCK");
-    }
-    el(ElementKind::Other { keyword: k, args: vec![what.to_string()] }, span)
+/// An unconstrained value standing for `what`, named after `keyword` and its block.
+fn fresh(keyword: &str, what: &str, span: Span) -> BoolExpr {
+    let keyword = keyword.to_ascii_uppercase();
+    BoolExpr::Fresh(Box::new(Fresh {
+        base: keyword.clone(),
+        keyword,
+        why: format!("{what} is not expressible in the algebra"),
+        span,
+    }))
 }
 
-/// A Boolean output of a block the algebra does not express: counters and comparisons
-/// as the compiler's own elements (so its warning says what they are), anything else fresh.
-fn opaque(type_name: &str, instance: Option<&str>, pin: &str, span: Span) -> Circuit {
+/// A Boolean output of a block the algebra does not express (counters, comparisons, …).
+fn opaque(type_name: &str, instance: Option<&str>, pin: &str, span: Span) -> BoolExpr {
     let upper = type_name.to_ascii_uppercase();
-    let name = instance.unwrap_or(type_name).to_string();
-    let counter = |kind| ElementKind::Counter {
-        kind,
-        name: name.clone(),
-        limit: LdOperand::Literal(0),
-        init: LdOperand::Literal(0),
-        edge: CounterEdge::Rising,
+    let kind = upper.split('_').next().unwrap_or("");
+    let name = instance.unwrap_or(type_name);
+    let what = match kind {
+        "CTU" | "CTD" | "CTUD" => format!("the counter {name} ({upper})"),
+        "GT" | "GE" | "EQ" | "NE" | "LT" | "LE" => format!("the integer comparison {upper}"),
+        _ => match instance {
+            Some(i) => format!("the output {pin} of {i} ({upper})"),
+            None => format!("the function {upper}"),
+        },
     };
-    let compare =
-        |op| ElementKind::Compare { op, a: LdOperand::Literal(0), b: LdOperand::Literal(0) };
-    let kind = match upper.split('_').next().unwrap_or("") {
-        "CTU" => counter(CounterKind::Ctu),
-        "CTD" | "CTUD" => counter(CounterKind::Ctd),
-        "GT" => compare(CompareOp::Grt),
-        "GE" => compare(CompareOp::Geq),
-        "EQ" => compare(CompareOp::Equ),
-        "NE" => compare(CompareOp::Neq),
-        "LT" => compare(CompareOp::Les),
-        "LE" => compare(CompareOp::Leq),
-        _ => return fresh(type_name, &format!("{name}.{pin}"), span),
-    };
-    el(kind, span)
+    fresh(type_name, &what, span)
 }
 
-/// `¬c`, pushed down to the contacts.
-fn not(c: Circuit) -> Circuit {
+/// `¬c`, pushed down to the variables.
+fn not(c: BoolExpr) -> BoolExpr {
     match c {
-        Circuit::Series(v) if v.is_empty() => {
-            Circuit::Element(Element { kind: ElementKind::Open, span: Span::new(0, 0..0) })
-        }
-        Circuit::Series(v) => or(v.into_iter().map(not).collect()),
-        Circuit::Parallel(v) => and(v.into_iter().map(not).collect()),
-        Circuit::Element(e) => match e.kind {
-            ElementKind::Contacts { name, negated } => {
-                el(ElementKind::Contacts { name, negated: !negated }, e.span)
-            }
-            ElementKind::Open => one(),
-            ElementKind::Other { keyword, args } => {
-                el(ElementKind::Other { keyword, args }, e.span)
-            }
-            kind => el(kind, e.span),
-        },
+        BoolExpr::Const(b) => BoolExpr::Const(!b),
+        BoolExpr::And(a, b) => or(vec![not(*a), not(*b)]),
+        BoolExpr::Or(v) => and(v.into_iter().map(not).collect()),
+        BoolExpr::Not(x) => *x,
+        // The negation of an unconstrained value is as unconstrained.
+        f @ BoolExpr::Fresh(_) => f,
+        x => BoolExpr::negate(x),
     }
 }
 
 /// `R_TRIG(v).Q` or `F_TRIG(v).Q` as matiec defines them (`Q := CLK ∧ ¬M; M := CLK`, with
 /// `CLK = ¬v` for F_TRIG, `M` FALSE at power-up): a rising one-shot of `v` or of `¬v`.
 /// (An F_TRIG pulses at the first scan when `v` is FALSE; a one-shot of `¬v` does too.)
-fn trig(edge: Edge, v: Circuit, span: Span) -> Circuit {
+fn trig(edge: Edge, v: BoolExpr, index: usize) -> BoolExpr {
     let clk = if edge == Edge::Falling { not(v) } else { v };
-    and(vec![clk, el(ElementKind::Edge { kind: EdgeKind::Osr }, span)])
+    let memory = Memory { base: "OSR".into(), element: "OSR".into(), index };
+    BoolExpr::Edge { kind: crate::program::EdgeKind::Rising, input: Box::new(clk), memory }
 }
 
-fn xor(a: Circuit, b: Circuit) -> Circuit {
+fn xor(a: BoolExpr, b: BoolExpr) -> BoolExpr {
     or(vec![and(vec![a.clone(), not(b.clone())]), and(vec![not(a), b])])
 }
 
@@ -188,7 +163,7 @@ impl<'p> Lower<'p> {
     fn new(p: &'p PlcProgram) -> Lower<'p> {
         Lower {
             p,
-            rungs: Vec::new(),
+            blocks: Vec::new(),
             called: BTreeSet::new(),
             in_progress: BTreeSet::new(),
             no_pull: false,
@@ -206,9 +181,9 @@ impl<'p> Lower<'p> {
     }
 
     /// `trig(edge, v)`, recording which detector of the program it stands for.
-    fn trig_of(&mut self, owner: usize, pin: &str, edge: Edge, v: Circuit, span: Span) -> Circuit {
+    fn trig_of(&mut self, owner: usize, pin: &str, edge: Edge, v: BoolExpr) -> BoolExpr {
         self.edges.push((self.path.clone(), owner, pin.to_string()));
-        trig(edge, v, span)
+        trig(edge, v, self.edges.len() - 1)
     }
 
     /// Whether the value of the object at `k` is read exactly once per scan: one wire
@@ -266,26 +241,27 @@ impl<'p> Lower<'p> {
     /// Whether every bit `c` reads is settled: a declared variable or input (nothing
     /// writes one between a block call and the statement that triggered it), or a
     /// hidden variable already written in this scan.
-    fn settled(&self, c: &Circuit) -> bool {
-        c.elements().iter().all(|e| match &e.kind {
-            ElementKind::Contacts { name, .. } => {
-                self.emitted.contains(name)
+    fn settled(&self, c: &BoolExpr) -> bool {
+        let mut settled = true;
+        crate::program::walk(c, &mut |e| {
+            if let BoolExpr::Var(name) = e {
+                settled &= self.emitted.contains(name)
                     || self.p.vars.values().any(|v| v.name == *name)
-                    || self.p.inputs.contains(name)
+                    || self.p.inputs.contains(name);
             }
-            _ => true,
-        })
+        });
+        settled
     }
 
     /// A function's output: inlined into its one reader when nothing it reads can change
     /// before that reader runs, else a hidden variable written here.
-    fn function_out(&mut self, k: usize, out: Circuit, span: Span) {
+    fn function_out(&mut self, k: usize, out: BoolExpr, span: Span) {
         let inline = self.direct != Some(k) && !self.fed_back.contains(&k);
         if inline && self.single_use(k) && self.settled(&out) {
             self.inlined.insert(k, out);
         } else {
             let name = self.p.hidden_name(k, "OUT").unwrap_or_default().to_string();
-            self.coil(out, &name, CoilKind::Normal, span);
+            self.coil(out, &name, WriteKind::Assign, span);
         }
     }
 
@@ -300,36 +276,37 @@ impl<'p> Lower<'p> {
         self.p.obj(k).map_or(Span::new(self.p.file, 0..0), |o| o.span)
     }
 
-    fn rung(&mut self, body: Vec<Circuit>, span: Span) {
-        let number = self.rungs.len() + 1;
-        self.rungs.push(Rung { number, label: None, span, body: Circuit::Series(body) });
-    }
-
-    fn coil(&mut self, power: Circuit, name: &str, kind: CoilKind, span: Span) {
+    /// A block of its own writing `name`.
+    fn coil(&mut self, mut power: BoolExpr, name: &str, kind: WriteKind, span: Span) {
         self.emitted.insert(name.to_string());
-        let c = el(ElementKind::Coil { name: name.to_string(), kind }, span);
-        let body = match power {
-            Circuit::Series(mut v) => {
-                v.push(c);
-                v
-            }
-            p => vec![p, c],
-        };
-        self.rung(body, span);
+        let number = self.blocks.len() + 1;
+        // What the compiler names (unconstrained values, one-shot memories) is named
+        // after the block that computes it.
+        crate::program::walk_mut(&mut power, &mut |e| match e {
+            BoolExpr::Fresh(f) => f.base = format!("{}_r{number}", f.base),
+            BoolExpr::Edge { memory, .. } => memory.base = format!("{}_r{number}", memory.base),
+            _ => {}
+        });
+        let write = Stmt::Write { target: name.to_string(), kind, value: power, span };
+        self.blocks.push(Block { number, label: None, span, stmts: vec![write] });
     }
 
     /// The value an operand reads, as a circuit.
-    fn operand(&mut self, k: usize, op: &Operand, span: Span) -> Circuit {
+    fn operand(&mut self, k: usize, op: &Operand, span: Span) -> BoolExpr {
         match op {
-            Operand::Bool(n) => contact(n, false, span),
+            Operand::Bool(n) => contact(n, false),
             Operand::Const(true) => one(),
-            Operand::Const(false) => el(ElementKind::Open, span),
+            Operand::Const(false) => zero(),
             Operand::Member(inst, pin) => match self.member_writer(inst) {
                 Some(j) => {
                     let name = self.p.hidden_name(j, pin).unwrap_or_default().to_string();
-                    contact(&name, false, span)
+                    contact(&name, false)
                 }
-                None => fresh("MEMBER", &format!("{inst}.{pin}"), span),
+                None => fresh(
+                    "MEMBER",
+                    &format!("the member {inst}.{pin} of an instance not modelled"),
+                    span,
+                ),
             },
             Operand::Duration(_) | Operand::Other(_) => {
                 let what = match op {
@@ -337,7 +314,7 @@ impl<'p> Lower<'p> {
                     _ => "a duration".into(),
                 };
                 let _ = k;
-                fresh("VALUE", &what, span)
+                fresh("VALUE", &format!("the value of `{what}`"), span)
             }
         }
     }
@@ -373,20 +350,20 @@ impl<'p> Lower<'p> {
     }
 
     /// The power at a consumer pin: the OR of its wires, or its expression (unconnected: FALSE).
-    fn pin_power(&mut self, pin: &PinIn, owner: usize) -> Circuit {
+    fn pin_power(&mut self, pin: &PinIn, owner: usize) -> BoolExpr {
         if let Some((text, span)) = &pin.expr {
             let op = self.resolve(text, *span);
             return self.operand(owner, &op, *span);
         }
         if pin.conns.is_empty() {
-            return el(ElementKind::Open, pin.span);
+            return zero();
         }
-        let values: Vec<Circuit> = pin
+        let values: Vec<BoolExpr> = pin
             .conns
             .iter()
             .map(|c| match self.p.source(c) {
                 Some(src) => self.source(src, c.span),
-                None => el(ElementKind::Open, c.span),
+                None => zero(),
             })
             .collect();
         or(values)
@@ -410,29 +387,29 @@ impl<'p> Lower<'p> {
     }
 
     /// A block input pin's value with its modifiers (negation, edge detector).
-    fn pin_value(&mut self, k: usize, pin: &PinIn) -> Circuit {
+    fn pin_value(&mut self, k: usize, pin: &PinIn) -> BoolExpr {
         let v = self.pin_power(pin, k);
         let v = if pin.negated { not(v) } else { v };
         self.edge(k, &pin.name.to_ascii_uppercase(), pin.edge, v, pin.span)
     }
 
     /// `v` through the hidden edge detector of `(k, pin)`, computed once per scan at its first use.
-    fn edge(&mut self, k: usize, pin: &str, edge: Edge, v: Circuit, span: Span) -> Circuit {
+    fn edge(&mut self, k: usize, pin: &str, edge: Edge, v: BoolExpr, span: Span) -> BoolExpr {
         if edge == Edge::None {
             return v;
         }
         let Some(name) = self.p.hidden_name(k, pin).map(str::to_string) else {
-            return fresh("EDGE", pin, span);
+            return fresh("EDGE", &format!("the edge detector of pin {pin}"), span);
         };
         if self.trigs.insert((k, pin.to_string())) {
-            let power = self.trig_of(k, pin, edge, v, span);
-            self.coil(power, &name, CoilKind::Normal, span);
+            let power = self.trig_of(k, pin, edge, v);
+            self.coil(power, &name, WriteKind::Assign, span);
         }
-        contact(&name, false, span)
+        contact(&name, false)
     }
 
     /// What a wire's producer puts on it.
-    fn source(&mut self, src: Source, span: Span) -> Circuit {
+    fn source(&mut self, src: Source, span: Span) -> BoolExpr {
         match src {
             Source::Rail => one(),
             Source::Object(k) => {
@@ -442,7 +419,7 @@ impl<'p> Lower<'p> {
                         what: "a wire loop through this object".into(),
                         reason: "a loop must pass through a block, whose output is then read from the previous scan".into(),
                     });
-                    return el(ElementKind::Open, span);
+                    return zero();
                 }
                 let out = self.object_value(k);
                 self.visiting.remove(&k);
@@ -457,16 +434,16 @@ impl<'p> Lower<'p> {
         }
     }
 
-    fn object_value(&mut self, k: usize) -> Circuit {
+    fn object_value(&mut self, k: usize) -> BoolExpr {
         let p = self.p;
-        let Some(o) = p.obj(k) else { return el(ElementKind::Open, Span::new(p.file, 0..0)) };
+        let Some(o) = p.obj(k) else { return zero() };
         let op = p.operands.get(&k).cloned();
         match &o.kind {
             ObjKind::Contact { negated, edge, input, var } => {
                 let pred = self.pin_power(input, k);
                 let v = match &op {
                     Some(op) => self.operand(k, op, var.1),
-                    None => fresh("CONTACT", &var.0, var.1),
+                    None => fresh("CONTACT", &format!("the value of `{}`", var.0), var.1),
                 };
                 let v = if *negated { not(v) } else { v };
                 // Beremiz's PLCGenerator.py makes one R_TRIG/F_TRIG per path through an
@@ -496,7 +473,7 @@ impl<'p> Lower<'p> {
                              feed the next element from the wires directly"
                         .into(),
                 });
-                el(ElementKind::Open, o.span)
+                zero()
             }
             ObjKind::Coil { input, .. } | ObjKind::Connector { input, .. } => {
                 self.pin_power(input, k)
@@ -504,21 +481,21 @@ impl<'p> Lower<'p> {
             ObjKind::InVar { negated, edge, expr } => {
                 let v = match &op {
                     Some(op) => self.operand(k, op, expr.1),
-                    None => fresh("VALUE", &expr.0, expr.1),
+                    None => fresh("VALUE", &format!("the value of `{}`", expr.0), expr.1),
                 };
                 let v = if *negated { not(v) } else { v };
                 self.edge(k, "", *edge, v, o.span)
             }
             ObjKind::InOutVar { expr, .. } | ObjKind::OutVar { expr, .. } => match &op {
                 Some(op) => self.operand(k, op, expr.1),
-                None => fresh("VALUE", &expr.0, expr.1),
+                None => fresh("VALUE", &format!("the value of `{}`", expr.0), expr.1),
             },
-            _ => el(ElementKind::Open, o.span),
+            _ => zero(),
         }
     }
 
     /// The value of output `pin` of block `k` (calling the block at its first use this scan).
-    fn block_output(&mut self, k: usize, pin: &str, span: Span) -> Circuit {
+    fn block_output(&mut self, k: usize, pin: &str, span: Span) -> BoolExpr {
         let before = self.no_pull && !self.called.contains(&k);
         if self.in_progress.contains(&k) || before {
             // Read before its call: its output is the variable as it stands.
@@ -532,20 +509,24 @@ impl<'p> Lower<'p> {
         }
         let Some(ObjKind::Block { type_name, instance, .. }) = self.p.obj(k).map(|o| &o.kind)
         else {
-            return el(ElementKind::Open, span);
+            return zero();
         };
         let runs = self.en_const(k, 0);
         if pin.eq_ignore_ascii_case("ENO") {
-            return if runs { one() } else { fresh(type_name, "ENO", span) };
+            return if runs {
+                one()
+            } else {
+                fresh(type_name, &format!("the ENO of {type_name} run under a wired EN"), span)
+            };
         }
         if let Some(var) = self.p.sub_var(k, pin, true).filter(|_| runs) {
-            return contact(var, false, span);
+            return contact(var, false);
         }
         match Std::of(type_name) {
             Some(s) if runs && s.output().eq_ignore_ascii_case(pin) => {
                 match self.p.hidden_name(k, s.output()) {
-                    Some(n) => contact(n, false, span),
-                    None => fresh(type_name, pin, span),
+                    Some(n) => contact(n, false),
+                    None => fresh(type_name, &format!("the output {pin} of {type_name}"), span),
                 }
             }
             _ => opaque(type_name, instance.as_deref(), pin, span),
@@ -570,7 +551,7 @@ impl<'p> Lower<'p> {
         if let Some(pin) = p.en_pin(k) {
             let _ = self.pin_value(k, pin);
         }
-        let mut vals: BTreeMap<String, Circuit> = BTreeMap::new();
+        let mut vals: BTreeMap<String, BoolExpr> = BTreeMap::new();
         let mut preset = None;
         for pin in inputs {
             let n = pin.name.to_ascii_uppercase();
@@ -583,22 +564,22 @@ impl<'p> Lower<'p> {
                 }
             }
         }
-        let value = |_: &mut Self, name: &str| -> Circuit {
-            vals.get(name).cloned().unwrap_or_else(|| el(ElementKind::Open, span))
+        let value = |_: &mut Self, name: &str| -> BoolExpr {
+            vals.get(name).cloned().unwrap_or_else(zero)
         };
         let hidden = |pin: &str| p.hidden_name(k, pin).unwrap_or_default().to_string();
         match std {
             Some(s @ (Std::And | Std::Or | Std::Xor)) => {
                 let pins = p.data_inputs(k);
-                let vals: Vec<Circuit> =
+                let vals: Vec<BoolExpr> =
                     pins.iter().map(|pin| value(self, &pin.name.to_ascii_uppercase())).collect();
                 let out = match s {
                     Std::And => and(vals),
                     Std::Or => or(vals),
-                    _ if vals.len() > 4 => fresh("XOR", "more than 4 inputs", span),
+                    _ if vals.len() > 4 => fresh("XOR", "an XOR of more than 4 inputs", span),
                     _ => {
                         let mut it = vals.into_iter();
-                        let first = it.next().unwrap_or_else(|| el(ElementKind::Open, span));
+                        let first = it.next().unwrap_or_else(zero);
                         it.fold(first, xor)
                     }
                 };
@@ -623,8 +604,7 @@ impl<'p> Lower<'p> {
                 let inst = instance.as_deref().map_or_else(String::new, |i| {
                     p.vars.get(&i.to_ascii_uppercase()).map_or(i.to_string(), |v| v.name.clone())
                 });
-                let kind = if s == Std::Ton { TimerKind::Ton } else { TimerKind::Tof };
-                let (delay, adjust) = match delay {
+                let (preset, adjust) = match delay {
                     // PT = 0 still takes one scan (the starting scan never switches):
                     // the delay of one cycle, counted exactly.
                     Some(0) => {
@@ -636,34 +616,47 @@ impl<'p> Lower<'p> {
                                 type_name.to_ascii_uppercase()
                             ),
                         });
-                        (TimerDelay::Micros(p.cycle_us), 0)
+                        (Some(p.cycle_us), 0)
                     }
                     Some(us) => {
                         let scans = timer_scans(us, p.cycle_us);
                         let floor = us.checked_div(p.cycle_us).unwrap_or(0);
-                        (TimerDelay::Micros(us), scans as i64 - floor as i64)
+                        (Some(us), scans as i64 - floor as i64)
                     }
-                    None => (TimerDelay::Variable(format!("{inst}.PT")), 0),
+                    None => (None, 0),
                 };
-                let timer = el(
-                    ElementKind::Timer { kind, name: inst, delay, adjust, adjust_given: true },
+                let preset = match preset {
+                    Some(us) => Preset::Micros { us, adjust, default_of: None },
+                    None => Preset::Variable(format!("{inst}.PT")),
+                };
+                let timer = Timer {
+                    on_delay: s == Std::Ton,
+                    keyword: if s == Std::Ton { "TON" } else { "TOF" }.into(),
+                    accumulator: inst,
+                    preset,
+                    input,
                     span,
-                );
-                self.coil(and(vec![input, timer]), &hidden("Q"), CoilKind::Normal, span);
+                };
+                let q = BoolExpr::Timer(Box::new(timer));
+                self.coil(q, &hidden("Q"), WriteKind::Assign, span);
             }
             Some(Std::Tp) => {
-                let out = fresh("TP", instance.as_deref().unwrap_or(""), span);
-                self.coil(out, &hidden("Q"), CoilKind::Normal, span);
+                let out = fresh(
+                    "TP",
+                    &format!("the pulse timer {}", instance.as_deref().unwrap_or("TP")),
+                    span,
+                );
+                self.coil(out, &hidden("Q"), WriteKind::Assign, span);
             }
             Some(s @ (Std::Sr | Std::Rs)) => {
                 let (set, reset) = if s == Std::Sr { ("S1", "R") } else { ("S", "R1") };
                 let sv = value(self, set);
                 let rv = value(self, reset);
                 let (hs, hr, q) = (hidden(set), hidden(reset), hidden("Q1"));
-                self.coil(sv, &hs, CoilKind::Normal, span);
-                self.coil(rv, &hr, CoilKind::Normal, span);
-                let set_rung = (contact(&hs, false, span), CoilKind::Set);
-                let reset_rung = (contact(&hr, false, span), CoilKind::Reset);
+                self.coil(sv, &hs, WriteKind::Assign, span);
+                self.coil(rv, &hr, WriteKind::Assign, span);
+                let set_rung = (contact(&hs, false), WriteKind::Set);
+                let reset_rung = (contact(&hr, false), WriteKind::Reset);
                 // SR: Q1 := S1 + ¬R·Q1 (reset, then set); RS: Q1 := ¬R1·(S + Q1) (set, then reset).
                 let rungs =
                     if s == Std::Sr { [reset_rung, set_rung] } else { [set_rung, reset_rung] };
@@ -674,25 +667,25 @@ impl<'p> Lower<'p> {
             Some(s @ (Std::RTrig | Std::FTrig)) => {
                 let clk = value(self, "CLK");
                 let edge = if s == Std::RTrig { Edge::Rising } else { Edge::Falling };
-                let q = self.trig_of(k, "M", edge, clk, span);
-                self.coil(q, &hidden("Q"), CoilKind::Normal, span);
+                let q = self.trig_of(k, "M", edge, clk);
+                self.coil(q, &hidden("Q"), WriteKind::Assign, span);
             }
             // An inlined user function block: its inputs are assigned, then its body runs.
             None if runs && p.subs.contains_key(&k) => {
                 for pin in inputs {
                     let n = pin.name.to_ascii_uppercase();
                     if let (Some(var), Some(v)) = (p.sub_var(k, &n, false), vals.get(&n)) {
-                        self.coil(v.clone(), var, CoilKind::Normal, span);
+                        self.coil(v.clone(), var, WriteKind::Assign, span);
                     }
                 }
                 if let Some(child) = p.subs.get(&k) {
                     let mut sub = Lower::new(child);
-                    sub.rungs = std::mem::take(&mut self.rungs);
+                    sub.blocks = std::mem::take(&mut self.blocks);
                     sub.emitted = std::mem::take(&mut self.emitted);
                     sub.edges = std::mem::take(&mut self.edges);
                     sub.path = [self.path.as_slice(), &[k]].concat();
                     sub.run();
-                    self.rungs = std::mem::take(&mut sub.rungs);
+                    self.blocks = std::mem::take(&mut sub.blocks);
                     self.emitted = std::mem::take(&mut sub.emitted);
                     self.edges = std::mem::take(&mut sub.edges);
                     self.errors.append(&mut sub.errors);
@@ -767,7 +760,7 @@ impl<'p> Lower<'p> {
     fn assign(
         &mut self,
         k: usize,
-        power: Circuit,
+        power: BoolExpr,
         name: &str,
         negated: bool,
         storage: Storage,
@@ -775,18 +768,17 @@ impl<'p> Lower<'p> {
         span: Span,
     ) {
         let kind = match (negated, storage) {
-            (true, _) => CoilKind::Negated,
-            (_, Storage::Set) => CoilKind::Set,
-            (_, Storage::Reset) => CoilKind::Reset,
-            _ => CoilKind::Normal,
+            (true, _) => WriteKind::AssignNot,
+            (_, Storage::Set) => WriteKind::Set,
+            (_, Storage::Reset) => WriteKind::Reset,
+            _ => WriteKind::Assign,
         };
-        let power =
-            if edge == Edge::None { power } else { self.trig_of(k, "COIL", edge, power, span) };
+        let power = if edge == Edge::None { power } else { self.trig_of(k, "COIL", edge, power) };
         self.coil(power, name, kind, span);
     }
 }
 
-/// Lowers a checked program into rungs, in evaluation order. Never panics.
+/// Lowers a checked program into the scan model, in evaluation order. Never panics.
 pub fn lower(p: &PlcProgram) -> Result<Lowered, Vec<PlcError>> {
     let mut l = Lower::new(p);
     let file_span = p.pou.span;
@@ -794,37 +786,46 @@ pub fn lower(p: &PlcProgram) -> Result<Lowered, Vec<PlcError>> {
     // start value before any statement reads it; STARTED is 1 from then on.
     if let Some(started) = &p.started {
         for (x, start) in &p.starts {
-            let first = contact(started, true, file_span);
+            let first = contact(started, true);
             match start {
-                None => l.coil(first, x, CoilKind::Set, file_span),
+                None => l.coil(first, x, WriteKind::Set, file_span),
                 Some(s) => {
-                    let on = and(vec![first.clone(), contact(s, false, file_span)]);
-                    l.coil(on, x, CoilKind::Set, file_span);
-                    let off = and(vec![first, contact(s, true, file_span)]);
-                    l.coil(off, x, CoilKind::Reset, file_span);
+                    let on = and(vec![first.clone(), contact(s, false)]);
+                    l.coil(on, x, WriteKind::Set, file_span);
+                    let off = and(vec![first, contact(s, true)]);
+                    l.coil(off, x, WriteKind::Reset, file_span);
                 }
             }
         }
-        l.coil(one(), started, CoilKind::Normal, file_span);
+        l.coil(one(), started, WriteKind::Assign, file_span);
     }
     for (x, latch) in &p.latches {
-        l.coil(contact(latch, false, file_span), x, CoilKind::Normal, file_span);
+        l.coil(contact(latch, false), x, WriteKind::Assign, file_span);
     }
     l.run();
     if !l.errors.is_empty() {
         l.errors.dedup();
         return Err(l.errors);
     }
-    let ld = LdProgram {
-        version: HeaderVersion::V0_2(String::new()),
+    let mut blocks = l.blocks;
+    let width = blocks.len().to_string().len().max(2);
+    for (k, b) in blocks.iter_mut().enumerate() {
+        b.label = Some(format!("L{:0width$}", k + 1));
+    }
+    let signals = crate::program::bits(&blocks);
+    let mut names = signals.clone();
+    names.extend(p.vars.values().map(|v| v.name.clone()));
+    let program = Program {
         cycle_us: p.cycle_us,
-        micro: None,
-        io_list: Vec::new(),
-        rungs: l.rungs,
-        warnings: Vec::new(),
-        inputs: Some(p.inputs.clone()),
+        blocks,
+        inputs: Inputs::Declared(p.inputs.clone()),
+        signals,
+        names,
+        skipped: Vec::new(),
+        integer_writers: BTreeMap::new(),
+        exact_names: true,
     };
     let mut warnings = p.warnings.clone();
     warnings.append(&mut l.warnings);
-    Ok(Lowered { ld, warnings, edges: l.edges })
+    Ok(Lowered { program, warnings, edges: l.edges })
 }
