@@ -8,6 +8,7 @@ pub mod lower;
 pub mod plcopen;
 pub mod simulate;
 
+pub use crate::program::simulate::ScanSimulator;
 pub use crate::program::{
     CompileOptions, CompileWarning, CompiledProgram, Hypothesis, HypothesisKind, SignalKind,
     TimerInfo, TimerModel, program_to_ii, short_name,
@@ -62,23 +63,6 @@ impl Reference {
             Reference::Ldmicro(p) => Box::new(Simulator::new(p)),
             Reference::Plcopen(p) => Box::new(plcopen::PlcSimulator::new(p)),
         }
-    }
-}
-
-/// A reference scan simulator of a front end: the counterexample search confirms
-/// candidates on it, the differential tests check the compiled equations against it.
-pub trait ScanSimulator {
-    /// Runs one scan with these input values.
-    fn step(&mut self, inputs: &std::collections::BTreeMap<String, bool>);
-    /// A bit's value at the end of the last scan.
-    fn bit(&self, name: &str) -> bool;
-    /// Whether the simulator computes the bit.
-    fn is_known(&self, name: &str) -> bool;
-    /// The hidden memory of the program's `index`-th element (file order of the rung
-    /// model) after the last scan: a one-shot's or toggle's input; `None` when the
-    /// simulator cannot tell which of its memories that element is.
-    fn edge_memory(&self, _index: usize) -> Option<bool> {
-        None
     }
 }
 

@@ -108,9 +108,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 
 use super::logic::{L, Tables, factors, product, simp, sum, summands};
-use super::{
-    Block, BoolExpr, EdgeKind, Memory, Preset, Program, Stmt, Temp, Timer, WriteKind, walk,
-};
+use super::{Block, BoolExpr, EdgeKind, Memory, Preset, Program, Stmt, Temp, Timer, WriteKind};
 use crate::diag::{Report, Severity, Sources, Span};
 use crate::kernel::{Axiom, Rel};
 use crate::syntax::print::{
@@ -440,6 +438,10 @@ struct Compiler<'a> {
     fresh: BTreeMap<String, SignalKind>,
     // Scan state.
     write_index: usize,
+    /// How many `If`s the statement being compiled is inside.
+    depth: usize,
+    /// The outermost `If` being compiled.
+    if_span: Option<Span>,
     /// What a read of each written bit sees at this point of the scan, as a
     /// function of its previous-scan value `pre_X` (the signal `X` after its last write).
     current: BTreeMap<String, L>,
@@ -483,6 +485,8 @@ impl<'a> Compiler<'a> {
             pre_of: BTreeMap::new(),
             fresh: BTreeMap::new(),
             write_index: 0,
+            depth: 0,
+            if_span: None,
             current: BTreeMap::new(),
             temps: BTreeMap::new(),
             block: 0,
@@ -501,25 +505,29 @@ impl<'a> Compiler<'a> {
         self.taken.extend(program.names.iter().cloned());
         self.taken.extend(program.signals.iter().cloned());
         let mut timers: BTreeMap<String, usize> = program.integer_writers.clone();
-        for (k, (_, s)) in
-            program.stmts().filter(|(_, s)| matches!(s, Stmt::Write { .. })).enumerate()
-        {
-            if let Stmt::Write { target, .. } = s {
-                self.last_write.insert(target.clone(), k);
-            }
-        }
-        // A bit that nothing writes and that is not an input stays 0*: a bit read in the
-        // scan (first such block named), or one named only in code the PLC skips.
+        // Writes are numbered in scan order (an `If`'s branches in order), as `run`
+        // meets them; reads are listed with their block.
+        let mut writes: Vec<String> = Vec::new();
         let mut reads: Vec<(String, usize)> = Vec::new();
         for (b, s) in program.stmts() {
-            if let Some(e) = s.expr() {
-                walk(e, &mut |x| match x {
+            s.visit(
+                &mut |s| {
+                    if let Stmt::Write { target, .. } = s {
+                        writes.push(target.clone());
+                    }
+                },
+                &mut |x| match x {
                     BoolExpr::Var(n) => reads.push((n.clone(), b.number)),
                     BoolExpr::Timer(t) => *timers.entry(t.accumulator.clone()).or_default() += 1,
                     _ => {}
-                });
-            }
+                },
+            );
         }
+        for (k, target) in writes.into_iter().enumerate() {
+            self.last_write.insert(target, k);
+        }
+        // A bit that nothing writes and that is not an input stays 0*: a bit read in the
+        // scan (first such block named), or one named only in code the PLC skips.
         for (n, number) in reads.into_iter().chain(program.skipped.iter().cloned()) {
             if !self.last_write.contains_key(&n) && !program.inputs.contains(&n) {
                 self.unwritten.entry(n).or_insert(number);
@@ -637,8 +645,73 @@ impl<'a> Compiler<'a> {
                 let v = self.eval(value);
                 self.write(*span, target, kind, &v);
             }
+            Stmt::If { branches, otherwise, span } => self.choice(branches, otherwise, *span),
             Stmt::Warn { span, element, message } => self.warn(*span, element, message.clone()),
         }
+    }
+
+    /// An `If`: each branch from the state before it, then the values merged by the
+    /// conditions (`c1 · v1 + ¬c1 · (c2 · v2 + ¬c2 · v3)`). The equation of a bit whose
+    /// last write is inside is stated once the whole outermost `If` is done.
+    fn choice(&mut self, branches: &[(BoolExpr, Vec<Stmt>)], otherwise: &[Stmt], span: Span) {
+        let first_write = self.write_index;
+        if self.depth == 0 {
+            self.if_span = Some(span);
+        }
+        self.depth += 1;
+        let conditions: Vec<L> = branches.iter().map(|(c, _)| self.eval(c)).collect();
+        let entry = self.current.clone();
+        let mut outcomes = Vec::new();
+        for body in branches.iter().map(|(_, b)| b.as_slice()).chain([otherwise]) {
+            self.current = entry.clone();
+            for s in body {
+                self.stmt(s);
+            }
+            outcomes.push(std::mem::take(&mut self.current));
+        }
+        self.depth -= 1;
+        let Some(mut merged) = outcomes.pop() else { return };
+        for (c, outcome) in conditions.iter().zip(outcomes).rev() {
+            for (x, v) in outcome {
+                let other = merged.get(&x).cloned().unwrap_or(L::Zero);
+                if v != other {
+                    let mux = c.clone().and(v).or(c.clone().negate().and(other));
+                    merged.insert(x, simp(&mux));
+                }
+            }
+        }
+        self.current = merged;
+        if self.depth > 0 {
+            return;
+        }
+        // The bits whose last write was inside: their end-of-scan values.
+        let last: Vec<String> = self
+            .last_write
+            .iter()
+            .filter(|(_, k)| (first_write..self.write_index).contains(*k))
+            .map(|(x, _)| x.clone())
+            .collect();
+        for x in last {
+            let g = self.current.get(&x).cloned().unwrap_or(L::Zero);
+            self.state(x, g, None);
+        }
+    }
+
+    /// A timer, one-shot or toggle inside an `If`: refused (its memory would update only
+    /// on the scans its branch runs).
+    fn conditional_memory(&mut self) {
+        let span = self.if_span.unwrap_or(self.block().span);
+        if self.errors.iter().any(|e| e.span == span) {
+            return;
+        }
+        self.errors.push(CompileError {
+            span,
+            keyword: "IF".into(),
+            reason: "a timer, edge detector or toggle inside a conditional statement updates \
+                     its memory only on the scans its branch runs, which ii-prove does not \
+                     model yet; call it unconditionally and use its output in the branch"
+                .into(),
+        });
     }
 
     fn read(&mut self, name: &str) -> L {
@@ -663,6 +736,10 @@ impl<'a> Compiler<'a> {
             BoolExpr::Or(xs) => {
                 let outs: Vec<L> = xs.iter().map(|x| self.eval(x)).collect();
                 simp(&sum(outs))
+            }
+            BoolExpr::Timer(_) | BoolExpr::Edge { .. } if self.depth > 0 => {
+                self.conditional_memory();
+                L::Zero
             }
             BoolExpr::Timer(t) => {
                 let input = self.eval(&t.input);
@@ -817,6 +894,10 @@ impl<'a> Compiler<'a> {
                 sum(rest.into_iter().chain(with_pre).collect())
             }
             WriteKind::Reset => input.clone().negate().and(old),
+            WriteKind::Toggle(_) if self.depth > 0 => {
+                self.conditional_memory();
+                old
+            }
             WriteKind::Toggle(memory) => {
                 // On a rising edge of the power the bit flips: the edge is `i · ¬pre i`
                 // over the hidden bit.
@@ -827,12 +908,13 @@ impl<'a> Compiler<'a> {
             }
         };
         let g = simp(&g);
-        let pre = self.pre_names.get(&x).cloned().unwrap_or_default();
+        if self.depth > 0 {
+            // Inside an `If`: the value for now; the outermost `If` states the equation.
+            self.current.insert(x, g);
+            return;
+        }
         if self.last_write.get(&x) == Some(&k) {
-            let rhs = self.finish_var(&pre, g.clone(), dominant);
-            self.current.insert(x.clone(), L::Var(x.clone()));
-            let recurrence = (rhs != g).then_some(g);
-            self.pending.push(Pending { var: x, rhs, recurrence });
+            self.state(x, g, dominant);
         } else if g.size() > MAX_INLINE {
             let name = self.unique(&format!("{x}_r{}", self.block().number));
             let rung = self.block().number;
@@ -849,6 +931,16 @@ impl<'a> Compiler<'a> {
         } else {
             self.current.insert(x, g);
         }
+    }
+
+    /// `x`'s last write is done: its end-of-scan value `g` is stated with this block
+    /// (as a memory where it is one), and later reads see the signal `x` itself.
+    fn state(&mut self, x: String, g: L, dominant: Option<bool>) {
+        let pre = self.pre_names.get(&x).cloned().unwrap_or_default();
+        let rhs = self.finish_var(&pre, g.clone(), dominant);
+        self.current.insert(x.clone(), L::Var(x.clone()));
+        let recurrence = (rhs != g).then_some(g);
+        self.pending.push(Pending { var: x, rhs, recurrence });
     }
 
     /// The end-of-scan value `g(pre)` of `x` as a term: an equation, or a memory.

@@ -15,6 +15,7 @@
 pub mod compile;
 pub mod logic;
 pub mod names;
+pub mod simulate;
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -106,6 +107,17 @@ pub enum Stmt {
         /// The power of the write.
         value: BoolExpr,
         /// The element that writes (a coil, an output variable).
+        span: Span,
+    },
+    /// A choice: the statements of the first branch whose condition holds, else
+    /// `otherwise`. Conditions are read before any branch runs; no timer, one-shot or
+    /// toggle runs inside a branch (its memory would update only on some scans).
+    If {
+        /// The conditions and their statements, in order (`IF`, then each `ELSIF`).
+        branches: Vec<(BoolExpr, Vec<Stmt>)>,
+        /// The `ELSE` statements.
+        otherwise: Vec<Stmt>,
+        /// The whole statement.
         span: Span,
     },
     /// A note the front end attaches to this place (an element passed through, …).
@@ -283,11 +295,31 @@ pub fn walk_mut(e: &mut BoolExpr, f: &mut dyn FnMut(&mut BoolExpr)) {
 }
 
 impl Stmt {
-    /// The expression the statement computes, if any.
+    /// The expression the statement computes itself, if any (an `If`'s are its
+    /// conditions and its branches': [`Stmt::visit`]).
     pub fn expr(&self) -> Option<&BoolExpr> {
         match self {
             Stmt::Let { value, .. } | Stmt::Write { value, .. } => Some(value),
-            Stmt::Warn { .. } => None,
+            Stmt::If { .. } | Stmt::Warn { .. } => None,
+        }
+    }
+
+    /// Calls `stmt` on this statement and every statement nested in it, and `expr` on
+    /// every expression they compute (an `If`'s conditions before its branches), in
+    /// scan order.
+    pub fn visit(&self, stmt: &mut dyn FnMut(&Stmt), expr: &mut dyn FnMut(&BoolExpr)) {
+        stmt(self);
+        match self {
+            Stmt::Let { value, .. } | Stmt::Write { value, .. } => walk(value, expr),
+            Stmt::If { branches, otherwise, .. } => {
+                for (c, _) in branches {
+                    walk(c, expr);
+                }
+                for s in branches.iter().flat_map(|(_, b)| b).chain(otherwise) {
+                    s.visit(stmt, expr);
+                }
+            }
+            Stmt::Warn { .. } => {}
         }
     }
 }
@@ -295,18 +327,22 @@ impl Stmt {
 /// Every bit the blocks read or write.
 pub fn bits(blocks: &[Block]) -> BTreeSet<String> {
     let mut out = BTreeSet::new();
+    let mut written = BTreeSet::new();
     for s in blocks.iter().flat_map(|b| &b.stmts) {
-        if let Stmt::Write { target, .. } = s {
-            out.insert(target.clone());
-        }
-        if let Some(e) = s.expr() {
-            walk(e, &mut |x| {
+        s.visit(
+            &mut |s| {
+                if let Stmt::Write { target, .. } = s {
+                    written.insert(target.clone());
+                }
+            },
+            &mut |x| {
                 if let BoolExpr::Var(n) = x {
                     out.insert(n.clone());
                 }
-            });
-        }
+            },
+        );
     }
+    out.extend(written);
     out
 }
 

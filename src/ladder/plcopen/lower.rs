@@ -564,9 +564,8 @@ impl<'p> Lower<'p> {
                 }
             }
         }
-        let value = |_: &mut Self, name: &str| -> BoolExpr {
-            vals.get(name).cloned().unwrap_or_else(zero)
-        };
+        let value =
+            |_: &mut Self, name: &str| -> BoolExpr { vals.get(name).cloned().unwrap_or_else(zero) };
         let hidden = |pin: &str| p.hidden_name(k, pin).unwrap_or_default().to_string();
         match std {
             Some(s @ (Std::And | Std::Or | Std::Xor)) => {

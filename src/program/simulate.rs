@@ -1,0 +1,301 @@
+//! The scan model's simulator: runs a [`Program`] scan by scan, bit by bit, timers counting scans as the runtime counts them — the reference for languages without a simulator of their own, and a check of the compiler's symbolic reading of the same model.
+//!
+//! Values are concrete: a read sees the last write before it in the scan (the previous
+//! scan's value before the first write, `0` for a bit nothing writes and the outside does
+//! not drive); a one-shot compares its power with the power it saw at the previous scan
+//! (`0` at power-up); a TON is on from the (P+1)-th consecutive scan with its input on, a
+//! TOF stays on for P scans after its input falls, `P = floor(delay / cycle) + adjust`
+//! (or `delay / cycle` with [`TimerModel::Ideal`]), and the output follows the input when
+//! `P ≤ 0`. What the model leaves unconstrained (an unconstrained value, a timer with a
+//! variable preset or whose accumulator another element writes) makes every bit computed
+//! from it unknown ([`Simulator::is_known`]): the simulator never invents a value.
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use super::{BoolExpr, EdgeKind, Preset, Program, Stmt, Temp, Timer, TimerModel, WriteKind};
+
+/// A value and whether the simulator knows it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct V {
+    value: bool,
+    known: bool,
+}
+
+impl V {
+    const ZERO: V = V { value: false, known: true };
+    fn of(value: bool) -> V {
+        V { value, known: true }
+    }
+}
+
+/// A scan-model program running, from power-up.
+#[derive(Clone, Debug)]
+pub struct Simulator {
+    program: Program,
+    timers_model: TimerModel,
+    /// Timer accumulators written by more than one element (not simulated).
+    shared: BTreeSet<String>,
+    /// Every bit at the end of the last scan.
+    bits: BTreeMap<String, V>,
+    /// Per stateful element, in the order a scan meets them: a timer's count of
+    /// consecutive scans (input on for TON, off for TOF), a one-shot's last power.
+    counts: Vec<u64>,
+    memories: Vec<V>,
+    /// A one-shot's memory by its index in the front end's order.
+    by_index: BTreeMap<usize, V>,
+    // During a scan.
+    current: BTreeMap<String, V>,
+    temps: BTreeMap<Temp, V>,
+    next_count: usize,
+    next_memory: usize,
+}
+
+impl Simulator {
+    /// A new run of `program` from power-up, timers counted as `timers` says.
+    pub fn new(program: &Program, timers: TimerModel) -> Simulator {
+        let mut count: BTreeMap<String, usize> = program.integer_writers.clone();
+        for (_, s) in program.stmts() {
+            s.visit(&mut |_| {}, &mut |e| {
+                if let BoolExpr::Timer(t) = e {
+                    *count.entry(t.accumulator.clone()).or_default() += 1;
+                }
+            });
+        }
+        Simulator {
+            program: program.clone(),
+            timers_model: timers,
+            shared: count.into_iter().filter(|(_, n)| *n > 1).map(|(t, _)| t).collect(),
+            bits: BTreeMap::new(),
+            counts: Vec::new(),
+            memories: Vec::new(),
+            by_index: BTreeMap::new(),
+            current: BTreeMap::new(),
+            temps: BTreeMap::new(),
+            next_count: 0,
+            next_memory: 0,
+        }
+    }
+
+    /// Runs one scan with these input values (inputs not given are `0`).
+    pub fn step(&mut self, inputs: &BTreeMap<String, bool>) {
+        self.current = std::mem::take(&mut self.bits);
+        for (n, v) in inputs {
+            if self.program.inputs.contains(n) {
+                self.current.insert(n.clone(), V::of(*v));
+            }
+        }
+        self.temps.clear();
+        self.next_count = 0;
+        self.next_memory = 0;
+        let program = std::mem::take(&mut self.program);
+        for (_, s) in program.stmts() {
+            self.stmt(s, true);
+        }
+        self.program = program;
+        self.bits = std::mem::take(&mut self.current);
+    }
+
+    /// A bit's value at the end of the last scan (`0` if unknown or never written).
+    pub fn bit(&self, name: &str) -> bool {
+        self.bits.get(name).is_some_and(|v| v.value)
+    }
+
+    /// Whether the simulator computes the bit (it is not derived from an unconstrained value).
+    pub fn is_known(&self, name: &str) -> bool {
+        self.bits.get(name).is_none_or(|v| v.known)
+    }
+
+    /// The memory of the one-shot with this index after the last scan.
+    pub fn edge_memory(&self, index: usize) -> Option<bool> {
+        self.by_index.get(&index).filter(|v| v.known).map(|v| v.value)
+    }
+
+    /// `known`: whether the statement's effect is known (false inside a choice whose
+    /// condition is not).
+    fn stmt(&mut self, s: &Stmt, known: bool) {
+        match s {
+            Stmt::Let { temp, value } => {
+                let v = self.eval(value);
+                self.temps.insert(*temp, v);
+            }
+            Stmt::Write { target, kind, value, .. } => {
+                let v = self.eval(value);
+                let old = self.read(target);
+                let new = match kind {
+                    WriteKind::Assign => v,
+                    WriteKind::AssignNot => V { value: !v.value, known: v.known },
+                    // A write without power keeps the bit; one whose power is unknown
+                    // leaves it known only where it already holds what it would write.
+                    WriteKind::Set | WriteKind::Reset if v.known && !v.value => old,
+                    WriteKind::Set | WriteKind::Reset => {
+                        let value = *kind == WriteKind::Set;
+                        V { value, known: v.known || (old.known && old.value == value) }
+                    }
+                    WriteKind::Toggle(memory) => {
+                        let last = self.memory(v, memory.index);
+                        let edge = v.value && !last.value;
+                        let known = v.known && last.known && old.known;
+                        V { value: if edge { !old.value } else { old.value }, known }
+                    }
+                };
+                let new = V { value: new.value, known: new.known && known };
+                self.current.insert(target.clone(), new);
+            }
+            Stmt::If { branches, otherwise, .. } => {
+                let mut known = known;
+                let mut chosen = None;
+                for (c, body) in branches {
+                    let c = self.eval(c);
+                    known &= c.known;
+                    if c.value {
+                        chosen = Some(body);
+                        break;
+                    }
+                }
+                if !known {
+                    // Which branch runs is not known: whatever any branch writes is not.
+                    let mut written = Vec::new();
+                    for s in branches.iter().flat_map(|(_, b)| b).chain(otherwise) {
+                        s.visit(
+                            &mut |s| {
+                                if let Stmt::Write { target, .. } = s {
+                                    written.push(target.clone());
+                                }
+                            },
+                            &mut |_| {},
+                        );
+                    }
+                    for x in written {
+                        self.current.insert(x, V { value: false, known: false });
+                    }
+                }
+                for s in chosen.unwrap_or(otherwise) {
+                    self.stmt(s, known);
+                }
+            }
+            Stmt::Warn { .. } => {}
+        }
+    }
+
+    fn read(&self, name: &str) -> V {
+        self.current.get(name).copied().unwrap_or(V::ZERO)
+    }
+
+    /// The one-shot memory met next in the scan: its value from the previous scan, then
+    /// `power` kept for the next.
+    fn memory(&mut self, power: V, index: usize) -> V {
+        let k = self.next_memory;
+        self.next_memory += 1;
+        if self.memories.len() <= k {
+            self.memories.push(V::ZERO);
+        }
+        let last = self.memories[k];
+        self.memories[k] = power;
+        self.by_index.insert(index, power);
+        last
+    }
+
+    fn eval(&mut self, e: &BoolExpr) -> V {
+        match e {
+            BoolExpr::Const(b) => V::of(*b),
+            BoolExpr::Var(n) => self.read(n),
+            BoolExpr::Temp(t) => self.temps.get(t).copied().unwrap_or(V::ZERO),
+            BoolExpr::Not(x) => {
+                let v = self.eval(x);
+                V { value: !v.value, known: v.known }
+            }
+            BoolExpr::And(a, b) => {
+                let (a, b) = (self.eval(a), self.eval(b));
+                let value = a.value && b.value;
+                // A known 0 decides the product.
+                let decides = |v: V| v.known && !v.value;
+                let known = (a.known && b.known) || decides(a) || decides(b);
+                V { value, known }
+            }
+            BoolExpr::Or(xs) => {
+                let vs: Vec<V> = xs.iter().map(|x| self.eval(x)).collect();
+                let value = vs.iter().any(|v| v.value);
+                let known = vs.iter().all(|v| v.known) || vs.iter().any(|v| v.known && v.value);
+                V { value, known }
+            }
+            BoolExpr::Timer(t) => {
+                let input = self.eval(&t.input);
+                self.timer(t, input)
+            }
+            BoolExpr::Edge { kind, input, memory } => {
+                let input = self.eval(input);
+                let last = self.memory(input, memory.index);
+                let rising = input.value && !last.value;
+                let value = match kind {
+                    EdgeKind::Rising => rising,
+                    EdgeKind::Falling => !input.value && last.value,
+                    EdgeKind::NotRising => !rising,
+                };
+                V { value, known: input.known && last.known }
+            }
+            BoolExpr::Fresh(_) => V { value: false, known: false },
+        }
+    }
+
+    fn timer(&mut self, t: &Timer, input: V) -> V {
+        let k = self.next_count;
+        self.next_count += 1;
+        if self.counts.len() <= k {
+            // A TOF has been off "forever" at power-up: its output is off.
+            self.counts.push(if t.on_delay { 0 } else { u64::MAX });
+        }
+        let cycle = self.program.cycle_us;
+        let scans = match &t.preset {
+            _ if self.shared.contains(&t.accumulator) || cycle == 0 => None,
+            Preset::Micros { us: 0, .. } | Preset::Variable(_) => None,
+            Preset::Micros { us, adjust, .. } => Some(match self.timers_model {
+                TimerModel::Plc => {
+                    i64::try_from(us / cycle).unwrap_or(i64::MAX).saturating_add(*adjust)
+                }
+                TimerModel::Ideal => i64::try_from(us / cycle).unwrap_or(i64::MAX),
+            }),
+        };
+        let count = &mut self.counts[k];
+        let on = if t.on_delay { input.value } else { !input.value };
+        *count = if on { count.saturating_add(1) } else { 0 };
+        let Some(p) = scans else { return V { value: false, known: false } };
+        if p <= 0 {
+            return input;
+        }
+        let p = p as u64;
+        let value = if t.on_delay { *count > p } else { *count <= p };
+        V { value, known: input.known }
+    }
+}
+
+/// A reference scan simulator of a front end: the counterexample search confirms
+/// candidates on it, the differential tests check the compiled equations against it.
+pub trait ScanSimulator {
+    /// Runs one scan with these input values.
+    fn step(&mut self, inputs: &BTreeMap<String, bool>);
+    /// A bit's value at the end of the last scan.
+    fn bit(&self, name: &str) -> bool;
+    /// Whether the simulator computes the bit.
+    fn is_known(&self, name: &str) -> bool;
+    /// The hidden memory of the one-shot with this index (the front end's order, the
+    /// scan model's [`Memory::index`](super::Memory::index)) after the last scan; `None`
+    /// when the simulator cannot tell which of its memories that is.
+    fn edge_memory(&self, _index: usize) -> Option<bool> {
+        None
+    }
+}
+
+impl ScanSimulator for Simulator {
+    fn step(&mut self, inputs: &BTreeMap<String, bool>) {
+        Simulator::step(self, inputs)
+    }
+    fn bit(&self, name: &str) -> bool {
+        Simulator::bit(self, name)
+    }
+    fn is_known(&self, name: &str) -> bool {
+        Simulator::is_known(self, name)
+    }
+    fn edge_memory(&self, index: usize) -> Option<bool> {
+        Simulator::edge_memory(self, index)
+    }
+}
