@@ -76,7 +76,7 @@ fn water_faulty_overlap_replays_on_the_scan_simulator() {
     let doc = syntax::parse_document(&sources, file, &loaded.compiled).expect("parses");
     let goal = report::obligation(&doc.properties[0].value);
     let session = counterexample::Program {
-        reference: &loaded.reference,
+        reference: loaded.reference.as_ref(),
         compiled: &loaded.compiled,
         assumptions: &[],
     };
@@ -449,7 +449,7 @@ fn a_constant_forced_locally_is_found_beyond_the_vacuity_cone() {
     let mut sources = Sources::new();
     let loaded = load_program(&mut sources, &ld, &Default::default()).expect("loads");
     let session = counterexample::Program {
-        reference: &loaded.reference,
+        reference: loaded.reference.as_ref(),
         compiled: &loaded.compiled,
         assumptions: &[],
     };
@@ -504,7 +504,7 @@ fn the_cached_vacuity_check_agrees_with_the_whole_cone_on_small_programs() {
         let assumed = report::assumptions(&doc);
         for assumptions in [&[][..], &assumed[..]] {
             let session = counterexample::Program {
-                reference: &loaded.reference,
+                reference: loaded.reference.as_ref(),
                 compiled: &loaded.compiled,
                 assumptions,
             };

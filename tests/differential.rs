@@ -713,9 +713,8 @@ fn unroll_agrees(
     use ii_prove::counterexample::unroll::{Concrete, unroll};
     let heads: Vec<Expr> = compiled.hypotheses.iter().map(|h| h.lhs.clone()).collect();
     let refs: Vec<&Expr> = heads.iter().collect();
-    let reference = ii_prove::ladder::Reference::Ldmicro(program.clone());
     let model =
-        ii_prove::counterexample::Program { reference: &reference, compiled, assumptions: &[] }
+        ii_prove::counterexample::Program { reference: program, compiled, assumptions: &[] }
             .model(&refs);
     let cycle = BigRational::new(cycle_us.into(), 1_000_000u64.into());
     let steps_of =

@@ -165,7 +165,7 @@ pub enum Verdict {
 /// The program a property is about.
 pub struct Program<'a> {
     /// The program as its front end read it: candidates are confirmed on its simulator.
-    pub reference: &'a Reference,
+    pub reference: &'a dyn Reference,
     /// Its compiled equations.
     pub compiled: &'a CompiledProgram,
     /// The `assume` statements.

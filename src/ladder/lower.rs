@@ -213,6 +213,8 @@ impl<'a> Lowering<'a> {
             skipped,
             integer_writers: BTreeMap::new(),
             exact_names: program.inputs.is_some(),
+            block_noun: "rung",
+            language: "an LDmicro",
         }
     }
 

@@ -8,7 +8,7 @@ pub mod lower;
 pub mod plcopen;
 pub mod simulate;
 
-pub use crate::program::simulate::ScanSimulator;
+pub use crate::program::simulate::{Reference, ScanSimulator};
 pub use crate::program::{
     CompileOptions, CompileWarning, CompiledProgram, Hypothesis, HypothesisKind, SignalKind,
     TimerInfo, TimerModel, program_to_ii, short_name,
@@ -46,23 +46,15 @@ impl From<crate::program::CompileError> for LadderError {
     }
 }
 
-/// A program as its front end read it: what its reference scan simulator runs (the
-/// compiler reads the scan model it was lowered into).
-#[derive(Clone, Debug)]
-pub enum Reference {
-    /// An LDmicro program, run by [`Simulator`].
-    Ldmicro(LdProgram),
-    /// A PLCopen program, run by [`plcopen::PlcSimulator`].
-    Plcopen(Box<plcopen::PlcProgram>),
+impl crate::program::simulate::Reference for LdProgram {
+    fn simulator(&self) -> Box<dyn ScanSimulator> {
+        Box::new(Simulator::new(self))
+    }
 }
 
-impl Reference {
-    /// A new run of the program's reference simulator, from power-up.
-    pub fn simulator(&self) -> Box<dyn ScanSimulator> {
-        match self {
-            Reference::Ldmicro(p) => Box::new(Simulator::new(p)),
-            Reference::Plcopen(p) => Box::new(plcopen::PlcSimulator::new(p)),
-        }
+impl crate::program::simulate::Reference for plcopen::PlcProgram {
+    fn simulator(&self) -> Box<dyn ScanSimulator> {
+        Box::new(plcopen::PlcSimulator::new(self))
     }
 }
 

@@ -210,6 +210,8 @@ pub struct CompileWarning {
     pub span: Span,
     /// The element keyword (`OSR`, `CTU`, `COIL`, …).
     pub element: String,
+    /// What a block is called (`rung`, `line`).
+    pub noun: &'static str,
     /// What was done about it.
     pub message: String,
 }
@@ -218,8 +220,8 @@ impl CompileWarning {
     /// `rung 12 (L07)`: the rung, as printed in messages.
     pub fn rung_label(&self) -> String {
         match &self.logic {
-            Some(l) => format!("rung {} ({l})", self.rung),
-            None => format!("rung {}", self.rung),
+            Some(l) => format!("{} {} ({l})", self.noun, self.rung),
+            None => format!("{} {}", self.noun, self.rung),
         }
     }
 }
@@ -316,6 +318,8 @@ pub struct CompiledProgram {
     /// Whether names are used exactly, without LDmicro's one-letter kind prefixes being
     /// dropped for display and lookup (front ends with declared inputs: PLCopen).
     pub exact_names: bool,
+    /// The source language, as `show` names it (`an LDmicro`, `a PLCopen`).
+    pub language: &'static str,
     /// The short-name index of [`names`](super::names), built on first use from `signals`.
     pub(super) short_names: std::sync::OnceLock<BTreeMap<String, Vec<String>>>,
     /// The short names a property, script or REPL line has used: those print short.
@@ -603,6 +607,7 @@ impl<'a> Compiler<'a> {
             logic: block.label.clone(),
             span,
             element: element.to_string(),
+            noun: self.program.block_noun,
             message,
         });
     }
@@ -1048,6 +1053,7 @@ impl<'a> Compiler<'a> {
             timer_info: self.timer_info,
             cycle_us: self.program.cycle_us,
             exact_names: self.program.exact_names,
+            language: self.program.language,
             short_names: std::sync::OnceLock::new(),
             spelled_short: Default::default(),
             equation_index: std::sync::OnceLock::new(),
@@ -1130,7 +1136,7 @@ pub fn program_to_ii(compiled: &CompiledProgram, notation: Notation) -> String {
     let mut out = String::new();
     out.push_str(&format!(
         "// Compiled from {} program by ii-prove (timers: {}).\n",
-        if compiled.exact_names { "a PLCopen" } else { "an LDmicro" },
+        compiled.language,
         match compiled.timers {
             TimerModel::Plc => "plc, the scans the runtime counts",
             TimerModel::Ideal => "ideal, the delays as written",

@@ -28,7 +28,7 @@ pub use compile::{
 pub use names::{Spellings, short_name};
 
 /// A program as the PLC runs it.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct Program {
     /// The scan cycle in µs (what `pre` steps back; timers count it).
     pub cycle_us: u64,
@@ -49,6 +49,10 @@ pub struct Program {
     /// Whether names are used exactly, without LDmicro's one-letter kind prefixes being
     /// dropped for display and lookup (front ends with declared variables).
     pub exact_names: bool,
+    /// What a block is called in messages (`rung`, `line`).
+    pub block_noun: &'static str,
+    /// The language, as `show` names it (`an LDmicro`, `a PLCopen`).
+    pub language: &'static str,
 }
 
 /// Which bits the outside world writes.
@@ -249,6 +253,22 @@ pub enum Preset {
     Variable(String),
 }
 
+impl Preset {
+    /// An IEC TON/TOF preset of `pt_us` as matiec's time-based blocks run it on a
+    /// `cycle_us` tick: the output changes at the first scan whose time is `≥ start + PT`,
+    /// and never at the scan that starts the timer, so it counts `max(1, ⌈PT / cycle⌉)`
+    /// scans (a preset of 0 still takes one scan: the delay of one cycle).
+    pub fn iec(pt_us: u64, cycle_us: u64) -> Preset {
+        if pt_us == 0 || cycle_us == 0 {
+            return Preset::Micros { us: cycle_us, adjust: 0, default_of: None };
+        }
+        let scans = pt_us.div_ceil(cycle_us).max(1);
+        let adjust = i64::try_from(scans).unwrap_or(i64::MAX)
+            - i64::try_from(pt_us / cycle_us).unwrap_or(i64::MAX);
+        Preset::Micros { us: pt_us, adjust, default_of: None }
+    }
+}
+
 /// A value the algebra cannot express.
 #[derive(Clone, Debug)]
 pub struct Fresh {
@@ -344,6 +364,23 @@ pub fn bits(blocks: &[Block]) -> BTreeSet<String> {
     }
     out.extend(written);
     out
+}
+
+impl Default for Program {
+    fn default() -> Program {
+        Program {
+            cycle_us: 0,
+            blocks: Vec::new(),
+            inputs: Inputs::default(),
+            signals: BTreeSet::new(),
+            names: BTreeSet::new(),
+            skipped: Vec::new(),
+            integer_writers: BTreeMap::new(),
+            exact_names: false,
+            block_noun: "rung",
+            language: "an LDmicro",
+        }
+    }
 }
 
 impl Program {

@@ -285,6 +285,21 @@ pub trait ScanSimulator {
     }
 }
 
+/// What a program's counterexamples are replayed on: a front end's own simulator of the
+/// program as it read it, or the scan model's.
+pub trait Reference: Send + Sync {
+    /// A new run from power-up.
+    fn simulator(&self) -> Box<dyn ScanSimulator>;
+}
+
+/// The scan model as its own reference (languages without a simulator of their own),
+/// timers counted as the runtime counts them.
+impl Reference for Program {
+    fn simulator(&self) -> Box<dyn ScanSimulator> {
+        Box::new(Simulator::new(self, TimerModel::Plc))
+    }
+}
+
 impl ScanSimulator for Simulator {
     fn step(&mut self, inputs: &BTreeMap<String, bool>) {
         Simulator::step(self, inputs)

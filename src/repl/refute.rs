@@ -16,7 +16,7 @@ use crate::theory;
 pub(super) struct SearchKit {
     assumed: Vec<Axiom>,
     program: Option<CompiledProgram>,
-    reference: Option<Reference>,
+    reference: Option<std::sync::Arc<dyn Reference>>,
     opts: Options,
 }
 
@@ -38,6 +38,7 @@ impl SearchKit {
         };
         let program = match (&self.program, &self.reference) {
             (Some(compiled), Some(reference)) => {
+                let reference = reference.as_ref();
                 Some(counterexample::Program { reference, compiled, assumptions: &self.assumed })
             }
             _ => None,
@@ -72,7 +73,7 @@ impl SearchKit {
     pub(super) fn new(
         assumptions: &[Statement<Goal>],
         program: Option<&CompiledProgram>,
-        reference: Option<&Reference>,
+        reference: Option<&std::sync::Arc<dyn Reference>>,
         notation: Notation,
         timeout: Duration,
     ) -> SearchKit {

@@ -59,7 +59,7 @@ pub struct Session {
     counter: usize,
     program: Option<(String, CompiledProgram)>,
     /// The loaded program as read (its scan simulator replays counterexamples).
-    reference: Option<crate::ladder::Reference>,
+    reference: Option<std::sync::Arc<dyn crate::ladder::Reference>>,
     program_hypotheses: Vec<Axiom>,
 }
 

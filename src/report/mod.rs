@@ -720,7 +720,7 @@ pub fn compile_options(opts: &Options) -> crate::ladder::CompileOptions {
 /// A ladder program read and compiled, with its sources for diagnostics.
 pub struct LoadedProgram {
     /// The program as its front end read it (for its scan simulator).
-    pub reference: crate::ladder::Reference,
+    pub reference: std::sync::Arc<dyn crate::ladder::Reference>,
     /// The program in the scan model: what the compiler read.
     pub scan: crate::program::Program,
     /// The reader's own warnings (PLCopen: order, cycle, unmodelled blocks), rendered
@@ -781,11 +781,15 @@ pub fn load_program_with(
                 location: w.span().map(|s| Location::of(sources, s)),
             })
             .collect();
-        (crate::ladder::Reference::Plcopen(Box::new(plc)), lowered.program, notes)
+        (
+            std::sync::Arc::new(plc) as std::sync::Arc<dyn crate::ladder::Reference>,
+            lowered.program,
+            notes,
+        )
     } else {
         let ld = crate::ladder::read_ldmicro(sources, file).map_err(diagnostics)?;
         let scan = crate::ladder::lower::lower(&ld).map_err(diagnostics)?;
-        (crate::ladder::Reference::Ldmicro(ld), scan, Vec::new())
+        (std::sync::Arc::new(ld) as std::sync::Arc<dyn crate::ladder::Reference>, scan, Vec::new())
     };
     let compiled = crate::program::compile(&scan, options).map_err(|errors| {
         diagnostics(errors.into_iter().map(crate::ladder::LadderError::from).collect())
@@ -891,7 +895,7 @@ pub fn run_program_with(
         let ctx = Context::with_scans(theory.axioms(), hypotheses, Some(compiled.scan_cycle()))
             .map_err(|e| InputError { rendered: format!("error: {path}: {e}\n") })?;
         let session = counterexample::Program {
-            reference: &loaded.reference,
+            reference: loaded.reference.as_ref(),
             compiled,
             assumptions: &assumed,
         };

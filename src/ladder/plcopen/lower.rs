@@ -35,16 +35,6 @@ pub struct Lowered {
 /// Which edge detector of a PLCopen program a one-shot element stands for.
 pub type EdgeKey = (Vec<usize>, usize, String);
 
-/// The number of scans a TON/TOF with preset `pt_us` counts on a `cycle_us` tick (matiec's
-/// time-based blocks: the output changes at the first scan whose time is `≥ start + PT`,
-/// and never at the scan that starts the timer): `max(1, ceil(PT / cycle))`.
-pub fn timer_scans(pt_us: u64, cycle_us: u64) -> u64 {
-    if cycle_us == 0 {
-        return 1;
-    }
-    pt_us.div_ceil(cycle_us).max(1)
-}
-
 struct Lower<'p> {
     p: &'p PlcProgram,
     blocks: Vec<Block>,
@@ -603,7 +593,7 @@ impl<'p> Lower<'p> {
                 let inst = instance.as_deref().map_or_else(String::new, |i| {
                     p.vars.get(&i.to_ascii_uppercase()).map_or(i.to_string(), |v| v.name.clone())
                 });
-                let (preset, adjust) = match delay {
+                let preset = match delay {
                     // PT = 0 still takes one scan (the starting scan never switches):
                     // the delay of one cycle, counted exactly.
                     Some(0) => {
@@ -615,17 +605,9 @@ impl<'p> Lower<'p> {
                                 type_name.to_ascii_uppercase()
                             ),
                         });
-                        (Some(p.cycle_us), 0)
+                        Preset::iec(0, p.cycle_us)
                     }
-                    Some(us) => {
-                        let scans = timer_scans(us, p.cycle_us);
-                        let floor = us.checked_div(p.cycle_us).unwrap_or(0);
-                        (Some(us), scans as i64 - floor as i64)
-                    }
-                    None => (None, 0),
-                };
-                let preset = match preset {
-                    Some(us) => Preset::Micros { us, adjust, default_of: None },
+                    Some(us) => Preset::iec(us, p.cycle_us),
                     None => Preset::Variable(format!("{inst}.PT")),
                 };
                 let timer = Timer {
@@ -823,6 +805,8 @@ pub fn lower(p: &PlcProgram) -> Result<Lowered, Vec<PlcError>> {
         skipped: Vec::new(),
         integer_writers: BTreeMap::new(),
         exact_names: true,
+        block_noun: "rung",
+        language: "a PLCopen",
     };
     let mut warnings = p.warnings.clone();
     warnings.append(&mut l.warnings);

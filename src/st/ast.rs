@@ -1,0 +1,256 @@
+//! The Structured Text AST: POUs with their declarations and statements, configurations with their tasks and program instances, every node with its span.
+
+use crate::diag::Span;
+
+/// A name as written, with where.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Ident {
+    /// As written (IEC names compare case-insensitively).
+    pub name: String,
+    /// Where.
+    pub span: Span,
+}
+
+impl Ident {
+    /// The name upper-cased: the key names compare by.
+    pub fn key(&self) -> String {
+        self.name.to_ascii_uppercase()
+    }
+}
+
+/// A whole file: POUs and configurations.
+#[derive(Clone, Debug, Default)]
+pub struct Unit {
+    /// `PROGRAM`, `FUNCTION_BLOCK` and `FUNCTION` declarations, in order.
+    pub pous: Vec<Pou>,
+    /// `CONFIGURATION` declarations.
+    pub configs: Vec<Config>,
+}
+
+/// What a POU is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PouKind {
+    /// `PROGRAM`.
+    Program,
+    /// `FUNCTION_BLOCK`.
+    FunctionBlock,
+    /// `FUNCTION`.
+    Function,
+}
+
+/// A program organisation unit.
+#[derive(Clone, Debug)]
+pub struct Pou {
+    /// What it is.
+    pub kind: PouKind,
+    /// Its name.
+    pub name: Ident,
+    /// Its variables, in declaration order.
+    pub vars: Vec<VarDecl>,
+    /// Its statements.
+    pub body: Vec<Stmt>,
+    /// From the keyword to its end keyword.
+    pub span: Span,
+}
+
+/// A variable section's class.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum VarClass {
+    /// `VAR`.
+    Local,
+    /// `VAR_INPUT`.
+    Input,
+    /// `VAR_OUTPUT`.
+    Output,
+    /// `VAR_IN_OUT`.
+    InOut,
+    /// `VAR_GLOBAL`.
+    Global,
+    /// `VAR_EXTERNAL`.
+    External,
+    /// `VAR_TEMP`.
+    Temp,
+}
+
+/// One declared variable.
+#[derive(Clone, Debug)]
+pub struct VarDecl {
+    /// Its name.
+    pub name: Ident,
+    /// Its section.
+    pub class: VarClass,
+    /// Its type (`BOOL`, `TON`, `INT`, a user type), upper-cased, with where.
+    pub ty: Ident,
+    /// Its initial value.
+    pub init: Option<Expr>,
+    /// `RETAIN`.
+    pub retain: bool,
+    /// `CONSTANT`.
+    pub constant: bool,
+    /// `AT %IX0.1`.
+    pub location: Option<String>,
+}
+
+/// An expression.
+#[derive(Clone, Debug)]
+pub struct Expr {
+    /// What it is.
+    pub kind: ExprKind,
+    /// Where.
+    pub span: Span,
+}
+
+/// The expressions.
+#[derive(Clone, Debug)]
+pub enum ExprKind {
+    /// `TRUE`, `FALSE`.
+    Bool(bool),
+    /// An integer literal.
+    Int(i128),
+    /// A duration, in µs.
+    Time(u64),
+    /// Any other literal (real, typed, string, direct address), as written.
+    Literal(String),
+    /// A variable.
+    Var(Ident),
+    /// `a.b`.
+    Member(Box<Expr>, Ident),
+    /// `a[i]`.
+    Index(Box<Expr>, Vec<Expr>),
+    /// `NOT e`, `-e`.
+    Unary(UnOp, Box<Expr>),
+    /// `a op b`.
+    Binary(BinOp, Box<Expr>, Box<Expr>),
+    /// A function call `F(args)`.
+    Call(Ident, Vec<Arg>),
+}
+
+/// Unary operators.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UnOp {
+    /// `NOT`.
+    Not,
+    /// `-`.
+    Neg,
+}
+
+/// Binary operators.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BinOp {
+    /// `OR`.
+    Or,
+    /// `XOR`.
+    Xor,
+    /// `AND`, `&`.
+    And,
+    /// `=`.
+    Eq,
+    /// `<>`.
+    Ne,
+    /// `<`.
+    Lt,
+    /// `<=`.
+    Le,
+    /// `>`.
+    Gt,
+    /// `>=`.
+    Ge,
+    /// `+`.
+    Add,
+    /// `-`.
+    Sub,
+    /// `*`.
+    Mul,
+    /// `/`.
+    Div,
+    /// `MOD`.
+    Mod,
+    /// `**`.
+    Pow,
+}
+
+/// A call argument.
+#[derive(Clone, Debug)]
+pub enum Arg {
+    /// `e`.
+    Positional(Expr),
+    /// `IN := e`.
+    Input(Ident, Expr),
+    /// `Q => x`, `NOT Q => x`.
+    Output(Ident, bool, Expr),
+}
+
+/// A statement.
+#[derive(Clone, Debug)]
+pub struct Stmt {
+    /// What it is.
+    pub kind: StmtKind,
+    /// Where.
+    pub span: Span,
+}
+
+/// The statements.
+#[derive(Clone, Debug)]
+pub enum StmtKind {
+    /// `target := value`.
+    Assign(Expr, Expr),
+    /// `instance(args)`.
+    Call(Expr, Vec<Arg>),
+    /// `IF … ELSIF … ELSE … END_IF`.
+    If(Vec<(Expr, Vec<Stmt>)>, Vec<Stmt>),
+    /// `CASE selector OF … ELSE … END_CASE` (labels: values or ranges).
+    Case(Expr, Vec<(Vec<(Expr, Option<Expr>)>, Vec<Stmt>)>, Vec<Stmt>),
+    /// `FOR v := a TO b BY c DO … END_FOR`.
+    For(Ident, Expr, Expr, Option<Expr>, Vec<Stmt>),
+    /// `WHILE c DO … END_WHILE`.
+    While(Expr, Vec<Stmt>),
+    /// `REPEAT … UNTIL c END_REPEAT`.
+    Repeat(Vec<Stmt>, Expr),
+    /// `EXIT`.
+    Exit,
+    /// `CONTINUE`.
+    Continue,
+    /// `RETURN`.
+    Return,
+    /// `;`.
+    Empty,
+    /// A property comment `//#ASSERT expr : name`.
+    Assert(Expr, Option<Ident>),
+}
+
+/// A configuration.
+#[derive(Clone, Debug)]
+pub struct Config {
+    /// Its name.
+    pub name: Ident,
+    /// Its tasks, over all its resources.
+    pub tasks: Vec<Task>,
+    /// Its program instances, in declaration order.
+    pub instances: Vec<Instance>,
+    /// Its global variables.
+    pub globals: Vec<VarDecl>,
+}
+
+/// A task.
+#[derive(Clone, Debug)]
+pub struct Task {
+    /// Its name.
+    pub name: Ident,
+    /// `INTERVAL`, in µs.
+    pub interval: Option<u64>,
+    /// `SINGLE`: an event task.
+    pub single: bool,
+    /// `PRIORITY`.
+    pub priority: i128,
+}
+
+/// A program instance: `PROGRAM inst WITH task : Type;`.
+#[derive(Clone, Debug)]
+pub struct Instance {
+    /// Its name.
+    pub name: Ident,
+    /// Its task.
+    pub task: Option<Ident>,
+    /// The program type.
+    pub ty: Ident,
+}

@@ -1,0 +1,214 @@
+//! The Structured Text lexer: IEC 61131-3 tokens with their byte spans (keywords case-insensitive, comments `(* … *)` nesting and `//`, pragmas `{ … }` skipped, `//#ASSERT` and `(*#ASSERT … *)` kept as property tokens).
+
+use super::StError;
+use crate::diag::Span;
+
+/// A token's kind.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Tok {
+    /// An identifier or keyword, as written.
+    Ident(String),
+    /// An integer literal (`2#`, `8#`, `16#` bases, `_` separators).
+    Int(i128),
+    /// A duration literal, in µs.
+    Time(u64),
+    /// A typed literal `TYPE#value` that is not a duration (`BOOL#1`, `INT#5`), as written.
+    Typed(String),
+    /// A real literal, as written.
+    Real(String),
+    /// A string literal, as written.
+    Str(String),
+    /// A direct address (`%IX0.1`), as written.
+    Direct(String),
+    /// Punctuation and operators: `:=`, `=>`, `<=`, `>=`, `<>`, `**`, `..`, and single characters.
+    Sym(&'static str),
+    /// A property comment: the text after `#ASSERT`, and where it starts.
+    Assert(String, usize),
+    /// The end of the text.
+    Eof,
+}
+
+/// A token and where it is.
+#[derive(Clone, Debug)]
+pub struct Token {
+    /// What it is.
+    pub tok: Tok,
+    /// Where it is.
+    pub span: Span,
+}
+
+impl Token {
+    /// Whether the token is the keyword `kw` (case-insensitive).
+    pub fn is_kw(&self, kw: &str) -> bool {
+        matches!(&self.tok, Tok::Ident(s) if s.eq_ignore_ascii_case(kw))
+    }
+}
+
+const SYMS: &[&str] = &[
+    ":=", "=>", "<=", ">=", "<>", "**", "..", "(", ")", "[", "]", ",", ";", ":", ".", "+", "-", "*",
+    "/", "=", "<", ">", "&", "#",
+];
+
+/// Splits `text[range]` (of file `file`) into tokens. Never panics.
+pub fn lex(file: usize, text: &str, range: std::ops::Range<usize>) -> Result<Vec<Token>, StError> {
+    let bytes = text.as_bytes();
+    let end = range.end.min(text.len());
+    let mut i = range.start.min(end);
+    let mut out = Vec::new();
+    let span = |a: usize, b: usize| Span::new(file, a..b);
+    while i < end {
+        let c = bytes[i];
+        if c.is_ascii_whitespace() {
+            i += 1;
+            continue;
+        }
+        let rest = &text[i..end];
+        if rest.starts_with("//") {
+            let line_end = rest.find('\n').map_or(end, |n| i + n);
+            let body = &text[i + 2..line_end];
+            if let Some(p) = body.trim_start().strip_prefix("#ASSERT") {
+                let at = line_end - p.len();
+                out.push(Token { tok: Tok::Assert(p.to_string(), at), span: span(i, line_end) });
+            }
+            i = line_end;
+            continue;
+        }
+        if rest.starts_with("(*") {
+            let (close, depth_end) = comment_end(text, i, end);
+            let Some(close) = close else {
+                return Err(StError::new(span(i, i + 2), "unterminated comment", "this `(*` is never closed by `*)`"));
+            };
+            let body = &text[i + 2..close];
+            if let Some(p) = body.trim_start().strip_prefix("#ASSERT") {
+                let at = close - p.len();
+                out.push(Token { tok: Tok::Assert(p.to_string(), at), span: span(i, depth_end) });
+            }
+            i = depth_end;
+            continue;
+        }
+        if c == b'{' {
+            let Some(n) = rest.find('}') else {
+                return Err(StError::new(span(i, i + 1), "unterminated pragma", "this `{` is never closed by `}`"));
+            };
+            i += n + 1;
+            continue;
+        }
+        if c.is_ascii_alphabetic() || c == b'_' {
+            let n = rest.find(|ch: char| !(ch.is_ascii_alphanumeric() || ch == '_')).unwrap_or(rest.len());
+            let word = &rest[..n];
+            // Typed and duration literals: `T#5s`, `TIME#1h`, `INT#5`, `BOOL#TRUE`, `16#FF` below.
+            if rest[n..].starts_with('#') {
+                let lit_end = rest[n + 1..]
+                    .find(|ch: char| !(ch.is_ascii_alphanumeric() || ch == '_' || ch == '.' || ch == '-'))
+                    .map_or(rest.len(), |m| n + 1 + m);
+                let lit = &rest[..lit_end];
+                let upper = word.to_ascii_uppercase();
+                let tok = if ["T", "TIME", "LT", "LTIME"].contains(&upper.as_str()) {
+                    match crate::ladder::plcopen::parse_duration(lit) {
+                        Some(us) => Tok::Time(us),
+                        None => {
+                            return Err(StError::new(
+                                span(i, i + lit_end),
+                                format!("`{lit}` is not a duration ii-prove reads"),
+                                "expected a duration like `T#5s`, `T#1h2m`, `T#250ms` (non-negative, whole microseconds)",
+                            ));
+                        }
+                    }
+                } else {
+                    Tok::Typed(lit.to_string())
+                };
+                out.push(Token { tok, span: span(i, i + lit_end) });
+                i += lit_end;
+                continue;
+            }
+            out.push(Token { tok: Tok::Ident(word.to_string()), span: span(i, i + n) });
+            i += n;
+            continue;
+        }
+        if c.is_ascii_digit() {
+            let n = rest.find(|ch: char| !(ch.is_ascii_alphanumeric() || ch == '_' || ch == '#' || ch == '.')).unwrap_or(rest.len());
+            let mut lit = &rest[..n];
+            // `1..5` is a range, not a real.
+            if let Some(k) = lit.find("..") {
+                lit = &lit[..k];
+            }
+            let clean: String = lit.chars().filter(|ch| *ch != '_').collect();
+            let tok = if let Some((base, digits)) = clean.split_once('#') {
+                let radix = match base {
+                    "2" => 2,
+                    "8" => 8,
+                    "16" => 16,
+                    _ => 0,
+                };
+                match (radix > 0).then(|| i128::from_str_radix(digits, radix).ok()).flatten() {
+                    Some(v) => Tok::Int(v),
+                    None => {
+                        return Err(StError::new(span(i, i + lit.len()), format!("`{lit}` is not an integer literal"), "expected `2#…`, `8#…` or `16#…` digits"));
+                    }
+                }
+            } else if clean.contains('.') || clean.contains(['e', 'E']) {
+                Tok::Real(lit.to_string())
+            } else {
+                match clean.parse::<i128>() {
+                    Ok(v) => Tok::Int(v),
+                    Err(_) => {
+                        return Err(StError::new(span(i, i + lit.len()), format!("`{lit}` is not a number"), "expected digits"));
+                    }
+                }
+            };
+            out.push(Token { tok, span: span(i, i + lit.len()) });
+            i += lit.len();
+            continue;
+        }
+        if c == b'\'' || c == b'"' {
+            let q = c as char;
+            let Some(n) = rest[1..].find(q) else {
+                return Err(StError::new(span(i, i + 1), "unterminated string", format!("this {q} is never closed")));
+            };
+            out.push(Token { tok: Tok::Str(rest[..n + 2].to_string()), span: span(i, i + n + 2) });
+            i += n + 2;
+            continue;
+        }
+        if c == b'%' {
+            let n = 1 + rest[1..].find(|ch: char| !(ch.is_ascii_alphanumeric() || ch == '.')).unwrap_or(rest.len() - 1);
+            out.push(Token { tok: Tok::Direct(rest[..n].to_string()), span: span(i, i + n) });
+            i += n;
+            continue;
+        }
+        match SYMS.iter().find(|s| rest.starts_with(**s)) {
+            Some(s) => {
+                out.push(Token { tok: Tok::Sym(s), span: span(i, i + s.len()) });
+                i += s.len();
+            }
+            None => {
+                let ch = rest.chars().next().unwrap_or(' ');
+                return Err(StError::new(span(i, i + ch.len_utf8()), format!("unexpected character `{ch}`"), "not part of Structured Text"));
+            }
+        }
+    }
+    out.push(Token { tok: Tok::Eof, span: span(end, end) });
+    Ok(out)
+}
+
+/// The end of the comment opened at `start` (`(*`, nesting as matiec does): the offset of
+/// its closing `*)` and the offset after it.
+fn comment_end(text: &str, start: usize, end: usize) -> (Option<usize>, usize) {
+    let bytes = text.as_bytes();
+    let mut depth = 0usize;
+    let mut i = start;
+    while i + 1 < end {
+        if bytes[i] == b'(' && bytes[i + 1] == b'*' {
+            depth += 1;
+            i += 2;
+        } else if bytes[i] == b'*' && bytes[i + 1] == b')' {
+            depth -= 1;
+            i += 2;
+            if depth == 0 {
+                return (Some(i - 2), i);
+            }
+        } else {
+            i += 1;
+        }
+    }
+    (None, end)
+}
