@@ -208,30 +208,21 @@ impl Report for IoError {
     }
 }
 
-/// Any diagnostic the tool can emit.
-#[derive(Clone, Debug)]
-pub enum Diagnostic {
-    /// A file could not be read (no location: there is no text to point into).
-    Io(IoError),
-    /// A `.ii` file is malformed or refers to something that does not exist.
-    Syntax(crate::syntax::SyntaxError),
-    /// A ladder file is malformed, or the compiler reports something about it.
-    Ladder(crate::ladder::LadderError),
-    /// A PLCopen XML file is malformed, or uses something the prover does not model.
-    Plcopen(crate::ladder::plcopen::PlcError),
-    /// A proof script's step does not follow, or its calculation misses the goal.
-    Script(crate::script::ScriptError),
+/// Any diagnostic the tool can emit: whatever a front end, the `.ii` reader or the
+/// proof checker reports, seen only through the [`Report`] trait (this module knows no
+/// front end).
+#[derive(Clone)]
+pub struct Diagnostic(std::sync::Arc<dyn Report + Send + Sync>);
+
+impl std::fmt::Debug for Diagnostic {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Diagnostic({:?}: {})", self.span(), self.message())
+    }
 }
 
 impl Diagnostic {
     fn report(&self) -> &dyn Report {
-        match self {
-            Diagnostic::Io(e) => e,
-            Diagnostic::Syntax(e) => e,
-            Diagnostic::Ladder(e) => e,
-            Diagnostic::Plcopen(e) => e,
-            Diagnostic::Script(e) => e,
-        }
+        self.0.as_ref()
     }
     /// Where the problem is.
     pub fn span(&self) -> Option<Span> {
@@ -247,33 +238,9 @@ impl Diagnostic {
     }
 }
 
-impl From<IoError> for Diagnostic {
-    fn from(e: IoError) -> Self {
-        Diagnostic::Io(e)
-    }
-}
-
-impl From<crate::syntax::SyntaxError> for Diagnostic {
-    fn from(e: crate::syntax::SyntaxError) -> Self {
-        Diagnostic::Syntax(e)
-    }
-}
-
-impl From<crate::script::ScriptError> for Diagnostic {
-    fn from(e: crate::script::ScriptError) -> Self {
-        Diagnostic::Script(e)
-    }
-}
-
-impl From<crate::ladder::plcopen::PlcError> for Diagnostic {
-    fn from(e: crate::ladder::plcopen::PlcError) -> Self {
-        Diagnostic::Plcopen(e)
-    }
-}
-
-impl From<crate::ladder::LadderError> for Diagnostic {
-    fn from(e: crate::ladder::LadderError) -> Self {
-        Diagnostic::Ladder(e)
+impl<R: Report + Send + Sync + 'static> From<R> for Diagnostic {
+    fn from(e: R) -> Self {
+        Diagnostic(std::sync::Arc::new(e))
     }
 }
 
@@ -348,7 +315,7 @@ mod tests {
     #[test]
     fn io_errors_render_without_a_location() {
         let sources = Sources::new();
-        let diag = Diagnostic::Io(IoError {
+        let diag = Diagnostic::from(IoError {
             path: "missing.ii".into(),
             reason: "No such file or directory".into(),
         });

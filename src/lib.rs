@@ -19,6 +19,7 @@ pub mod repl;
 pub mod report;
 pub mod script;
 pub mod semantics;
+pub mod st;
 pub mod syntax;
 pub mod term;
 pub mod theory;

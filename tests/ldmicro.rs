@@ -31,7 +31,7 @@ fn load(path: &Path) -> (Sources, Result<LdProgram, Vec<LadderError>>) {
 
 /// Renders an error and checks it is located: `name:line:col` and a caret.
 fn render_located(sources: &Sources, e: &LadderError) -> String {
-    let text = render(&Diagnostic::Ladder(e.clone()), sources, RenderStyle { ascii: true });
+    let text = render(&Diagnostic::from(e.clone()), sources, RenderStyle { ascii: true });
     let name = sources.name(0);
     let located = text.lines().any(|l| {
         l.contains(&format!("{name}:"))

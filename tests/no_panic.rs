@@ -26,7 +26,7 @@ fn exercise(text: &str) {
         Err(errors) => {
             assert!(!errors.is_empty());
             for e in errors {
-                let _ = render(&Diagnostic::Syntax(e), &sources, RenderStyle::default());
+                let _ = render(&Diagnostic::from(e), &sources, RenderStyle::default());
             }
         }
     }

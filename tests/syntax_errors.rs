@@ -68,7 +68,7 @@ fn every_error_case_is_rejected_with_a_located_message() {
         };
         let rendered: String = errors
             .into_iter()
-            .map(|e| render(&Diagnostic::Syntax(e), &sources, RenderStyle { ascii: true }))
+            .map(|e| render(&Diagnostic::from(e), &sources, RenderStyle { ascii: true }))
             .collect();
         let located = rendered.contains(&format!("{name}:")) && rendered.contains('^');
         if !located || !rendered.contains(&expected) {
@@ -85,7 +85,7 @@ fn several_errors_are_reported_at_once() {
     let file = sources.add("several.ii", text);
     let errors = parse_document(&sources, file, &TestProgram).unwrap_err();
     assert_eq!(errors.len(), 3, "{errors:?}");
-    let rendered = render(&Diagnostic::Syntax(errors[2].clone()), &sources, RenderStyle::default());
+    let rendered = render(&Diagnostic::from(errors[2].clone()), &sources, RenderStyle::default());
     assert!(rendered.contains("several.ii:4:13"), "{rendered}");
     assert!(rendered.contains("Out_valve"), "{rendered}");
 }

@@ -320,6 +320,8 @@ pub struct CompiledProgram {
     pub exact_names: bool,
     /// The source language, as `show` names it (`an LDmicro`, `a PLCopen`).
     pub language: &'static str,
+    /// What a block of the source is called (`rung`, `line`).
+    pub block_noun: &'static str,
     /// The short-name index of [`names`](super::names), built on first use from `signals`.
     pub(super) short_names: std::sync::OnceLock<BTreeMap<String, Vec<String>>>,
     /// The short names a property, script or REPL line has used: those print short.
@@ -1054,6 +1056,7 @@ impl<'a> Compiler<'a> {
             cycle_us: self.program.cycle_us,
             exact_names: self.program.exact_names,
             language: self.program.language,
+            block_noun: self.program.block_noun,
             short_names: std::sync::OnceLock::new(),
             spelled_short: Default::default(),
             equation_index: std::sync::OnceLock::new(),
@@ -1186,7 +1189,8 @@ pub fn program_to_ii(compiled: &CompiledProgram, notation: Notation) -> String {
                 None => "none: the output follows the input".into(),
             };
             out.push_str(&format!(
-                "// rung {}: {} {} {} µs, adjust {}: P = {} scan{}; effective delay {}\n",
+                "// {} {}: {} {} {} µs, adjust {}: P = {} scan{}; effective delay {}\n",
+                compiled.block_noun,
                 t.rung,
                 t.keyword,
                 t.name,

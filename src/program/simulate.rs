@@ -31,7 +31,7 @@ impl V {
 /// A scan-model program running, from power-up.
 #[derive(Clone, Debug)]
 pub struct Simulator {
-    program: Program,
+    program: std::sync::Arc<Program>,
     timers_model: TimerModel,
     /// Timer accumulators written by more than one element (not simulated).
     shared: BTreeSet<String>,
@@ -39,7 +39,7 @@ pub struct Simulator {
     bits: BTreeMap<String, V>,
     /// Per stateful element, in the order a scan meets them: a timer's count of
     /// consecutive scans (input on for TON, off for TOF), a one-shot's last power.
-    counts: Vec<u64>,
+    counts: Vec<(u64, bool)>,
     memories: Vec<V>,
     /// A one-shot's memory by its index in the front end's order.
     by_index: BTreeMap<usize, V>,
@@ -62,7 +62,7 @@ impl Simulator {
             });
         }
         Simulator {
-            program: program.clone(),
+            program: std::sync::Arc::new(program.clone()),
             timers_model: timers,
             shared: count.into_iter().filter(|(_, n)| *n > 1).map(|(t, _)| t).collect(),
             bits: BTreeMap::new(),
@@ -87,11 +87,10 @@ impl Simulator {
         self.temps.clear();
         self.next_count = 0;
         self.next_memory = 0;
-        let program = std::mem::take(&mut self.program);
+        let program = self.program.clone();
         for (_, s) in program.stmts() {
             self.stmt(s, true);
         }
-        self.program = program;
         self.bits = std::mem::take(&mut self.current);
     }
 
@@ -242,7 +241,7 @@ impl Simulator {
         self.next_count += 1;
         if self.counts.len() <= k {
             // A TOF has been off "forever" at power-up: its output is off.
-            self.counts.push(if t.on_delay { 0 } else { u64::MAX });
+            self.counts.push((if t.on_delay { 0 } else { u64::MAX }, true));
         }
         let cycle = self.program.cycle_us;
         let scans = match &t.preset {
@@ -255,16 +254,23 @@ impl Simulator {
                 TimerModel::Ideal => i64::try_from(us / cycle).unwrap_or(i64::MAX),
             }),
         };
-        let count = &mut self.counts[k];
-        let on = if t.on_delay { input.value } else { !input.value };
-        *count = if on { count.saturating_add(1) } else { 0 };
+        // The count of consecutive scans that make the timer run (input on for a TON, off
+        // for a TOF): a known reset restarts it, an unknown input leaves it unknown.
+        let (count, known) = &mut self.counts[k];
+        let runs = if t.on_delay { input.value } else { !input.value };
+        if !runs && input.known {
+            (*count, *known) = (0, true);
+        } else {
+            *count = if runs { count.saturating_add(1) } else { 0 };
+            *known &= input.known;
+        }
         let Some(p) = scans else { return V { value: false, known: false } };
         if p <= 0 {
             return input;
         }
         let p = p as u64;
         let value = if t.on_delay { *count > p } else { *count <= p };
-        V { value, known: input.known }
+        V { value, known: *known }
     }
 }
 

@@ -425,7 +425,7 @@ impl Session {
                 }
                 Err(e) => {
                     out.push_str(&render(
-                        &Diagnostic::Script(e),
+                        &Diagnostic::from(e),
                         &self.sources,
                         RenderStyle::default(),
                     ));

@@ -338,7 +338,7 @@ pub struct InputError {
 /// Reads a file into `sources` (Latin-1 fallback for non-UTF-8 bytes). A binary file
 /// (a NUL byte, or control characters no text file has) is refused at once.
 pub fn read_source(sources: &mut Sources, path: &str) -> Result<usize, Diagnostic> {
-    let io_error = |reason: String| Diagnostic::Io(IoError { path: path.to_string(), reason });
+    let io_error = |reason: String| Diagnostic::from(IoError { path: path.to_string(), reason });
     let bytes = std::fs::read(path).map_err(|e| io_error(e.to_string()))?;
     if let Some(why) = binary(&bytes) {
         return Err(io_error(format!(
@@ -429,9 +429,12 @@ pub fn is_ladder(path: &str) -> bool {
     let n = std::fs::File::open(path).and_then(|mut f| f.read(&mut head)).unwrap_or(0);
     let text = head[..n].strip_prefix(b"\xef\xbb\xbf").unwrap_or(&head[..n]);
     let start = text.iter().position(|b| !b.is_ascii_whitespace()).unwrap_or(text.len());
+    let lower = path.to_ascii_lowercase();
     text[start..].starts_with(b"LDmicro")
         || crate::ladder::plcopen::is_plcopen(&String::from_utf8_lossy(text))
-        || path.to_ascii_lowercase().ends_with(".ld")
+        || crate::st::is_st(&String::from_utf8_lossy(text))
+        || lower.ends_with(".ld")
+        || lower.ends_with(".st")
 }
 
 /// What a run tells as it goes: the command line prints each result as soon as it is
@@ -759,7 +762,27 @@ pub fn load_program_with(
     let plc_diagnostics = |errors: Vec<plcopen::PlcError>| {
         errors.into_iter().map(Diagnostic::from).collect::<Vec<_>>()
     };
-    let (reference, scan, mut located) = if plcopen::is_plcopen(sources.text(file)) {
+    let is_st = crate::st::is_st(sources.text(file)) || path.to_ascii_lowercase().ends_with(".st");
+    let (reference, scan, mut located) = if is_st {
+        let st_diagnostics = |errors: Vec<crate::st::StError>| {
+            errors.into_iter().map(Diagnostic::from).collect::<Vec<_>>()
+        };
+        let unit = crate::st::read(sources, file).map_err(st_diagnostics)?;
+        let lowered =
+            crate::st::lower(sources, &unit, selection.pou.as_deref(), selection.cycle_us)
+                .map_err(st_diagnostics)?;
+        let notes: Vec<WarningReport> = lowered
+            .warnings
+            .iter()
+            .map(|w| WarningReport {
+                message: w.message(),
+                location: w.span().map(|s| Location::of(sources, s)),
+            })
+            .collect();
+        let reference: std::sync::Arc<dyn crate::ladder::Reference> =
+            std::sync::Arc::new(lowered.program.clone());
+        (reference, lowered.program, notes)
+    } else if plcopen::is_plcopen(sources.text(file)) {
         let project = plcopen::read_plcopen(sources, file).map_err(plc_diagnostics)?;
         let plc = plcopen::select(&project, selection).map_err(plc_diagnostics)?;
         let lowered = plcopen::lower(&plc).map_err(plc_diagnostics)?;

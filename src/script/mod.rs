@@ -145,7 +145,7 @@ pub fn load_script(
     let path = program_path(sources.name(file), &program);
     let shown = path.display().to_string();
     let loaded = report::load_program(sources, &shown, options).map_err(|mut diagnostics| {
-        diagnostics.push(Diagnostic::Script(ScriptError::BadContext {
+        diagnostics.push(Diagnostic::from(ScriptError::BadContext {
             span,
             reason: format!("the program `{shown}` named here cannot be loaded"),
         }));
@@ -188,7 +188,7 @@ pub fn check_files(paths: &[String], opts: &Options) -> ScriptRun {
         let (reports, errors) = check_document(&theory, &doc, program.as_ref(), path, notation);
         run.claims.extend(reports);
         for e in errors {
-            run.errors.push(render(&Diagnostic::Script(e), &sources, style));
+            run.errors.push(render(&Diagnostic::from(e), &sources, style));
         }
     }
     run

@@ -199,7 +199,7 @@ pub enum StmtKind {
     /// `IF … ELSIF … ELSE … END_IF`.
     If(Vec<(Expr, Vec<Stmt>)>, Vec<Stmt>),
     /// `CASE selector OF … ELSE … END_CASE` (labels: values or ranges).
-    Case(Expr, Vec<(Vec<(Expr, Option<Expr>)>, Vec<Stmt>)>, Vec<Stmt>),
+    Case(Expr, Vec<CaseArm>, Vec<Stmt>),
     /// `FOR v := a TO b BY c DO … END_FOR`.
     For(Ident, Expr, Expr, Option<Expr>, Vec<Stmt>),
     /// `WHILE c DO … END_WHILE`.
@@ -217,6 +217,9 @@ pub enum StmtKind {
     /// A property comment `//#ASSERT expr : name`.
     Assert(Expr, Option<Ident>),
 }
+
+/// A `CASE` arm: its labels (a value, or a range `a..b`) and its statements.
+pub type CaseArm = (Vec<(Expr, Option<Expr>)>, Vec<Stmt>);
 
 /// A configuration.
 #[derive(Clone, Debug)]

@@ -45,8 +45,8 @@ impl Token {
 }
 
 const SYMS: &[&str] = &[
-    ":=", "=>", "<=", ">=", "<>", "**", "..", "(", ")", "[", "]", ",", ";", ":", ".", "+", "-", "*",
-    "/", "=", "<", ">", "&", "#",
+    ":=", "=>", "<=", ">=", "<>", "**", "..", "(", ")", "[", "]", ",", ";", ":", ".", "+", "-",
+    "*", "/", "=", "<", ">", "&", "#",
 ];
 
 /// Splits `text[range]` (of file `file`) into tokens. Never panics.
@@ -76,7 +76,11 @@ pub fn lex(file: usize, text: &str, range: std::ops::Range<usize>) -> Result<Vec
         if rest.starts_with("(*") {
             let (close, depth_end) = comment_end(text, i, end);
             let Some(close) = close else {
-                return Err(StError::new(span(i, i + 2), "unterminated comment", "this `(*` is never closed by `*)`"));
+                return Err(StError::new(
+                    span(i, i + 2),
+                    "unterminated comment",
+                    "this `(*` is never closed by `*)`",
+                ));
             };
             let body = &text[i + 2..close];
             if let Some(p) = body.trim_start().strip_prefix("#ASSERT") {
@@ -88,18 +92,26 @@ pub fn lex(file: usize, text: &str, range: std::ops::Range<usize>) -> Result<Vec
         }
         if c == b'{' {
             let Some(n) = rest.find('}') else {
-                return Err(StError::new(span(i, i + 1), "unterminated pragma", "this `{` is never closed by `}`"));
+                return Err(StError::new(
+                    span(i, i + 1),
+                    "unterminated pragma",
+                    "this `{` is never closed by `}`",
+                ));
             };
             i += n + 1;
             continue;
         }
         if c.is_ascii_alphabetic() || c == b'_' {
-            let n = rest.find(|ch: char| !(ch.is_ascii_alphanumeric() || ch == '_')).unwrap_or(rest.len());
+            let n = rest
+                .find(|ch: char| !(ch.is_ascii_alphanumeric() || ch == '_'))
+                .unwrap_or(rest.len());
             let word = &rest[..n];
             // Typed and duration literals: `T#5s`, `TIME#1h`, `INT#5`, `BOOL#TRUE`, `16#FF` below.
             if rest[n..].starts_with('#') {
                 let lit_end = rest[n + 1..]
-                    .find(|ch: char| !(ch.is_ascii_alphanumeric() || ch == '_' || ch == '.' || ch == '-'))
+                    .find(|ch: char| {
+                        !(ch.is_ascii_alphanumeric() || ch == '_' || ch == '.' || ch == '-')
+                    })
                     .map_or(rest.len(), |m| n + 1 + m);
                 let lit = &rest[..lit_end];
                 let upper = word.to_ascii_uppercase();
@@ -126,7 +138,11 @@ pub fn lex(file: usize, text: &str, range: std::ops::Range<usize>) -> Result<Vec
             continue;
         }
         if c.is_ascii_digit() {
-            let n = rest.find(|ch: char| !(ch.is_ascii_alphanumeric() || ch == '_' || ch == '#' || ch == '.')).unwrap_or(rest.len());
+            let n = rest
+                .find(|ch: char| {
+                    !(ch.is_ascii_alphanumeric() || ch == '_' || ch == '#' || ch == '.')
+                })
+                .unwrap_or(rest.len());
             let mut lit = &rest[..n];
             // `1..5` is a range, not a real.
             if let Some(k) = lit.find("..") {
@@ -143,7 +159,11 @@ pub fn lex(file: usize, text: &str, range: std::ops::Range<usize>) -> Result<Vec
                 match (radix > 0).then(|| i128::from_str_radix(digits, radix).ok()).flatten() {
                     Some(v) => Tok::Int(v),
                     None => {
-                        return Err(StError::new(span(i, i + lit.len()), format!("`{lit}` is not an integer literal"), "expected `2#…`, `8#…` or `16#…` digits"));
+                        return Err(StError::new(
+                            span(i, i + lit.len()),
+                            format!("`{lit}` is not an integer literal"),
+                            "expected `2#…`, `8#…` or `16#…` digits",
+                        ));
                     }
                 }
             } else if clean.contains('.') || clean.contains(['e', 'E']) {
@@ -152,7 +172,11 @@ pub fn lex(file: usize, text: &str, range: std::ops::Range<usize>) -> Result<Vec
                 match clean.parse::<i128>() {
                     Ok(v) => Tok::Int(v),
                     Err(_) => {
-                        return Err(StError::new(span(i, i + lit.len()), format!("`{lit}` is not a number"), "expected digits"));
+                        return Err(StError::new(
+                            span(i, i + lit.len()),
+                            format!("`{lit}` is not a number"),
+                            "expected digits",
+                        ));
                     }
                 }
             };
@@ -163,14 +187,20 @@ pub fn lex(file: usize, text: &str, range: std::ops::Range<usize>) -> Result<Vec
         if c == b'\'' || c == b'"' {
             let q = c as char;
             let Some(n) = rest[1..].find(q) else {
-                return Err(StError::new(span(i, i + 1), "unterminated string", format!("this {q} is never closed")));
+                return Err(StError::new(
+                    span(i, i + 1),
+                    "unterminated string",
+                    format!("this {q} is never closed"),
+                ));
             };
             out.push(Token { tok: Tok::Str(rest[..n + 2].to_string()), span: span(i, i + n + 2) });
             i += n + 2;
             continue;
         }
         if c == b'%' {
-            let n = 1 + rest[1..].find(|ch: char| !(ch.is_ascii_alphanumeric() || ch == '.')).unwrap_or(rest.len() - 1);
+            let n = 1 + rest[1..]
+                .find(|ch: char| !(ch.is_ascii_alphanumeric() || ch == '.'))
+                .unwrap_or(rest.len() - 1);
             out.push(Token { tok: Tok::Direct(rest[..n].to_string()), span: span(i, i + n) });
             i += n;
             continue;
@@ -182,7 +212,11 @@ pub fn lex(file: usize, text: &str, range: std::ops::Range<usize>) -> Result<Vec
             }
             None => {
                 let ch = rest.chars().next().unwrap_or(' ');
-                return Err(StError::new(span(i, i + ch.len_utf8()), format!("unexpected character `{ch}`"), "not part of Structured Text"));
+                return Err(StError::new(
+                    span(i, i + ch.len_utf8()),
+                    format!("unexpected character `{ch}`"),
+                    "not part of Structured Text",
+                ));
             }
         }
     }

@@ -7,17 +7,62 @@ use crate::diag::Span;
 
 /// Keywords that end a statement list, with the construct each closes.
 const ENDERS: &[&str] = &[
-    "END_IF", "ELSIF", "ELSE", "END_CASE", "END_FOR", "END_WHILE", "UNTIL", "END_REPEAT",
-    "END_PROGRAM", "END_FUNCTION_BLOCK", "END_FUNCTION",
+    "END_IF",
+    "ELSIF",
+    "ELSE",
+    "END_CASE",
+    "END_FOR",
+    "END_WHILE",
+    "UNTIL",
+    "END_REPEAT",
+    "END_PROGRAM",
+    "END_FUNCTION_BLOCK",
+    "END_FUNCTION",
 ];
 
 /// Keywords a misspelt word is compared with.
 const KEYWORDS: &[&str] = &[
-    "IF", "THEN", "ELSIF", "ELSE", "END_IF", "CASE", "OF", "END_CASE", "FOR", "TO", "BY", "DO",
-    "END_FOR", "WHILE", "END_WHILE", "REPEAT", "UNTIL", "END_REPEAT", "EXIT", "RETURN", "VAR",
-    "VAR_INPUT", "VAR_OUTPUT", "VAR_IN_OUT", "VAR_GLOBAL", "VAR_EXTERNAL", "VAR_TEMP", "END_VAR",
-    "PROGRAM", "END_PROGRAM", "FUNCTION_BLOCK", "END_FUNCTION_BLOCK", "FUNCTION", "END_FUNCTION",
-    "CONFIGURATION", "END_CONFIGURATION", "RESOURCE", "END_RESOURCE", "TASK", "CONSTANT", "RETAIN",
+    "IF",
+    "THEN",
+    "ELSIF",
+    "ELSE",
+    "END_IF",
+    "CASE",
+    "OF",
+    "END_CASE",
+    "FOR",
+    "TO",
+    "BY",
+    "DO",
+    "END_FOR",
+    "WHILE",
+    "END_WHILE",
+    "REPEAT",
+    "UNTIL",
+    "END_REPEAT",
+    "EXIT",
+    "RETURN",
+    "VAR",
+    "VAR_INPUT",
+    "VAR_OUTPUT",
+    "VAR_IN_OUT",
+    "VAR_GLOBAL",
+    "VAR_EXTERNAL",
+    "VAR_TEMP",
+    "END_VAR",
+    "PROGRAM",
+    "END_PROGRAM",
+    "FUNCTION_BLOCK",
+    "END_FUNCTION_BLOCK",
+    "FUNCTION",
+    "END_FUNCTION",
+    "CONFIGURATION",
+    "END_CONFIGURATION",
+    "RESOURCE",
+    "END_RESOURCE",
+    "TASK",
+    "CONSTANT",
+    "RETAIN",
 ];
 
 /// Parses a whole `.st` file.
@@ -28,7 +73,11 @@ pub fn parse_unit(file: usize, text: &str) -> Result<Unit, StError> {
 }
 
 /// Parses the statements of a body at `range` of `text` (a PLCopen `<ST>` body).
-pub fn parse_body(file: usize, text: &str, range: std::ops::Range<usize>) -> Result<Vec<Stmt>, StError> {
+pub fn parse_body(
+    file: usize,
+    text: &str,
+    range: std::ops::Range<usize>,
+) -> Result<Vec<Stmt>, StError> {
     let toks = lex(file, text, range)?;
     let mut p = Parser { toks, at: 0, text };
     let body = p.stmts(None)?;
@@ -46,7 +95,9 @@ fn describe(t: &Token) -> String {
     match &t.tok {
         Tok::Ident(s) => format!("`{s}`"),
         Tok::Int(v) => format!("the number {v}"),
-        Tok::Time(_) | Tok::Typed(_) | Tok::Real(_) | Tok::Str(_) | Tok::Direct(_) => "a literal".into(),
+        Tok::Time(_) | Tok::Typed(_) | Tok::Real(_) | Tok::Str(_) | Tok::Direct(_) => {
+            "a literal".into()
+        }
         Tok::Sym(s) => format!("`{s}`"),
         Tok::Assert(..) => "an #ASSERT comment".into(),
         Tok::Eof => "the end of the text".into(),
@@ -98,7 +149,11 @@ impl<'t> Parser<'t> {
     /// the token is a near miss of a keyword.
     fn unexpected(&self, expected: &str) -> StError {
         let t = self.peek();
-        let mut e = StError::new(t.span, format!("expected {expected}, found {}", describe(t)), format!("expected {expected}"));
+        let mut e = StError::new(
+            t.span,
+            format!("expected {expected}, found {}", describe(t)),
+            format!("expected {expected}"),
+        );
         if let Tok::Ident(word) = &t.tok {
             let upper = word.to_ascii_uppercase();
             if !KEYWORDS.contains(&upper.as_str())
@@ -117,8 +172,11 @@ impl<'t> Parser<'t> {
         let mut e = self.unexpected(&format!("`{kw}`"));
         if let Some((what, span)) = opened {
             let (line, _) = line_col(self.text, span.start);
-            e.message = format!("expected `{kw}` to close the `{what}` at line {line}, found {}", describe(self.peek()));
-            e.related.push((span, format!("this `{what}` is not closed")));
+            e.message = format!(
+                "expected `{kw}` to close the `{what}` at line {line}, found {}",
+                describe(self.peek())
+            );
+            e.related = Some(Box::new((span, format!("this `{what}` is not closed"))));
         }
         Err(e)
     }
@@ -161,9 +219,15 @@ impl<'t> Parser<'t> {
             } else if self.eat_kw("CONFIGURATION") {
                 unit.configs.push(self.config(t.span)?);
             } else if t.is_kw("TYPE") {
-                return Err(StError::new(t.span, "user type declarations (`TYPE … END_TYPE`) are not read yet", "not supported"));
+                return Err(StError::new(
+                    t.span,
+                    "user type declarations (`TYPE … END_TYPE`) are not read yet",
+                    "not supported",
+                ));
             } else {
-                return Err(self.unexpected("`PROGRAM`, `FUNCTION_BLOCK`, `FUNCTION` or `CONFIGURATION`"));
+                return Err(
+                    self.unexpected("`PROGRAM`, `FUNCTION_BLOCK`, `FUNCTION` or `CONFIGURATION`")
+                );
             }
         }
     }
@@ -175,7 +239,9 @@ impl<'t> Parser<'t> {
             self.ident("the result type")?;
         }
         let mut vars = Vec::new();
-        while self.peek().is_kw("VAR") || matches!(&self.peek().tok, Tok::Ident(s) if s.to_ascii_uppercase().starts_with("VAR_") && s.to_ascii_uppercase() != "VAR_CONFIG") {
+        while self.peek().is_kw("VAR")
+            || matches!(&self.peek().tok, Tok::Ident(s) if s.to_ascii_uppercase().starts_with("VAR_") && !s.eq_ignore_ascii_case("VAR_CONFIG"))
+        {
             vars.extend(self.var_block()?);
         }
         let word = match kind {
@@ -199,7 +265,13 @@ impl<'t> Parser<'t> {
             "VAR_GLOBAL" => VarClass::Global,
             "VAR_EXTERNAL" => VarClass::External,
             "VAR_TEMP" => VarClass::Temp,
-            other => return Err(StError::new(t.span, format!("`{other}` is not a variable section"), "expected `VAR`, `VAR_INPUT`, `VAR_OUTPUT`, …")),
+            other => {
+                return Err(StError::new(
+                    t.span,
+                    format!("`{other}` is not a variable section"),
+                    "expected `VAR`, `VAR_INPUT`, `VAR_OUTPUT`, …",
+                ));
+            }
         };
         let (mut constant, mut retain) = (false, false);
         loop {
@@ -216,7 +288,10 @@ impl<'t> Parser<'t> {
         let mut out = Vec::new();
         while !self.is_kw("END_VAR") {
             if self.peek().tok == Tok::Eof {
-                return Err(self.expect_kw("END_VAR", Some((word, t.span))).err().unwrap_or_else(|| self.unexpected("`END_VAR`")));
+                return Err(self
+                    .expect_kw("END_VAR", Some((word, t.span)))
+                    .err()
+                    .unwrap_or_else(|| self.unexpected("`END_VAR`")));
             }
             let mut names = vec![self.ident("a variable name or `END_VAR`")?];
             while self.eat_sym(",") {
@@ -235,7 +310,15 @@ impl<'t> Parser<'t> {
             let init = if self.eat_sym(":=") { Some(self.init()?) } else { None };
             self.expect_sym(";", "after the declaration")?;
             for name in names {
-                out.push(VarDecl { name, class, ty: ty.clone(), init: init.clone(), retain, constant, location: location.clone() });
+                out.push(VarDecl {
+                    name,
+                    class,
+                    ty: ty.clone(),
+                    init: init.clone(),
+                    retain,
+                    constant,
+                    location: location.clone(),
+                });
             }
         }
         self.bump();
@@ -269,7 +352,10 @@ impl<'t> Parser<'t> {
     /// An initial value: an expression, or a structure/FB initialiser `(IN := …)`, kept
     /// only when it is an expression.
     fn init(&mut self) -> Result<Expr, StError> {
-        if self.is_sym("(") && matches!(self.peek_at(1).tok, Tok::Ident(_)) && matches!(self.peek_at(2).tok, Tok::Sym(":=")) {
+        if self.is_sym("(")
+            && matches!(self.peek_at(1).tok, Tok::Ident(_))
+            && matches!(self.peek_at(2).tok, Tok::Sym(":="))
+        {
             let start = self.bump().span;
             let mut depth = 1;
             while depth > 0 {
@@ -277,7 +363,13 @@ impl<'t> Parser<'t> {
                 match t.tok {
                     Tok::Sym("(") => depth += 1,
                     Tok::Sym(")") => depth -= 1,
-                    Tok::Eof => return Err(StError::new(start, "unclosed initialiser", "this `(` is never closed")),
+                    Tok::Eof => {
+                        return Err(StError::new(
+                            start,
+                            "unclosed initialiser",
+                            "this `(` is never closed",
+                        ));
+                    }
                     _ => {}
                 }
             }
@@ -288,7 +380,8 @@ impl<'t> Parser<'t> {
 
     fn config(&mut self, start: Span) -> Result<Config, StError> {
         let name = self.ident("the configuration's name")?;
-        let mut config = Config { name, tasks: Vec::new(), instances: Vec::new(), globals: Vec::new() };
+        let mut config =
+            Config { name, tasks: Vec::new(), instances: Vec::new(), globals: Vec::new() };
         loop {
             if self.eat_kw("END_CONFIGURATION") {
                 return Ok(config);
@@ -300,12 +393,18 @@ impl<'t> Parser<'t> {
                 self.ident("the resource's processor type")?;
                 while !self.eat_kw("END_RESOURCE") {
                     if self.peek().tok == Tok::Eof {
-                        return Err(self.expect_kw("END_RESOURCE", Some(("RESOURCE", t.span))).err().unwrap_or_else(|| self.unexpected("`END_RESOURCE`")));
+                        return Err(self
+                            .expect_kw("END_RESOURCE", Some(("RESOURCE", t.span)))
+                            .err()
+                            .unwrap_or_else(|| self.unexpected("`END_RESOURCE`")));
                     }
                     self.config_item(&mut config)?;
                 }
             } else if self.peek().tok == Tok::Eof {
-                return Err(self.expect_kw("END_CONFIGURATION", Some(("CONFIGURATION", start))).err().unwrap_or_else(|| self.unexpected("`END_CONFIGURATION`")));
+                return Err(self
+                    .expect_kw("END_CONFIGURATION", Some(("CONFIGURATION", start)))
+                    .err()
+                    .unwrap_or_else(|| self.unexpected("`END_CONFIGURATION`")));
             } else {
                 self.config_item(&mut config)?;
             }
@@ -325,7 +424,13 @@ impl<'t> Parser<'t> {
                 let value = self.expr()?;
                 match (key.key().as_str(), &value.kind) {
                     ("INTERVAL", ExprKind::Time(us)) => task.interval = Some(*us),
-                    ("INTERVAL", _) => return Err(StError::new(value.span, "the interval must be a duration literal", "expected a duration like `T#20ms`")),
+                    ("INTERVAL", _) => {
+                        return Err(StError::new(
+                            value.span,
+                            "the interval must be a duration literal",
+                            "expected a duration like `T#20ms`",
+                        ));
+                    }
                     ("PRIORITY", ExprKind::Int(p)) => task.priority = *p,
                     ("SINGLE", _) => task.single = true,
                     _ => {}
@@ -349,7 +454,13 @@ impl<'t> Parser<'t> {
                     match self.bump().tok {
                         Tok::Sym("(") => depth += 1,
                         Tok::Sym(")") => depth -= 1,
-                        Tok::Eof => return Err(StError::new(start, "unclosed argument list", "this `(` is never closed")),
+                        Tok::Eof => {
+                            return Err(StError::new(
+                                start,
+                                "unclosed argument list",
+                                "this `(` is never closed",
+                            ));
+                        }
                         _ => {}
                     }
                 }
@@ -381,7 +492,10 @@ impl<'t> Parser<'t> {
                         "WHILE" => "END_WHILE",
                         _ => "END_REPEAT",
                     };
-                    return Err(self.expect_kw(end, Some((what, span))).err().unwrap_or_else(|| self.unexpected(end)));
+                    return Err(self
+                        .expect_kw(end, Some((what, span)))
+                        .err()
+                        .unwrap_or_else(|| self.unexpected(end)));
                 }
                 return Ok(out);
             }
@@ -497,7 +611,9 @@ impl<'t> Parser<'t> {
                 }
                 return Err(e);
             } else {
-                return Err(self.unexpected("`:=` or `(` after the name (a statement assigns or calls)"));
+                return Err(
+                    self.unexpected("`:=` or `(` after the name (a statement assigns or calls)")
+                );
             }
         };
         let end = self.expect_sym(";", "after the statement")?;
@@ -514,7 +630,9 @@ impl<'t> Parser<'t> {
             }
             // A label starts with a literal or name followed by `:`, `,` or `..`.
             let next = &self.peek_at(1).tok;
-            let label_like = matches!(self.peek().tok, Tok::Int(_) | Tok::Typed(_)) || (matches!(self.peek().tok, Tok::Ident(_)) && matches!(next, Tok::Sym(":") | Tok::Sym(",") | Tok::Sym("..")));
+            let label_like = matches!(self.peek().tok, Tok::Int(_) | Tok::Typed(_))
+                || (matches!(self.peek().tok, Tok::Ident(_))
+                    && matches!(next, Tok::Sym(":") | Tok::Sym(",") | Tok::Sym("..")));
             if label_like || self.is_sym("-") {
                 return Ok(out);
             }
@@ -530,7 +648,13 @@ impl<'t> Parser<'t> {
                 let raw = &body[k + 1..];
                 let trimmed = raw.trim().trim_end_matches("*)").trim();
                 let start = at + k + 1 + (raw.len() - raw.trim_start().len());
-                (at + k, (!trimmed.is_empty()).then(|| Ident { name: trimmed.to_string(), span: Span::new(file, start..start + trimmed.len()) }))
+                (
+                    at + k,
+                    (!trimmed.is_empty()).then(|| Ident {
+                        name: trimmed.to_string(),
+                        span: Span::new(file, start..start + trimmed.len()),
+                    }),
+                )
             }
             None => (end, None),
         };
@@ -553,7 +677,9 @@ impl<'t> Parser<'t> {
             if negated_out {
                 self.bump();
             }
-            if matches!(self.peek().tok, Tok::Ident(_)) && matches!(self.peek_at(1).tok, Tok::Sym(":=") | Tok::Sym("=>")) {
+            if matches!(self.peek().tok, Tok::Ident(_))
+                && matches!(self.peek_at(1).tok, Tok::Sym(":=") | Tok::Sym("=>"))
+            {
                 let name = self.ident("a parameter name")?;
                 if self.eat_sym(":=") {
                     args.push(Arg::Input(name, self.expr()?));

@@ -1,0 +1,879 @@
+//! Lowering of a Structured Text program into the scan model: declarations to bits, function-block instances and initial values; statements to blocks (one per top-level statement, named after its line); `//#ASSERT` comments to properties checked where they are written.
+//!
+//! A BOOL variable is a bit; `VAR_INPUT` variables and those located at `%I` are the
+//! inputs. An initial value `TRUE` is set on the first scan, before any statement reads
+//! it (a hidden `_STARTED` bit, as for PLCopen). Function-block instances write hidden
+//! bits `T1_Q`, `R1_Q`, `SR1_Q1`: TON/TOF as timers counted as matiec counts them
+//! ([`Preset::iec`]), R_TRIG/F_TRIG as one-shots (`Q := CLK ∧ ¬M; M := CLK`), SR/RS as
+//! set and reset in the order their definitions give; TP and counters as unconstrained
+//! outputs. Integer comparisons are unconstrained with a warning; integer assignments
+//! have no Boolean effect (a warning). Loops, `CASE`, `RETURN`, user function blocks and
+//! an FB input assigned outside its call are refused with a located error.
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use super::StError;
+use super::ast::{self, Arg, BinOp, ExprKind, Ident, PouKind, StmtKind, UnOp, VarClass};
+use crate::diag::{Sources, Span};
+use crate::program::{
+    Block, BoolExpr, EdgeKind, Fresh, Inputs, Memory, Preset, Program, Stmt, Timer, WriteKind,
+};
+
+/// The cycle used when neither the task nor the command line gives one.
+pub const DEFAULT_CYCLE_US: u64 = 20_000;
+
+/// A lowered program: the scan model, its properties and the notes of lowering.
+pub struct Lowered {
+    /// The program.
+    pub program: Program,
+    /// The `//#ASSERT` comments, in scan order.
+    pub asserts: Vec<Assertion>,
+    /// Warnings (cycle taken by default, elements not modelled exactly), located.
+    pub warnings: Vec<StError>,
+}
+
+/// A property written in the program: the bit that holds its truth at that point of the
+/// scan.
+#[derive(Clone, Debug)]
+pub struct Assertion {
+    /// Its name (`: name` in the comment, else `ASSERT_L12`).
+    pub name: String,
+    /// The hidden bit written where the comment is.
+    pub signal: String,
+    /// The asserted expression.
+    pub span: Span,
+}
+
+/// Function-block types the lowering knows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Fb {
+    Ton,
+    Tof,
+    Tp,
+    RTrig,
+    FTrig,
+    Sr,
+    Rs,
+    Counter,
+}
+
+impl Fb {
+    fn of(ty: &str) -> Option<Fb> {
+        Some(match ty {
+            "TON" => Fb::Ton,
+            "TOF" => Fb::Tof,
+            "TP" => Fb::Tp,
+            "R_TRIG" => Fb::RTrig,
+            "F_TRIG" => Fb::FTrig,
+            "SR" => Fb::Sr,
+            "RS" => Fb::Rs,
+            "CTU" | "CTD" | "CTUD" => Fb::Counter,
+            _ => return None,
+        })
+    }
+
+    /// Its Boolean outputs.
+    fn outputs(self) -> &'static [&'static str] {
+        match self {
+            Fb::Sr | Fb::Rs => &["Q1"],
+            Fb::Counter => &["Q", "QU", "QD"],
+            _ => &["Q"],
+        }
+    }
+}
+
+#[derive(Clone, Debug)]
+enum Ty {
+    Bool,
+    Fb(Fb, String),
+    Other(String),
+}
+
+#[derive(Clone, Debug)]
+struct Sym {
+    name: String,
+    ty: Ty,
+    span: Span,
+}
+
+/// Lowers the program `pou` (else the configuration's one program instance, else the file's
+/// one `PROGRAM`) of `unit`, scanned every `cycle_us` (else its task's interval).
+pub fn lower(
+    sources: &Sources,
+    unit: &ast::Unit,
+    pou: Option<&str>,
+    cycle_us: Option<u64>,
+) -> Result<Lowered, Vec<StError>> {
+    let (program, task) = pick(unit, pou)?;
+    let mut warnings = Vec::new();
+    let cycle_us = match (cycle_us, task.and_then(|t| t.interval)) {
+        (Some(c), _) | (None, Some(c)) => c,
+        (None, None) => {
+            warnings.push(StError::warning(
+                program.name.span,
+                format!(
+                    "no task with an interval runs `{}`: the scan cycle is taken to be {} ms (give --cycle to choose it)",
+                    program.name.name,
+                    DEFAULT_CYCLE_US / 1000
+                ),
+            ));
+            DEFAULT_CYCLE_US
+        }
+    };
+    if cycle_us == 0 {
+        let span = task.map_or(program.name.span, |t| t.name.span);
+        return Err(vec![StError::new(
+            span,
+            "a scan cycle of 0",
+            "expected a positive interval (or give --cycle)",
+        )]);
+    }
+    let globals: Vec<&ast::VarDecl> = unit.configs.iter().flat_map(|c| &c.globals).collect();
+    let mut l = Lowering::new(sources, cycle_us, warnings);
+    l.declare(program, &globals);
+    l.starts();
+    for s in &program.body {
+        l.block(s);
+    }
+    if !l.errors.is_empty() {
+        return Err(l.errors);
+    }
+    Ok(l.finish())
+}
+
+/// The program to run and its task.
+fn pick<'u>(
+    unit: &'u ast::Unit,
+    pou: Option<&str>,
+) -> Result<(&'u ast::Pou, Option<&'u ast::Task>), Vec<StError>> {
+    let programs: Vec<&ast::Pou> =
+        unit.pous.iter().filter(|p| p.kind == PouKind::Program).collect();
+    let find =
+        |name: &str| programs.iter().copied().find(|p| p.name.name.eq_ignore_ascii_case(name));
+    let task_of = |ty: &str| {
+        unit.configs
+            .iter()
+            .flat_map(|c| &c.instances)
+            .find(|i| i.ty.name.eq_ignore_ascii_case(ty))
+            .and_then(|i| {
+                let t = i.task.as_ref()?;
+                unit.configs
+                    .iter()
+                    .flat_map(|c| &c.tasks)
+                    .find(|k| k.name.name.eq_ignore_ascii_case(&t.name))
+            })
+    };
+    if let Some(name) = pou {
+        return match find(name) {
+            Some(p) => Ok((p, task_of(&p.name.name))),
+            None => {
+                let span = programs.first().map_or(Span::new(0, 0..0), |p| p.name.span);
+                let mut e = StError::new(
+                    span,
+                    format!("no PROGRAM `{name}` in this file"),
+                    "the programs are declared here",
+                );
+                if let Some(m) =
+                    crate::diag::did_you_mean(name, programs.iter().map(|p| p.name.name.as_str()))
+                {
+                    e.notes.push(format!("did you mean `{m}`?"));
+                }
+                Err(vec![e])
+            }
+        };
+    }
+    let instances: Vec<&ast::Instance> = unit.configs.iter().flat_map(|c| &c.instances).collect();
+    match (instances.as_slice(), programs.as_slice()) {
+        ([one], _) => match find(&one.ty.name) {
+            Some(p) => Ok((p, task_of(&p.name.name))),
+            None => Err(vec![StError::new(
+                one.ty.span,
+                format!("no PROGRAM `{}` in this file", one.ty.name),
+                "this program type is not declared",
+            )]),
+        },
+        ([], [one]) => Ok((one, None)),
+        ([], []) => Err(vec![StError::new(
+            Span::new(0, 0..0),
+            "no PROGRAM in this file",
+            "a program to check is a `PROGRAM … END_PROGRAM`",
+        )]),
+        ([], many) => {
+            let names: Vec<&str> = many.iter().map(|p| p.name.name.as_str()).collect();
+            Err(vec![StError::new(
+                many[1].name.span,
+                format!(
+                    "this file has {} programs ({}): choose one with --pou",
+                    many.len(),
+                    names.join(", ")
+                ),
+                "a second program",
+            )])
+        }
+        (many, _) => {
+            let names: Vec<&str> = many.iter().map(|i| i.name.name.as_str()).collect();
+            Err(vec![StError::new(
+                many[1].name.span,
+                format!(
+                    "the configuration runs {} program instances ({}): running them all in one scan is not modelled yet; choose one with --pou",
+                    many.len(),
+                    names.join(", ")
+                ),
+                "a second program instance",
+            )])
+        }
+    }
+}
+
+struct Lowering<'s> {
+    sources: &'s Sources,
+    cycle_us: u64,
+    syms: BTreeMap<String, Sym>,
+    inputs: BTreeSet<String>,
+    /// BOOL variables with the initial value TRUE.
+    starts: Vec<String>,
+    /// Hidden bits of FB instances: (instance key, pin) → name.
+    hidden: BTreeMap<(String, String), String>,
+    taken: BTreeSet<String>,
+    blocks: Vec<Block>,
+    labels: BTreeSet<String>,
+    edges: usize,
+    asserts: Vec<Assertion>,
+    warnings: Vec<StError>,
+    errors: Vec<StError>,
+    /// The current block's line.
+    line: usize,
+}
+
+impl<'s> Lowering<'s> {
+    fn new(sources: &'s Sources, cycle_us: u64, warnings: Vec<StError>) -> Lowering<'s> {
+        Lowering {
+            sources,
+            cycle_us,
+            syms: BTreeMap::new(),
+            inputs: BTreeSet::new(),
+            starts: Vec::new(),
+            hidden: BTreeMap::new(),
+            taken: BTreeSet::new(),
+            blocks: Vec::new(),
+            labels: BTreeSet::new(),
+            edges: 0,
+            asserts: Vec::new(),
+            warnings,
+            errors: Vec::new(),
+            line: 0,
+        }
+    }
+
+    fn declare(&mut self, pou: &ast::Pou, globals: &[&ast::VarDecl]) {
+        for v in globals.iter().copied().chain(&pou.vars) {
+            let key = v.name.key();
+            if v.class == VarClass::External {
+                if !self.syms.contains_key(&key) {
+                    self.errors.push(StError::new(
+                        v.name.span,
+                        format!(
+                            "`{}` is declared VAR_EXTERNAL but no VAR_GLOBAL declares it",
+                            v.name.name
+                        ),
+                        "no such global",
+                    ));
+                }
+                continue;
+            }
+            if let Some(prev) = self.syms.get(&key) {
+                let mut e = StError::new(
+                    v.name.span,
+                    format!("`{}` is declared twice", v.name.name),
+                    "declared again here",
+                );
+                e.related = Some(Box::new((prev.span, "first declared here".into())));
+                self.errors.push(e);
+                continue;
+            }
+            let ty = match v.ty.name.as_str() {
+                "BOOL" => Ty::Bool,
+                t => match Fb::of(t) {
+                    Some(fb) => Ty::Fb(fb, t.to_string()),
+                    None => Ty::Other(t.to_string()),
+                },
+            };
+            if matches!(ty, Ty::Bool) {
+                let input = v.class == VarClass::Input
+                    || v.location
+                        .as_deref()
+                        .is_some_and(|l| l.to_ascii_uppercase().starts_with("%I"));
+                if input {
+                    self.inputs.insert(v.name.name.clone());
+                }
+                match v.init.as_ref().map(|e| &e.kind) {
+                    Some(ExprKind::Bool(true)) if !input => self.starts.push(v.name.name.clone()),
+                    Some(ExprKind::Bool(_)) | None => {}
+                    Some(_) if input => {}
+                    Some(_) => self.errors.push(StError::new(
+                        v.init.as_ref().map_or(v.name.span, |e| e.span),
+                        "a BOOL's initial value must be TRUE or FALSE",
+                        "expected `TRUE` or `FALSE`",
+                    )),
+                }
+            }
+            if let Ty::Fb(
+                Fb::Ton | Fb::Tof | Fb::Tp | Fb::RTrig | Fb::FTrig | Fb::Sr | Fb::Rs | Fb::Counter,
+                _,
+            ) = ty
+                && v.init.is_some()
+            {
+                self.errors.push(StError::new(
+                    v.ty.span,
+                    "an initialised function-block instance is not modelled yet",
+                    "give its inputs in its call",
+                ));
+            }
+            self.taken.insert(v.name.name.clone());
+            self.syms.insert(key, Sym { name: v.name.name.clone(), ty, span: v.name.span });
+        }
+    }
+
+    fn unique(&mut self, base: &str) -> String {
+        let mut name = base.to_string();
+        let mut k = 2;
+        while self.taken.contains(&name) || self.syms.contains_key(&name.to_ascii_uppercase()) {
+            name = format!("{base}_{k}");
+            k += 1;
+        }
+        self.taken.insert(name.clone());
+        name
+    }
+
+    /// The first scan sets every BOOL whose initial value is TRUE, before any statement.
+    fn starts(&mut self) {
+        if self.starts.is_empty() {
+            return;
+        }
+        let started = self.unique("_STARTED");
+        let first = BoolExpr::negate(BoolExpr::var(&started));
+        let span = self.syms.values().next().map_or(Span::new(0, 0..0), |s| s.span);
+        let mut stmts: Vec<Stmt> = self
+            .starts
+            .iter()
+            .map(|x| Stmt::Write {
+                target: x.clone(),
+                kind: WriteKind::Set,
+                value: first.clone(),
+                span,
+            })
+            .collect();
+        stmts.push(Stmt::Write {
+            target: started,
+            kind: WriteKind::Assign,
+            value: BoolExpr::Const(true),
+            span,
+        });
+        self.blocks.push(Block { number: 0, label: Some("L00_init".into()), span, stmts });
+    }
+
+    fn line_of(&self, span: Span) -> usize {
+        self.sources.line_col(span.file, span.start).0
+    }
+
+    fn block(&mut self, s: &ast::Stmt) {
+        self.line = self.line_of(s.span);
+        let stmts = self.stmt(s, 0);
+        if stmts.is_empty() {
+            return;
+        }
+        let mut label = format!("L{:02}", self.line);
+        let mut k = 2;
+        while !self.labels.insert(label.clone()) {
+            label = format!("L{:02}_{k}", self.line);
+            k += 1;
+        }
+        self.blocks.push(Block { number: self.line, label: Some(label), span: s.span, stmts });
+    }
+
+    fn refuse(&mut self, span: Span, what: &str, why: &str) {
+        self.errors.push(StError::new(
+            span,
+            format!("{what} is not modelled yet"),
+            why.to_string(),
+        ));
+    }
+
+    fn stmt(&mut self, s: &ast::Stmt, depth: usize) -> Vec<Stmt> {
+        match &s.kind {
+            StmtKind::Assign(target, value) => self.assign(target, value, s.span),
+            StmtKind::Call(callee, args) => self.call(callee, args, s.span),
+            StmtKind::If(branches, otherwise) => {
+                let branches = branches
+                    .iter()
+                    .map(|(c, body)| {
+                        (
+                            self.bool_expr(c),
+                            body.iter().flat_map(|s| self.stmt(s, depth + 1)).collect(),
+                        )
+                    })
+                    .collect();
+                let otherwise = otherwise.iter().flat_map(|s| self.stmt(s, depth + 1)).collect();
+                vec![Stmt::If { branches, otherwise, span: s.span }]
+            }
+            StmtKind::Case(..) => {
+                self.refuse(s.span, "`CASE`", "a selector is an integer; ii-prove models Boolean logic and timers (rewrite it with IF, or see the integer support to come)");
+                Vec::new()
+            }
+            StmtKind::For(..) | StmtKind::While(..) | StmtKind::Repeat(..) => {
+                self.refuse(
+                    s.span,
+                    "a loop",
+                    "ii-prove unrolls no loop yet; write the iterations out",
+                );
+                Vec::new()
+            }
+            StmtKind::Exit | StmtKind::Continue => {
+                self.refuse(s.span, "`EXIT`/`CONTINUE`", "there is no loop to leave");
+                Vec::new()
+            }
+            StmtKind::Return => {
+                self.refuse(s.span, "`RETURN`", "it skips the rest of the scan on some scans; the equations describe a whole scan");
+                Vec::new()
+            }
+            StmtKind::Empty => Vec::new(),
+            StmtKind::Assert(e, name) => {
+                if depth > 0 {
+                    self.refuse(
+                        s.span,
+                        "an #ASSERT inside IF",
+                        "write it between top-level statements",
+                    );
+                    return Vec::new();
+                }
+                let value = self.bool_expr(e);
+                let name = match name {
+                    Some(n) => n.name.clone(),
+                    None => format!("ASSERT_L{:02}", self.line),
+                };
+                let signal = self.unique(&format!("_assert_{name}"));
+                self.asserts.push(Assertion { name, signal: signal.clone(), span: e.span });
+                vec![Stmt::Write { target: signal, kind: WriteKind::Assign, value, span: e.span }]
+            }
+        }
+    }
+
+    fn assign(&mut self, target: &ast::Expr, value: &ast::Expr, span: Span) -> Vec<Stmt> {
+        let ExprKind::Var(id) = &target.kind else {
+            self.refuse(
+                target.span,
+                "assigning to a member or an array element",
+                "pass a function block's inputs in its call",
+            );
+            return Vec::new();
+        };
+        let Some(sym) = self.lookup(id) else { return Vec::new() };
+        match sym.ty {
+            Ty::Bool if self.inputs.contains(&sym.name) => {
+                self.errors.push(StError::new(id.span, format!("`{}` is an input, written from outside the program", sym.name), "what a statement reads would depend on when that write comes; assign a local or output variable instead"));
+                Vec::new()
+            }
+            Ty::Bool => {
+                let v = self.bool_expr(value);
+                vec![Stmt::Write { target: sym.name, kind: WriteKind::Assign, value: v, span }]
+            }
+            Ty::Other(t) => vec![Stmt::Warn {
+                span,
+                element: ":=".into(),
+                message: format!(
+                    "writes the {t} variable {}: no Boolean effect (integers are not modelled yet)",
+                    sym.name
+                ),
+            }],
+            Ty::Fb(..) => {
+                self.refuse(id.span, "assigning a function-block instance", "call it instead");
+                Vec::new()
+            }
+        }
+    }
+
+    fn lookup(&mut self, id: &Ident) -> Option<Sym> {
+        if let Some(s) = self.syms.get(&id.key()) {
+            return Some(s.clone());
+        }
+        let mut e =
+            StError::new(id.span, format!("unknown variable `{}`", id.name), "not declared");
+        if let Some(m) =
+            crate::diag::did_you_mean(&id.name, self.syms.values().map(|s| s.name.as_str()))
+        {
+            e.notes.push(format!("did you mean `{m}`?"));
+        }
+        self.errors.push(e);
+        None
+    }
+
+    /// The hidden bit of an FB instance's output.
+    fn hidden(&mut self, inst: &str, pin: &str) -> String {
+        let key = (inst.to_ascii_uppercase(), pin.to_string());
+        if let Some(n) = self.hidden.get(&key) {
+            return n.clone();
+        }
+        let n = self.unique(&format!("{inst}_{pin}"));
+        self.hidden.insert(key, n.clone());
+        n
+    }
+
+    fn call(&mut self, callee: &ast::Expr, args: &[Arg], span: Span) -> Vec<Stmt> {
+        let ExprKind::Var(id) = &callee.kind else {
+            self.refuse(
+                callee.span,
+                "calling a member or an array element",
+                "call a declared instance",
+            );
+            return Vec::new();
+        };
+        let Some(sym) = self.lookup(id) else { return Vec::new() };
+        let Ty::Fb(fb, ty) = sym.ty else {
+            let what = format!(
+                "calling `{}` (a {})",
+                sym.name,
+                match &sym.ty {
+                    Ty::Other(t) => t.as_str(),
+                    _ => "BOOL",
+                }
+            );
+            self.refuse(id.span, &what, "only instances of TON, TOF, TP, R_TRIG, F_TRIG, SR, RS and the counters are modelled");
+            return Vec::new();
+        };
+        let inst = sym.name.clone();
+        let mut inputs: BTreeMap<String, &ast::Expr> = BTreeMap::new();
+        let mut outputs = Vec::new();
+        for a in args {
+            match a {
+                Arg::Input(n, e) => {
+                    inputs.insert(n.key(), e);
+                }
+                Arg::Output(n, neg, target) => outputs.push((n, *neg, target)),
+                Arg::Positional(e) => self.refuse(
+                    e.span,
+                    "a positional argument of a function-block call",
+                    "name the input (`IN := …`)",
+                ),
+            }
+        }
+        let mut out = Vec::new();
+        let input = |l: &mut Self, pin: &str| -> BoolExpr {
+            match inputs.get(pin) {
+                Some(e) => l.bool_expr(e),
+                None => {
+                    l.refuse(span, &format!("a call of {inst} without {pin}"), "an input kept from an earlier call is not modelled; give every input in each call");
+                    BoolExpr::Const(false)
+                }
+            }
+        };
+        match fb {
+            Fb::Ton | Fb::Tof => {
+                let v = input(self, "IN");
+                let preset = match inputs.get("PT").map(|e| &e.kind) {
+                    Some(ExprKind::Time(us)) => Preset::iec(*us, self.cycle_us),
+                    Some(_) => Preset::Variable(format!("{inst}.PT")),
+                    None => {
+                        self.refuse(
+                            span,
+                            &format!("a call of {inst} without PT"),
+                            "give the preset in each call",
+                        );
+                        Preset::Variable(format!("{inst}.PT"))
+                    }
+                };
+                let timer = Timer {
+                    on_delay: fb == Fb::Ton,
+                    keyword: ty.clone(),
+                    accumulator: inst.clone(),
+                    preset,
+                    input: v,
+                    span,
+                };
+                let q = self.hidden(&inst, "Q");
+                out.push(Stmt::Write {
+                    target: q,
+                    kind: WriteKind::Assign,
+                    value: BoolExpr::Timer(Box::new(timer)),
+                    span,
+                });
+            }
+            Fb::RTrig | Fb::FTrig => {
+                // matiec: Q := CLK AND NOT M; M := CLK (F_TRIG: CLK negated).
+                let v = input(self, "CLK");
+                let clk = if fb == Fb::FTrig { BoolExpr::negate(v) } else { v };
+                let memory =
+                    Memory { base: format!("{inst}_M"), element: ty.clone(), index: self.edges };
+                self.edges += 1;
+                let q = self.hidden(&inst, "Q");
+                let value = BoolExpr::Edge { kind: EdgeKind::Rising, input: Box::new(clk), memory };
+                out.push(Stmt::Write { target: q, kind: WriteKind::Assign, value, span });
+            }
+            Fb::Sr | Fb::Rs => {
+                // SR: Q1 := S1 OR (NOT R AND Q1) (reset, then set); RS: Q1 := NOT R1 AND (S OR Q1).
+                let (set, reset) = if fb == Fb::Sr { ("S1", "R") } else { ("S", "R1") };
+                let s = input(self, set);
+                let r = input(self, reset);
+                let q = self.hidden(&inst, "Q1");
+                let set = Stmt::Write { target: q.clone(), kind: WriteKind::Set, value: s, span };
+                let reset = Stmt::Write { target: q, kind: WriteKind::Reset, value: r, span };
+                if fb == Fb::Sr { out.extend([reset, set]) } else { out.extend([set, reset]) }
+            }
+            Fb::Tp | Fb::Counter => {
+                for (pin, e) in &inputs {
+                    if !matches!(e.kind, ExprKind::Time(_) | ExprKind::Int(_))
+                        && pin != "PT"
+                        && pin != "PV"
+                    {
+                        let _ = self.bool_expr(e);
+                    }
+                }
+                let what = if fb == Fb::Tp { "the pulse timer" } else { "the counter" };
+                for pin in fb.outputs() {
+                    let q = self.hidden(&inst, pin);
+                    let fresh = Fresh {
+                        base: format!("{ty}_{inst}_{pin}"),
+                        keyword: ty.clone(),
+                        why: format!("{what} {inst} ({ty}) is not expressible in the algebra"),
+                        span,
+                    };
+                    out.push(Stmt::Write {
+                        target: q,
+                        kind: WriteKind::Assign,
+                        value: BoolExpr::Fresh(Box::new(fresh)),
+                        span,
+                    });
+                }
+            }
+        }
+        for (pin, negated, target) in outputs {
+            if !fb.outputs().contains(&pin.key().as_str()) {
+                self.refuse(
+                    pin.span,
+                    &format!("the output {} of {ty}", pin.name),
+                    "only its Boolean outputs are modelled",
+                );
+                continue;
+            }
+            let q = BoolExpr::var(&self.hidden(&inst, &pin.key()));
+            let value = if negated { BoolExpr::negate(q) } else { q };
+            out.extend(self.assign_value(target, value, span));
+        }
+        out
+    }
+
+    /// `target := value` for a value already lowered (an FB output given with `=>`).
+    fn assign_value(&mut self, target: &ast::Expr, value: BoolExpr, span: Span) -> Vec<Stmt> {
+        let ExprKind::Var(id) = &target.kind else {
+            self.refuse(
+                target.span,
+                "an output into a member or array element",
+                "write it to a BOOL variable",
+            );
+            return Vec::new();
+        };
+        match self.lookup(id) {
+            Some(Sym { ty: Ty::Bool, name, .. }) if !self.inputs.contains(&name) => {
+                vec![Stmt::Write { target: name, kind: WriteKind::Assign, value, span }]
+            }
+            Some(_) => {
+                self.errors.push(StError::new(
+                    id.span,
+                    format!("`{}` is not a BOOL the program writes", id.name),
+                    "expected a BOOL variable",
+                ));
+                Vec::new()
+            }
+            None => Vec::new(),
+        }
+    }
+
+    /// Whether `e` is Boolean (so `=` between two such is an equivalence).
+    fn is_bool(&self, e: &ast::Expr) -> bool {
+        match &e.kind {
+            ExprKind::Bool(_) => true,
+            ExprKind::Var(id) => matches!(self.syms.get(&id.key()), Some(Sym { ty: Ty::Bool, .. })),
+            ExprKind::Member(of, field) => match &of.kind {
+                ExprKind::Var(id) => {
+                    matches!(self.syms.get(&id.key()), Some(Sym { ty: Ty::Fb(fb, _), .. }) if fb.outputs().contains(&field.key().as_str()))
+                }
+                _ => false,
+            },
+            ExprKind::Unary(UnOp::Not, x) => self.is_bool(x),
+            ExprKind::Binary(BinOp::And | BinOp::Or | BinOp::Xor, a, _) => self.is_bool(a),
+            ExprKind::Binary(
+                BinOp::Eq | BinOp::Ne | BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge,
+                ..,
+            ) => true,
+            ExprKind::Call(f, _) => {
+                ["AND", "OR", "XOR", "NOT", "SEL", "GT", "GE", "EQ", "NE", "LT", "LE"]
+                    .contains(&f.key().as_str())
+            }
+            _ => false,
+        }
+    }
+
+    fn text(&self, span: Span) -> String {
+        let t = self.sources.text(span.file).get(span.range()).unwrap_or("");
+        t.split_whitespace().collect::<Vec<_>>().join(" ")
+    }
+
+    /// An integer comparison: unconstrained, named after its operator and line.
+    fn comparison(&mut self, op: &str, e: &ast::Expr) -> BoolExpr {
+        BoolExpr::Fresh(Box::new(Fresh {
+            base: format!("{op}_L{:02}", self.line),
+            keyword: op.to_string(),
+            why: format!(
+                "the integer comparison `{}` is not expressible in the algebra",
+                self.text(e.span)
+            ),
+            span: e.span,
+        }))
+    }
+
+    fn not_bool(&mut self, e: &ast::Expr, what: &str) -> BoolExpr {
+        self.errors.push(StError::new(
+            e.span,
+            format!("{what} where a BOOL is expected"),
+            "expected a BOOL",
+        ));
+        BoolExpr::Const(false)
+    }
+
+    fn bool_expr(&mut self, e: &ast::Expr) -> BoolExpr {
+        match &e.kind {
+            ExprKind::Bool(b) => BoolExpr::Const(*b),
+            ExprKind::Var(id) => match self.lookup(id) {
+                Some(Sym { ty: Ty::Bool, name, .. }) => BoolExpr::Var(name),
+                Some(Sym { ty: Ty::Fb(_, t), name, .. }) => {
+                    self.not_bool(e, &format!("the {t} instance `{name}`"))
+                }
+                Some(Sym { ty: Ty::Other(t), name, .. }) => {
+                    self.not_bool(e, &format!("the {t} variable `{name}`"))
+                }
+                None => BoolExpr::Const(false),
+            },
+            ExprKind::Member(of, field) => {
+                let ExprKind::Var(id) = &of.kind else { return self.not_bool(e, "this member") };
+                match self.lookup(id) {
+                    Some(Sym { ty: Ty::Fb(fb, _), name, .. })
+                        if fb.outputs().contains(&field.key().as_str()) =>
+                    {
+                        BoolExpr::var(&self.hidden(&name, &field.key()))
+                    }
+                    Some(Sym { ty: Ty::Fb(_, t), name, .. }) => self.not_bool(
+                        e,
+                        &format!("`{name}.{}` (not a BOOL output of {t})", field.name),
+                    ),
+                    Some(_) => self.not_bool(e, &format!("`{}.{}`", id.name, field.name)),
+                    None => BoolExpr::Const(false),
+                }
+            }
+            ExprKind::Unary(UnOp::Not, x) => BoolExpr::negate(self.bool_expr(x)),
+            ExprKind::Binary(op @ (BinOp::And | BinOp::Or | BinOp::Xor), a, b) => {
+                let (a, b) = (self.bool_expr(a), self.bool_expr(b));
+                match op {
+                    BinOp::And => BoolExpr::and(a, b),
+                    BinOp::Or => BoolExpr::Or(vec![a, b]),
+                    _ => xor(a, b),
+                }
+            }
+            ExprKind::Binary(op @ (BinOp::Eq | BinOp::Ne), a, b)
+                if self.is_bool(a) && self.is_bool(b) =>
+            {
+                let (a, b) = (self.bool_expr(a), self.bool_expr(b));
+                if *op == BinOp::Ne { xor(a, b) } else { BoolExpr::negate(xor(a, b)) }
+            }
+            ExprKind::Binary(
+                op @ (BinOp::Eq | BinOp::Ne | BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge),
+                ..,
+            ) => {
+                let name = match op {
+                    BinOp::Eq => "EQ",
+                    BinOp::Ne => "NE",
+                    BinOp::Lt => "LT",
+                    BinOp::Le => "LE",
+                    BinOp::Gt => "GT",
+                    _ => "GE",
+                };
+                self.comparison(name, e)
+            }
+            ExprKind::Call(f, args) => self.function(f, args, e),
+            ExprKind::Int(_) | ExprKind::Time(_) | ExprKind::Literal(_) => {
+                self.not_bool(e, "a literal that is not TRUE or FALSE")
+            }
+            ExprKind::Binary(..) | ExprKind::Unary(UnOp::Neg, _) => self.not_bool(e, "arithmetic"),
+            ExprKind::Index(..) => {
+                self.refuse(e.span, "an array element", "arrays are not modelled yet");
+                BoolExpr::Const(false)
+            }
+        }
+    }
+
+    fn function(&mut self, f: &Ident, args: &[Arg], e: &ast::Expr) -> BoolExpr {
+        let values: Vec<&ast::Expr> = args
+            .iter()
+            .map(|a| match a {
+                Arg::Positional(x) | Arg::Input(_, x) => x,
+                Arg::Output(_, _, x) => x,
+            })
+            .collect();
+        let name = f.key();
+        match name.as_str() {
+            "AND" | "OR" | "XOR" if values.len() >= 2 => {
+                let vs: Vec<BoolExpr> = values.iter().map(|x| self.bool_expr(x)).collect();
+                let mut it = vs.into_iter();
+                let first = it.next().unwrap_or(BoolExpr::Const(false));
+                match name.as_str() {
+                    "AND" => it.fold(first, BoolExpr::and),
+                    "OR" => BoolExpr::Or(std::iter::once(first).chain(it).collect()),
+                    _ => it.fold(first, xor),
+                }
+            }
+            "NOT" if values.len() == 1 => BoolExpr::negate(self.bool_expr(values[0])),
+            "SEL" if values.len() == 3 => {
+                let g = self.bool_expr(values[0]);
+                let (a, b) = (self.bool_expr(values[1]), self.bool_expr(values[2]));
+                BoolExpr::Or(vec![
+                    BoolExpr::and(BoolExpr::negate(g.clone()), a),
+                    BoolExpr::and(g, b),
+                ])
+            }
+            "GT" | "GE" | "EQ" | "NE" | "LT" | "LE" => self.comparison(&name, e),
+            _ => {
+                self.refuse(f.span, &format!("the function `{}`", f.name), "the Boolean functions AND, OR, XOR, NOT and SEL are modelled, comparisons as unconstrained");
+                BoolExpr::Const(false)
+            }
+        }
+    }
+
+    fn finish(self) -> Lowered {
+        let mut signals = crate::program::bits(&self.blocks);
+        let mut names = self.taken.clone();
+        for s in self.syms.values() {
+            names.insert(s.name.clone());
+            if matches!(s.ty, Ty::Bool) {
+                signals.insert(s.name.clone());
+            }
+        }
+        let program = Program {
+            cycle_us: self.cycle_us,
+            blocks: self.blocks,
+            inputs: Inputs::Declared(self.inputs),
+            signals,
+            names,
+            skipped: Vec::new(),
+            integer_writers: BTreeMap::new(),
+            exact_names: true,
+            block_noun: "line",
+            language: "a Structured Text",
+        };
+        Lowered { program, asserts: self.asserts, warnings: self.warnings }
+    }
+}
+
+fn xor(a: BoolExpr, b: BoolExpr) -> BoolExpr {
+    BoolExpr::Or(vec![
+        BoolExpr::and(a.clone(), BoolExpr::negate(b.clone())),
+        BoolExpr::and(BoolExpr::negate(a), b),
+    ])
+}

@@ -1,0 +1,93 @@
+//! Structured Text front end (IEC 61131-3, as matiec accepts it): `.st` files read into an AST ([`parser`]) and lowered into the scan model ([`lower`]).
+//!
+//! The reader never panics; every problem is an [`StError`] with a span into the
+//! source and, for a misspelt keyword, a "did you mean". What the scan model cannot
+//! express yet (loops, `CASE`, user function blocks, a timer called inside a branch) is
+//! refused with a located error naming the construct; what the algebra cannot express
+//! (integer comparisons, counters, the pulse timer) becomes an unconstrained signal
+//! with a warning, as for the ladder languages.
+#![warn(missing_docs)]
+
+pub mod ast;
+pub mod lexer;
+pub mod lower;
+pub mod parser;
+
+use crate::diag::{Report, Severity, Sources, Span};
+
+pub use lower::{Lowered, lower};
+
+/// A Structured Text error (or, with [`Severity::Warning`], a note), located.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct StError {
+    /// Where.
+    pub span: Span,
+    /// What is wrong.
+    pub message: String,
+    /// The label under the caret.
+    pub label: String,
+    /// Another place that matters (the `IF` a missing `END_IF` would close).
+    pub related: Option<Box<(Span, String)>>,
+    /// Hints (did you mean).
+    pub notes: Vec<String>,
+    /// Error or warning.
+    pub severity: Severity,
+}
+
+impl StError {
+    /// An error at `span`.
+    pub fn new(span: Span, message: impl Into<String>, label: impl Into<String>) -> StError {
+        StError {
+            span,
+            message: message.into(),
+            label: label.into(),
+            related: None,
+            notes: Vec::new(),
+            severity: Severity::Error,
+        }
+    }
+
+    /// A warning at `span`.
+    pub fn warning(span: Span, message: impl Into<String>) -> StError {
+        StError {
+            severity: Severity::Warning,
+            ..StError::new(span, message, "not modelled exactly")
+        }
+    }
+}
+
+impl Report for StError {
+    fn span(&self) -> Option<Span> {
+        Some(self.span)
+    }
+    fn message(&self) -> String {
+        self.message.clone()
+    }
+    fn label(&self) -> String {
+        self.label.clone()
+    }
+    fn related(&self) -> Vec<(Span, String)> {
+        self.related.iter().map(|r| (**r).clone()).collect()
+    }
+    fn notes(&self) -> Vec<String> {
+        self.notes.clone()
+    }
+    fn severity(&self) -> Severity {
+        self.severity
+    }
+}
+
+/// Whether `text` looks like Structured Text: its first word after comments is
+/// `PROGRAM`, `FUNCTION_BLOCK`, `FUNCTION`, `CONFIGURATION` or `TYPE`, in capitals (a
+/// property file's lower-case `program` header is not one).
+pub fn is_st(text: &str) -> bool {
+    let Ok(toks) = lexer::lex(0, text, 0..text.len()) else { return false };
+    toks.iter().find(|t| !matches!(t.tok, lexer::Tok::Assert(..))).is_some_and(|t| {
+        matches!(&t.tok, lexer::Tok::Ident(w) if ["PROGRAM", "FUNCTION_BLOCK", "FUNCTION", "CONFIGURATION", "TYPE"].contains(&w.as_str()))
+    })
+}
+
+/// Reads a `.st` file of `sources`.
+pub fn read(sources: &Sources, file: usize) -> Result<ast::Unit, Vec<StError>> {
+    parser::parse_unit(file, sources.text(file)).map_err(|e| vec![e])
+}

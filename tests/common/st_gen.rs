@@ -1,0 +1,168 @@
+//! Random Structured Text programs for the differential tests: Boolean assignments, IF/ELSIF/ELSE, every modelled function block (TON, TOF, R_TRIG, F_TRIG, SR, RS) with formal inputs and outputs, the Boolean operators and functions, initial values, and a configuration giving the cycle.
+#![allow(dead_code)]
+
+use super::rng::Rng;
+
+/// A random program and the names of its inputs.
+pub struct Generated {
+    /// The `.st` text.
+    pub text: String,
+    /// The program's type name.
+    pub pou: String,
+    /// Its BOOL inputs.
+    pub inputs: Vec<String>,
+    /// The bits worth comparing: BOOL variables and FB outputs (hidden `T0_Q` names).
+    pub bits: Vec<String>,
+    /// The scan cycle, in µs.
+    pub cycle_us: u64,
+}
+
+struct Gen<'r> {
+    rng: &'r mut Rng,
+    /// Readable Boolean terms.
+    reads: Vec<String>,
+    /// Writable BOOL variables.
+    writes: Vec<String>,
+}
+
+impl Gen<'_> {
+    fn expr(&mut self, depth: u32) -> String {
+        if depth == 0 || self.rng.chance(30) {
+            return match self.rng.below(12) {
+                0 => "TRUE".into(),
+                1 => "FALSE".into(),
+                _ => self.rng.pick(&self.reads).clone(),
+            };
+        }
+        let a = self.expr(depth - 1);
+        let b = self.expr(depth - 1);
+        match self.rng.below(10) {
+            0 | 1 => format!("{a} AND {b}"),
+            2 | 3 => format!("({a} OR {b})"),
+            4 => format!("({a} XOR {b})"),
+            5 => format!("NOT ({a})"),
+            6 => format!("({a} = {b})"),
+            7 => format!("({a} <> {b})"),
+            8 => {
+                let c = self.expr(depth - 1);
+                format!("SEL({a}, {b}, {c})")
+            }
+            _ => {
+                let c = self.expr(depth - 1);
+                format!("AND({a}, {b}, {c}) & {}", self.expr(0))
+            }
+        }
+    }
+
+    fn assign(&mut self, indent: &str) -> String {
+        let x = self.rng.pick(&self.writes).clone();
+        format!("{indent}{x} := {};\n", self.expr(2))
+    }
+
+    fn choice(&mut self, indent: &str, depth: u32) -> String {
+        let inner = format!("{indent}  ");
+        let mut out = format!("{indent}IF {} THEN\n", self.expr(1));
+        out += &self.body(&inner, depth);
+        for _ in 0..self.rng.below(2) {
+            out += &format!("{indent}ELSIF {} THEN\n", self.expr(1));
+            out += &self.body(&inner, depth);
+        }
+        if self.rng.chance(50) {
+            out += &format!("{indent}ELSE\n");
+            out += &self.body(&inner, depth);
+        }
+        out + &format!("{indent}END_IF;\n")
+    }
+
+    fn body(&mut self, indent: &str, depth: u32) -> String {
+        let mut out = String::new();
+        for _ in 0..1 + self.rng.below(3) {
+            if depth > 0 && self.rng.chance(25) {
+                out += &self.choice(indent, depth - 1);
+            } else {
+                out += &self.assign(indent);
+            }
+        }
+        out
+    }
+}
+
+/// A random program of seed `seed`.
+pub fn program(seed: u64) -> Generated {
+    let mut rng = Rng::new(seed);
+    let n_in = 1 + rng.below(4) as usize;
+    let n_local = 2 + rng.below(5) as usize;
+    let inputs: Vec<String> = (0..n_in).map(|k| format!("In{k}")).collect();
+    let locals: Vec<String> = (0..n_local).map(|k| format!("B{k}")).collect();
+    let cycle_ms = *rng.pick(&[1u64, 5, 10, 20, 100]);
+    // Function blocks: each called once per scan, at top level.
+    let fbs: Vec<(String, &str)> =
+        [("T", "TON"), ("F", "TOF"), ("R", "R_TRIG"), ("D", "F_TRIG"), ("S", "SR"), ("Z", "RS")]
+            .iter()
+            .filter(|_| rng.chance(60))
+            .map(|(p, t)| (format!("{p}0"), *t))
+            .collect();
+    let out_pin = |t: &str| if t == "SR" || t == "RS" { "Q1" } else { "Q" };
+    let mut reads: Vec<String> = inputs.iter().chain(&locals).cloned().collect();
+    reads.extend(fbs.iter().map(|(n, t)| format!("{n}.{}", out_pin(t))));
+    let mut g = Gen { rng: &mut rng, reads, writes: locals.clone() };
+    let mut text = String::from("PROGRAM Random\n  VAR_INPUT\n");
+    for i in &inputs {
+        text += &format!("    {i} : BOOL;\n");
+    }
+    text += "  END_VAR\n  VAR\n";
+    for b in &locals {
+        let init = if g.rng.chance(30) { " := TRUE" } else { "" };
+        text += &format!("    {b} : BOOL{init};\n");
+    }
+    for (n, t) in &fbs {
+        text += &format!("    {n} : {t};\n");
+    }
+    text += "  END_VAR\n";
+    // The calls, placed among the other statements.
+    let mut calls: Vec<String> = fbs
+        .iter()
+        .map(|(n, t)| {
+            let call = match *t {
+                "TON" | "TOF" => {
+                    let pt = g.rng.below(6) * cycle_ms * 1000 + g.rng.below(3) * 700;
+                    format!("{n}(IN := {}, PT := T#{pt}us)", g.expr(2))
+                }
+                "R_TRIG" | "F_TRIG" => format!("{n}(CLK := {})", g.expr(2)),
+                "SR" => format!("{n}(S1 := {}, R := {})", g.expr(2), g.expr(2)),
+                _ => format!("{n}(S := {}, R1 := {})", g.expr(2), g.expr(2)),
+            };
+            if g.rng.chance(30) {
+                let x = g.rng.pick(&locals).clone();
+                let not = if g.rng.chance(30) { "NOT " } else { "" };
+                let pin = out_pin(t);
+                format!("  {}, {not}{pin} => {x});\n", call.strip_suffix(")").unwrap_or(&call))
+            } else {
+                format!("  {call};\n")
+            }
+        })
+        .collect();
+    let n_stmts = 3 + g.rng.below(7);
+    for _ in 0..n_stmts {
+        if !calls.is_empty() && g.rng.chance(30) {
+            text += &calls.remove(0);
+        } else if g.rng.chance(25) {
+            text += &g.choice("  ", 1);
+        } else {
+            text += &g.assign("  ");
+        }
+        if g.rng.chance(10) {
+            text += "  (* a comment (* nested *) *)\n";
+        }
+    }
+    for c in calls {
+        text += &c;
+    }
+    text += "END_PROGRAM\n\n";
+    text += &format!(
+        "CONFIGURATION Config\n  RESOURCE Res ON PLC\n    TASK Cyclic (INTERVAL := T#{cycle_ms}ms, PRIORITY := 1);\n    PROGRAM Main WITH Cyclic : Random;\n  END_RESOURCE\nEND_CONFIGURATION\n"
+    );
+    let mut bits = locals;
+    bits.extend(fbs.iter().map(|(n, t)| format!("{n}_{}", out_pin(t))));
+    Generated { text, pou: "Random".into(), inputs, bits, cycle_us: cycle_ms * 1000 }
+}

@@ -1,0 +1,208 @@
+//! The Structured Text front end end to end: the water plant in ST proves what `water.ld` proves and its faulty variant is refuted, malformed and unsupported files fail with located errors (data in `tests/data/st/rejects/`), and random ST programs compile to equations that hold at every scan of the scan model's simulator.
+
+mod common;
+#[path = "common/rng.rs"]
+mod rng;
+#[path = "common/scan_eval.rs"]
+mod scan_eval;
+#[path = "common/st_gen.rs"]
+mod st_gen;
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::Path;
+
+use common::{files_with, ii_prove, text};
+use ii_prove::diag::Sources;
+use ii_prove::ladder::TimerModel;
+use rng::Rng;
+use scan_eval::{Hyp, Src, TimerStats};
+
+fn verdicts(args: &[&str]) -> Vec<(String, String)> {
+    let out = ii_prove(args);
+    text(&out.stdout)
+        .lines()
+        .filter_map(|l| {
+            let mut w = l.split_whitespace();
+            let (name, verdict) = (w.next()?, w.next()?);
+            matches!(verdict, "proved" | "refuted" | "unknown")
+                .then(|| (name.to_string(), verdict.to_string()))
+        })
+        .collect()
+}
+
+/// The laws (not program hypotheses) a proof's trace cites.
+fn laws(args: &[&str], property: &str) -> BTreeSet<String> {
+    let mut a = args.to_vec();
+    a.extend(["--trace", "--only", property]);
+    let out = text(&ii_prove(&a).stdout);
+    out.split(['[', ']', ',', ' ', ';'])
+        .map(str::trim)
+        .filter(|w| w.chars().next().is_some_and(|c| c.is_ascii_lowercase()) && w.contains('_'))
+        .map(str::to_string)
+        .collect()
+}
+
+#[test]
+fn the_water_plant_in_st_proves_what_water_ld_proves() {
+    let reference = verdicts(&["examples/water.ld", "examples/water.ii"]);
+    assert!(reference.iter().all(|(_, v)| v == "proved"), "{reference:?}");
+    assert_eq!(verdicts(&["examples/water.st", "examples/water.ii"]), reference);
+    let out = ii_prove(&["examples/water.st", "examples/water.ii"]);
+    assert_eq!(out.status.code(), Some(0));
+    assert!(text(&out.stderr).trim().is_empty(), "no warnings: {}", text(&out.stderr));
+    for p in ["P1a", "P2", "P3", "P4a"] {
+        let a = laws(&["examples/water.ld", "examples/water.ii"], p);
+        let b = laws(&["examples/water.st", "examples/water.ii"], p);
+        assert_eq!(a, b, "{p}");
+    }
+}
+
+#[test]
+fn the_faulty_st_plant_is_refuted_with_a_counterexample_the_simulator_confirms() {
+    let out = ii_prove(&["examples/water_faulty.st", "examples/water.ii", "--only", "P2"]);
+    assert_eq!(out.status.code(), Some(1));
+    let stdout = text(&out.stdout);
+    assert!(stdout.contains("refuted") && stdout.contains("by the scan simulator"), "{stdout}");
+}
+
+#[test]
+fn show_names_st_lines() {
+    let out = ii_prove(&["show", "examples/water.st"]);
+    let stdout = text(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(stdout.contains("Compiled from a Structured Text program"), "{stdout}");
+    assert!(stdout.contains("assume L29: T1_Q = 5s/L1_Prod"), "{stdout}");
+    assert!(stdout.contains("// line 29: TON T1 5000000 µs"), "{stdout}");
+}
+
+/// Every file of `tests/data/st/rejects/` fails (exit 2) with the error its first two
+/// lines record: `// error: FRAGMENT` and `// at: LINE:COL`.
+#[test]
+fn malformed_and_unsupported_st_is_refused_with_located_errors() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/st/rejects");
+    let files = files_with(&dir, "st");
+    assert!(files.len() >= 15, "{} reject files", files.len());
+    for f in files {
+        let body = std::fs::read_to_string(&f).expect("readable");
+        let mut lines = body.lines();
+        let fragment =
+            lines.next().and_then(|l| l.strip_prefix("// error: ")).expect("// error: line");
+        let at = lines.next().and_then(|l| l.strip_prefix("// at: ")).expect("// at: line");
+        let out = ii_prove(&["show", f.to_str().expect("utf-8 path")]);
+        let stderr = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{}: {stderr}", f.display());
+        assert!(stderr.contains(fragment), "{}: wanted `{fragment}` in\n{stderr}", f.display());
+        let place = format!("{}:{at}", f.file_name().and_then(|n| n.to_str()).unwrap_or(""));
+        assert!(stderr.contains(&place), "{}: wanted the place {place} in\n{stderr}", f.display());
+    }
+}
+
+/// Loads an ST text and compiles it.
+fn compile(
+    text: &str,
+) -> Result<(ii_prove::program::Program, ii_prove::ladder::CompiledProgram), String> {
+    let mut sources = Sources::new();
+    let file = sources.add("random.st", text.to_string());
+    let unit = ii_prove::st::read(&sources, file).map_err(|e| format!("{e:?}"))?;
+    let lowered = ii_prove::st::lower(&sources, &unit, None, None).map_err(|e| format!("{e:?}"))?;
+    let compiled = ii_prove::program::compile(&lowered.program, &Default::default())
+        .map_err(|e| format!("{e:?}"))?;
+    Ok((lowered.program, compiled))
+}
+
+fn programs_to_run() -> u64 {
+    std::env::var("II_ST_PROGRAMS").ok().and_then(|v| v.parse().ok()).unwrap_or(1_000)
+}
+
+/// Random ST programs: every compiled equation and recurrence holds at every scan of the
+/// scan model's simulator (timers counted as matiec counts them), and every bit is known.
+#[test]
+fn random_st_programs_agree_with_the_scan_simulator() {
+    let first: u64 = std::env::var("II_ST_FIRST").ok().and_then(|v| v.parse().ok()).unwrap_or(0);
+    let (mut programs, mut scans, mut checked, mut fired) = (0u64, 0u64, 0u64, 0u64);
+    let mut too_large = 0u64;
+    let mut failures: Vec<String> = Vec::new();
+    for seed in first..first + programs_to_run() {
+        let g = st_gen::program(seed);
+        let (program, compiled) = match compile(&g.text) {
+            Ok(x) => x,
+            Err(e) => {
+                failures.push(format!("seed {seed}: refused: {e}\n{}", g.text));
+                continue;
+            }
+        };
+        programs += 1;
+        // An intermediate value too large to inline is an unconstrained signal (sound; the
+        // evaluator treats it existentially).
+        too_large += u64::from(compiled.signals.values().any(|k| k.is_unconstrained()));
+        let mut known: Vec<Src> = Vec::new();
+        let mut hyps: Vec<Hyp> = compiled
+            .hypotheses
+            .iter()
+            .map(|h| Hyp::new(h, &compiled, g.cycle_us, &mut known))
+            .collect();
+        let mut sim = ii_prove::program::simulate::Simulator::new(&program, TimerModel::Plc);
+        let mut rng = Rng::new(seed ^ 0x57);
+        let mut held: BTreeMap<String, (bool, u64)> = BTreeMap::new();
+        let mut vals = Vec::new();
+        let mut stats = TimerStats::default();
+        'scans: for scan in 0..120 {
+            let inputs: BTreeMap<String, bool> = g
+                .inputs
+                .iter()
+                .map(|n| {
+                    let e = held.entry(n.clone()).or_insert((false, 0));
+                    if e.1 == 0 {
+                        *e = (rng.chance(50), 1 + rng.below(12));
+                    }
+                    e.1 -= 1;
+                    (n.clone(), e.0)
+                })
+                .collect();
+            sim.step(&inputs);
+            scans += 1;
+            let values: Vec<bool> = known
+                .iter()
+                .map(|src| match src {
+                    Src::Bit(n) => sim.bit(n),
+                    Src::Edge(k) => sim.edge_memory(*k).unwrap_or(false),
+                })
+                .collect();
+            for src in &known {
+                if let Src::Bit(n) = src
+                    && !sim.is_known(n)
+                {
+                    failures
+                        .push(format!("seed {seed}: {n} is unknown to the simulator\n{}", g.text));
+                    break 'scans;
+                }
+            }
+            for h in hyps.iter_mut() {
+                if !h.scan(&values, &mut vals, &mut stats) {
+                    failures.push(format!(
+                        "seed {seed}: {}: {} fails at scan {scan}\n{}\n{}",
+                        h.name,
+                        h.text,
+                        g.text,
+                        ii_prove::ladder::program_to_ii(
+                            &compiled,
+                            ii_prove::syntax::Notation::Paper
+                        )
+                    ));
+                    break 'scans;
+                }
+            }
+        }
+        checked += hyps.len() as u64;
+        fired += hyps.iter().filter(|h| h.has_timer && h.timer_fired).count() as u64;
+    }
+    eprintln!(
+        "random ST programs: {programs} compiled ({too_large} with an intermediate value too large to inline), {scans} scans, {checked} hypotheses checked at every scan, {fired} timer hypotheses fired; {} disagreements",
+        failures.len()
+    );
+    assert!(
+        failures.is_empty(),
+        "{}",
+        failures.iter().take(3).cloned().collect::<Vec<_>>().join("\n\n")
+    );
+}
