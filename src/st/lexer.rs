@@ -1,4 +1,4 @@
-//! The Structured Text lexer: IEC 61131-3 tokens with their byte spans (keywords case-insensitive, comments `(* … *)` nesting and `//`, pragmas `{ … }` skipped, `//#ASSERT` and `(*#ASSERT … *)` kept as property tokens).
+//! The Structured Text lexer: IEC 61131-3 tokens with their byte spans (keywords case-insensitive, comments `(* … *)` (not nesting, as matiec reads them) and `//`, pragmas `{ … }` skipped, `//#ASSERT` and `(*#ASSERT … *)` kept as property tokens).
 
 use super::StError;
 use crate::diag::Span;
@@ -224,25 +224,11 @@ pub fn lex(file: usize, text: &str, range: std::ops::Range<usize>) -> Result<Vec
     Ok(out)
 }
 
-/// The end of the comment opened at `start` (`(*`, nesting as matiec does): the offset of
-/// its closing `*)` and the offset after it.
+/// The end of the comment opened at `start`: the offset of its closing `*)` and the
+/// offset after it. Comments do not nest (as matiec reads them: the first `*)` closes).
 fn comment_end(text: &str, start: usize, end: usize) -> (Option<usize>, usize) {
-    let bytes = text.as_bytes();
-    let mut depth = 0usize;
-    let mut i = start;
-    while i + 1 < end {
-        if bytes[i] == b'(' && bytes[i + 1] == b'*' {
-            depth += 1;
-            i += 2;
-        } else if bytes[i] == b'*' && bytes[i + 1] == b')' {
-            depth -= 1;
-            i += 2;
-            if depth == 0 {
-                return (Some(i - 2), i);
-            }
-        } else {
-            i += 1;
-        }
+    match text.get(start + 2..end).and_then(|rest| rest.find("*)")) {
+        Some(n) => (Some(start + 2 + n), start + 2 + n + 2),
+        None => (None, end),
     }
-    (None, end)
 }

@@ -237,6 +237,7 @@ struct Lowering<'s> {
     taken: BTreeSet<String>,
     blocks: Vec<Block>,
     labels: BTreeSet<String>,
+    next_temp: usize,
     edges: usize,
     asserts: Vec<Assertion>,
     warnings: Vec<StError>,
@@ -257,6 +258,7 @@ impl<'s> Lowering<'s> {
             taken: BTreeSet::new(),
             blocks: Vec::new(),
             labels: BTreeSet::new(),
+            next_temp: 0,
             edges: 0,
             asserts: Vec::new(),
             warnings,
@@ -610,9 +612,11 @@ impl<'s> Lowering<'s> {
             }
             Fb::Sr | Fb::Rs => {
                 // SR: Q1 := S1 OR (NOT R AND Q1) (reset, then set); RS: Q1 := NOT R1 AND (S OR Q1).
+                // Both inputs are read when the call starts, before Q1 changes.
                 let (set, reset) = if fb == Fb::Sr { ("S1", "R") } else { ("S", "R1") };
                 let s = input(self, set);
                 let r = input(self, reset);
+                let (s, r) = (self.temp(&mut out, s), self.temp(&mut out, r));
                 let q = self.hidden(&inst, "Q1");
                 let set = Stmt::Write { target: q.clone(), kind: WriteKind::Set, value: s, span };
                 let reset = Stmt::Write { target: q, kind: WriteKind::Reset, value: r, span };
@@ -659,6 +663,14 @@ impl<'s> Lowering<'s> {
             out.extend(self.assign_value(target, value, span));
         }
         out
+    }
+
+    /// A scan-local value computed here (so later writes do not change what it read).
+    fn temp(&mut self, out: &mut Vec<Stmt>, value: BoolExpr) -> BoolExpr {
+        let temp = self.next_temp;
+        self.next_temp += 1;
+        out.push(Stmt::Let { temp, value });
+        BoolExpr::Temp(temp)
     }
 
     /// `target := value` for a value already lowered (an FB output given with `=>`).

@@ -89,6 +89,12 @@ impl Gen<'_> {
 
 /// A random program of seed `seed`.
 pub fn program(seed: u64) -> Generated {
+    program_with(seed, true)
+}
+
+/// A random program of seed `seed`; `negated_outputs`: whether FB calls may give
+/// `NOT Q => x` (matiec stops with an internal error on them).
+pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
     let mut rng = Rng::new(seed);
     let n_in = 1 + rng.below(4) as usize;
     let n_local = 2 + rng.below(5) as usize;
@@ -126,7 +132,13 @@ pub fn program(seed: u64) -> Generated {
             let call = match *t {
                 "TON" | "TOF" => {
                     let pt = g.rng.below(6) * cycle_ms * 1000 + g.rng.below(3) * 700;
-                    format!("{n}(IN := {}, PT := T#{pt}us)", g.expr(2))
+                    let pt = match pt % 1000 {
+                        0 => format!("T#{}ms", pt / 1000),
+                        f => {
+                            format!("T#{}.{}ms", pt / 1000, format!("{f:03}").trim_end_matches('0'))
+                        }
+                    };
+                    format!("{n}(IN := {}, PT := {pt})", g.expr(2))
                 }
                 "R_TRIG" | "F_TRIG" => format!("{n}(CLK := {})", g.expr(2)),
                 "SR" => format!("{n}(S1 := {}, R := {})", g.expr(2), g.expr(2)),
@@ -134,7 +146,7 @@ pub fn program(seed: u64) -> Generated {
             };
             if g.rng.chance(30) {
                 let x = g.rng.pick(&locals).clone();
-                let not = if g.rng.chance(30) { "NOT " } else { "" };
+                let not = if negated_outputs && g.rng.chance(30) { "NOT " } else { "" };
                 let pin = out_pin(t);
                 format!("  {}, {not}{pin} => {x});\n", call.strip_suffix(")").unwrap_or(&call))
             } else {
@@ -152,7 +164,7 @@ pub fn program(seed: u64) -> Generated {
             text += &g.assign("  ");
         }
         if g.rng.chance(10) {
-            text += "  (* a comment (* nested *) *)\n";
+            text += "  (* a comment *)\n";
         }
     }
     for c in calls {

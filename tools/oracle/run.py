@@ -3,9 +3,11 @@
 Usage: run.py WORK_DIR  (environment: ORACLE_BEREMIZ, ORACLE_MATIEC, ORACLE_PYTHON, and
 ORACLE_ORDER=layout to restore the generator's Python 2 position order, see gen_st.py)
 
-For every `K.xml` in WORK_DIR with a request `K.req.json` (written by the oracle test):
+For every request `K.req.json` in WORK_DIR (written by the oracle tests), with a PLCopen
+project `K.xml` or Structured Text `K.st`:
 
-  1. Beremiz's PLCGenerator.py turns the project into ST (`gen_st.py`, one process);
+  1. Beremiz's PLCGenerator.py turns a project into ST (`gen_st.py`, one process; a
+     `K.st` without a `K.xml` is used as it is);
   2. matiec's `iec2c` turns the ST into C;
   3. a harness (written here from matiec's generated headers) is compiled with gcc and
      run: `config_init__()`, then per scan the requested inputs are written, the
@@ -198,13 +200,23 @@ def build_and_run(work, k):
 def main():
     work = os.path.abspath(sys.argv[1])
     jobs = sorted(f[:-len(".req.json")] for f in os.listdir(work) if f.endswith(".req.json"))
+    # A job with a `K.xml` is a PLCopen project (Beremiz makes its ST); one with only a
+    # `K.st` is Structured Text already, run by matiec as it is.
+    projects = [k for k in jobs if os.path.exists(os.path.join(work, k + ".xml"))]
     feed = "".join("%s %s %s\n" % tuple(os.path.join(work, k + ext) for ext in (".xml", ".st", ".json"))
-                   for k in jobs)
-    gen = subprocess.run([PYTHON, os.path.join(HERE, "gen_st.py"), BEREMIZ], input=feed,
-                         capture_output=True, text=True)
-    verdicts = gen.stdout.splitlines()
-    if len(verdicts) != len(jobs):
-        sys.exit("gen_st.py answered %d of %d jobs:\n%s" % (len(verdicts), len(jobs), gen.stderr[-3000:]))
+                   for k in projects)
+    verdicts = {}
+    if projects:
+        gen = subprocess.run([PYTHON, os.path.join(HERE, "gen_st.py"), BEREMIZ], input=feed,
+                             capture_output=True, text=True)
+        answers = gen.stdout.splitlines()
+        if len(answers) != len(projects):
+            sys.exit("gen_st.py answered %d of %d jobs:\n%s" % (len(answers), len(projects), gen.stderr[-3000:]))
+        verdicts = dict(zip(projects, answers))
+    for k in jobs:
+        if k not in verdicts:
+            json.dump({}, open(os.path.join(work, k + ".json"), "w"))
+            verdicts[k] = "ok"
 
     def one(item):
         k, verdict = item
@@ -218,7 +230,7 @@ def main():
         json.dump(out, open(os.path.join(work, k + ".out.json"), "w"))
 
     with concurrent.futures.ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
-        list(pool.map(one, zip(jobs, verdicts)))
+        list(pool.map(one, ((k, verdicts[k]) for k in jobs)))
 
 
 if __name__ == "__main__":
