@@ -763,14 +763,25 @@ pub fn load_program_with(
         errors.into_iter().map(Diagnostic::from).collect::<Vec<_>>()
     };
     let is_st = crate::st::is_st(sources.text(file)) || path.to_ascii_lowercase().ends_with(".st");
-    let (reference, scan, mut located) = if is_st {
+    let is_plcopen = !is_st && plcopen::is_plcopen(sources.text(file));
+    let project = match is_plcopen {
+        true => Some(plcopen::read_plcopen(sources, file).map_err(plc_diagnostics)?),
+        false => None,
+    };
+    // A PLCopen program with a Structured Text body is read by the ST front end.
+    let st_body = project.as_ref().and_then(|p| plcopen::st_program(sources, p, selection));
+    let (reference, scan, mut located) = if is_st || st_body.is_some() {
         let st_diagnostics = |errors: Vec<crate::st::StError>| {
             errors.into_iter().map(Diagnostic::from).collect::<Vec<_>>()
         };
-        let unit = crate::st::read(sources, file).map_err(st_diagnostics)?;
-        let lowered =
-            crate::st::lower(sources, &unit, selection.pou.as_deref(), selection.cycle_us)
-                .map_err(st_diagnostics)?;
+        let lowered = match st_body {
+            Some(lowered) => lowered?,
+            None => {
+                let unit = crate::st::read(sources, file).map_err(st_diagnostics)?;
+                crate::st::lower(sources, &unit, selection.pou.as_deref(), selection.cycle_us)
+                    .map_err(st_diagnostics)?
+            }
+        };
         let notes: Vec<WarningReport> = lowered
             .warnings
             .iter()
@@ -782,8 +793,7 @@ pub fn load_program_with(
         let reference: std::sync::Arc<dyn crate::ladder::Reference> =
             std::sync::Arc::new(lowered.program.clone());
         (reference, lowered.program, notes)
-    } else if plcopen::is_plcopen(sources.text(file)) {
-        let project = plcopen::read_plcopen(sources, file).map_err(plc_diagnostics)?;
+    } else if let Some(project) = project {
         let plc = plcopen::select(&project, selection).map_err(plc_diagnostics)?;
         let lowered = plcopen::lower(&plc).map_err(plc_diagnostics)?;
         if selection.order.is_none()

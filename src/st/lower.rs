@@ -393,6 +393,13 @@ impl<'s> Lowering<'s> {
         self.blocks.push(Block { number: self.line, label: Some(label), span: s.span, stmts });
     }
 
+    /// The span of the first word of `span` (a statement's keyword).
+    fn keyword(&self, span: Span) -> Span {
+        let text = self.sources.text(span.file).get(span.range()).unwrap_or("");
+        let n = text.find(|c: char| !c.is_ascii_alphanumeric() && c != '_').unwrap_or(text.len());
+        Span::new(span.file, span.start..span.start + n.max(1))
+    }
+
     fn refuse(&mut self, span: Span, what: &str, why: &str) {
         self.errors.push(StError::new(
             span,
@@ -419,23 +426,23 @@ impl<'s> Lowering<'s> {
                 vec![Stmt::If { branches, otherwise, span: s.span }]
             }
             StmtKind::Case(..) => {
-                self.refuse(s.span, "`CASE`", "a selector is an integer; ii-prove models Boolean logic and timers (rewrite it with IF, or see the integer support to come)");
+                self.refuse(self.keyword(s.span), "`CASE`", "a selector is an integer; ii-prove models Boolean logic and timers (rewrite it with IF, or see the integer support to come)");
                 Vec::new()
             }
             StmtKind::For(..) | StmtKind::While(..) | StmtKind::Repeat(..) => {
                 self.refuse(
-                    s.span,
+                    self.keyword(s.span),
                     "a loop",
                     "ii-prove unrolls no loop yet; write the iterations out",
                 );
                 Vec::new()
             }
             StmtKind::Exit | StmtKind::Continue => {
-                self.refuse(s.span, "`EXIT`/`CONTINUE`", "there is no loop to leave");
+                self.refuse(self.keyword(s.span), "`EXIT`/`CONTINUE`", "there is no loop to leave");
                 Vec::new()
             }
             StmtKind::Return => {
-                self.refuse(s.span, "`RETURN`", "it skips the rest of the scan on some scans; the equations describe a whole scan");
+                self.refuse(self.keyword(s.span), "`RETURN`", "it skips the rest of the scan on some scans; the equations describe a whole scan");
                 Vec::new()
             }
             StmtKind::Empty => Vec::new(),
@@ -529,6 +536,11 @@ impl<'s> Lowering<'s> {
             );
             return Vec::new();
         };
+        if id.name.contains('.') {
+            let what = format!("the method call `{}(…)`", id.name);
+            self.refuse(id.span, &what, "methods (object-oriented extensions) are not read");
+            return Vec::new();
+        }
         let Some(sym) = self.lookup(id) else { return Vec::new() };
         let Ty::Fb(fb, ty) = sym.ty else {
             let what = format!(
@@ -830,6 +842,11 @@ impl<'s> Lowering<'s> {
             })
             .collect();
         let name = f.key();
+        if name.contains('.') {
+            let what = format!("the method call `{}(…)`", f.name);
+            self.refuse(f.span, &what, "methods (object-oriented extensions) are not read");
+            return BoolExpr::Const(false);
+        }
         match name.as_str() {
             "AND" | "OR" | "XOR" if values.len() >= 2 => {
                 let vs: Vec<BoolExpr> = values.iter().map(|x| self.bool_expr(x)).collect();

@@ -616,7 +616,19 @@ impl<'t> Parser<'t> {
                 );
             }
         };
-        let end = self.expect_sym(";", "after the statement")?;
+        // CODESYS lets `;` after `END_IF`, `END_CASE` and the loops' ends be left out.
+        let block = matches!(
+            kind,
+            StmtKind::If(..)
+                | StmtKind::Case(..)
+                | StmtKind::For(..)
+                | StmtKind::While(..)
+                | StmtKind::Repeat(..)
+        );
+        let end = match block {
+            true if !self.is_sym(";") => self.toks[self.at.saturating_sub(1)].span,
+            _ => self.expect_sym(";", "after the statement")?,
+        };
         Ok(Stmt { kind, span: start.to(end) })
     }
 
@@ -628,10 +640,16 @@ impl<'t> Parser<'t> {
             if self.is_kw("ELSE") || self.is_kw("END_CASE") || self.peek().tok == Tok::Eof {
                 return Ok(out);
             }
-            // A label starts with a literal or name followed by `:`, `,` or `..`.
-            let next = &self.peek_at(1).tok;
+            // A label starts with a literal, or a (dotted) name followed by `:`, `,` or `..`.
+            let mut k = 0;
+            while matches!(self.peek_at(k).tok, Tok::Ident(_))
+                && matches!(self.peek_at(k + 1).tok, Tok::Sym("."))
+            {
+                k += 2;
+            }
+            let next = &self.peek_at(k + 1).tok;
             let label_like = matches!(self.peek().tok, Tok::Int(_) | Tok::Typed(_))
-                || (matches!(self.peek().tok, Tok::Ident(_))
+                || (matches!(self.peek_at(k).tok, Tok::Ident(_))
                     && matches!(next, Tok::Sym(":") | Tok::Sym(",") | Tok::Sym("..")));
             if label_like || self.is_sym("-") {
                 return Ok(out);
@@ -685,7 +703,10 @@ impl<'t> Parser<'t> {
                     args.push(Arg::Input(name, self.expr()?));
                 } else {
                     self.bump();
-                    args.push(Arg::Output(name, negated_out, self.postfix()?));
+                    // CODESYS writes `Q =>` with no variable for an output it does not read.
+                    if !self.is_sym(",") && !self.is_sym(")") {
+                        args.push(Arg::Output(name, negated_out, self.postfix()?));
+                    }
                 }
             } else {
                 args.push(Arg::Positional(self.expr()?));
@@ -760,6 +781,15 @@ impl<'t> Parser<'t> {
                 };
                 let span = e.span.to(field.span);
                 e = Expr { kind: ExprKind::Member(Box::new(e), field), span };
+                if self.is_sym("(") {
+                    // `obj.Method(…)`: kept as a call of the dotted name (refused when lowered).
+                    self.bump();
+                    let args = self.args()?;
+                    let span = span.to(self.toks[self.at.saturating_sub(1)].span);
+                    let text = self.text.get(span.range()).unwrap_or("");
+                    let name = text.split('(').next().unwrap_or("").trim().to_string();
+                    e = Expr { kind: ExprKind::Call(Ident { name, span }, args), span };
+                }
             } else if self.is_sym("[") {
                 self.bump();
                 let mut index = vec![self.expr()?];

@@ -146,6 +146,10 @@ pub struct Body {
     pub lang: Lang,
     /// The objects in document order (empty for text and SFC bodies).
     pub objects: Vec<Obj>,
+    /// A text body (ST, IL): where its text is, and the text with the XML's entities
+    /// decoded. The range is into the file when the text stands there as it is (CDATA,
+    /// no entity), else `None`.
+    pub text: Option<(Option<std::ops::Range<usize>>, String)>,
     /// The language element (`LD`, `FBD`, …).
     pub span: Span,
 }

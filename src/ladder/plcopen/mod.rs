@@ -13,6 +13,7 @@ pub mod lower;
 mod read;
 mod select;
 pub mod simulate;
+mod text;
 
 use crate::diag::{Report, Severity, Span};
 
@@ -21,6 +22,7 @@ pub use lower::{EdgeKey, Lowered, lower};
 pub use read::*;
 pub use select::*;
 pub use simulate::PlcSimulator;
+pub use text::st_program;
 
 /// Which PLCopen version the root element's namespace names.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

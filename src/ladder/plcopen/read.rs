@@ -313,7 +313,23 @@ impl Reader<'_> {
                 }
             }
         }
-        Some(Body { lang, objects, span: self.tag(content) })
+        let text = matches!(lang, Lang::St | Lang::Il).then(|| {
+            // The text is the body's text nodes (usually one, in `xhtml:p`, often CDATA).
+            let nodes: Vec<Node> = content.descendants().filter(|d| d.is_text()).collect();
+            let decoded: String = nodes.iter().filter_map(|d| d.text()).collect();
+            let raw = match nodes.as_slice() {
+                [one] => {
+                    let r = one.range();
+                    let raw = self.text.get(r.clone()).unwrap_or("");
+                    raw.find(decoded.as_str())
+                        .filter(|_| !decoded.is_empty())
+                        .map(|k| r.start + k..r.start + k + decoded.len())
+                }
+                _ => None,
+            };
+            (raw, decoded)
+        });
+        Some(Body { lang, objects, text, span: self.tag(content) })
     }
 
     fn vars(&mut self, list: Node, class: VarClass, out: &mut Vec<Var>) {

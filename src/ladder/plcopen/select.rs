@@ -358,7 +358,7 @@ impl PlcProgram {
 }
 
 /// Picks the program to check: `--pou`, else the POU the configuration's task runs, else the only program.
-fn pick<'p>(
+pub(super) fn pick<'p>(
     project: &'p Project,
     sel: &Selection,
 ) -> Result<(&'p Pou, Option<&'p Task>), Vec<PlcError>> {
