@@ -124,3 +124,72 @@ fn getting_started_has_two_commands_that_need_nothing_installed() {
     let ci = std::fs::read_to_string(root.join(".ci/run")).unwrap();
     assert!(ci.lines().any(|l| l.trim() == commands[1]), ".ci/run does not run `{}`", commands[1]);
 }
+
+/// The layers of `src/` import each other without a cycle: for every top-level module
+/// (`ladder`, `program`, `st`, `diag`, …), the modules its files name through `crate::`
+/// form an acyclic graph (a front end may use the scan model, never the reverse; the
+/// diagnostics renderer knows no front end).
+#[test]
+fn no_import_cycle_among_the_modules_of_src() {
+    use std::collections::{BTreeMap, BTreeSet};
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for path in common::files_with(&src, "rs") {
+        let rel = path.strip_prefix(&src).expect("under src");
+        let top = rel.iter().next().and_then(|c| c.to_str()).unwrap_or("").trim_end_matches(".rs");
+        if top == "lib" || top == "main" {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).expect("readable");
+        let deps = graph.entry(top.to_string()).or_default();
+        let mut rest = text.as_str();
+        while let Some(k) = rest.find("crate::") {
+            rest = &rest[k + "crate::".len()..];
+            let names: Vec<&str> = match rest.strip_prefix('{') {
+                // `use crate::{a, b::c}`: each first segment.
+                Some(list) => list[..list.find('}').unwrap_or(0)]
+                    .split(',')
+                    .map(|s| s.trim().split("::").next().unwrap_or(""))
+                    .collect(),
+                None => vec![
+                    &rest[..rest.find(|c: char| !c.is_alphanumeric() && c != '_').unwrap_or(0)],
+                ],
+            };
+            deps.extend(
+                names.into_iter().filter(|n| !n.is_empty() && *n != top).map(str::to_string),
+            );
+        }
+    }
+    // Depth-first search for a back edge.
+    fn visit(
+        n: &str,
+        graph: &BTreeMap<String, BTreeSet<String>>,
+        path: &mut Vec<String>,
+        done: &mut BTreeSet<String>,
+    ) -> Option<Vec<String>> {
+        if let Some(k) = path.iter().position(|p| p == n) {
+            let mut cycle = path[k..].to_vec();
+            cycle.push(n.to_string());
+            return Some(cycle);
+        }
+        if !done.insert(n.to_string()) {
+            return None;
+        }
+        path.push(n.to_string());
+        for d in graph.get(n).into_iter().flatten() {
+            if let Some(c) = visit(d, graph, path, done) {
+                return Some(c);
+            }
+        }
+        path.pop();
+        None
+    }
+    let mut done = BTreeSet::new();
+    for n in graph.keys() {
+        if let Some(cycle) = visit(n, &graph, &mut Vec::new(), &mut done) {
+            panic!("an import cycle among the modules of src/: {}", cycle.join(" → "));
+        }
+    }
+    assert!(graph.contains_key("program") && graph.contains_key("ladder"), "{graph:?}");
+    assert!(graph["diag"].is_empty(), "diag imports {:?}", graph["diag"]);
+}

@@ -116,7 +116,7 @@ pub fn lex(file: usize, text: &str, range: std::ops::Range<usize>) -> Result<Vec
                 let lit = &rest[..lit_end];
                 let upper = word.to_ascii_uppercase();
                 let tok = if ["T", "TIME", "LT", "LTIME"].contains(&upper.as_str()) {
-                    match crate::ladder::plcopen::parse_duration(lit) {
+                    match super::literal::parse_duration(lit) {
                         Some(us) => Tok::Time(us),
                         None => {
                             return Err(StError::new(

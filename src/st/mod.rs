@@ -10,6 +10,7 @@
 
 pub mod ast;
 pub mod lexer;
+pub mod literal;
 pub mod lower;
 pub mod parser;
 
