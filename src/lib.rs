@@ -11,6 +11,7 @@
 pub mod certificate;
 pub mod counterexample;
 pub mod diag;
+pub mod iec;
 pub mod kernel;
 pub mod ladder;
 pub mod program;

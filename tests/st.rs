@@ -46,7 +46,11 @@ fn laws(args: &[&str], property: &str) -> BTreeSet<String> {
 fn the_water_plant_in_st_proves_what_water_ld_proves() {
     let reference = verdicts(&["examples/water.ld", "examples/water.ii"]);
     assert!(reference.iter().all(|(_, v)| v == "proved"), "{reference:?}");
-    assert_eq!(verdicts(&["examples/water.st", "examples/water.ii"]), reference);
+    // Its own #ASSERT properties come first, then those of water.ii.
+    let st = verdicts(&["examples/water.st", "examples/water.ii"]);
+    let asserted = ["one_line_at_a_time", "backflow_needs_out_valve"];
+    assert_eq!(st[..2].iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>(), asserted);
+    assert_eq!(st[2..], reference[..]);
     let out = ii_prove(&["examples/water.st", "examples/water.ii"]);
     assert_eq!(out.status.code(), Some(0));
     assert!(text(&out.stderr).trim().is_empty(), "no warnings: {}", text(&out.stderr));
@@ -66,13 +70,31 @@ fn the_faulty_st_plant_is_refuted_with_a_counterexample_the_simulator_confirms()
 }
 
 #[test]
+fn assert_comments_are_properties_checked_where_they_stand() {
+    let out = ii_prove(&["examples/water.st"]);
+    let stdout = text(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{stdout}{}", text(&out.stderr));
+    assert!(
+        stdout.contains("one_line_at_a_time") && stdout.contains("(examples/water.st:31:13)"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("2 proved, 0 refuted"), "{stdout}");
+    // Without its interlock, line 2 may start while line 1 runs: refuted, confirmed.
+    let out = ii_prove(&["examples/water_faulty.st"]);
+    let stdout = text(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    assert!(stdout.contains("one_line_at_a_time") && stdout.contains("refuted"), "{stdout}");
+    assert!(stdout.contains("by the scan simulator"), "{stdout}");
+}
+
+#[test]
 fn show_names_st_lines() {
     let out = ii_prove(&["show", "examples/water.st"]);
     let stdout = text(&out.stdout);
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
     assert!(stdout.contains("Compiled from a Structured Text program"), "{stdout}");
-    assert!(stdout.contains("assume L29: T1_Q = 5s/L1_Prod"), "{stdout}");
-    assert!(stdout.contains("// line 29: TON T1 5000000 µs"), "{stdout}");
+    assert!(stdout.contains("assume L33: T1_Q = 5s/L1_Prod"), "{stdout}");
+    assert!(stdout.contains("// line 33: TON T1 5000000 µs"), "{stdout}");
 }
 
 /// Every file of `tests/data/st/rejects/` fails (exit 2) with the error its first two

@@ -726,6 +726,9 @@ pub struct LoadedProgram {
     pub reference: std::sync::Arc<dyn crate::ladder::Reference>,
     /// The program in the scan model: what the compiler read.
     pub scan: crate::program::Program,
+    /// Properties the program states itself (ST `//#ASSERT expr : name` comments), each
+    /// `assert_NAME = 1*` about the bit written with the asserted value where it stands.
+    pub properties: Vec<crate::syntax::Statement<Goal>>,
     /// The reader's own warnings (PLCopen: order, cycle, unmodelled blocks), rendered
     /// with file and line; the compiler's are in `compiled.warnings`.
     pub notes: Vec<String>,
@@ -764,6 +767,7 @@ pub fn load_program_with(
     };
     let is_st = crate::st::is_st(sources.text(file)) || path.to_ascii_lowercase().ends_with(".st");
     let is_plcopen = !is_st && plcopen::is_plcopen(sources.text(file));
+    let mut properties = Vec::new();
     let project = match is_plcopen {
         true => Some(plcopen::read_plcopen(sources, file).map_err(plc_diagnostics)?),
         false => None,
@@ -792,6 +796,23 @@ pub fn load_program_with(
             .collect();
         let reference: std::sync::Arc<dyn crate::ladder::Reference> =
             std::sync::Arc::new(lowered.program.clone());
+        use crate::program::logic::L;
+        properties = lowered
+            .asserts
+            .iter()
+            .map(|a| crate::syntax::Statement {
+                name: a.name.clone(),
+                name_span: a.span,
+                span: a.span,
+                value: Goal {
+                    lhs: L::var(&a.signal).to_expr(),
+                    relation: crate::syntax::Relation::Equals,
+                    rhs: L::One.to_expr(),
+                    after: None,
+                    pattern: None,
+                },
+            })
+            .collect();
         (reference, lowered.program, notes)
     } else if let Some(project) = project {
         let plc = plcopen::select(&project, selection).map_err(plc_diagnostics)?;
@@ -840,7 +861,7 @@ pub fn load_program_with(
         message: crate::diag::Report::message(w),
         location: Some(Location::of(sources, w.span)),
     }));
-    Ok(LoadedProgram { reference, scan, notes, compiled, warnings, located })
+    Ok(LoadedProgram { reference, scan, properties, notes, compiled, warnings, located })
 }
 
 /// Whether `other` lowers and compiles to the same equations as `program` (up to their
@@ -908,8 +929,26 @@ pub fn run_program_with(
     let loaded = load_program_with(&mut sources, program, &compile_options(opts), &opts.plcopen)
         .map_err(|d| fail(&sources, d, opts))?;
     let compiled = &loaded.compiled;
-    let docs = read_documents(&mut sources, paths, compiled, opts)?;
-    let (selection, plan) = plan(&sources, &docs, paths, opts)?;
+    let mut docs = read_documents(&mut sources, paths, compiled, opts)?;
+    let mut paths = paths.to_vec();
+    if let Some(first) = loaded.properties.first() {
+        // The program's own properties come first, as a document of the program's file.
+        docs.insert(
+            0,
+            Document {
+                file: first.span.file,
+                program: None,
+                inputs: Vec::new(),
+                delays: Vec::new(),
+                assumptions: Vec::new(),
+                properties: loaded.properties.clone(),
+                laws: Vec::new(),
+                claims: Vec::new(),
+            },
+        );
+        paths.insert(0, program.to_string());
+    }
+    let (selection, plan) = plan(&sources, &docs, &paths, opts)?;
     observer.begin(&plan);
     let rename = |e: &Expr| compiled.rename_for_display(e);
     let mut warnings = loaded.located.clone();
@@ -918,7 +957,7 @@ pub fn run_program_with(
     }
     let mut properties = Vec::new();
     // Each file's assumptions join the program's equations for that file's properties.
-    for (doc, path) in docs.iter().zip(paths) {
+    for (doc, path) in docs.iter().zip(&paths) {
         if !doc.properties.iter().any(|s| selection.selects(&s.name)) {
             continue;
         }
@@ -969,7 +1008,7 @@ pub fn run_program_with(
         };
         check_selected(doc, &selection, opts.jobs, check, observer, &mut properties);
     }
-    let mut report = finish(Some(program.to_string()), paths.to_vec(), warnings, properties);
+    let mut report = finish(Some(program.to_string()), paths, warnings, properties);
     report.timers = Some(opts.timers.as_str());
     // After the properties are read: names print as they spell them.
     report.equations = compiled

@@ -36,9 +36,9 @@ pub struct Lowered {
 /// scan.
 #[derive(Clone, Debug)]
 pub struct Assertion {
-    /// Its name (`: name` in the comment, else `ASSERT_L12`).
+    /// Its name (`: name` in the comment, else `ASSERT_L12`, line 12).
     pub name: String,
-    /// The hidden bit written where the comment is.
+    /// The hidden bit written where the comment is (`assert_NAME`).
     pub signal: String,
     /// The asserted expression.
     pub span: Span,
@@ -460,7 +460,7 @@ impl<'s> Lowering<'s> {
                     Some(n) => n.name.clone(),
                     None => format!("ASSERT_L{:02}", self.line),
                 };
-                let signal = self.unique(&format!("_assert_{name}"));
+                let signal = self.unique(&format!("assert_{name}"));
                 self.asserts.push(Assertion { name, signal: signal.clone(), span: e.span });
                 vec![Stmt::Write { target: signal, kind: WriteKind::Assign, value, span: e.span }]
             }
