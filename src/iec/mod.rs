@@ -17,7 +17,7 @@ pub mod print;
 
 use std::ops::Range;
 
-use crate::diag::{Report, Sources, Span};
+use crate::diag::{FileId, Report, Sources, Span};
 
 pub use ast::*;
 pub use print::print;
@@ -119,5 +119,3 @@ pub fn parse_il_body(
     let toks = lexer::lex(file, sources.text(file), range, true).map_err(|e| vec![e])?;
     parser::Parser::new(toks, file).il_body()
 }
-
-use crate::diag::FileId;
