@@ -11,7 +11,6 @@
 pub mod certificate;
 pub mod counterexample;
 pub mod diag;
-pub mod iec;
 pub mod kernel;
 pub mod ladder;
 pub mod program;
