@@ -87,6 +87,23 @@ fn assert_comments_are_properties_checked_where_they_stand() {
     assert!(stdout.contains("by the scan simulator"), "{stdout}");
 }
 
+/// A configuration's program instances all run, every scan, by task priority, sharing
+/// their globals; a local name two instances declare takes the instance's name.
+#[test]
+fn every_program_of_the_configuration_runs_in_task_order() {
+    let st = "tests/data/st/programs/two_tasks.st";
+    let out = ii_prove(&["show", st]);
+    let stdout = text(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    // Pumps (task Fast, priority 1) runs before Alarm (task Slow), though declared after.
+    let run = stdout.find("assume L06: Run = P_Latch").expect("Pumps writes Run");
+    let timer = stdout.find("assume L13: T_Q = 2s/(Run · Fault)").expect("Alarm reads it");
+    assert!(run < timer, "{stdout}");
+    assert!(stdout.contains("A_Latch") && stdout.contains("P_Latch"), "{stdout}");
+    let out = ii_prove(&[st, "tests/data/st/programs/two_tasks.ii"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stdout));
+}
+
 #[test]
 fn show_names_st_lines() {
     let out = ii_prove(&["show", "examples/water.st"]);

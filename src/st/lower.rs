@@ -104,16 +104,37 @@ pub fn lower(
     pou: Option<&str>,
     cycle_us: Option<u64>,
 ) -> Result<Lowered, Vec<StError>> {
-    let (program, task) = pick(unit, pou)?;
+    let runs = pick(unit, pou)?;
+    let first = &runs[0];
     let mut warnings = Vec::new();
-    let cycle_us = match (cycle_us, task.and_then(|t| t.interval)) {
-        (Some(c), _) | (None, Some(c)) => c,
+    // One cycle for all: several tasks must share their interval.
+    let intervals: BTreeSet<u64> =
+        runs.iter().filter_map(|r| r.task.and_then(|t| t.interval)).collect();
+    if intervals.len() > 1 {
+        let t = runs
+            .iter()
+            .filter_map(|r| r.task)
+            .find(|t| t.interval != first.task.and_then(|f| f.interval))
+            .unwrap_or_else(|| runs.iter().find_map(|r| r.task).expect("a task"));
+        let shown: Vec<String> =
+            intervals.iter().map(|us| format!("{} ms", *us as f64 / 1000.0)).collect();
+        return Err(vec![StError::new(
+            t.name.span,
+            format!(
+                "the configuration's tasks run at different intervals ({}): running each at its own rate is not modelled yet; choose one program with --pou",
+                shown.join(", ")
+            ),
+            "a task with another interval",
+        )]);
+    }
+    let cycle_us = match (cycle_us, intervals.first()) {
+        (Some(c), _) | (None, Some(&c)) => c,
         (None, None) => {
             warnings.push(StError::warning(
-                program.name.span,
+                first.pou.name.span,
                 format!(
                     "no task with an interval runs `{}`: the scan cycle is taken to be {} ms (give --cycle to choose it)",
-                    program.name.name,
+                    first.pou.name.name,
                     DEFAULT_CYCLE_US / 1000
                 ),
             ));
@@ -121,7 +142,7 @@ pub fn lower(
         }
     };
     if cycle_us == 0 {
-        let span = task.map_or(program.name.span, |t| t.name.span);
+        let span = first.task.map_or(first.pou.name.span, |t| t.name.span);
         return Err(vec![StError::new(
             span,
             "a scan cycle of 0",
@@ -129,11 +150,34 @@ pub fn lower(
         )]);
     }
     let globals: Vec<&ast::VarDecl> = unit.configs.iter().flat_map(|c| &c.globals).collect();
+    // A local name declared by more than one program instance is prefixed with the
+    // instance's name (`Main_Pump`); every other name is used as declared.
+    let mut count: BTreeMap<String, usize> = BTreeMap::new();
+    for r in &runs {
+        for v in r.pou.vars.iter().filter(|v| v.class != VarClass::External) {
+            *count.entry(v.name.key()).or_default() += 1;
+        }
+    }
     let mut l = Lowering::new(sources, cycle_us, warnings);
-    l.declare(program, &globals);
+    let mut tables = Vec::new();
+    for r in &runs {
+        l.syms = BTreeMap::new();
+        let prefix = r.instance.map(|i| i.name.name.clone());
+        let rename = |name: &str| match &prefix {
+            Some(p) if count.get(&name.to_ascii_uppercase()).is_some_and(|n| *n > 1) => {
+                format!("{p}_{name}")
+            }
+            _ => name.to_string(),
+        };
+        l.declare(r.pou, &globals, &rename);
+        tables.push(std::mem::take(&mut l.syms));
+    }
     l.starts();
-    for s in &program.body {
-        l.block(s);
+    for (r, table) in runs.iter().zip(tables) {
+        l.syms = table;
+        for s in &r.pou.body {
+            l.block(s);
+        }
     }
     if !l.errors.is_empty() {
         return Err(l.errors);
@@ -141,31 +185,36 @@ pub fn lower(
     Ok(l.finish())
 }
 
-/// The program to run and its task.
-fn pick<'u>(
-    unit: &'u ast::Unit,
-    pou: Option<&str>,
-) -> Result<(&'u ast::Pou, Option<&'u ast::Task>), Vec<StError>> {
+/// One program instance to run each scan: the program, its task, and the prefix its
+/// local names take (`None`: its names are used as they are).
+struct Run<'u> {
+    pou: &'u ast::Pou,
+    task: Option<&'u ast::Task>,
+    instance: Option<&'u ast::Instance>,
+}
+
+/// The programs to run each scan, in order: `--pou`'s, else every program instance of the
+/// configuration (by task priority, then declaration; instances without a task last),
+/// else the file's one `PROGRAM`.
+fn pick<'u>(unit: &'u ast::Unit, pou: Option<&str>) -> Result<Vec<Run<'u>>, Vec<StError>> {
     let programs: Vec<&ast::Pou> =
         unit.pous.iter().filter(|p| p.kind == PouKind::Program).collect();
     let find =
         |name: &str| programs.iter().copied().find(|p| p.name.name.eq_ignore_ascii_case(name));
-    let task_of = |ty: &str| {
-        unit.configs
-            .iter()
-            .flat_map(|c| &c.instances)
-            .find(|i| i.ty.name.eq_ignore_ascii_case(ty))
-            .and_then(|i| {
-                let t = i.task.as_ref()?;
-                unit.configs
-                    .iter()
-                    .flat_map(|c| &c.tasks)
-                    .find(|k| k.name.name.eq_ignore_ascii_case(&t.name))
-            })
-    };
+    let tasks: Vec<&ast::Task> = unit.configs.iter().flat_map(|c| &c.tasks).collect();
+    let task_named =
+        |t: &Ident| tasks.iter().copied().find(|k| k.name.name.eq_ignore_ascii_case(&t.name));
+    let instances: Vec<&ast::Instance> = unit.configs.iter().flat_map(|c| &c.instances).collect();
     if let Some(name) = pou {
         return match find(name) {
-            Some(p) => Ok((p, task_of(&p.name.name))),
+            Some(p) => {
+                let instance = instances
+                    .iter()
+                    .copied()
+                    .find(|i| i.ty.name.eq_ignore_ascii_case(&p.name.name));
+                let task = instance.and_then(|i| i.task.as_ref()).and_then(task_named);
+                Ok(vec![Run { pou: p, task, instance: None }])
+            }
             None => {
                 let span = programs.first().map_or(Span::new(0, 0..0), |p| p.name.span);
                 let mut e = StError::new(
@@ -182,47 +231,54 @@ fn pick<'u>(
             }
         };
     }
-    let instances: Vec<&ast::Instance> = unit.configs.iter().flat_map(|c| &c.instances).collect();
-    match (instances.as_slice(), programs.as_slice()) {
-        ([one], _) => match find(&one.ty.name) {
-            Some(p) => Ok((p, task_of(&p.name.name))),
-            None => Err(vec![StError::new(
-                one.ty.span,
-                format!("no PROGRAM `{}` in this file", one.ty.name),
-                "this program type is not declared",
+    if instances.is_empty() {
+        return match programs.as_slice() {
+            [one] => Ok(vec![Run { pou: one, task: None, instance: None }]),
+            [] => Err(vec![StError::new(
+                Span::new(0, 0..0),
+                "no PROGRAM in this file",
+                "a program to check is a `PROGRAM … END_PROGRAM`",
             )]),
-        },
-        ([], [one]) => Ok((one, None)),
-        ([], []) => Err(vec![StError::new(
-            Span::new(0, 0..0),
-            "no PROGRAM in this file",
-            "a program to check is a `PROGRAM … END_PROGRAM`",
-        )]),
-        ([], many) => {
-            let names: Vec<&str> = many.iter().map(|p| p.name.name.as_str()).collect();
-            Err(vec![StError::new(
-                many[1].name.span,
-                format!(
-                    "this file has {} programs ({}): choose one with --pou",
-                    many.len(),
-                    names.join(", ")
-                ),
-                "a second program",
-            )])
+            many => {
+                let names: Vec<&str> = many.iter().map(|p| p.name.name.as_str()).collect();
+                Err(vec![StError::new(
+                    many[1].name.span,
+                    format!(
+                        "this file has {} programs ({}) and no configuration runs them: choose one with --pou",
+                        many.len(),
+                        names.join(", ")
+                    ),
+                    "a second program",
+                )])
+            }
+        };
+    }
+    let mut runs = Vec::new();
+    let mut errors = Vec::new();
+    for i in &instances {
+        let task = i.task.as_ref().and_then(task_named);
+        if let (Some(t), None) = (&i.task, task) {
+            errors.push(StError::new(
+                t.span,
+                format!("no task `{}` in this configuration", t.name),
+                "not declared",
+            ));
         }
-        (many, _) => {
-            let names: Vec<&str> = many.iter().map(|i| i.name.name.as_str()).collect();
-            Err(vec![StError::new(
-                many[1].name.span,
-                format!(
-                    "the configuration runs {} program instances ({}): running them all in one scan is not modelled yet; choose one with --pou",
-                    many.len(),
-                    names.join(", ")
-                ),
-                "a second program instance",
-            )])
+        match find(&i.ty.name) {
+            Some(p) => runs.push(Run { pou: p, task, instance: Some(*i) }),
+            None => errors.push(StError::new(
+                i.ty.span,
+                format!("no PROGRAM `{}` in this file", i.ty.name),
+                "this program type is not declared",
+            )),
         }
     }
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    // Higher priority (a smaller number) first, then declaration order; no task last.
+    runs.sort_by_key(|r| r.task.map_or(i128::MAX, |t| t.priority));
+    Ok(runs)
 }
 
 struct Lowering<'s> {
@@ -267,9 +323,21 @@ impl<'s> Lowering<'s> {
         }
     }
 
-    fn declare(&mut self, pou: &ast::Pou, globals: &[&ast::VarDecl]) {
-        for v in globals.iter().copied().chain(&pou.vars) {
+    /// Declares the globals and `pou`'s variables, its locals named by `rename`.
+    fn declare(
+        &mut self,
+        pou: &ast::Pou,
+        globals: &[&ast::VarDecl],
+        rename: &dyn Fn(&str) -> String,
+    ) {
+        let n_globals = globals.len();
+        for (k, v) in globals.iter().copied().chain(&pou.vars).enumerate() {
             let key = v.name.key();
+            let name = if k < n_globals || v.class == VarClass::External {
+                v.name.name.clone()
+            } else {
+                rename(&v.name.name)
+            };
             if v.class == VarClass::External {
                 if !self.syms.contains_key(&key) {
                     self.errors.push(StError::new(
@@ -306,10 +374,13 @@ impl<'s> Lowering<'s> {
                         .as_deref()
                         .is_some_and(|l| l.to_ascii_uppercase().starts_with("%I"));
                 if input {
-                    self.inputs.insert(v.name.name.clone());
+                    self.inputs.insert(name.clone());
                 }
                 match v.init.as_ref().map(|e| &e.kind) {
-                    Some(ExprKind::Bool(true)) if !input => self.starts.push(v.name.name.clone()),
+                    Some(ExprKind::Bool(true)) if !input && !self.starts.contains(&name) => {
+                        self.starts.push(name.clone())
+                    }
+                    Some(ExprKind::Bool(true)) => {}
                     Some(ExprKind::Bool(_)) | None => {}
                     Some(_) if input => {}
                     Some(_) => self.errors.push(StError::new(
@@ -331,8 +402,8 @@ impl<'s> Lowering<'s> {
                     "give its inputs in its call",
                 ));
             }
-            self.taken.insert(v.name.name.clone());
-            self.syms.insert(key, Sym { name: v.name.name.clone(), ty, span: v.name.span });
+            self.taken.insert(name.clone());
+            self.syms.insert(key, Sym { name, ty, span: v.name.span });
         }
     }
 
