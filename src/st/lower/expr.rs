@@ -1,0 +1,180 @@
+//! Boolean expressions of Structured Text in the scan model: variables and FB outputs, `NOT`/`AND`/`OR`/`XOR`, `=`/`<>` between BOOLs, the Boolean functions, and integer comparisons as unconstrained values.
+
+use super::{Lowering, Sym, Ty};
+use crate::diag::Span;
+use crate::program::{BoolExpr, Fresh};
+use crate::st::StError;
+use crate::st::ast::{self, Arg, BinOp, ExprKind, Ident, UnOp};
+
+impl Lowering<'_> {
+    /// Whether `e` is Boolean (so `=` between two such is an equivalence).
+    pub(super) fn is_bool(&self, e: &ast::Expr) -> bool {
+        match &e.kind {
+            ExprKind::Bool(_) => true,
+            ExprKind::Var(id) => matches!(self.syms.get(&id.key()), Some(Sym { ty: Ty::Bool, .. })),
+            ExprKind::Member(of, field) => match &of.kind {
+                ExprKind::Var(id) => {
+                    matches!(self.syms.get(&id.key()), Some(Sym { ty: Ty::Fb(fb, _), .. }) if fb.outputs().contains(&field.key().as_str()))
+                }
+                _ => false,
+            },
+            ExprKind::Unary(UnOp::Not, x) => self.is_bool(x),
+            ExprKind::Binary(BinOp::And | BinOp::Or | BinOp::Xor, a, _) => self.is_bool(a),
+            ExprKind::Binary(
+                BinOp::Eq | BinOp::Ne | BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge,
+                ..,
+            ) => true,
+            ExprKind::Call(f, _) => {
+                ["AND", "OR", "XOR", "NOT", "SEL", "GT", "GE", "EQ", "NE", "LT", "LE"]
+                    .contains(&f.key().as_str())
+            }
+            _ => false,
+        }
+    }
+
+    pub(super) fn text(&self, span: Span) -> String {
+        let t = self.sources.text(span.file).get(span.range()).unwrap_or("");
+        t.split_whitespace().collect::<Vec<_>>().join(" ")
+    }
+
+    /// An integer comparison: unconstrained, named after its operator and line.
+    pub(super) fn comparison(&mut self, op: &str, e: &ast::Expr) -> BoolExpr {
+        BoolExpr::Fresh(Box::new(Fresh {
+            base: format!("{op}_L{:02}", self.line),
+            keyword: op.to_string(),
+            why: format!(
+                "the integer comparison `{}` is not expressible in the algebra",
+                self.text(e.span)
+            ),
+            span: e.span,
+        }))
+    }
+
+    pub(super) fn not_bool(&mut self, e: &ast::Expr, what: &str) -> BoolExpr {
+        self.errors.push(StError::new(
+            e.span,
+            format!("{what} where a BOOL is expected"),
+            "expected a BOOL",
+        ));
+        BoolExpr::Const(false)
+    }
+
+    pub(super) fn bool_expr(&mut self, e: &ast::Expr) -> BoolExpr {
+        match &e.kind {
+            ExprKind::Bool(b) => BoolExpr::Const(*b),
+            ExprKind::Var(id) => match self.lookup(id) {
+                Some(Sym { ty: Ty::Bool, name, .. }) => BoolExpr::Var(name),
+                Some(Sym { ty: Ty::Fb(_, t), name, .. }) => {
+                    self.not_bool(e, &format!("the {t} instance `{name}`"))
+                }
+                Some(Sym { ty: Ty::Other(t), name, .. }) => {
+                    self.not_bool(e, &format!("the {t} variable `{name}`"))
+                }
+                None => BoolExpr::Const(false),
+            },
+            ExprKind::Member(of, field) => {
+                let ExprKind::Var(id) = &of.kind else { return self.not_bool(e, "this member") };
+                match self.lookup(id) {
+                    Some(Sym { ty: Ty::Fb(fb, _), name, .. })
+                        if fb.outputs().contains(&field.key().as_str()) =>
+                    {
+                        BoolExpr::var(&self.hidden(&name, &field.key()))
+                    }
+                    Some(Sym { ty: Ty::Fb(_, t), name, .. }) => self.not_bool(
+                        e,
+                        &format!("`{name}.{}` (not a BOOL output of {t})", field.name),
+                    ),
+                    Some(_) => self.not_bool(e, &format!("`{}.{}`", id.name, field.name)),
+                    None => BoolExpr::Const(false),
+                }
+            }
+            ExprKind::Unary(UnOp::Not, x) => BoolExpr::negate(self.bool_expr(x)),
+            ExprKind::Binary(op @ (BinOp::And | BinOp::Or | BinOp::Xor), a, b) => {
+                let (a, b) = (self.bool_expr(a), self.bool_expr(b));
+                match op {
+                    BinOp::And => BoolExpr::and(a, b),
+                    BinOp::Or => BoolExpr::Or(vec![a, b]),
+                    _ => xor(a, b),
+                }
+            }
+            ExprKind::Binary(op @ (BinOp::Eq | BinOp::Ne), a, b)
+                if self.is_bool(a) && self.is_bool(b) =>
+            {
+                let (a, b) = (self.bool_expr(a), self.bool_expr(b));
+                if *op == BinOp::Ne { xor(a, b) } else { BoolExpr::negate(xor(a, b)) }
+            }
+            ExprKind::Binary(
+                op @ (BinOp::Eq | BinOp::Ne | BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge),
+                ..,
+            ) => {
+                let name = match op {
+                    BinOp::Eq => "EQ",
+                    BinOp::Ne => "NE",
+                    BinOp::Lt => "LT",
+                    BinOp::Le => "LE",
+                    BinOp::Gt => "GT",
+                    _ => "GE",
+                };
+                self.comparison(name, e)
+            }
+            ExprKind::Call(f, args) => self.function(f, args, e),
+            ExprKind::Int(_) | ExprKind::Time(_) | ExprKind::Literal(_) => {
+                self.not_bool(e, "a literal that is not TRUE or FALSE")
+            }
+            ExprKind::Binary(..) | ExprKind::Unary(UnOp::Neg, _) => self.not_bool(e, "arithmetic"),
+            ExprKind::Index(..) => {
+                self.refuse(e.span, "an array element", "arrays are not modelled yet");
+                BoolExpr::Const(false)
+            }
+        }
+    }
+
+    pub(super) fn function(&mut self, f: &Ident, args: &[Arg], e: &ast::Expr) -> BoolExpr {
+        let values: Vec<&ast::Expr> = args
+            .iter()
+            .map(|a| match a {
+                Arg::Positional(x) | Arg::Input(_, x) => x,
+                Arg::Output(_, _, x) => x,
+            })
+            .collect();
+        let name = f.key();
+        if name.contains('.') {
+            let what = format!("the method call `{}(…)`", f.name);
+            self.refuse(f.span, &what, "methods (object-oriented extensions) are not read");
+            return BoolExpr::Const(false);
+        }
+        match name.as_str() {
+            "AND" | "OR" | "XOR" if values.len() >= 2 => {
+                let vs: Vec<BoolExpr> = values.iter().map(|x| self.bool_expr(x)).collect();
+                let mut it = vs.into_iter();
+                let first = it.next().unwrap_or(BoolExpr::Const(false));
+                match name.as_str() {
+                    "AND" => it.fold(first, BoolExpr::and),
+                    "OR" => BoolExpr::Or(std::iter::once(first).chain(it).collect()),
+                    _ => it.fold(first, xor),
+                }
+            }
+            "NOT" if values.len() == 1 => BoolExpr::negate(self.bool_expr(values[0])),
+            "SEL" if values.len() == 3 => {
+                let g = self.bool_expr(values[0]);
+                let (a, b) = (self.bool_expr(values[1]), self.bool_expr(values[2]));
+                BoolExpr::Or(vec![
+                    BoolExpr::and(BoolExpr::negate(g.clone()), a),
+                    BoolExpr::and(g, b),
+                ])
+            }
+            "GT" | "GE" | "EQ" | "NE" | "LT" | "LE" => self.comparison(&name, e),
+            _ => {
+                self.refuse(f.span, &format!("the function `{}`", f.name), "the Boolean functions AND, OR, XOR, NOT and SEL are modelled, comparisons as unconstrained");
+                BoolExpr::Const(false)
+            }
+        }
+    }
+}
+
+pub(super) fn xor(a: BoolExpr, b: BoolExpr) -> BoolExpr {
+    BoolExpr::Or(vec![
+        BoolExpr::and(a.clone(), BoolExpr::negate(b.clone())),
+        BoolExpr::and(BoolExpr::negate(a), b),
+    ])
+}
