@@ -11,6 +11,7 @@ pub mod console;
 pub mod export;
 pub mod formats;
 pub mod html;
+mod load;
 mod property;
 pub mod text;
 pub mod trace;
@@ -18,6 +19,7 @@ mod vacuity;
 use vacuity::{contradictory, flag_vacuity, forced_by_assumptions, forced_constants, forced_text};
 pub mod waveform;
 
+pub use load::{Inputs, LoadedProgram, classify, is_ladder, load_program, load_program_with};
 pub use property::{Attempt, attempt, check_property, refute};
 pub use text::render_text;
 
@@ -382,61 +384,6 @@ fn fail(sources: &Sources, diagnostics: Vec<Diagnostic>, opts: &Options) -> Inpu
     InputError { rendered }
 }
 
-/// A ladder program and property files, told apart by content.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct Inputs {
-    /// The LDmicro program, if one is given.
-    pub program: Option<String>,
-    /// The property files, in command-line order.
-    pub properties: Vec<String>,
-}
-
-/// Sorts the command line's files into a ladder program and property files, wherever
-/// the program stands: a file is a program when its text starts with an LDmicro
-/// header (`LDmicro0.1`, `LDmicro0.2`), or it is a PLCopen XML project (root
-/// `project` in a TC6 namespace), or, failing that, its name ends in `.ld`. Two
-/// programs are refused.
-pub fn classify(files: &[String]) -> Result<Inputs, InputError> {
-    let mut inputs = Inputs::default();
-    for path in files {
-        // A file that cannot be read as text stops the run before anything is parsed:
-        // a program mistaken for properties would bury the error under unknown names.
-        let mut sources = Sources::new();
-        if let Err(e) = read_source(&mut sources, path) {
-            return Err(fail(&sources, vec![e], &Options::default()));
-        }
-        if !is_ladder(path) {
-            inputs.properties.push(path.clone());
-            continue;
-        }
-        if let Some(first) = &inputs.program {
-            return Err(InputError {
-                rendered: format!(
-                    "error: two ladder programs, `{first}` and `{path}`: give one program and its property files (.ii)\n"
-                ),
-            });
-        }
-        inputs.program = Some(path.clone());
-    }
-    Ok(inputs)
-}
-
-/// Does the file look like a ladder program: LDmicro by its first bytes, PLCopen by its
-/// root element, else LDmicro by its name?
-pub fn is_ladder(path: &str) -> bool {
-    use std::io::Read;
-    let mut head = [0u8; 4096];
-    let n = std::fs::File::open(path).and_then(|mut f| f.read(&mut head)).unwrap_or(0);
-    let text = head[..n].strip_prefix(b"\xef\xbb\xbf").unwrap_or(&head[..n]);
-    let start = text.iter().position(|b| !b.is_ascii_whitespace()).unwrap_or(text.len());
-    let lower = path.to_ascii_lowercase();
-    text[start..].starts_with(b"LDmicro")
-        || crate::ladder::plcopen::is_plcopen(&String::from_utf8_lossy(text))
-        || crate::st::is_st(&String::from_utf8_lossy(text))
-        || lower.ends_with(".ld")
-        || lower.ends_with(".st")
-}
-
 /// What a run tells as it goes: the command line prints each result as soon as it is
 /// known (in file order), draws a progress line, and can print a partial summary when
 /// interrupted. Every method does nothing by default.
@@ -718,193 +665,6 @@ pub fn run_free_with(
 /// The rung compiler's options a run asks for.
 pub fn compile_options(opts: &Options) -> crate::ladder::CompileOptions {
     crate::ladder::CompileOptions { timers: opts.timers }
-}
-
-/// A ladder program read and compiled, with its sources for diagnostics.
-pub struct LoadedProgram {
-    /// The program as its front end read it (for its scan simulator).
-    pub reference: std::sync::Arc<dyn crate::ladder::Reference>,
-    /// The program in the scan model: what the compiler read.
-    pub scan: crate::program::Program,
-    /// Properties the program states itself (ST `//#ASSERT expr : name` comments), each
-    /// `assert_NAME = 1*` about the bit written with the asserted value where it stands.
-    pub properties: Vec<crate::syntax::Statement<Goal>>,
-    /// The reader's own warnings (PLCopen: order, cycle, unmodelled blocks), rendered
-    /// with file and line; the compiler's are in `compiled.warnings`.
-    pub notes: Vec<String>,
-    /// The compiled equations, bounds, signals and warnings.
-    pub compiled: crate::ladder::CompiledProgram,
-    /// The warnings, rendered with file and line.
-    pub warnings: Vec<String>,
-    /// The same warnings with their locations.
-    pub located: Vec<WarningReport>,
-}
-
-/// Reads and compiles a ladder program (LDmicro or PLCopen) registered under `path`.
-pub fn load_program(
-    sources: &mut Sources,
-    path: &str,
-    options: &crate::ladder::CompileOptions,
-) -> Result<LoadedProgram, Vec<Diagnostic>> {
-    load_program_with(sources, path, options, &Default::default())
-}
-
-/// [`load_program`], choosing the POU and cycle of a PLCopen program.
-pub fn load_program_with(
-    sources: &mut Sources,
-    path: &str,
-    options: &crate::ladder::CompileOptions,
-    selection: &crate::ladder::plcopen::Selection,
-) -> Result<LoadedProgram, Vec<Diagnostic>> {
-    use crate::diag::Report as _;
-    use crate::ladder::plcopen;
-    let file = read_source(sources, path).map_err(|d| vec![d])?;
-    let diagnostics = |errors: Vec<crate::ladder::LadderError>| {
-        errors.into_iter().map(Diagnostic::from).collect::<Vec<_>>()
-    };
-    let plc_diagnostics = |errors: Vec<plcopen::PlcError>| {
-        errors.into_iter().map(Diagnostic::from).collect::<Vec<_>>()
-    };
-    let is_st = crate::st::is_st(sources.text(file)) || path.to_ascii_lowercase().ends_with(".st");
-    let is_plcopen = !is_st && plcopen::is_plcopen(sources.text(file));
-    let mut properties = Vec::new();
-    let project = match is_plcopen {
-        true => Some(plcopen::read_plcopen(sources, file).map_err(plc_diagnostics)?),
-        false => None,
-    };
-    // A PLCopen program with a Structured Text body is read by the ST front end.
-    let st_body = project.as_ref().and_then(|p| plcopen::st_program(sources, p, selection));
-    let (reference, scan, mut located) = if is_st || st_body.is_some() {
-        let st_diagnostics = |errors: Vec<crate::st::StError>| {
-            errors.into_iter().map(Diagnostic::from).collect::<Vec<_>>()
-        };
-        let lowered = match st_body {
-            Some(lowered) => lowered?,
-            None => {
-                let unit = crate::st::read(sources, file).map_err(st_diagnostics)?;
-                crate::st::lower(sources, &unit, selection.pou.as_deref(), selection.cycle_us)
-                    .map_err(st_diagnostics)?
-            }
-        };
-        let notes: Vec<WarningReport> = lowered
-            .warnings
-            .iter()
-            .map(|w| WarningReport {
-                message: w.message(),
-                location: w.span().map(|s| Location::of(sources, s)),
-            })
-            .collect();
-        let reference: std::sync::Arc<dyn crate::ladder::Reference> =
-            std::sync::Arc::new(lowered.program.clone());
-        use crate::program::logic::L;
-        properties = lowered
-            .asserts
-            .iter()
-            .map(|a| crate::syntax::Statement {
-                name: a.name.clone(),
-                name_span: a.span,
-                span: a.span,
-                value: Goal {
-                    lhs: L::var(&a.signal).to_expr(),
-                    relation: crate::syntax::Relation::Equals,
-                    rhs: L::One.to_expr(),
-                    after: None,
-                    pattern: None,
-                },
-            })
-            .collect();
-        (reference, lowered.program, notes)
-    } else if let Some(project) = project {
-        let plc = plcopen::select(&project, selection).map_err(plc_diagnostics)?;
-        let lowered = plcopen::lower(&plc).map_err(plc_diagnostics)?;
-        if selection.order.is_none()
-            && let Some(dispute) = plc.order_dispute()
-            && !same_scan(
-                &lowered.program,
-                &plc.with_order(plcopen::StatementOrder::Document),
-                options,
-            )
-        {
-            return Err(plc_diagnostics(vec![dispute]));
-        }
-        let notes: Vec<WarningReport> = lowered
-            .warnings
-            .iter()
-            .map(|w| WarningReport {
-                message: w.message(),
-                location: w.span().map(|s| Location::of(sources, s)),
-            })
-            .collect();
-        (
-            std::sync::Arc::new(plc) as std::sync::Arc<dyn crate::ladder::Reference>,
-            lowered.program,
-            notes,
-        )
-    } else {
-        let ld = crate::ladder::read_ldmicro(sources, file).map_err(diagnostics)?;
-        let scan = crate::ladder::lower::lower(&ld).map_err(diagnostics)?;
-        (std::sync::Arc::new(ld) as std::sync::Arc<dyn crate::ladder::Reference>, scan, Vec::new())
-    };
-    let compiled = crate::program::compile(&scan, options).map_err(|errors| {
-        diagnostics(errors.into_iter().map(crate::ladder::LadderError::from).collect())
-    })?;
-    let notes: Vec<String> = located
-        .iter()
-        .map(|w| match &w.location {
-            Some(l) => format!("{l}: {}", w.message),
-            None => w.message.clone(),
-        })
-        .collect();
-    let mut warnings = notes.clone();
-    warnings.extend(compiled.warnings.iter().map(|w| w.describe(sources)));
-    located.extend(compiled.warnings.iter().map(|w| WarningReport {
-        message: crate::diag::Report::message(w),
-        location: Some(Location::of(sources, w.span)),
-    }));
-    Ok(LoadedProgram { reference, scan, properties, notes, compiled, warnings, located })
-}
-
-/// Whether `other` lowers and compiles to the same equations as `program` (up to their
-/// names and order): the two statement orders then do the same on every scan.
-fn same_scan(
-    program: &crate::program::Program,
-    other: &crate::ladder::plcopen::PlcProgram,
-    options: &crate::ladder::CompileOptions,
-) -> bool {
-    use crate::ladder::SignalKind;
-    let equations = |p: &crate::program::Program| {
-        let compiled = crate::program::compile(p, options).ok()?;
-        // Compiler-made names carry their rung number: compare them by what they stand for.
-        let canonical = |name: &str| match compiled.signals.get(name) {
-            Some(SignalKind::Fresh { element, .. }) => format!("fresh[{element}]"),
-            Some(SignalKind::EdgeMemory { element, .. }) => format!("edge[{element}]"),
-            _ => name.to_string(),
-        };
-        let mut all: Vec<String> = compiled
-            .hypotheses
-            .iter()
-            .map(|h| {
-                let side = |e| crate::syntax::term_to_string(e, crate::syntax::Notation::Ascii);
-                let text = format!("{} {:?} {}", side(&h.lhs), h.rel, side(&h.rhs));
-                let mut out = String::new();
-                let mut word = String::new();
-                for c in text.chars().chain(std::iter::once(' ')) {
-                    if c.is_alphanumeric() || c == '_' {
-                        word.push(c);
-                    } else {
-                        out.push_str(&canonical(&std::mem::take(&mut word)));
-                        out.push(c);
-                    }
-                }
-                out
-            })
-            .collect();
-        all.sort();
-        Some(all)
-    };
-    let Ok(lowered) = crate::ladder::plcopen::lower(other) else { return false };
-    let (a, b) = (equations(program), equations(&lowered.program));
-    a.is_some() && a == b
 }
 
 /// The session for `ii-prove PROGRAM.ld PROPS.ii…`: the properties are goals about the
