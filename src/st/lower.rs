@@ -137,7 +137,6 @@ pub fn lower(
         l.declare(r.pou, &globals, &rename);
         tables.push(std::mem::take(&mut l.syms));
     }
-    l.starts();
     for (r, table) in runs.iter().zip(tables) {
         l.syms = table;
         for s in &r.pou.body {
@@ -251,6 +250,8 @@ struct Lowering<'s> {
     cycle_us: u64,
     syms: BTreeMap<String, Sym>,
     inputs: BTreeSet<String>,
+    /// BOOL globals (not located at `%Q`): inputs unless a statement writes them.
+    globals: BTreeSet<String>,
     /// BOOL variables with the initial value TRUE.
     starts: Vec<String>,
     /// Hidden bits of FB instances: (instance key, pin) → name.
@@ -274,6 +275,7 @@ impl<'s> Lowering<'s> {
             cycle_us,
             syms: BTreeMap::new(),
             inputs: BTreeSet::new(),
+            globals: BTreeSet::new(),
             starts: Vec::new(),
             hidden: BTreeMap::new(),
             taken: BTreeSet::new(),
@@ -334,6 +336,14 @@ impl<'s> Lowering<'s> {
                 },
             };
             if matches!(ty, Ty::Bool) {
+                if k < n_globals
+                    && !v
+                        .location
+                        .as_deref()
+                        .is_some_and(|l| l.to_ascii_uppercase().starts_with("%Q"))
+                {
+                    self.globals.insert(name.clone());
+                }
                 let input = v.class == VarClass::Input
                     || v.location
                         .as_deref()
@@ -383,8 +393,11 @@ impl<'s> Lowering<'s> {
         name
     }
 
-    /// The first scan sets every BOOL whose initial value is TRUE, before any statement.
+    /// The first scan sets every BOOL whose initial value is TRUE, before any statement
+    /// (an input's initial value is the outside's business).
     fn starts(&mut self) {
+        let inputs = &self.inputs;
+        self.starts.retain(|x| !inputs.contains(x));
         if self.starts.is_empty() {
             return;
         }
@@ -407,7 +420,7 @@ impl<'s> Lowering<'s> {
             value: BoolExpr::Const(true),
             span,
         });
-        self.blocks.push(Block { number: 0, label: Some("L00_init".into()), span, stmts });
+        self.blocks.insert(0, Block { number: 0, label: Some("L00_init".into()), span, stmts });
     }
 
     fn line_of(&self, span: Span) -> usize {
@@ -552,7 +565,23 @@ impl<'s> Lowering<'s> {
         None
     }
 
-    fn finish(self) -> Lowered {
+    fn finish(mut self) -> Lowered {
+        // A global no statement writes is written from outside (an HMI, another
+        // resource): an input, never a constant.
+        let mut written = BTreeSet::new();
+        for s in self.blocks.iter().flat_map(|b| &b.stmts) {
+            s.visit(
+                &mut |s| {
+                    if let Stmt::Write { target, .. } = s {
+                        written.insert(target.clone());
+                    }
+                },
+                &mut |_| {},
+            );
+        }
+        let outside: Vec<String> = self.globals.difference(&written).cloned().collect();
+        self.inputs.extend(outside);
+        self.starts();
         let mut signals = crate::program::bits(&self.blocks);
         let mut names = self.taken.clone();
         for s in self.syms.values() {
