@@ -5,7 +5,7 @@ mod common;
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
-use common::{ii_prove, text};
+use common::{ii_prove, laws, text, verdicts};
 use ii_prove::diag::{Diagnostic, RenderStyle, Sources, render};
 use ii_prove::ladder::plcopen::{Selection, lower, read_plcopen, select};
 use ii_prove::ladder::program_to_ii;
@@ -134,31 +134,6 @@ proptest! {
 }
 
 // ---------------------------------------------------------------- the water plant
-
-fn verdicts(args: &[&str]) -> Vec<(String, String)> {
-    let out = ii_prove(args);
-    text(&out.stdout)
-        .lines()
-        .filter_map(|l| {
-            let mut w = l.split_whitespace();
-            let (name, verdict) = (w.next()?, w.next()?);
-            matches!(verdict, "proved" | "refuted" | "unknown")
-                .then(|| (name.to_string(), verdict.to_string()))
-        })
-        .collect()
-}
-
-/// The laws (not program hypotheses) a proof's trace cites.
-fn laws(args: &[&str], property: &str) -> BTreeSet<String> {
-    let mut a = args.to_vec();
-    a.extend(["--trace", "--only", property]);
-    let out = text(&ii_prove(&a).stdout);
-    out.split(['[', ']', ',', ' ', ';'])
-        .map(str::trim)
-        .filter(|w| w.chars().next().is_some_and(|c| c.is_ascii_lowercase()) && w.contains('_'))
-        .map(str::to_string)
-        .collect()
-}
 
 #[test]
 fn the_water_plant_in_ld_and_fbd_proves_what_water_ld_proves() {

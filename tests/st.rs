@@ -8,39 +8,12 @@ mod scan_eval;
 #[path = "common/st_gen.rs"]
 mod st_gen;
 
-use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
-use common::{files_with, ii_prove, text};
+use common::{files_with, ii_prove, laws, text, verdicts};
 use ii_prove::diag::Sources;
 use ii_prove::ladder::TimerModel;
-use rng::Rng;
 use scan_eval::{Hyp, Src, TimerStats};
-
-fn verdicts(args: &[&str]) -> Vec<(String, String)> {
-    let out = ii_prove(args);
-    text(&out.stdout)
-        .lines()
-        .filter_map(|l| {
-            let mut w = l.split_whitespace();
-            let (name, verdict) = (w.next()?, w.next()?);
-            matches!(verdict, "proved" | "refuted" | "unknown")
-                .then(|| (name.to_string(), verdict.to_string()))
-        })
-        .collect()
-}
-
-/// The laws (not program hypotheses) a proof's trace cites.
-fn laws(args: &[&str], property: &str) -> BTreeSet<String> {
-    let mut a = args.to_vec();
-    a.extend(["--trace", "--only", property]);
-    let out = text(&ii_prove(&a).stdout);
-    out.split(['[', ']', ',', ' ', ';'])
-        .map(str::trim)
-        .filter(|w| w.chars().next().is_some_and(|c| c.is_ascii_lowercase()) && w.contains('_'))
-        .map(str::to_string)
-        .collect()
-}
 
 #[test]
 fn the_water_plant_in_st_proves_what_water_ld_proves() {
@@ -181,24 +154,11 @@ fn random_st_programs_agree_with_the_scan_simulator() {
             .map(|h| Hyp::new(h, &compiled, g.cycle_us, &mut known))
             .collect();
         let mut sim = ii_prove::program::simulate::Simulator::new(&program, TimerModel::Plc);
-        let mut rng = Rng::new(seed ^ 0x57);
-        let mut held: BTreeMap<String, (bool, u64)> = BTreeMap::new();
+        let schedule = st_gen::schedule(&g, seed, 120);
         let mut vals = Vec::new();
         let mut stats = TimerStats::default();
-        'scans: for scan in 0..120 {
-            let inputs: BTreeMap<String, bool> = g
-                .inputs
-                .iter()
-                .map(|n| {
-                    let e = held.entry(n.clone()).or_insert((false, 0));
-                    if e.1 == 0 {
-                        *e = (rng.chance(50), 1 + rng.below(12));
-                    }
-                    e.1 -= 1;
-                    (n.clone(), e.0)
-                })
-                .collect();
-            sim.step(&inputs);
+        'scans: for (scan, inputs) in schedule.iter().enumerate() {
+            sim.step(inputs);
             scans += 1;
             let values: Vec<bool> = known
                 .iter()

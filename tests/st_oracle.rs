@@ -15,34 +15,12 @@ use std::path::{Path, PathBuf};
 
 use ii_prove::diag::Sources;
 use ii_prove::ladder::TimerModel;
-use rng::Rng;
 use serde_json::{Value, json};
 
 const SCANS: usize = 120;
 
 fn env_u64(name: &str, default: u64) -> u64 {
     std::env::var(name).ok().and_then(|v| v.parse().ok()).unwrap_or(default)
-}
-
-/// Input values per scan, each held for a random number of scans.
-fn schedule(g: &st_gen::Generated, seed: u64) -> Vec<BTreeMap<String, bool>> {
-    let mut rng = Rng::new(seed ^ 0x0AC1E);
-    let mut held: BTreeMap<String, (bool, u64)> = BTreeMap::new();
-    (0..SCANS)
-        .map(|_| {
-            g.inputs
-                .iter()
-                .map(|n| {
-                    let e = held.entry(n.clone()).or_insert((false, 0));
-                    if e.1 == 0 {
-                        *e = (rng.chance(50), 1 + rng.below(12));
-                    }
-                    e.1 -= 1;
-                    (n.clone(), e.0)
-                })
-                .collect()
-        })
-        .collect()
 }
 
 /// The scan-model simulator's values of `bits`, per bit a string of `0`/`1` per scan.
@@ -82,7 +60,7 @@ fn random_st_programs_run_as_matiec_runs_them() {
     let mut failures = Vec::new();
     for seed in first..first + n {
         let g = st_gen::program_with(seed, false);
-        let inputs = schedule(&g, seed);
+        let inputs = st_gen::schedule(&g, seed, SCANS);
         let expected = match ours(&g, &inputs) {
             Ok(x) => x,
             Err(e) => {

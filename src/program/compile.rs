@@ -510,7 +510,6 @@ impl<'a> Compiler<'a> {
         let program = self.program;
         self.taken.extend(program.names.iter().cloned());
         self.taken.extend(program.signals.iter().cloned());
-        let mut timers: BTreeMap<String, usize> = program.integer_writers.clone();
         // Writes are numbered in scan order (an `If`'s branches in order), as `run`
         // meets them; reads are listed with their block.
         let mut writes: Vec<String> = Vec::new();
@@ -522,10 +521,10 @@ impl<'a> Compiler<'a> {
                         writes.push(target.clone());
                     }
                 },
-                &mut |x| match x {
-                    BoolExpr::Var(n) => reads.push((n.clone(), b.number)),
-                    BoolExpr::Timer(t) => *timers.entry(t.accumulator.clone()).or_default() += 1,
-                    _ => {}
+                &mut |x| {
+                    if let BoolExpr::Var(n) = x {
+                        reads.push((n.clone(), b.number));
+                    }
                 },
             );
         }
@@ -539,7 +538,7 @@ impl<'a> Compiler<'a> {
                 self.unwritten.entry(n).or_insert(number);
             }
         }
-        self.shared_timers = timers.into_iter().filter(|(_, n)| *n > 1).map(|(t, _)| t).collect();
+        self.shared_timers = program.shared_timers();
         let written: Vec<String> = self.last_write.keys().cloned().collect();
         for x in written {
             let pre = self.pre_name(&x);

@@ -384,6 +384,20 @@ impl Default for Program {
 }
 
 impl Program {
+    /// The timer accumulators written by more than one element (several timers, or a
+    /// timer and an integer element): such a timer does not time alone.
+    pub fn shared_timers(&self) -> BTreeSet<String> {
+        let mut count: BTreeMap<String, usize> = self.integer_writers.clone();
+        for (_, s) in self.stmts() {
+            s.visit(&mut |_| {}, &mut |e| {
+                if let BoolExpr::Timer(t) = e {
+                    *count.entry(t.accumulator.clone()).or_default() += 1;
+                }
+            });
+        }
+        count.into_iter().filter(|(_, n)| *n > 1).map(|(t, _)| t).collect()
+    }
+
     /// Every statement, block by block.
     pub fn stmts(&self) -> impl Iterator<Item = (&Block, &Stmt)> {
         self.blocks.iter().flat_map(|b| b.stmts.iter().map(move |s| (b, s)))

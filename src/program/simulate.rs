@@ -53,18 +53,10 @@ pub struct Simulator {
 impl Simulator {
     /// A new run of `program` from power-up, timers counted as `timers` says.
     pub fn new(program: &Program, timers: TimerModel) -> Simulator {
-        let mut count: BTreeMap<String, usize> = program.integer_writers.clone();
-        for (_, s) in program.stmts() {
-            s.visit(&mut |_| {}, &mut |e| {
-                if let BoolExpr::Timer(t) = e {
-                    *count.entry(t.accumulator.clone()).or_default() += 1;
-                }
-            });
-        }
         Simulator {
             program: std::sync::Arc::new(program.clone()),
             timers_model: timers,
-            shared: count.into_iter().filter(|(_, n)| *n > 1).map(|(t, _)| t).collect(),
+            shared: program.shared_timers(),
             bits: BTreeMap::new(),
             counts: Vec::new(),
             memories: Vec::new(),

@@ -93,7 +93,6 @@ pub fn load_program_with(
     options: &crate::ladder::CompileOptions,
     selection: &crate::ladder::plcopen::Selection,
 ) -> Result<LoadedProgram, Vec<Diagnostic>> {
-    use crate::diag::Report as _;
     use crate::ladder::plcopen;
     let file = read_source(sources, path).map_err(|d| vec![d])?;
     let diagnostics = |errors: Vec<crate::ladder::LadderError>| {
@@ -123,14 +122,7 @@ pub fn load_program_with(
                     .map_err(st_diagnostics)?
             }
         };
-        let notes: Vec<WarningReport> = lowered
-            .warnings
-            .iter()
-            .map(|w| WarningReport {
-                message: w.message(),
-                location: w.span().map(|s| Location::of(sources, s)),
-            })
-            .collect();
+        let notes = with_places(sources, &lowered.warnings);
         let reference: std::sync::Arc<dyn crate::ladder::Reference> =
             std::sync::Arc::new(lowered.program.clone());
         use crate::program::logic::L;
@@ -164,14 +156,7 @@ pub fn load_program_with(
         {
             return Err(plc_diagnostics(vec![dispute]));
         }
-        let notes: Vec<WarningReport> = lowered
-            .warnings
-            .iter()
-            .map(|w| WarningReport {
-                message: w.message(),
-                location: w.span().map(|s| Location::of(sources, s)),
-            })
-            .collect();
+        let notes = with_places(sources, &lowered.warnings);
         (
             std::sync::Arc::new(plc) as std::sync::Arc<dyn crate::ladder::Reference>,
             lowered.program,
@@ -194,10 +179,7 @@ pub fn load_program_with(
         .collect();
     let mut warnings = notes.clone();
     warnings.extend(compiled.warnings.iter().map(|w| w.describe(sources)));
-    located.extend(compiled.warnings.iter().map(|w| WarningReport {
-        message: crate::diag::Report::message(w),
-        location: Some(Location::of(sources, w.span)),
-    }));
+    located.extend(with_places(sources, &compiled.warnings));
     Ok(LoadedProgram { reference, scan, properties, notes, compiled, warnings, located })
 }
 
@@ -242,4 +224,15 @@ fn same_scan(
     let Ok(lowered) = crate::ladder::plcopen::lower(other) else { return false };
     let (a, b) = (equations(program), equations(&lowered.program));
     a.is_some() && a == b
+}
+
+/// A front end's warnings as the report shows them, each with its place.
+fn with_places<R: crate::diag::Report>(sources: &Sources, warnings: &[R]) -> Vec<WarningReport> {
+    warnings
+        .iter()
+        .map(|w| WarningReport {
+            message: w.message(),
+            location: w.span().map(|s| Location::of(sources, s)),
+        })
+        .collect()
 }

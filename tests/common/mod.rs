@@ -37,3 +37,31 @@ pub fn ii_prove(args: &[&str]) -> std::process::Output {
 pub fn text(out: &[u8]) -> String {
     String::from_utf8_lossy(out).into_owned()
 }
+
+/// The verdict of each property a run prints: `(name, proved|refuted|unknown)`, in order.
+#[allow(dead_code)]
+pub fn verdicts(args: &[&str]) -> Vec<(String, String)> {
+    let out = ii_prove(args);
+    text(&out.stdout)
+        .lines()
+        .filter_map(|l| {
+            let mut w = l.split_whitespace();
+            let (name, verdict) = (w.next()?, w.next()?);
+            matches!(verdict, "proved" | "refuted" | "unknown")
+                .then(|| (name.to_string(), verdict.to_string()))
+        })
+        .collect()
+}
+
+/// The laws (not program hypotheses) a property's printed proof cites.
+#[allow(dead_code)]
+pub fn laws(args: &[&str], property: &str) -> std::collections::BTreeSet<String> {
+    let mut a = args.to_vec();
+    a.extend(["--trace", "--only", property]);
+    let out = text(&ii_prove(&a).stdout);
+    out.split(['[', ']', ',', ' ', ';'])
+        .map(str::trim)
+        .filter(|w| w.chars().next().is_some_and(|c| c.is_ascii_lowercase()) && w.contains('_'))
+        .map(str::to_string)
+        .collect()
+}

@@ -178,3 +178,29 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
     bits.extend(fbs.iter().map(|(n, t)| format!("{n}_{}", out_pin(t))));
     Generated { text, pou: "Random".into(), inputs, bits, cycle_us: cycle_ms * 1000 }
 }
+
+/// Random values of the program's inputs for `scans` scans, each held for 1 to 12 scans.
+pub fn schedule(
+    g: &Generated,
+    seed: u64,
+    scans: usize,
+) -> Vec<std::collections::BTreeMap<String, bool>> {
+    let mut rng = Rng::new(seed ^ 0x0AC1E);
+    let mut held: std::collections::BTreeMap<String, (bool, u64)> =
+        std::collections::BTreeMap::new();
+    (0..scans)
+        .map(|_| {
+            g.inputs
+                .iter()
+                .map(|n| {
+                    let e = held.entry(n.clone()).or_insert((false, 0));
+                    if e.1 == 0 {
+                        *e = (rng.chance(50), 1 + rng.below(12));
+                    }
+                    e.1 -= 1;
+                    (n.clone(), e.0)
+                })
+                .collect()
+        })
+        .collect()
+}
