@@ -11,6 +11,7 @@
 pub mod certificate;
 pub mod counterexample;
 pub mod diag;
+pub mod iec;
 pub mod kernel;
 pub mod ladder;
 pub mod program;
@@ -19,7 +20,6 @@ pub mod repl;
 pub mod report;
 pub mod script;
 pub mod semantics;
-pub mod st;
 pub mod syntax;
 pub mod term;
 pub mod theory;

@@ -26,25 +26,28 @@ Exit status:
   130  interrupted (Ctrl-C): the results so far and a partial summary are printed
   141  the output pipe was closed";
 
-/// Proves safety properties of ladder programs in the II algebra of binary signals.
+/// Proves safety properties of PLC programs in the II algebra of binary signals.
 ///
 /// `ii-prove PROGRAM.ld PROPS.ii` proves the properties of PROPS.ii about the
-/// compiled program, an LDmicro file or a PLCopen XML project (recognised by its
-/// content, wherever it stands); `ii-prove FILE.ii…` proves properties about the free signals the
-/// files declare with `input`.
+/// compiled program: an LDmicro file, a PLCopen XML project (LD, FBD, ST or IL bodies),
+/// or IEC 61131-3 Structured Text (.st) or Instruction List (.il), recognised by its
+/// content or extension; `ii-prove FILE.ii…` proves properties about the free signals the
+/// files declare with `input`. `ii-prove PROGRAM.st` alone checks the program's own
+/// `#ASSERT` comments.
 ///
 /// A property of a program holds when, on every run, it holds at every scan up to
-/// which the `assume` statements have held (hypotheses hold "up to now"). Each rung
-/// is compiled to what the PLC does on every scan; timers count scans as the
-/// runtime does (see --timers). Programs with control flow (GOTO, GOSUB,
-/// SUBPROG/ENDSUB, RETURN, LOCK, SLEEP) are refused with a located error.
+/// which the `assume` statements have held (hypotheses hold "up to now"). Each rung or
+/// statement is compiled to what the PLC does on every scan; timers count scans as the
+/// runtime does (see --timers). What is not modelled yet (LDmicro's GOTO, GOSUB,
+/// SUBPROG/ENDSUB, RETURN, LOCK, SLEEP; ST loops and CASE; IL backward jumps) is refused
+/// with a located error.
 #[derive(Parser)]
 #[command(name = "ii-prove", version, after_help = EXIT_CODES, args_conflicts_with_subcommands = true)]
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
-    /// A ladder program (LDmicro .ld or PLCopen .xml) and property files (.ii), or
-    /// property files alone.
+    /// A program (LDmicro .ld, PLCopen .xml, Structured Text .st, Instruction List .il)
+    /// and property files (.ii), or property files alone.
     files: Vec<String>,
     /// Print each kernel-checked proof as a calculation.
     #[arg(long)]
@@ -98,11 +101,11 @@ struct Compilation {
     /// scan early); `ideal`, the paper's idealisation, the delay as written.
     #[arg(long, value_enum, default_value_t = Timers::Plc)]
     timers: Timers,
-    /// For a PLCopen XML program: the POU to check (default: the program the
+    /// For a PLCopen XML, ST or IL program: the POU to check (default: the program the
     /// configuration's task runs, or the only program).
     #[arg(long, value_name = "NAME")]
     pou: Option<String>,
-    /// For a PLCopen XML program: the scan cycle, `20ms`, `T#20ms`, `500us` (default: the
+    /// For a PLCopen XML, ST or IL program: the scan cycle, `20ms`, `T#20ms`, `500us` (default: the
     /// task's interval, else 20 ms with a warning).
     #[arg(long, value_parser = parse_cycle, value_name = "DURATION")]
     cycle: Option<u64>,

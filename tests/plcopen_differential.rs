@@ -55,6 +55,12 @@ fn examples_and_corpus_agree_with_the_simulator() {
     files.extend(common::files_with(&root.join("tests/data/plcopen/corpus"), "xml"));
     for (k, f) in files.iter().enumerate() {
         let Ok(text) = std::fs::read_to_string(f) else { continue };
+        // Text bodies are the IEC text front end's (tests/st.rs, tests/il.rs).
+        if text.contains("<ST>") && !text.contains("<LD>") && !text.contains("<FBD>")
+            || text.contains("<IL>") && !text.contains("<LD>") && !text.contains("<FBD>")
+        {
+            continue;
+        }
         let is_example = f.starts_with(root.join("examples"));
         check(&text, k as u64, &mut fig, is_example);
     }

@@ -8,12 +8,9 @@ mod scan_eval;
 #[path = "common/st_gen.rs"]
 mod st_gen;
 
-use std::path::Path;
-
-use common::{files_with, ii_prove, laws, text, verdicts};
+use common::{ii_prove, laws, text, verdicts};
 use ii_prove::diag::Sources;
-use ii_prove::ladder::TimerModel;
-use scan_eval::{Hyp, Src, TimerStats};
+use scan_eval::check_scans;
 
 #[test]
 fn the_water_plant_in_st_proves_what_water_ld_proves() {
@@ -91,22 +88,8 @@ fn show_names_st_lines() {
 /// lines record: `// error: FRAGMENT` and `// at: LINE:COL`.
 #[test]
 fn malformed_and_unsupported_st_is_refused_with_located_errors() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/st/rejects");
-    let files = files_with(&dir, "st");
-    assert!(files.len() >= 15, "{} reject files", files.len());
-    for f in files {
-        let body = std::fs::read_to_string(&f).expect("readable");
-        let mut lines = body.lines();
-        let fragment =
-            lines.next().and_then(|l| l.strip_prefix("// error: ")).expect("// error: line");
-        let at = lines.next().and_then(|l| l.strip_prefix("// at: ")).expect("// at: line");
-        let out = ii_prove(&["show", f.to_str().expect("utf-8 path")]);
-        let stderr = text(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{}: {stderr}", f.display());
-        assert!(stderr.contains(fragment), "{}: wanted `{fragment}` in\n{stderr}", f.display());
-        let place = format!("{}:{at}", f.file_name().and_then(|n| n.to_str()).unwrap_or(""));
-        assert!(stderr.contains(&place), "{}: wanted the place {place} in\n{stderr}", f.display());
-    }
+    let n = common::check_rejects("tests/data/st/rejects", "st");
+    assert!(n >= 15, "{n} reject files");
 }
 
 /// Loads an ST text and compiles it.
@@ -115,8 +98,9 @@ fn compile(
 ) -> Result<(ii_prove::program::Program, ii_prove::ladder::CompiledProgram), String> {
     let mut sources = Sources::new();
     let file = sources.add("random.st", text.to_string());
-    let unit = ii_prove::st::read(&sources, file).map_err(|e| format!("{e:?}"))?;
-    let lowered = ii_prove::st::lower(&sources, &unit, None, None).map_err(|e| format!("{e:?}"))?;
+    let unit = ii_prove::iec::read(&sources, file).map_err(|e| format!("{e:?}"))?;
+    let lowered =
+        ii_prove::iec::lower(&sources, &unit, None, None).map_err(|e| format!("{e:?}"))?;
     let compiled = ii_prove::program::compile(&lowered.program, &Default::default())
         .map_err(|e| format!("{e:?}"))?;
     Ok((lowered.program, compiled))
@@ -147,53 +131,15 @@ fn random_st_programs_agree_with_the_scan_simulator() {
         // An intermediate value too large to inline is an unconstrained signal (sound; the
         // evaluator treats it existentially).
         too_large += u64::from(compiled.signals.values().any(|k| k.is_unconstrained()));
-        let mut known: Vec<Src> = Vec::new();
-        let mut hyps: Vec<Hyp> = compiled
-            .hypotheses
-            .iter()
-            .map(|h| Hyp::new(h, &compiled, g.cycle_us, &mut known))
-            .collect();
-        let mut sim = ii_prove::program::simulate::Simulator::new(&program, TimerModel::Plc);
         let schedule = st_gen::schedule(&g, seed, 120);
-        let mut vals = Vec::new();
-        let mut stats = TimerStats::default();
-        'scans: for (scan, inputs) in schedule.iter().enumerate() {
-            sim.step(inputs);
-            scans += 1;
-            let values: Vec<bool> = known
-                .iter()
-                .map(|src| match src {
-                    Src::Bit(n) => sim.bit(n),
-                    Src::Edge(k) => sim.edge_memory(*k).unwrap_or(false),
-                })
-                .collect();
-            for src in &known {
-                if let Src::Bit(n) = src
-                    && !sim.is_known(n)
-                {
-                    failures
-                        .push(format!("seed {seed}: {n} is unknown to the simulator\n{}", g.text));
-                    break 'scans;
-                }
+        match check_scans(&program, &compiled, g.cycle_us, &schedule, &mut |_, _| Ok(())) {
+            Ok(c) => {
+                scans += c.scans;
+                checked += c.hypotheses;
+                fired += c.fired;
             }
-            for h in hyps.iter_mut() {
-                if !h.scan(&values, &mut vals, &mut stats) {
-                    failures.push(format!(
-                        "seed {seed}: {}: {} fails at scan {scan}\n{}\n{}",
-                        h.name,
-                        h.text,
-                        g.text,
-                        ii_prove::ladder::program_to_ii(
-                            &compiled,
-                            ii_prove::syntax::Notation::Paper
-                        )
-                    ));
-                    break 'scans;
-                }
-            }
+            Err(e) => failures.push(format!("seed {seed}: {e}\n{}", g.text)),
         }
-        checked += hyps.len() as u64;
-        fired += hyps.iter().filter(|h| h.has_timer && h.timer_fired).count() as u64;
     }
     eprintln!(
         "random ST programs: {programs} compiled ({too_large} with an intermediate value too large to inline), {scans} scans, {checked} hypotheses checked at every scan, {fired} timer hypotheses fired; {} disagreements",
@@ -204,4 +150,19 @@ fn random_st_programs_agree_with_the_scan_simulator() {
         "{}",
         failures.iter().take(3).cloned().collect::<Vec<_>>().join("\n\n")
     );
+}
+
+/// User function blocks and functions are inlined: each instance's variables are bits
+/// of its own, a function's are its call's.
+#[test]
+fn user_function_blocks_and_functions_are_inlined() {
+    let st = "tests/data/st/programs/user_blocks.st";
+    let out = ii_prove(&["show", st]);
+    let stdout = text(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(stdout.contains("M1_Overload_Q = 2s/(M1_Run · ¬M1_Ok)"), "{stdout}");
+    assert!(stdout.contains("M2_Overload_Q = 2s/(M2_Run · ¬M2_Ok)"), "{stdout}");
+    assert!(stdout.contains("Permit_1 = Permit_1_Guard · ¬Permit_1_EStop"), "{stdout}");
+    let got = verdicts(&[st, "tests/data/st/programs/user_blocks.ii"]);
+    assert!(got.len() == 6 && got.iter().all(|(_, v)| v == "proved"), "{got:?}");
 }

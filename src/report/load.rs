@@ -52,9 +52,10 @@ pub fn is_ladder(path: &str) -> bool {
     let lower = path.to_ascii_lowercase();
     text[start..].starts_with(b"LDmicro")
         || crate::ladder::plcopen::is_plcopen(&String::from_utf8_lossy(text))
-        || crate::st::is_st(&String::from_utf8_lossy(text))
+        || crate::iec::is_st(&String::from_utf8_lossy(text))
         || lower.ends_with(".ld")
         || lower.ends_with(".st")
+        || lower.ends_with(".il")
 }
 
 /// A ladder program read and compiled, with its sources for diagnostics.
@@ -101,24 +102,28 @@ pub fn load_program_with(
     let plc_diagnostics = |errors: Vec<plcopen::PlcError>| {
         errors.into_iter().map(Diagnostic::from).collect::<Vec<_>>()
     };
-    let is_st = crate::st::is_st(sources.text(file)) || path.to_ascii_lowercase().ends_with(".st");
+    let lower_path = path.to_ascii_lowercase();
+    let is_st = crate::iec::is_st(sources.text(file))
+        || lower_path.ends_with(".st")
+        || lower_path.ends_with(".il");
     let is_plcopen = !is_st && plcopen::is_plcopen(sources.text(file));
     let mut properties = Vec::new();
     let project = match is_plcopen {
         true => Some(plcopen::read_plcopen(sources, file).map_err(plc_diagnostics)?),
         false => None,
     };
-    // A PLCopen program with a Structured Text body is read by the ST front end.
+    // A PLCopen program with a Structured Text or Instruction List body is read by the
+    // IEC text front end.
     let st_body = project.as_ref().and_then(|p| plcopen::st_program(sources, p, selection));
     let (reference, scan, mut located) = if is_st || st_body.is_some() {
-        let st_diagnostics = |errors: Vec<crate::st::StError>| {
+        let st_diagnostics = |errors: Vec<crate::iec::StError>| {
             errors.into_iter().map(Diagnostic::from).collect::<Vec<_>>()
         };
         let lowered = match st_body {
             Some(lowered) => lowered?,
             None => {
-                let unit = crate::st::read(sources, file).map_err(st_diagnostics)?;
-                crate::st::lower(sources, &unit, selection.pou.as_deref(), selection.cycle_us)
+                let unit = crate::iec::read(sources, file).map_err(st_diagnostics)?;
+                crate::iec::lower(sources, &unit, selection.pou.as_deref(), selection.cycle_us)
                     .map_err(st_diagnostics)?
             }
         };

@@ -344,7 +344,7 @@ pub fn read_source(sources: &mut Sources, path: &str) -> Result<usize, Diagnosti
     let bytes = std::fs::read(path).map_err(|e| io_error(e.to_string()))?;
     if let Some(why) = binary(&bytes) {
         return Err(io_error(format!(
-            "it is a binary file ({why}), not a text file (a program: LDmicro .ld or PLCopen .xml; properties: .ii)"
+            "it is a binary file ({why}), not a text file (a program: LDmicro .ld, PLCopen .xml, Structured Text .st, Instruction List .il; properties: .ii)"
         )));
     }
     let text = match String::from_utf8(bytes) {

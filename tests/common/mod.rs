@@ -65,3 +65,26 @@ pub fn laws(args: &[&str], property: &str) -> std::collections::BTreeSet<String>
         .map(str::to_string)
         .collect()
 }
+
+/// Checks every `.EXT` file of `dir` (relative to the crate) fails to load (exit 2) with
+/// the error its first two lines record, `// error: FRAGMENT` and `// at: LINE:COL`;
+/// returns how many files there were.
+#[allow(dead_code)]
+pub fn check_rejects(dir: &str, ext: &str) -> usize {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(dir);
+    let files = files_with(&dir, ext);
+    for f in &files {
+        let body = std::fs::read_to_string(f).expect("readable");
+        let mut lines = body.lines();
+        let fragment =
+            lines.next().and_then(|l| l.strip_prefix("// error: ")).expect("// error: line");
+        let at = lines.next().and_then(|l| l.strip_prefix("// at: ")).expect("// at: line");
+        let out = ii_prove(&["show", f.to_str().expect("utf-8 path")]);
+        let stderr = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{}: {stderr}", f.display());
+        assert!(stderr.contains(fragment), "{}: wanted `{fragment}` in\n{stderr}", f.display());
+        let place = format!("{}:{at}", f.file_name().and_then(|n| n.to_str()).unwrap_or(""));
+        assert!(stderr.contains(&place), "{}: wanted the place {place} in\n{stderr}", f.display());
+    }
+    files.len()
+}

@@ -344,3 +344,69 @@ pub fn slot(known: &mut Vec<Src>, src: Src) -> usize {
         known.len() - 1
     })
 }
+
+/// What [`check_scans`] counted.
+#[derive(Default, Clone, Copy, Debug)]
+pub struct Checked {
+    /// Scans run.
+    pub scans: u64,
+    /// Hypotheses checked at every scan.
+    pub hypotheses: u64,
+    /// Timer hypotheses whose timer was on or holding at some scan.
+    pub fired: u64,
+}
+
+/// Runs `program` on the scan model's simulator (PLC timers) for `schedule`, checking
+/// at every scan that every bit the hypotheses read is known and that every compiled
+/// hypothesis holds; `each(scan, simulator)` may compare more after each scan. The
+/// first failure is returned as a text.
+pub fn check_scans(
+    program: &ii_prove::program::Program,
+    compiled: &CompiledProgram,
+    cycle_us: u64,
+    schedule: &[std::collections::BTreeMap<String, bool>],
+    each: &mut dyn FnMut(usize, &ii_prove::program::simulate::Simulator) -> Result<(), String>,
+) -> Result<Checked, String> {
+    let mut known: Vec<Src> = Vec::new();
+    let mut hyps: Vec<Hyp> =
+        compiled.hypotheses.iter().map(|h| Hyp::new(h, compiled, cycle_us, &mut known)).collect();
+    let mut sim =
+        ii_prove::program::simulate::Simulator::new(program, ii_prove::ladder::TimerModel::Plc);
+    let mut vals = Vec::new();
+    let mut stats = TimerStats::default();
+    let mut scans = 0;
+    for (scan, inputs) in schedule.iter().enumerate() {
+        sim.step(inputs);
+        scans += 1;
+        for src in &known {
+            if let Src::Bit(n) = src
+                && !sim.is_known(n)
+            {
+                return Err(format!("{n} is unknown to the simulator at scan {scan}"));
+            }
+        }
+        let values: Vec<bool> = known
+            .iter()
+            .map(|src| match src {
+                Src::Bit(n) => sim.bit(n),
+                Src::Edge(k) => sim.edge_memory(*k).unwrap_or(false),
+            })
+            .collect();
+        for h in hyps.iter_mut() {
+            if !h.scan(&values, &mut vals, &mut stats) {
+                return Err(format!(
+                    "{}: {} fails at scan {scan}\n{}",
+                    h.name,
+                    h.text,
+                    ii_prove::ladder::program_to_ii(compiled, Notation::Paper)
+                ));
+            }
+        }
+        each(scan, &sim)?;
+    }
+    Ok(Checked {
+        scans,
+        hypotheses: hyps.len() as u64,
+        fired: hyps.iter().filter(|h| h.has_timer && h.timer_fired).count() as u64,
+    })
+}

@@ -1,4 +1,4 @@
-//! Random Structured Text programs for the differential tests: Boolean assignments, IF/ELSIF/ELSE, every modelled function block (TON, TOF, R_TRIG, F_TRIG, SR, RS) with formal inputs and outputs, the Boolean operators and functions, initial values, and a configuration giving the cycle.
+//! Random Structured Text programs for the differential tests: Boolean assignments, IF/ELSIF/ELSE, every modelled function block (TON, TOF, R_TRIG, F_TRIG, SR, RS) with formal inputs and outputs, user functions and function blocks (inputs left out keep their values), the Boolean operators and functions, initial values, and a configuration giving the cycle.
 #![allow(dead_code)]
 
 use super::rng::Rng;
@@ -23,6 +23,8 @@ struct Gen<'r> {
     reads: Vec<String>,
     /// Writable BOOL variables.
     writes: Vec<String>,
+    /// User functions of two BOOL inputs it may call.
+    funcs: Vec<String>,
 }
 
 impl Gen<'_> {
@@ -31,6 +33,12 @@ impl Gen<'_> {
             return match self.rng.below(12) {
                 0 => "TRUE".into(),
                 1 => "FALSE".into(),
+                2 if !self.funcs.is_empty() => {
+                    let f = self.rng.pick(&self.funcs).clone();
+                    let (a, b) =
+                        (self.rng.pick(&self.reads).clone(), self.rng.pick(&self.reads).clone());
+                    format!("{f}({a}, {b})")
+                }
                 _ => self.rng.pick(&self.reads).clone(),
             };
         }
@@ -111,8 +119,74 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
     let out_pin = |t: &str| if t == "SR" || t == "RS" { "Q1" } else { "Q" };
     let mut reads: Vec<String> = inputs.iter().chain(&locals).cloned().collect();
     reads.extend(fbs.iter().map(|(n, t)| format!("{n}.{}", out_pin(t))));
-    let mut g = Gen { rng: &mut rng, reads, writes: locals.clone() };
-    let mut text = String::from("PROGRAM Random\n  VAR_INPUT\n");
+    let mut g = Gen { rng: &mut rng, reads, writes: locals.clone(), funcs: Vec::new() };
+    // User POUs: a function of two BOOLs, a function block with a state bit and perhaps a
+    // timer or edge detector, called by one or two instances (an input may be left out:
+    // it keeps its value from the call before).
+    let mut text = String::new();
+    let mut user_bits = Vec::new();
+    let mut user_calls = Vec::new();
+    let mut user_vars = String::new();
+    if g.rng.chance(35) {
+        let mut f = Gen {
+            rng: &mut *g.rng,
+            reads: vec!["A".into(), "B".into(), "L".into()],
+            writes: vec!["L".into(), "Fn0".into()],
+            funcs: Vec::new(),
+        };
+        text += "FUNCTION Fn0 : BOOL\n  VAR_INPUT\n    A, B : BOOL;\n  END_VAR\n  VAR\n    L : BOOL;\n  END_VAR\n";
+        text += &f.body("  ", 1);
+        text += &format!("  Fn0 := {};\nEND_FUNCTION\n\n", f.expr(2));
+        g.funcs.push("Fn0".into());
+    }
+    if g.rng.chance(35) {
+        let inner = *g.rng.pick(&["", "TON", "R_TRIG"]);
+        let mut reads: Vec<String> =
+            ["I0", "I1", "O0", "O1", "M"].iter().map(|s| s.to_string()).collect();
+        if !inner.is_empty() {
+            reads.push("K.Q".into());
+        }
+        let mut f = Gen {
+            rng: &mut *g.rng,
+            reads,
+            writes: vec!["O0".into(), "O1".into(), "M".into()],
+            funcs: g.funcs.clone(),
+        };
+        let init = if f.rng.chance(50) { " := TRUE" } else { "" };
+        text += "FUNCTION_BLOCK Fb0\n  VAR_INPUT\n    I0, I1 : BOOL;\n  END_VAR\n  VAR_OUTPUT\n    O0, O1 : BOOL;\n  END_VAR\n";
+        text += &format!("  VAR\n    M : BOOL{init};\n");
+        if !inner.is_empty() {
+            text += &format!("    K : {inner};\n");
+        }
+        text += "  END_VAR\n";
+        text += &f.body("  ", 1);
+        match inner {
+            "TON" => {
+                text +=
+                    &format!("  K(IN := {}, PT := T#{}ms);\n", f.expr(1), cycle_ms * f.rng.below(4))
+            }
+            "R_TRIG" => text += &format!("  K(CLK := {});\n", f.expr(1)),
+            _ => {}
+        }
+        text += &f.body("  ", 1);
+        text += "END_FUNCTION_BLOCK\n\n";
+        for k in 0..1 + g.rng.below(2) {
+            let u = format!("U{k}");
+            user_vars += &format!("    {u} : Fb0;\n");
+            g.reads.push(format!("{u}.O0"));
+            g.reads.push(format!("{u}.O1"));
+            user_bits.extend(["O0", "O1", "M"].iter().map(|v| format!("{u}_{v}")));
+            let mut args = vec![format!("I0 := {}", g.expr(1))];
+            if g.rng.chance(70) {
+                args.push(format!("I1 := {}", g.expr(1)));
+            }
+            if g.rng.chance(40) {
+                args.push(format!("O1 => {}", g.rng.pick(&locals)));
+            }
+            user_calls.push(format!("  {u}({});\n", args.join(", ")));
+        }
+    }
+    text += "PROGRAM Random\n  VAR_INPUT\n";
     for i in &inputs {
         text += &format!("    {i} : BOOL;\n");
     }
@@ -124,6 +198,7 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
     for (n, t) in &fbs {
         text += &format!("    {n} : {t};\n");
     }
+    text += &user_vars;
     text += "  END_VAR\n";
     // The calls, placed among the other statements.
     let mut calls: Vec<String> = fbs
@@ -154,6 +229,7 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
             }
         })
         .collect();
+    calls.extend(user_calls);
     let n_stmts = 3 + g.rng.below(7);
     for _ in 0..n_stmts {
         if !calls.is_empty() && g.rng.chance(30) {
@@ -176,6 +252,7 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
     );
     let mut bits = locals;
     bits.extend(fbs.iter().map(|(n, t)| format!("{n}_{}", out_pin(t))));
+    bits.extend(user_bits);
     Generated { text, pou: "Random".into(), inputs, bits, cycle_us: cycle_ms * 1000 }
 }
 
@@ -185,12 +262,21 @@ pub fn schedule(
     seed: u64,
     scans: usize,
 ) -> Vec<std::collections::BTreeMap<String, bool>> {
+    schedule_of(&g.inputs, seed, scans)
+}
+
+/// Random values of `inputs` for `scans` scans, each held for 1 to 12 scans.
+pub fn schedule_of(
+    inputs: &[String],
+    seed: u64,
+    scans: usize,
+) -> Vec<std::collections::BTreeMap<String, bool>> {
     let mut rng = Rng::new(seed ^ 0x0AC1E);
     let mut held: std::collections::BTreeMap<String, (bool, u64)> =
         std::collections::BTreeMap::new();
     (0..scans)
         .map(|_| {
-            g.inputs
+            inputs
                 .iter()
                 .map(|n| {
                     let e = held.entry(n.clone()).or_insert((false, 0));

@@ -315,7 +315,11 @@ impl Reader<'_> {
         }
         let text = matches!(lang, Lang::St | Lang::Il).then(|| {
             // The text is the body's text nodes (usually one, in `xhtml:p`, often CDATA).
-            let nodes: Vec<Node> = content.descendants().filter(|d| d.is_text()).collect();
+            // Whitespace between the tags is no part of it.
+            let nodes: Vec<Node> = content
+                .descendants()
+                .filter(|d| d.is_text() && d.text().is_some_and(|t| !t.trim().is_empty()))
+                .collect();
             let decoded: String = nodes.iter().filter_map(|d| d.text()).collect();
             let raw = match nodes.as_slice() {
                 [one] => {
@@ -484,4 +488,4 @@ fn pou_instance(r: &mut Reader, i: Node) -> (String, String, Span) {
     (name, ty, r.tag(i))
 }
 
-pub use crate::st::literal::parse_duration;
+pub use crate::iec::literal::parse_duration;

@@ -357,6 +357,52 @@ impl PlcProgram {
     }
 }
 
+/// The refusal of a configuration whose tasks run several graphical programs: at the
+/// task whose interval differs from the first's (running each at its own rate is not
+/// modelled), else at the configuration (programs composed in one cycle are not).
+fn several_programs<'p>(
+    several: &[&'p Pou],
+    task_of: &dyn Fn(&Pou) -> Option<&'p Task>,
+) -> PlcError {
+    let names: Vec<&str> = several.iter().map(|p| p.name.as_str()).collect();
+    let choose = format!("choose one with --pou (candidates: {})", names.join(", "));
+    let interval = |p: &Pou| -> Option<(u64, Span)> {
+        let (text, span) = task_of(p)?.interval.as_ref()?;
+        let us = parse_duration(text).or_else(|| parse_duration(&format!("T#{}", text.trim())))?;
+        Some((us, *span))
+    };
+    let first = interval(several[0]);
+    let other = several[1..].iter().find_map(|p| match (interval(p), first) {
+        (Some((us, span)), Some((f, _))) if us != f => Some((p, us, span)),
+        _ => None,
+    });
+    if let (Some((p, us, span)), Some((f, _))) = (other, first) {
+        let ms = |us: u64| format!("{} ms", us as f64 / 1000.0);
+        return PlcError::Unsupported {
+            span,
+            what: format!(
+                "a configuration whose tasks run at different intervals (`{}` every {}, `{}` every {})",
+                several[0].name,
+                ms(f),
+                p.name,
+                ms(us)
+            ),
+            reason: format!("running each program at its own rate is not modelled yet; {choose}"),
+        };
+    }
+    PlcError::Unsupported {
+        span: task_of(several[1])
+            .and_then(|t| t.instances.first())
+            .map_or(several[1].span, |i| i.2),
+        what: format!(
+            "a configuration running {} graphical programs ({})",
+            names.len(),
+            names.join(", ")
+        ),
+        reason: format!("composing LD/FBD programs in one cycle is not modelled yet; {choose}"),
+    }
+}
+
 /// Picks the program to check: `--pou`, else the POU the configuration's task runs, else the only program.
 pub(super) fn pick<'p>(
     project: &'p Project,
@@ -421,13 +467,7 @@ pub(super) fn pick<'p>(
                 }
             }])
         }
-        (several, _) if !several.is_empty() => Err(vec![PlcError::Unknown {
-            span: project.span,
-            kind: "program to check: the tasks run several; choose one with --pou, e.g. --pou".into(),
-            name: several[0].name.clone(),
-            candidates: several.iter().map(|p| p.name.clone()).collect(),
-            ambiguous: true,
-        }]),
+        (several, _) if !several.is_empty() => Err(vec![several_programs(several, &task_of)]),
         (_, all) => Err(vec![PlcError::Unknown {
             span: project.span,
             kind: "program to check: no task runs one and there are several; choose one with --pou, e.g. --pou".into(),
@@ -975,7 +1015,16 @@ pub fn unconnected(kind: &ObjKind) -> bool {
 
 /// Whether an initial value is TRUE.
 pub fn is_true(init: &str) -> bool {
-    matches!(init.trim().to_ascii_uppercase().as_str(), "TRUE" | "1" | "BOOL#TRUE" | "BOOL#1")
+    bool_literal(init) == Some(true)
+}
+
+/// The value of a BOOL initial value as PLCopen files write it (`TRUE`, `1`, `BOOL#0`, …).
+pub fn bool_literal(init: &str) -> Option<bool> {
+    match init.trim().to_ascii_uppercase().as_str() {
+        "TRUE" | "1" | "BOOL#TRUE" | "BOOL#1" => Some(true),
+        "FALSE" | "0" | "BOOL#FALSE" | "BOOL#0" => Some(false),
+        _ => None,
+    }
 }
 
 /// The body of a user function block instance, checked and with its names prefixed,

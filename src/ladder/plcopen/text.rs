@@ -1,31 +1,38 @@
-//! PLCopen programs whose body is Structured Text: the POU's declarations from the XML and its `<ST>` body, lowered by the ST front end into the scan model.
+//! PLCopen programs whose body is text: the POU's declarations from the XML and its `<ST>` or `<IL>` body, lowered by the IEC text front end into the scan model.
 
 use super::{Lang, Project, Selection, Ty, VarClass, parse_duration};
 use crate::diag::{Diagnostic, Sources};
-use crate::st::ast::{self, Expr, ExprKind, Ident};
+use crate::iec::ast::{self, Expr, ExprKind, Ident};
 
-/// The chosen program, when its body is Structured Text: lowered by the ST front end
-/// (`None` for an LD or FBD body, which the graphical path reads).
+/// The chosen program, when its body is Structured Text or Instruction List: lowered by
+/// the IEC text front end (`None` for an LD or FBD body, which the graphical path reads).
 pub fn st_program(
     sources: &mut Sources,
     project: &Project,
     sel: &Selection,
-) -> Option<Result<crate::st::Lowered, Vec<Diagnostic>>> {
+) -> Option<Result<crate::iec::Lowered, Vec<Diagnostic>>> {
     let (pou, task) = super::select::pick(project, sel).ok()?;
-    let body = pou.body.as_ref().filter(|b| b.lang == Lang::St)?;
-    let fail = |errors: Vec<crate::st::StError>| {
+    let body = pou.body.as_ref().filter(|b| matches!(b.lang, Lang::St | Lang::Il))?;
+    let il = body.lang == Lang::Il;
+    let parse = |file: usize, text: &str, range: std::ops::Range<usize>| {
+        if il {
+            crate::iec::parser::parse_il_body(file, text, range).map(ast::Body::Il)
+        } else {
+            crate::iec::parser::parse_body(file, text, range).map(ast::Body::St)
+        }
+    };
+    let fail = |errors: Vec<crate::iec::StError>| {
         errors.into_iter().map(Diagnostic::from).collect::<Vec<_>>()
     };
     let (raw, decoded) = body.text.clone().unwrap_or((None, String::new()));
     let stmts = match raw {
-        Some(range) => {
-            crate::st::parser::parse_body(project.file, sources.text(project.file), range)
-        }
+        Some(range) => parse(project.file, sources.text(project.file), range),
         None => {
             // Entities in the text: the decoded body is read as a source of its own.
-            let name = format!("{} (ST body of {})", sources.name(project.file), pou.name);
+            let lang = body.lang.as_str();
+            let name = format!("{} ({lang} body of {})", sources.name(project.file), pou.name);
             let file = sources.add(name, decoded.clone());
-            crate::st::parser::parse_body(file, &decoded, 0..decoded.len())
+            parse(file, &decoded, 0..decoded.len())
         }
     };
     let body = match stmts {
@@ -43,10 +50,9 @@ pub fn st_program(
             span: v.span,
         },
         init: v.init.as_ref().map(|text| Expr {
-            kind: match text.trim().to_ascii_uppercase().as_str() {
-                "TRUE" | "1" | "BOOL#TRUE" | "BOOL#1" => ExprKind::Bool(true),
-                "FALSE" | "0" | "BOOL#FALSE" | "BOOL#0" => ExprKind::Bool(false),
-                _ => ExprKind::Literal(text.clone()),
+            kind: match super::select::bool_literal(text) {
+                Some(b) => ExprKind::Bool(b),
+                None => ExprKind::Literal(text.clone()),
             },
             span: v.span,
         }),
@@ -71,6 +77,7 @@ pub fn st_program(
             kind: ast::PouKind::Program,
             name: name.clone(),
             vars,
+            result: None,
             body,
             span: pou.span,
         }],
@@ -80,5 +87,5 @@ pub fn st_program(
         parse_duration(text).or_else(|| parse_duration(&format!("T#{}", text.trim())))
     });
     let cycle = sel.cycle_us.or(interval);
-    Some(crate::st::lower(sources, &unit, Some(&pou.name), cycle).map_err(fail))
+    Some(crate::iec::lower(sources, &unit, Some(&pou.name), cycle).map_err(fail))
 }

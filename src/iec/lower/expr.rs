@@ -2,9 +2,9 @@
 
 use super::{Lowering, Sym, Ty};
 use crate::diag::Span;
+use crate::iec::StError;
+use crate::iec::ast::{self, Arg, BinOp, ExprKind, Ident, UnOp};
 use crate::program::{BoolExpr, Fresh};
-use crate::st::StError;
-use crate::st::ast::{self, Arg, BinOp, ExprKind, Ident, UnOp};
 
 impl Lowering<'_> {
     /// Whether `e` is Boolean (so `=` between two such is an equivalence).
@@ -13,9 +13,13 @@ impl Lowering<'_> {
             ExprKind::Bool(_) => true,
             ExprKind::Var(id) => matches!(self.syms.get(&id.key()), Some(Sym { ty: Ty::Bool, .. })),
             ExprKind::Member(of, field) => match &of.kind {
-                ExprKind::Var(id) => {
-                    matches!(self.syms.get(&id.key()), Some(Sym { ty: Ty::Fb(fb, _), .. }) if fb.outputs().contains(&field.key().as_str()))
-                }
+                ExprKind::Var(id) => match self.syms.get(&id.key()) {
+                    Some(Sym { ty: Ty::Fb(fb, _), .. }) => {
+                        fb.outputs().contains(&field.key().as_str())
+                    }
+                    Some(Sym { ty: Ty::User(_), name, .. }) => self.member(name, field).is_some(),
+                    _ => false,
+                },
                 _ => false,
             },
             ExprKind::Unary(UnOp::Not, x) => self.is_bool(x),
@@ -27,6 +31,7 @@ impl Lowering<'_> {
             ExprKind::Call(f, _) => {
                 ["AND", "OR", "XOR", "NOT", "SEL", "GT", "GE", "EQ", "NE", "LT", "LE"]
                     .contains(&f.key().as_str())
+                    || self.bool_function(f)
             }
             _ => false,
         }
@@ -38,15 +43,15 @@ impl Lowering<'_> {
     }
 
     /// An integer comparison: unconstrained, named after its operator and line.
-    pub(super) fn comparison(&mut self, op: &str, e: &ast::Expr) -> BoolExpr {
+    pub(super) fn comparison(&mut self, op: &str, span: Span) -> BoolExpr {
         BoolExpr::Fresh(Box::new(Fresh {
             base: format!("{op}_L{:02}", self.line),
             keyword: op.to_string(),
             why: format!(
                 "the integer comparison `{}` is not expressible in the algebra",
-                self.text(e.span)
+                self.text(span)
             ),
-            span: e.span,
+            span,
         }))
     }
 
@@ -64,7 +69,7 @@ impl Lowering<'_> {
             ExprKind::Bool(b) => BoolExpr::Const(*b),
             ExprKind::Var(id) => match self.lookup(id) {
                 Some(Sym { ty: Ty::Bool, name, .. }) => BoolExpr::Var(name),
-                Some(Sym { ty: Ty::Fb(_, t), name, .. }) => {
+                Some(Sym { ty: Ty::Fb(_, t) | Ty::User(t), name, .. }) => {
                     self.not_bool(e, &format!("the {t} instance `{name}`"))
                 }
                 Some(Sym { ty: Ty::Other(t), name, .. }) => {
@@ -79,6 +84,11 @@ impl Lowering<'_> {
                         if fb.outputs().contains(&field.key().as_str()) =>
                     {
                         BoolExpr::var(&self.hidden(&name, &field.key()))
+                    }
+                    Some(Sym { ty: Ty::User(_), name, .. })
+                        if self.member(&name, field).is_some() =>
+                    {
+                        BoolExpr::var(&self.member(&name, field).unwrap_or_default())
                     }
                     Some(Sym { ty: Ty::Fb(_, t), name, .. }) => self.not_bool(
                         e,
@@ -115,7 +125,7 @@ impl Lowering<'_> {
                     BinOp::Gt => "GT",
                     _ => "GE",
                 };
-                self.comparison(name, e)
+                self.comparison(name, e.span)
             }
             ExprKind::Call(f, args) => self.function(f, args, e),
             ExprKind::Int(_) | ExprKind::Time(_) | ExprKind::Literal(_) => {
@@ -143,6 +153,12 @@ impl Lowering<'_> {
             self.refuse(f.span, &what, "methods (object-oriented extensions) are not read");
             return BoolExpr::Const(false);
         }
+        if self.user.get(&name).is_some_and(|p| p.kind == ast::PouKind::Function) {
+            return match self.user_function(f, None, args) {
+                Some(v) => v,
+                None => self.not_bool(e, &format!("the result of `{}`", f.name)),
+            };
+        }
         match name.as_str() {
             "AND" | "OR" | "XOR" if values.len() >= 2 => {
                 let vs: Vec<BoolExpr> = values.iter().map(|x| self.bool_expr(x)).collect();
@@ -163,7 +179,7 @@ impl Lowering<'_> {
                     BoolExpr::and(g, b),
                 ])
             }
-            "GT" | "GE" | "EQ" | "NE" | "LT" | "LE" => self.comparison(&name, e),
+            "GT" | "GE" | "EQ" | "NE" | "LT" | "LE" => self.comparison(&name, e.span),
             _ => {
                 self.refuse(f.span, &format!("the function `{}`", f.name), "the Boolean functions AND, OR, XOR, NOT and SEL are modelled, comparisons as unconstrained");
                 BoolExpr::Const(false)

@@ -12,6 +12,8 @@
 
 mod calls;
 mod expr;
+mod il;
+mod user;
 
 use calls::Fb;
 
@@ -51,6 +53,8 @@ pub struct Assertion {
 enum Ty {
     Bool,
     Fb(Fb, String),
+    /// An instance of a function block the file declares (its type, upper-case).
+    User(String),
     Other(String),
 }
 
@@ -124,6 +128,12 @@ pub fn lower(
         }
     }
     let mut l = Lowering::new(sources, cycle_us, warnings);
+    l.user = unit
+        .pous
+        .iter()
+        .filter(|p| p.kind != PouKind::Program)
+        .map(|p| (p.name.key(), p.clone()))
+        .collect();
     let mut tables = Vec::new();
     for r in &runs {
         l.syms = BTreeMap::new();
@@ -139,8 +149,12 @@ pub fn lower(
     }
     for (r, table) in runs.iter().zip(tables) {
         l.syms = table;
-        for s in &r.pou.body {
-            l.block(s);
+        match &r.pou.body {
+            ast::Body::St(stmts) => stmts.iter().for_each(|s| l.block(s)),
+            ast::Body::Il(lines) => {
+                l.il = true;
+                l.il_body(lines)
+            }
         }
     }
     if !l.errors.is_empty() {
@@ -266,6 +280,21 @@ struct Lowering<'s> {
     errors: Vec<StError>,
     /// The current block's line.
     line: usize,
+    /// Whether a body is Instruction List.
+    il: bool,
+    /// `CONSTANT` TIME variables with a literal initial value (by their names in the
+    /// scan model): their µs.
+    durations: BTreeMap<String, u64>,
+    /// The function blocks and functions the file declares, by upper-case name.
+    user: BTreeMap<String, ast::Pou>,
+    /// Each user FB instance's variables (by the instance's name in the scan model).
+    instances: BTreeMap<String, BTreeMap<String, Sym>>,
+    /// The user FBs and functions being inlined (a recursion is refused).
+    inlining: Vec<String>,
+    /// Statements the user functions of the expression being lowered run before it.
+    prelude: Vec<Stmt>,
+    /// Calls of user functions so far (each call's variables are its own).
+    calls: usize,
 }
 
 impl<'s> Lowering<'s> {
@@ -287,6 +316,13 @@ impl<'s> Lowering<'s> {
             warnings,
             errors: Vec::new(),
             line: 0,
+            il: false,
+            durations: BTreeMap::new(),
+            user: BTreeMap::new(),
+            instances: BTreeMap::new(),
+            inlining: Vec::new(),
+            prelude: Vec::new(),
+            calls: 0,
         }
     }
 
@@ -319,22 +355,11 @@ impl<'s> Lowering<'s> {
                 continue;
             }
             if let Some(prev) = self.syms.get(&key) {
-                let mut e = StError::new(
-                    v.name.span,
-                    format!("`{}` is declared twice", v.name.name),
-                    "declared again here",
-                );
-                e.related = Some(Box::new((prev.span, "first declared here".into())));
-                self.errors.push(e);
+                let prev = prev.span;
+                self.twice(v, prev);
                 continue;
             }
-            let ty = match v.ty.name.as_str() {
-                "BOOL" => Ty::Bool,
-                t => match Fb::of(t) {
-                    Some(fb) => Ty::Fb(fb, t.to_string()),
-                    None => Ty::Other(t.to_string()),
-                },
-            };
+            let ty = self.type_of(&v.ty);
             if matches!(ty, Ty::Bool) {
                 if k < n_globals
                     && !v
@@ -365,6 +390,11 @@ impl<'s> Lowering<'s> {
                     )),
                 }
             }
+            if v.constant
+                && let Some(ExprKind::Time(us)) = v.init.as_ref().map(|e| &e.kind)
+            {
+                self.durations.insert(name.clone(), *us);
+            }
             if let Ty::Fb(
                 Fb::Ton | Fb::Tof | Fb::Tp | Fb::RTrig | Fb::FTrig | Fb::Sr | Fb::Rs | Fb::Counter,
                 _,
@@ -378,8 +408,22 @@ impl<'s> Lowering<'s> {
                 ));
             }
             self.taken.insert(name.clone());
+            if let Ty::User(fb) = &ty {
+                self.instantiate(&name, fb, v.name.span);
+            }
             self.syms.insert(key, Sym { name, ty, span: v.name.span });
         }
+    }
+
+    /// `v` is declared a second time (first at `prev`).
+    fn twice(&mut self, v: &ast::VarDecl, prev: Span) {
+        let mut e = StError::new(
+            v.name.span,
+            format!("`{}` is declared twice", v.name.name),
+            "declared again here",
+        );
+        e.related = Some(Box::new((prev, "first declared here".into())));
+        self.errors.push(e);
     }
 
     fn unique(&mut self, base: &str) -> String {
@@ -430,6 +474,11 @@ impl<'s> Lowering<'s> {
     fn block(&mut self, s: &ast::Stmt) {
         self.line = self.line_of(s.span);
         let stmts = self.stmt(s, 0);
+        self.push_block(s.span, stmts);
+    }
+
+    /// A block of the current line's statements (none: no block).
+    fn push_block(&mut self, span: Span, stmts: Vec<Stmt>) {
         if stmts.is_empty() {
             return;
         }
@@ -439,7 +488,7 @@ impl<'s> Lowering<'s> {
             label = format!("L{:02}_{k}", self.line);
             k += 1;
         }
-        self.blocks.push(Block { number: self.line, label: Some(label), span: s.span, stmts });
+        self.blocks.push(Block { number: self.line, label: Some(label), span, stmts });
     }
 
     /// The span of the first word of `span` (a statement's keyword).
@@ -457,18 +506,28 @@ impl<'s> Lowering<'s> {
         ));
     }
 
+    /// The statements of `s`, after those the user functions it calls run.
     fn stmt(&mut self, s: &ast::Stmt, depth: usize) -> Vec<Stmt> {
+        let outer = std::mem::take(&mut self.prelude);
+        let out = self.stmt_alone(s, depth);
+        let mut all = std::mem::replace(&mut self.prelude, outer);
+        all.extend(out);
+        all
+    }
+
+    fn stmt_alone(&mut self, s: &ast::Stmt, depth: usize) -> Vec<Stmt> {
         match &s.kind {
             StmtKind::Assign(target, value) => self.assign(target, value, s.span),
             StmtKind::Call(callee, args) => self.call(callee, args, s.span),
             StmtKind::If(branches, otherwise) => {
-                let branches = branches
-                    .iter()
-                    .map(|(c, body)| {
-                        (
-                            self.bool_expr(c),
-                            body.iter().flat_map(|s| self.stmt(s, depth + 1)).collect(),
-                        )
+                // The conditions first: the functions they call run before the `IF`.
+                let conditions: Vec<BoolExpr> =
+                    branches.iter().map(|(c, _)| self.bool_expr(c)).collect();
+                let branches = conditions
+                    .into_iter()
+                    .zip(branches)
+                    .map(|(c, (_, body))| {
+                        (c, body.iter().flat_map(|s| self.stmt(s, depth + 1)).collect())
                     })
                     .collect();
                 let otherwise = otherwise.iter().flat_map(|s| self.stmt(s, depth + 1)).collect();
@@ -504,16 +563,30 @@ impl<'s> Lowering<'s> {
                     );
                     return Vec::new();
                 }
-                let value = self.bool_expr(e);
-                let name = match name {
-                    Some(n) => n.name.clone(),
-                    None => format!("ASSERT_L{:02}", self.line),
-                };
-                let signal = self.unique(&format!("assert_{name}"));
-                self.asserts.push(Assertion { name, signal: signal.clone(), span: e.span });
-                vec![Stmt::Write { target: signal, kind: WriteKind::Assign, value, span: e.span }]
+                self.assertion(e, name.as_ref(), None)
             }
         }
+    }
+
+    /// A property comment: the bit `assert_NAME` takes the asserted value here (where
+    /// `reached` is given, only the scans that reach this point count).
+    fn assertion(
+        &mut self,
+        e: &ast::Expr,
+        name: Option<&Ident>,
+        reached: Option<BoolExpr>,
+    ) -> Vec<Stmt> {
+        let mut value = self.bool_expr(e);
+        if let Some(g) = reached {
+            value = BoolExpr::Or(vec![BoolExpr::negate(g), value]);
+        }
+        let name = match name {
+            Some(n) => n.name.clone(),
+            None => format!("ASSERT_L{:02}", self.line),
+        };
+        let signal = self.unique(&format!("assert_{name}"));
+        self.asserts.push(Assertion { name, signal: signal.clone(), span: e.span });
+        vec![Stmt::Write { target: signal, kind: WriteKind::Assign, value, span: e.span }]
     }
 
     fn assign(&mut self, target: &ast::Expr, value: &ast::Expr, span: Span) -> Vec<Stmt> {
@@ -543,7 +616,7 @@ impl<'s> Lowering<'s> {
                     sym.name
                 ),
             }],
-            Ty::Fb(..) => {
+            Ty::Fb(..) | Ty::User(_) => {
                 self.refuse(id.span, "assigning a function-block instance", "call it instead");
                 Vec::new()
             }
@@ -600,7 +673,7 @@ impl<'s> Lowering<'s> {
             integer_writers: BTreeMap::new(),
             exact_names: true,
             block_noun: "line",
-            language: "a Structured Text",
+            language: if self.il { "an Instruction List" } else { "a Structured Text" },
         };
         Lowered { program, asserts: self.asserts, warnings: self.warnings }
     }

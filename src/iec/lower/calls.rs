@@ -4,9 +4,9 @@ use std::collections::BTreeMap;
 
 use super::{Lowering, Sym, Ty};
 use crate::diag::Span;
+use crate::iec::StError;
+use crate::iec::ast::{self, Arg, ExprKind};
 use crate::program::{BoolExpr, EdgeKind, Fresh, Memory, Preset, Stmt, Timer, WriteKind};
-use crate::st::StError;
-use crate::st::ast::{self, Arg, ExprKind};
 
 /// Function-block types the lowering knows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -36,6 +36,20 @@ impl Fb {
         })
     }
 
+    /// Its inputs in declaration order (what a positional argument gives), for the type
+    /// `ty` (the counters differ).
+    pub(super) fn inputs(self, ty: &str) -> &'static [&'static str] {
+        match (self, ty) {
+            (Fb::Ton | Fb::Tof | Fb::Tp, _) => &["IN", "PT"],
+            (Fb::RTrig | Fb::FTrig, _) => &["CLK"],
+            (Fb::Sr, _) => &["S1", "R"],
+            (Fb::Rs, _) => &["S", "R1"],
+            (Fb::Counter, "CTU") => &["CU", "R", "PV"],
+            (Fb::Counter, "CTD") => &["CD", "LD", "PV"],
+            (Fb::Counter, _) => &["CU", "CD", "R", "LD", "PV"],
+        }
+    }
+
     /// Its Boolean outputs.
     pub(super) fn outputs(self) -> &'static [&'static str] {
         match self {
@@ -59,6 +73,18 @@ impl Lowering<'_> {
     }
 
     pub(super) fn call(&mut self, callee: &ast::Expr, args: &[Arg], span: Span) -> Vec<Stmt> {
+        self.call_with(callee, args, None, span)
+    }
+
+    /// The call `callee(args)`, with the input `given.0` set to the lowered value
+    /// `given.1` (an Instruction List operator such as `CLK R1` gives the current result).
+    pub(super) fn call_with(
+        &mut self,
+        callee: &ast::Expr,
+        args: &[Arg],
+        given: Option<(&str, BoolExpr)>,
+        span: Span,
+    ) -> Vec<Stmt> {
         let ExprKind::Var(id) = &callee.kind else {
             self.refuse(
                 callee.span,
@@ -73,6 +99,58 @@ impl Lowering<'_> {
             return Vec::new();
         }
         let Some(sym) = self.lookup(id) else { return Vec::new() };
+        if let Ty::User(fb) = &sym.ty {
+            if given.is_some() {
+                self.refuse(
+                    span,
+                    &format!("an IL input operator on the {fb} instance `{}`", sym.name),
+                    "call it with `CAL inst(…)`",
+                );
+                return Vec::new();
+            }
+            return self.user_call(&sym.name, fb, args, span);
+        }
+        const ELEMENTARY: &[&str] = &[
+            "BOOL",
+            "SINT",
+            "INT",
+            "DINT",
+            "LINT",
+            "USINT",
+            "UINT",
+            "UDINT",
+            "ULINT",
+            "BYTE",
+            "WORD",
+            "DWORD",
+            "LWORD",
+            "REAL",
+            "LREAL",
+            "TIME",
+            "DATE",
+            "TOD",
+            "DT",
+            "STRING",
+            "WSTRING",
+            "TIME_OF_DAY",
+            "DATE_AND_TIME",
+            "LTIME",
+            "CHAR",
+            "WCHAR",
+        ];
+        if let Ty::Other(t) = &sym.ty
+            && !ELEMENTARY.contains(&t.to_ascii_uppercase().as_str())
+        {
+            self.errors.push(StError::new(
+                id.span,
+                format!(
+                    "`{}` is an instance of `{t}`, a function block this file does not declare",
+                    sym.name
+                ),
+                format!("declare it (`FUNCTION_BLOCK {t} … END_FUNCTION_BLOCK`)"),
+            ));
+            return Vec::new();
+        }
         let Ty::Fb(fb, ty) = sym.ty else {
             let what = format!(
                 "calling `{}` (a {})",
@@ -88,24 +166,32 @@ impl Lowering<'_> {
         let inst = sym.name.clone();
         let mut inputs: BTreeMap<String, &ast::Expr> = BTreeMap::new();
         let mut outputs = Vec::new();
-        for a in args {
+        let order = fb.inputs(&ty);
+        for (k, a) in args.iter().enumerate() {
             match a {
                 Arg::Input(n, e) => {
                     inputs.insert(n.key(), e);
                 }
                 Arg::Output(n, neg, target) => outputs.push((n, *neg, target)),
-                Arg::Positional(e) => self.refuse(
-                    e.span,
-                    "a positional argument of a function-block call",
-                    "name the input (`IN := …`)",
-                ),
+                // A non-formal call gives the inputs in their declaration order.
+                Arg::Positional(e) => match order.get(k) {
+                    Some(pin) => {
+                        inputs.insert(pin.to_string(), e);
+                    }
+                    None => self.errors.push(StError::new(
+                        e.span,
+                        format!("{ty} has {} inputs; this is argument {}", order.len(), k + 1),
+                        format!("{ty}'s inputs are {}", order.join(", ")),
+                    )),
+                },
             }
         }
         let mut out = Vec::new();
         let input = |l: &mut Self, pin: &str| -> BoolExpr {
-            match inputs.get(pin) {
-                Some(e) => l.bool_expr(e),
-                None => {
+            match (inputs.get(pin), &given) {
+                (_, Some((p, v))) if *p == pin => v.clone(),
+                (Some(e), _) => l.bool_expr(e),
+                (None, _) => {
                     l.refuse(span, &format!("a call of {inst} without {pin}"), "an input kept from an earlier call is not modelled; give every input in each call");
                     BoolExpr::Const(false)
                 }
@@ -116,6 +202,9 @@ impl Lowering<'_> {
                 let v = input(self, "IN");
                 let preset = match inputs.get("PT").map(|e| &e.kind) {
                     Some(ExprKind::Time(us)) => Preset::iec(*us, self.cycle_us),
+                    Some(ExprKind::Var(id)) if self.duration(id).is_some() => {
+                        Preset::iec(self.duration(id).unwrap_or(0), self.cycle_us)
+                    }
                     Some(_) => Preset::Variable(format!("{inst}.PT")),
                     None => {
                         self.refuse(
@@ -208,6 +297,12 @@ impl Lowering<'_> {
         out
     }
 
+    /// The value of a `CONSTANT` TIME variable.
+    fn duration(&self, id: &ast::Ident) -> Option<u64> {
+        let sym = self.syms.get(&id.key())?;
+        self.durations.get(&sym.name).copied()
+    }
+
     /// A scan-local value computed here (so later writes do not change what it read).
     pub(super) fn temp(&mut self, out: &mut Vec<Stmt>, value: BoolExpr) -> BoolExpr {
         let temp = self.next_temp;
@@ -223,17 +318,28 @@ impl Lowering<'_> {
         value: BoolExpr,
         span: Span,
     ) -> Vec<Stmt> {
+        self.write_value(target, WriteKind::Assign, value, span)
+    }
+
+    /// A write of a lowered value into the BOOL variable `target`.
+    pub(super) fn write_value(
+        &mut self,
+        target: &ast::Expr,
+        kind: WriteKind,
+        value: BoolExpr,
+        span: Span,
+    ) -> Vec<Stmt> {
         let ExprKind::Var(id) = &target.kind else {
             self.refuse(
                 target.span,
-                "an output into a member or array element",
+                "a write into a member or array element",
                 "write it to a BOOL variable",
             );
             return Vec::new();
         };
         match self.lookup(id) {
             Some(Sym { ty: Ty::Bool, name, .. }) if !self.inputs.contains(&name) => {
-                vec![Stmt::Write { target: name, kind: WriteKind::Assign, value, span }]
+                vec![Stmt::Write { target: name, kind, value, span }]
             }
             Some(_) => {
                 self.errors.push(StError::new(

@@ -47,10 +47,119 @@ pub struct Pou {
     pub name: Ident,
     /// Its variables, in declaration order.
     pub vars: Vec<VarDecl>,
-    /// Its statements.
-    pub body: Vec<Stmt>,
+    /// A function's result type.
+    pub result: Option<Ident>,
+    /// Its statements or instructions.
+    pub body: Body,
     /// From the keyword to its end keyword.
     pub span: Span,
+}
+
+/// A POU's body: Structured Text statements or Instruction List lines.
+#[derive(Clone, Debug)]
+pub enum Body {
+    /// Structured Text.
+    St(Vec<Stmt>),
+    /// Instruction List.
+    Il(Vec<IlLine>),
+}
+
+/// One line of an Instruction List body.
+#[derive(Clone, Debug)]
+pub struct IlLine {
+    /// `label:`.
+    pub label: Option<Ident>,
+    /// The instruction (`None`: a line with only a label).
+    pub instr: Option<IlInstr>,
+    /// Where.
+    pub span: Span,
+}
+
+/// When an IL instruction acts: always, or by the current result (`C`, `CN` modifiers).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum IlCond {
+    /// No modifier.
+    Always,
+    /// `C`: when the current result is TRUE.
+    IfTrue,
+    /// `CN`: when it is FALSE.
+    IfFalse,
+}
+
+/// An Instruction List instruction.
+#[derive(Clone, Debug)]
+pub enum IlInstr {
+    /// An operator on the current result: `LD x`, `ANDN y`, `GT 5`, `AND( … )`, `NOT`.
+    Op {
+        /// The operator.
+        op: IlOp,
+        /// The `N` modifier (the operand negated).
+        negate: bool,
+        /// The operand (none for `NOT` and for a `(` with no operand on its line).
+        operand: Option<Expr>,
+        /// The lines of `OP( … )`: their result is the operand.
+        nested: Option<Vec<IlLine>>,
+        /// The operator as written.
+        word: Ident,
+    },
+    /// `CAL inst(args)`, `CALC`, `CALCN`.
+    Call {
+        /// When.
+        cond: IlCond,
+        /// The instance.
+        instance: Expr,
+        /// The arguments.
+        args: Vec<Arg>,
+        /// The operator as written.
+        word: Ident,
+    },
+    /// A function-block input used as an operator: `CLK R1` calls `R1(CLK := current result)`;
+    /// also `S`/`R` with an instance operand.
+    FbInput {
+        /// The input, upper-case (`IN`, `CLK`, `S1`, …).
+        pin: String,
+        /// The instance.
+        instance: Expr,
+        /// The operator as written.
+        word: Ident,
+    },
+    /// `JMP label`, `JMPC`, `JMPCN`.
+    Jump {
+        /// When.
+        cond: IlCond,
+        /// The target.
+        label: Ident,
+        /// The operator as written.
+        word: Ident,
+    },
+    /// `RET`, `RETC`, `RETCN`.
+    Return {
+        /// When.
+        cond: IlCond,
+        /// The operator as written.
+        word: Ident,
+    },
+    /// A property comment.
+    Assert(Expr, Option<Ident>),
+}
+
+/// An IL operator on the current result.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum IlOp {
+    /// `LD`: the result is the operand.
+    Ld,
+    /// `ST`: the operand is set to the result.
+    St,
+    /// `S`: the operand is set when the result is TRUE.
+    S,
+    /// `R`: the operand is reset when the result is TRUE.
+    R,
+    /// `NOT`: the result is negated.
+    Not,
+    /// A binary operator: `AND` (`&`), `OR`, `XOR`, `ADD`…`MOD`, `GT`…`NE`.
+    Bin(BinOp),
+    /// A standard or user function as an operator (`MAX b`): the result is its first argument.
+    Function(Ident),
 }
 
 /// A variable section's class.

@@ -1,11 +1,11 @@
-//! Structured Text front end (IEC 61131-3, as matiec accepts it): `.st` files read into an AST ([`parser`]) and lowered into the scan model ([`lower`]).
+//! The IEC 61131-3 text languages, as matiec accepts them: Structured Text and Instruction List files (`.st`, `.il`) read into one AST ([`parser`]; a POU's body is ST or IL) and lowered into the scan model ([`lower`]).
 //!
 //! The reader never panics; every problem is an [`StError`] with a span into the
 //! source and, for a misspelt keyword, a "did you mean". What the scan model cannot
-//! express yet (loops, `CASE`, user function blocks, a timer called inside a branch) is
-//! refused with a located error naming the construct; what the algebra cannot express
-//! (integer comparisons, counters, the pulse timer) becomes an unconstrained signal
-//! with a warning, as for the ladder languages.
+//! express yet (loops, `CASE`, user function blocks, a timer called inside a branch or on
+//! an IL line a jump may skip, a backward jump) is refused with a located error naming the
+//! construct; what the algebra cannot express (integer comparisons, counters, the pulse
+//! timer) becomes an unconstrained signal with a warning, as for the ladder languages.
 #![warn(missing_docs)]
 
 pub mod ast;
@@ -78,7 +78,7 @@ impl Report for StError {
     }
 }
 
-/// Whether `text` looks like Structured Text: its first word after comments is
+/// Whether `text` looks like Structured Text or Instruction List: its first word after comments is
 /// `PROGRAM`, `FUNCTION_BLOCK`, `FUNCTION`, `CONFIGURATION` or `TYPE`, in capitals (a
 /// property file's lower-case `program` header is not one).
 pub fn is_st(text: &str) -> bool {
@@ -88,7 +88,7 @@ pub fn is_st(text: &str) -> bool {
     })
 }
 
-/// Reads a `.st` file of `sources`.
+/// Reads a `.st` or `.il` file of `sources`.
 pub fn read(sources: &Sources, file: usize) -> Result<ast::Unit, Vec<StError>> {
     parser::parse_unit(file, sources.text(file)).map_err(|e| vec![e])
 }

@@ -1,5 +1,9 @@
 //! The Structured Text parser: recursive descent over the lexer's tokens into the AST, with IEC 61131-3 precedence and errors that say what was expected and where the open construct began.
 
+mod il;
+
+use std::collections::BTreeSet;
+
 use super::StError;
 use super::ast::*;
 use super::lexer::{Tok, Token, lex};
@@ -68,7 +72,7 @@ const KEYWORDS: &[&str] = &[
 /// Parses a whole `.st` file.
 pub fn parse_unit(file: usize, text: &str) -> Result<Unit, StError> {
     let toks = lex(file, text, 0..text.len())?;
-    let mut p = Parser { toks, at: 0, text };
+    let mut p = Parser::new(toks, text);
     p.unit()
 }
 
@@ -79,8 +83,22 @@ pub fn parse_body(
     range: std::ops::Range<usize>,
 ) -> Result<Vec<Stmt>, StError> {
     let toks = lex(file, text, range)?;
-    let mut p = Parser { toks, at: 0, text };
+    let mut p = Parser::new(toks, text);
     let body = p.stmts(None)?;
+    p.expect_eof()?;
+    Ok(body)
+}
+
+/// Parses the lines of an Instruction List body at `range` of `text` (a PLCopen `<IL>`
+/// body).
+pub fn parse_il_body(
+    file: usize,
+    text: &str,
+    range: std::ops::Range<usize>,
+) -> Result<Vec<IlLine>, StError> {
+    let toks = lex(file, text, range)?;
+    let mut p = Parser::new(toks, text);
+    let body = p.il_lines()?;
     p.expect_eof()?;
     Ok(body)
 }
@@ -89,6 +107,8 @@ struct Parser<'t> {
     toks: Vec<Token>,
     at: usize,
     text: &'t str,
+    /// The functions the text declares (upper-case): IL may use them as operators.
+    functions: BTreeSet<String>,
 }
 
 fn describe(t: &Token) -> String {
@@ -105,6 +125,18 @@ fn describe(t: &Token) -> String {
 }
 
 impl<'t> Parser<'t> {
+    fn new(toks: Vec<Token>, text: &'t str) -> Parser<'t> {
+        let functions = toks
+            .windows(2)
+            .filter(|w| w[0].is_kw("FUNCTION"))
+            .filter_map(|w| match &w[1].tok {
+                Tok::Ident(n) => Some(n.to_ascii_uppercase()),
+                _ => None,
+            })
+            .collect();
+        Parser { toks, at: 0, text, functions }
+    }
+
     fn peek(&self) -> &Token {
         &self.toks[self.at.min(self.toks.len() - 1)]
     }
@@ -234,9 +266,10 @@ impl<'t> Parser<'t> {
 
     fn pou(&mut self, kind: PouKind, end: &str, start: Span) -> Result<Pou, StError> {
         let name = self.ident("the POU's name")?;
+        let mut result = None;
         if kind == PouKind::Function {
             self.expect_sym(":", "and the function's result type")?;
-            self.ident("the result type")?;
+            result = Some(self.ident("the result type")?);
         }
         let mut vars = Vec::new();
         while self.peek().is_kw("VAR")
@@ -249,9 +282,13 @@ impl<'t> Parser<'t> {
             PouKind::FunctionBlock => "FUNCTION_BLOCK",
             PouKind::Function => "FUNCTION",
         };
-        let body = self.stmts(Some((word, start)))?;
+        let body = if self.il_ahead() {
+            Body::Il(self.il_lines()?)
+        } else {
+            Body::St(self.stmts(Some((word, start)))?)
+        };
         let end_span = self.expect_kw(end, Some((word, start)))?;
-        Ok(Pou { kind, name, vars, body, span: start.to(end_span) })
+        Ok(Pou { kind, name, vars, result, body, span: start.to(end_span) })
     }
 
     fn var_block(&mut self) -> Result<Vec<VarDecl>, StError> {
@@ -677,7 +714,7 @@ impl<'t> Parser<'t> {
             None => (end, None),
         };
         let toks = lex(file, self.text, at..expr_end)?;
-        let mut sub = Parser { toks, at: 0, text: self.text };
+        let mut sub = Parser::new(toks, self.text);
         let expr = sub.expr()?;
         if sub.peek().tok != Tok::Eof {
             return Err(sub.unexpected("the end of the asserted expression (`: name` may follow)"));
@@ -775,8 +812,8 @@ impl<'t> Parser<'t> {
         loop {
             if self.eat_sym(".") {
                 let field = match self.bump() {
-                    Token { tok: Tok::Ident(name), span } => Ident { name, span },
-                    Token { tok: Tok::Int(v), span } => Ident { name: v.to_string(), span },
+                    Token { tok: Tok::Ident(name), span, .. } => Ident { name, span },
+                    Token { tok: Tok::Int(v), span, .. } => Ident { name: v.to_string(), span },
                     _ => return Err(self.unexpected("a member name after `.`")),
                 };
                 let span = e.span.to(field.span);

@@ -35,12 +35,20 @@ pub struct Token {
     pub tok: Tok,
     /// Where it is.
     pub span: Span,
+    /// Whether a line break (outside comments) comes before it: Instruction List is
+    /// line-based.
+    pub line_start: bool,
 }
 
 impl Token {
     /// Whether the token is the keyword `kw` (case-insensitive).
     pub fn is_kw(&self, kw: &str) -> bool {
         matches!(&self.tok, Tok::Ident(s) if s.eq_ignore_ascii_case(kw))
+    }
+
+    /// Whether the token is the symbol `sym`.
+    pub fn is_sym_tok(&self, sym: &str) -> bool {
+        matches!(self.tok, Tok::Sym(s) if s == sym)
     }
 }
 
@@ -55,10 +63,15 @@ pub fn lex(file: usize, text: &str, range: std::ops::Range<usize>) -> Result<Vec
     let end = range.end.min(text.len());
     let mut i = range.start.min(end);
     let mut out = Vec::new();
+    // Offsets of the line breaks outside comments.
+    let mut breaks: Vec<usize> = Vec::new();
     let span = |a: usize, b: usize| Span::new(file, a..b);
     while i < end {
         let c = bytes[i];
         if c.is_ascii_whitespace() {
+            if c == b'\n' {
+                breaks.push(i);
+            }
             i += 1;
             continue;
         }
@@ -68,7 +81,11 @@ pub fn lex(file: usize, text: &str, range: std::ops::Range<usize>) -> Result<Vec
             let body = &text[i + 2..line_end];
             if let Some(p) = body.trim_start().strip_prefix("#ASSERT") {
                 let at = line_end - p.len();
-                out.push(Token { tok: Tok::Assert(p.to_string(), at), span: span(i, line_end) });
+                out.push(Token {
+                    tok: Tok::Assert(p.to_string(), at),
+                    span: span(i, line_end),
+                    line_start: false,
+                });
             }
             i = line_end;
             continue;
@@ -85,7 +102,11 @@ pub fn lex(file: usize, text: &str, range: std::ops::Range<usize>) -> Result<Vec
             let body = &text[i + 2..close];
             if let Some(p) = body.trim_start().strip_prefix("#ASSERT") {
                 let at = close - p.len();
-                out.push(Token { tok: Tok::Assert(p.to_string(), at), span: span(i, depth_end) });
+                out.push(Token {
+                    tok: Tok::Assert(p.to_string(), at),
+                    span: span(i, depth_end),
+                    line_start: false,
+                });
             }
             i = depth_end;
             continue;
@@ -129,11 +150,15 @@ pub fn lex(file: usize, text: &str, range: std::ops::Range<usize>) -> Result<Vec
                 } else {
                     Tok::Typed(lit.to_string())
                 };
-                out.push(Token { tok, span: span(i, i + lit_end) });
+                out.push(Token { tok, span: span(i, i + lit_end), line_start: false });
                 i += lit_end;
                 continue;
             }
-            out.push(Token { tok: Tok::Ident(word.to_string()), span: span(i, i + n) });
+            out.push(Token {
+                tok: Tok::Ident(word.to_string()),
+                span: span(i, i + n),
+                line_start: false,
+            });
             i += n;
             continue;
         }
@@ -180,7 +205,7 @@ pub fn lex(file: usize, text: &str, range: std::ops::Range<usize>) -> Result<Vec
                     }
                 }
             };
-            out.push(Token { tok, span: span(i, i + lit.len()) });
+            out.push(Token { tok, span: span(i, i + lit.len()), line_start: false });
             i += lit.len();
             continue;
         }
@@ -193,7 +218,11 @@ pub fn lex(file: usize, text: &str, range: std::ops::Range<usize>) -> Result<Vec
                     format!("this {q} is never closed"),
                 ));
             };
-            out.push(Token { tok: Tok::Str(rest[..n + 2].to_string()), span: span(i, i + n + 2) });
+            out.push(Token {
+                tok: Tok::Str(rest[..n + 2].to_string()),
+                span: span(i, i + n + 2),
+                line_start: false,
+            });
             i += n + 2;
             continue;
         }
@@ -201,13 +230,17 @@ pub fn lex(file: usize, text: &str, range: std::ops::Range<usize>) -> Result<Vec
             let n = 1 + rest[1..]
                 .find(|ch: char| !(ch.is_ascii_alphanumeric() || ch == '.'))
                 .unwrap_or(rest.len() - 1);
-            out.push(Token { tok: Tok::Direct(rest[..n].to_string()), span: span(i, i + n) });
+            out.push(Token {
+                tok: Tok::Direct(rest[..n].to_string()),
+                span: span(i, i + n),
+                line_start: false,
+            });
             i += n;
             continue;
         }
         match SYMS.iter().find(|s| rest.starts_with(**s)) {
             Some(s) => {
-                out.push(Token { tok: Tok::Sym(s), span: span(i, i + s.len()) });
+                out.push(Token { tok: Tok::Sym(s), span: span(i, i + s.len()), line_start: false });
                 i += s.len();
             }
             None => {
@@ -220,7 +253,17 @@ pub fn lex(file: usize, text: &str, range: std::ops::Range<usize>) -> Result<Vec
             }
         }
     }
-    out.push(Token { tok: Tok::Eof, span: span(end, end) });
+    out.push(Token { tok: Tok::Eof, span: span(end, end), line_start: true });
+    // A token starts a line when a line break lies between it and the token before.
+    let mut k = 0;
+    let mut prev_end = range.start;
+    for t in &mut out {
+        while k < breaks.len() && breaks[k] < prev_end {
+            k += 1;
+        }
+        t.line_start |= k < breaks.len() && breaks[k] < t.span.start;
+        prev_end = t.span.end;
+    }
     Ok(out)
 }
 

@@ -1,0 +1,681 @@
+//! Instruction List in the scan model: the current result as a lowered value, forward jumps and conditional returns as a guard on every later write, calls as in Structured Text.
+//!
+//! An IL body runs its lines in order with one register, the current result (CR). Its
+//! value here is a scan-local value, taken anew before each instruction that writes or
+//! jumps (so a later write cannot change what was read). A line runs when the guard holds:
+//! `TRUE` at the start; after `JMPC L` it is `guard ∧ ¬CR` and the jump's condition
+//! `guard ∧ CR` joins the guard at `L:` (with the CR it carried); after `RET` it is
+//! `FALSE` until a label some jump reaches. A write under a guard that is not `TRUE` is
+//! an `If` of the scan model. A jump to an earlier label would repeat instructions within
+//! one scan (a loop): refused with a located error, as is a timer or edge detector called
+//! on a line some jump may skip (its memory would update only on some scans).
+
+use std::collections::BTreeMap;
+
+use super::calls::Fb;
+use super::{Lowering, Sym, Ty};
+use crate::diag::Span;
+use crate::iec::StError;
+use crate::iec::ast::{self, BinOp, ExprKind, IlCond, IlInstr, IlLine, IlOp};
+use crate::program::{BoolExpr, Stmt, WriteKind};
+
+/// The current result.
+#[derive(Clone, Debug)]
+enum Cr {
+    /// Nothing loaded yet.
+    Unset,
+    /// A BOOL.
+    Bool(BoolExpr),
+    /// A value of another type (an integer, a duration), named for messages.
+    Other(String),
+}
+
+/// How many jump conditions a guard's truth table follows.
+const ATOMS: usize = 12;
+const WORDS: usize = (1 << ATOMS) / 64;
+
+/// A guard as a Boolean function of the jump conditions met so far, each taken as a free
+/// variable: where every path from a jump meets again the guard is `TRUE` whatever the
+/// conditions were (a truth table over the first [`ATOMS`] conditions; `None` beyond).
+#[derive(Clone, Debug, PartialEq, Eq)]
+struct Table(Option<Box<[u64; WORDS]>>);
+
+impl Table {
+    fn constant(v: bool) -> Table {
+        Table(Some(Box::new([if v { u64::MAX } else { 0 }; WORDS])))
+    }
+
+    /// The `k`-th condition.
+    fn atom(k: usize) -> Table {
+        if k >= ATOMS {
+            return Table(None);
+        }
+        let mut t = [0u64; WORDS];
+        for (w, word) in t.iter_mut().enumerate() {
+            for b in 0..64 {
+                if ((w * 64 + b) >> k) & 1 == 1 {
+                    *word |= 1 << b;
+                }
+            }
+        }
+        Table(Some(Box::new(t)))
+    }
+
+    fn zip(&self, other: &Table, f: impl Fn(u64, u64) -> u64) -> Table {
+        match (&self.0, &other.0) {
+            (Some(a), Some(b)) => {
+                let mut t = [0u64; WORDS];
+                for (k, w) in t.iter_mut().enumerate() {
+                    *w = f(a[k], b[k]);
+                }
+                Table(Some(Box::new(t)))
+            }
+            _ => Table(None),
+        }
+    }
+
+    fn and(&self, o: &Table) -> Table {
+        self.zip(o, |a, b| a & b)
+    }
+
+    fn or(&self, o: &Table) -> Table {
+        self.zip(o, |a, b| a | b)
+    }
+
+    fn not(&self) -> Table {
+        self.zip(&Table::constant(true), |a, _| !a)
+    }
+
+    /// `Some(v)` when the function is the constant `v`.
+    fn value(&self) -> Option<bool> {
+        let t = self.0.as_ref()?;
+        if t.iter().all(|w| *w == u64::MAX) {
+            Some(true)
+        } else if t.iter().all(|w| *w == 0) {
+            Some(false)
+        } else {
+            None
+        }
+    }
+}
+
+/// Whether a line runs: the scan-model value, and its function of the jump conditions.
+#[derive(Clone, Debug)]
+struct Guard {
+    value: BoolExpr,
+    table: Table,
+}
+
+/// Where the lowering of a body stands.
+struct Flow {
+    /// Whether the current line runs.
+    guard: Guard,
+    cr: Cr,
+    /// Jumps not yet reached: label key → (when taken, the CR they carry).
+    pending: BTreeMap<String, Vec<(Guard, Cr)>>,
+    /// How many jump conditions there have been.
+    atoms: usize,
+}
+
+fn is_const(e: &BoolExpr, v: bool) -> bool {
+    matches!(e, BoolExpr::Const(b) if *b == v)
+}
+
+impl Lowering<'_> {
+    /// Lowers the lines of a program's IL body, one block per line that writes.
+    pub(super) fn il_body(&mut self, lines: &[IlLine]) {
+        for (span, line, stmts) in self.il_run(lines) {
+            self.line = line;
+            self.push_block(span, stmts);
+        }
+    }
+
+    /// The statements of each line of an IL body: its span, its line number, what it does.
+    pub(super) fn il_run(&mut self, lines: &[IlLine]) -> Vec<(Span, usize, Vec<Stmt>)> {
+        let mut labels: BTreeMap<String, (usize, Span)> = BTreeMap::new();
+        for (k, line) in lines.iter().enumerate() {
+            let Some(l) = &line.label else { continue };
+            if let Some((_, first)) = labels.get(&l.key()) {
+                let mut e = StError::new(
+                    l.span,
+                    format!("the label `{}` is declared twice", l.name),
+                    "declared again here",
+                );
+                e.related = Some(Box::new((*first, "first declared here".into())));
+                self.errors.push(e);
+            } else {
+                labels.insert(l.key(), (k, l.span));
+            }
+        }
+        let mut flow = Flow {
+            guard: Guard { value: BoolExpr::Const(true), table: Table::constant(true) },
+            cr: Cr::Unset,
+            pending: BTreeMap::new(),
+            atoms: 0,
+        };
+        let mut run = Vec::new();
+        for (k, line) in lines.iter().enumerate() {
+            self.line = self.line_of(line.span);
+            let mut out = Vec::new();
+            if let Some(l) = &line.label {
+                self.join(&mut flow, &l.key(), &mut out);
+            }
+            if let Some(instr) = &line.instr {
+                self.il_instr(instr, k, &labels, &mut flow, &mut out);
+            }
+            // The user functions a call's inputs call run before the line.
+            let mut first = std::mem::take(&mut self.prelude);
+            first.append(&mut out);
+            run.push((line.span, self.line, first));
+        }
+        run
+    }
+
+    /// At a label: the guard is the fall-through's or that of a jump here; the CR is
+    /// the one of whichever path came.
+    fn join(&mut self, flow: &mut Flow, label: &str, out: &mut Vec<Stmt>) {
+        let Some(jumps) = flow.pending.remove(label) else { return };
+        let mut paths: Vec<(Guard, Cr)> = Vec::new();
+        // A path whose value is FALSE still counts in the table (its condition is free there).
+        let live = |g: &Guard| match g.table.value() {
+            Some(v) => v,
+            None => g.table.0.is_some() || !is_const(&g.value, false),
+        };
+        if live(&flow.guard) {
+            paths.push((flow.guard.clone(), flow.cr.clone()));
+        }
+        paths.extend(jumps.into_iter().filter(|(g, _)| live(g)));
+        match paths.as_slice() {
+            [] => {
+                flow.guard = Guard { value: BoolExpr::Const(false), table: Table::constant(false) }
+            }
+            [(g, cr)] => {
+                flow.guard = g.clone();
+                flow.cr = cr.clone();
+            }
+            _ => {
+                let value = BoolExpr::Or(paths.iter().map(|(g, _)| g.value.clone()).collect());
+                let table =
+                    paths.iter().skip(1).fold(paths[0].0.table.clone(), |t, (g, _)| t.or(&g.table));
+                flow.guard = self.guard(out, value, table);
+                flow.cr = if paths.iter().all(|(_, c)| matches!(c, Cr::Bool(_))) {
+                    // The paths exclude one another: the CR of the one taken.
+                    let terms = paths.iter().map(|(g, c)| match c {
+                        Cr::Bool(v) => BoolExpr::and(g.value.clone(), v.clone()),
+                        _ => unreachable!("all BOOL"),
+                    });
+                    Cr::Bool(self.temp(out, BoolExpr::Or(terms.collect())))
+                } else if paths.iter().all(|(_, c)| matches!(c, Cr::Unset)) {
+                    Cr::Unset
+                } else {
+                    Cr::Other("a value of several types".into())
+                };
+            }
+        }
+    }
+
+    /// Takes the CR as a scan-local value (so later writes leave what it read).
+    fn settle(&mut self, flow: &mut Flow, out: &mut Vec<Stmt>) {
+        if let Cr::Bool(v) = &flow.cr
+            && !matches!(v, BoolExpr::Const(_) | BoolExpr::Temp(_))
+        {
+            let v = v.clone();
+            flow.cr = Cr::Bool(self.temp(out, v));
+        }
+    }
+
+    /// `stmts` as they run here: under the guard.
+    fn guarded(&self, guard: &BoolExpr, stmts: Vec<Stmt>, span: Span) -> Vec<Stmt> {
+        if stmts.is_empty() || is_const(guard, true) {
+            return stmts;
+        }
+        vec![Stmt::If { branches: vec![(guard.clone(), stmts)], otherwise: Vec::new(), span }]
+    }
+
+    /// The CR as a BOOL, for the instruction `word`.
+    fn cr_bool(&mut self, cr: &Cr, word: &ast::Ident) -> BoolExpr {
+        match cr {
+            Cr::Bool(v) => v.clone(),
+            Cr::Unset => {
+                self.errors.push(StError::new(
+                    word.span,
+                    format!("`{}` reads the current result before any `LD` sets it", word.name),
+                    "no current result here",
+                ));
+                BoolExpr::Const(false)
+            }
+            Cr::Other(t) => {
+                self.errors.push(StError::new(
+                    word.span,
+                    format!("`{}` needs a BOOL current result, but it holds {t}", word.name),
+                    "expected a BOOL current result",
+                ));
+                BoolExpr::Const(false)
+            }
+        }
+    }
+
+    /// When a `C`/`CN` instruction acts (its condition is a new free variable of the
+    /// guards' tables).
+    fn when(
+        &mut self,
+        flow: &mut Flow,
+        cond: IlCond,
+        word: &ast::Ident,
+        out: &mut Vec<Stmt>,
+    ) -> Guard {
+        let g = flow.guard.clone();
+        if cond == IlCond::Always {
+            return g;
+        }
+        let cr = self.cr_bool(&flow.cr, word);
+        let atom = Table::atom(flow.atoms);
+        flow.atoms += 1;
+        let (c, t) = match cond {
+            IlCond::IfTrue => (cr, atom),
+            _ => (BoolExpr::negate(cr), atom.not()),
+        };
+        self.guard(out, BoolExpr::and(g.value, c), g.table.and(&t))
+    }
+
+    /// A guard from its value and table: a constant where the table is one.
+    fn guard(&mut self, out: &mut Vec<Stmt>, value: BoolExpr, table: Table) -> Guard {
+        let value = match table.value() {
+            Some(v) => BoolExpr::Const(v),
+            None => self.temp_unless_simple(out, value),
+        };
+        Guard { value, table }
+    }
+
+    /// What stays on this path after `leave` is taken.
+    fn stay(&mut self, flow: &Flow, leave: &Guard, out: &mut Vec<Stmt>) -> Guard {
+        let g = &flow.guard;
+        let value = BoolExpr::and(g.value.clone(), BoolExpr::negate(leave.value.clone()));
+        self.guard(out, value, g.table.and(&leave.table.not()))
+    }
+
+    fn il_instr(
+        &mut self,
+        instr: &IlInstr,
+        at: usize,
+        labels: &BTreeMap<String, (usize, Span)>,
+        flow: &mut Flow,
+        out: &mut Vec<Stmt>,
+    ) {
+        match instr {
+            IlInstr::Op { op: IlOp::St | IlOp::S | IlOp::R, negate, operand, word, .. } => {
+                self.settle(flow, out);
+                let Some(target) = operand else { return };
+                let stmts = match &instr {
+                    IlInstr::Op { op: IlOp::St, .. } => self.il_store(flow, target, *negate, word),
+                    IlInstr::Op { op, .. } => {
+                        let set = *op == IlOp::S;
+                        self.il_set(flow, target, set, word)
+                    }
+                    _ => unreachable!("matched above"),
+                };
+                out.extend(self.guarded(&flow.guard.value, stmts, word.span));
+            }
+            IlInstr::Op { op, negate, operand, nested, word } => {
+                let cr = std::mem::replace(&mut flow.cr, Cr::Unset);
+                flow.cr = self.il_op(cr, op, *negate, operand.as_ref(), nested.as_deref(), word);
+                // What the user functions it calls run (their variables are their own).
+                out.append(&mut self.prelude);
+            }
+            IlInstr::Call { cond, instance, args, word } => {
+                self.settle(flow, out);
+                let when = self.when(flow, *cond, word, out);
+                self.il_call(instance, args, None, &when.value, word, out);
+            }
+            IlInstr::FbInput { pin, instance, word } => {
+                self.settle(flow, out);
+                let v = self.cr_bool(&flow.cr, word);
+                let guard = flow.guard.value.clone();
+                self.il_call(instance, &[], Some((pin, v)), &guard, word, out);
+            }
+            IlInstr::Jump { cond, label, word } => {
+                self.settle(flow, out);
+                let Some(&(target, _)) = labels.get(&label.key()) else {
+                    let mut e = StError::new(
+                        label.span,
+                        format!("no label `{}` in this body", label.name),
+                        "not declared",
+                    );
+                    let names: Vec<String> = labels.keys().cloned().collect();
+                    if let Some(m) =
+                        crate::diag::did_you_mean(&label.key(), names.iter().map(String::as_str))
+                    {
+                        e.notes.push(format!("did you mean `{m}`?"));
+                    }
+                    self.errors.push(e);
+                    return;
+                };
+                if target <= at {
+                    self.refuse(
+                        word.span.to(label.span),
+                        "a backward jump (a loop within the scan)",
+                        "ii-prove models straight-line scans; jump only to later labels",
+                    );
+                    return;
+                }
+                let taken = self.when(flow, *cond, word, out);
+                flow.guard = self.stay(flow, &taken, out);
+                flow.pending.entry(label.key()).or_default().push((taken, flow.cr.clone()));
+            }
+            IlInstr::Return { cond, word } => {
+                let leave = self.when(flow, *cond, word, out);
+                flow.guard = self.stay(flow, &leave, out);
+            }
+            IlInstr::Assert(e, name) => {
+                let reached =
+                    (!is_const(&flow.guard.value, true)).then(|| flow.guard.value.clone());
+                out.extend(self.assertion(e, name.as_ref(), reached));
+            }
+        }
+    }
+
+    /// A scan-local value of `e`, unless it is a constant, a variable or a value already.
+    fn temp_unless_simple(&mut self, out: &mut Vec<Stmt>, e: BoolExpr) -> BoolExpr {
+        let e = simplify(e);
+        match e {
+            BoolExpr::Const(_) | BoolExpr::Temp(_) => e,
+            _ => self.temp(out, e),
+        }
+    }
+
+    /// An operator on the CR: its new value (no write).
+    fn il_op(
+        &mut self,
+        cr: Cr,
+        op: &IlOp,
+        negate: bool,
+        operand: Option<&ast::Expr>,
+        nested: Option<&[IlLine]>,
+        word: &ast::Ident,
+    ) -> Cr {
+        let not = |v: Cr| match v {
+            Cr::Bool(b) if negate => Cr::Bool(BoolExpr::negate(b)),
+            v => v,
+        };
+        let rhs = |l: &mut Self| -> Cr {
+            match nested {
+                Some(lines) => {
+                    let first = operand.map_or(Cr::Unset, |e| l.il_value(e));
+                    not(l.il_nested(first, lines))
+                }
+                None => not(operand.map_or(Cr::Unset, |e| l.il_value(e))),
+            }
+        };
+        match op {
+            IlOp::Ld => rhs(self),
+            IlOp::Not => match cr {
+                Cr::Bool(b) => Cr::Bool(BoolExpr::negate(b)),
+                Cr::Unset => Cr::Bool(self.cr_bool(&cr, word)),
+                other => other,
+            },
+            IlOp::Bin(b @ (BinOp::And | BinOp::Or | BinOp::Xor)) => {
+                let r = rhs(self);
+                match (cr, r) {
+                    (Cr::Bool(a), Cr::Bool(c)) => Cr::Bool(match b {
+                        BinOp::And => BoolExpr::and(a, c),
+                        BinOp::Or => BoolExpr::Or(vec![a, c]),
+                        _ => super::expr::xor(a, c),
+                    }),
+                    (Cr::Unset, _) | (_, Cr::Unset) => Cr::Bool(self.cr_bool(&Cr::Unset, word)),
+                    (Cr::Other(t), _) | (_, Cr::Other(t)) => Cr::Other(t),
+                }
+            }
+            IlOp::Bin(
+                b @ (BinOp::Eq | BinOp::Ne | BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge),
+            ) => {
+                let r = rhs(self);
+                match (cr, r) {
+                    (Cr::Bool(a), Cr::Bool(c)) if matches!(b, BinOp::Eq | BinOp::Ne) => {
+                        let x = super::expr::xor(a, c);
+                        Cr::Bool(if *b == BinOp::Ne { x } else { BoolExpr::negate(x) })
+                    }
+                    (Cr::Unset, _) => Cr::Bool(self.cr_bool(&Cr::Unset, word)),
+                    _ => {
+                        let name = word.name.to_ascii_uppercase();
+                        let span = operand.map_or(word.span, |e| word.span.to(e.span));
+                        Cr::Bool(self.comparison(&name, span))
+                    }
+                }
+            }
+            IlOp::Bin(_) => {
+                let _ = rhs(self);
+                if matches!(cr, Cr::Unset) {
+                    let _ = self.cr_bool(&cr, word);
+                }
+                Cr::Other("an integer".into())
+            }
+            IlOp::Function(f) => self.il_function(cr, f, operand),
+            IlOp::St | IlOp::S | IlOp::R => unreachable!("writes are lowered by il_instr"),
+        }
+    }
+
+    /// The lines of `OP( … )`, from the CR `first`: only operators on the CR.
+    fn il_nested(&mut self, first: Cr, lines: &[IlLine]) -> Cr {
+        let mut cr = first;
+        for line in lines {
+            match &line.instr {
+                Some(IlInstr::Op { op, negate, operand, nested, word })
+                    if !matches!(op, IlOp::St | IlOp::S | IlOp::R) =>
+                {
+                    cr = self.il_op(cr, op, *negate, operand.as_ref(), nested.as_deref(), word);
+                }
+                _ => {
+                    self.refuse(
+                        line.span,
+                        "a write, jump, call or return inside `( … )`",
+                        "parentheses compute an operand; write, jump or call after the `)`",
+                    );
+                    return Cr::Unset;
+                }
+            }
+        }
+        cr
+    }
+
+    /// An operand's value.
+    fn il_value(&mut self, e: &ast::Expr) -> Cr {
+        if self.is_bool(e) {
+            return Cr::Bool(self.bool_expr(e));
+        }
+        match &e.kind {
+            ExprKind::Var(id) => match self.lookup(id) {
+                Some(Sym { ty: Ty::Other(t), .. }) => Cr::Other(format!("a {t}")),
+                Some(Sym { ty: Ty::Fb(_, t) | Ty::User(t), name, .. }) => {
+                    self.errors.push(StError::new(
+                        e.span,
+                        format!("the {t} instance `{name}` where a value is expected"),
+                        "expected a variable or a literal",
+                    ));
+                    Cr::Unset
+                }
+                _ => Cr::Unset,
+            },
+            ExprKind::Member(of, field) => {
+                if let ExprKind::Var(id) = &of.kind {
+                    let _ = self.lookup(id);
+                }
+                Cr::Other(format!("the output {}", field.name))
+            }
+            ExprKind::Int(_) | ExprKind::Unary(ast::UnOp::Neg, _) => Cr::Other("an integer".into()),
+            ExprKind::Time(_) => Cr::Other("a duration".into()),
+            ExprKind::Literal(s) => Cr::Other(format!("the literal {s}")),
+            _ => {
+                let _ = self.bool_expr(e);
+                Cr::Unset
+            }
+        }
+    }
+
+    /// A function as an operator: the CR is its first argument.
+    fn il_function(&mut self, cr: Cr, f: &ast::Ident, operand: Option<&ast::Expr>) -> Cr {
+        let args: Vec<&ast::Expr> = match operand.map(|e| &e.kind) {
+            Some(ExprKind::Call(_, args)) => args
+                .iter()
+                .map(|a| match a {
+                    ast::Arg::Positional(x) | ast::Arg::Input(_, x) | ast::Arg::Output(_, _, x) => {
+                        x
+                    }
+                })
+                .collect(),
+            _ => Vec::new(),
+        };
+        let key = f.key();
+        if self.user.get(&key).is_some_and(|p| p.kind == ast::PouKind::Function) {
+            let first = match cr {
+                Cr::Bool(v) => Some(v),
+                _ => None,
+            };
+            let rest: Vec<ast::Arg> =
+                args.iter().map(|e| ast::Arg::Positional((*e).clone())).collect();
+            return match self.user_function(f, first, &rest) {
+                Some(v) => Cr::Bool(v),
+                None => Cr::Other(format!("the result of {}", f.name)),
+            };
+        }
+        let values: Vec<Cr> = args.iter().map(|e| self.il_value(e)).collect();
+        match (key.as_str(), &cr, values.as_slice()) {
+            ("MOVE", _, []) => cr,
+            ("SEL", Cr::Bool(g), [Cr::Bool(a), Cr::Bool(b)]) => Cr::Bool(BoolExpr::Or(vec![
+                BoolExpr::and(BoolExpr::negate(g.clone()), a.clone()),
+                BoolExpr::and(g.clone(), b.clone()),
+            ])),
+            _ => Cr::Other(format!("the result of {}", f.name)),
+        }
+    }
+
+    /// `ST x`/`STN x`.
+    fn il_store(
+        &mut self,
+        flow: &Flow,
+        target: &ast::Expr,
+        negate: bool,
+        word: &ast::Ident,
+    ) -> Vec<Stmt> {
+        let span = word.span.to(target.span);
+        match (&target.kind, &flow.cr) {
+            (ExprKind::Var(id), Cr::Other(what)) => match self.lookup(id) {
+                Some(Sym { ty: Ty::Other(t), name, .. }) => vec![Stmt::Warn {
+                    span,
+                    element: word.name.to_ascii_uppercase(),
+                    message: format!(
+                        "writes the {t} variable {name}: no Boolean effect (integers are not modelled yet)"
+                    ),
+                }],
+                Some(_) => {
+                    self.errors.push(StError::new(
+                        span,
+                        format!("`{}` stores {what} into the BOOL `{}`", word.name, id.name),
+                        "expected a BOOL current result",
+                    ));
+                    Vec::new()
+                }
+                None => Vec::new(),
+            },
+            (ExprKind::Member(..), _) => {
+                self.refuse(
+                    target.span,
+                    "writing a function block's input outside its call",
+                    "give it in the call: `CAL T1(IN := …, PT := …)`",
+                );
+                Vec::new()
+            }
+            _ => {
+                let v = self.cr_bool(&flow.cr, word);
+                let v = if negate { BoolExpr::negate(v) } else { v };
+                if let ExprKind::Var(id) = &target.kind
+                    && let Some(Sym { ty: Ty::Other(t), .. }) = self.syms.get(&id.key())
+                {
+                    let t = t.clone();
+                    self.errors.push(StError::new(
+                        span,
+                        format!("`{}` stores a BOOL into the {t} `{}`", word.name, id.name),
+                        "expected a BOOL variable",
+                    ));
+                    return Vec::new();
+                }
+                self.assign_value(target, v, span)
+            }
+        }
+    }
+
+    /// `S x`/`R x`: set or reset a BOOL when the CR is TRUE; with an instance, its input.
+    fn il_set(
+        &mut self,
+        flow: &mut Flow,
+        target: &ast::Expr,
+        set: bool,
+        word: &ast::Ident,
+    ) -> Vec<Stmt> {
+        if let ExprKind::Var(id) = &target.kind
+            && let Some(Sym { ty: Ty::Fb(..), .. }) = self.syms.get(&id.key())
+        {
+            let v = self.cr_bool(&flow.cr, word);
+            let pin = if set { "S" } else { "R" };
+            let mut out = Vec::new();
+            let guard = BoolExpr::Const(true);
+            self.il_call(target, &[], Some((pin, v)), &guard, word, &mut out);
+            return out;
+        }
+        let v = self.cr_bool(&flow.cr, word);
+        let kind = if set { WriteKind::Set } else { WriteKind::Reset };
+        self.write_value(target, kind, v, word.span.to(target.span))
+    }
+
+    /// A call, run when `when` holds: a timer or edge detector only where every scan
+    /// runs it.
+    fn il_call(
+        &mut self,
+        instance: &ast::Expr,
+        args: &[ast::Arg],
+        given: Option<(&str, BoolExpr)>,
+        when: &BoolExpr,
+        word: &ast::Ident,
+        out: &mut Vec<Stmt>,
+    ) {
+        let span = word.span.to(instance.span);
+        let memory = match &instance.kind {
+            ExprKind::Var(id) => match self.syms.get(&id.key()) {
+                Some(Sym {
+                    ty: Ty::Fb(fb @ (Fb::Ton | Fb::Tof | Fb::RTrig | Fb::FTrig), t),
+                    name,
+                    ..
+                }) => Some((*fb, t.clone(), name.clone())),
+                _ => None,
+            },
+            _ => None,
+        };
+        if let Some((_, t, name)) = &memory
+            && !is_const(when, true)
+        {
+            self.refuse(
+                span,
+                &format!("a call of the {t} `{name}` that a jump, return or condition may skip"),
+                "its memory would update only on the scans that call it; call it on every scan and jump over its uses instead",
+            );
+            return;
+        }
+        let stmts = self.call_with(instance, args, given, span);
+        out.extend(self.guarded(when, stmts, span));
+    }
+}
+
+/// Constant folding of `∧`/`∨`/`¬` over `TRUE`/`FALSE`.
+fn simplify(e: BoolExpr) -> BoolExpr {
+    match e {
+        BoolExpr::And(a, b) => match (simplify(*a), simplify(*b)) {
+            (BoolExpr::Const(false), _) | (_, BoolExpr::Const(false)) => BoolExpr::Const(false),
+            (BoolExpr::Const(true), x) | (x, BoolExpr::Const(true)) => x,
+            (x, y) => BoolExpr::and(x, y),
+        },
+        BoolExpr::Not(a) => match simplify(*a) {
+            BoolExpr::Const(b) => BoolExpr::Const(!b),
+            x => BoolExpr::negate(x),
+        },
+        other => other,
+    }
+}

@@ -1,0 +1,324 @@
+//! User function blocks and functions, inlined: an instance's variables are bits of its own (`Inst_Var`), a call writes its inputs, runs the body with the instance's names and reads its outputs; a function call runs its body on variables of that call alone, before the statement that uses its result.
+
+use std::collections::BTreeMap;
+
+use super::calls::Fb;
+use super::{Lowering, Sym, Ty};
+use crate::diag::Span;
+use crate::iec::StError;
+use crate::iec::ast::{self, Arg, ExprKind, Ident, PouKind, VarClass};
+use crate::program::{BoolExpr, Stmt, WriteKind};
+
+/// How deep user POUs may nest.
+const MAX_DEPTH: usize = 16;
+
+impl Lowering<'_> {
+    /// The type a declaration names.
+    pub(super) fn type_of(&self, ty: &Ident) -> Ty {
+        match ty.name.as_str() {
+            "BOOL" => Ty::Bool,
+            t => match Fb::of(t) {
+                Some(fb) => Ty::Fb(fb, t.to_string()),
+                None if self
+                    .user
+                    .get(&ty.key())
+                    .is_some_and(|p| p.kind == PouKind::FunctionBlock) =>
+                {
+                    Ty::User(ty.key())
+                }
+                None => Ty::Other(t.to_string()),
+            },
+        }
+    }
+
+    /// Whether `pou` is being inlined already (or nesting is too deep): refused at `span`.
+    fn recursive(&mut self, pou: &str, span: Span) -> bool {
+        let again = self.inlining.iter().any(|p| p == pou) || self.inlining.len() >= MAX_DEPTH;
+        if again {
+            let name = self.user.get(pou).map_or(pou.to_string(), |p| p.name.name.clone());
+            self.refuse(
+                span,
+                &format!("`{name}` used within itself"),
+                "a recursive function block or function has no finite scan",
+            );
+        }
+        again
+    }
+
+    /// The variables of the user FB instance `inst` (its name in the scan model) of type
+    /// `fb`: bits named `inst_Var`, nested instances, globals through `VAR_EXTERNAL`.
+    pub(super) fn instantiate(&mut self, inst: &str, fb: &str, span: Span) {
+        if self.recursive(fb, span) {
+            return;
+        }
+        let Some(pou) = self.user.get(fb).cloned() else { return };
+        self.inlining.push(fb.to_string());
+        let table = self.variables(&pou, inst, false);
+        self.inlining.pop();
+        self.instances.insert(inst.to_string(), table);
+    }
+
+    /// The variables of `pou` named `prefix_Var`; `fresh`: a function call's, which
+    /// start from their initial values at each call (else an instance's, from the first
+    /// scan on).
+    fn variables(&mut self, pou: &ast::Pou, prefix: &str, fresh: bool) -> BTreeMap<String, Sym> {
+        let mut table: BTreeMap<String, Sym> = BTreeMap::new();
+        for v in &pou.vars {
+            let key = v.name.key();
+            if v.class == VarClass::External {
+                match self.syms.get(&key) {
+                    Some(g) if !fresh => {
+                        table.insert(key, g.clone());
+                    }
+                    _ => self.errors.push(StError::new(
+                        v.name.span,
+                        format!("`{}` is declared VAR_EXTERNAL but no VAR_GLOBAL of the program's configuration declares it", v.name.name),
+                        "no such global",
+                    )),
+                }
+                continue;
+            }
+            if v.class == VarClass::InOut {
+                self.refuse(
+                    v.name.span,
+                    &format!("the VAR_IN_OUT `{}` of `{}`", v.name.name, pou.name.name),
+                    "a variable passed by reference is not modelled yet",
+                );
+                continue;
+            }
+            if let Some(prev) = table.get(&key) {
+                let prev = prev.span;
+                self.twice(v, prev);
+                continue;
+            }
+            let name = self.unique(&format!("{prefix}_{}", v.name.name));
+            let ty = self.type_of(&v.ty);
+            match (&ty, v.init.as_ref().map(|e| &e.kind)) {
+                (Ty::Bool, Some(ExprKind::Bool(true))) if !fresh => self.starts.push(name.clone()),
+                (Ty::Bool, Some(ExprKind::Bool(_)) | None) => {}
+                (Ty::Bool, Some(_)) => self.errors.push(StError::new(
+                    v.init.as_ref().map_or(v.name.span, |e| e.span),
+                    "a BOOL's initial value must be TRUE or FALSE",
+                    "expected `TRUE` or `FALSE`",
+                )),
+                (Ty::Fb(..) | Ty::User(_), _) if fresh => self.refuse(
+                    v.ty.span,
+                    "a function-block instance in a function",
+                    "a function keeps no state between calls; declare it in a function block",
+                ),
+                (Ty::Fb(..) | Ty::User(_), Some(_)) => self.refuse(
+                    v.ty.span,
+                    "an initialised function-block instance",
+                    "give its inputs in its call",
+                ),
+                _ => {}
+            }
+            if v.constant
+                && let Some(ExprKind::Time(us)) = v.init.as_ref().map(|e| &e.kind)
+            {
+                self.durations.insert(name.clone(), *us);
+            }
+            if let Ty::User(fb) = &ty {
+                let fb = fb.clone();
+                self.instantiate(&name, &fb, v.name.span);
+            }
+            table.insert(key, Sym { name, ty, span: v.name.span });
+        }
+        table
+    }
+
+    /// The statements of a user POU's body, with its names.
+    fn body(&mut self, pou: &ast::Pou, names: BTreeMap<String, Sym>) -> Vec<Stmt> {
+        let caller = std::mem::replace(&mut self.syms, names);
+        let line = self.line;
+        self.inlining.push(pou.name.key());
+        let stmts = match &pou.body {
+            ast::Body::St(body) => body
+                .iter()
+                .flat_map(|s| {
+                    self.line = self.line_of(s.span);
+                    self.stmt(s, 1)
+                })
+                .collect(),
+            ast::Body::Il(lines) => self.il_run(lines).into_iter().flat_map(|r| r.2).collect(),
+        };
+        self.inlining.pop();
+        self.line = line;
+        self.syms = caller;
+        stmts
+    }
+
+    /// The inputs of a call: `(variable, value)` for each BOOL input given (a positional
+    /// argument takes the next `VAR_INPUT`), evaluated in the caller's scope.
+    fn inputs_of(
+        &mut self,
+        pou: &ast::Pou,
+        names: &BTreeMap<String, Sym>,
+        first: Option<BoolExpr>,
+        args: &[Arg],
+        out: &mut Vec<Stmt>,
+    ) -> Vec<(String, BoolExpr)> {
+        let order: Vec<&ast::VarDecl> =
+            pou.vars.iter().filter(|v| v.class == VarClass::Input).collect();
+        let mut given = Vec::new();
+        let mut next = 0;
+        if let Some(v) = first {
+            if let Some(d) = order.first() {
+                given.push((d.name.key(), v, d.name.span));
+            }
+            next = 1;
+        }
+        for a in args {
+            let (key, e, span) = match a {
+                Arg::Input(n, e) => (n.key(), e, n.span),
+                Arg::Positional(e) => {
+                    let Some(d) = order.get(next) else {
+                        self.errors.push(StError::new(
+                            e.span,
+                            format!(
+                                "`{}` has {} inputs; this is one more",
+                                pou.name.name,
+                                order.len()
+                            ),
+                            "no input left for it",
+                        ));
+                        continue;
+                    };
+                    next += 1;
+                    (d.name.key(), e, e.span)
+                }
+                Arg::Output(..) => continue,
+            };
+            let is_input = order.iter().any(|d| d.name.key() == key);
+            match names.get(&key) {
+                Some(Sym { ty: Ty::Bool, .. }) if is_input => {
+                    let v = self.bool_expr(e);
+                    given.push((key, v, span));
+                }
+                Some(_) if is_input => {}
+                _ => self.errors.push(StError::new(
+                    span,
+                    format!("`{}` has no input `{key}`", pou.name.name),
+                    format!(
+                        "its inputs are {}",
+                        order.iter().map(|d| d.name.name.as_str()).collect::<Vec<_>>().join(", ")
+                    ),
+                )),
+            }
+        }
+        // Every value is read before any input is written.
+        given
+            .into_iter()
+            .map(|(key, v, _)| {
+                let v = self.temp(out, v);
+                (names[&key].name.clone(), v)
+            })
+            .collect()
+    }
+
+    /// A call of the user FB instance `inst` (its name in the scan model) of type `fb`.
+    pub(super) fn user_call(
+        &mut self,
+        inst: &str,
+        fb: &str,
+        args: &[Arg],
+        span: Span,
+    ) -> Vec<Stmt> {
+        if self.recursive(fb, span) {
+            return Vec::new();
+        }
+        let Some(pou) = self.user.get(fb).cloned() else { return Vec::new() };
+        let names = self.instances.get(inst).cloned().unwrap_or_default();
+        let mut out = Vec::new();
+        let writes = self.inputs_of(&pou, &names, None, args, &mut out);
+        for (target, value) in writes {
+            out.push(Stmt::Write { target, kind: WriteKind::Assign, value, span });
+        }
+        out.extend(self.body(&pou, names.clone()));
+        for a in args {
+            let Arg::Output(pin, negated, target) = a else { continue };
+            let declared =
+                pou.vars.iter().any(|v| v.class == VarClass::Output && v.name.key() == pin.key());
+            match names.get(&pin.key()) {
+                Some(Sym { ty: Ty::Bool, name, .. }) if declared => {
+                    let q = BoolExpr::var(name);
+                    let value = if *negated { BoolExpr::negate(q) } else { q };
+                    out.extend(self.assign_value(target, value, span));
+                }
+                _ => self.refuse(
+                    pin.span,
+                    &format!("the output {} of {}", pin.name, pou.name.name),
+                    "only its BOOL outputs are modelled",
+                ),
+            }
+        }
+        out
+    }
+
+    /// The BOOL variable `field` of the user FB instance `inst`, if it is one.
+    pub(super) fn member(&self, inst: &str, field: &Ident) -> Option<String> {
+        match self.instances.get(inst)?.get(&field.key())? {
+            Sym { ty: Ty::Bool, name, .. } => Some(name.clone()),
+            _ => None,
+        }
+    }
+
+    /// Whether `f` is a user function with a BOOL result.
+    pub(super) fn bool_function(&self, f: &Ident) -> bool {
+        self.user.get(&f.key()).is_some_and(|p| {
+            p.kind == PouKind::Function && p.result.as_ref().is_some_and(|r| r.key() == "BOOL")
+        })
+    }
+
+    /// A call of the user function `f` (`first`: the value of its first input, given by
+    /// an IL current result): its body runs, on variables of this call alone, before the
+    /// statement being lowered; its BOOL result (`None` for another type).
+    pub(super) fn user_function(
+        &mut self,
+        f: &Ident,
+        first: Option<BoolExpr>,
+        args: &[Arg],
+    ) -> Option<BoolExpr> {
+        if self.recursive(&f.key(), f.span) {
+            return None;
+        }
+        let pou = self.user.get(&f.key()).cloned()?;
+        self.calls += 1;
+        let prefix = format!("{}_{}", pou.name.name, self.calls);
+        let mut names = self.variables(&pou, &prefix, true);
+        let result_ty = pou.result.as_ref().map_or(Ty::Other("?".into()), |r| self.type_of(r));
+        let result = self.unique(&prefix);
+        names.insert(
+            pou.name.key(),
+            Sym { name: result.clone(), ty: result_ty.clone(), span: pou.name.span },
+        );
+        let mut out = Vec::new();
+        let writes = self.inputs_of(&pou, &names, first, args, &mut out);
+        // Each call starts from the initial values.
+        for v in &pou.vars {
+            if let Some(Sym { ty: Ty::Bool, name, .. }) = names.get(&v.name.key()) {
+                let init = matches!(v.init.as_ref().map(|e| &e.kind), Some(ExprKind::Bool(true)));
+                out.push(Stmt::Write {
+                    target: name.clone(),
+                    kind: WriteKind::Assign,
+                    value: BoolExpr::Const(init),
+                    span: v.name.span,
+                });
+            }
+        }
+        if matches!(result_ty, Ty::Bool) {
+            out.push(Stmt::Write {
+                target: result.clone(),
+                kind: WriteKind::Assign,
+                value: BoolExpr::Const(false),
+                span: pou.name.span,
+            });
+        }
+        for (target, value) in writes {
+            out.push(Stmt::Write { target, kind: WriteKind::Assign, value, span: f.span });
+        }
+        out.extend(self.body(&pou, names));
+        self.prelude.extend(out);
+        matches!(result_ty, Ty::Bool).then(|| BoolExpr::var(&result))
+    }
+}

@@ -1,0 +1,417 @@
+//! Random Instruction List programs for the differential tests, kept as instructions as well as text: loads, the Boolean operators with `N` and `( … )`, `NOT`, `EQ`/`NE`, `ST`/`STN`/`S`/`R`, forward `JMP`/`JMPC`/`JMPCN` with labels reached from several paths, `RETC`/`RETCN`, and calls of TON, TOF, R_TRIG, F_TRIG, SR, RS (`CAL` with formal inputs, `CLK` as an operator), each on every scan.
+#![allow(dead_code)]
+
+use super::rng::Rng;
+
+/// An operand: a BOOL variable or FB output (`T0.Q`), possibly negated where it is an
+/// argument, or a literal.
+#[derive(Clone, Debug)]
+pub enum Operand {
+    /// A variable or output.
+    Var(String),
+    /// `TRUE`/`FALSE`.
+    Lit(bool),
+}
+
+/// The logical operators.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Logic {
+    /// `AND`.
+    And,
+    /// `OR`.
+    Or,
+    /// `XOR`.
+    Xor,
+    /// `EQ`.
+    Eq,
+    /// `NE`.
+    Ne,
+}
+
+/// When a jump or return acts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum When {
+    /// Always.
+    Always,
+    /// `C`.
+    True,
+    /// `CN`.
+    False,
+}
+
+/// How a call is written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Form {
+    /// `CAL T0(IN := x, PT := T#5ms)`, one input per line.
+    Formal,
+    /// `CAL S0(x, y)`, a timer's preset a `CONSTANT` (`PT := P_T0` formally: matiec
+    /// misplaces a duration literal given to an IL call, and reads `R :=` as the `R`
+    /// operator).
+    Positional,
+    /// `CAL T0(IN := x, PT := P_T0)`, the preset a `CONSTANT`.
+    NamedPreset,
+}
+
+/// One instruction (one line, or several for `( … )` and calls).
+#[derive(Clone, Debug)]
+pub enum Ins {
+    /// `LD x`/`LDN x`.
+    Ld(bool, Operand),
+    /// `AND x`, `ORN x`, `EQ x`, …
+    Op(Logic, bool, Operand),
+    /// `AND( x` then the inner operations, then `)` (`ANDN(` when negated).
+    Nested(Logic, bool, Operand, Vec<(Logic, bool, Operand)>),
+    /// `NOT`.
+    Not,
+    /// `ST x`/`STN x`.
+    St(bool, String),
+    /// `S x`.
+    Set(String),
+    /// `R x`.
+    Reset(String),
+    /// `JMP l`, `JMPC l`, `JMPCN l`.
+    Jump(When, String),
+    /// `l:`.
+    Label(String),
+    /// `RETC`, `RETCN`.
+    Ret(When),
+    /// `CAL inst(pin := [NOT] x, …, PT := T#…)`: the instance, its type, its Boolean
+    /// inputs, the preset in µs for timers, and the call's form.
+    Cal(String, String, Vec<(String, bool, Operand)>, Option<u64>, Form),
+    /// `LD x` then `CLK inst` (an edge detector called with the current result).
+    Clk(String),
+}
+
+/// A random program.
+pub struct Generated {
+    /// The `.il` text.
+    pub text: String,
+    /// Its instructions.
+    pub ins: Vec<Ins>,
+    /// Its BOOL inputs.
+    pub inputs: Vec<String>,
+    /// Its BOOL locals with their initial values.
+    pub locals: Vec<(String, bool)>,
+    /// Its function-block instances and their types.
+    pub fbs: Vec<(String, String)>,
+    /// The bits worth comparing: locals and FB outputs, as the lowering names them (`T0_Q`).
+    pub bits: Vec<String>,
+    /// The scan cycle, in µs.
+    pub cycle_us: u64,
+}
+
+fn operand_text(o: &Operand) -> String {
+    match o {
+        Operand::Var(v) => v.clone(),
+        Operand::Lit(b) => if *b { "TRUE" } else { "FALSE" }.into(),
+    }
+}
+
+fn logic_word(l: Logic, neg: bool) -> String {
+    let base = match l {
+        Logic::And => "AND",
+        Logic::Or => "OR",
+        Logic::Xor => "XOR",
+        Logic::Eq => "EQ",
+        Logic::Ne => "NE",
+    };
+    if neg { format!("{base}N") } else { base.into() }
+}
+
+fn when_suffix(w: When) -> &'static str {
+    match w {
+        When::Always => "",
+        When::True => "C",
+        When::False => "CN",
+    }
+}
+
+fn duration(us: u64) -> String {
+    match us % 1000 {
+        0 => format!("T#{}ms", us / 1000),
+        f => format!("T#{}.{}ms", us / 1000, format!("{f:03}").trim_end_matches('0')),
+    }
+}
+
+/// The text of the instructions.
+pub fn render(ins: &[Ins]) -> String {
+    let mut out = String::new();
+    for i in ins {
+        match i {
+            Ins::Ld(n, o) => {
+                out += &format!("  LD{} {}\n", if *n { "N" } else { "" }, operand_text(o))
+            }
+            Ins::Op(l, n, o) => out += &format!("  {} {}\n", logic_word(*l, *n), operand_text(o)),
+            Ins::Nested(l, n, first, inner) => {
+                out += &format!("  {}( {}\n", logic_word(*l, *n), operand_text(first));
+                for (l, n, o) in inner {
+                    out += &format!("    {} {}\n", logic_word(*l, *n), operand_text(o));
+                }
+                out += "  )\n";
+            }
+            Ins::Not => out += "  NOT\n",
+            Ins::St(n, x) => out += &format!("  ST{} {x}\n", if *n { "N" } else { "" }),
+            Ins::Set(x) => out += &format!("  S {x}\n"),
+            Ins::Reset(x) => out += &format!("  R {x}\n"),
+            Ins::Jump(w, l) => out += &format!("  JMP{} {l}\n", when_suffix(*w)),
+            Ins::Label(l) => out += &format!("{l}:\n"),
+            Ins::Ret(w) => out += &format!("  RET{}\n", when_suffix(*w)),
+            Ins::Cal(inst, _, args, pt, form) => {
+                let value = |n: bool, o: &Operand| {
+                    format!("{}{}", if n { "NOT " } else { "" }, operand_text(o))
+                };
+                let preset = |us: u64| match form {
+                    Form::Formal => duration(us),
+                    _ => format!("P_{inst}"),
+                };
+                if *form == Form::Positional && pt.is_none() {
+                    let a: Vec<String> = args.iter().map(|(_, n, o)| value(*n, o)).collect();
+                    out += &format!("  CAL {inst}({})\n", a.join(", "));
+                    continue;
+                }
+                let mut a: Vec<String> =
+                    args.iter().map(|(p, n, o)| format!("{p} := {}", value(*n, o))).collect();
+                if let Some(us) = pt {
+                    a.push(format!("PT := {}", preset(*us)));
+                }
+                // matiec reads a formal call's inputs on lines of their own.
+                out += &format!("  CAL {inst}(\n    {}\n  )\n", a.join(",\n    "));
+            }
+            Ins::Clk(inst) => out += &format!("  CLK {inst}\n"),
+        }
+    }
+    out
+}
+
+struct Gen<'r> {
+    rng: &'r mut Rng,
+    /// Whether matiec must build it: no `EQ`/`NE` between BOOLs (its C library has no
+    /// `EQ_BOOL`) and plain operands as call inputs (its IL grammar).
+    for_matiec: bool,
+    reads: Vec<String>,
+    locals: Vec<String>,
+    labels: usize,
+}
+
+impl Gen<'_> {
+    fn operand(&mut self) -> Operand {
+        if self.rng.chance(10) {
+            Operand::Lit(self.rng.chance(50))
+        } else {
+            Operand::Var(self.rng.pick(&self.reads).clone())
+        }
+    }
+
+    /// An operator and its `N` modifier (`EQ` and `NE` have none).
+    /// A call's input (matiec misplaces a literal given to an IL call: a variable then).
+    fn argument(&mut self) -> Operand {
+        match self.operand() {
+            Operand::Lit(_) if self.for_matiec => Operand::Var(self.rng.pick(&self.reads).clone()),
+            o => o,
+        }
+    }
+
+    fn logic(&mut self) -> (Logic, bool) {
+        let all = [Logic::And, Logic::And, Logic::Or, Logic::Or, Logic::Xor, Logic::Eq, Logic::Ne];
+        let l = *self.rng.pick(if self.for_matiec { &all[..5] } else { &all[..] });
+        (l, !matches!(l, Logic::Eq | Logic::Ne) && self.rng.chance(30))
+    }
+
+    /// Operations on the current result.
+    fn ops(&mut self, out: &mut Vec<Ins>) {
+        for _ in 0..self.rng.below(4) {
+            match self.rng.below(10) {
+                0 => out.push(Ins::Not),
+                1 | 2 => {
+                    let ((l, n), first) = (self.logic(), self.operand());
+                    let inner = (0..1 + self.rng.below(2))
+                        .map(|_| {
+                            let (l, n) = self.logic();
+                            (l, n, self.operand())
+                        })
+                        .collect();
+                    out.push(Ins::Nested(l, n, first, inner));
+                }
+                _ => {
+                    let ((l, n), o) = (self.logic(), self.operand());
+                    out.push(Ins::Op(l, n, o));
+                }
+            }
+        }
+    }
+
+    /// Writes of the current result.
+    fn writes(&mut self, out: &mut Vec<Ins>) {
+        for _ in 0..1 + self.rng.below(2) {
+            let x = self.rng.pick(&self.locals).clone();
+            out.push(match self.rng.below(6) {
+                0 => Ins::Set(x),
+                1 => Ins::Reset(x),
+                2 => Ins::St(true, x),
+                _ => Ins::St(false, x),
+            });
+        }
+    }
+
+    /// How to write a call: matiec needs the positional form with named presets.
+    fn form(&mut self) -> Form {
+        if self.for_matiec {
+            return Form::Positional;
+        }
+        *self.rng.pick(&[Form::Formal, Form::Formal, Form::Positional, Form::NamedPreset])
+    }
+
+    fn label(&mut self) -> String {
+        self.labels += 1;
+        format!("L_{}", self.labels)
+    }
+}
+
+/// A random program of seed `seed`.
+pub fn program(seed: u64) -> Generated {
+    program_with(seed, false)
+}
+
+/// A random program of seed `seed`, within what matiec builds when `for_matiec`.
+pub fn program_with(seed: u64, for_matiec: bool) -> Generated {
+    let mut rng = Rng::new(seed);
+    let n_in = 1 + rng.below(4) as usize;
+    let n_local = 2 + rng.below(5) as usize;
+    let inputs: Vec<String> = (0..n_in).map(|k| format!("In{k}")).collect();
+    let locals: Vec<(String, bool)> =
+        (0..n_local).map(|k| (format!("B{k}"), rng.chance(30))).collect();
+    let cycle_ms = *rng.pick(&[1u64, 5, 10, 20, 100]);
+    let fbs: Vec<(String, String)> =
+        [("T", "TON"), ("F", "TOF"), ("R", "R_TRIG"), ("D", "F_TRIG"), ("S", "SR"), ("Z", "RS")]
+            .iter()
+            .filter(|_| rng.chance(50))
+            .map(|(p, t)| (format!("{p}0"), t.to_string()))
+            .collect();
+    let out_pin = |t: &str| if t == "SR" || t == "RS" { "Q1" } else { "Q" };
+    let mut reads: Vec<String> = inputs.clone();
+    reads.extend(locals.iter().map(|(n, _)| n.clone()));
+    reads.extend(fbs.iter().map(|(n, t)| format!("{n}.{}", out_pin(t))));
+    let local_names: Vec<String> = locals.iter().map(|(n, _)| n.clone()).collect();
+    let mut g = Gen { rng: &mut rng, for_matiec, reads, locals: local_names, labels: 0 };
+    let mut ins = Vec::new();
+    // Labels that forward jumps wait for; calls come only where none is pending (a call
+    // some jump skips is refused), returns only after the last call.
+    let mut pending: Vec<String> = Vec::new();
+    let mut calls: Vec<(String, String)> = fbs.clone();
+    let groups = 3 + g.rng.below(8);
+    let mut returned = false;
+    for k in 0..groups {
+        if !pending.is_empty() && g.rng.chance(40) {
+            let at = g.rng.below(pending.len() as u64) as usize;
+            ins.push(Ins::Label(pending.remove(at)));
+            // A label may be followed by operations on the CR its paths bring.
+            if g.rng.chance(50) {
+                g.ops(&mut ins);
+                g.writes(&mut ins);
+            }
+        }
+        let last_calls = k + 1 == groups;
+        if !calls.is_empty() && (last_calls || g.rng.chance(30)) {
+            for l in pending.drain(..) {
+                ins.push(Ins::Label(l));
+            }
+            while !calls.is_empty() && (last_calls || g.rng.chance(50)) {
+                let (inst, ty) = calls.remove(0);
+                if (ty == "R_TRIG" || ty == "F_TRIG") && g.rng.chance(40) {
+                    let o = g.operand();
+                    ins.push(Ins::Ld(g.rng.chance(30), o));
+                    g.ops(&mut ins);
+                    ins.push(Ins::Clk(inst));
+                    continue;
+                }
+                let pins: &[&str] = match ty.as_str() {
+                    "TON" | "TOF" => &["IN"],
+                    "R_TRIG" | "F_TRIG" => &["CLK"],
+                    "SR" => &["S1", "R"],
+                    _ => &["S", "R1"],
+                };
+                let args = pins
+                    .iter()
+                    .map(|p| (p.to_string(), !g.for_matiec && g.rng.chance(25), g.argument()))
+                    .collect();
+                let pt = (ty == "TON" || ty == "TOF")
+                    .then(|| g.rng.below(6) * cycle_ms * 1000 + g.rng.below(3) * 700);
+                let form = g.form();
+                ins.push(Ins::Cal(inst, ty, args, pt, form));
+            }
+        }
+        let o = g.operand();
+        ins.push(Ins::Ld(g.rng.chance(25), o));
+        g.ops(&mut ins);
+        match g.rng.below(10) {
+            0..=1 => {
+                let w = *g.rng.pick(&[When::True, When::False, When::Always]);
+                let l = if !pending.is_empty() && g.rng.chance(40) {
+                    g.rng.pick(&pending).clone()
+                } else {
+                    let l = g.label();
+                    pending.push(l.clone());
+                    l
+                };
+                if g.rng.chance(50) {
+                    g.writes(&mut ins);
+                }
+                ins.push(Ins::Jump(w, l));
+            }
+            2 if calls.is_empty() && !returned && k + 2 < groups => {
+                returned = true;
+                g.writes(&mut ins);
+                ins.push(Ins::Ret(*g.rng.pick(&[When::True, When::False])));
+            }
+            _ => g.writes(&mut ins),
+        }
+    }
+    for l in pending {
+        ins.push(Ins::Label(l));
+    }
+    // Every function block is called once per scan.
+    for (inst, ty) in calls {
+        let pins: &[&str] = match ty.as_str() {
+            "TON" | "TOF" => &["IN"],
+            "R_TRIG" | "F_TRIG" => &["CLK"],
+            "SR" => &["S1", "R"],
+            _ => &["S", "R1"],
+        };
+        let args = pins.iter().map(|p| (p.to_string(), false, g.argument())).collect();
+        let pt = (ty == "TON" || ty == "TOF").then(|| g.rng.below(6) * cycle_ms * 1000);
+        let form = g.form();
+        ins.push(Ins::Cal(inst, ty, args, pt, form));
+    }
+    let mut text = String::from("PROGRAM Random\n  VAR_INPUT\n");
+    for i in &inputs {
+        text += &format!("    {i} : BOOL;\n");
+    }
+    text += "  END_VAR\n  VAR\n";
+    for (b, init) in &locals {
+        text += &format!("    {b} : BOOL{};\n", if *init { " := TRUE" } else { "" });
+    }
+    for (n, t) in &fbs {
+        text += &format!("    {n} : {t};\n");
+    }
+    text += "  END_VAR\n";
+    let named: Vec<String> = ins
+        .iter()
+        .filter_map(|i| match i {
+            Ins::Cal(inst, _, _, Some(us), Form::Positional | Form::NamedPreset) => {
+                Some(format!("    P_{inst} : TIME := {};\n", duration(*us)))
+            }
+            _ => None,
+        })
+        .collect();
+    if !named.is_empty() {
+        text += &format!("  VAR CONSTANT\n{}  END_VAR\n", named.concat());
+    }
+    text += &render(&ins);
+    text += "END_PROGRAM\n\n";
+    text += &format!(
+        "CONFIGURATION Config\n  RESOURCE Res ON PLC\n    TASK Cyclic (INTERVAL := T#{cycle_ms}ms, PRIORITY := 1);\n    PROGRAM Main WITH Cyclic : Random;\n  END_RESOURCE\nEND_CONFIGURATION\n"
+    );
+    let mut bits: Vec<String> = locals.iter().map(|(n, _)| n.clone()).collect();
+    bits.extend(fbs.iter().map(|(n, t)| format!("{n}_{}", out_pin(t))));
+    Generated { text, ins, inputs, locals, fbs, bits, cycle_us: cycle_ms * 1000 }
+}

@@ -1,0 +1,195 @@
+//! A reference interpreter of the generated Instruction List programs (`il_gen.rs`), written from IEC 61131-3's description of IL (one current result; `S`/`R` act when it is TRUE; `( … )` computes an operand; jumps and returns by the current result) and matiec's library (`lib/timer.txt`, `edge_detection.txt`, `bistable.txt`) with the clock at scan × cycle — not from the lowering it checks.
+#![allow(dead_code)]
+
+use std::collections::BTreeMap;
+
+use super::il_gen::{Generated, Ins, Logic, Operand, When};
+
+/// A function block's state.
+#[derive(Clone, Debug, Default)]
+struct FbState {
+    q: bool,
+    /// TON/TOF: 0 reset, 1 counting, 2 set.
+    state: u8,
+    prev_in: bool,
+    start: u64,
+    /// R_TRIG/F_TRIG memory.
+    m: bool,
+}
+
+/// The interpreter.
+pub struct IlRef<'g> {
+    g: &'g Generated,
+    vars: BTreeMap<String, bool>,
+    fbs: BTreeMap<String, FbState>,
+    scan: u64,
+}
+
+impl<'g> IlRef<'g> {
+    /// Every variable at its initial value.
+    pub fn new(g: &'g Generated) -> IlRef<'g> {
+        let mut vars = BTreeMap::new();
+        for i in &g.inputs {
+            vars.insert(i.clone(), false);
+        }
+        for (b, init) in &g.locals {
+            vars.insert(b.clone(), *init);
+        }
+        let fbs = g.fbs.iter().map(|(n, _)| (n.clone(), FbState::default())).collect();
+        IlRef { g, vars, fbs, scan: 0 }
+    }
+
+    fn read(&self, o: &Operand) -> bool {
+        match o {
+            Operand::Lit(b) => *b,
+            Operand::Var(v) => match v.split_once('.') {
+                Some((inst, _)) => self.fbs[inst].q,
+                None => self.vars[v],
+            },
+        }
+    }
+
+    fn apply(cr: bool, l: Logic, neg: bool, v: bool) -> bool {
+        let v = v != neg;
+        match l {
+            Logic::And => cr && v,
+            Logic::Or => cr || v,
+            Logic::Xor => cr != v,
+            Logic::Eq => cr == v,
+            Logic::Ne => cr != v,
+        }
+    }
+
+    /// One scan with these inputs.
+    pub fn step(&mut self, inputs: &BTreeMap<String, bool>) {
+        for (k, v) in inputs {
+            self.vars.insert(k.clone(), *v);
+        }
+        let now = self.scan * self.g.cycle_us;
+        let ins = &self.g.ins;
+        let mut cr = false;
+        let mut pc = 0;
+        while pc < ins.len() {
+            match &ins[pc] {
+                Ins::Ld(n, o) => cr = self.read(o) != *n,
+                Ins::Op(l, n, o) => cr = Self::apply(cr, *l, *n, self.read(o)),
+                Ins::Nested(l, n, first, inner) => {
+                    let mut v = self.read(first);
+                    for (il, ineg, o) in inner {
+                        v = Self::apply(v, *il, *ineg, self.read(o));
+                    }
+                    cr = Self::apply(cr, *l, *n, v);
+                }
+                Ins::Not => cr = !cr,
+                Ins::St(n, x) => {
+                    self.vars.insert(x.clone(), cr != *n);
+                }
+                Ins::Set(x) => {
+                    if cr {
+                        self.vars.insert(x.clone(), true);
+                    }
+                }
+                Ins::Reset(x) => {
+                    if cr {
+                        self.vars.insert(x.clone(), false);
+                    }
+                }
+                Ins::Jump(w, l) => {
+                    let go = match w {
+                        When::Always => true,
+                        When::True => cr,
+                        When::False => !cr,
+                    };
+                    if go {
+                        pc = ins
+                            .iter()
+                            .position(|i| matches!(i, Ins::Label(m) if m == l))
+                            .expect("generated labels exist");
+                        continue;
+                    }
+                }
+                Ins::Label(_) => {}
+                Ins::Ret(w) => {
+                    let go = match w {
+                        When::Always => true,
+                        When::True => cr,
+                        When::False => !cr,
+                    };
+                    if go {
+                        break;
+                    }
+                }
+                Ins::Cal(inst, ty, args, pt, _) => {
+                    let vals: BTreeMap<&str, bool> =
+                        args.iter().map(|(p, n, o)| (p.as_str(), self.read(o) != *n)).collect();
+                    self.call(inst, ty, &vals, pt.unwrap_or(0), now);
+                }
+                Ins::Clk(inst) => {
+                    let ty = self.g.fbs.iter().find(|(n, _)| n == inst).map(|(_, t)| t.clone());
+                    let vals = BTreeMap::from([("CLK", cr)]);
+                    self.call(inst, ty.as_deref().unwrap_or(""), &vals, 0, now);
+                }
+            }
+            pc += 1;
+        }
+        self.scan += 1;
+    }
+
+    fn call(&mut self, inst: &str, ty: &str, vals: &BTreeMap<&str, bool>, pt: u64, now: u64) {
+        let f = self.fbs.get_mut(inst).expect("declared instance");
+        match ty {
+            "TON" => {
+                let input = vals["IN"];
+                if f.state == 0 && !f.prev_in && input {
+                    f.state = 1;
+                    f.q = false;
+                    f.start = now;
+                } else if !input {
+                    f.q = false;
+                    f.state = 0;
+                } else if f.state == 1 && f.start + pt <= now {
+                    f.state = 2;
+                    f.q = true;
+                }
+                f.prev_in = input;
+            }
+            "TOF" => {
+                let input = vals["IN"];
+                if f.state == 0 && f.prev_in && !input {
+                    f.state = 1;
+                    f.start = now;
+                } else if input {
+                    f.state = 0;
+                } else if f.state == 1 && f.start + pt <= now {
+                    f.state = 2;
+                }
+                f.q = input || f.state == 1;
+                f.prev_in = input;
+            }
+            "R_TRIG" => {
+                let clk = vals["CLK"];
+                f.q = clk && !f.m;
+                f.m = clk;
+            }
+            "F_TRIG" => {
+                let clk = vals["CLK"];
+                f.q = !clk && !f.m;
+                f.m = !clk;
+            }
+            "SR" => f.q = vals["S1"] || (!vals["R"] && f.q),
+            "RS" => f.q = !vals["R1"] && (vals["S"] || f.q),
+            _ => panic!("no function block type {ty}"),
+        }
+    }
+
+    /// A bit as the lowering names it: a variable, or `T0_Q` for an FB output.
+    pub fn bit(&self, name: &str) -> bool {
+        match self.vars.get(name) {
+            Some(v) => *v,
+            None => {
+                let inst = name.rsplit_once('_').map_or(name, |(i, _)| i);
+                self.fbs[inst].q
+            }
+        }
+    }
+}
