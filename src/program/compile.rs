@@ -682,7 +682,9 @@ impl<'a> Compiler<'a> {
                 let other = merged.get(&x).cloned().unwrap_or(L::Zero);
                 if v != other {
                     let mux = c.clone().and(v).or(c.clone().negate().and(other));
-                    merged.insert(x, simp(&mux));
+                    let g = simp(&mux);
+                    let g = self.bounded(&x, g, span);
+                    merged.insert(x, g);
                 }
             }
         }
@@ -916,27 +918,36 @@ impl<'a> Compiler<'a> {
         let g = simp(&g);
         if self.depth > 0 {
             // Inside an `If`: the value for now; the outermost `If` states the equation.
+            let g = self.bounded(&x, g, span);
             self.current.insert(x, g);
             return;
         }
         if self.last_write.get(&x) == Some(&k) {
             self.state(x, g, dominant);
-        } else if g.size() > MAX_INLINE {
-            let name = self.unique(&format!("{x}_r{}", self.block().number));
-            let rung = self.block().number;
-            self.fresh.insert(name.clone(), SignalKind::Fresh { rung, element: "COIL".into() });
-            self.warn(
-                span,
-                "COIL",
-                format!(
-                    "the intermediate value of {x} is too large to inline; later reads \
-                     until its next coil see the unconstrained signal {name}"
-                ),
-            );
-            self.current.insert(x, L::Var(name));
         } else {
+            let g = self.bounded(&x, g, span);
             self.current.insert(x, g);
         }
+    }
+
+    /// An intermediate value of `x` as later reads see it: `g`, or an unconstrained
+    /// signal (with a warning) when `g` is too large to inline.
+    fn bounded(&mut self, x: &str, g: L, span: Span) -> L {
+        if g.size() <= MAX_INLINE {
+            return g;
+        }
+        let name = self.unique(&format!("{x}_r{}", self.block().number));
+        let rung = self.block().number;
+        self.fresh.insert(name.clone(), SignalKind::Fresh { rung, element: "COIL".into() });
+        self.warn(
+            span,
+            "COIL",
+            format!(
+                "the intermediate value of {x} is too large to inline; later reads \
+                 until its next coil see the unconstrained signal {name}"
+            ),
+        );
+        L::Var(name)
     }
 
     /// `x`'s last write is done: its end-of-scan value `g` is stated with this block
