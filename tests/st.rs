@@ -111,7 +111,8 @@ fn programs_to_run() -> u64 {
 }
 
 /// Random ST programs: every compiled equation and recurrence holds at every scan of the
-/// scan model's simulator (timers counted as matiec counts them), and every bit is known.
+/// scan model's simulator (timers counted as matiec counts them), and every bit is known
+/// (`II_ST_SHOW=1` prints each program).
 #[test]
 fn random_st_programs_agree_with_the_scan_simulator() {
     let first: u64 = std::env::var("II_ST_FIRST").ok().and_then(|v| v.parse().ok()).unwrap_or(0);
@@ -120,6 +121,9 @@ fn random_st_programs_agree_with_the_scan_simulator() {
     let mut failures: Vec<String> = Vec::new();
     for seed in first..first + programs_to_run() {
         let g = st_gen::program(seed);
+        if std::env::var_os("II_ST_SHOW").is_some() {
+            eprintln!("seed {seed}:\n{}", g.text);
+        }
         let (program, compiled) = match compile(&g.text) {
             Ok(x) => x,
             Err(e) => {
@@ -165,4 +169,18 @@ fn user_function_blocks_and_functions_are_inlined() {
     assert!(stdout.contains("Permit_1 = Permit_1_Guard · ¬Permit_1_EStop"), "{stdout}");
     let got = verdicts(&[st, "tests/data/st/programs/user_blocks.ii"]);
     assert!(got.len() == 6 && got.iter().all(|(_, v)| v == "proved"), "{got:?}");
+}
+
+/// `CASE` is a chain of choices on unconstrained comparisons (exactly one arm in the real
+/// program, any in the model: sound); a `FOR` loop with constant bounds is unrolled.
+#[test]
+fn case_and_constant_for_loops_are_lowered() {
+    let st = "tests/data/st/programs/case_and_for.st";
+    let out = ii_prove(&["show", st]);
+    let stdout = text(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(stdout.contains("Blink = ¬pre Blink"), "three toggles in one scan: {stdout}");
+    assert!(stdout.contains("the label `3..5`"), "{stdout}");
+    let got = verdicts(&[st, "tests/data/st/programs/case_and_for.ii"]);
+    assert!(got.len() == 5 && got.iter().all(|(_, v)| v == "proved"), "{got:?}");
 }

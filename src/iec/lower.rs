@@ -251,6 +251,19 @@ fn pick<'u>(unit: &'u ast::Unit, pou: Option<&str>) -> Result<Vec<Run<'u>>, Vec<
             )),
         }
     }
+    // An event task runs its programs when its trigger rises, not every cycle.
+    for r in &runs {
+        if let Some(t) = r.task.filter(|t| t.single) {
+            errors.push(StError::new(
+                t.name.span,
+                format!(
+                    "the event task `{}` (SINGLE) runs `{}` when its trigger rises: event tasks are not modelled yet; choose a cyclic program with --pou",
+                    t.name.name, r.pou.name.name
+                ),
+                "an event task",
+            ));
+        }
+    }
     if !errors.is_empty() {
         return Err(errors);
     }
@@ -533,20 +546,50 @@ impl<'s> Lowering<'s> {
                 let otherwise = otherwise.iter().flat_map(|s| self.stmt(s, depth + 1)).collect();
                 vec![Stmt::If { branches, otherwise, span: s.span }]
             }
-            StmtKind::Case(..) => {
-                self.refuse(self.keyword(s.span), "`CASE`", "a selector is an integer; ii-prove models Boolean logic and timers (rewrite it with IF, or see the integer support to come)");
-                Vec::new()
+            StmtKind::Case(selector, arms, otherwise) => {
+                // An `IF` chain on `selector = label`: integer comparisons are
+                // unconstrained, so any arm may be taken (sound: the real selector makes
+                // exactly one of them true).
+                let mut branches = Vec::new();
+                for (labels, body) in arms {
+                    let terms: Vec<BoolExpr> =
+                        labels.iter().map(|l| self.case_label(selector, l)).collect();
+                    let condition = BoolExpr::Or(terms);
+                    let body = body.iter().flat_map(|s| self.stmt(s, depth + 1)).collect();
+                    branches.push((condition, body));
+                }
+                let otherwise = otherwise.iter().flat_map(|s| self.stmt(s, depth + 1)).collect();
+                if branches.is_empty() {
+                    return otherwise;
+                }
+                vec![Stmt::If { branches, otherwise, span: s.span }]
             }
-            StmtKind::For(..) | StmtKind::While(..) | StmtKind::Repeat(..) => {
+            StmtKind::For(var, from, to, by, body) => {
+                let Some(count) = self.iterations(var, from, to, by.as_ref(), s.span) else {
+                    return Vec::new();
+                };
+                // Unrolled: the body once per iteration (the counter is an integer, not
+                // modelled; what reads it is unconstrained).
+                let mut out = Vec::new();
+                for _ in 0..count {
+                    out.extend(body.iter().flat_map(|s| self.stmt(s, depth + 1)));
+                }
+                out
+            }
+            StmtKind::While(..) | StmtKind::Repeat(..) => {
                 self.refuse(
                     self.keyword(s.span),
-                    "a loop",
-                    "ii-prove unrolls no loop yet; write the iterations out",
+                    "a WHILE or REPEAT loop",
+                    "its number of iterations is not known before the scan; write a FOR loop with constant bounds",
                 );
                 Vec::new()
             }
             StmtKind::Exit | StmtKind::Continue => {
-                self.refuse(self.keyword(s.span), "`EXIT`/`CONTINUE`", "there is no loop to leave");
+                self.refuse(
+                    self.keyword(s.span),
+                    "`EXIT`/`CONTINUE`",
+                    "a FOR loop is unrolled whole; leave it with an IF around the rest of its body",
+                );
                 Vec::new()
             }
             StmtKind::Return => {

@@ -1,4 +1,4 @@
-//! Random Structured Text programs for the differential tests: Boolean assignments, IF/ELSIF/ELSE, every modelled function block (TON, TOF, R_TRIG, F_TRIG, SR, RS) with formal inputs and outputs, user functions and function blocks (inputs left out keep their values), the Boolean operators and functions, initial values, and a configuration giving the cycle.
+//! Random Structured Text programs for the differential tests: Boolean assignments, IF/ELSIF/ELSE, every modelled function block (TON, TOF, R_TRIG, F_TRIG, SR, RS) with formal inputs and outputs, user functions and function blocks (inputs left out keep their values), FOR loops with constant bounds, the Boolean operators and functions, initial values, and a configuration giving the cycle.
 #![allow(dead_code)]
 
 use super::rng::Rng;
@@ -198,6 +198,7 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
     for (n, t) in &fbs {
         text += &format!("    {n} : {t};\n");
     }
+    text += "    i : INT;\n";
     text += &user_vars;
     text += "  END_VAR\n";
     // The calls, placed among the other statements.
@@ -236,6 +237,15 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
             text += &calls.remove(0);
         } else if g.rng.chance(25) {
             text += &g.choice("  ", 1);
+        } else if g.rng.chance(8) {
+            // A loop with constant bounds (unrolled).
+            // Not of one iteration: matiec runs those zero times, IEC once (refused).
+            let mut from = g.rng.below(3);
+            let to = from + 1 + g.rng.below(2);
+            if g.rng.chance(15) {
+                from = to + 1; // no iteration
+            }
+            text += &format!("  FOR i := {from} TO {to} DO\n{}  END_FOR;\n", g.body("    ", 1));
         } else {
             text += &g.assign("  ");
         }

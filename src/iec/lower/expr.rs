@@ -194,3 +194,98 @@ pub(super) fn xor(a: BoolExpr, b: BoolExpr) -> BoolExpr {
         BoolExpr::and(BoolExpr::negate(a), b),
     ])
 }
+
+/// The most iterations a `FOR` loop is unrolled to.
+const MAX_ITERATIONS: i128 = 1000;
+
+impl Lowering<'_> {
+    /// Whether `selector` matches a `CASE` label (`a` or `a..b`): exact for a BOOL
+    /// selector, else an unconstrained integer comparison.
+    pub(super) fn case_label(
+        &mut self,
+        selector: &ast::Expr,
+        (a, b): &(ast::Expr, Option<ast::Expr>),
+    ) -> BoolExpr {
+        if b.is_none() && self.is_bool(selector) && self.is_bool(a) {
+            let (s, v) = (self.bool_expr(selector), self.bool_expr(a));
+            return BoolExpr::negate(xor(s, v));
+        }
+        let label = match b {
+            Some(b) => format!("{}..{}", self.text(a.span), self.text(b.span)),
+            None => self.text(a.span),
+        };
+        let span = b.as_ref().map_or(a.span, |b| a.span.to(b.span));
+        BoolExpr::Fresh(Box::new(Fresh {
+            base: format!("CASE_L{:02}", self.line),
+            keyword: "CASE".into(),
+            why: format!(
+                "the integer comparison of `{}` with the label `{label}` is not expressible in the algebra",
+                self.text(selector.span)
+            ),
+            span,
+        }))
+    }
+
+    /// How many times a `FOR` loop runs: its bounds and step must be integer literals.
+    pub(super) fn iterations(
+        &mut self,
+        var: &Ident,
+        from: &ast::Expr,
+        to: &ast::Expr,
+        by: Option<&ast::Expr>,
+        span: Span,
+    ) -> Option<u64> {
+        let _ = self.lookup(var)?;
+        let literal = |e: &ast::Expr| match &e.kind {
+            ExprKind::Int(v) => Some(*v),
+            ExprKind::Unary(UnOp::Neg, x) => match x.kind {
+                ExprKind::Int(v) => Some(-v),
+                _ => None,
+            },
+            _ => None,
+        };
+        let bounds = [Some(from), Some(to), by];
+        let mut values = Vec::new();
+        for e in bounds.into_iter().flatten() {
+            match literal(e) {
+                Some(v) => values.push(v),
+                None => {
+                    self.refuse(
+                        e.span,
+                        "a FOR loop whose bound or step is not an integer literal",
+                        "ii-prove unrolls a loop it can count before the scan",
+                    );
+                    return None;
+                }
+            }
+        }
+        let (a, b, step) = (values[0], values[1], values.get(2).copied().unwrap_or(1));
+        if step == 0 {
+            self.errors.push(StError::new(
+                by.map_or(span, |e| e.span),
+                "a FOR loop with a step of 0 never ends",
+                "expected a step other than 0",
+            ));
+            return None;
+        }
+        let n = if (step > 0 && a > b) || (step < 0 && a < b) { 0 } else { (b - a) / step + 1 };
+        if n == 1 {
+            // matiec tests `i + step` against the bound before the first iteration.
+            self.refuse(
+                span,
+                "a FOR loop of one iteration",
+                "matiec (Beremiz, OpenPLC) runs it zero times where IEC 61131-3 runs it once; write its statements without the loop",
+            );
+            return None;
+        }
+        if n > MAX_ITERATIONS {
+            self.refuse(
+                span,
+                &format!("a FOR loop of {n} iterations"),
+                &format!("ii-prove unrolls loops of at most {MAX_ITERATIONS} iterations"),
+            );
+            return None;
+        }
+        u64::try_from(n).ok()
+    }
+}

@@ -27,6 +27,8 @@ pub struct Task {
     pub name: String,
     /// The `interval` attribute as written, and where.
     pub interval: Option<(String, Span)>,
+    /// Where its `single` attribute is: an event task, run when its trigger rises.
+    pub single: Option<Span>,
     /// `(instance name, POU type name, span)`.
     pub instances: Vec<(String, String, Span)>,
 }

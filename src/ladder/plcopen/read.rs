@@ -458,16 +458,23 @@ pub fn read_plcopen(sources: &Sources, file: FileId) -> Result<Project, Vec<PlcE
                         .map(|v| (v.to_string(), r.attr_span(t, "interval")));
                     let instances =
                         children(t, "pouInstance").map(|i| pou_instance(&mut r, i)).collect();
+                    let single = t.attribute("single").map(|_| r.attr_span(t, "single"));
                     tasks.push(Task {
                         name: t.attribute("name").unwrap_or_default().into(),
                         interval,
+                        single,
                         instances,
                     });
                 }
                 let free: Vec<_> =
                     children(d, "pouInstance").map(|i| pou_instance(&mut r, i)).collect();
                 if !free.is_empty() {
-                    tasks.push(Task { name: String::new(), interval: None, instances: free });
+                    tasks.push(Task {
+                        name: String::new(),
+                        interval: None,
+                        single: None,
+                        instances: free,
+                    });
                 }
             }
             _ => {}

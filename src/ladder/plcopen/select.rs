@@ -403,6 +403,19 @@ fn several_programs<'p>(
     }
 }
 
+/// A program run by an event task (`single`) runs when the trigger rises, not every
+/// cycle: refused at the task, saying so.
+pub(super) fn event_task(pou: &Pou, task: Option<&Task>) -> Result<(), Vec<PlcError>> {
+    match task.and_then(|t| t.single.map(|s| (t, s))) {
+        Some((t, span)) => Err(vec![PlcError::Unsupported {
+            span,
+            what: format!("the event task `{}` running `{}`", t.name, pou.name),
+            reason: "a program an event triggers runs on some cycles only, which is not modelled yet; choose a cyclic program with --pou".into(),
+        }]),
+        None => Ok(()),
+    }
+}
+
 /// Picks the program to check: `--pou`, else the POU the configuration's task runs, else the only program.
 pub(super) fn pick<'p>(
     project: &'p Project,
@@ -481,6 +494,7 @@ pub(super) fn pick<'p>(
 /// Checks the chosen POU and resolves it into a [`PlcProgram`].
 pub fn select(project: &Project, sel: &Selection) -> Result<PlcProgram, Vec<PlcError>> {
     let (pou, task) = pick(project, sel)?;
+    event_task(pou, task)?;
     if !pou.errors.is_empty() {
         return Err(pou.errors.clone());
     }

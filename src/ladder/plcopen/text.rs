@@ -14,6 +14,9 @@ pub fn st_program(
     let (pou, task) = super::select::pick(project, sel).ok()?;
     let body = pou.body.as_ref().filter(|b| matches!(b.lang, Lang::St | Lang::Il))?;
     let il = body.lang == Lang::Il;
+    if let Err(e) = super::select::event_task(pou, task) {
+        return Some(Err(e.into_iter().map(Diagnostic::from).collect()));
+    }
     let parse = |file: usize, text: &str, range: std::ops::Range<usize>| {
         if il {
             crate::iec::parser::parse_il_body(file, text, range).map(ast::Body::Il)
