@@ -396,18 +396,10 @@ impl<'s> Lowering<'s> {
                     Some(ExprKind::Bool(true)) => {}
                     Some(ExprKind::Bool(_)) | None => {}
                     Some(_) if input => {}
-                    Some(_) => self.errors.push(StError::new(
-                        v.init.as_ref().map_or(v.name.span, |e| e.span),
-                        "a BOOL's initial value must be TRUE or FALSE",
-                        "expected `TRUE` or `FALSE`",
-                    )),
+                    Some(_) => self.bad_bool_init(v),
                 }
             }
-            if v.constant
-                && let Some(ExprKind::Time(us)) = v.init.as_ref().map(|e| &e.kind)
-            {
-                self.durations.insert(name.clone(), *us);
-            }
+            self.constant_duration(v, &name);
             if let Ty::Fb(
                 Fb::Ton | Fb::Tof | Fb::Tp | Fb::RTrig | Fb::FTrig | Fb::Sr | Fb::Rs | Fb::Counter,
                 _,
@@ -425,6 +417,24 @@ impl<'s> Lowering<'s> {
                 self.instantiate(&name, fb, v.name.span);
             }
             self.syms.insert(key, Sym { name, ty, span: v.name.span });
+        }
+    }
+
+    /// `v`, a BOOL, has an initial value that is not `TRUE` or `FALSE`.
+    fn bad_bool_init(&mut self, v: &ast::VarDecl) {
+        self.errors.push(StError::new(
+            v.init.as_ref().map_or(v.name.span, |e| e.span),
+            "a BOOL's initial value must be TRUE or FALSE",
+            "expected `TRUE` or `FALSE`",
+        ));
+    }
+
+    /// A `CONSTANT` TIME `v` with a literal value: a preset timers may take (as `name`).
+    fn constant_duration(&mut self, v: &ast::VarDecl, name: &str) {
+        if v.constant
+            && let Some(ExprKind::Time(us)) = v.init.as_ref().map(|e| &e.kind)
+        {
+            self.durations.insert(name.to_string(), *us);
         }
     }
 
@@ -651,14 +661,7 @@ impl<'s> Lowering<'s> {
                 let v = self.bool_expr(value);
                 vec![Stmt::Write { target: sym.name, kind: WriteKind::Assign, value: v, span }]
             }
-            Ty::Other(t) => vec![Stmt::Warn {
-                span,
-                element: ":=".into(),
-                message: format!(
-                    "writes the {t} variable {}: no Boolean effect (integers are not modelled yet)",
-                    sym.name
-                ),
-            }],
+            Ty::Other(t) => vec![integer_write(span, ":=", &t, &sym.name)],
             Ty::Fb(..) | Ty::User(_) => {
                 self.refuse(id.span, "assigning a function-block instance", "call it instead");
                 Vec::new()
@@ -719,5 +722,16 @@ impl<'s> Lowering<'s> {
             language: if self.il { "an Instruction List" } else { "a Structured Text" },
         };
         Lowered { program, asserts: self.asserts, warnings: self.warnings }
+    }
+}
+
+/// A write of an integer variable: no Boolean effect, with a warning at `element`.
+fn integer_write(span: Span, element: &str, ty: &str, name: &str) -> Stmt {
+    Stmt::Warn {
+        span,
+        element: element.to_string(),
+        message: format!(
+            "writes the {ty} variable {name}: no Boolean effect (integers are not modelled yet)"
+        ),
     }
 }

@@ -559,13 +559,9 @@ impl Lowering<'_> {
         let span = word.span.to(target.span);
         match (&target.kind, &flow.cr) {
             (ExprKind::Var(id), Cr::Other(what)) => match self.lookup(id) {
-                Some(Sym { ty: Ty::Other(t), name, .. }) => vec![Stmt::Warn {
-                    span,
-                    element: word.name.to_ascii_uppercase(),
-                    message: format!(
-                        "writes the {t} variable {name}: no Boolean effect (integers are not modelled yet)"
-                    ),
-                }],
+                Some(Sym { ty: Ty::Other(t), name, .. }) => {
+                    vec![super::integer_write(span, &word.name.to_ascii_uppercase(), &t, &name)]
+                }
                 Some(_) => {
                     self.errors.push(StError::new(
                         span,

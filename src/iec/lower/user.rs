@@ -96,11 +96,7 @@ impl Lowering<'_> {
             match (&ty, v.init.as_ref().map(|e| &e.kind)) {
                 (Ty::Bool, Some(ExprKind::Bool(true))) if !fresh => self.starts.push(name.clone()),
                 (Ty::Bool, Some(ExprKind::Bool(_)) | None) => {}
-                (Ty::Bool, Some(_)) => self.errors.push(StError::new(
-                    v.init.as_ref().map_or(v.name.span, |e| e.span),
-                    "a BOOL's initial value must be TRUE or FALSE",
-                    "expected `TRUE` or `FALSE`",
-                )),
+                (Ty::Bool, Some(_)) => self.bad_bool_init(v),
                 (Ty::Fb(..) | Ty::User(_), _) if fresh => self.refuse(
                     v.ty.span,
                     "a function-block instance in a function",
@@ -113,11 +109,7 @@ impl Lowering<'_> {
                 ),
                 _ => {}
             }
-            if v.constant
-                && let Some(ExprKind::Time(us)) = v.init.as_ref().map(|e| &e.kind)
-            {
-                self.durations.insert(name.clone(), *us);
-            }
+            self.constant_duration(v, &name);
             if let Ty::User(fb) = &ty {
                 let fb = fb.clone();
                 self.instantiate(&name, &fb, v.name.span);
