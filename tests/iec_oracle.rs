@@ -87,11 +87,7 @@ fn against_matiec(language: &str, programs: Vec<Job>) {
     let dir = PathBuf::from(std::env::var_os("II_ORACLE").expect("II_ORACLE=DIR"));
     assert!(dir.join("matiec/iec2c").is_file(), "{} has no matiec/iec2c", dir.display());
     let temp = tempfile::tempdir().expect("temporary directory");
-    let work = match std::env::var_os("II_ORACLE_KEEP") {
-        Some(d) => PathBuf::from(d),
-        None => temp.path().to_path_buf(),
-    };
-    std::fs::create_dir_all(&work).expect("work directory");
+    let work = common::oracle_work_dir(temp.path());
     let mut jobs = Vec::new();
     let mut failures = Vec::new();
     for g in programs {

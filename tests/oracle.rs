@@ -228,11 +228,7 @@ fn run(programs: Vec<(u64, String, bool)>, fig: &mut Figures, tc: &mut Toolchain
     let dir = oracle_dir();
     // `II_ORACLE_KEEP=DIR` keeps the generated ST, C and runs there.
     let temp = tempfile::tempdir().expect("temporary directory");
-    let work = match std::env::var_os("II_ORACLE_KEEP") {
-        Some(d) => PathBuf::from(d),
-        None => temp.path().to_path_buf(),
-    };
-    std::fs::create_dir_all(&work).expect("work directory");
+    let work = common::oracle_work_dir(temp.path());
     let mut jobs = Vec::new();
     for (seed, xml, must_load) in programs {
         let Some(p) = prepare(&xml, seed, fig, must_load, &selection()) else { continue };

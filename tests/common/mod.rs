@@ -88,3 +88,15 @@ pub fn check_rejects(dir: &str, ext: &str) -> usize {
     }
     files.len()
 }
+
+/// Where an oracle run writes its generated files: `II_ORACLE_KEEP=DIR` keeps them there,
+/// else the temporary directory `temp` (created if missing).
+#[allow(dead_code)]
+pub fn oracle_work_dir(temp: &Path) -> PathBuf {
+    let work = match std::env::var_os("II_ORACLE_KEEP") {
+        Some(d) => PathBuf::from(d),
+        None => temp.to_path_buf(),
+    };
+    std::fs::create_dir_all(&work).expect("work directory");
+    work
+}
