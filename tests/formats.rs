@@ -21,9 +21,9 @@ fn text(out: &[u8]) -> String {
 /// The faulty water plant: P2 refuted (line 14 of water.ii), the rest proved.
 const FAULTY: &[&str] = &["examples/water_faulty.ld", "examples/water.ii", "--timeout", "3s"];
 /// A program with a counter (a warning at its rung) and a property that stays unknown.
-const COUNTER: &[&str] = &[
-    "tests/data/unknown_programs/counter_never_done.ld",
-    "tests/data/unknown_programs/counter_never_done.ii",
+const QUOTIENT: &[&str] = &[
+    "tests/data/unknown_programs/quotient_never_done.ld",
+    "tests/data/unknown_programs/quotient_never_done.ii",
     "--timeout",
     "2s",
 ];
@@ -74,7 +74,7 @@ fn junit_has_a_test_case_per_property_and_a_failure_with_the_counterexample() {
 
 #[test]
 fn junit_skips_unknown_properties_and_carries_the_warnings() {
-    let out = run(COUNTER, &["--format", "junit"]);
+    let out = run(QUOTIENT, &["--format", "junit"]);
     assert_eq!(out.status.code(), Some(1));
     let xml = text(&out.stdout);
     let doc = roxmltree::Document::parse(&xml).expect("well-formed XML");
@@ -83,7 +83,7 @@ fn junit_skips_unknown_properties_and_carries_the_warnings() {
     assert!(skipped[0].attribute("message").unwrap().contains("unknown"));
     assert_eq!(doc.root_element().attribute("skipped"), Some(skipped.len().to_string().as_str()));
     let err = doc.descendants().find(|n| n.has_tag_name("system-err")).expect("warnings");
-    assert!(err.text().unwrap().contains("counter_never_done.ld:"), "{xml}");
+    assert!(err.text().unwrap().contains("quotient_never_done.ld:"), "{xml}");
 }
 
 fn sarif_validator() -> jsonschema::Validator {
@@ -128,13 +128,13 @@ fn sarif_has_a_located_result_per_refuted_property() {
 
 #[test]
 fn sarif_reports_unknown_properties_and_warnings_in_the_program() {
-    let out = run(COUNTER, &["--format", "sarif"]);
+    let out = run(QUOTIENT, &["--format", "sarif"]);
     let sarif = valid_sarif(&out);
     let results = sarif["runs"][0]["results"].as_array().unwrap();
     assert!(results.iter().any(|r| r["ruleId"] == "unknown" && r["level"] == "warning"));
     let warning = results.iter().find(|r| r["ruleId"] == "input-warning").expect("a warning");
     let at = &warning["locations"][0]["physicalLocation"];
-    assert_eq!(at["artifactLocation"]["uri"], "tests/data/unknown_programs/counter_never_done.ld");
+    assert_eq!(at["artifactLocation"]["uri"], "tests/data/unknown_programs/quotient_never_done.ld");
     assert!(at["region"]["startLine"].as_u64().unwrap() > 1);
 }
 
@@ -158,11 +158,12 @@ fn github_annotations_point_at_the_property() {
     assert!(error.contains(&format!("counterexample: {at}")), "{error}");
     assert!(error.contains("confirmed by exact evaluation and by the scan simulator"), "{error}");
     assert_eq!(stdout.lines().filter(|l| l.starts_with("::")).count(), 1, "{stdout}");
-    let warned = run(COUNTER, &["--format", "github"]);
+    let warned = run(QUOTIENT, &["--format", "github"]);
     let stdout = text(&warned.stdout);
     assert!(
-        stdout.lines().any(|l| l
-            .starts_with("::warning file=tests/data/unknown_programs/counter_never_done.ld,line=")),
+        stdout.lines().any(|l| l.starts_with(
+            "::warning file=tests/data/unknown_programs/quotient_never_done.ld,line="
+        )),
         "{stdout}"
     );
     assert!(stdout.lines().any(|l| l.starts_with("::warning ") && l.contains("unknown")));
@@ -170,21 +171,21 @@ fn github_annotations_point_at_the_property() {
 
 #[test]
 fn json_locates_every_property_and_warning() {
-    let out = run(COUNTER, &["--json"]);
+    let out = run(QUOTIENT, &["--json"]);
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
     for p in json["properties"].as_array().unwrap() {
-        assert_eq!(p["location"]["file"], "tests/data/unknown_programs/counter_never_done.ii");
+        assert_eq!(p["location"]["file"], "tests/data/unknown_programs/quotient_never_done.ii");
         assert!(p["location"]["line"].as_u64().unwrap() >= 1);
         assert!(p["location"]["column"].as_u64().unwrap() >= 1);
     }
     let w = &json["warnings"][0];
     assert!(w["message"].as_str().unwrap().contains("rung"), "{w}");
-    assert!(w["location"]["file"].as_str().unwrap().ends_with("counter_never_done.ld"));
+    assert!(w["location"]["file"].as_str().unwrap().ends_with("quotient_never_done.ld"));
     // `--json` is `--format json`, and the two cannot be mixed.
-    let same = run(COUNTER, &["--format", "json"]);
+    let same = run(QUOTIENT, &["--format", "json"]);
     let again: serde_json::Value = serde_json::from_slice(&same.stdout).unwrap();
     assert_eq!(again["properties"][0]["location"], json["properties"][0]["location"]);
-    assert_eq!(run(COUNTER, &["--json", "--format", "sarif"]).status.code(), Some(2));
+    assert_eq!(run(QUOTIENT, &["--json", "--format", "sarif"]).status.code(), Some(2));
 }
 
 #[test]
@@ -239,11 +240,11 @@ fn deny_vacuous_fails_the_run_and_the_summary_counts_vacuous_proofs() {
 
 #[test]
 fn warnings_go_to_standard_error_and_q_silences_them() {
-    let out = run(COUNTER, &[]);
+    let out = run(QUOTIENT, &[]);
     let (stdout, stderr) = (text(&out.stdout), text(&out.stderr));
-    assert!(stderr.contains("warning: tests/data/unknown_programs/counter_never_done.ld:"));
+    assert!(stderr.contains("warning: tests/data/unknown_programs/quotient_never_done.ld:"));
     assert!(!stdout.contains("warning: tests/"), "{stdout}");
-    let quiet = run(COUNTER, &["-q"]);
+    let quiet = run(QUOTIENT, &["-q"]);
     assert!(!text(&quiet.stderr).contains("warning:"), "{}", text(&quiet.stderr));
     assert_eq!(text(&quiet.stdout).lines().last(), stdout.lines().last());
 }

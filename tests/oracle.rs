@@ -111,6 +111,9 @@ fn wants(p: &Prepared) -> Result<Vec<Want>, String> {
                 });
                 edge.unwrap_or_else(|| Want::Member(n.clone()))
             }
+            Src::IntBit { .. } | Src::Defined(_) => {
+                return Err("the oracle compares no integers (PLCopen compiles none yet)".into());
+            }
             Src::Edge(k) => {
                 let (path, owner, pin) = &p.lowered.edges[p.edge_of[k]];
                 let (names, prog) = at_path(plc, path).ok_or("an edge detector's path")?;

@@ -49,6 +49,15 @@ impl Scope for AnyName {
     fn cycle(&self) -> Option<ii_prove::term::Delay> {
         ii_prove::term::Delay::from_micros(1).ok()
     }
+    /// Every comparison names its own signal, as written.
+    fn comparison(
+        &self,
+        op: ii_prove::syntax::CmpOp,
+        a: &ii_prove::syntax::IntOperand,
+        b: &ii_prove::syntax::IntOperand,
+    ) -> Result<String, (String, Option<String>)> {
+        Ok(format!("[{a} {} {b}]", op.symbol()))
+    }
 }
 
 fn same_goal(a: &Goal, b: &Goal) -> bool {

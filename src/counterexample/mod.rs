@@ -323,7 +323,10 @@ pub fn refute(program: &Program, goal: &Obligation, limits: Limits) -> Verdict {
     let mut checked = 0usize;
     let mut complete = true;
     for grid in grids {
-        let k_max = (3 * longest / grid + 4).min(limits.max_steps);
+        // Counting to a program constant takes up to `int_depth` scans.
+        let k_max = (3 * longest / grid + 4)
+            .max(program.compiled.int_depth / grid + 4)
+            .min(limits.max_steps);
         if k_max * grid > limits.max_scans {
             continue;
         }
@@ -485,7 +488,11 @@ fn simulate(
             .collect();
         sim.step(&step);
         for n in &watched {
-            if !sim.is_known(n) {
+            let depends = match program.compiled.signals.get(n) {
+                Some(SignalKind::IntBit { of, .. }) => of,
+                _ => n,
+            };
+            if !sim.is_known(depends) {
                 return Err(format!("the simulator does not model what `{n}` depends on"));
             }
             // A one-shot's hidden memory is the simulator's memory of that element, never
@@ -496,6 +503,21 @@ fn simulate(
                         format!("the simulator does not show the memory `{n}` of its one-shot")
                     })?
                 }
+                // A bit of an integer: of its value xor its start value.
+                Some(SignalKind::IntBit { of, bit, start, .. }) => {
+                    let v = sim
+                        .int(of)
+                        .ok_or_else(|| format!("the simulator does not show the integer `{of}`"))?;
+                    (v >> bit & 1 == 1) != *start
+                }
+                // Named parts of a computation: what they stand for is checked where read.
+                Some(SignalKind::Atom) => {
+                    let int = |x: &str| sim.int(x);
+                    program.compiled.atom_value(n, &int).ok_or_else(|| {
+                        format!("the simulator does not show the integers of `{n}`")
+                    })?
+                }
+                Some(SignalKind::Intermediate { .. }) => continue,
                 _ => sim.bit(n),
             };
             seen.entry(n.clone()).or_default().push(value);
@@ -831,12 +853,15 @@ struct Steps {
 }
 
 impl Steps {
-    fn of(delays: &[Delay], cycle: &Time) -> Steps {
+    /// `int_depth`: the scans an integer of the model may take to reach a constant of
+    /// the program ([`CompiledProgram::int_depth`](crate::program::CompiledProgram)).
+    fn of(delays: &[Delay], cycle: &Time, int_depth: usize) -> Steps {
         let scans: Vec<usize> = delays.iter().filter_map(|d| scans_of(d, cycle)).collect();
         let exact_grid = delays.iter().all(|d| whole(d, cycle).is_some());
         let grid = if exact_grid { scans.iter().fold(0usize, |g, n| g.gcd(n)).max(1) } else { 1 };
         let longest = scans.iter().copied().max().unwrap_or(0);
-        Steps { grid, k_scans: (3 * longest + 4).min(MAX_STEPS), k: 3 * longest / grid + 4 }
+        let k_scans = (3 * longest + 4).max(int_depth + 4).min(MAX_STEPS);
+        Steps { grid, k_scans, k: (3 * longest / grid + 4).max(int_depth / grid + 4) }
     }
 
     /// How far the `k` coarse steps reach.
@@ -1033,7 +1058,7 @@ fn forced(cnf: &mut Cnf, values: &[varisat::Lit]) -> Option<bool> {
 pub fn vacuity(program: &Program, terms: &[&Expr]) -> Vacuity {
     let Some(cycle) = program.cycle() else { return Vacuity::default() };
     let model = program.model(terms);
-    let steps = Steps::of(&model.delays(terms.iter().copied()), &cycle);
+    let steps = Steps::of(&model.delays(terms.iter().copied()), &cycle, program.compiled.int_depth);
     let Steps { grid, k_scans, k } = steps;
     let read = read_names(terms);
     if model.constraints.is_empty() {
@@ -1124,7 +1149,7 @@ pub fn vacuity_cached(program: &Program, terms: &[&Expr], cache: &VacuityCache) 
             None => return vacuity(program, terms),
         }
     }
-    let steps = Steps::of(&delays, &cycle);
+    let steps = Steps::of(&delays, &cycle, program.compiled.int_depth);
     if steps.k > MAX_STEPS {
         return Vacuity::default();
     }

@@ -717,6 +717,7 @@ impl<'s> Lowering<'s> {
             names,
             skipped: Vec::new(),
             integer_writers: BTreeMap::new(),
+            integers: BTreeMap::new(),
             exact_names: true,
             block_noun: "line",
             language: if self.il { "an Instruction List" } else { "a Structured Text" },

@@ -21,12 +21,12 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use super::LadderError;
 use super::ldmicro::{
-    Circuit, CoilKind, CounterKind, EdgeKind, Element, ElementKind, LdProgram, TimerDelay,
-    TimerKind,
+    Circuit, CoilKind, CompareOp, CounterEdge, CounterKind, EdgeKind, Element, ElementKind,
+    LdProgram, MathOp, Operand, TimerDelay, TimerKind,
 };
 use crate::program::{
-    Block, BoolExpr, Fresh, Inputs, Memory, Preset, Program, Stmt, Temp, Timer, WriteKind,
-    canonical,
+    Block, BoolExpr, CmpOp, Compare, Fresh, Inputs, IntExpr, IntType, IntVar, Memory, Preset,
+    Program, Stmt, Temp, Timer, WriteKind, canonical,
 };
 
 /// Elements that change which rungs run (or stop the scan): a program using them is
@@ -110,6 +110,10 @@ struct Lowering<'a> {
     mcr: Temp,
     /// The current rung's number.
     number: usize,
+    /// The integers computed exactly (16-bit signed, LDmicro's arithmetic), with their
+    /// power-up values; the others (a timer's count, what a peripheral or `DIV` writes,
+    /// and what is computed from those) are not modelled.
+    ints: BTreeMap<String, IntVar>,
 }
 
 impl<'a> Lowering<'a> {
@@ -147,6 +151,85 @@ impl<'a> Lowering<'a> {
             next_temp: 1,
             mcr: 0,
             number: 0,
+            ints: integers(program),
+        }
+    }
+
+    /// Whether every integer the element reads or writes is computed exactly.
+    fn exact(&self, e: &Element) -> bool {
+        let ints = int_names(e);
+        !ints.is_empty() && ints.iter().all(|n| self.ints.contains_key(&canonical(n)))
+    }
+
+    fn operand(&self, op: &Operand) -> IntExpr {
+        match op {
+            Operand::Literal(v) => IntExpr::Const(*v),
+            Operand::Var(v) => IntExpr::Var(canonical(v)),
+        }
+    }
+
+    /// `if power then x := value`.
+    fn set_int(&mut self, e: &Element, x: &str, power: &BoolExpr, value: IntExpr) {
+        let x = canonical(x);
+        let value = IntExpr::ite(power.clone(), value, IntExpr::Var(x.clone()));
+        self.stmts.push(Stmt::SetInt { target: x, value, span: e.span });
+    }
+
+    /// A counter, exactly as the runtime counts (ldmicro.md §6.4): its output.
+    fn counter(&mut self, e: &Element, input: BoolExpr) -> BoolExpr {
+        let ElementKind::Counter { kind, name, limit, edge, .. } = &e.kind else { return input };
+        let orig = self.program.version.is_orig();
+        let c = || IntExpr::Var(canonical(name));
+        let limit = self.operand(limit);
+        let cmp = |op, a: IntExpr, b: IntExpr| {
+            BoolExpr::Compare(Box::new(Compare { op, ty: IntType::I16, a, b }))
+        };
+        let one = || IntExpr::Const(1);
+        // What makes it count; the hidden bit keeps the power of the previous scan.
+        let trigger = match edge {
+            CounterEdge::Rising | CounterEdge::Falling => {
+                let memory = self.memory(format!("{}_r{}", e.kind.keyword(), self.number), e);
+                let kind = if *edge == CounterEdge::Rising {
+                    crate::program::EdgeKind::Rising
+                } else {
+                    crate::program::EdgeKind::Falling
+                };
+                BoolExpr::Edge { kind, input: Box::new(input.clone()), memory }
+            }
+            CounterEdge::High => input.clone(),
+            CounterEdge::Low => BoolExpr::negate(input.clone()),
+        };
+        let trigger = self.temp(trigger);
+        // CTC and CTR reload this element's own start value (§6.4); orig has none (0).
+        let ElementKind::Counter { init, .. } = &e.kind else { return input };
+        let init = if orig { IntExpr::Const(0) } else { self.operand(init) };
+        match (kind, orig) {
+            (CounterKind::Ctu | CounterKind::Ctd, _) => {
+                let up = *kind == CounterKind::Ctu;
+                let step = if up { IntExpr::plus(c(), one()) } else { IntExpr::minus(c(), one()) };
+                // new: CTU stops at max, CTD at its floor.
+                let power = if orig {
+                    trigger
+                } else {
+                    let room = cmp(if up { CmpOp::Lt } else { CmpOp::Gt }, c(), limit.clone());
+                    self.temp(BoolExpr::and(trigger, room))
+                };
+                self.set_int(e, name, &power, step);
+                let op = if !orig && !up { CmpOp::Gt } else { CmpOp::Ge };
+                self.temp(cmp(op, c(), limit))
+            }
+            (CounterKind::Ctc | CounterKind::Ctr, _) => {
+                let up = *kind == CounterKind::Ctc;
+                let step = if up { IntExpr::plus(c(), one()) } else { IntExpr::minus(c(), one()) };
+                let past = cmp(if up { CmpOp::Gt } else { CmpOp::Lt }, step.clone(), limit);
+                let past = self.temp(past);
+                // CTC wraps to 0 (orig) or init (new); CTR reloads init.
+                let reload = if up && orig { IntExpr::Const(0) } else { init };
+                let next = IntExpr::ite(past.clone(), reload, step);
+                self.set_int(e, name, &trigger, next);
+                // orig CTC passes its input; new CTC and CTR pulse on the reload.
+                if up && orig { input } else { self.temp(BoolExpr::and(trigger, past)) }
+            }
         }
     }
 
@@ -212,6 +295,7 @@ impl<'a> Lowering<'a> {
             names,
             skipped,
             integer_writers: BTreeMap::new(),
+            integers: self.ints,
             exact_names: program.inputs.is_some(),
             block_noun: "rung",
             language: "an LDmicro",
@@ -357,6 +441,47 @@ impl<'a> Lowering<'a> {
                 let base = format!("{}_r{number}", e.kind.keyword());
                 self.fresh(base, e, "this one-shot is not expressible in the algebra")
             }
+            ElementKind::Counter { .. } if self.exact(e) => self.counter(e, input),
+            ElementKind::Res { name } if self.ints.contains_key(&canonical(name)) => {
+                // orig clears to 0, new to the counter's start value (§6.5).
+                let init = self.ints[&canonical(name)].init;
+                self.set_int(e, name, &input, IntExpr::Const(init));
+                input
+            }
+            ElementKind::Compare { op, a, b } if self.exact(e) => {
+                let op = match op {
+                    CompareOp::Equ => CmpOp::Eq,
+                    CompareOp::Neq => CmpOp::Ne,
+                    CompareOp::Grt => CmpOp::Gt,
+                    CompareOp::Geq => CmpOp::Ge,
+                    CompareOp::Les => CmpOp::Lt,
+                    CompareOp::Leq => CmpOp::Le,
+                };
+                // Literals are compared as written: a wider type when one does not fit.
+                let fits = [a, b].iter().all(|o| match o {
+                    Operand::Literal(v) => IntType::I16.contains(*v),
+                    Operand::Var(_) => true,
+                });
+                let ty = if fits { IntType::I16 } else { IntType { bits: 63, signed: true } };
+                let (a, b) = (self.operand(a), self.operand(b));
+                let c = BoolExpr::Compare(Box::new(Compare { op, ty, a, b }));
+                self.temp(BoolExpr::and(input, c))
+            }
+            ElementKind::Move { dest, src } if self.exact(e) => {
+                let src = self.operand(src);
+                self.set_int(e, dest, &input, src);
+                input
+            }
+            ElementKind::Math { op, dest, a, b } if self.exact(e) && *op != MathOp::Div => {
+                let (a, b) = (self.operand(a), self.operand(b));
+                let value = match op {
+                    MathOp::Add => IntExpr::plus(a, b),
+                    MathOp::Sub => IntExpr::minus(a, b),
+                    _ => IntExpr::Mul(Box::new(a), Box::new(b)),
+                };
+                self.set_int(e, dest, &input, value);
+                input
+            }
             ElementKind::Counter { kind, name, .. } => {
                 if *kind == CounterKind::Ctc && self.program.version.is_orig() {
                     self.warn(
@@ -370,7 +495,8 @@ impl<'a> Lowering<'a> {
                     input
                 } else {
                     let base = format!("{}_{}", e.kind.keyword(), name);
-                    self.fresh(base, e, "a counter is not expressible in the algebra")
+                    let why = format!("the count {name} depends on {}", opaque_why(&self.ints, e));
+                    self.fresh(base, e, &why)
                 }
             }
             ElementKind::Res { name } => {
@@ -381,7 +507,8 @@ impl<'a> Lowering<'a> {
             }
             ElementKind::Compare { .. } => {
                 let base = format!("{}_r{number}", e.kind.keyword());
-                let f = self.fresh(base, e, "a comparison of integers is not expressible");
+                let why = format!("the comparison reads {}", opaque_why(&self.ints, e));
+                let f = self.fresh(base, e, &why);
                 self.temp(BoolExpr::and(input, f))
             }
             ElementKind::Move { dest, .. } | ElementKind::Math { dest, .. } => {
@@ -420,5 +547,117 @@ fn is_pure(c: &Circuit) -> bool {
                 | ElementKind::Open
                 | ElementKind::Comment(_)
         ),
+    }
+}
+
+/// The integer names an element reads or writes.
+fn int_names(e: &Element) -> Vec<String> {
+    let vars = |ops: &[&Operand]| -> Vec<String> {
+        ops.iter().filter_map(|o| o.var().map(str::to_string)).collect()
+    };
+    match &e.kind {
+        ElementKind::Counter { name, limit, init, .. } => {
+            let mut v = vars(&[limit, init]);
+            v.push(name.clone());
+            v
+        }
+        ElementKind::Res { name } => vec![name.clone()],
+        ElementKind::Compare { a, b, .. } => vars(&[a, b]),
+        ElementKind::Move { dest, src } => {
+            let mut v = vars(&[src]);
+            v.push(dest.clone());
+            v
+        }
+        ElementKind::Math { dest, a, b, .. } => {
+            let mut v = vars(&[a, b]);
+            v.push(dest.clone());
+            v
+        }
+        _ => Vec::new(),
+    }
+}
+
+/// The integers computed exactly: every integer the counters, comparisons, `MOVE`,
+/// `ADD`/`SUB`/`MUL` and `RES` of the rungs that run read or write, except those
+/// something else writes (a timer's count, `DIV`, a peripheral or `PERSIST`), those
+/// computed from such, and counters whose limit or start value is not a 16-bit literal
+/// or exact integer. Each is 16-bit signed; a counter of a new file starts at its `init`
+/// (the last counter of that name wins, as the runtime initialises them in order).
+fn integers(program: &LdProgram) -> BTreeMap<String, IntVar> {
+    let orig = program.version.is_orig();
+    let live: Vec<&Element> = program
+        .rungs
+        .iter()
+        .filter(|r| !r.is_comment(&program.version))
+        .flat_map(|r| r.elements())
+        .collect();
+    let mut opaque: BTreeSet<String> = BTreeSet::new();
+    let mut used: BTreeSet<String> = BTreeSet::new();
+    let mut init: BTreeMap<String, i64> = BTreeMap::new();
+    for e in &live {
+        match &e.kind {
+            ElementKind::Timer { name, .. } => {
+                opaque.insert(name.clone());
+            }
+            ElementKind::Math { op: MathOp::Div, dest, .. } => {
+                opaque.insert(dest.clone());
+            }
+            ElementKind::Other { .. } => opaque.extend(e.names_written()),
+            ElementKind::Counter { name, limit, init: start, .. } => {
+                let literal =
+                    |o: &Operand| matches!(o, Operand::Literal(v) if !IntType::I16.contains(*v));
+                if literal(limit) || (!orig && (start.var().is_some() || literal(start))) {
+                    opaque.insert(name.clone());
+                }
+                if !orig && let Operand::Literal(v) = start {
+                    init.insert(name.clone(), *v);
+                }
+            }
+            _ => {}
+        }
+        used.extend(int_names(e));
+    }
+    // PERSIST: the value at power-up is what EEPROM holds.
+    for e in &live {
+        if let ElementKind::Other { keyword, args } = &e.kind
+            && keyword == "PERSIST"
+        {
+            opaque.extend(args.first().cloned());
+        }
+    }
+    // What is computed from an opaque integer is opaque.
+    loop {
+        let before = opaque.len();
+        for e in &live {
+            let names = int_names(e);
+            let writes = e.names_written();
+            if names.iter().any(|n| opaque.contains(n)) {
+                opaque.extend(writes.into_iter().filter(|w| names.contains(w)));
+            }
+        }
+        if opaque.len() == before {
+            break;
+        }
+    }
+    used.into_iter()
+        .filter(|n| !opaque.contains(n))
+        .map(|n| {
+            let start = init.get(&n).copied().unwrap_or(0);
+            (canonical(&n), IntVar { ty: IntType::I16, input: false, init: start })
+        })
+        .collect()
+}
+
+/// Why an element's integers are not computed exactly, for its warning.
+fn opaque_why(ints: &BTreeMap<String, IntVar>, e: &Element) -> String {
+    let names: Vec<String> =
+        int_names(e).into_iter().filter(|n| !ints.contains_key(&canonical(n))).collect();
+    match names.first() {
+        Some(n) => format!(
+            "{n}, which ii-prove does not compute (a timer's count, DIV, a peripheral, \
+             PERSIST, a limit or start value that is not a 16-bit literal, or a value \
+             computed from one of those)"
+        ),
+        None => "no integer".into(),
     }
 }

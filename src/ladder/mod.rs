@@ -71,6 +71,9 @@ impl ScanSimulator for Simulator {
     fn edge_memory(&self, index: usize) -> Option<bool> {
         Simulator::edge_memory(self, index)
     }
+    fn int(&self, name: &str) -> Option<i64> {
+        Some(Simulator::int(self, name))
+    }
 }
 
 impl ScanSimulator for plcopen::PlcSimulator {

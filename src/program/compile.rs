@@ -105,6 +105,8 @@
 //! rung's name is unused.
 #![warn(missing_docs)]
 
+mod ints;
+
 use std::collections::{BTreeMap, BTreeSet};
 
 use super::logic::{L, Tables, factors, product, simp, sum, summands};
@@ -137,6 +139,28 @@ pub enum SignalKind {
         element: String,
         /// The element's position among all the program's elements, in file order.
         index: usize,
+    },
+    /// Bit `bit` of an integer variable's stored value: the value itself, or the value
+    /// xor its power-up value when that is not 0 (`start` is that bit of it), so that
+    /// every bit starts at 0.
+    IntBit {
+        /// The variable.
+        of: String,
+        /// Which bit (0 the least significant).
+        bit: u32,
+        /// The bit of the power-up value the stored bit is flipped by.
+        start: bool,
+        /// Whether the outside world writes the variable.
+        input: bool,
+    },
+    /// A comparison atom of the properties (`[Cparts >= 10]`), defined by an equation
+    /// over the integers' bits.
+    Atom,
+    /// A part of an integer computation too large to copy into every read, named and
+    /// defined by an exact equation stated with its block.
+    Intermediate {
+        /// File rung number (1-based, comment rungs counted).
+        rung: usize,
     },
     /// The output of an element the algebra cannot express; unconstrained.
     Fresh {
@@ -328,6 +352,14 @@ pub struct CompiledProgram {
     pub(super) spelled_short: super::names::Spellings,
     /// The equations' index ([`CompiledProgram::equation_index`]), built on first use.
     pub(super) equation_index: std::sync::OnceLock<EquationIndex>,
+    /// The integer variables, compiled into bits ([`SignalKind::IntBit`]).
+    pub integers: BTreeMap<String, super::IntVar>,
+    /// The comparison atoms properties have used ([`CompiledProgram::with_atoms`]).
+    pub(super) atoms: super::atoms::Atoms,
+    /// How many scans a run may need before an integer reaches a constant of the program
+    /// (`2·|k| + 2` for the largest constant `k`, at most 10,000; 0 without integers): a
+    /// counter counting edges needs two scans per step. The bounded searches go that far.
+    pub int_depth: usize,
 }
 
 /// The program's equations `X = term` in scan order, and which define each name.
@@ -514,19 +546,41 @@ impl<'a> Compiler<'a> {
         // meets them; reads are listed with their block.
         let mut writes: Vec<String> = Vec::new();
         let mut reads: Vec<(String, usize)> = Vec::new();
-        for (b, s) in program.stmts() {
-            s.visit(
-                &mut |s| {
-                    if let Stmt::Write { target, .. } = s {
-                        writes.push(target.clone());
-                    }
-                },
+        let int_reads = |e: &super::IntExpr, reads: &mut Vec<(String, usize)>, number| {
+            e.visit(
                 &mut |x| {
-                    if let BoolExpr::Var(n) = x {
-                        reads.push((n.clone(), b.number));
+                    let w = program.integers.get(x).map_or(0, |v| v.ty.bits);
+                    reads.extend((0..w).map(|k| (Program::int_bit(x, k), number)));
+                },
+                &mut |_| {},
+            );
+        };
+        for (b, s) in program.stmts() {
+            let mut int_writes: Vec<(String, u32)> = Vec::new();
+            let mut set_reads: Vec<super::IntExpr> = Vec::new();
+            s.visit(
+                &mut |s| match s {
+                    Stmt::Write { target, .. } => writes.push(target.clone()),
+                    Stmt::SetInt { target, value, .. } => {
+                        let w = program.integers.get(target).map_or(0, |v| v.ty.bits);
+                        writes.extend((0..w).map(|k| Program::int_bit(target, k)));
+                        int_writes.push((target.clone(), w));
+                        set_reads.push(value.clone());
                     }
+                    _ => {}
+                },
+                &mut |x| match x {
+                    BoolExpr::Var(n) => reads.push((n.clone(), b.number)),
+                    BoolExpr::Compare(c) => {
+                        int_reads(&c.a, &mut reads, b.number);
+                        int_reads(&c.b, &mut reads, b.number);
+                    }
+                    _ => {}
                 },
             );
+            for e in &set_reads {
+                int_reads(e, &mut reads, b.number);
+            }
         }
         for (k, target) in writes.into_iter().enumerate() {
             self.last_write.insert(target, k);
@@ -534,7 +588,7 @@ impl<'a> Compiler<'a> {
         // A bit that nothing writes and that is not an input stays 0*: a bit read in the
         // scan (first such block named), or one named only in code the PLC skips.
         for (n, number) in reads.into_iter().chain(program.skipped.iter().cloned()) {
-            if !self.last_write.contains_key(&n) && !program.inputs.contains(&n) {
+            if !self.last_write.contains_key(&n) && !self.is_input(&n) {
                 self.unwritten.entry(n).or_insert(number);
             }
         }
@@ -547,6 +601,13 @@ impl<'a> Compiler<'a> {
         for x in self.unwritten.keys() {
             self.current.insert(x.clone(), L::Zero);
         }
+    }
+
+    /// Whether the outside world writes the bit `n` (an input, or a bit of an input
+    /// integer).
+    fn is_input(&self, n: &str) -> bool {
+        self.program.inputs.contains(n)
+            || matches!(self.int_bit_kind(n), Some(SignalKind::IntBit { input: true, .. }))
     }
 
     /// The internal name of `x`'s previous-scan value (made on first use).
@@ -652,6 +713,7 @@ impl<'a> Compiler<'a> {
                 self.write(*span, target, kind, &v);
             }
             Stmt::If { branches, otherwise, span } => self.choice(branches, otherwise, *span),
+            Stmt::SetInt { target, value, span } => self.set_int(target, value, *span),
             Stmt::Warn { span, element, message } => self.warn(*span, element, message.clone()),
         }
     }
@@ -765,6 +827,10 @@ impl<'a> Compiler<'a> {
                 }
             }
             BoolExpr::Fresh(f) => self.new_fresh(&f.base, &f.keyword, f.span, &f.why),
+            BoolExpr::Compare(c) => {
+                let span = self.block().span;
+                self.compare(c, span)
+            }
         }
     }
 
@@ -1031,6 +1097,9 @@ impl<'a> Compiler<'a> {
             if let Some(k) = self.fresh.get(n) {
                 return k.clone();
             }
+            if let Some(k) = self.int_bit_kind(n) {
+                return k;
+            }
             if written.contains(&n.to_string()) {
                 if n.starts_with('Y') { SignalKind::Output } else { SignalKind::Relay }
             } else {
@@ -1053,8 +1122,17 @@ impl<'a> Compiler<'a> {
             }
         }
         for (name, kind) in &self.fresh {
-            if matches!(kind, SignalKind::Fresh { .. }) {
+            if matches!(kind, SignalKind::Fresh { .. } | SignalKind::Intermediate { .. }) {
                 signals.insert(name.clone(), kind.clone());
+            }
+        }
+        // Every bit of every integer, so that properties may compare any of them.
+        for (x, v) in &self.program.integers {
+            for k in 0..v.ty.bits {
+                let n = Program::int_bit(x, k);
+                if let Some(kind) = self.int_bit_kind(&n) {
+                    signals.insert(n, kind);
+                }
             }
         }
         CompiledProgram {
@@ -1070,6 +1148,9 @@ impl<'a> Compiler<'a> {
             short_names: std::sync::OnceLock::new(),
             spelled_short: Default::default(),
             equation_index: std::sync::OnceLock::new(),
+            integers: self.program.integers.clone(),
+            atoms: Default::default(),
+            int_depth: ints::int_depth(self.program),
         }
     }
 }
@@ -1164,7 +1245,7 @@ pub fn program_to_ii(compiled: &CompiledProgram, notation: Notation) -> String {
         count(compiled.warnings.len(), "warning", "warnings")
     ));
     out.push_str("// first); with it this text describes scans, and reads back with a program.\n");
-    let groups: [(&str, KindFilter); 6] = [
+    let groups: [(&str, KindFilter); 8] = [
         ("inputs", |k| *k == SignalKind::Input),
         ("outputs", |k| *k == SignalKind::Output),
         ("relays", |k| *k == SignalKind::Relay),
@@ -1175,6 +1256,12 @@ pub fn program_to_ii(compiled: &CompiledProgram, notation: Notation) -> String {
             matches!(k, SignalKind::Fresh { .. })
         }),
         ("bits no coil writes (always 0*)", |k| *k == SignalKind::Unwritten),
+        ("integers, as bits (X_b0 the least significant; stored xor the start value)", |k| {
+            matches!(k, SignalKind::IntBit { .. })
+        }),
+        ("intermediate values of integer computations", |k| {
+            matches!(k, SignalKind::Intermediate { .. })
+        }),
     ];
     for (title, pick) in groups {
         let names: Vec<String> = compiled

@@ -12,6 +12,8 @@
 //! equations that hold at every scan.
 #![warn(missing_docs)]
 
+pub mod atoms;
+pub mod bitvec;
 pub mod compile;
 pub mod logic;
 pub mod names;
@@ -53,6 +55,133 @@ pub struct Program {
     pub block_noun: &'static str,
     /// The language, as `show` names it (`an LDmicro`, `a PLCopen`).
     pub language: &'static str,
+    /// The integer variables the program computes exactly (canonical names): each is
+    /// compiled into the bits of its two's-complement value ([`Program::int_bit`]).
+    pub integers: BTreeMap<String, IntVar>,
+}
+
+/// An integer variable of the scan model.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct IntVar {
+    /// Its type.
+    pub ty: IntType,
+    /// Whether the outside world writes it (an analog reading): free at every scan.
+    pub input: bool,
+    /// Its value at power-up (a value of `ty`).
+    pub init: i64,
+}
+
+/// A two's-complement integer type: its width and signedness.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct IntType {
+    /// Width in bits (1 to 63).
+    pub bits: u32,
+    /// Signed (two's complement) or unsigned.
+    pub signed: bool,
+}
+
+impl IntType {
+    /// LDmicro's 16-bit signed integers (IEC `INT`).
+    pub const I16: IntType = IntType { bits: 16, signed: true };
+
+    /// The smallest value.
+    pub fn min(self) -> i64 {
+        if self.signed { -(1i64 << (self.bits - 1)) } else { 0 }
+    }
+
+    /// The largest value.
+    pub fn max(self) -> i64 {
+        if self.signed { (1i64 << (self.bits - 1)) - 1 } else { (1i64 << self.bits) - 1 }
+    }
+
+    /// Whether `v` is a value of the type.
+    pub fn contains(self, v: i64) -> bool {
+        (self.min()..=self.max()).contains(&v)
+    }
+
+    /// `v` reduced into the type as the runtime's arithmetic wraps it.
+    pub fn wrap(self, v: i64) -> i64 {
+        let m = v & ((1i64 << self.bits) - 1);
+        if self.signed && m > self.max() { m - (1i64 << self.bits) } else { m }
+    }
+
+    /// `INT`-style name for messages: `a 16-bit signed integer`.
+    pub fn describe(self) -> String {
+        format!("a {}-bit {} integer", self.bits, if self.signed { "signed" } else { "unsigned" })
+    }
+}
+
+pub use crate::syntax::CmpOp;
+
+/// An integer value at a point of the scan, in the type of the statement or comparison
+/// that computes it (every operation wraps to that type, as the runtime's does).
+#[derive(Clone, Debug)]
+pub enum IntExpr {
+    /// A literal (already a value of the type).
+    Const(i64),
+    /// An integer variable as it stands at this point of the scan.
+    Var(String),
+    /// `a + b`, wrapped.
+    Add(Box<IntExpr>, Box<IntExpr>),
+    /// `a - b`, wrapped.
+    Sub(Box<IntExpr>, Box<IntExpr>),
+    /// `a · b`, wrapped.
+    Mul(Box<IntExpr>, Box<IntExpr>),
+    /// `if c then a else b`.
+    Ite(Box<BoolExpr>, Box<IntExpr>, Box<IntExpr>),
+}
+
+impl IntExpr {
+    /// A variable read.
+    pub fn var(name: &str) -> IntExpr {
+        IntExpr::Var(name.to_string())
+    }
+
+    /// `a + b`.
+    pub fn plus(a: IntExpr, b: IntExpr) -> IntExpr {
+        IntExpr::Add(Box::new(a), Box::new(b))
+    }
+
+    /// `a - b`.
+    pub fn minus(a: IntExpr, b: IntExpr) -> IntExpr {
+        IntExpr::Sub(Box::new(a), Box::new(b))
+    }
+
+    /// `if c then a else b`.
+    pub fn ite(c: BoolExpr, a: IntExpr, b: IntExpr) -> IntExpr {
+        IntExpr::Ite(Box::new(c), Box::new(a), Box::new(b))
+    }
+
+    /// Calls `int` on every integer variable read and `boolean` on every Boolean
+    /// expression (a choice's condition), operands first.
+    pub fn visit(&self, int: &mut dyn FnMut(&str), boolean: &mut dyn FnMut(&BoolExpr)) {
+        match self {
+            IntExpr::Const(_) => {}
+            IntExpr::Var(n) => int(n),
+            IntExpr::Add(a, b) | IntExpr::Sub(a, b) | IntExpr::Mul(a, b) => {
+                a.visit(int, boolean);
+                b.visit(int, boolean);
+            }
+            IntExpr::Ite(c, a, b) => {
+                walk(c, boolean);
+                a.visit(int, boolean);
+                b.visit(int, boolean);
+            }
+        }
+    }
+}
+
+/// A comparison of two integers of one type.
+#[derive(Clone, Debug)]
+pub struct Compare {
+    /// The operator.
+    pub op: CmpOp,
+    /// The type both sides are computed in.
+    pub ty: IntType,
+    /// Left side.
+    pub a: IntExpr,
+    /// Right side.
+    pub b: IntExpr,
 }
 
 /// Which bits the outside world writes.
@@ -124,6 +253,16 @@ pub enum Stmt {
         /// The whole statement.
         span: Span,
     },
+    /// A write of an integer variable (its type is the program's
+    /// [`integers`](Program::integers) entry).
+    SetInt {
+        /// The variable (canonical name).
+        target: String,
+        /// Its new value.
+        value: IntExpr,
+        /// The element that writes.
+        span: Span,
+    },
     /// A note the front end attaches to this place (an element passed through, …).
     Warn {
         /// The element.
@@ -189,6 +328,8 @@ pub enum BoolExpr {
     },
     /// A value the algebra cannot express: an unconstrained signal, with a warning.
     Fresh(Box<Fresh>),
+    /// A comparison of integers, exact: a Boolean function of their bits.
+    Compare(Box<Compare>),
 }
 
 impl BoolExpr {
@@ -293,6 +434,11 @@ pub fn walk(e: &BoolExpr, f: &mut dyn FnMut(&BoolExpr)) {
         BoolExpr::Or(xs) => xs.iter().for_each(|x| walk(x, f)),
         BoolExpr::Timer(t) => walk(&t.input, f),
         BoolExpr::Edge { input, .. } => walk(input, f),
+        BoolExpr::Compare(c) => {
+            for side in [&c.a, &c.b] {
+                side.visit(&mut |_| {}, &mut |x| f(x));
+            }
+        }
         BoolExpr::Const(_) | BoolExpr::Var(_) | BoolExpr::Temp(_) | BoolExpr::Fresh(_) => {}
     }
     f(e)
@@ -309,9 +455,29 @@ pub fn walk_mut(e: &mut BoolExpr, f: &mut dyn FnMut(&mut BoolExpr)) {
         BoolExpr::Or(xs) => xs.iter_mut().for_each(|x| walk_mut(x, f)),
         BoolExpr::Timer(t) => walk_mut(&mut t.input, f),
         BoolExpr::Edge { input, .. } => walk_mut(input, f),
+        BoolExpr::Compare(c) => {
+            int_walk_mut(&mut c.a, f);
+            int_walk_mut(&mut c.b, f);
+        }
         BoolExpr::Const(_) | BoolExpr::Var(_) | BoolExpr::Temp(_) | BoolExpr::Fresh(_) => {}
     }
     f(e)
+}
+
+/// [`walk_mut`] on every Boolean expression inside an integer expression.
+pub fn int_walk_mut(e: &mut IntExpr, f: &mut dyn FnMut(&mut BoolExpr)) {
+    match e {
+        IntExpr::Const(_) | IntExpr::Var(_) => {}
+        IntExpr::Add(a, b) | IntExpr::Sub(a, b) | IntExpr::Mul(a, b) => {
+            int_walk_mut(a, f);
+            int_walk_mut(b, f);
+        }
+        IntExpr::Ite(c, a, b) => {
+            walk_mut(c, f);
+            int_walk_mut(a, f);
+            int_walk_mut(b, f);
+        }
+    }
 }
 
 impl Stmt {
@@ -320,7 +486,7 @@ impl Stmt {
     pub fn expr(&self) -> Option<&BoolExpr> {
         match self {
             Stmt::Let { value, .. } | Stmt::Write { value, .. } => Some(value),
-            Stmt::If { .. } | Stmt::Warn { .. } => None,
+            Stmt::If { .. } | Stmt::SetInt { .. } | Stmt::Warn { .. } => None,
         }
     }
 
@@ -339,6 +505,7 @@ impl Stmt {
                     s.visit(stmt, expr);
                 }
             }
+            Stmt::SetInt { value, .. } => value.visit(&mut |_| {}, &mut |x| expr(x)),
             Stmt::Warn { .. } => {}
         }
     }
@@ -379,6 +546,7 @@ impl Default for Program {
             exact_names: false,
             block_noun: "rung",
             language: "an LDmicro",
+            integers: BTreeMap::new(),
         }
     }
 }
@@ -396,6 +564,11 @@ impl Program {
             });
         }
         count.into_iter().filter(|(_, n)| *n > 1).map(|(t, _)| t).collect()
+    }
+
+    /// The name of bit `k` (0 the least significant) of integer `x`: `Ccount_b3`.
+    pub fn int_bit(x: &str, k: u32) -> String {
+        format!("{x}_b{k}")
     }
 
     /// Every statement, block by block.

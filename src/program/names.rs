@@ -136,4 +136,13 @@ impl Scope for CompiledProgram {
     fn cycle(&self) -> Option<crate::term::Delay> {
         Some(self.scan_cycle())
     }
+
+    fn comparison(
+        &self,
+        op: crate::program::CmpOp,
+        a: &crate::syntax::IntOperand,
+        b: &crate::syntax::IntOperand,
+    ) -> Result<String, (String, Option<String>)> {
+        self.comparison_atom(op, a, b)
+    }
 }

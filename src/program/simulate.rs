@@ -12,12 +12,21 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use super::{BoolExpr, EdgeKind, Preset, Program, Stmt, Temp, Timer, TimerModel, WriteKind};
+use super::{
+    BoolExpr, EdgeKind, IntExpr, IntType, Preset, Program, Stmt, Temp, Timer, TimerModel, WriteKind,
+};
 
 /// A value and whether the simulator knows it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct V {
     value: bool,
+    known: bool,
+}
+
+/// An integer value and whether the simulator knows it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct N {
+    value: i64,
     known: bool,
 }
 
@@ -37,6 +46,8 @@ pub struct Simulator {
     shared: BTreeSet<String>,
     /// Every bit at the end of the last scan.
     bits: BTreeMap<String, V>,
+    /// Every integer, as it stands in the scan (its power-up value before the first write).
+    ints: BTreeMap<String, N>,
     /// Per stateful element, in the order a scan meets them: a timer's count of
     /// consecutive scans (input on for TON, off for TOF), a one-shot's last power.
     counts: Vec<(u64, bool)>,
@@ -58,6 +69,11 @@ impl Simulator {
             timers_model: timers,
             shared: program.shared_timers(),
             bits: BTreeMap::new(),
+            ints: program
+                .integers
+                .iter()
+                .map(|(n, v)| (n.clone(), N { value: v.init, known: true }))
+                .collect(),
             counts: Vec::new(),
             memories: Vec::new(),
             by_index: BTreeMap::new(),
@@ -91,9 +107,16 @@ impl Simulator {
         self.bits.get(name).is_some_and(|v| v.value)
     }
 
-    /// Whether the simulator computes the bit (it is not derived from an unconstrained value).
+    /// Whether the simulator computes the bit or integer (it is not derived from an
+    /// unconstrained value).
     pub fn is_known(&self, name: &str) -> bool {
-        self.bits.get(name).is_none_or(|v| v.known)
+        self.bits.get(name).is_none_or(|v| v.known) && self.ints.get(name).is_none_or(|v| v.known)
+    }
+
+    /// An integer's value at the end of the last scan (`None` if the program has no such
+    /// integer).
+    pub fn int(&self, name: &str) -> Option<i64> {
+        self.ints.get(name).map(|v| v.value)
     }
 
     /// The memory of the one-shot with this index after the last scan.
@@ -159,12 +182,66 @@ impl Simulator {
                     for x in written {
                         self.current.insert(x, V { value: false, known: false });
                     }
+                    let mut ints = Vec::new();
+                    for s in branches.iter().flat_map(|(_, b)| b).chain(otherwise) {
+                        s.visit(
+                            &mut |s| {
+                                if let Stmt::SetInt { target, .. } = s {
+                                    ints.push(target.clone());
+                                }
+                            },
+                            &mut |_| {},
+                        );
+                    }
+                    for x in ints {
+                        if let Some(v) = self.ints.get_mut(&x) {
+                            v.known = false;
+                        }
+                    }
                 }
                 for s in chosen.unwrap_or(otherwise) {
                     self.stmt(s, known);
                 }
             }
+            Stmt::SetInt { target, value, .. } => {
+                let Some(ty) = self.program.integers.get(target).map(|v| v.ty) else { return };
+                let v = self.int_value(value, ty);
+                self.ints.insert(target.clone(), N { value: v.value, known: v.known && known });
+            }
             Stmt::Warn { .. } => {}
+        }
+    }
+
+    /// The value of `e` computed in `ty` (every operation wraps to it).
+    fn int_value(&mut self, e: &IntExpr, ty: IntType) -> N {
+        let both = |a: N, b: N, f: fn(i64, i64) -> i64| N {
+            value: ty.wrap(f(a.value, b.value)),
+            known: a.known && b.known,
+        };
+        match e {
+            IntExpr::Const(v) => N { value: ty.wrap(*v), known: true },
+            IntExpr::Var(x) => {
+                let v = self.ints.get(x).copied().unwrap_or(N { value: 0, known: false });
+                N { value: ty.wrap(v.value), known: v.known }
+            }
+            IntExpr::Add(a, b) => {
+                let (a, b) = (self.int_value(a, ty), self.int_value(b, ty));
+                both(a, b, i64::wrapping_add)
+            }
+            IntExpr::Sub(a, b) => {
+                let (a, b) = (self.int_value(a, ty), self.int_value(b, ty));
+                both(a, b, i64::wrapping_sub)
+            }
+            IntExpr::Mul(a, b) => {
+                let (a, b) = (self.int_value(a, ty), self.int_value(b, ty));
+                both(a, b, i64::wrapping_mul)
+            }
+            IntExpr::Ite(c, a, b) => {
+                let c = self.eval(c);
+                let (a, b) = (self.int_value(a, ty), self.int_value(b, ty));
+                let v = if c.value { a } else { b };
+                N { value: v.value, known: v.known && (c.known || a == b) }
+            }
         }
     }
 
@@ -225,6 +302,10 @@ impl Simulator {
                 V { value, known: input.known && last.known }
             }
             BoolExpr::Fresh(_) => V { value: false, known: false },
+            BoolExpr::Compare(c) => {
+                let (a, b) = (self.int_value(&c.a, c.ty), self.int_value(&c.b, c.ty));
+                V { value: c.op.holds(a.value, b.value), known: a.known && b.known }
+            }
         }
     }
 
@@ -281,6 +362,10 @@ pub trait ScanSimulator {
     fn edge_memory(&self, _index: usize) -> Option<bool> {
         None
     }
+    /// An integer's value after the last scan; `None` when the simulator does not keep it.
+    fn int(&self, _name: &str) -> Option<i64> {
+        None
+    }
 }
 
 /// What a program's counterexamples are replayed on: a front end's own simulator of the
@@ -307,6 +392,9 @@ impl ScanSimulator for Simulator {
     }
     fn is_known(&self, name: &str) -> bool {
         Simulator::is_known(self, name)
+    }
+    fn int(&self, name: &str) -> Option<i64> {
+        Simulator::int(self, name)
     }
     fn edge_memory(&self, index: usize) -> Option<bool> {
         Simulator::edge_memory(self, index)

@@ -62,7 +62,7 @@ pub fn prove_as(
         return None;
     }
     let cone: Vec<Axiom> = ctx.cone(&[&goal.lhs, &goal.rhs], None).into_iter().cloned().collect();
-    let goals = goal_clauses(goal);
+    let goals = goal_clauses(&expand_atoms(&cone, goal));
     let state = state_bits(&cone, goal);
     let mut candidates: Vec<Clause> = goals.iter().map(|g| Clause::new(g, true)).collect();
     candidates.extend(clauses(&state).iter().map(|c| Clause::new(c, false)));
@@ -95,14 +95,21 @@ pub fn prove_as(
         let before: Vec<Expr> = set.iter().map(|c| c.before.clone()).collect();
         boolean::model_of(&and_not(&product(&before), &product(&now)), &step_constraints, atoms)
     };
+    // The goal alone, when it is inductive: the shortest invariant, found at once.
+    let alone: Vec<Clause> = candidates.iter().filter(|c| c.goal).cloned().collect();
+    if inductive(&alone, &mut atoms).is_none() {
+        candidates = alone;
+    }
     prune(&mut candidates, &mut rounds, deadline, |c| &c.now, |set| inductive(set, &mut atoms))?;
+    let minimise_until = Instant::now() + deadline.saturating_duration_since(Instant::now()) / 2;
     // Minimise: a clause goes when the others are still inductive; then one of the
     // goal's own clauses when the others also imply it (a shorter invariant).
     for goals_now in [false, true] {
         let mut k = 0;
         while k < candidates.len() && candidates.len() > 1 {
-            if Instant::now() > deadline {
-                return None;
+            // Minimising is optional: the set is already inductive.
+            if Instant::now() > minimise_until {
+                break;
             }
             if candidates[k].goal != goals_now {
                 k += 1;
@@ -170,6 +177,27 @@ fn prune(
             return None;
         }
     }
+}
+
+/// The goal with every comparison atom (`[Cparts <= 10]`, a name defined by an equation
+/// of the cone over the integers' bits) replaced by its definition: the invariant then
+/// reads the bits, whose values at the previous scan the equations relate to the new.
+fn expand_atoms(cone: &[Axiom], goal: &Obligation) -> Obligation {
+    let mut sigma = std::collections::BTreeMap::new();
+    for h in cone {
+        if let Term::Name(n) = &h.lhs[root(&h.lhs)]
+            && n.as_str().starts_with('[')
+            && h.rel == Rel::Eq
+            && !mentions_pre(&h.rhs)
+        {
+            sigma.insert(*n, h.rhs.clone());
+        }
+    }
+    if sigma.is_empty() {
+        return goal.clone();
+    }
+    let expand = |e: &Expr| crate::term::instantiate(e, &sigma).unwrap_or_else(|| e.clone());
+    Obligation { lhs: expand(&goal.lhs), rhs: expand(&goal.rhs), ..goal.clone() }
 }
 
 /// The goal's clauses: `¬f + g` (and `¬g + f` for an equation).

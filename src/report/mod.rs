@@ -688,8 +688,10 @@ pub fn run_program_with(
     let theory = theory::standard(&mut sources).map_err(|d| fail(&sources, d, opts))?;
     let loaded = load_program_with(&mut sources, program, &compile_options(opts), &opts.plcopen)
         .map_err(|d| fail(&sources, d, opts))?;
-    let compiled = &loaded.compiled;
-    let mut docs = read_documents(&mut sources, paths, compiled, opts)?;
+    let mut docs = read_documents(&mut sources, paths, &loaded.compiled, opts)?;
+    // The comparison atoms the properties use, each defined by its equation.
+    let with_atoms = loaded.compiled.with_atoms();
+    let compiled = &with_atoms;
     let mut paths = paths.to_vec();
     if let Some(first) = loaded.properties.first() {
         // The program's own properties come first, as a document of the program's file.
@@ -771,7 +773,8 @@ pub fn run_program_with(
     let mut report = finish(Some(program.to_string()), paths, warnings, properties);
     report.timers = Some(opts.timers.as_str());
     // After the properties are read: names print as they spell them.
-    report.equations = compiled
+    report.equations = loaded
+        .compiled
         .hypotheses
         .iter()
         .map(|h| {

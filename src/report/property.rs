@@ -336,7 +336,22 @@ fn program_counterexample(
     if c.simulator_scan.is_some() {
         confirmed_by.push("scan simulator".into());
     }
-    let _ = session;
+    // Integers whose bits the run computed: a value row each, and their bits unshown.
+    let tracked = IntTrack::all(session.compiled, env);
+    shown.retain(|(label, _)| {
+        !tracked.iter().any(|t| {
+            label
+                .strip_prefix(&format!("{}_b", named(&t.name)))
+                .is_some_and(|k| k.parse::<u32>().is_ok())
+        })
+    });
+    let readers: Vec<_> =
+        tracked.iter().map(|t| move |time: &crate::semantics::Time| t.value_at(time)).collect();
+    let values: Vec<waveform::Track> = tracked
+        .iter()
+        .zip(&readers)
+        .map(|(t, f)| (named(&t.name), f as &dyn Fn(&crate::semantics::Time) -> Option<i64>))
+        .collect();
     CounterexampleReport {
         time: format_time(&c.time),
         lhs: c.lhs,
@@ -351,7 +366,7 @@ fn program_counterexample(
                 points: s.point_values().to_vec(),
             })
             .collect(),
-        diagram: waveform::draw(&shown, Some(&c.time), glyphs),
+        diagram: waveform::draw_with_values(&shown, &values, Some(&c.time), glyphs),
         scan: Some(c.scan),
         simulator_scan: c.simulator_scan,
         confirmed_by,
@@ -457,5 +472,41 @@ fn counterexample(
         confirmed_by: vec!["exact evaluation".into()],
         mark: Some(witness.time.clone()),
         shown,
+    }
+}
+
+/// An integer of the program whose every bit a counterexample's run computed.
+struct IntTrack<'a> {
+    name: String,
+    ty: crate::program::IntType,
+    /// Each bit's signal, and whether the stored bit is flipped by the start value.
+    bits: Vec<(&'a crate::semantics::Signal, bool)>,
+}
+
+impl<'a> IntTrack<'a> {
+    /// The program's integers whose bits `env` holds.
+    fn all(
+        compiled: &crate::program::CompiledProgram,
+        env: &'a crate::semantics::Assignment,
+    ) -> Vec<IntTrack<'a>> {
+        compiled
+            .integers
+            .iter()
+            .filter_map(|(x, var)| {
+                let bits = (0..var.ty.bits)
+                    .map(|k| {
+                        let name = crate::program::Program::int_bit(x, k);
+                        let s = env.signals.get(&crate::term::Symbol::from(name.as_str()))?;
+                        Some((s, var.init >> k & 1 == 1))
+                    })
+                    .collect::<Option<Vec<_>>>()?;
+                Some(IntTrack { name: x.clone(), ty: var.ty, bits })
+            })
+            .collect()
+    }
+
+    fn value_at(&self, t: &crate::semantics::Time) -> Option<i64> {
+        let bits: Vec<bool> = self.bits.iter().map(|(s, flip)| s.value_at(t) != *flip).collect();
+        Some(crate::program::bitvec::value_of(&bits, self.ty))
     }
 }

@@ -30,6 +30,20 @@ const INTERVAL_WIDTH: usize = 5;
 
 /// Draws the named signals over their common horizon; `mark` points at one instant.
 pub fn draw(signals: &[(String, Signal)], mark: Option<&Time>, glyphs: Glyphs) -> Vec<String> {
+    draw_with_values(signals, &[], mark, glyphs)
+}
+
+/// The value of an integer at an instant.
+pub type Track<'a> = (String, &'a dyn Fn(&Time) -> Option<i64>);
+
+/// [`draw`], with a row per integer under the signals: its value written where it
+/// changes (`Cparts  0    1         2 …`).
+pub fn draw_with_values(
+    signals: &[(String, Signal)],
+    values: &[Track],
+    mark: Option<&Time>,
+    glyphs: Glyphs,
+) -> Vec<String> {
     let Some((_, first)) = signals.first() else { return Vec::new() };
     let horizon = first.horizon().clone();
     let mut points: BTreeSet<Time> = BTreeSet::new();
@@ -41,7 +55,13 @@ pub fn draw(signals: &[(String, Signal)], mark: Option<&Time>, glyphs: Glyphs) -
     }
     points.insert(horizon.clone());
     let points: Vec<Time> = points.into_iter().collect();
-    let name_width = signals.iter().map(|(n, _)| n.chars().count()).max().unwrap_or(0).max(4);
+    let name_width = signals
+        .iter()
+        .map(|(n, _)| n.chars().count())
+        .chain(values.iter().map(|(n, _)| n.chars().count()))
+        .max()
+        .unwrap_or(0)
+        .max(4);
     let mut rows = Vec::new();
     // Columns: (value sampler, width, is_point).
     let mut previous = Time::from_integer(0.into());
@@ -60,6 +80,30 @@ pub fn draw(signals: &[(String, Signal)], mark: Option<&Time>, glyphs: Glyphs) -
             row.extend(std::iter::repeat_n(c, width));
         }
         rows.push(row.trim_end().to_string());
+    }
+    for (name, value) in values {
+        let mut row: Vec<char> = format!("{name:<name_width$} ").chars().collect();
+        let mut last = None;
+        for (t, is_point) in &columns {
+            let width = if *is_point { 1 } else { INTERVAL_WIDTH };
+            let start = row.len();
+            row.extend(std::iter::repeat_n(' ', width));
+            let v = value(t);
+            if *is_point || v == last {
+                continue;
+            }
+            last = v;
+            // Written where it changes, over the columns after it if it is long.
+            let text = v.map_or_else(|| "?".to_string(), |v| v.to_string());
+            for (k, c) in text.chars().enumerate() {
+                if start + k < row.len() {
+                    row[start + k] = c;
+                } else {
+                    row.push(c);
+                }
+            }
+        }
+        rows.push(row.into_iter().collect::<String>().trim_end().to_string());
     }
     // Time axis: a label under each breakpoint column.
     let mut axis: Vec<char> = vec![' '; name_width + 1];

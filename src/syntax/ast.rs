@@ -63,8 +63,71 @@ pub enum AstKind {
     Paren(Box<Ast>),
     /// `SR(a, b)`, `RS(a, b)`, `max(a, b)`, `min(a, b)`.
     Call(Func, Box<Ast>, Box<Ast>),
+    /// `[a op b]`: a comparison of a program's integers, a signal.
+    Compare(CmpOp, IntOperand, IntOperand),
     /// Text the lexer rejected (already reported).
     Error,
+}
+
+/// A comparison operator of integers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum CmpOp {
+    /// `=`
+    Eq,
+    /// `<>`
+    Ne,
+    /// `<`
+    Lt,
+    /// `<=`
+    Le,
+    /// `>`
+    Gt,
+    /// `>=`
+    Ge,
+}
+
+impl CmpOp {
+    /// The operator as the `.ii` language writes it.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            CmpOp::Eq => "=",
+            CmpOp::Ne => "<>",
+            CmpOp::Lt => "<",
+            CmpOp::Le => "<=",
+            CmpOp::Gt => ">",
+            CmpOp::Ge => ">=",
+        }
+    }
+
+    /// Whether `a op b`.
+    pub fn holds(self, a: i64, b: i64) -> bool {
+        match self {
+            CmpOp::Eq => a == b,
+            CmpOp::Ne => a != b,
+            CmpOp::Lt => a < b,
+            CmpOp::Le => a <= b,
+            CmpOp::Gt => a > b,
+            CmpOp::Ge => a >= b,
+        }
+    }
+}
+
+/// A side of a comparison atom.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum IntOperand {
+    /// An integer variable of the program.
+    Var(String),
+    /// A literal.
+    Int(i64),
+}
+
+impl std::fmt::Display for IntOperand {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            IntOperand::Var(v) => write!(f, "{v}"),
+            IntOperand::Int(k) => write!(f, "{k}"),
+        }
+    }
 }
 
 /// A relation between two expressions.

@@ -130,6 +130,10 @@ pub enum Tok {
     Le,
     /// `<`.
     Lt,
+    /// `<>` (inside `[ ]`).
+    Ne,
+    /// An integer literal (inside `[ ]`, a comparison of integers).
+    Int(i64),
     /// Text the lexer rejected (the error is already reported).
     Error,
     /// The end of the input.
@@ -163,6 +167,8 @@ impl Tok {
             Tok::Gt => "`>`".into(),
             Tok::Le => "`<=`".into(),
             Tok::Lt => "`<`".into(),
+            Tok::Ne => "`<>`".into(),
+            Tok::Int(v) => format!("integer `{v}`"),
             Tok::Error => "malformed text".into(),
             Tok::Eof => "end of input".into(),
         }
@@ -201,13 +207,16 @@ struct Lexer<'a> {
     file: FileId,
     tokens: Vec<Token>,
     errors: Vec<SyntaxError>,
+    /// How many `[` are open: inside, numbers are integers (comparison atoms).
+    brackets: usize,
 }
 
 /// Splits `text` into tokens (ending with [`Tok::Eof`]) and the errors found on the way.
 ///
 /// Rejected text becomes a [`Tok::Error`] token so the parser does not report it twice.
 pub fn lex(text: &str, file: FileId) -> (Vec<Token>, Vec<SyntaxError>) {
-    let mut lexer = Lexer { src: text, pos: 0, file, tokens: Vec::new(), errors: Vec::new() };
+    let mut lexer =
+        Lexer { src: text, pos: 0, file, tokens: Vec::new(), errors: Vec::new(), brackets: 0 };
     lexer.run();
     (lexer.tokens, lexer.errors)
 }
@@ -270,6 +279,12 @@ impl Lexer<'_> {
                 '#' => self.skip_line(),
                 '/' if self.peek_at(1) == Some('/') => self.skip_line(),
                 c if is_ident_start(c) => self.word(start),
+                c if self.brackets > 0
+                    && (c.is_ascii_digit()
+                        || c == '-' && self.peek_at(1).is_some_and(|d| d.is_ascii_digit())) =>
+                {
+                    self.integer(start)
+                }
                 c if c.is_ascii_digit() => self.number(start),
                 '`' => self.quoted(start),
                 '"' => self.string(start),
@@ -302,8 +317,18 @@ impl Lexer<'_> {
             ')' => Tok::RParen,
             ',' => Tok::Comma,
             ':' => Tok::Colon,
-            '[' => Tok::LBracket,
-            ']' => Tok::RBracket,
+            '[' => {
+                self.brackets += 1;
+                Tok::LBracket
+            }
+            ']' => {
+                self.brackets = self.brackets.saturating_sub(1);
+                Tok::RBracket
+            }
+            '<' if next == Some('>') && self.brackets > 0 => {
+                self.bump();
+                Tok::Ne
+            }
             '>' if next == Some('=') => {
                 self.bump();
                 Tok::Ge
@@ -435,6 +460,23 @@ impl Lexer<'_> {
             _ => {
                 let span = self.span(start);
                 self.fail(SyntaxError::MissingUnit { span, number }, start);
+            }
+        }
+    }
+
+    /// An integer literal of a comparison atom: `10`, `-3`.
+    fn integer(&mut self, start: usize) {
+        if self.peek() == Some('-') {
+            self.bump();
+        }
+        self.eat_while(|c| c.is_ascii_digit());
+        let text = self.src.get(start..self.pos).unwrap_or("");
+        match text.parse::<i64>() {
+            Ok(v) => self.push(Tok::Int(v), start),
+            Err(_) => {
+                let span = self.span(start);
+                let reason = format!("`{text}` is not a 64-bit integer");
+                self.fail(SyntaxError::BadComparison { span, reason, help: None }, start);
             }
         }
     }

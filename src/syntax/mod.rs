@@ -60,7 +60,7 @@ pub mod resolve;
 use crate::diag::{FileId, Report, Sources, Span};
 use crate::term::{Delay, Expr, Id, Symbol, Term};
 
-pub use ast::{ClaimKind, RuleRef};
+pub use ast::{ClaimKind, CmpOp, IntOperand, RuleRef};
 pub use pattern::Pattern;
 pub use print::{
     GoalKeyword, Notation, claim_to_string, delay_to_string, document_to_string,
@@ -273,6 +273,20 @@ pub trait Scope {
     fn cycle(&self) -> Option<Delay> {
         None
     }
+    /// The signal standing for the comparison atom `[a op b]` of the program's integers,
+    /// or why there is none: (what is wrong, a hint).
+    fn comparison(
+        &self,
+        _op: CmpOp,
+        _a: &ast::IntOperand,
+        _b: &ast::IntOperand,
+    ) -> Result<String, (String, Option<String>)> {
+        Err((
+            "a comparison `[a op b]` reads a program's integers, and there is no program here"
+                .into(),
+            Some("load a program with integers (counters, MOVE, arithmetic)".into()),
+        ))
+    }
 }
 
 /// The answer of a [`Scope`] to a name.
@@ -453,6 +467,15 @@ pub enum SyntaxError {
         /// Where.
         span: Span,
     },
+    /// A comparison atom `[a op b]` that does not fit the program's integers.
+    BadComparison {
+        /// Where.
+        span: Span,
+        /// What is wrong.
+        reason: String,
+        /// A hint (`did you mean`, the type's range, …).
+        help: Option<String>,
+    },
     /// A name that is not a signal of the program, an input or an abbreviation.
     UnknownName {
         /// Where.
@@ -599,6 +622,7 @@ impl SyntaxError {
             | BadRelation { span, .. }
             | TooDeep { span }
             | UnknownName { span, .. }
+            | BadComparison { span, .. }
             | AmbiguousName { span, .. }
             | DuplicateName { span, .. }
             | ShadowsSignal { span, .. }
@@ -666,6 +690,7 @@ impl Report for SyntaxError {
             BadRelation { reason, .. } => reason.clone(),
             TooDeep { .. } => "expression nested too deeply".into(),
             UnknownName { name, .. } => format!("unknown signal `{name}`"),
+            BadComparison { reason, .. } => reason.clone(),
             AmbiguousName { name, .. } => format!("ambiguous signal name `{name}`"),
             DuplicateName { name, .. } => format!("`{name}` is defined twice"),
             ShadowsSignal { name, by: Declaration::Let, .. } => {
@@ -726,6 +751,7 @@ impl Report for SyntaxError {
             MissingUnit { .. } => "expected a unit after this number".into(),
             BadUnit { .. } => "unknown unit".into(),
             UnknownName { .. } => "not defined".into(),
+            BadComparison { .. } => "in this comparison".into(),
             AmbiguousName { .. } => "ambiguous".into(),
             DuplicateName { .. } => "defined again here".into(),
             ShadowsSignal { by: Declaration::Assume, .. } => "name taken".into(),
@@ -780,6 +806,7 @@ impl Report for SyntaxError {
             AmbiguousName { candidates, .. } => {
                 vec![format!("it could be any of {}", backquote_list(candidates, 40))]
             }
+            BadComparison { help, .. } => help.iter().cloned().collect(),
             ShadowsSignal { name, by: Declaration::Input, .. } => vec![format!(
                 "remove `{name}` from `input` to mean the program's signal; a free signal needs a name the program does not use"
             )],

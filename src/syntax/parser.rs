@@ -9,6 +9,7 @@ use super::ast::{
     Ast, AstGoal, AstKind, AstPattern, AstProof, AstStatement, AstStep, ClaimKind, Func, NamedKind,
     RelOp, RuleRef,
 };
+use super::ast::{CmpOp, IntOperand};
 use super::lexer::{Keyword, Tok, Token};
 use crate::diag::Span;
 
@@ -335,6 +336,7 @@ impl Parser {
                 | Tok::Zero
                 | Tok::One
                 | Tok::Duration(_)
+                | Tok::LBracket
         )
     }
 
@@ -529,10 +531,43 @@ impl Parser {
                 let end = self.expect(Tok::RParen, "`)`")?;
                 return Ok(Ast { kind: AstKind::Paren(Box::new(inner)), span: token.span.to(end) });
             }
+            Tok::LBracket => return self.comparison(),
             _ => return Err(self.unexpected(names(ATOM))),
         };
         self.bump();
         Ok(Ast { kind, span: token.span })
+    }
+
+    /// `[a op b]`: a comparison of integers (each side a name or a literal).
+    fn comparison(&mut self) -> PResult<Ast> {
+        let start = self.bump().span;
+        let a = self.int_operand()?;
+        let op = match self.peek().tok {
+            Tok::Eq => CmpOp::Eq,
+            Tok::Ne => CmpOp::Ne,
+            Tok::Lt => CmpOp::Lt,
+            Tok::Le => CmpOp::Le,
+            Tok::Gt => CmpOp::Gt,
+            Tok::Ge => CmpOp::Ge,
+            _ => {
+                let ops = ["`=`", "`<>`", "`<`", "`<=`", "`>`", "`>=`"];
+                return Err(self.unexpected(names(&ops)));
+            }
+        };
+        self.bump();
+        let b = self.int_operand()?;
+        let end = self.expect(Tok::RBracket, "`]` (a comparison is `[a op b]`)")?;
+        Ok(Ast { kind: AstKind::Compare(op, a, b), span: start.to(end) })
+    }
+
+    fn int_operand(&mut self) -> PResult<IntOperand> {
+        let operand = match &self.peek().tok {
+            Tok::Ident(n) | Tok::Quoted(n) => IntOperand::Var(n.clone()),
+            Tok::Int(v) => IntOperand::Int(*v),
+            _ => return Err(self.unexpected(names(&["an integer variable", "an integer"]))),
+        };
+        self.bump();
+        Ok(operand)
     }
 
     fn call(&mut self, func: Func) -> PResult<Ast> {
@@ -577,6 +612,7 @@ mod tests {
             AstKind::Chain(v) => list("/", v),
             AstKind::Paren(x) => shape(x),
             AstKind::Call(f, x, y) => format!("({f:?} {} {})", shape(x), shape(y)),
+            AstKind::Compare(op, a, b) => format!("[{a} {} {b}]", op.symbol()),
             AstKind::Error => "?".into(),
         }
     }

@@ -72,6 +72,10 @@ pub fn delay_to_string(delay: &Delay) -> String {
 
 /// Writes a name, back-quoted unless it is a plain identifier that is not a keyword.
 pub fn name_to_string(name: &str) -> String {
+    // A comparison atom's signal is its own notation.
+    if name.starts_with('[') && name.ends_with(']') && !name.contains('`') {
+        return name.to_string();
+    }
     let mut chars = name.chars();
     let plain = chars.next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
         && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')

@@ -323,6 +323,13 @@ impl<'a> Resolver<'a> {
                 })
             }
             AstKind::Chain(v) => self.chain(v, a.span, mode, out),
+            AstKind::Compare(op, x, y) => match self.scope.comparison(*op, x, y) {
+                Ok(name) => Some(out.b.name(&name)),
+                Err((reason, help)) => {
+                    self.errors.push(SyntaxError::BadComparison { span: a.span, reason, help });
+                    None
+                }
+            },
             AstKind::Error => None,
         }
     }

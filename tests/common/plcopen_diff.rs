@@ -700,6 +700,8 @@ pub fn check(xml: &str, seed: u64, fig: &mut Figures, must_load: bool) {
                     let (path, owner, pin) = &lowered[edge_of[k]];
                     sim.edge_memory_of(path, *owner, pin).unwrap_or(false)
                 }
+                // PLCopen programs compile no integers yet.
+                Src::IntBit { .. } | Src::Defined(_) => false,
             })
             .collect();
         let shown: Vec<String> =

@@ -46,6 +46,31 @@ pub enum Src {
     Bit(String),
     /// The simulator's hidden edge memory of the `k`-th element (file order).
     Edge(usize),
+    /// Bit `bit` of the simulator's integer `of`, xor `start` (the compiled bits of an
+    /// integer are its value xor its start value).
+    IntBit { of: String, bit: u32, start: bool },
+    /// A name the compiled program defines by an equation (an intermediate value or a
+    /// comparison atom): its value is that equation's right side at each scan
+    /// ([`Hyp::run`]).
+    Defined(String),
+}
+
+impl Src {
+    /// The value at the end of the scan, from a simulator's bits, edge memories and
+    /// integers; `Defined` names read 0 here (their equations set them).
+    pub fn read(
+        &self,
+        bit: &dyn Fn(&str) -> bool,
+        edge: &dyn Fn(usize) -> Option<bool>,
+        int: &dyn Fn(&str) -> Option<i64>,
+    ) -> bool {
+        match self {
+            Src::Bit(n) => bit(n),
+            Src::Edge(k) => edge(*k).unwrap_or(false),
+            Src::IntBit { of, bit, start } => int(of).is_some_and(|v| v >> bit & 1 == 1) != *start,
+            Src::Defined(_) => false,
+        }
+    }
 }
 
 /// Why a hypothesis was not checked.
@@ -80,6 +105,8 @@ pub struct Hyp {
     /// holding after its input fell (`f/d`) at some scan.
     pub has_timer: bool,
     pub timer_fired: bool,
+    /// For the equation of a defined name, that name's slot among the known values.
+    pub defines: Option<usize>,
 }
 
 /// How often the hypotheses' timers were on, counted over all reachable states.
@@ -177,6 +204,24 @@ impl Hyp {
                             Some(SignalKind::EdgeMemory { index, .. }) => {
                                 Node::Known(slot(known, Src::Edge(*index)))
                             }
+                            Some(SignalKind::IntBit { of, bit, start, .. }) => {
+                                let src = Src::IntBit { of: of.clone(), bit: *bit, start: *start };
+                                Node::Known(slot(known, src))
+                            }
+                            Some(SignalKind::Intermediate { .. } | SignalKind::Atom)
+                                if !loose(c, s, &mut Vec::new()) =>
+                            {
+                                Node::Known(slot(known, Src::Defined(s.to_string())))
+                            }
+                            // Defined from an unconstrained signal: as free as it is.
+                            Some(SignalKind::Intermediate { .. } | SignalKind::Atom) => {
+                                temporal_free |= under[i];
+                                let k = free.iter().position(|f| f == s).unwrap_or_else(|| {
+                                    free.push(s.to_string());
+                                    free.len() - 1
+                                });
+                                Node::Free(k)
+                            }
                             _ => Node::Known(slot(known, Src::Bit(s.to_string()))),
                         }
                     }
@@ -213,7 +258,12 @@ impl Hyp {
             skip = Some(Skip::TooManyFresh);
         }
         let rel = if h.rel == Rel::Eq { "=" } else { "⇒" };
+        let defines = match &h.lhs[ii_prove::term::root(&h.lhs)] {
+            Term::Name(n) => known.iter().position(|s| *s == Src::Defined(n.as_str().into())),
+            _ => None,
+        };
         Hyp {
+            defines,
             name: h.name.clone(),
             text: format!(
                 "{} {rel} {}",
@@ -299,6 +349,30 @@ impl Hyp {
         (vals[self.lhs], vals[self.rhs])
     }
 
+    /// One scan: the equation of a defined name sets that name's value in `known` (its
+    /// right side, when the state and the fresh signals determine it), any other
+    /// hypothesis is checked ([`Hyp::scan`]).
+    pub fn run(
+        &mut self,
+        known: &mut [bool],
+        vals: &mut Vec<bool>,
+        stats: &mut TimerStats,
+    ) -> bool {
+        if let Some(slot) = self.defines
+            && self.skip.is_none()
+            && self.n_free == 0
+            && self.states.len() == 1
+        {
+            let mut state = self.states.iter().next().cloned().unwrap_or_default();
+            let (_, rhs) = self.step(&mut state, known, 0, vals, stats);
+            known[slot] = rhs;
+            self.states = [state].into_iter().collect();
+            self.checked_scans += 1;
+            return true;
+        }
+        self.scan(known, vals, stats)
+    }
+
     /// Advances every reachable state by one scan; false if the hypothesis fails
     /// for every run of the fresh signals.
     pub fn scan(&mut self, known: &[bool], vals: &mut Vec<bool>, stats: &mut TimerStats) -> bool {
@@ -336,6 +410,30 @@ impl Hyp {
         self.checked_scans += 1;
         true
     }
+}
+
+/// Whether the defined name `n` depends (through its equation, transitively) on an
+/// unconstrained signal; `seen` guards against cycles.
+fn loose(c: &CompiledProgram, n: &str, seen: &mut Vec<String>) -> bool {
+    if seen.iter().any(|x| x == n) {
+        return false;
+    }
+    seen.push(n.to_string());
+    let Some(h) = c
+        .hypotheses
+        .iter()
+        .find(|h| matches!(&h.lhs[ii_prove::term::root(&h.lhs)], Term::Name(x) if x.as_str() == n))
+    else {
+        return true;
+    };
+    h.rhs.as_ref().iter().any(|t| match t {
+        Term::Name(x) => match c.signals.get(x.as_str()) {
+            Some(SignalKind::Fresh { .. }) => true,
+            Some(SignalKind::Intermediate { .. } | SignalKind::Atom) => loose(c, x.as_str(), seen),
+            _ => false,
+        },
+        _ => false,
+    })
 }
 
 pub fn slot(known: &mut Vec<Src>, src: Src) -> usize {
@@ -385,15 +483,12 @@ pub fn check_scans(
                 return Err(format!("{n} is unknown to the simulator at scan {scan}"));
             }
         }
-        let values: Vec<bool> = known
+        let mut values: Vec<bool> = known
             .iter()
-            .map(|src| match src {
-                Src::Bit(n) => sim.bit(n),
-                Src::Edge(k) => sim.edge_memory(*k).unwrap_or(false),
-            })
+            .map(|src| src.read(&|n| sim.bit(n), &|k| sim.edge_memory(k), &|n| sim.int(n)))
             .collect();
         for h in hyps.iter_mut() {
-            if !h.scan(&values, &mut vals, &mut stats) {
+            if !h.run(&mut values, &mut vals, &mut stats) {
                 return Err(format!(
                     "{}: {} fails at scan {scan}\n{}",
                     h.name,

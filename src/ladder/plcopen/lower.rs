@@ -804,6 +804,7 @@ pub fn lower(p: &PlcProgram) -> Result<Lowered, Vec<PlcError>> {
         names,
         skipped: Vec::new(),
         integer_writers: BTreeMap::new(),
+        integers: BTreeMap::new(),
         exact_names: true,
         block_noun: "rung",
         language: "a PLCopen",

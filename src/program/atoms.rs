@@ -1,0 +1,176 @@
+//! Comparison atoms of properties, `[Cparts >= 10]`: each is a signal of its own, defined by an exact equation over the bits of the program's integers, so proofs cite it by the name the user wrote.
+//!
+//! A property's `[a op b]` resolves (through [`Scope::comparison`]) to the signal named
+//! by its canonical text, recorded in the program's [`Atoms`]; before its properties are
+//! checked, [`CompiledProgram::with_atoms`] adds one equation per atom, named by the
+//! comparison without its brackets (`Cparts >= 10`), that states its value at every scan
+//! as a Boolean function of the integers' bits ([`super::bitvec::compare`]). The equation
+//! defines a name nothing else uses, so it adds no constraint on the program's runs.
+
+use std::collections::BTreeMap;
+use std::sync::{Arc, Mutex};
+
+use super::bitvec::{self, Bits};
+use super::compile::{CompiledProgram, Hypothesis, HypothesisKind, SignalKind};
+use super::logic::L;
+use super::{CmpOp, IntType, Program};
+use crate::diag::Span;
+use crate::kernel::Rel;
+use crate::syntax::IntOperand;
+
+/// The comparison atoms properties have used, by signal name; the copies of one compiled
+/// program share them.
+#[derive(Clone, Debug, Default)]
+pub struct Atoms(Arc<Mutex<BTreeMap<String, Atom>>>);
+
+/// One comparison of integers: sides already resolved to canonical variables.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Atom {
+    op: CmpOp,
+    ty: IntType,
+    a: IntOperand,
+    b: IntOperand,
+}
+
+impl CompiledProgram {
+    /// The integer variable a property names `name` (exactly, or without its LDmicro kind
+    /// prefix).
+    fn integer(&self, name: &str) -> Result<String, (String, Option<String>)> {
+        if self.integers.contains_key(name) {
+            return Ok(name.to_string());
+        }
+        let short: Vec<&String> = self
+            .integers
+            .keys()
+            .filter(|x| !self.exact_names && super::short_name(x).as_deref() == Some(name))
+            .collect();
+        if let [one] = short.as_slice() {
+            return Ok((*one).clone());
+        }
+        let reason = if self.signals.contains_key(name) || self.lookup_bit(name) {
+            format!("`{name}` is a bit, not an integer: compare integers, or use the bit itself")
+        } else {
+            format!("unknown integer `{name}`")
+        };
+        let names: Vec<&str> = self.integers.keys().map(String::as_str).collect();
+        let help = match crate::diag::did_you_mean(name, names.iter().copied()) {
+            Some(s) => Some(format!("did you mean `{s}`?")),
+            None if names.is_empty() => {
+                Some("the program computes no integer (counters, MOVE, arithmetic)".into())
+            }
+            None => Some(format!("the program's integers: {}", names.join(", "))),
+        };
+        Err((reason, help))
+    }
+
+    fn lookup_bit(&self, name: &str) -> bool {
+        matches!(crate::syntax::Scope::lookup(self, name), crate::syntax::Lookup::Signal(_))
+    }
+
+    /// The signal of the atom `[a op b]`, recorded for [`CompiledProgram::with_atoms`].
+    pub(super) fn comparison_atom(
+        &self,
+        op: CmpOp,
+        a: &IntOperand,
+        b: &IntOperand,
+    ) -> Result<String, (String, Option<String>)> {
+        type Side = (IntOperand, Option<IntType>);
+        let side = |o: &IntOperand| -> Result<Side, (String, Option<String>)> {
+            match o {
+                IntOperand::Var(v) => {
+                    let x = self.integer(v)?;
+                    let ty = self.integers[&x].ty;
+                    Ok((IntOperand::Var(x), Some(ty)))
+                }
+                IntOperand::Int(k) => Ok((IntOperand::Int(*k), None)),
+            }
+        };
+        let (a, ta) = side(a)?;
+        let (b, tb) = side(b)?;
+        let ty = match (ta, tb) {
+            (Some(x), Some(y)) if x == y => x,
+            (Some(_), Some(_)) => IntType { bits: 63, signed: true },
+            (Some(t), None) | (None, Some(t)) => t,
+            (None, None) => {
+                return Err((
+                    "this comparison has no integer variable: it is a constant".into(),
+                    Some("write `1*` or `0*`".into()),
+                ));
+            }
+        };
+        for side in [&a, &b] {
+            if let IntOperand::Int(k) = side
+                && !ty.contains(*k)
+            {
+                return Err((
+                    format!("{k} is not a value of {}", ty.describe()),
+                    Some(format!("its values are {} to {}", ty.min(), ty.max())),
+                ));
+            }
+        }
+        let name = format!("[{a} {} {b}]", op.symbol());
+        if let Ok(mut atoms) = self.atoms.0.lock() {
+            atoms.insert(name.clone(), Atom { op, ty, a, b });
+        }
+        Ok(name)
+    }
+
+    /// This program with an equation for every comparison atom its properties have
+    /// used (see the module documentation).
+    pub fn with_atoms(&self) -> CompiledProgram {
+        let atoms = self.atoms.0.lock().map(|a| a.clone()).unwrap_or_default();
+        let mut out = self.clone();
+        out.short_names = std::sync::OnceLock::new();
+        out.equation_index = std::sync::OnceLock::new();
+        for (name, atom) in atoms {
+            if out.signals.contains_key(&name) {
+                continue;
+            }
+            let value = |o: &IntOperand| -> Bits {
+                match o {
+                    IntOperand::Int(k) => bitvec::constant(*k, atom.ty.bits),
+                    IntOperand::Var(x) => self.int_bits(x, atom.ty),
+                }
+            };
+            let mut keep = |t: L| t;
+            let term =
+                bitvec::compare(atom.op, atom.ty, &value(&atom.a), &value(&atom.b), &mut keep);
+            out.signals.insert(name.clone(), SignalKind::Atom);
+            out.hypotheses.push(Hypothesis {
+                name: name[1..name.len() - 1].to_string(),
+                rung: 0,
+                span: Span::new(0, 0..0),
+                kind: HypothesisKind::Equation,
+                lhs: L::Var(name.clone()).to_expr(),
+                rel: Rel::Eq,
+                rhs: super::logic::simp(&term).to_expr(),
+            });
+        }
+        out
+    }
+
+    /// The value of the atom `name` when the integers have the values `int` gives (`None`
+    /// for a name that is no atom, or an integer `int` does not know).
+    pub fn atom_value(&self, name: &str, int: &dyn Fn(&str) -> Option<i64>) -> Option<bool> {
+        let atom = self.atoms.0.lock().ok()?.get(name)?.clone();
+        let value = |o: &IntOperand| match o {
+            IntOperand::Int(k) => Some(*k),
+            IntOperand::Var(x) => int(x),
+        };
+        Some(atom.op.holds(value(&atom.a)?, value(&atom.b)?))
+    }
+
+    /// The value of integer `x` at the end of a scan, in `ty`, from its bit signals.
+    fn int_bits(&self, x: &str, ty: IntType) -> Bits {
+        let Some(var) = self.integers.get(x) else { return bitvec::constant(0, ty.bits) };
+        let mut bits: Bits = (0..var.ty.bits)
+            .map(|k| {
+                let bit = L::var(&Program::int_bit(x, k));
+                if var.init >> k & 1 == 1 { bit.negate() } else { bit }
+            })
+            .collect();
+        let fill = if var.ty.signed { bits.last().cloned().unwrap_or(L::Zero) } else { L::Zero };
+        bits.resize(ty.bits as usize, fill);
+        bits
+    }
+}

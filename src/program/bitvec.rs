@@ -1,0 +1,193 @@
+//! Integers as vectors of Boolean terms: two's-complement arithmetic and comparisons built from `·`, `+` and `¬`, least significant bit first, as the II compiler bit-blasts the scan model's integers.
+//!
+//! Every operation wraps to the width of its operands, as the runtime's arithmetic does.
+//! Terms are trees, so a value read twice is copied: the callers pass a `name` function
+//! that may replace a large term by a signal defined as equal to it (the compiler's
+//! intermediate values), which keeps every result linear in the width.
+#![warn(missing_docs)]
+
+use super::CmpOp;
+use super::IntType;
+use super::logic::{L, simp};
+
+/// A value of some width: its bits, least significant first.
+pub type Bits = Vec<L>;
+
+/// Names a large term (or returns it as it is).
+pub type Namer<'a> = &'a mut dyn FnMut(L) -> L;
+
+/// `a ⊕ b`.
+pub fn xor(a: &L, b: &L) -> L {
+    match (a, b) {
+        (L::Zero, x) | (x, L::Zero) => x.clone(),
+        (L::One, x) | (x, L::One) => x.clone().negate(),
+        _ => simp(&a.clone().and(b.clone().negate()).or(a.clone().negate().and(b.clone()))),
+    }
+}
+
+/// `c · a + ¬c · b`.
+pub fn mux(c: &L, a: &L, b: &L) -> L {
+    match c {
+        L::One => a.clone(),
+        L::Zero => b.clone(),
+        _ if a == b => a.clone(),
+        _ => simp(&c.clone().and(a.clone()).or(c.clone().negate().and(b.clone()))),
+    }
+}
+
+/// The bits of `v` in `width` bits (two's complement).
+pub fn constant(v: i64, width: u32) -> Bits {
+    (0..width).map(|k| if v >> k.min(63) & 1 == 1 { L::One } else { L::Zero }).collect()
+}
+
+/// The value of `bits` (each `true` or `false`) read in `ty`.
+pub fn value_of(bits: &[bool], ty: IntType) -> i64 {
+    let raw = bits.iter().enumerate().fold(0i64, |acc, (k, b)| acc | (i64::from(*b) << k));
+    ty.wrap(raw)
+}
+
+/// Bitwise `¬a`.
+pub fn not(a: &[L]) -> Bits {
+    a.iter().map(|x| x.clone().negate()).collect()
+}
+
+/// `a + b + carry` wrapped to the width of `a` (`b` as wide).
+pub fn add(a: &[L], b: &[L], carry: L, name: Namer) -> Bits {
+    let mut c = carry;
+    let mut out = Vec::with_capacity(a.len());
+    for (k, (x, y)) in a.iter().zip(b).enumerate() {
+        let half = name(xor(x, y));
+        out.push(name(xor(&half, &c)));
+        if k + 1 < a.len() {
+            // The carry: x · y + c · (x ⊕ y).
+            c = name(simp(&x.clone().and(y.clone()).or(c.and(half))));
+        }
+    }
+    out
+}
+
+/// `a - b` wrapped.
+pub fn sub(a: &[L], b: &[L], name: Namer) -> Bits {
+    add(a, &not(b), L::One, name)
+}
+
+/// `a · b` wrapped to the width of `a` (shift and add).
+pub fn mul(a: &[L], b: &[L], name: Namer) -> Bits {
+    let width = a.len();
+    let mut acc = constant(0, width as u32);
+    for (k, y) in b.iter().enumerate().take(width) {
+        if *y == L::Zero {
+            continue;
+        }
+        // a · y shifted by k.
+        let mut partial = constant(0, width as u32);
+        for j in k..width {
+            partial[j] = simp(&a[j - k].clone().and(y.clone()));
+        }
+        acc = add(&acc, &partial, L::Zero, name);
+    }
+    acc
+}
+
+/// `a op b` for two values of type `ty`.
+pub fn compare(op: CmpOp, ty: IntType, a: &[L], b: &[L], name: Namer) -> L {
+    let eq = || simp(&L::And(a.iter().zip(b).map(|(x, y)| xor(x, y).negate()).collect()));
+    // Signed order is the unsigned order of the values with their sign bits flipped.
+    let flip = |v: &[L]| -> Bits {
+        let mut v = v.to_vec();
+        if ty.signed
+            && let Some(top) = v.last_mut()
+        {
+            *top = top.clone().negate();
+        }
+        v
+    };
+    let less = |x: &[L], y: &[L], name: Namer| -> L {
+        // From the least significant bit up: x < y on bits 0..=k.
+        let mut lt = L::Zero;
+        for (p, q) in x.iter().zip(y) {
+            let strictly = p.clone().negate().and(q.clone());
+            let same = xor(p, q).negate();
+            lt = name(simp(&strictly.or(same.and(lt))));
+        }
+        lt
+    };
+    let (fa, fb) = (flip(a), flip(b));
+    match op {
+        CmpOp::Eq => eq(),
+        CmpOp::Ne => simp(&eq().negate()),
+        CmpOp::Lt => less(&fa, &fb, name),
+        CmpOp::Gt => less(&fb, &fa, name),
+        CmpOp::Le => simp(&less(&fb, &fa, name).negate()),
+        CmpOp::Ge => simp(&less(&fa, &fb, name).negate()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn eval(t: &L, env: &dyn Fn(&str) -> bool) -> bool {
+        match t {
+            L::Zero => false,
+            L::One => true,
+            L::Var(n) => env(n),
+            L::Not(x) => !eval(x, env),
+            L::And(xs) => xs.iter().all(|x| eval(x, env)),
+            L::Or(xs) => xs.iter().any(|x| eval(x, env)),
+            _ => panic!("not Boolean"),
+        }
+    }
+
+    fn vars(p: &str, w: u32) -> Bits {
+        (0..w).map(|k| L::var(&format!("{p}{k}"))).collect()
+    }
+
+    /// Every operation on every pair of 4-bit values, signed and unsigned, against
+    /// Rust's wrapping arithmetic.
+    #[test]
+    fn four_bit_arithmetic_is_exact() {
+        let w = 4;
+        for signed in [false, true] {
+            let ty = IntType { bits: w, signed };
+            let (a, b) = (vars("a", w), vars("b", w));
+            let mut keep = |t: L| t;
+            let sum = add(&a, &b, L::Zero, &mut keep);
+            let diff = sub(&a, &b, &mut keep);
+            let prod = mul(&a, &b, &mut keep);
+            let ops = [CmpOp::Eq, CmpOp::Ne, CmpOp::Lt, CmpOp::Le, CmpOp::Gt, CmpOp::Ge];
+            let cmps: Vec<L> = ops.iter().map(|op| compare(*op, ty, &a, &b, &mut keep)).collect();
+            for x in 0..16i64 {
+                for y in 0..16i64 {
+                    let env = |n: &str| {
+                        let k: u32 = n[1..].parse().unwrap();
+                        let v = if n.starts_with('a') { x } else { y };
+                        v >> k & 1 == 1
+                    };
+                    let read = |bits: &Bits| {
+                        value_of(&bits.iter().map(|t| eval(t, &env)).collect::<Vec<_>>(), ty)
+                    };
+                    let (vx, vy) = (ty.wrap(x), ty.wrap(y));
+                    assert_eq!(read(&sum), ty.wrap(vx + vy), "{vx} + {vy}");
+                    assert_eq!(read(&diff), ty.wrap(vx - vy), "{vx} - {vy}");
+                    assert_eq!(read(&prod), ty.wrap(vx * vy), "{vx} * {vy}");
+                    for (op, c) in ops.iter().zip(&cmps) {
+                        assert_eq!(eval(c, &env), op.holds(vx, vy), "{vx} {op:?} {vy}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn constants_fold() {
+        let ty = IntType::I16;
+        let mut keep = |t: L| t;
+        let s = add(&constant(1234, 16), &constant(-34, 16), L::Zero, &mut keep);
+        let bits: Vec<bool> = s.iter().map(|t| *t == L::One).collect();
+        assert!(s.iter().all(|t| *t == L::One || *t == L::Zero));
+        assert_eq!(value_of(&bits, ty), 1200);
+        let c = compare(CmpOp::Ge, ty, &constant(-3, 16), &constant(2, 16), &mut keep);
+        assert_eq!(c, L::Zero);
+    }
+}

@@ -1,0 +1,189 @@
+//! The integer part of the II compiler: each integer variable of the scan model is compiled into the bits of its value (bit-blasting), so its writes become bit writes the compiler already states exactly, and comparisons Boolean functions of those bits.
+//!
+//! An integer `X` of `w` bits is the signals `X_b0 … X_b{w-1}` ([`SignalKind::IntBit`]),
+//! least significant first. A variable that starts at a value `v ≠ 0` (a counter's
+//! `init`) is stored as `X xor v`, so that every bit starts at 0 as the algebra's `pre`
+//! does: reads flip the bits that are 1 in `v`, writes flip them back. Arithmetic wraps to
+//! the variable's width ([`super::super::bitvec`]). A bit term larger than
+//! [`MAX_INT_TERM`] nodes is named: an intermediate signal ([`SignalKind::Intermediate`])
+//! defined by an exact equation stated with its block, so sums and products stay linear
+//! in the width.
+
+use super::super::bitvec::{self, Bits};
+use super::super::logic::{L, simp};
+use super::super::{BoolExpr, Compare, IntExpr, IntType, IntVar, Program, Stmt, WriteKind};
+use super::{CompileError, Compiler, Pending, SignalKind};
+use crate::diag::Span;
+
+/// The largest bit term of an integer value inlined into later reads.
+pub(super) const MAX_INT_TERM: usize = 200;
+
+impl Compiler<'_> {
+    /// The variable `x`, or an error at `span` when the program does not declare it.
+    fn int_var(&mut self, x: &str, span: Span) -> Option<IntVar> {
+        if let Some(v) = self.program.integers.get(x) {
+            return Some(*v);
+        }
+        if !self.errors.iter().any(|e| e.span == span) {
+            self.errors.push(CompileError {
+                span,
+                keyword: "INT".into(),
+                reason: format!("the integer {x} has no declared type"),
+            });
+        }
+        None
+    }
+
+    /// The value of `e` in type `ty` at this point of the scan.
+    pub(super) fn int(&mut self, e: &IntExpr, ty: IntType, span: Span) -> Bits {
+        let w = ty.bits;
+        match e {
+            IntExpr::Const(v) => bitvec::constant(ty.wrap(*v), w),
+            IntExpr::Var(x) => {
+                let Some(var) = self.int_var(x, span) else { return bitvec::constant(0, w) };
+                let stored: Bits = (0..var.ty.bits)
+                    .map(|k| {
+                        let bit = self.read(&Program::int_bit(x, k));
+                        if var.init >> k & 1 == 1 { bit.negate() } else { bit }
+                    })
+                    .collect();
+                resize(stored, var.ty, ty)
+            }
+            IntExpr::Add(a, b) | IntExpr::Sub(a, b) | IntExpr::Mul(a, b) => {
+                let a = self.int(a, ty, span);
+                let b = self.int(b, ty, span);
+                let mut name = |t: L| self.intermediate(t);
+                match e {
+                    IntExpr::Add(..) => bitvec::add(&a, &b, L::Zero, &mut name),
+                    IntExpr::Sub(..) => bitvec::sub(&a, &b, &mut name),
+                    _ => bitvec::mul(&a, &b, &mut name),
+                }
+            }
+            IntExpr::Ite(c, a, b) => {
+                // The condition is read by every bit: named unless it is a literal.
+                let c = self.eval(c);
+                let c = if c.size() > 2 {
+                    let label = self.block().label.clone().unwrap_or_else(|| "v".into());
+                    self.define(&format!("{label}_v"), c)
+                } else {
+                    c
+                };
+                let a = self.int(a, ty, span);
+                let b = self.int(b, ty, span);
+                a.iter().zip(&b).map(|(x, y)| bitvec::mux(&c, x, y)).collect()
+            }
+        }
+    }
+
+    /// A comparison, as a Boolean term of the bits.
+    pub(super) fn compare(&mut self, c: &Compare, span: Span) -> L {
+        let a = self.int(&c.a, c.ty, span);
+        let b = self.int(&c.b, c.ty, span);
+        let mut name = |t: L| self.intermediate(t);
+        let t = bitvec::compare(c.op, c.ty, &a, &b, &mut name);
+        simp(&t)
+    }
+
+    /// `target := value`: one write per bit, in order.
+    pub(super) fn set_int(&mut self, target: &str, value: &IntExpr, span: Span) {
+        let Some(var) = self.int_var(target, span) else { return };
+        let bits = self.int(value, var.ty, span);
+        let label = self.block().label.clone().unwrap_or_else(|| "v".into());
+        for (k, bit) in bits.into_iter().enumerate() {
+            let k = k as u32;
+            let stored = if var.init >> k & 1 == 1 { bit.negate() } else { bit };
+            let x = Program::int_bit(target, k);
+            // A value later writes replace is read under its own name
+            // (`Cparts_L01_b3`: the bit after this block's write).
+            let last = self.depth == 0 && self.last_write.get(&x) == Some(&self.write_index);
+            let stored = if !last && stored.size() > 2 {
+                self.define(&format!("{target}_{label}_b{k}"), stored)
+            } else {
+                stored
+            };
+            self.write(span, &x, &WriteKind::Assign, &stored);
+        }
+    }
+
+    /// `t`, or a new signal defined as equal to it (stated with this block) when it is
+    /// too large to copy into every read.
+    pub(super) fn intermediate(&mut self, t: L) -> L {
+        if t.size() <= MAX_INT_TERM {
+            return t;
+        }
+        let label = self.block().label.clone().unwrap_or_else(|| "v".into());
+        self.define(&format!("{label}_v"), t)
+    }
+
+    /// A new signal (named after `base`) defined as equal to `t`, stated with this block.
+    fn define(&mut self, base: &str, t: L) -> L {
+        let name = self.unique(base);
+        let rung = self.block().number;
+        self.fresh.insert(name.clone(), SignalKind::Intermediate { rung });
+        self.pending.push(Pending { var: name.clone(), rhs: t, recurrence: None });
+        L::Var(name)
+    }
+
+    /// The kind of the bit signal `name`, if it is one.
+    pub(super) fn int_bit_kind(&self, name: &str) -> Option<SignalKind> {
+        let (of, k) = name.rsplit_once("_b")?;
+        let bit: u32 = k.parse().ok()?;
+        let var = self.program.integers.get(of)?;
+        (bit < var.ty.bits && Program::int_bit(of, bit) == name).then(|| SignalKind::IntBit {
+            of: of.to_string(),
+            bit,
+            start: var.init >> bit & 1 == 1,
+            input: var.input,
+        })
+    }
+}
+
+/// [`CompiledProgram::int_depth`] of a program.
+pub(super) fn int_depth(program: &Program) -> usize {
+    if program.integers.is_empty() {
+        return 0;
+    }
+    let mut largest = program.integers.values().map(|v| v.init.unsigned_abs()).max().unwrap_or(0);
+    let mut consts = |e: &IntExpr| {
+        fn walk(e: &IntExpr, largest: &mut u64) {
+            match e {
+                IntExpr::Const(k) => *largest = (*largest).max(k.unsigned_abs()),
+                IntExpr::Var(_) => {}
+                IntExpr::Add(a, b)
+                | IntExpr::Sub(a, b)
+                | IntExpr::Mul(a, b)
+                | IntExpr::Ite(_, a, b) => {
+                    walk(a, largest);
+                    walk(b, largest);
+                }
+            }
+        }
+        walk(e, &mut largest);
+    };
+    for (_, s) in program.stmts() {
+        let mut sets = Vec::new();
+        let mut cmps = Vec::new();
+        s.visit(
+            &mut |s| {
+                if let Stmt::SetInt { value, .. } = s {
+                    sets.push(value.clone());
+                }
+            },
+            &mut |e| {
+                if let BoolExpr::Compare(c) = e {
+                    cmps.push(c.a.clone());
+                    cmps.push(c.b.clone());
+                }
+            },
+        );
+        sets.iter().chain(&cmps).for_each(&mut consts);
+    }
+    usize::try_from(largest.saturating_mul(2).saturating_add(2)).unwrap_or(usize::MAX).min(10_000)
+}
+
+/// `v` of type `from` in type `to`: sign- or zero-extended, or truncated.
+fn resize(mut v: Bits, from: IntType, to: IntType) -> Bits {
+    let fill = if from.signed { v.last().cloned().unwrap_or(L::Zero) } else { L::Zero };
+    v.resize(to.bits as usize, fill);
+    v
+}
