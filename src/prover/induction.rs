@@ -78,8 +78,8 @@ pub enum Stop {
 impl std::fmt::Display for Stalled {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let (n, bits, kept) = (self.candidates, self.state_bits, self.kept);
-        let plural = if bits == 1 { "" } else { "s" };
-        let over = format!("{n} candidate clauses over {bits} state bit{plural}");
+        let s = super::plural(bits, "", "s");
+        let over = format!("{n} candidate clauses over {bits} state bit{s}");
         match self.stop {
             Stop::NoScans => write!(f, "not available for free signals"),
             Stop::Base => write!(f, "{over}; the goal fails at the first scan of the skeleton"),

@@ -384,12 +384,13 @@ fn prove_at(
         let mut run = saturate::saturate(&goal.lhs, goal.rel, &goal.rhs, &cone, rules, limits);
         sets.set(sets.get() + 1);
         *saturation = format!(
-            "algebra: e-graph saturation with {} rule set{} did not join the two sides (last run: {}, {} e-nodes, {} hypotheses)",
+            "algebra: e-graph saturation with {} rule set{} did not join the two sides (last run: {}, {} e-nodes, {} hypothes{})",
             sets.get(),
-            if sets.get() == 1 { "" } else { "s" },
+            plural(sets.get(), "", "s"),
             run.stop,
             run.nodes,
-            cone.len()
+            cone.len(),
+            plural(cone.len(), "is", "es"),
         );
         exhausted.set(run.hit_limit);
         let closed = run.closed?;
@@ -494,6 +495,11 @@ fn prove_at(
         Err(boolean::Failure::Countermodel(candidate)) => unknown(lines, Some(candidate), stalled),
         Err(boolean::Failure::Limit(_)) => unknown(lines, None, stalled),
     }
+}
+
+/// `one` when `n` is 1, else `many`: the ending of a counted word.
+pub(crate) fn plural(n: usize, one: &'static str, many: &'static str) -> &'static str {
+    if n == 1 { one } else { many }
 }
 
 /// The longest line of an unknown's reason, in characters.

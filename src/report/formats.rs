@@ -3,8 +3,9 @@
 //!
 //! - **JUnit XML**: a `<testsuite>` per property file, a `<testcase>` per property
 //!   (`file` and `line` attributes); a refuted property is a `<failure>` whose text is
-//!   the counterexample, an unknown one is `<skipped>` with the reason, a property an
-//!   interrupted run did not finish is an `<error>`, a vacuous proof
+//!   the counterexample, an unknown one is `<skipped>` with the reason in
+//!   `<system-out>`, a property an interrupted run did not finish is an `<error>`, a
+//!   vacuous proof
 //!   is a `<failure>` under `--deny vacuous` and noted in `<system-out>` otherwise;
 //!   warnings are the `<system-err>` of the first suite.
 //! - **SARIF 2.1.0**: one run; a result per refuted (`error`) or unknown (`warning`)

@@ -59,7 +59,7 @@ fn missing(induction: Option<&Stalled>, has_model: bool) -> Option<String> {
         ),
         Some((Stop::Base, _)) => "missing: the skeleton breaks the goal at the first scan through a timer or memory value the laws do not pin down".into(),
         Some((Stop::Limit, _)) => "missing: time for the invariant search (a larger --timeout)".into(),
-        _ if has_model => "missing: a law or hypothesis that rules out the skeleton's model (timers, memories and `pre` terms are free atoms there), or a longer run that refutes the goal".into(),
+        _ if has_model => "missing: a law or hypothesis that rules out the skeleton's model (timers, memories and `pre` terms are free atoms there), or a counterexample the search did not reach".into(),
         _ => "missing: a proof within the limits (a larger --timeout gives every method more)".into(),
     };
     Some(text)
