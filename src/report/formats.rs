@@ -5,8 +5,8 @@
 //!   (`file` and `line` attributes); a refuted property is a `<failure>` whose text is
 //!   the counterexample, an unknown one is `<skipped>` with the reason in
 //!   `<system-out>`, a property an interrupted run did not finish is an `<error>`, a
-//!   vacuous proof
-//!   is a `<failure>` under `--deny vacuous` and noted in `<system-out>` otherwise;
+//!   vacuous proof is a `<failure>` under `--deny vacuous` and noted in `<system-out>`
+//!   otherwise;
 //!   warnings are the `<system-err>` of the first suite.
 //! - **SARIF 2.1.0**: one run; a result per refuted (`error`) or unknown (`warning`)
 //!   property, per vacuous proof and per warning, each with its file, line and column.
