@@ -191,3 +191,21 @@ fn other_unknowns_and_the_examples_stay_short() {
     }
     assert!(checked >= 3, "only {checked} unknowns among the other cases");
 }
+
+#[test]
+fn a_diagram_cut_to_a_width_keeps_the_mark_and_the_last_pieces() {
+    use ii_prove::report::waveform::{Glyphs, draw, draw_within};
+    use ii_prove::semantics::{Signal, Time};
+    let t = |n: i64| Time::from_integer(n.into());
+    // 1 on [2k, 2k+1), 0 on [2k+1, 2k+2): sixty pieces.
+    let toggling = Signal::from_fn(t(60), (1..60).map(t).collect(), |x| {
+        (x / t(2)).floor() * t(2) == x.floor()
+    });
+    let shown = vec![("toggling".to_string(), toggling)];
+    let whole = draw(&shown, Some(&t(60)), Glyphs::ASCII);
+    assert!(whole[0].chars().count() > 300);
+    let cut = draw_within(&shown, Some(&t(60)), Glyphs::ASCII, 96);
+    assert!(cut.iter().all(|row| row.chars().count() <= 96), "{cut:#?}");
+    assert!(cut[1].ends_with("60"), "{cut:#?}");
+    assert!(cut[2].ends_with('^'), "{cut:#?}");
+}
