@@ -39,6 +39,66 @@ const MAX_ROUNDS: usize = 200;
 /// The name the invariant lemma has in certificates and traces.
 pub const LEMMA: &str = "inv";
 
+/// Why the search found no inductive invariant: how many candidate clauses over how
+/// many state bits it started from, where it stopped, and, when the step failed, the
+/// state it failed from.
+#[derive(Clone, Debug)]
+pub struct Stalled {
+    /// State bits the candidate clauses range over.
+    pub state_bits: usize,
+    /// Candidate clauses at the start (the goal's own included).
+    pub candidates: usize,
+    /// Candidate clauses still standing when the search stopped.
+    pub kept: usize,
+    /// Where it stopped.
+    pub stop: Stop,
+    /// When the step failed: the state bits (the goal's first) with their values at the
+    /// previous scan and now, in a model where the kept clauses held before and the goal
+    /// fails now.
+    pub step_model: Vec<(String, Option<bool>, Option<bool>)>,
+}
+
+/// Where the invariant search stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stop {
+    /// Not a program's context: no induction over scans.
+    NoScans,
+    /// The goal fails at the first scan on the Boolean skeleton.
+    Base,
+    /// The step breaks the goal from a state where every kept clause held.
+    Step,
+    /// A pruning round removed nothing while the set was not inductive.
+    NoProgress,
+    /// The rounds or the time ran out.
+    Limit,
+    /// An invariant was found but its certificate was not built or not accepted.
+    Certificate,
+}
+
+impl std::fmt::Display for Stalled {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (n, bits, kept) = (self.candidates, self.state_bits, self.kept);
+        let s = super::plural(bits, "", "s");
+        let over = format!("{n} candidate clauses over {bits} state bit{s}");
+        match self.stop {
+            Stop::NoScans => write!(f, "not available for free signals"),
+            Stop::Base => write!(f, "{over}; the goal fails at the first scan of the skeleton"),
+            Stop::Step => write!(
+                f,
+                "{over}; the step fails: from a state where {kept} of them (the goal's among them) held, one scan breaks the goal"
+            ),
+            Stop::NoProgress => write!(f, "{over}; pruning stalled with {kept} clauses left"),
+            Stop::Limit => write!(f, "{over}; stopped at its round or time limit ({kept} left)"),
+            Stop::Certificate => {
+                write!(
+                    f,
+                    "{over}; an invariant of {kept} clauses was found, its certificate was not"
+                )
+            }
+        }
+    }
+}
+
 /// Tries to prove `goal` by induction over scans (a program's context only); the
 /// invariant is the certificate's lemma [`LEMMA`].
 pub fn prove(
@@ -46,7 +106,7 @@ pub fn prove(
     goal: &Obligation,
     budget: Budget,
     deadline: Instant,
-) -> Option<Proved> {
+) -> Result<Proved, Stalled> {
     prove_as(ctx, goal, budget, deadline, LEMMA)
 }
 
@@ -57,15 +117,29 @@ pub fn prove_as(
     budget: Budget,
     deadline: Instant,
     lemma: &str,
-) -> Option<Proved> {
+) -> Result<Proved, Stalled> {
+    let mut stalled = Stalled {
+        state_bits: 0,
+        candidates: 0,
+        kept: 0,
+        stop: Stop::NoScans,
+        step_model: Vec::new(),
+    };
     if !ctx.scans {
-        return None;
+        return Err(stalled);
     }
     let cone: Vec<Axiom> = ctx.cone(&[&goal.lhs, &goal.rhs], None).into_iter().cloned().collect();
     let goals = goal_clauses(&expand_atoms(&cone, goal));
     let state = state_bits(&cone, goal);
     let mut candidates: Vec<Clause> = goals.iter().map(|g| Clause::new(g, true)).collect();
     candidates.extend(clauses(&state).iter().map(|c| Clause::new(c, false)));
+    stalled.state_bits = state.len();
+    stalled.candidates = candidates.len();
+    let stop = |mut stalled: Stalled, stop: Stop, kept: usize| {
+        stalled.stop = stop;
+        stalled.kept = kept;
+        stalled
+    };
     let first: Vec<Axiom> = cone
         .iter()
         .map(|h| Axiom::ground(h.name.clone(), at_first_scan(&h.lhs), h.rel, at_first_scan(&h.rhs)))
@@ -79,13 +153,16 @@ pub fn prove_as(
         let at_first: Vec<Expr> = set.iter().map(|c| c.first.clone()).collect();
         boolean::model_of(&not(&product(&at_first)), &base_constraints, atoms)
     };
-    prune(
+    if let Err((why, _)) = prune(
         &mut candidates,
         &mut rounds,
         deadline,
         |c| &c.first,
         |set| fails_first(set, &mut atoms0),
-    )?;
+    ) {
+        let why = if why == Stop::Step { Stop::Base } else { why };
+        return Err(stop(stalled, why, candidates.len()));
+    }
     // Step: drop what is not preserved, until the rest is inductive.
     let mut atoms = boolean::Atoms::default();
     let refs: Vec<&Expr> = candidates.iter().flat_map(|c| [&c.now, &c.before]).collect();
@@ -100,7 +177,36 @@ pub fn prove_as(
     if inductive(&alone, &mut atoms).is_none() {
         candidates = alone;
     }
-    prune(&mut candidates, &mut rounds, deadline, |c| &c.now, |set| inductive(set, &mut atoms))?;
+    if let Err((why, model)) =
+        prune(&mut candidates, &mut rounds, deadline, |c| &c.now, |set| inductive(set, &mut atoms))
+    {
+        // The goal's names first (state bits or not), then the other state bits.
+        let mut shown: Vec<String> = Vec::new();
+        for side in [&goal.lhs, &goal.rhs] {
+            for t in side.as_ref() {
+                if let Term::Name(n) = t
+                    && !shown.iter().any(|s| s == n.as_str())
+                {
+                    shown.push(n.as_str().to_string());
+                }
+            }
+        }
+        shown.extend(state.iter().filter(|n| !shown.contains(n)).cloned().collect::<Vec<_>>());
+        stalled.step_model = if why != Stop::Step {
+            Vec::new()
+        } else {
+            shown
+                .iter()
+                .map(|n| {
+                    let x = crate::term::name(n);
+                    let at = |e: &Expr| model.get(&e.to_string()).copied();
+                    (n.clone(), at(&push_pre(&pre(&x)).0), at(&x))
+                })
+                .filter(|(_, before, now)| before.is_some() || now.is_some())
+                .collect()
+        };
+        return Err(stop(stalled, why, candidates.len()));
+    }
     let minimise_until = Instant::now() + deadline.saturating_duration_since(Instant::now()) / 2;
     // Minimise: a clause goes when the others are still inductive; then one of the
     // goal's own clauses when the others also imply it (a shorter invariant).
@@ -132,8 +238,10 @@ pub fn prove_as(
             }
         }
     }
+    let kept = candidates.len();
     let candidates: Vec<Expr> = candidates.into_iter().map(|c| c.now).collect();
     certificate(ctx, goal, (&cone, &first), &candidates, (budget, deadline), lemma)
+        .ok_or_else(|| stop(stalled, Stop::Certificate, kept))
 }
 
 /// A candidate clause: as it reads now, at the first scan, and at the previous scan
@@ -153,28 +261,29 @@ impl Clause {
 }
 
 /// Removes every candidate that is 0 in a model `model_of` finds, until it finds none;
-/// `None` when a goal clause goes, nothing goes, or the limits are reached.
+/// an error when a goal clause goes ([`Stop::Step`], with that model), nothing goes, or
+/// the limits are reached.
 fn prune(
     candidates: &mut Vec<Clause>,
     rounds: &mut usize,
     deadline: Instant,
     reading: fn(&Clause) -> &Expr,
     mut model_of: impl FnMut(&[Clause]) -> Option<HashMap<String, bool>>,
-) -> Option<()> {
+) -> Result<(), (Stop, HashMap<String, bool>)> {
     loop {
         *rounds += 1;
         if *rounds > MAX_ROUNDS || Instant::now() > deadline {
-            return None;
+            return Err((Stop::Limit, HashMap::new()));
         }
-        let Some(model) = model_of(candidates) else { return Some(()) };
+        let Some(model) = model_of(candidates) else { return Ok(()) };
         let before = candidates.len();
         let fails = |c: &Clause| value(reading(c), &model) == Some(false);
         if candidates.iter().any(|c| c.goal && fails(c)) {
-            return None;
+            return Err((Stop::Step, model));
         }
         candidates.retain(|c| !fails(c));
         if candidates.len() == before {
-            return None;
+            return Err((Stop::NoProgress, model));
         }
     }
 }

@@ -68,10 +68,13 @@ pub enum Outcome {
     /// No proof. `candidate` is a model of the Boolean skeleton (atom values) when the
     /// search found one: a *possible* counterexample, not a confirmed one.
     Unknown {
-        /// What was tried and why it stopped.
+        /// What was tried and how far it got: a few short lines (see [`clip`]), never
+        /// a dump of terms.
         reason: String,
         /// Atom values under which every constraint holds and the goal fails.
         candidate: Option<Candidate>,
+        /// Why induction over scans found no invariant, when it was tried.
+        induction: Option<Box<induction::Stalled>>,
     },
 }
 
@@ -348,10 +351,7 @@ fn prove_at(
     let mut previous = 0;
     while Instant::now() < deadline {
         if depth > 0 && reach > SIDE_CONDITION_REACH {
-            return Outcome::Unknown {
-                reason: "no quick proof from the nearest hypotheses".into(),
-                candidate: None,
-            };
+            return unknown(vec!["no quick proof from the nearest hypotheses".into()], None, None);
         }
         let small: Vec<Axiom> = ctx.near_cone(&goal_terms, reach).into_iter().cloned().collect();
         if !ctx.cone_exceeds(&goal_terms, small.len()) || (small.len() == previous && reach > 1) {
@@ -369,6 +369,7 @@ fn prove_at(
     terms.extend(cone.iter().flat_map(|h| [&h.lhs, &h.rhs]));
     let tiers = saturate::tiers(&ctx.rules, &terms);
     let mut saturation = String::new();
+    let sets = std::cell::Cell::new(0usize);
     // Small rule sets get small limits: when they close, they close quickly.
     let tier_limits = |tier: usize| match tier {
         0 => Limits { time: budget.time / 20, nodes: budget.nodes / 6, ..limits },
@@ -381,7 +382,16 @@ fn prove_at(
     let attempt = |tier: usize, rules: &[saturate::Rule], saturation: &mut String, time| {
         let limits = Limits { time, ..tier_limits(tier) };
         let mut run = saturate::saturate(&goal.lhs, goal.rel, &goal.rhs, &cone, rules, limits);
-        *saturation = format!("saturation stopped ({}, {} e-nodes)", run.stop, run.nodes);
+        sets.set(sets.get() + 1);
+        *saturation = format!(
+            "algebra: e-graph saturation with {} rule set{} did not join the two sides (last run: {}, {} e-nodes, {} hypothes{})",
+            sets.get(),
+            plural(sets.get(), "", "s"),
+            run.stop,
+            run.nodes,
+            cone.len(),
+            plural(cone.len(), "is", "es"),
+        );
         exhausted.set(run.hit_limit);
         let closed = run.closed?;
         certify_saturation(ctx, goal, &cone, &mut run.egraph, closed, limits)
@@ -398,23 +408,41 @@ fn prove_at(
             return Outcome::Proved(Box::new(proved.clone()));
         }
         Err(boolean::Failure::Countermodel(candidate)) if boolean_only => {
-            return Outcome::Unknown {
-                reason: "the goal is false on constant signals".into(),
-                candidate: Some(candidate.clone()),
-            };
+            let why = "case splits: the goal is false on constant signals".to_string();
+            return unknown(vec![saturation, why], Some(candidate.clone()), None);
         }
         _ => {}
     }
     // What the program did in earlier scans: an inductive invariant.
+    let mut stalled = None;
     if let Err(boolean::Failure::Countermodel(_)) = &cases
         && depth == 0
         && ctx.scans
     {
         let share = Instant::now() + budget.time / 4;
-        if let Some(proved) = induction::prove(ctx, goal, budget, share.min(deadline)) {
-            return Outcome::Proved(Box::new(proved));
+        match induction::prove(ctx, goal, budget, share.min(deadline)) {
+            Ok(proved) => return Outcome::Proved(Box::new(proved)),
+            Err(why) => stalled = Some(Box::new(why)),
         }
     }
+    // The lines of an unknown: what each method tried and how far it got.
+    let tried = |saturation: &str, cases: &Result<Proved, boolean::Failure>| {
+        let mut lines = vec![saturation.to_string()];
+        match cases {
+            Err(boolean::Failure::Countermodel(model)) => lines.push(format!(
+                "case splits: the Boolean skeleton ({} atoms; timers, memories and `pre` terms opaque) has a model in which the goal fails",
+                model.len()
+            )),
+            Err(boolean::Failure::Limit(why)) => {
+                lines.push(format!("case splits: stopped: {why}"));
+            }
+            Ok(_) => {}
+        }
+        if let Some(why) = &stalled {
+            lines.push(format!("induction over scans: {why}"));
+        }
+        lines
+    };
     // Larger rule sets may still find a proof (or a shorter one).
     // When a (long) case proof exists, a shorter one is looked for only in small cones:
     // in large ones the bigger rule sets rarely close and would cost the whole budget.
@@ -427,12 +455,8 @@ fn prove_at(
         && depth == 0
         && before_larger_rules(candidate)
     {
-        return Outcome::Unknown {
-            reason: format!(
-                "{saturation}; the Boolean skeleton has a model, settled without the larger rule sets"
-            ),
-            candidate: Some(candidate.clone()),
-        };
+        let lines = tried(&saturation, &cases);
+        return unknown(lines, Some(candidate.clone()), stalled.clone());
     }
     // For a program, the larger rule sets share one slice of the budget, and a run
     // that stops on its time or node limit ends the escalation: the case split, the
@@ -465,19 +489,40 @@ fn prove_at(
             break;
         }
     }
+    let lines = tried(&saturation, &cases);
     match cases {
         Ok(proved) => Outcome::Proved(Box::new(proved)),
-        Err(boolean::Failure::Countermodel(candidate)) => Outcome::Unknown {
-            reason: format!(
-                "{saturation}; the Boolean skeleton with the laws' instances has a model"
-            ),
-            candidate: Some(candidate),
-        },
-        Err(boolean::Failure::Limit(why)) => Outcome::Unknown {
-            reason: format!("{saturation}; case splitting stopped: {why}"),
-            candidate: None,
-        },
+        Err(boolean::Failure::Countermodel(candidate)) => unknown(lines, Some(candidate), stalled),
+        Err(boolean::Failure::Limit(_)) => unknown(lines, None, stalled),
     }
+}
+
+/// `one` when `n` is 1, else `many`: the ending of a counted word.
+pub(crate) fn plural(n: usize, one: &'static str, many: &'static str) -> &'static str {
+    if n == 1 { one } else { many }
+}
+
+/// The longest line of an unknown's reason, in characters.
+pub const REASON_LINE: usize = 280;
+
+/// `text` cut to at most `max` characters, with `…` where it was cut: a line of an
+/// unknown's reason never carries a whole term dump (a kernel error, a long name list).
+pub fn clip(text: &str, max: usize) -> String {
+    match text.char_indices().nth(max.saturating_sub(1)) {
+        Some((at, _)) if text.chars().count() > max => format!("{}…", &text[..at]),
+        _ => text.to_string(),
+    }
+}
+
+/// An unknown outcome from the lines of what was tried, each clipped to [`REASON_LINE`].
+fn unknown(
+    lines: Vec<String>,
+    candidate: Option<Candidate>,
+    induction: Option<Box<induction::Stalled>>,
+) -> Outcome {
+    let lines: Vec<String> =
+        lines.iter().filter(|l| !l.is_empty()).map(|l| clip(l, REASON_LINE)).collect();
+    Outcome::Unknown { reason: lines.join("\n"), candidate, induction }
 }
 
 /// The smallest rule set, then the Boolean skeleton, on the hypotheses `cone`, with a

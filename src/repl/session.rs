@@ -657,7 +657,8 @@ impl Session {
                 counterexample_lines(&c)
             ),
             Attempt::Unknown { reason, candidate } => {
-                let mut out = format!("not proved {name}: {statement}\n  reason: {reason}\n");
+                let mut out = format!("not proved {name}: {statement}\n");
+                out.push_str(&crate::report::text::reason_text(&reason, "  "));
                 if let Some(c) = candidate {
                     out.push_str(&crate::report::text::candidate_text(&c, "  "));
                 }

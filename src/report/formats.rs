@@ -3,9 +3,10 @@
 //!
 //! - **JUnit XML**: a `<testsuite>` per property file, a `<testcase>` per property
 //!   (`file` and `line` attributes); a refuted property is a `<failure>` whose text is
-//!   the counterexample, an unknown one is `<skipped>` with the reason, a property an
-//!   interrupted run did not finish is an `<error>`, a vacuous proof
-//!   is a `<failure>` under `--deny vacuous` and noted in `<system-out>` otherwise;
+//!   the counterexample, an unknown one is `<skipped>` with the reason in
+//!   `<system-out>`, a property an interrupted run did not finish is an `<error>`, a
+//!   vacuous proof is a `<failure>` under `--deny vacuous` and noted in `<system-out>`
+//!   otherwise;
 //!   warnings are the `<system-err>` of the first suite.
 //! - **SARIF 2.1.0**: one run; a result per refuted (`error`) or unknown (`warning`)
 //!   property, per vacuous proof and per warning, each with its file, line and column.
@@ -73,14 +74,10 @@ fn plain(p: &PropertyReport, opts: &Options) -> String {
 fn failure(p: &PropertyReport, opts: &Options) -> Option<(&'static str, String)> {
     match p.status {
         Status::Refuted => Some(("refuted", format!("{} is refuted: {}", p.name, p.statement))),
+        // The reason follows in each format's details (one copy of it).
         Status::Unknown => Some((
             "unknown",
-            format!(
-                "{} is unknown (neither proved nor refuted): {}{}",
-                p.name,
-                p.statement,
-                p.reason.as_deref().map(|r| format!(" — {r}")).unwrap_or_default()
-            ),
+            format!("{} is unknown (neither proved nor refuted): {}", p.name, p.statement),
         )),
         Status::Proved if p.vacuous => Some((
             "vacuous",
@@ -379,6 +376,11 @@ pub fn github_property(p: &PropertyReport, width: usize, opts: &Options) -> Stri
             (None, Some(c)) => vec![super::text::candidate_line(c)],
             _ => Vec::new(),
         };
+        if p.status == Status::Unknown
+            && let Some(reason) = &p.reason
+        {
+            detail.splice(0..0, reason.lines().map(str::to_string));
+        }
         if let Some(c) = p.counterexample.as_ref().or(p.candidate.as_ref()) {
             detail.extend(c.diagram.iter().cloned());
         }

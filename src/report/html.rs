@@ -73,6 +73,7 @@ section.proved { border-left-color: #2e9c45; }
 section.refuted { border-left-color: #c62828; }
 section.unknown, section.vacuous { border-left-color: #d9a400; }
 .where { color: #666; font-size: 0.9em; }
+.reason { white-space: pre-line; }
 .warning { color: #6b4d00; }
 svg.diagram text { font: 12px ui-monospace, monospace; fill: #1b1b1b; }
 svg.diagram .wave { fill: none; stroke: #1f5fa8; stroke-width: 1.6; }

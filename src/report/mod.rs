@@ -15,6 +15,7 @@ mod load;
 mod property;
 pub mod text;
 pub mod trace;
+mod unknown;
 mod vacuity;
 use vacuity::{contradictory, flag_vacuity, forced_by_assumptions, forced_constants, forced_text};
 pub mod waveform;
@@ -80,6 +81,11 @@ impl Default for Options {
 impl Options {
     fn notation(&self) -> Notation {
         if self.ascii { Notation::Ascii } else { Notation::Paper }
+    }
+
+    /// The glyphs of the text timing diagrams.
+    fn glyphs(&self) -> waveform::Glyphs {
+        if self.ascii { waveform::Glyphs::ASCII } else { waveform::Glyphs::UNICODE }
     }
 }
 
@@ -155,6 +161,9 @@ pub struct CounterexampleReport {
     pub simulator_scan: Option<usize>,
     /// What confirmed it: `exact evaluation`, `scan simulator`.
     pub confirmed_by: Vec<String>,
+    /// What a possible counterexample that is not a run is (the induction step's state).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub title: Option<String>,
     /// The signals shown in the diagram, with their exact pieces (for `--vcd`, `--wavedrom`).
     #[serde(skip)]
     pub shown: Vec<(String, crate::semantics::Signal)>,

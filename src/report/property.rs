@@ -5,7 +5,7 @@ use std::time::{Duration, Instant};
 
 use super::{
     CounterexampleReport, Options, PropertyReport, SignalReport, Status, StepReport, TraceReport,
-    obligation, trace, waveform,
+    obligation, trace, unknown, waveform,
 };
 use crate::counterexample::{self, Counterexample, Limits, Verdict};
 use crate::kernel::{Axiom, Rel};
@@ -76,28 +76,47 @@ pub fn attempt(
             match ctx.kernel.vouch(&proved.theorem, &goal.lhs, goal.rel, &goal.rhs) {
                 Ok(()) => Attempt::Proved(proved),
                 Err(e) => Attempt::Unknown {
-                    reason: format!("the search's theorem is refused: {e}"),
+                    reason: prover::clip(
+                        &format!("the search's theorem is refused: {e}"),
+                        prover::REASON_LINE,
+                    ),
                     candidate: None,
                 },
             }
         }
-        Outcome::Unknown { reason, candidate } => {
+        Outcome::Unknown { reason, candidate, induction } => {
             let limit = if program.is_some() { PROGRAM_SEARCH } else { FREE_SEARCH };
             // A short look even when the proof search ran to the end of the limit,
             // so that the property ends within `--timeout` and `LAST_LOOK` of it.
             let floor = Instant::now() + opts.timeout.mul_f64(LAST_LOOK);
             let found =
                 first_look.unwrap_or_else(|| search((Instant::now() + limit).min(end.max(floor))));
+            let induction = induction.as_deref();
+            let expert = opts.trace.then_some(&style);
+            let glyphs = opts.glyphs();
             match found {
                 Search::Refuted(c) => Attempt::Refuted(c),
-                Search::Unconfirmed { candidate, why } => Attempt::Unknown {
-                    reason: format!("{reason}; {why}"),
-                    candidate: Some(candidate),
+                Search::Unconfirmed { candidate: c, why } => Attempt::Unknown {
+                    reason: unknown::reason(
+                        &reason,
+                        unknown::Search::Unconfirmed(&why),
+                        induction,
+                        candidate.as_ref(),
+                        expert,
+                    ),
+                    candidate: Some(unknown::bounded(c, glyphs)),
                 },
-                Search::NotFound { why, .. } => {
-                    let hint = candidate_hint(&style, candidate.as_deref());
-                    Attempt::Unknown { reason: format!("{reason}; {why}{hint}"), candidate: None }
-                }
+                Search::NotFound { why, .. } => Attempt::Unknown {
+                    reason: unknown::reason(
+                        &reason,
+                        unknown::Search::NotFound(&why),
+                        induction,
+                        candidate.as_ref(),
+                        expert,
+                    ),
+                    candidate: induction
+                        .and_then(|s| unknown::step_candidate(s, rename, opts.notation(), glyphs)),
+                },
             }
         }
     }
@@ -277,16 +296,6 @@ fn not_found(why: String) -> Search {
     Search::NotFound { why, complete: false }
 }
 
-/// The prover's Boolean model, as a hint.
-fn candidate_hint(style: &trace::Style, candidate: Option<&[(Expr, bool)]>) -> String {
-    let Some(c) = candidate else { return String::new() };
-    let parts: Vec<String> = c
-        .iter()
-        .map(|(atom, v)| format!("{} = {}", style_term(style, atom), if *v { "1*" } else { "0*" }))
-        .collect();
-    format!("; possible counterexample of the Boolean abstraction: {}", parts.join(", "))
-}
-
 /// A program counterexample for people: the inputs that are not always 0, the signals
 /// the property reads, its two sides; the violation marked.
 fn program_counterexample(
@@ -331,7 +340,7 @@ fn program_counterexample(
             shown.push((format!("{label}: {}", style_term(&style, side)), s));
         }
     }
-    let glyphs = if opts.ascii { waveform::Glyphs::ASCII } else { waveform::Glyphs::UNICODE };
+    let glyphs = opts.glyphs();
     let mut confirmed_by = vec!["exact evaluation".to_string()];
     if c.simulator_scan.is_some() {
         confirmed_by.push("scan simulator".into());
@@ -370,6 +379,7 @@ fn program_counterexample(
         scan: Some(c.scan),
         simulator_scan: c.simulator_scan,
         confirmed_by,
+        title: None,
         shown,
         mark: Some(c.time.clone()),
     }
@@ -451,7 +461,7 @@ fn counterexample(
             }
         }
     }
-    let glyphs = if opts.ascii { waveform::Glyphs::ASCII } else { waveform::Glyphs::UNICODE };
+    let glyphs = opts.glyphs();
     CounterexampleReport {
         time: format_time(&witness.time),
         lhs: witness.lhs,
@@ -470,6 +480,7 @@ fn counterexample(
         scan: None,
         simulator_scan: None,
         confirmed_by: vec!["exact evaluation".into()],
+        title: None,
         mark: Some(witness.time.clone()),
         shown,
     }

@@ -81,7 +81,7 @@ pub fn render_property(p: &PropertyReport, width: usize, opts: &Options, paint: 
         p.statement
     ));
     if let Some(reason) = &p.reason {
-        out.push_str(&format!("{:<width$}  reason: {reason}\n", ""));
+        out.push_str(&reason_text(reason, &format!("{:<width$}  ", "")));
     }
     if opts.trace
         && let Some(t) = &p.trace
@@ -123,12 +123,26 @@ pub fn counterexample_lines(c: &CounterexampleReport) -> Vec<String> {
     lines
 }
 
+/// `reason: ` and the reason's first line, its other lines aligned under it, each
+/// after `indent`.
+pub fn reason_text(reason: &str, indent: &str) -> String {
+    let mut out = String::new();
+    for (i, line) in reason.lines().enumerate() {
+        let head = if i == 0 { "reason: " } else { "        " };
+        out.push_str(&format!("{indent}{head}{line}\n"));
+    }
+    out
+}
+
 /// The first line of an unconfirmed counterexample.
 pub fn candidate_line(c: &CounterexampleReport) -> String {
-    format!(
-        "possible counterexample (exact evaluation only, not confirmed by the scan simulator): at t = {} s",
-        c.time
-    )
+    match &c.title {
+        Some(title) => title.clone(),
+        None => format!(
+            "possible counterexample (exact evaluation only, not confirmed by the scan simulator): at t = {} s",
+            c.time
+        ),
+    }
 }
 
 /// An unconfirmed counterexample, said to be one, with its diagram, indented by `indent`.

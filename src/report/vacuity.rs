@@ -28,7 +28,8 @@ pub(super) fn flag_vacuity(
     match report.status {
         Status::Unknown => {
             if let (Some(text), Some(reason)) = (inconsistent, &mut report.reason) {
-                reason.push_str(&format!("; {text}"));
+                let line = crate::prover::clip(text, crate::prover::REASON_LINE);
+                reason.push_str(&format!("\n{line}"));
             }
         }
         Status::Proved => {

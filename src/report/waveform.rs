@@ -30,7 +30,7 @@ const INTERVAL_WIDTH: usize = 5;
 
 /// Draws the named signals over their common horizon; `mark` points at one instant.
 pub fn draw(signals: &[(String, Signal)], mark: Option<&Time>, glyphs: Glyphs) -> Vec<String> {
-    draw_with_values(signals, &[], mark, glyphs)
+    draw_full(signals, &[], mark, glyphs, usize::MAX)
 }
 
 /// The value of an integer at an instant.
@@ -44,6 +44,27 @@ pub fn draw_with_values(
     mark: Option<&Time>,
     glyphs: Glyphs,
 ) -> Vec<String> {
+    draw_full(signals, values, mark, glyphs, usize::MAX)
+}
+
+/// [`draw`], at most `width` characters wide where the signals allow it: the earliest
+/// pieces are left out (the axis then starts at a later breakpoint), never the mark.
+pub fn draw_within(
+    signals: &[(String, Signal)],
+    mark: Option<&Time>,
+    glyphs: Glyphs,
+    width: usize,
+) -> Vec<String> {
+    draw_full(signals, &[], mark, glyphs, width)
+}
+
+fn draw_full(
+    signals: &[(String, Signal)],
+    values: &[Track],
+    mark: Option<&Time>,
+    glyphs: Glyphs,
+    width: usize,
+) -> Vec<String> {
     let Some((_, first)) = signals.first() else { return Vec::new() };
     let horizon = first.horizon().clone();
     let mut points: BTreeSet<Time> = BTreeSet::new();
@@ -54,7 +75,7 @@ pub fn draw_with_values(
         points.insert(t.clone());
     }
     points.insert(horizon.clone());
-    let points: Vec<Time> = points.into_iter().collect();
+    let mut points: Vec<Time> = points.into_iter().collect();
     let name_width = signals
         .iter()
         .map(|(n, _)| n.chars().count())
@@ -62,9 +83,20 @@ pub fn draw_with_values(
         .max()
         .unwrap_or(0)
         .max(4);
+    // Each breakpoint takes an interval and an instant; keep the last ones that fit,
+    // and the mark.
+    let fit = (width.saturating_sub(name_width + 1) / (INTERVAL_WIDTH + 1)).max(1);
+    let keep = match mark.and_then(|t| points.iter().position(|p| p == t)) {
+        Some(m) => fit.max(points.len() - m),
+        None => fit,
+    };
+    let mut previous = Time::from_integer(0.into());
+    if points.len() > keep {
+        previous = points[points.len() - keep - 1].clone();
+        points.drain(..points.len() - keep);
+    }
     let mut rows = Vec::new();
     // Columns: (value sampler, width, is_point).
-    let mut previous = Time::from_integer(0.into());
     let mut columns: Vec<(Time, bool)> = Vec::new(); // (sample instant, is_point)
     for p in &points {
         let middle = (&previous + p) / Time::from_integer(2.into());

@@ -692,7 +692,8 @@ impl Checker {
                 let deadline = Instant::now() + self.budget.time;
                 let name = format!("{}_inv", statement.name);
                 let found =
-                    prover::induction::prove_as(&self.ctx, &goal, self.budget, deadline, &name);
+                    prover::induction::prove_as(&self.ctx, &goal, self.budget, deadline, &name)
+                        .ok();
                 let Some(Certificate { mut lemmas, main: Some(main) }) =
                     found.map(|p| p.certificate)
                 else {

@@ -1,0 +1,150 @@
+//! What an unknown tells people: what each method tried and how far it got, what is
+//! missing, and a possible counterexample drawn small — a few lines, the same in every
+//! format, never a dump of terms.
+
+use super::{CounterexampleReport, SignalReport, trace, waveform};
+use crate::prover::induction::{Stalled, Stop};
+use crate::prover::{Candidate, REASON_LINE, clip};
+use crate::semantics::{Signal, Time, format_time};
+use crate::term::Expr;
+
+/// At most this many signals in a possible counterexample's diagram.
+pub const DIAGRAM_ROWS: usize = 8;
+/// At most this many characters per line of that diagram (where the signals allow).
+pub const DIAGRAM_WIDTH: usize = 96;
+/// At most this many atoms of the Boolean skeleton's model under `--trace`.
+const MODEL_ATOMS: usize = 12;
+/// At most this many characters per atom shown under `--trace`.
+const ATOM_WIDTH: usize = 48;
+
+/// What the counterexample search found for a goal the prover left open.
+pub enum Search<'a> {
+    /// A run violates the compiled terms, but the scan simulator does not show it: `why`.
+    Unconfirmed(&'a str),
+    /// Nothing found: `why` (how far the search went).
+    NotFound(&'a str),
+}
+
+/// The reason of an unknown: the prover's lines (what it tried), the counterexample
+/// search's, what is missing, and — with `--trace` — a bounded sample of the Boolean
+/// skeleton's model. Every line is clipped to [`REASON_LINE`] characters.
+pub fn reason(
+    proof: &str,
+    search: Search,
+    induction: Option<&Stalled>,
+    model: Option<&Candidate>,
+    expert: Option<&trace::Style>,
+) -> String {
+    let mut lines: Vec<String> = proof.lines().map(str::to_string).collect();
+    match search {
+        Search::Unconfirmed(why) => {
+            lines.push(format!("bounded model checking: a run violates the equations, but {why}"));
+        }
+        Search::NotFound(why) => {
+            lines.push(format!("counterexample search: {why}"));
+            lines.extend(missing(induction, model.is_some()));
+        }
+    }
+    if let (Some(style), Some(model)) = (expert, model) {
+        lines.push(model_line(style, model));
+    }
+    lines.iter().map(|l| clip(l, REASON_LINE)).collect::<Vec<_>>().join("\n")
+}
+
+/// What would settle the goal, when neither a proof nor a counterexample was found.
+fn missing(induction: Option<&Stalled>, has_model: bool) -> Option<String> {
+    let text = match induction.map(|s| (s.stop, s.candidates)) {
+        Some((Stop::Step, n)) => format!(
+            "missing: an invariant that rules out the state the induction step fails from (no run the search tried reaches a violation, so that state is likely unreachable); none was found among {n} candidates (literals and pairs of state bits)"
+        ),
+        Some((Stop::Base, _)) => "missing: the skeleton breaks the goal at the first scan through a timer or memory value the laws do not pin down".into(),
+        Some((Stop::Limit, _)) => "missing: time for the invariant search (a larger --timeout)".into(),
+        _ if has_model => "missing: a law or hypothesis that rules out the skeleton's model (timers, memories and `pre` terms are free atoms there), or a counterexample the search did not reach".into(),
+        _ => "missing: a proof within the limits (a larger --timeout gives every method more)".into(),
+    };
+    Some(text)
+}
+
+/// `--trace`: the first atoms of the Boolean skeleton's model, each cut short.
+fn model_line(style: &trace::Style, model: &Candidate) -> String {
+    let shown: Vec<String> = model
+        .iter()
+        .take(MODEL_ATOMS)
+        .map(|(atom, v)| {
+            let text = clip(&super::property::style_term(style, atom), ATOM_WIDTH);
+            format!("{text} = {}", *v as u8)
+        })
+        .collect();
+    let more = model.len().saturating_sub(MODEL_ATOMS);
+    let more = if more > 0 { format!(", … {more} more") } else { String::new() };
+    format!("skeleton model ({} atoms): {}{more}", model.len(), shown.join(", "))
+}
+
+/// A possible counterexample drawn small: the last [`DIAGRAM_ROWS`] signals shown (the
+/// property's own signals and sides come last), [`DIAGRAM_WIDTH`] characters wide, and
+/// only those signals in the JSON.
+pub fn bounded(mut c: CounterexampleReport, glyphs: waveform::Glyphs) -> CounterexampleReport {
+    let cut = c.shown.len().saturating_sub(DIAGRAM_ROWS);
+    c.shown.drain(..cut);
+    c.signals.retain(|s| c.shown.iter().any(|(n, _)| *n == s.name));
+    c.diagram = waveform::draw_within(&c.shown, c.mark.as_ref(), glyphs, DIAGRAM_WIDTH);
+    c
+}
+
+/// The state the induction step failed from, as two scans (the previous one and the one
+/// that breaks the goal), when the invariant search stopped there.
+pub fn step_candidate(
+    stalled: &Stalled,
+    rename: &dyn Fn(&Expr) -> Expr,
+    notation: crate::syntax::Notation,
+    glyphs: waveform::Glyphs,
+) -> Option<CounterexampleReport> {
+    if stalled.stop != Stop::Step || stalled.step_model.is_empty() {
+        return None;
+    }
+    let one = Time::from_integer(1.into());
+    let two = Time::from_integer(2.into());
+    let shown: Vec<(String, Signal)> = stalled
+        .step_model
+        .iter()
+        .take(DIAGRAM_ROWS)
+        .map(|(name, before, now)| {
+            let label = crate::syntax::term_to_string(&rename(&crate::term::name(name)), notation);
+            let (b, n) = (before.unwrap_or(false), now.unwrap_or(false));
+            (
+                label,
+                Signal::from_fn(two.clone(), vec![one.clone()], |t| if *t <= one { b } else { n }),
+            )
+        })
+        .collect();
+    let mut diagram = waveform::draw_within(&shown, None, glyphs, DIAGRAM_WIDTH);
+    // The columns are a scan and the next, not instants of a run: the axis says so.
+    let width = shown.iter().map(|(n, _)| n.chars().count()).max().unwrap_or(0).max(4);
+    if let Some(axis) = diagram.last_mut() {
+        *axis = format!("{:<width$} {:^5} {:^5}", "scan", "k-1", "k").trim_end().to_string();
+    }
+    Some(CounterexampleReport {
+        time: "k".into(),
+        lhs: true,
+        rhs: false,
+        signals: shown
+            .iter()
+            .map(|(name, s)| SignalReport {
+                name: name.clone(),
+                breakpoints: s.breakpoints().iter().map(format_time).collect(),
+                intervals: s.open_values().to_vec(),
+                points: s.point_values().to_vec(),
+            })
+            .collect(),
+        diagram,
+        scan: None,
+        simulator_scan: None,
+        confirmed_by: Vec::new(),
+        title: Some(
+            "possible counterexample of the induction step (a state no invariant excluded; unknown values drawn 0):"
+                .into(),
+        ),
+        shown,
+        mark: None,
+    })
+}
