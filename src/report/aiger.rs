@@ -3,9 +3,11 @@
 use crate::counterexample::aiger::{Property, encode};
 use crate::counterexample::{self, unroll::Model};
 use crate::diag::{Report, Sources, Span};
+use crate::kernel::Axiom;
 use crate::ladder::SignalKind;
 use crate::semantics::Time;
 use crate::syntax::{self, Notation};
+use crate::term::Expr;
 
 use super::{
     InputError, Options, assumptions, compile_options, fail, load_program_with, obligation, plan,
@@ -42,7 +44,8 @@ impl Report for ExportError {
 
 /// The AIGER model of `program` with the selected properties of `paths` (and of the
 /// program itself) as bad-state outputs, in order: ASCII (`aag`) or binary (`aig`).
-/// With `signals`, one more output per compiled equation (`signal X`), for comparing a
+/// The model is the cone of the properties and assumptions. With `signals`, one more
+/// output per equation of that cone (`signal X`), for comparing a
 /// run of the model with a simulator. Anything the model would only approximate (an
 /// element the algebra leaves unconstrained, a delay that is not a whole number of
 /// scans) is a located error; nothing is returned then.
@@ -67,13 +70,6 @@ pub fn export_aiger(
         return Err(refuse(&sources, None, "the program's scan cycle is 0".into(), ""));
     }
     let cycle = Time::new(compiled.cycle_us.into(), 1_000_000u64.into());
-    let model = Model {
-        defs: counterexample::equations(compiled)
-            .into_iter()
-            .map(|(n, e)| (n, e.clone()))
-            .collect(),
-        constraints: Vec::new(),
-    };
     let mut groups = Vec::new();
     let mut properties = Vec::new();
     let mut statements = Vec::new();
@@ -93,10 +89,19 @@ pub fn export_aiger(
             statements.push((s, path));
         }
     }
+    // The cone of the properties and of every assumption: the equations they read,
+    // in scan order.
+    let all: Vec<Axiom> = docs.iter().flat_map(assumptions).collect();
+    let session = counterexample::Program {
+        reference: loaded.reference.as_ref(),
+        compiled,
+        assumptions: &all,
+    };
+    let sides: Vec<&Expr> = properties.iter().flat_map(|p| [&p.lhs, &p.rhs]).collect();
+    let model = Model { constraints: Vec::new(), ..session.model(&sides) };
     // Elements the algebra leaves unconstrained would be free inputs: an approximation.
-    let sides = properties.iter().flat_map(|p| [&p.lhs, &p.rhs]);
     let assumed = groups.iter().flatten().flat_map(|(l, _, r)| [l, r]);
-    for name in model.free_names(sides.chain(assumed)) {
+    for name in model.free_names(sides.iter().copied().chain(assumed)) {
         if let Some(SignalKind::Fresh { rung, element }) = compiled.signals.get(&name) {
             let warning =
                 compiled.warnings.iter().find(|w| w.rung == *rung && &w.element == element);
