@@ -137,6 +137,9 @@ pub fn export_aiger(
     let (i, l, o, a) = aig.sizes();
     Ok(Exported {
         bytes: aig.to_bytes(binary),
-        summary: format!("{o} outputs (properties), {i} inputs, {l} latches, {a} and-gates"),
+        summary: format!(
+            "{o} {} (outputs), {i} inputs, {l} latches, {a} and-gates",
+            if o == 1 { "property" } else { "properties" }
+        ),
     })
 }
