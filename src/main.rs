@@ -371,7 +371,8 @@ fn main() -> ExitCode {
             report::aiger::export_aiger(&program, &properties, &opts, binary, false).and_then(
                 |model| {
                     report::export::write_whole(&aiger, &model.bytes)?;
-                    console::err(&format!("wrote {aiger}: {}\n", model.summary));
+                    let what = if aiger == "-" { "the AIGER model" } else { aiger.as_str() };
+                    console::err(&format!("wrote {what}: {}\n", model.summary));
                     Ok((String::new(), 0))
                 },
             )
