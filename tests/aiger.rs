@@ -455,6 +455,13 @@ fn the_command_line_writes_the_model_or_nothing() {
     let net = read_aiger(&std::fs::read(&out).unwrap());
     assert_eq!(net.outputs.len(), 12);
     assert_eq!(net.named('o', 2), "P2");
+    // Two properties of one name (an ST `#ASSERT` and a property of water.ii): the
+    // second output is renamed.
+    let run =
+        common::ii_prove(&["export", "examples/water.st", "examples/water.ii", "--aiger", "-"]);
+    let st = read_aiger(&run.stdout);
+    let names: Vec<&str> = (0..st.outputs.len()).map(|k| st.named('o', k)).collect();
+    assert!(names.contains(&"backflow_needs_out_valve_2"), "{names:?}");
     // To standard output, the same model.
     let run =
         common::ii_prove(&["export", "examples/water.ld", "examples/water.ii", "--aiger", "-"]);
@@ -568,6 +575,35 @@ fn abc_agrees_with_ii_prove() {
                 refuted += usize::from(verdict == "refuted");
             }
         }
+    }
+    // The other front ends, whole files (the ST and IL programs' own `#ASSERT`s first,
+    // one of them named as a property of water.ii): `pdr -a` counts per output.
+    for program in [
+        "examples/water.st",
+        "examples/water_faulty.st",
+        "examples/water_faulty.il",
+        "examples/water_fbd.xml",
+        "examples/water_ld_faulty.xml",
+    ] {
+        let verdicts = common::verdicts(&[program, "examples/water.ii"]);
+        let count = |v: &str| verdicts.iter().filter(|(_, x)| x == v).count();
+        let aig = dir.join("whole.aig");
+        let a = aig.display().to_string();
+        let run = common::ii_prove(&["export", program, "examples/water.ii", "--aiger", &a]);
+        assert!(run.status.success(), "{}", common::text(&run.stderr));
+        let out = std::process::Command::new(abc)
+            .args(["-c", &format!("read {a}; pdr -a")])
+            .output()
+            .expect("ABC runs");
+        let text = common::text(&out.stdout);
+        let want = format!(
+            "All = {}. Proved = {}. Disproved = {}.",
+            verdicts.len(),
+            count("proved"),
+            count("refuted")
+        );
+        table.push_str(&format!("{program}: ii-prove and ABC pdr -a: {want}\n"));
+        assert!(text.contains(&want), "{program}: ii-prove {want}, ABC:\n{text}");
     }
     eprint!("{table}");
     assert!(agreed >= 24 && refuted >= 10, "{agreed} verdicts compared, {refuted} refuted");

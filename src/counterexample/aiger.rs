@@ -172,9 +172,17 @@ impl Aig {
         (0..width).map(|i| self.latch(format!("{name}[{i}]"))).collect()
     }
 
-    /// An output named `name`.
+    /// An output named `name`, or `name_2`, `name_3`, … when an output already has that
+    /// name (model checkers such as ABC refuse two outputs of one name).
     fn output(&mut self, name: String, lit: Lit) {
-        self.outputs.push((name, lit));
+        let taken = |n: &str| self.outputs.iter().any(|(o, _)| o == n);
+        let mut unique = name.clone();
+        let mut k = 1;
+        while taken(&unique) {
+            k += 1;
+            unique = format!("{name}_{k}");
+        }
+        self.outputs.push((unique, lit));
     }
 
     /// The number of inputs, latches, outputs and and-gates.
