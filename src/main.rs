@@ -222,6 +222,24 @@ enum Command {
         #[command(flatten)]
         compilation: Compilation,
     },
+    /// Export a program and its properties as an AIGER model for hardware model checkers
+    /// (ABC `pdr`, `int`): one step a scan, one bad-state output per property (named in
+    /// the symbol table). `--aiger FILE.aig` writes binary AIGER, any other name ASCII.
+    Export {
+        /// The program (.ld, .xml, .st, .il).
+        program: String,
+        /// Property files (.ii); the program's own properties come first.
+        properties: Vec<String>,
+        /// The AIGER file to write (`-`: standard output, ASCII).
+        #[arg(long, value_name = "FILE")]
+        aiger: String,
+        /// Export only the properties whose name contains NAME or matches the glob NAME;
+        /// repeatable.
+        #[arg(long, value_name = "NAME")]
+        only: Vec<String>,
+        #[command(flatten)]
+        compilation: Compilation,
+    },
     /// Print a shell completion script, or install it with `--install` (e.g. `ii-prove completions bash --install`).
     Completions {
         /// The shell.
@@ -342,6 +360,23 @@ fn main() -> ExitCode {
             };
             report::show_program(&program, &opts).map(|t| (t, 0))
         }
+        Some(Command::Export { program, properties, aiger, only, compilation }) => {
+            let opts = Options {
+                timers: compilation.model(),
+                plcopen: compilation.selection(),
+                only,
+                ..Options::default()
+            };
+            let binary = aiger.ends_with(".aig");
+            report::aiger::export_aiger(&program, &properties, &opts, binary, false).and_then(
+                |model| {
+                    report::export::write_whole(&aiger, &model.bytes)?;
+                    let what = if aiger == "-" { "the AIGER model" } else { aiger.as_str() };
+                    console::err(&format!("wrote {what}: {}\n", model.summary));
+                    Ok((String::new(), 0))
+                },
+            )
+        }
         Some(Command::Completions { shell, install }) => {
             let mut script = Vec::new();
             clap_complete::generate(shell, &mut Cli::command(), "ii-prove", &mut script);
@@ -364,7 +399,7 @@ fn main() -> ExitCode {
     match result {
         Ok((text, code)) => {
             console::out(&text);
-            if !text.ends_with('\n') {
+            if !text.is_empty() && !text.ends_with('\n') {
                 console::out("\n");
             }
             ExitCode::from(code as u8)

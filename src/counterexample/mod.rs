@@ -40,6 +40,7 @@
 //! scan, so this one-scan difference is tolerated, never hidden.
 #![warn(missing_docs)]
 
+pub mod aiger;
 pub mod unroll;
 
 use std::collections::{BTreeMap, BTreeSet, HashMap, VecDeque};

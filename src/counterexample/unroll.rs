@@ -348,7 +348,7 @@ pub fn unroll<B: Bits>(
 
 /// Which nodes of `e` are read at their own step: the root and everything below it
 /// except what is read only through `pre`.
-fn needed_now(e: &Expr) -> Vec<bool> {
+pub(super) fn needed_now(e: &Expr) -> Vec<bool> {
     let nodes = e.as_ref();
     let mut now = vec![false; nodes.len()];
     if let Some(last) = now.last_mut() {

@@ -305,15 +305,28 @@ pub fn write_files(report: &RunReport, outputs: &Outputs) -> Result<(), super::I
         files.push((path, super::html::html(report)));
     }
     for (path, text) in files {
-        if path == "-" {
-            super::console::out(&text);
-            continue;
-        }
-        let tmp = format!("{path}.tmp-ii-prove");
-        std::fs::write(&tmp, text).and_then(|_| std::fs::rename(&tmp, path)).map_err(|e| {
-            let _ = std::fs::remove_file(&tmp);
-            super::InputError { rendered: format!("error: cannot write {path}: {e}\n") }
-        })?;
+        write_whole(path, text.as_bytes())?;
     }
     Ok(())
+}
+
+/// Writes `bytes` to `path` whole (to a temporary name, then renamed), so nothing is
+/// half written; `-` writes to standard output.
+pub fn write_whole(path: &str, bytes: &[u8]) -> Result<(), super::InputError> {
+    if path == "-" {
+        if let Ok(text) = std::str::from_utf8(bytes) {
+            super::console::out(text);
+            return Ok(());
+        }
+        use std::io::Write as _;
+        let mut out = std::io::stdout().lock();
+        return out.write_all(bytes).and_then(|()| out.flush()).map_err(|e| super::InputError {
+            rendered: format!("error: cannot write to standard output: {e}\n"),
+        });
+    }
+    let tmp = format!("{path}.tmp-ii-prove");
+    std::fs::write(&tmp, bytes).and_then(|_| std::fs::rename(&tmp, path)).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        super::InputError { rendered: format!("error: cannot write {path}: {e}\n") }
+    })
 }

@@ -7,6 +7,7 @@
 //! (including input with no property to check). An [`Observer`] hears of each
 //! result as soon as it is known, in file order.
 
+pub mod aiger;
 pub mod console;
 pub mod export;
 pub mod formats;
@@ -697,28 +698,10 @@ pub fn run_program_with(
     let theory = theory::standard(&mut sources).map_err(|d| fail(&sources, d, opts))?;
     let loaded = load_program_with(&mut sources, program, &compile_options(opts), &opts.plcopen)
         .map_err(|d| fail(&sources, d, opts))?;
-    let mut docs = read_documents(&mut sources, paths, &loaded.compiled, opts)?;
+    let (docs, paths) = program_documents(&mut sources, program, &loaded, paths, opts)?;
     // The comparison atoms the properties use, each defined by its equation.
     let with_atoms = loaded.compiled.with_atoms();
     let compiled = &with_atoms;
-    let mut paths = paths.to_vec();
-    if let Some(first) = loaded.properties.first() {
-        // The program's own properties come first, as a document of the program's file.
-        docs.insert(
-            0,
-            Document {
-                file: first.span.file,
-                program: None,
-                inputs: Vec::new(),
-                delays: Vec::new(),
-                assumptions: Vec::new(),
-                properties: loaded.properties.clone(),
-                laws: Vec::new(),
-                claims: Vec::new(),
-            },
-        );
-        paths.insert(0, program.to_string());
-    }
     let (selection, plan) = plan(&sources, &docs, &paths, opts)?;
     observer.begin(&plan);
     let rename = |e: &Expr| compiled.rename_for_display(e);
@@ -797,6 +780,36 @@ pub fn run_program_with(
         })
         .collect();
     Ok(report)
+}
+
+/// The property files read against the compiled program, with the program's own
+/// properties first as a document of the program's file; and the paths, in that order.
+fn program_documents(
+    sources: &mut Sources,
+    program: &str,
+    loaded: &LoadedProgram,
+    paths: &[String],
+    opts: &Options,
+) -> Result<(Vec<Document>, Vec<String>), InputError> {
+    let mut docs = read_documents(sources, paths, &loaded.compiled, opts)?;
+    let mut paths = paths.to_vec();
+    if let Some(first) = loaded.properties.first() {
+        docs.insert(
+            0,
+            Document {
+                file: first.span.file,
+                program: None,
+                inputs: Vec::new(),
+                delays: Vec::new(),
+                assumptions: Vec::new(),
+                properties: loaded.properties.clone(),
+                laws: Vec::new(),
+                claims: Vec::new(),
+            },
+        );
+        paths.insert(0, program.to_string());
+    }
+    Ok((docs, paths))
 }
 
 /// `ii-prove show PROGRAM`: the compiled equations and recurrences as `.ii` text.
