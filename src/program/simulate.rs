@@ -168,30 +168,19 @@ impl Simulator {
                 }
                 if !known {
                     // Which branch runs is not known: whatever any branch writes is not.
-                    let mut written = Vec::new();
+                    let (mut written, mut ints) = (Vec::new(), Vec::new());
                     for s in branches.iter().flat_map(|(_, b)| b).chain(otherwise) {
                         s.visit(
-                            &mut |s| {
-                                if let Stmt::Write { target, .. } = s {
-                                    written.push(target.clone());
-                                }
+                            &mut |s| match s {
+                                Stmt::Write { target, .. } => written.push(target.clone()),
+                                Stmt::SetInt { target, .. } => ints.push(target.clone()),
+                                _ => {}
                             },
                             &mut |_| {},
                         );
                     }
                     for x in written {
                         self.current.insert(x, V { value: false, known: false });
-                    }
-                    let mut ints = Vec::new();
-                    for s in branches.iter().flat_map(|(_, b)| b).chain(otherwise) {
-                        s.visit(
-                            &mut |s| {
-                                if let Stmt::SetInt { target, .. } = s {
-                                    ints.push(target.clone());
-                                }
-                            },
-                            &mut |_| {},
-                        );
                     }
                     for x in ints {
                         if let Some(v) = self.ints.get_mut(&x) {
