@@ -32,6 +32,19 @@ fn the_faulty_parts_counter_is_refuted_with_the_count_in_the_diagram() {
     assert_eq!(values, (1..=10).collect::<Vec<_>>(), "{row}");
     // The counter's bits are not drawn one by one.
     assert!(!room.contains("Cparts_b"), "{report}");
+    // JSON: the count at every scan, reaching 10 at the violating scan.
+    let out = ii_prove(&["examples/parts_faulty.ld", "examples/parts.ii", "--json"]);
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    let room = json["properties"].as_array().unwrap().iter().find(|p| p["name"] == "Room").unwrap();
+    let c = &room["counterexample"];
+    let ints = c["integers"].as_array().expect("integers");
+    let count = ints.iter().find(|i| i["name"] == "Cparts").expect("Cparts");
+    let values: Vec<i64> =
+        count["values"].as_array().unwrap().iter().map(|v| v.as_i64().unwrap()).collect();
+    let scan = c["scan"].as_u64().unwrap() as usize;
+    assert_eq!(values.len(), scan, "{values:?}");
+    assert_eq!(values.last(), Some(&10), "{values:?}");
+    assert!(values.windows(2).all(|w| w[1] == w[0] || w[1] == w[0] + 1), "{values:?}");
 }
 
 /// Every `refused_comparisons/NAME.ii` (about `counter.ld` there) writes a comparison

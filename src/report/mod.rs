@@ -165,12 +165,24 @@ pub struct CounterexampleReport {
     /// What a possible counterexample that is not a run is (the induction step's state).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub title: Option<String>,
+    /// The program's integers the run computed, with their value at each scan.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub integers: Vec<IntegerReport>,
     /// The signals shown in the diagram, with their exact pieces (for `--vcd`, `--wavedrom`).
     #[serde(skip)]
     pub shown: Vec<(String, crate::semantics::Signal)>,
     /// The instant marked in the diagram.
     #[serde(skip)]
     pub mark: Option<crate::semantics::Time>,
+}
+
+/// An integer of a counterexample's run.
+#[derive(Clone, Debug, Serialize)]
+pub struct IntegerReport {
+    /// Its name, as the report spells it.
+    pub name: String,
+    /// Its value at the end of each scan, from the first.
+    pub values: Vec<i64>,
 }
 
 /// Where something is written: a file as named on the command line, 1-based line and

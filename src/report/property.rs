@@ -4,8 +4,8 @@
 use std::time::{Duration, Instant};
 
 use super::{
-    CounterexampleReport, Options, PropertyReport, SignalReport, Status, StepReport, TraceReport,
-    obligation, trace, unknown, waveform,
+    CounterexampleReport, IntegerReport, Options, PropertyReport, SignalReport, Status, StepReport,
+    TraceReport, obligation, trace, unknown, waveform,
 };
 use crate::counterexample::{self, Counterexample, Limits, Verdict};
 use crate::kernel::{Axiom, Rel};
@@ -376,6 +376,15 @@ fn program_counterexample(
             })
             .collect(),
         diagram: waveform::draw_with_values(&shown, &values, Some(&c.time), glyphs),
+        integers: tracked
+            .iter()
+            .map(|t| IntegerReport {
+                name: named(&t.name),
+                values: (0..c.trace.scans)
+                    .filter_map(|k| t.value_at(&c.trace.instant(k)))
+                    .collect(),
+            })
+            .collect(),
         scan: Some(c.scan),
         simulator_scan: c.simulator_scan,
         confirmed_by,
@@ -477,6 +486,7 @@ fn counterexample(
             })
             .collect(),
         diagram: waveform::draw(&shown, Some(&witness.time), glyphs),
+        integers: Vec::new(),
         scan: None,
         simulator_scan: None,
         confirmed_by: vec!["exact evaluation".into()],

@@ -137,6 +137,7 @@ pub fn step_candidate(
             })
             .collect(),
         diagram,
+        integers: Vec::new(),
         scan: None,
         simulator_scan: None,
         confirmed_by: Vec::new(),
