@@ -177,7 +177,7 @@ impl<'a> Lowering<'a> {
 
     /// A counter, exactly as the runtime counts (ldmicro.md §6.4): its output.
     fn counter(&mut self, e: &Element, input: BoolExpr) -> BoolExpr {
-        let ElementKind::Counter { kind, name, limit, edge, .. } = &e.kind else { return input };
+        let ElementKind::Counter { kind, name, limit, init, edge } = &e.kind else { return input };
         let orig = self.program.version.is_orig();
         let c = || IntExpr::Var(canonical(name));
         let limit = self.operand(limit);
@@ -201,7 +201,6 @@ impl<'a> Lowering<'a> {
         };
         let trigger = self.temp(trigger);
         // CTC and CTR reload this element's own start value (§6.4); orig has none (0).
-        let ElementKind::Counter { init, .. } = &e.kind else { return input };
         let init = if orig { IntExpr::Const(0) } else { self.operand(init) };
         match (kind, orig) {
             (CounterKind::Ctu | CounterKind::Ctd, _) => {
@@ -602,6 +601,8 @@ fn integers(program: &LdProgram) -> BTreeMap<String, IntVar> {
             ElementKind::Math { op: MathOp::Div, dest, .. } => {
                 opaque.insert(dest.clone());
             }
+            // What a peripheral or an operation ii-prove does not compute writes, and a
+            // PERSIST variable (its power-up value is what EEPROM holds).
             ElementKind::Other { .. } => opaque.extend(e.names_written()),
             ElementKind::Counter { name, limit, init: start, .. } => {
                 let literal =
@@ -616,14 +617,6 @@ fn integers(program: &LdProgram) -> BTreeMap<String, IntVar> {
             _ => {}
         }
         used.extend(int_names(e));
-    }
-    // PERSIST: the value at power-up is what EEPROM holds.
-    for e in &live {
-        if let ElementKind::Other { keyword, args } = &e.kind
-            && keyword == "PERSIST"
-        {
-            opaque.extend(args.first().cloned());
-        }
     }
     // What is computed from an opaque integer is opaque.
     loop {

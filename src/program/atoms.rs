@@ -13,7 +13,7 @@ use std::sync::{Arc, Mutex};
 use super::bitvec::{self, Bits};
 use super::compile::{CompiledProgram, Hypothesis, HypothesisKind, SignalKind};
 use super::logic::L;
-use super::{CmpOp, IntType, Program};
+use super::{CmpOp, IntType};
 use crate::diag::Span;
 use crate::kernel::Rel;
 use crate::syntax::IntOperand;
@@ -163,14 +163,6 @@ impl CompiledProgram {
     /// The value of integer `x` at the end of a scan, in `ty`, from its bit signals.
     fn int_bits(&self, x: &str, ty: IntType) -> Bits {
         let Some(var) = self.integers.get(x) else { return bitvec::constant(0, ty.bits) };
-        let mut bits: Bits = (0..var.ty.bits)
-            .map(|k| {
-                let bit = L::var(&Program::int_bit(x, k));
-                if var.init >> k & 1 == 1 { bit.negate() } else { bit }
-            })
-            .collect();
-        let fill = if var.ty.signed { bits.last().cloned().unwrap_or(L::Zero) } else { L::Zero };
-        bits.resize(ty.bits as usize, fill);
-        bits
+        bitvec::resize(var.value(x, &mut L::var), var.ty, ty)
     }
 }

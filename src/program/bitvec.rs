@@ -46,6 +46,13 @@ pub fn value_of(bits: &[bool], ty: IntType) -> i64 {
     ty.wrap(raw)
 }
 
+/// `v` of type `from` in type `to`: sign- or zero-extended, or truncated.
+pub fn resize(mut v: Bits, from: IntType, to: IntType) -> Bits {
+    let fill = if from.signed { v.last().cloned().unwrap_or(L::Zero) } else { L::Zero };
+    v.resize(to.bits as usize, fill);
+    v
+}
+
 /// Bitwise `¬a`.
 pub fn not(a: &[L]) -> Bits {
     a.iter().map(|x| x.clone().negate()).collect()

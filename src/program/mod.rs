@@ -71,6 +71,25 @@ pub struct IntVar {
     pub init: i64,
 }
 
+impl IntVar {
+    /// Whether bit `k` of the power-up value is 1: the compiled bit `k` is the value's
+    /// bit xor this, so that every compiled bit starts at 0.
+    pub fn start_bit(&self, k: u32) -> bool {
+        self.init >> k & 1 == 1
+    }
+
+    /// The value of the variable `x` from its compiled bits as `read` gives them (each
+    /// flipped back by the start value), least significant first.
+    pub fn value(&self, x: &str, read: &mut dyn FnMut(&str) -> logic::L) -> bitvec::Bits {
+        (0..self.ty.bits)
+            .map(|k| {
+                let bit = read(&Program::int_bit(x, k));
+                if self.start_bit(k) { bit.negate() } else { bit }
+            })
+            .collect()
+    }
+}
+
 /// A two's-complement integer type: its width and signedness.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct IntType {

@@ -518,7 +518,7 @@ impl<'a> IntTrack<'a> {
                     .map(|k| {
                         let name = crate::program::Program::int_bit(x, k);
                         let s = env.signals.get(&crate::term::Symbol::from(name.as_str()))?;
-                        Some((s, var.init >> k & 1 == 1))
+                        Some((s, var.start_bit(k)))
                     })
                     .collect::<Option<Vec<_>>>()?;
                 Some(IntTrack { name: x.clone(), ty: var.ty, bits })

@@ -41,13 +41,8 @@ impl Compiler<'_> {
             IntExpr::Const(v) => bitvec::constant(ty.wrap(*v), w),
             IntExpr::Var(x) => {
                 let Some(var) = self.int_var(x, span) else { return bitvec::constant(0, w) };
-                let stored: Bits = (0..var.ty.bits)
-                    .map(|k| {
-                        let bit = self.read(&Program::int_bit(x, k));
-                        if var.init >> k & 1 == 1 { bit.negate() } else { bit }
-                    })
-                    .collect();
-                resize(stored, var.ty, ty)
+                let stored = var.value(x, &mut |b| self.read(b));
+                bitvec::resize(stored, var.ty, ty)
             }
             IntExpr::Add(a, b) | IntExpr::Sub(a, b) | IntExpr::Mul(a, b) => {
                 let a = self.int(a, ty, span);
@@ -91,7 +86,7 @@ impl Compiler<'_> {
         let label = self.block().label.clone().unwrap_or_else(|| "v".into());
         for (k, bit) in bits.into_iter().enumerate() {
             let k = k as u32;
-            let stored = if var.init >> k & 1 == 1 { bit.negate() } else { bit };
+            let stored = if var.start_bit(k) { bit.negate() } else { bit };
             let x = Program::int_bit(target, k);
             // A value later writes replace is read under its own name
             // (`Cparts_L01_b3`: the bit after this block's write).
@@ -132,7 +127,7 @@ impl Compiler<'_> {
         (bit < var.ty.bits && Program::int_bit(of, bit) == name).then(|| SignalKind::IntBit {
             of: of.to_string(),
             bit,
-            start: var.init >> bit & 1 == 1,
+            start: var.start_bit(bit),
             input: var.input,
         })
     }
@@ -179,11 +174,4 @@ pub(super) fn int_depth(program: &Program) -> usize {
         sets.iter().chain(&cmps).for_each(&mut consts);
     }
     usize::try_from(largest.saturating_mul(2).saturating_add(2)).unwrap_or(usize::MAX).min(10_000)
-}
-
-/// `v` of type `from` in type `to`: sign- or zero-extended, or truncated.
-fn resize(mut v: Bits, from: IntType, to: IntType) -> Bits {
-    let fill = if from.signed { v.last().cloned().unwrap_or(L::Zero) } else { L::Zero };
-    v.resize(to.bits as usize, fill);
-    v
 }
