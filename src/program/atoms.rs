@@ -149,6 +149,13 @@ impl CompiledProgram {
         out
     }
 
+    /// Whether a property has used a comparison atom this program has no equation for
+    /// yet: [`CompiledProgram::with_atoms`] gives it one.
+    pub fn atoms_pending(&self) -> bool {
+        let Ok(atoms) = self.atoms.0.lock() else { return false };
+        atoms.keys().any(|name| !self.signals.contains_key(name))
+    }
+
     /// The value of the atom `name` when the integers have the values `int` gives (`None`
     /// for a name that is no atom, or an integer `int` does not know).
     pub fn atom_value(&self, name: &str, int: &dyn Fn(&str) -> Option<i64>) -> Option<bool> {

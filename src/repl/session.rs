@@ -356,6 +356,9 @@ impl Session {
             Ok(g) => g,
             Err(errors) => return self.syntax_errors(errors),
         };
+        if let Err(e) = self.define_atoms() {
+            return format!("error: {e}\n");
+        }
         let span = Span::new(file, 0..text.len());
         let shown = self.goal_text(&goal);
         self.assumptions.push(Statement { name: name.clone(), name_span: span, span, value: goal });
@@ -394,6 +397,9 @@ impl Session {
             Ok(d) => d,
             Err(errors) => return format!("{out}{}", self.syntax_errors(errors)),
         };
+        if let Err(e) = self.define_atoms() {
+            return format!("{out}error: {e}\n");
+        }
         for (name, _) in &doc.inputs {
             if !self.inputs.contains(name) {
                 self.inputs.push(name.clone());
@@ -445,6 +451,19 @@ impl Session {
     }
 
     /// The names in scope: the loaded program's signals (and the inputs).
+    /// Gives the comparison atoms (`[Cparts >= 10]`) a line has just used their
+    /// equations, as hypotheses of the session (see `program::atoms`).
+    fn define_atoms(&mut self) -> Result<(), String> {
+        let Some((path, compiled)) = &self.program else { return Ok(()) };
+        if !compiled.atoms_pending() {
+            return Ok(());
+        }
+        let compiled = compiled.with_atoms();
+        self.program_hypotheses = compiled.axioms();
+        self.program = Some((path.clone(), compiled));
+        self.rebuild()
+    }
+
     fn scope(&self) -> &dyn Scope {
         match &self.program {
             Some((_, compiled)) => compiled,
@@ -536,6 +555,7 @@ impl Session {
         let file = self.source(body.trim());
         let goal = syntax::parse_goal(&self.sources, file, self.scope(), &self.inputs)
             .map_err(|errors| self.syntax_errors(errors))?;
+        self.define_atoms().map_err(|e| format!("error: {e}\n"))?;
         Ok((name, goal, Span::new(file, 0..body.trim().len())))
     }
 
@@ -853,6 +873,9 @@ impl Session {
             Ok(t) => t,
             Err(errors) => return self.syntax_errors(errors),
         };
+        if let Err(e) = self.define_atoms() {
+            return format!("error: {e}\n");
+        }
         let span = Span::new(file, 0..term_text.trim().len());
         let Some(result) = self.justify(&from, rel_of(relation), &term, &rules) else {
             return CANCELLED.into();
@@ -1204,8 +1227,8 @@ impl Session {
                 .map_err(|e| format!("{name}: {e}"))?;
             env.signals.insert(Symbol::from(name.as_str()), signal);
         }
-        if let Some((_, compiled)) = self.program.clone() {
-            return self.simulate_scans(&compiled, terms_text, &given, &env);
+        if self.program.is_some() {
+            return self.simulate_scans(terms_text, &given, &env);
         }
         // Parse the terms; expand defined signals through their equations.
         let mut rows: Vec<(String, Signal)> = given
@@ -1258,21 +1281,11 @@ impl Session {
     /// signals read at the start of each scan, every other input 0), the terms drawn.
     fn simulate_scans(
         &mut self,
-        compiled: &CompiledProgram,
         terms_text: &str,
         given: &[GivenSignal],
         env: &Assignment,
     ) -> Result<String, String> {
         use crate::counterexample::{ScanTrace, equations, scans_of, unroll};
-        let cycle = Time::new(compiled.cycle_us.into(), 1_000_000u64.into());
-        if compiled.cycle_us == 0 {
-            return Err("the program has a zero cycle time: it has no scans to simulate".into());
-        }
-        let count = (&env.horizon / &cycle).ceil().to_integer();
-        let scans: usize =
-            count.clone().try_into().ok().filter(|n| *n <= 200_000).ok_or_else(|| {
-                format!("{count} scans of the cycle is too long to simulate; give a shorter `for`")
-            })?;
         let mut inputs = self.inputs.clone();
         inputs.extend(given.iter().map(|g| g.0.clone()));
         let mut terms = Vec::new();
@@ -1282,6 +1295,19 @@ impl Session {
                 .map_err(|errors| self.syntax_errors(errors))?;
             terms.push(term);
         }
+        self.define_atoms()?;
+        let Some((_, compiled)) = &self.program else {
+            return Err("no program is loaded".into());
+        };
+        let cycle = Time::new(compiled.cycle_us.into(), 1_000_000u64.into());
+        if compiled.cycle_us == 0 {
+            return Err("the program has a zero cycle time: it has no scans to simulate".into());
+        }
+        let count = (&env.horizon / &cycle).ceil().to_integer();
+        let scans: usize =
+            count.clone().try_into().ok().filter(|n| *n <= 200_000).ok_or_else(|| {
+                format!("{count} scans of the cycle is too long to simulate; give a shorter `for`")
+            })?;
         let defs = equations(compiled).into_iter().map(|(n, e)| (n, e.clone())).collect();
         let model = unroll::Model { defs, constraints: Vec::new() };
         let trace = ScanTrace { cycle: cycle.clone(), scans, values: Default::default() };

@@ -59,8 +59,10 @@ pub fn export_aiger(
     let mut sources = Sources::new();
     let loaded = load_program_with(&mut sources, program, &compile_options(opts), &opts.plcopen)
         .map_err(|d| fail(&sources, d, opts))?;
-    let compiled = &loaded.compiled;
     let (docs, paths) = program_documents(&mut sources, program, &loaded, paths, opts)?;
+    // The comparison atoms the properties use, each defined by its equation.
+    let with_atoms = loaded.compiled.with_atoms();
+    let compiled = &with_atoms;
     let (selection, _) = plan(&sources, &docs, &paths, opts)?;
     let refuse = |sources: &Sources, span: Option<Span>, message: String, label: &str| {
         let e = ExportError { span, message, label: label.into() };

@@ -154,7 +154,8 @@ pub fn load_script(
     let compiled = loaded.compiled;
     let doc = syntax::parse_properties(sources, file, &compiled)
         .map_err(|errors| errors.into_iter().map(Diagnostic::from).collect::<Vec<_>>())?;
-    Ok((doc, Some(compiled)))
+    // The comparison atoms the script uses, each defined by its equation.
+    Ok((doc, Some(compiled.with_atoms())))
 }
 
 /// `ii-prove check FILE...`: checks every claim of every file.
