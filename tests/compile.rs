@@ -445,10 +445,18 @@ fn every_unsupported_element_is_reported_with_its_rung() {
                 ElementKind::Move { dest, src } => {
                     [Some(dest.clone()), var(src)].into_iter().flatten().collect()
                 }
+                // A division by 0 is undefined: DIV is computed only by a nonzero literal.
                 ElementKind::Math { op, dest, a, b }
-                    if *op != ii_prove::ladder::ldmicro::MathOp::Div =>
+                    if *op != ii_prove::ladder::ldmicro::MathOp::Div
+                        || matches!(b, Operand::Literal(v) if *v != 0 && (-32768..=32767).contains(v)) =>
                 {
                     [Some(dest.clone()), var(a), var(b)].into_iter().flatten().collect()
+                }
+                ElementKind::Other { keyword, args }
+                    if keyword == "SHIFT_REGISTER" && args.len() == 2 =>
+                {
+                    let stages: u32 = args[1].parse().unwrap_or(0);
+                    (0..stages).map(|k| format!("{}{k}", args[0])).collect()
                 }
                 _ => Vec::new(),
             }

@@ -9,7 +9,7 @@
 //! non-`RUNG` lines between rungs, truncated files and files without
 //! `PROGRAM`. It never panics.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 
 use crate::diag::{FileId, Sources, Span, did_you_mean};
 
@@ -85,6 +85,9 @@ pub struct LdProgram {
     /// The bits the outside world writes, for front ends that declare them (PLCopen
     /// input variables); `None`: LDmicro's rule, names starting with `X`, `I` or `M`.
     pub inputs: Option<BTreeSet<String>>,
+    /// The storage size in bytes (1–4) of the integers the `VAR LIST` declares (new
+    /// files): `N bytes NAME`, or `NAME signed BITS bit variable`.
+    pub var_bytes: BTreeMap<String, u32>,
 }
 
 /// One rung: a series circuit between the power rails.
@@ -874,6 +877,7 @@ struct Parser<'a> {
     version: HeaderVersion,
     errors: Vec<LadderError>,
     warnings: Vec<LadderError>,
+    var_bytes: BTreeMap<String, u32>,
 }
 
 impl<'a> Parser<'a> {
@@ -890,6 +894,31 @@ impl<'a> Parser<'a> {
         let span = self.eof_span();
         self.errors.push(LadderError::Truncated { span, open: open.to_string(), opened_at });
         Fatal
+    }
+
+    /// A `VAR LIST` line: `N bytes NAME` or `NAME signed BITS bit variable` (anything
+    /// after a TAB is a note).
+    fn var_entry(&mut self, entry: Line<'a>) {
+        let words: Vec<&str> =
+            entry.text.split('\t').next().unwrap_or("").split_whitespace().collect();
+        let size = match words.as_slice() {
+            [n, "bytes", name] => n.parse::<u32>().ok().map(|n| (name.to_string(), n)),
+            [name, "signed", bits, "bit", "variable"] => {
+                bits.parse::<u32>().ok().map(|b| (name.to_string(), b / 8))
+            }
+            _ => None,
+        };
+        match size {
+            Some((name, n)) if n > 0 => {
+                self.var_bytes.insert(name, n);
+            }
+            _ => self.warnings.push(LadderError::IgnoredLine {
+                span: entry.span(self.file),
+                reason:
+                    "expected `N bytes NAME` or `NAME signed BITS bit variable` in the VAR LIST"
+                        .into(),
+            }),
+        }
     }
 
     fn header(&mut self) -> (u64, Option<String>, Vec<IoEntry>, bool) {
@@ -937,6 +966,9 @@ impl<'a> Parser<'a> {
                     self.pos += 1;
                     if entry.text == "END" {
                         break;
+                    }
+                    if text == "VAR LIST" {
+                        self.var_entry(entry);
                     }
                     if is_io {
                         let toks = entry.tokens(file);
@@ -1342,6 +1374,7 @@ pub fn read_ldmicro(sources: &Sources, file: FileId) -> Result<LdProgram, Vec<La
         version: HeaderVersion::Missing,
         errors: Vec::new(),
         warnings: Vec::new(),
+        var_bytes: BTreeMap::new(),
     };
     let (cycle_us, micro, io_list, _) = p.header();
     if !p.errors.is_empty() {
@@ -1359,6 +1392,7 @@ pub fn read_ldmicro(sources: &Sources, file: FileId) -> Result<LdProgram, Vec<La
             rungs,
             warnings: p.warnings,
             inputs: None,
+            var_bytes: p.var_bytes,
         }),
         _ => Err(p.errors),
     }

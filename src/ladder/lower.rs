@@ -114,6 +114,8 @@ struct Lowering<'a> {
     /// power-up values; the others (a timer's count, what a peripheral or `DIV` writes,
     /// and what is computed from those) are not modelled.
     ints: BTreeMap<String, IntVar>,
+    /// Why each integer that is not computed is not (see [`integers`]).
+    opaque: BTreeMap<String, String>,
 }
 
 impl<'a> Lowering<'a> {
@@ -142,6 +144,7 @@ impl<'a> Lowering<'a> {
                 _ => None,
             })
             .collect();
+        let (ints, opaque) = integers(program);
         Lowering {
             program,
             index,
@@ -151,7 +154,8 @@ impl<'a> Lowering<'a> {
             next_temp: 1,
             mcr: 0,
             number: 0,
-            ints: integers(program),
+            ints,
+            opaque,
         }
     }
 
@@ -159,6 +163,16 @@ impl<'a> Lowering<'a> {
     fn exact(&self, e: &Element) -> bool {
         let ints = int_names(e);
         !ints.is_empty() && ints.iter().all(|n| self.ints.contains_key(&canonical(n)))
+    }
+
+    /// Why the element reads or writes an integer that is not computed exactly, for its
+    /// warning: the first such integer and its cause.
+    fn opaque_why(&self, e: &Element) -> String {
+        let names = int_names(e);
+        match names.iter().find_map(|n| Some((n, self.opaque.get(n)?))) {
+            Some((n, why)) => format!("{n}, which ii-prove does not compute: {why}"),
+            None => "no integer".into(),
+        }
     }
 
     fn operand(&self, op: &Operand) -> IntExpr {
@@ -364,6 +378,16 @@ impl<'a> Lowering<'a> {
     fn element(&mut self, e: &Element, input: BoolExpr) -> BoolExpr {
         let number = self.number;
         match &e.kind {
+            // LDmicro ≥ 2016 sets this relay when an ADD, SUB or a counter overflows
+            // (`intcode.cpp`), which the scan model does not compute.
+            ElementKind::Contacts { name, .. }
+                if name == OVERFLOW_FLAG && !self.program.version.is_orig() =>
+            {
+                let why = "ROverflowFlagV is set by LDmicro when integer arithmetic \
+                           overflows, which ii-prove does not model";
+                let f = self.fresh(format!("{name}_r{number}"), e, why);
+                self.temp(BoolExpr::and(input, f))
+            }
             ElementKind::Contacts { name, negated } => {
                 let v = BoolExpr::var(&canonical(name));
                 let v = if *negated { BoolExpr::negate(v) } else { v };
@@ -471,11 +495,15 @@ impl<'a> Lowering<'a> {
                 self.set_int(e, dest, &input, src);
                 input
             }
-            ElementKind::Math { op, dest, a, b } if self.exact(e) && *op != MathOp::Div => {
+            ElementKind::Math { op, dest, a, b }
+                if self.exact(e) && (*op != MathOp::Div || nonzero_literal(b).is_some()) =>
+            {
+                let divisor = nonzero_literal(b);
                 let (a, b) = (self.operand(a), self.operand(b));
-                let value = match op {
-                    MathOp::Add => IntExpr::plus(a, b),
-                    MathOp::Sub => IntExpr::minus(a, b),
+                let value = match (op, divisor) {
+                    (MathOp::Add, _) => IntExpr::plus(a, b),
+                    (MathOp::Sub, _) => IntExpr::minus(a, b),
+                    (MathOp::Div, Some(k)) => IntExpr::Div(Box::new(a), k),
                     _ => IntExpr::Mul(Box::new(a), Box::new(b)),
                 };
                 self.set_int(e, dest, &input, value);
@@ -494,7 +522,7 @@ impl<'a> Lowering<'a> {
                     input
                 } else {
                     let base = format!("{}_{}", e.kind.keyword(), name);
-                    let why = format!("the count {name} depends on {}", opaque_why(&self.ints, e));
+                    let why = format!("the count {name} depends on {}", self.opaque_why(e));
                     self.fresh(base, e, &why)
                 }
             }
@@ -506,7 +534,7 @@ impl<'a> Lowering<'a> {
             }
             ElementKind::Compare { .. } => {
                 let base = format!("{}_r{number}", e.kind.keyword());
-                let why = format!("the comparison reads {}", opaque_why(&self.ints, e));
+                let why = format!("the comparison reads {}", self.opaque_why(e));
                 let f = self.fresh(base, e, &why);
                 self.temp(BoolExpr::and(input, f))
             }
@@ -518,6 +546,23 @@ impl<'a> Lowering<'a> {
             }
             // A label only marks a place to jump to (jumps are refused, see `lower`).
             ElementKind::Other { keyword, .. } if keyword == "LABEL" => input,
+            ElementKind::Other { args, .. } if self.exact(e) => {
+                // SHIFT_REGISTER (ldmicro.md §4): on the rising edge of the power,
+                // `name{k} := name{k-1}` for k = stages-1 down to 1; the power passes.
+                let stages = shift_stages(e).unwrap_or(0);
+                let memory = self.memory(format!("SHIFT_REGISTER_r{}", self.number), e);
+                let rising = BoolExpr::Edge {
+                    kind: crate::program::EdgeKind::Rising,
+                    input: Box::new(input.clone()),
+                    memory,
+                };
+                let rising = self.temp(rising);
+                for k in (1..stages).rev() {
+                    let from = IntExpr::Var(canonical(&format!("{}{}", args[0], k - 1)));
+                    self.set_int(e, &format!("{}{k}", args[0]), &rising, from);
+                }
+                input
+            }
             ElementKind::Other { keyword, .. } => {
                 if super::ldmicro::PASS_THROUGH.contains(&keyword.as_str()) {
                     self.warn(
@@ -572,17 +617,31 @@ fn int_names(e: &Element) -> Vec<String> {
             v.push(dest.clone());
             v
         }
+        ElementKind::Other { keyword, .. } if shift_stages(e).is_some() => {
+            debug_assert_eq!(keyword, "SHIFT_REGISTER");
+            e.names_written()
+        }
         _ => Vec::new(),
     }
 }
 
+/// The number of stages of a `SHIFT_REGISTER name stages` (`None` for anything else).
+fn shift_stages(e: &Element) -> Option<u32> {
+    match &e.kind {
+        ElementKind::Other { keyword, args } if keyword == "SHIFT_REGISTER" && args.len() == 2 => {
+            args[1].parse().ok()
+        }
+        _ => None,
+    }
+}
+
 /// The integers computed exactly: every integer the counters, comparisons, `MOVE`,
-/// `ADD`/`SUB`/`MUL` and `RES` of the rungs that run read or write, except those
-/// something else writes (a timer's count, `DIV`, a peripheral or `PERSIST`), those
-/// computed from such, and counters whose limit or start value is not a 16-bit literal
-/// or exact integer. Each is 16-bit signed; a counter of a new file starts at its `init`
+/// `ADD`/`SUB`/`MUL`/`DIV` and `RES` of the rungs that run read or write, except those
+/// something else writes (a timer's count, a `DIV` by a variable or 0, a peripheral or
+/// `PERSIST`), those computed from such, and counters whose limit or start value is not
+/// a 16-bit literal or exact integer; those come back with why. Each is 16-bit signed; a counter of a new file starts at its `init`
 /// (the last counter of that name wins, as the runtime initialises them in order).
-fn integers(program: &LdProgram) -> BTreeMap<String, IntVar> {
+fn integers(program: &LdProgram) -> (BTreeMap<String, IntVar>, BTreeMap<String, String>) {
     let orig = program.version.is_orig();
     let live: Vec<&Element> = program
         .rungs
@@ -590,25 +649,44 @@ fn integers(program: &LdProgram) -> BTreeMap<String, IntVar> {
         .filter(|r| !r.is_comment(&program.version))
         .flat_map(|r| r.elements())
         .collect();
-    let mut opaque: BTreeSet<String> = BTreeSet::new();
+    // Each integer ii-prove does not compute, with why (the first cause found).
+    let mut opaque: BTreeMap<String, String> = BTreeMap::new();
     let mut used: BTreeSet<String> = BTreeSet::new();
     let mut init: BTreeMap<String, i64> = BTreeMap::new();
+    let mut cause = |name: &str, why: String| {
+        opaque.entry(name.to_string()).or_insert(why);
+    };
     for e in &live {
         match &e.kind {
-            ElementKind::Timer { name, .. } => {
-                opaque.insert(name.clone());
-            }
-            ElementKind::Math { op: MathOp::Div, dest, .. } => {
-                opaque.insert(dest.clone());
+            ElementKind::Timer { name, .. } => cause(name, "it is a timer's count".into()),
+            ElementKind::Math { op: MathOp::Div, dest, b, .. } if nonzero_literal(b).is_none() => {
+                let why = match b {
+                    Operand::Var(v) => format!(
+                        "it is written by a DIV by {v}, which may be 0 (a division by 0 is \
+                         undefined)"
+                    ),
+                    Operand::Literal(v) => format!("it is written by a DIV by {v}"),
+                };
+                cause(dest, why);
             }
             // What a peripheral or an operation ii-prove does not compute writes, and a
             // PERSIST variable (its power-up value is what EEPROM holds).
-            ElementKind::Other { .. } => opaque.extend(e.names_written()),
+            ElementKind::Other { keyword, .. } if shift_stages(e).is_none() => {
+                let why = if keyword == "PERSIST" {
+                    "it is PERSIST (its power-up value is what EEPROM holds)".to_string()
+                } else {
+                    format!("it is written by {keyword}, which ii-prove does not compute")
+                };
+                for n in e.names_written() {
+                    cause(&n, why.clone());
+                }
+            }
             ElementKind::Counter { name, limit, init: start, .. } => {
                 let literal =
                     |o: &Operand| matches!(o, Operand::Literal(v) if !IntType::I16.contains(*v));
                 if literal(limit) || (!orig && (start.var().is_some() || literal(start))) {
-                    opaque.insert(name.clone());
+                    let why = "its limit or start value is not a 16-bit literal".to_string();
+                    cause(name, why);
                 }
                 if !orig && let Operand::Literal(v) = start {
                     init.insert(name.clone(), *v);
@@ -618,39 +696,82 @@ fn integers(program: &LdProgram) -> BTreeMap<String, IntVar> {
         }
         used.extend(int_names(e));
     }
+    // LDmicro ≥ 2016 stores an integer in 1 to 4 bytes: a counter in as many as its start
+    // value and limit need, any other integer as the VAR LIST says (2 by default). The
+    // values computed here are 2-byte ones: an integer of another size is exact only when
+    // counters and RES alone write it (its values then stay within its start value and
+    // limit, which its size holds).
+    if !orig {
+        let mut bytes = program.var_bytes.clone();
+        let mut other_writers: BTreeSet<String> = BTreeSet::new();
+        for e in &live {
+            match &e.kind {
+                ElementKind::Counter {
+                    name,
+                    limit: Operand::Literal(l),
+                    init: Operand::Literal(i),
+                    ..
+                } => {
+                    bytes.insert(name.clone(), bytes_needed(*i).max(bytes_needed(*l)));
+                }
+                ElementKind::Counter { .. } | ElementKind::Res { .. } => {}
+                _ => other_writers.extend(e.names_written()),
+            }
+        }
+        for n in used.iter().filter(|n| other_writers.contains(*n)) {
+            if let Some(size) = bytes.get(n).copied().filter(|b| *b != 2) {
+                let why = format!(
+                    "LDmicro stores it in {size} byte{} and ii-prove computes 2-byte integers",
+                    if size == 1 { "" } else { "s" }
+                );
+                cause(n, why);
+            }
+        }
+    }
     // What is computed from an opaque integer is opaque.
     loop {
         let before = opaque.len();
         for e in &live {
             let names = int_names(e);
-            let writes = e.names_written();
-            if names.iter().any(|n| opaque.contains(n)) {
-                opaque.extend(writes.into_iter().filter(|w| names.contains(w)));
+            if let Some(from) = names.iter().find(|n| opaque.contains_key(*n)).cloned() {
+                for w in e.names_written().into_iter().filter(|w| names.contains(w)) {
+                    opaque.entry(w).or_insert_with(|| format!("it is computed from {from}"));
+                }
             }
         }
         if opaque.len() == before {
             break;
         }
     }
-    used.into_iter()
-        .filter(|n| !opaque.contains(n))
+    let ints = used
+        .into_iter()
+        .filter(|n| !opaque.contains_key(n))
         .map(|n| {
             let start = init.get(&n).copied().unwrap_or(0);
             (canonical(&n), IntVar { ty: IntType::I16, input: false, init: start })
         })
-        .collect()
+        .collect();
+    (ints, opaque)
 }
 
-/// Why an element's integers are not computed exactly, for its warning.
-fn opaque_why(ints: &BTreeMap<String, IntVar>, e: &Element) -> String {
-    let names: Vec<String> =
-        int_names(e).into_iter().filter(|n| !ints.contains_key(&canonical(n))).collect();
-    match names.first() {
-        Some(n) => format!(
-            "{n}, which ii-prove does not compute (a timer's count, DIV, a peripheral, \
-             PERSIST, a limit or start value that is not a 16-bit literal, or a value \
-             computed from one of those)"
-        ),
-        None => "no integer".into(),
+/// The relay LDmicro ≥ 2016 sets on an integer overflow.
+const OVERFLOW_FLAG: &str = "ROverflowFlagV";
+
+/// How many bytes LDmicro gives an integer that must hold `v` (`byteNeeded`).
+fn bytes_needed(v: i64) -> u32 {
+    match v {
+        -128..=127 => 1,
+        -32768..=32767 => 2,
+        -8388608..=8388607 => 3,
+        _ => 4,
+    }
+}
+
+/// The divisor of a DIV when it is a 16-bit literal other than 0 (a division ii-prove
+/// computes exactly).
+fn nonzero_literal(b: &Operand) -> Option<i64> {
+    match b {
+        Operand::Literal(v) if *v != 0 && IntType::I16.contains(*v) => Some(*v),
+        _ => None,
     }
 }

@@ -96,6 +96,37 @@ pub fn mul(a: &[L], b: &[L], name: Namer) -> Bits {
     acc
 }
 
+/// `a / k` for a value `a` of type `ty` and a literal `k ≠ 0`: truncated toward zero and
+/// wrapped to the width of `a` (so `min / −1` is `min`), by restoring division of the
+/// magnitudes and the sign put back.
+pub fn div(a: &[L], k: i64, ty: IntType, name: Namer) -> Bits {
+    let w = a.len();
+    // |a| in w + 1 bits (|min| fits there), the remainder in w + 2 (it stays below 2·|k|).
+    let (wide, rw) = (w + 1, w + 2);
+    let negative = if ty.signed { a.last().cloned().unwrap_or(L::Zero) } else { L::Zero };
+    let ext = resize(a.to_vec(), ty, IntType { bits: wide as u32, signed: ty.signed });
+    let minus = sub(&constant(0, wide as u32), &ext, name);
+    let magnitude: Bits = ext.iter().zip(&minus).map(|(x, y)| name(mux(&negative, y, x))).collect();
+    let d = constant(k.unsigned_abs() as i64, rw as u32);
+    let unsigned = IntType { bits: rw as u32, signed: false };
+    let mut r = constant(0, rw as u32);
+    let mut q = vec![L::Zero; wide];
+    for i in (0..wide).rev() {
+        // r := 2·r + bit i of |a|; if r ≥ |k| then r := r − |k| and bit i of q is 1.
+        let mut shifted = vec![magnitude[i].clone()];
+        shifted.extend(r[..rw - 1].iter().cloned());
+        let fits = compare(CmpOp::Ge, unsigned, &shifted, &d, name);
+        let fits = name(fits);
+        let less = sub(&shifted, &d, name);
+        r = shifted.iter().zip(&less).map(|(x, y)| name(mux(&fits, y, x))).collect();
+        q[i] = fits;
+    }
+    // The quotient is negative when exactly one side is.
+    let flip = if k < 0 { simp(&negative.negate()) } else { negative };
+    let minus_q = sub(&constant(0, wide as u32), &q, name);
+    q.iter().zip(&minus_q).take(w).map(|(x, y)| mux(&flip, y, x)).collect()
+}
+
 /// `a op b` for two values of type `ty`.
 pub fn compare(op: CmpOp, ty: IntType, a: &[L], b: &[L], name: Namer) -> L {
     let eq = || simp(&L::And(a.iter().zip(b).map(|(x, y)| xor(x, y).negate()).collect()));
@@ -180,6 +211,10 @@ mod tests {
                     assert_eq!(read(&prod), ty.wrap(vx * vy), "{vx} * {vy}");
                     for (op, c) in ops.iter().zip(&cmps) {
                         assert_eq!(eval(c, &env), op.holds(vx, vy), "{vx} {op:?} {vy}");
+                    }
+                    if vy != 0 {
+                        let quotient = div(&a, vy, ty, &mut keep);
+                        assert_eq!(read(&quotient), ty.wrap(vx.wrapping_div(vy)), "{vx} / {vy}");
                     }
                 }
             }

@@ -146,6 +146,10 @@ pub enum IntExpr {
     Sub(Box<IntExpr>, Box<IntExpr>),
     /// `a · b`, wrapped.
     Mul(Box<IntExpr>, Box<IntExpr>),
+    /// `a / k` truncated toward zero, wrapped (`−min / −1` is `min`), for a literal
+    /// `k` that is not 0: a division by 0 is what a runtime leaves undefined, so a front
+    /// end lowers only divisions by nonzero literals here.
+    Div(Box<IntExpr>, i64),
     /// `if c then a else b`.
     Ite(Box<BoolExpr>, Box<IntExpr>, Box<IntExpr>),
 }
@@ -181,6 +185,7 @@ impl IntExpr {
                 a.visit(int, boolean);
                 b.visit(int, boolean);
             }
+            IntExpr::Div(a, _) => a.visit(int, boolean),
             IntExpr::Ite(c, a, b) => {
                 walk(c, boolean);
                 a.visit(int, boolean);
@@ -491,6 +496,7 @@ pub fn int_walk_mut(e: &mut IntExpr, f: &mut dyn FnMut(&mut BoolExpr)) {
             int_walk_mut(a, f);
             int_walk_mut(b, f);
         }
+        IntExpr::Div(a, _) => int_walk_mut(a, f),
         IntExpr::Ite(c, a, b) => {
             walk_mut(c, f);
             int_walk_mut(a, f);

@@ -225,6 +225,10 @@ impl Simulator {
                 let (a, b) = (self.int_value(a, ty), self.int_value(b, ty));
                 both(a, b, i64::wrapping_mul)
             }
+            IntExpr::Div(a, k) => {
+                let a = self.int_value(a, ty);
+                N { value: ty.wrap(a.value.wrapping_div(*k)), known: a.known }
+            }
             IntExpr::Ite(c, a, b) => {
                 let c = self.eval(c);
                 let (a, b) = (self.int_value(a, ty), self.int_value(b, ty));

@@ -18,6 +18,9 @@ use crate::diag::Span;
 /// The largest bit term of an integer value inlined into later reads.
 pub(super) const MAX_INT_TERM: usize = 200;
 
+/// The size beyond which a term inside a division is named (see [`MAX_INT_TERM`]).
+const MAX_DIV_TERM: usize = 12;
+
 impl Compiler<'_> {
     /// The variable `x`, or an error at `span` when the program does not declare it.
     fn int_var(&mut self, x: &str, span: Span) -> Option<IntVar> {
@@ -53,6 +56,12 @@ impl Compiler<'_> {
                     IntExpr::Sub(..) => bitvec::sub(&a, &b, &mut name),
                     _ => bitvec::mul(&a, &b, &mut name),
                 }
+            }
+            IntExpr::Div(a, k) => {
+                // Each step of the division reads the remainder's bits several times:
+                // anything beyond a few nodes is named, or the terms grow with every step.
+                let a = self.int(a, ty, span);
+                bitvec::div(&a, *k, ty, &mut |t: L| self.intermediate_over(t, MAX_DIV_TERM))
             }
             IntExpr::Ite(c, a, b) => {
                 // The condition is read by every bit: named unless it is a literal.
@@ -103,7 +112,12 @@ impl Compiler<'_> {
     /// `t`, or a new signal defined as equal to it (stated with this block) when it is
     /// too large to copy into every read.
     pub(super) fn intermediate(&mut self, t: L) -> L {
-        if t.size() <= MAX_INT_TERM {
+        self.intermediate_over(t, MAX_INT_TERM)
+    }
+
+    /// [`Self::intermediate`] with its own limit on the size of a term.
+    fn intermediate_over(&mut self, t: L, limit: usize) -> L {
+        if t.size() <= limit {
             return t;
         }
         let label = self.block().label.clone().unwrap_or_else(|| "v".into());
@@ -144,6 +158,10 @@ pub(super) fn int_depth(program: &Program) -> usize {
             match e {
                 IntExpr::Const(k) => *largest = (*largest).max(k.unsigned_abs()),
                 IntExpr::Var(_) => {}
+                IntExpr::Div(a, k) => {
+                    *largest = (*largest).max(k.unsigned_abs());
+                    walk(a, largest);
+                }
                 IntExpr::Add(a, b)
                 | IntExpr::Sub(a, b)
                 | IntExpr::Mul(a, b)
