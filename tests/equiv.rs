@@ -77,10 +77,11 @@ fn water_refactorings_are_equivalent_and_variants_differ() {
         let v = verdicts(&["equiv", "examples/water.ld", b]);
         assert!(v.contains(&(differs.to_string(), "refuted".to_string())), "{b}: {v:?}");
     }
-    // LDmicro0.1 times 4.99 s where 0.2 times 5 s: never called equivalent.
+    // LDmicro0.1 times 4.99 s where 0.2 times 5 s: beyond bounded model checking's
+    // reach, found on the simulators with held inputs.
     let v = verdicts(&["equiv", "examples/water.ld", "examples/water_v01.ld"]);
     assert!(v.contains(&("YL1_up".to_string(), "proved".to_string())), "{v:?}");
-    assert!(v.iter().any(|(n, s)| n == "YL1_pump" && s != "proved"), "{v:?}");
+    assert!(v.contains(&("YL1_pump".to_string(), "refuted".to_string())), "{v:?}");
 }
 
 #[test]

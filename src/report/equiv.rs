@@ -403,6 +403,18 @@ pub fn run_equiv_with(
             let mut report =
                 check_property(&ctx, s, ctx.hypotheses(), opts, &identity, Some(&session));
             report.location = Some(Location::of(&sources, s.span));
+            // Runs longer than bounded model checking reaches (timers of 499 and 500
+            // scans): held inputs on the simulators, confirmed as any counterexample.
+            if report.status == Status::Unknown
+                && let Some(c) = search_on_simulators(&session, &obligation(&s.value), opts)
+            {
+                let goal = obligation(&s.value);
+                let shown = property::program_counterexample(&session, &goal, &c, opts, &identity);
+                report.status = Status::Refuted;
+                report.reason = None;
+                report.candidate = None;
+                report.counterexample = Some(Box::new(shown));
+            }
             report
         },
         |event| match event {
@@ -474,6 +486,94 @@ fn correspondence(
         vacuity: None,
     };
     Some((report, Axiom::ground(name, goal.lhs, goal.rel, goal.rhs)))
+}
+
+/// Looks for a run on which the product's simulators (both programs' own) part on
+/// `goal`'s two sides: a few random input vectors, each held for a number of scans
+/// around the longest timer's; a run found is confirmed by exact evaluation and the
+/// simulators ([`counterexample::confirm`]) before it is returned.
+fn search_on_simulators(
+    session: &counterexample::Program,
+    goal: &Obligation,
+    opts: &Options,
+) -> Option<Box<counterexample::Counterexample>> {
+    use crate::term::{Term, root};
+    let side = |e: &Expr| match &e[root(e)] {
+        Term::Name(n) => Some(n.as_str().to_string()),
+        _ => None,
+    };
+    let (x, y) = (side(&goal.lhs)?, side(&goal.rhs)?);
+    let compiled = session.compiled;
+    let inputs: Vec<String> = compiled
+        .signals
+        .iter()
+        .filter(|(_, k)| matches!(k, SignalKind::Input))
+        .map(|(n, _)| n.clone())
+        .collect();
+    let longest =
+        compiled.timer_info.iter().filter_map(|t| usize::try_from(t.scans).ok()).max().unwrap_or(0);
+    let mut lengths: Vec<usize> = vec![
+        1,
+        2,
+        3,
+        longest.saturating_sub(1),
+        longest,
+        longest + 1,
+        longest + 2,
+        2 * longest + 2,
+    ];
+    lengths.retain(|&n| n > 0);
+    lengths.dedup();
+    let started = std::time::Instant::now();
+    let deadline = started + opts.timeout.mul_f64(0.3).min(std::time::Duration::from_secs(3));
+    let cycle = crate::semantics::Time::new(compiled.cycle_us.into(), 1_000_000u64.into());
+    // A fixed seed: the same run every time.
+    let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state
+    };
+    while std::time::Instant::now() < deadline {
+        let segments = 1 + (next() % 3) as usize;
+        let mut values: BTreeMap<String, Vec<bool>> = BTreeMap::new();
+        let mut scans = 0;
+        for _ in 0..segments {
+            let n = lengths[(next() % lengths.len() as u64) as usize];
+            for i in &inputs {
+                let v = next() % 2 == 1;
+                values.entry(i.clone()).or_default().extend(std::iter::repeat_n(v, n));
+            }
+            scans += n;
+        }
+        let mut sim = session.reference.simulator();
+        let mut parted = None;
+        for k in 0..scans {
+            let step: BTreeMap<String, bool> =
+                values.iter().map(|(n, v)| (n.clone(), v[k])).collect();
+            sim.step(&step);
+            if !sim.is_known(&x) || !sim.is_known(&y) {
+                return None;
+            }
+            if sim.bit(&x) != sim.bit(&y) {
+                parted = Some(k);
+                break;
+            }
+        }
+        let Some(k) = parted else { continue };
+        for v in values.values_mut() {
+            v.truncate(k + 1);
+        }
+        let trace = counterexample::ScanTrace { cycle: cycle.clone(), scans: k + 1, values };
+        let limits = counterexample::Limits { deadline, max_steps: 200, max_scans: 100_000 };
+        if let counterexample::Verdict::Refuted(c) =
+            counterexample::confirm(session, goal, trace, limits)
+        {
+            return Some(c);
+        }
+    }
+    None
 }
 
 /// Where `program` writes `name`: its last defining equation's block.

@@ -304,7 +304,7 @@ fn not_found(why: String) -> Search {
 
 /// A program counterexample for people: the inputs that are not always 0, the signals
 /// the property reads, its two sides; the violation marked.
-fn program_counterexample(
+pub(super) fn program_counterexample(
     session: &counterexample::Program,
     goal: &Obligation,
     c: &Counterexample,
