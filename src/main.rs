@@ -50,6 +50,13 @@ struct Cli {
     /// and property files (.ii), or property files alone.
     files: Vec<String>,
     #[command(flatten)]
+    common: Common,
+}
+
+/// The options of a reported run: report, notation, compilation, limits and outputs.
+#[derive(Args)]
+struct Common {
+    #[command(flatten)]
     head: ReportHead,
     #[command(flatten)]
     notation: Notation,
@@ -273,7 +280,8 @@ enum Command {
     /// `proved` (equivalent: a kernel-checked proof of `X = X'` from both programs'
     /// equations, by the algebra or by induction over scans), `refuted` (differs: an
     /// input sequence replayed on both programs' simulators, the scan where they part
-    /// marked) or `unknown`. Both programs must scan at the same cycle.
+    /// marked) or `unknown`. Both programs must scan at the same cycle and start from
+    /// power-up (matched arbitrary start states, `--any-state`, are not implemented).
     #[command(after_help = EXIT_CODES)]
     Equiv {
         /// The first program.
@@ -293,13 +301,7 @@ enum Command {
         #[arg(long, value_parser = parse_cycle, value_name = "DURATION")]
         cycle_b: Option<u64>,
         #[command(flatten)]
-        head: ReportHead,
-        #[command(flatten)]
-        notation: Notation,
-        #[command(flatten)]
-        compilation: Compilation,
-        #[command(flatten)]
-        tail: ReportTail,
+        common: Common,
     },
     /// Print a shell completion script, or install it with `--install` (e.g. `ii-prove completions bash --install`).
     Completions {
@@ -455,21 +457,10 @@ fn main() -> ExitCode {
                 Err(e) => Err(report::InputError { rendered: format!("error: {e}\n") }),
             }
         }
-        Some(Command::Equiv {
-            a,
-            b,
-            map,
-            outputs,
-            timers_b,
-            cycle_b,
-            head,
-            notation,
-            compilation,
-            tail,
-        }) => {
+        Some(Command::Equiv { a, b, map, outputs, timers_b, cycle_b, common }) => {
             let b_plcopen = ii_prove::ladder::plcopen::Selection {
-                cycle_us: cycle_b.or(compilation.cycle),
-                ..compilation.selection()
+                cycle_us: cycle_b.or(common.compilation.cycle),
+                ..common.compilation.selection()
             };
             let equiv = report::equiv::EquivOptions {
                 map,
@@ -478,11 +469,11 @@ fn main() -> ExitCode {
                 b_plcopen: Some(b_plcopen),
             };
             let run = Run { files: vec![a.clone(), b.clone()], equiv: Some((a, b, equiv)) };
-            return prove(run, head, notation, compilation, tail);
+            return prove(run, common);
         }
         None => {
             let run = Run { files: cli.files, equiv: None };
-            return prove(run, cli.head, cli.notation, cli.compilation, cli.tail);
+            return prove(run, cli.common);
         }
     };
     match result {
@@ -511,13 +502,8 @@ struct Run {
 
 /// `ii-prove [OPTIONS] FILES…` and `ii-prove equiv A B`: proves every property, printing
 /// each result as it is known.
-fn prove(
-    run: Run,
-    head: ReportHead,
-    notation: Notation,
-    compilation: Compilation,
-    tail: ReportTail,
-) -> ExitCode {
+fn prove(run: Run, common: Common) -> ExitCode {
+    let Common { head, notation, compilation, tail } = common;
     let fail = |e: report::InputError| {
         console::err(&e.rendered);
         ExitCode::from(2)

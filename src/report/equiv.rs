@@ -55,12 +55,7 @@ fn key(program: &CompiledProgram, name: &str) -> String {
 /// own `#ASSERT` properties.
 fn outputs(loaded: &LoadedProgram) -> BTreeSet<String> {
     let c = &loaded.compiled;
-    let pins: BTreeSet<String> = c
-        .signals
-        .iter()
-        .filter(|(_, k)| matches!(k, SignalKind::Output))
-        .map(|(n, _)| n.clone())
-        .collect();
+    let pins = of_kind(c, |k| matches!(k, SignalKind::Output));
     if !pins.is_empty() {
         return pins;
     }
@@ -73,11 +68,14 @@ fn outputs(loaded: &LoadedProgram) -> BTreeSet<String> {
             _ => None,
         })
         .collect();
-    c.signals
-        .iter()
-        .filter(|(n, k)| matches!(k, SignalKind::Relay) && !asserted.contains(*n))
-        .map(|(n, _)| n.clone())
-        .collect()
+    let mut relays = of_kind(c, |k| matches!(k, SignalKind::Relay));
+    relays.retain(|n| !asserted.contains(n));
+    relays
+}
+
+/// The signals of `c` of the kinds `kind` accepts.
+fn of_kind(c: &CompiledProgram, kind: impl Fn(&SignalKind) -> bool) -> BTreeSet<String> {
+    c.signals.iter().filter(|(_, k)| kind(k)).map(|(n, _)| n.clone()).collect()
 }
 
 fn has_pins(c: &CompiledProgram) -> bool {
@@ -85,11 +83,7 @@ fn has_pins(c: &CompiledProgram) -> bool {
 }
 
 fn inputs(c: &CompiledProgram) -> BTreeSet<String> {
-    c.signals
-        .iter()
-        .filter(|(_, k)| matches!(k, SignalKind::Input))
-        .map(|(n, _)| n.clone())
-        .collect()
+    of_kind(c, |k| matches!(k, SignalKind::Input))
 }
 
 /// Pairs of `a` and `b` names: exactly equal first, then by [`key`] where that is
@@ -386,8 +380,12 @@ pub fn run_equiv_with(
     for (report, _) in &lemmas {
         let Some(trace) = &report.trace else { continue };
         let mut message = format!(
-            "state correspondence {} proved by {} ({} lines): the outputs' proofs may cite it as `{}`",
-            report.statement, trace.method, trace.length, report.name
+            "state correspondence {} proved by {} ({} line{}): the outputs' proofs may cite it as `{}`",
+            report.statement,
+            trace.method,
+            trace.length,
+            if trace.length == 1 { "" } else { "s" },
+            report.name
         );
         if opts.trace {
             message.extend(trace.lines.iter().map(|l| format!("\n    {l}")));
@@ -433,11 +431,7 @@ pub fn run_equiv_with(
 
 /// The bits `program` writes (outputs and internal relays).
 fn written(c: &CompiledProgram) -> BTreeSet<String> {
-    c.signals
-        .iter()
-        .filter(|(_, k)| matches!(k, SignalKind::Relay | SignalKind::Output))
-        .map(|(n, _)| n.clone())
-        .collect()
+    of_kind(c, |k| matches!(k, SignalKind::Relay | SignalKind::Output))
 }
 
 /// The state correspondence lemma `x = y` of the product, if the prover finds a proof
@@ -504,12 +498,7 @@ fn search_on_simulators(
     };
     let (x, y) = (side(&goal.lhs)?, side(&goal.rhs)?);
     let compiled = session.compiled;
-    let inputs: Vec<String> = compiled
-        .signals
-        .iter()
-        .filter(|(_, k)| matches!(k, SignalKind::Input))
-        .map(|(n, _)| n.clone())
-        .collect();
+    let inputs = inputs(compiled);
     let longest =
         compiled.timer_info.iter().filter_map(|t| usize::try_from(t.scans).ok()).max().unwrap_or(0);
     let mut lengths: Vec<usize> = vec![
