@@ -49,6 +49,26 @@ struct Cli {
     /// A program (LDmicro .ld, PLCopen .xml, Structured Text .st, Instruction List .il)
     /// and property files (.ii), or property files alone.
     files: Vec<String>,
+    #[command(flatten)]
+    common: Common,
+}
+
+/// The options of a reported run: report, notation, compilation, limits and outputs.
+#[derive(Args)]
+struct Common {
+    #[command(flatten)]
+    head: ReportHead,
+    #[command(flatten)]
+    notation: Notation,
+    #[command(flatten)]
+    compilation: Compilation,
+    #[command(flatten)]
+    tail: ReportTail,
+}
+
+/// How a run reports (the options before the notation and compilation).
+#[derive(Args)]
+struct ReportHead {
     /// Print each kernel-checked proof as a calculation.
     #[arg(long)]
     trace: bool,
@@ -58,10 +78,11 @@ struct Cli {
     /// The same as `--format json`.
     #[arg(long, conflicts_with = "format")]
     json: bool,
-    #[command(flatten)]
-    notation: Notation,
-    #[command(flatten)]
-    compilation: Compilation,
+}
+
+/// How a run reports (the options after the notation and compilation).
+#[derive(Args)]
+struct ReportTail {
     /// Time limit per property: `10`, `10s`, `500ms`, `2m` (a bare number is seconds).
     #[arg(long, default_value = "10s", value_parser = parse_timeout, value_name = "DURATION")]
     timeout: Duration,
@@ -155,7 +176,13 @@ impl Compilation {
     }
 
     fn model(&self) -> TimerModel {
-        match self.timers {
+        self.timers.model()
+    }
+}
+
+impl Timers {
+    fn model(self) -> TimerModel {
+        match self {
             Timers::Plc => TimerModel::Plc,
             Timers::Ideal => TimerModel::Ideal,
         }
@@ -239,6 +266,42 @@ enum Command {
         only: Vec<String>,
         #[command(flatten)]
         compilation: Compilation,
+    },
+    /// Compare two programs: is each output of A equal to the same output of B at every
+    /// scan, from power-up, for every input sequence?
+    ///
+    /// A and B are any programs ii-prove reads (LDmicro, PLCopen XML, .st, .il), or the
+    /// same file twice with --timers-b. Inputs and outputs are matched by name (exactly,
+    /// else without an LDmicro kind prefix and ignoring case: `XL_flow` is `L_flow`);
+    /// --map renames. An input only one program reads is free for both; an unmatched
+    /// output is not compared; both are reported. The outputs are LDmicro's `Y` pins,
+    /// or, for a language without them, every bit the code writes. B's signals are
+    /// primed in proofs and diagrams (`YL1_pump'`). One verdict per output:
+    /// `proved` (equivalent: a kernel-checked proof of `X = X'` from both programs'
+    /// equations, by the algebra or by induction over scans), `refuted` (differs: an
+    /// input sequence replayed on both programs' simulators, the scan where they part
+    /// marked) or `unknown`. Both programs must scan at the same cycle and start from
+    /// power-up (matched arbitrary start states, `--any-state`, are not implemented).
+    #[command(after_help = EXIT_CODES)]
+    Equiv {
+        /// The first program.
+        a: String,
+        /// The second program.
+        b: String,
+        /// Renames: a file of lines `NAME_IN_A = NAME_IN_B` (`#` comments), inputs or outputs.
+        #[arg(long, value_name = "FILE")]
+        map: Option<String>,
+        /// Compare only these outputs (either program's names, comma-separated or repeated).
+        #[arg(long, value_name = "NAMES", value_delimiter = ',')]
+        outputs: Vec<String>,
+        /// How B's timers are compiled (default: as --timers).
+        #[arg(long, value_enum, value_name = "MODEL")]
+        timers_b: Option<Timers>,
+        /// B's scan cycle, for a PLCopen, ST or IL program (default: as --cycle).
+        #[arg(long, value_parser = parse_cycle, value_name = "DURATION")]
+        cycle_b: Option<u64>,
+        #[command(flatten)]
+        common: Common,
     },
     /// Print a shell completion script, or install it with `--install` (e.g. `ii-prove completions bash --install`).
     Completions {
@@ -394,7 +457,24 @@ fn main() -> ExitCode {
                 Err(e) => Err(report::InputError { rendered: format!("error: {e}\n") }),
             }
         }
-        None => return prove(cli),
+        Some(Command::Equiv { a, b, map, outputs, timers_b, cycle_b, common }) => {
+            let b_plcopen = ii_prove::ladder::plcopen::Selection {
+                cycle_us: cycle_b.or(common.compilation.cycle),
+                ..common.compilation.selection()
+            };
+            let equiv = report::equiv::EquivOptions {
+                map,
+                outputs,
+                b_timers: timers_b.map(Timers::model),
+                b_plcopen: Some(b_plcopen),
+            };
+            let run = Run { files: vec![a.clone(), b.clone()], equiv: Some((a, b, equiv)) };
+            return prove(run, common);
+        }
+        None => {
+            let run = Run { files: cli.files, equiv: None };
+            return prove(run, cli.common);
+        }
     };
     match result {
         Ok((text, code)) => {
@@ -411,49 +491,63 @@ fn main() -> ExitCode {
     }
 }
 
-/// `ii-prove [OPTIONS] FILES…`: proves every property, printing each result as it is known.
-fn prove(cli: Cli) -> ExitCode {
+/// What a reported run checks: a program's (or free signals') properties, or two
+/// programs' equivalence.
+struct Run {
+    /// The files on the command line.
+    files: Vec<String>,
+    /// `equiv A B`: the two programs and what to compare.
+    equiv: Option<(String, String, report::equiv::EquivOptions)>,
+}
+
+/// `ii-prove [OPTIONS] FILES…` and `ii-prove equiv A B`: proves every property, printing
+/// each result as it is known.
+fn prove(run: Run, common: Common) -> ExitCode {
+    let Common { head, notation, compilation, tail } = common;
     let fail = |e: report::InputError| {
         console::err(&e.rendered);
         ExitCode::from(2)
     };
-    if cli.files.is_empty() {
+    if run.files.is_empty() {
         console::err(
             "error: no input files\n\nUsage: ii-prove [OPTIONS] [FILES]...\nFor more information, try '--help'.\n",
         );
         return ExitCode::from(2);
     }
     let opts = Options {
-        trace: cli.trace,
-        ascii: cli.notation.ascii,
-        timeout: cli.timeout,
-        only: cli.only.clone(),
-        deny_vacuous: cli.deny.contains(&Deny::Vacuous),
-        timers: cli.compilation.model(),
-        plcopen: cli.compilation.selection(),
-        jobs: cli.jobs.map_or_else(
+        trace: head.trace,
+        ascii: notation.ascii,
+        timeout: tail.timeout,
+        only: tail.only.clone(),
+        deny_vacuous: tail.deny.contains(&Deny::Vacuous),
+        timers: compilation.model(),
+        plcopen: compilation.selection(),
+        jobs: tail.jobs.map_or_else(
             || std::thread::available_parallelism().map_or(1, usize::from),
             usize::from,
         ),
-        proof_text: cli.trace
-            || cli.json
-            || matches!(cli.format, Format::Json | Format::Html)
-            || cli.html.is_some(),
+        proof_text: head.trace
+            || head.json
+            || matches!(head.format, Format::Json | Format::Html)
+            || tail.html.is_some(),
     };
-    let format = if cli.json { Format::Json } else { cli.format };
+    let format = if head.json { Format::Json } else { head.format };
     let outputs = report::export::Outputs {
-        vcd: cli.vcd.as_deref(),
-        wavedrom: cli.wavedrom.as_deref(),
-        html: cli.html.as_deref(),
+        vcd: tail.vcd.as_deref(),
+        wavedrom: tail.wavedrom.as_deref(),
+        html: tail.html.as_deref(),
     };
     if let Err(e) = report::export::check_outputs(&outputs) {
         return fail(e);
     }
-    let inputs = match report::classify(&cli.files) {
-        Ok(inputs) => inputs,
-        Err(e) => return fail(e),
+    let inputs = match &run.equiv {
+        Some((a, b, _)) => report::Inputs { program: Some(a.clone()), properties: vec![b.clone()] },
+        None => match report::classify(&run.files) {
+            Ok(inputs) => inputs,
+            Err(e) => return fail(e),
+        },
     };
-    let color = match cli.color {
+    let color = match tail.color {
         Color::Always => true,
         Color::Never => false,
         Color::Auto => std::io::stdout().is_terminal() && std::env::var_os("NO_COLOR").is_none(),
@@ -465,15 +559,18 @@ fn prove(cli: Cli) -> ExitCode {
         ConsoleOptions {
             format,
             paint: Paint { enabled: color && format == Format::Text },
-            quiet: cli.quiet,
+            quiet: tail.quiet,
             progress: true,
             results_to_stderr: outputs.to_stdout(),
         },
     );
     console.exit_on_interrupt();
-    let run = match &inputs.program {
-        Some(program) => report::run_program_with(program, &inputs.properties, &opts, &mut console),
-        None => report::run_free_with(&inputs.properties, &opts, &mut console),
+    let run = match (&run.equiv, &inputs.program) {
+        (Some((a, b, equiv)), _) => report::equiv::run_equiv_with(a, b, &opts, equiv, &mut console),
+        (None, Some(program)) => {
+            report::run_program_with(program, &inputs.properties, &opts, &mut console)
+        }
+        (None, None) => report::run_free_with(&inputs.properties, &opts, &mut console),
     };
     let run = match run {
         Ok(run) => run,

@@ -371,6 +371,24 @@ pub fn refute(program: &Program, goal: &Obligation, limits: Limits) -> Verdict {
     }
 }
 
+/// Confirms a run found another way (a search on the scan simulators, whose inputs
+/// change anywhere): the same two checks as [`refute`]'s candidates, after the trace is
+/// cut at its first violation and minimised.
+pub fn confirm(program: &Program, goal: &Obligation, trace: ScanTrace, limits: Limits) -> Verdict {
+    let Some(cycle) = program.cycle() else {
+        return Verdict::NotFound {
+            why: "the program has a zero cycle time".into(),
+            complete: true,
+        };
+    };
+    let model = program.model(&[&goal.lhs, &goal.rhs]);
+    match judge(program, &model, goal, trace, &cycle, limits) {
+        Ok(Judged::Both(c)) => Verdict::Refuted(c),
+        Ok(Judged::ExactOnly(c, why)) => Verdict::Unconfirmed { candidate: c, why },
+        Err(why) => Verdict::NotFound { why, complete: false },
+    }
+}
+
 /// One SAT query: a run of `k` steps violating the goal at the last one, as free values.
 fn bmc(
     model: &Model,

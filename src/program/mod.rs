@@ -17,6 +17,7 @@ pub mod bitvec;
 pub mod compile;
 pub mod logic;
 pub mod names;
+pub mod product;
 pub mod simulate;
 
 use std::collections::{BTreeMap, BTreeSet};

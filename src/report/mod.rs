@@ -9,6 +9,7 @@
 
 pub mod aiger;
 pub mod console;
+pub mod equiv;
 pub mod export;
 pub mod formats;
 pub mod html;

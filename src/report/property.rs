@@ -173,35 +173,7 @@ pub fn check_property(
     match attempt(ctx, &goal, hypotheses, opts, rename, program) {
         Attempt::Proved(proved) => {
             report.status = Status::Proved;
-            // Through shared lemmas a theorem may rest on much of the program: the sets
-            // are gathered only for a report that shows them.
-            let (laws, hypotheses) = match opts.proof_text {
-                true => proved.theorem.axioms_used(),
-                false => Default::default(),
-            };
-            report.trace = Some(Box::new(TraceReport {
-                method: match proved.method {
-                    prover::Method::Saturation => "saturation".into(),
-                    prover::Method::CaseSplit => "case-split".into(),
-                    prover::Method::Induction => "induction".into(),
-                },
-                lines: if opts.proof_text {
-                    trace::render(&proved, goal.rel, &style)
-                } else {
-                    Vec::new()
-                },
-                length: trace::length(&proved),
-                steps: if opts.proof_text {
-                    trace::atomic_steps(&proved, &style)
-                        .into_iter()
-                        .map(|(rule, kind, term)| StepReport { rule, kind: kind.into(), term })
-                        .collect()
-                } else {
-                    Vec::new()
-                },
-                hypotheses: hypotheses.into_iter().collect(),
-                laws: laws.into_iter().collect(),
-            }));
+            report.trace = Some(Box::new(trace_report(&proved, goal.rel, opts, &style)));
         }
         Attempt::Refuted(c) => {
             report.status = Status::Refuted;
@@ -214,6 +186,40 @@ pub fn check_property(
     }
     report.time_ms = started.elapsed().as_secs_f64() * 1e3;
     report
+}
+
+/// A checked proof as the report shows it.
+pub(super) fn trace_report(
+    proved: &prover::Proved,
+    rel: Rel,
+    opts: &Options,
+    style: &trace::Style,
+) -> TraceReport {
+    // Through shared lemmas a theorem may rest on much of the program: the sets
+    // are gathered only for a report that shows them.
+    let (laws, hypotheses) = match opts.proof_text {
+        true => proved.theorem.axioms_used(),
+        false => Default::default(),
+    };
+    TraceReport {
+        method: match proved.method {
+            prover::Method::Saturation => "saturation".into(),
+            prover::Method::CaseSplit => "case-split".into(),
+            prover::Method::Induction => "induction".into(),
+        },
+        lines: if opts.proof_text { trace::render(proved, rel, style) } else { Vec::new() },
+        length: trace::length(proved),
+        steps: if opts.proof_text {
+            trace::atomic_steps(proved, style)
+                .into_iter()
+                .map(|(rule, kind, term)| StepReport { rule, kind: kind.into(), term })
+                .collect()
+        } else {
+            Vec::new()
+        },
+        hypotheses: hypotheses.into_iter().collect(),
+        laws: laws.into_iter().collect(),
+    }
 }
 
 /// The share of `--timeout` the proof search may use.
@@ -298,7 +304,7 @@ fn not_found(why: String) -> Search {
 
 /// A program counterexample for people: the inputs that are not always 0, the signals
 /// the property reads, its two sides; the violation marked.
-fn program_counterexample(
+pub(super) fn program_counterexample(
     session: &counterexample::Program,
     goal: &Obligation,
     c: &Counterexample,
