@@ -471,10 +471,11 @@ impl Kernel {
             }
             Rule::Cite(source, name, how) => {
                 let lemma = lemmas.get(name).filter(|_| *source == Source::Lemma);
+                // In a base case a lemma or a hypothesis reads as at the first scan.
+                let read = |e: &Expr| if self.first_scan { at_first_scan(e) } else { e.clone() };
                 let lemma_axiom =
-                    lemma.map(|t| Axiom::ground(name, t.lhs.clone(), t.rel, t.rhs.clone()));
+                    lemma.map(|t| Axiom::ground(name, read(&t.lhs), t.rel, read(&t.rhs)));
                 let hyp = self.hyp_names.get(name).map(|&i| &self.hyps[i]);
-                // In a base case a hypothesis reads as at the first scan.
                 let first = hyp.filter(|_| self.first_scan).map(|h| {
                     Axiom::ground(name, at_first_scan(&h.lhs), h.rel, at_first_scan(&h.rhs))
                 });

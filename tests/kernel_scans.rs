@@ -257,3 +257,57 @@ fn on_scans_every_delay_is_a_whole_number_of_cycles() {
     assert!(matches!(built, Err(KernelError::BadAxiom(_))), "{built:?}");
     assert!(Kernel::for_scans(laws(), vec![hyp], ms(5)).is_ok());
 }
+
+/// A lemma holds at every scan, so in an induction's base it reads as at the first scan
+/// (each `pre f` replaced by the value `f` has before it), as a hypothesis does; its
+/// reading at other scans is not the base's.
+#[test]
+fn in_a_base_case_a_lemma_reads_as_at_the_first_scan() {
+    let mut all = laws();
+    all.push(law("not_zero", "(! 0*)", Rel::Eq, "1*", &[]));
+    let hyps = vec![Axiom::ground("H", sexp("Z"), Rel::Eq, sexp("(pre Z)"))];
+    let kernel = Kernel::for_scans(all, hyps, ms(1)).expect("well-formed axioms");
+    let step = |path: &[usize], source, name: &str, how, after: &str| Step {
+        path: path.to_vec(),
+        rule: Rule::Cite(source, name.into(), how),
+        after: sexp(after),
+        subst: vec![],
+        premises: vec![],
+    };
+    let lemma = Proof::Chain {
+        start: sexp("Z"),
+        steps: vec![step(&[], Source::Hypothesis, "H", Use::Forward, "(pre Z)")],
+    };
+    let certificate = |base_steps: Vec<Step>| Certificate {
+        lemmas: vec![
+            ("m".into(), lemma.clone()),
+            (
+                "inv".into(),
+                Proof::Induction {
+                    inv: sexp("(! Z)"),
+                    base: Box::new(Proof::Symm(Box::new(Proof::Chain {
+                        start: sexp("(! Z)"),
+                        steps: base_steps,
+                    }))),
+                    step: Box::new(Proof::Chain {
+                        start: sexp("(pre (! Z))"),
+                        steps: vec![
+                            step(&[], Source::Law, "pre_not", Use::Forward, "(! (pre Z))"),
+                            step(&[0], Source::Lemma, "m", Use::Backward, "(! Z)"),
+                        ],
+                    }),
+                },
+            ),
+        ],
+        main: Some(Proof::Chain { start: sexp("(! Z)"), steps: vec![] }),
+    };
+    // At the first scan `m` reads `Z = 0*`.
+    let first = certificate(vec![
+        step(&[0], Source::Lemma, "m", Use::Forward, "(! 0*)"),
+        step(&[], Source::Law, "not_zero", Use::Forward, "1*"),
+    ]);
+    kernel.check(&first).expect("the lemma's first-scan reading");
+    // Its reading at other scans, `Z = pre Z`, is not the base's.
+    let later = certificate(vec![step(&[0], Source::Lemma, "m", Use::Forward, "(! (pre Z))")]);
+    assert!(kernel.check(&later).is_err());
+}

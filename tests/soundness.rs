@@ -14,7 +14,8 @@ fn data(folder: &str) -> PathBuf {
 }
 
 fn opts() -> Options {
-    Options { timeout: Duration::from_secs(5), ..Options::default() }
+    // As tests/verdicts.rs: a timer invariant is found and checked within seconds.
+    Options { timeout: Duration::from_secs(20), ..Options::default() }
 }
 
 /// Every `NAME.ld` of `proves_programs/` with its `NAME.ii`: every property proved.

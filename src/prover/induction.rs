@@ -23,6 +23,7 @@
 use std::collections::{BTreeSet, HashMap};
 use std::time::Instant;
 
+use super::timing::{self, Chains};
 use super::{Budget, Context, Method, Obligation, Proved, boolean, constraint, constraints_for};
 use crate::kernel::{Axiom, Certificate, Proof, Rel, Rule, Source, Step, Use};
 use crate::term::{
@@ -56,6 +57,8 @@ pub struct Stalled {
     /// previous scan and now, in a model where the kept clauses held before and the goal
     /// fails now.
     pub step_model: Vec<(String, Option<bool>, Option<bool>)>,
+    /// When the search also read timer chains: how many chain atoms.
+    pub timers: Option<usize>,
 }
 
 /// Where the invariant search stopped.
@@ -79,7 +82,10 @@ impl std::fmt::Display for Stalled {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let (n, bits, kept) = (self.candidates, self.state_bits, self.kept);
         let s = super::plural(bits, "", "s");
-        let over = format!("{n} candidate clauses over {bits} state bit{s}");
+        let mut over = format!("{n} candidate clauses over {bits} state bit{s}");
+        if let Some(t) = self.timers {
+            over.push_str(&format!(" and {t} timer scans"));
+        }
         match self.stop {
             Stop::NoScans => write!(f, "not available for free signals"),
             Stop::Base => write!(f, "{over}; the goal fails at the first scan of the skeleton"),
@@ -118,21 +124,65 @@ pub fn prove_as(
     deadline: Instant,
     lemma: &str,
 ) -> Result<Proved, Stalled> {
+    let chains = ctx.cycle.as_ref().filter(|_| ctx.scans).map(|cycle| {
+        let cone = ctx.cone(&[&goal.lhs, &goal.rhs], None);
+        let mut terms: Vec<&Expr> = vec![&goal.lhs, &goal.rhs];
+        terms.extend(cone.iter().flat_map(|h| [&h.lhs, &h.rhs]));
+        timing::chains(&terms, cycle, lemma)
+    });
+    let chains = chains.filter(|c| !c.chains.is_empty());
+    // With timers, a third of the time without them first (the shorter invariant).
+    let plain = match &chains {
+        Some(_) => Instant::now() + deadline.saturating_duration_since(Instant::now()) / 3,
+        None => deadline,
+    };
+    let stalled = match search(ctx, goal, budget, plain, lemma, None) {
+        Ok(proved) => return Ok(proved),
+        Err(stalled) => stalled,
+    };
+    // Timers: the same search, with how long each timer's input has been on.
+    match chains {
+        Some(chains) if Instant::now() < deadline => {
+            // The report keeps the plain search's failed step unless this one has its own.
+            search(ctx, goal, budget, deadline, lemma, Some(&chains)).map_err(|timed| {
+                if timed.stop != Stop::Step && stalled.stop == Stop::Step { stalled } else { timed }
+            })
+        }
+        _ => Err(stalled),
+    }
+}
+
+/// The Houdini search, with timer chains when given.
+fn search(
+    ctx: &Context,
+    goal: &Obligation,
+    budget: Budget,
+    deadline: Instant,
+    lemma: &str,
+    chains: Option<&Chains>,
+) -> Result<Proved, Stalled> {
     let mut stalled = Stalled {
         state_bits: 0,
         candidates: 0,
         kept: 0,
         stop: Stop::NoScans,
         step_model: Vec::new(),
+        timers: chains.map(|c| c.atoms().iter().map(Vec::len).sum()),
     };
     if !ctx.scans {
         return Err(stalled);
     }
     let cone: Vec<Axiom> = ctx.cone(&[&goal.lhs, &goal.rhs], None).into_iter().cloned().collect();
-    let goals = goal_clauses(&expand_atoms(&cone, goal));
-    let state = state_bits(&cone, goal);
+    let mut goals = goal_clauses(&expand_atoms(&cone, goal));
+    let inputs = chains.map(Chains::input_names).unwrap_or_default();
+    let state = state_bits(&cone, goal, &inputs);
+    let mut more = clauses(&state);
+    if let Some(chains) = chains {
+        goals = goals.iter().map(|g| chains.unfold(g)).collect();
+        more.extend(timing::clauses(chains, &state, &inputs));
+    }
     let mut candidates: Vec<Clause> = goals.iter().map(|g| Clause::new(g, true)).collect();
-    candidates.extend(clauses(&state).iter().map(|c| Clause::new(c, false)));
+    candidates.extend(more.iter().map(|c| Clause::new(c, false)));
     stalled.state_bits = state.len();
     stalled.candidates = candidates.len();
     let stop = |mut stalled: Stalled, stop: Stop, kept: usize| {
@@ -148,7 +198,8 @@ pub fn prove_as(
     // Base: drop what fails at the first scan.
     let mut atoms0 = boolean::Atoms::default();
     let refs: Vec<&Expr> = candidates.iter().map(|c| &c.first).collect();
-    let base_constraints = constraints_for(ctx, &first, &refs, &mut atoms0, budget, 1);
+    let mut base_constraints = constraints_for(ctx, &first, &refs, &mut atoms0, budget, 1);
+    base_constraints.extend(chains.map(Chains::at_first).unwrap_or_default());
     let fails_first = |set: &[Clause], atoms: &mut boolean::Atoms| {
         let at_first: Vec<Expr> = set.iter().map(|c| c.first.clone()).collect();
         boolean::model_of(&not(&product(&at_first)), &base_constraints, atoms)
@@ -166,7 +217,10 @@ pub fn prove_as(
     // Step: drop what is not preserved, until the rest is inductive.
     let mut atoms = boolean::Atoms::default();
     let refs: Vec<&Expr> = candidates.iter().flat_map(|c| [&c.now, &c.before]).collect();
-    let step_constraints = constraints_for(ctx, &cone, &refs, &mut atoms, budget, 1);
+    let mut step_constraints = constraints_for(ctx, &cone, &refs, &mut atoms, budget, 1);
+    if let Some(chains) = chains {
+        step_constraints.extend(chains.now.iter().chain(&chains.before).cloned());
+    }
     let inductive = |set: &[Clause], atoms: &mut boolean::Atoms| {
         let now: Vec<Expr> = set.iter().map(|c| c.now.clone()).collect();
         let before: Vec<Expr> = set.iter().map(|c| c.before.clone()).collect();
@@ -207,7 +261,11 @@ pub fn prove_as(
         };
         return Err(stop(stalled, why, candidates.len()));
     }
-    let minimise_until = Instant::now() + deadline.saturating_duration_since(Instant::now()) / 2;
+    // With timer chains every clause is proved on its own: minimising would cost more
+    // than it saves.
+    let share = if chains.is_some() { 0 } else { 2 };
+    let minimise_until = Instant::now()
+        + deadline.saturating_duration_since(Instant::now()).checked_div(share).unwrap_or_default();
     // Minimise: a clause goes when the others are still inductive; then one of the
     // goal's own clauses when the others also imply it (a shorter invariant).
     for goals_now in [false, true] {
@@ -240,7 +298,7 @@ pub fn prove_as(
     }
     let kept = candidates.len();
     let candidates: Vec<Expr> = candidates.into_iter().map(|c| c.now).collect();
-    certificate(ctx, goal, (&cone, &first), &candidates, (budget, deadline), lemma)
+    certificate(ctx, goal, (&cone, &first), &candidates, (budget, deadline), (lemma, chains))
         .ok_or_else(|| stop(stalled, Stop::Certificate, kept))
 }
 
@@ -318,8 +376,9 @@ fn goal_clauses(goal: &Obligation) -> Vec<Expr> {
     out
 }
 
-/// The state bits: names whose previous value the cone reads, the goal's names first.
-fn state_bits(cone: &[Axiom], goal: &Obligation) -> Vec<String> {
+/// The state bits: names whose previous value the cone reads, the goal's names first,
+/// then `also` (the inputs of timer chains).
+fn state_bits(cone: &[Axiom], goal: &Obligation, also: &BTreeSet<String>) -> Vec<String> {
     let mut read: BTreeSet<String> = BTreeSet::new();
     for h in cone {
         for side in [&h.lhs, &h.rhs] {
@@ -343,6 +402,7 @@ fn state_bits(cone: &[Axiom], goal: &Obligation) -> Vec<String> {
             }
         }
     }
+    out.extend(also.iter().filter(|n| !out.contains(n)).cloned().collect::<Vec<_>>());
     out.extend(read.into_iter().filter(|n| !out.contains(n)).collect::<Vec<_>>());
     out.truncate(MAX_STATE);
     out
@@ -452,7 +512,7 @@ fn certificate(
     (cone, first): (&[Axiom], &[Axiom]),
     clauses: &[Expr],
     (budget, deadline): (Budget, Instant),
-    name: &str,
+    (name, chains): (&str, Option<&Chains>),
 ) -> Option<Proved> {
     let inv = product(clauses);
     let leaves = budget.cases;
@@ -461,18 +521,33 @@ fn certificate(
     let one = constant(true);
     let base_goal = and_not(&one, &inv0);
     let mut atoms = boolean::Atoms::default();
-    let base_c = constraints_for(ctx, first, &[&base_goal], &mut atoms, budget, 1);
+    let mut base_c = constraints_for(ctx, first, &[&base_goal], &mut atoms, budget, 1);
+    base_c.extend(chains.map(Chains::at_first).unwrap_or_default());
     let base = boolean::prove_zero(&base_goal, &base_c, &mut atoms, leaves, deadline).ok()?;
     // Step: `pre Inv = P` by the laws of `pre`, then `P ⇒ Inv` by cases.
     let (p, chain) = push_pre(&pre(&inv));
     let step_goal = and_not(&p, &inv);
     let mut atoms = boolean::Atoms::default();
-    let step_c = constraints_for(ctx, cone, &[&step_goal], &mut atoms, budget, 1);
-    let step = boolean::prove_zero(&step_goal, &step_c, &mut atoms, leaves, deadline).ok()?;
-    let step = Proof::Trans(
-        Box::new(Proof::Chain { start: pre(&inv), steps: chain }),
-        Box::new(Proof::ImpliesByZero(Box::new(step))),
-    );
+    let mut step_c = constraints_for(ctx, cone, &[&step_goal], &mut atoms, budget, 1);
+    if let Some(chains) = chains {
+        step_c.extend(chains.now.iter().chain(&chains.before).cloned());
+    }
+    // With timer chains the clauses are many: one case split each.
+    let mut lemmas = chains.map(|c| c.lemmas.clone()).unwrap_or_default();
+    let implied = if chains.is_some() {
+        let prove = |zero: &Expr| {
+            let mut atoms = boolean::Atoms::default();
+            boolean::prove_zero(zero, &step_c, &mut atoms, leaves, deadline).ok()
+        };
+        let (steps, proof) = timing::implies_clauses(&p, clauses, name, prove)?;
+        lemmas.extend(steps);
+        proof
+    } else {
+        let step = boolean::prove_zero(&step_goal, &step_c, &mut atoms, leaves, deadline).ok()?;
+        Proof::ImpliesByZero(Box::new(step))
+    };
+    let step =
+        Proof::Trans(Box::new(Proof::Chain { start: pre(&inv), steps: chain }), Box::new(implied));
     let lemma = Proof::Induction {
         inv: inv.clone(),
         base: Box::new(Proof::ImpliesByZero(Box::new(base))),
@@ -487,12 +562,17 @@ fn certificate(
     uses.extend(
         cone.iter().filter(|h| !mentions_pre(&h.lhs) && !mentions_pre(&h.rhs)).map(constraint),
     );
+    if let Some(chains) = chains {
+        uses.extend(chains.now.iter().cloned());
+    }
     let main = super::both_ways(goal, &mut |zero| {
         let mut atoms = boolean::Atoms::default();
         boolean::prove_zero(zero, &uses, &mut atoms, leaves, deadline)
     })
     .ok()?;
-    let certificate = Certificate { lemmas: vec![(name.into(), lemma)], main: Some(main) };
+    lemmas.push((name.into(), lemma));
+    let lemmas = timing::cited(lemmas, &main);
+    let certificate = Certificate { lemmas, main: Some(main) };
     let theorem = ctx.kernel.check_goal(&certificate, &goal.lhs, goal.rel, &goal.rhs).ok()?;
     Some(Proved {
         theorem,

@@ -14,6 +14,7 @@ pub mod induction;
 pub mod lemmas;
 pub mod normalize;
 pub mod saturate;
+pub mod timing;
 
 use std::collections::BTreeSet;
 use std::time::{Duration, Instant};
@@ -419,7 +420,8 @@ fn prove_at(
         && depth == 0
         && ctx.scans
     {
-        let share = Instant::now() + budget.time / 4;
+        // A half: with timers the search reads one atom per scan of every timer.
+        let share = Instant::now() + budget.time / 2;
         match induction::prove(ctx, goal, budget, share.min(deadline)) {
             Ok(proved) => return Outcome::Proved(Box::new(proved)),
             Err(why) => stalled = Some(Box::new(why)),
