@@ -40,10 +40,13 @@ fn program(rng: &mut Rng) -> String {
     text
 }
 
-/// A property: its `.ii` text and its meaning on a run (each signal's value per scan).
+/// A run: each signal's value per scan.
+type Run = BTreeMap<String, Vec<bool>>;
+
+/// A property: its `.ii` text and its meaning on a run.
 struct Property {
     text: String,
-    holds: Box<dyn Fn(&BTreeMap<String, Vec<bool>>) -> bool>,
+    holds: Box<dyn Fn(&Run) -> bool>,
 }
 
 /// A property over the relays and the inputs the program reads.
