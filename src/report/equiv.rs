@@ -516,14 +516,9 @@ fn search_on_simulators(
     let started = std::time::Instant::now();
     let deadline = started + opts.timeout.mul_f64(0.3).min(std::time::Duration::from_secs(3));
     let cycle = crate::semantics::Time::new(compiled.cycle_us.into(), 1_000_000u64.into());
-    // A fixed seed: the same run every time.
-    let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        state
-    };
+    // The counterexample module's fixed pseudo-random sequence: the same run every time.
+    let mut runs = counterexample::unroll::Runs64::default();
+    let mut next = move || runs.random();
     while std::time::Instant::now() < deadline {
         let segments = 1 + (next() % 3) as usize;
         let mut values: BTreeMap<String, Vec<bool>> = BTreeMap::new();
