@@ -204,6 +204,7 @@ fn compare(program: &Path, props: &Path, only: &[String], runs: u64, scans: usiz
     // The comparison atoms the properties use, defined as the export defines them.
     let with_atoms = loaded.compiled.with_atoms();
     let compiled = &with_atoms;
+    let loose = scan_eval::loose_names(compiled);
     let hyp = |name: &str, lhs, rel, rhs, known: &mut Vec<Src>| {
         let h = ii_prove::ladder::Hypothesis {
             name: name.to_string(),
@@ -218,7 +219,7 @@ fn compare(program: &Path, props: &Path, only: &[String], runs: u64, scans: usiz
             rel,
             rhs,
         };
-        Hyp::new(&h, compiled, compiled.cycle_us, known)
+        Hyp::new(&h, compiled, compiled.cycle_us, known, &loose)
     };
     let mut known = Vec::new();
     let assumed: Vec<Hyp> = report::assumptions(&doc)

@@ -580,8 +580,12 @@ fn check_program(label: &str, text: &str, program: &LdProgram, seed: u64) -> Fig
     }
     let mut known: Vec<Src> = Vec::new();
     let cycle = program.cycle_us;
-    let mut hyps: Vec<Hyp> =
-        compiled.hypotheses.iter().map(|h| Hyp::new(h, &compiled, cycle, &mut known)).collect();
+    let loose = scan_eval::loose_names(&compiled);
+    let mut hyps: Vec<Hyp> = compiled
+        .hypotheses
+        .iter()
+        .map(|h| Hyp::new(h, &compiled, cycle, &mut known, &loose))
+        .collect();
     fig.timer_terms = compiled.timer_info.iter().filter(|t| t.effective.is_some()).count() as u64;
     let longest = longest_timer(program);
     let total = (6 * (longest + 2)).clamp(64, 3_000);

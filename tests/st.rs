@@ -107,7 +107,7 @@ fn compile(
 }
 
 fn programs_to_run() -> u64 {
-    std::env::var("II_ST_PROGRAMS").ok().and_then(|v| v.parse().ok()).unwrap_or(1_000)
+    std::env::var("II_ST_PROGRAMS").ok().and_then(|v| v.parse().ok()).unwrap_or(300)
 }
 
 /// Random ST programs: every compiled equation and recurrence holds at every scan of the
@@ -171,8 +171,8 @@ fn user_function_blocks_and_functions_are_inlined() {
     assert!(got.len() == 6 && got.iter().all(|(_, v)| v == "proved"), "{got:?}");
 }
 
-/// `CASE` is a chain of choices on unconstrained comparisons (exactly one arm in the real
-/// program, any in the model: sound); a `FOR` loop with constant bounds is unrolled.
+/// `CASE` is a chain of choices on exact comparisons of the selector's bits (an integer
+/// input here); a `FOR` loop with constant bounds is unrolled.
 #[test]
 fn case_and_constant_for_loops_are_lowered() {
     let st = "tests/data/st/programs/case_and_for.st";
@@ -180,7 +180,22 @@ fn case_and_constant_for_loops_are_lowered() {
     let stdout = text(&out.stdout);
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
     assert!(stdout.contains("Blink = ¬pre Blink"), "three toggles in one scan: {stdout}");
-    assert!(stdout.contains("the label `3..5`"), "{stdout}");
+    assert!(stdout.contains("input Mode_b0, Mode_b1"), "the selector is an input: {stdout}");
+    assert!(!stdout.contains("unconstrained"), "{stdout}");
     let got = verdicts(&[st, "tests/data/st/programs/case_and_for.ii"]);
     assert!(got.len() == 5 && got.iter().all(|(_, v)| v == "proved"), "{got:?}");
+}
+
+/// Integers in ST, exact: a CTU's count, a CONSTANT preset, comparisons in `#ASSERT`s and
+/// in `.ii` atoms; the faulty preset is refuted with the count drawn, confirmed by the
+/// scan simulator.
+#[test]
+fn the_box_counter_in_st_is_proved_and_its_faulty_preset_refuted() {
+    let got = verdicts(&["examples/box.st", "examples/box.ii"]);
+    assert!(got.len() == 5 && got.iter().all(|(_, v)| v == "proved"), "{got:?}");
+    let out = ii_prove(&["examples/box_faulty.st", "examples/box.ii", "--only", "Stop"]);
+    let stdout = text(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    assert!(stdout.contains("by the scan simulator"), "{stdout}");
+    assert!(stdout.contains("Count_CV") && stdout.contains(" 10"), "the count is drawn: {stdout}");
 }

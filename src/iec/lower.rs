@@ -1,18 +1,20 @@
-//! Lowering of a Structured Text program into the scan model: declarations to bits, function-block instances and initial values; statements to blocks (one per top-level statement, named after its line); `//#ASSERT` comments to properties checked where they are written.
+//! Lowering of a Structured Text program into the scan model: declarations to bits and integers, function-block instances and initial values; statements to blocks (one per top-level statement, named after its line); `//#ASSERT` comments to properties checked where they are written.
 //!
 //! A BOOL variable is a bit; `VAR_INPUT` variables and those located at `%I` are the
 //! inputs. An initial value `TRUE` is set on the first scan, before any statement reads
-//! it (a hidden `_STARTED` bit, as for PLCopen). Function-block instances write hidden
-//! bits `T1_Q`, `R1_Q`, `SR1_Q1`: TON/TOF as timers counted as matiec counts them
-//! ([`Preset::iec`]), R_TRIG/F_TRIG as one-shots (`Q := CLK ∧ ¬M; M := CLK`), SR/RS as
-//! set and reset in the order their definitions give; TP and counters as unconstrained
-//! outputs. Integer comparisons are unconstrained with a warning; integer assignments
-//! have no Boolean effect (a warning). Loops, `CASE`, `RETURN`, user function blocks and
-//! an FB input assigned outside its call are refused with a located error.
+//! it (a hidden `_STARTED` bit, as for PLCopen). Integers (`ints`) are integers of the
+//! scan model computed as matiec's C computes them; one that cannot be computed exactly
+//! is opaque, and the program is lowered again without it. Function-block instances
+//! write hidden bits `T1_Q`, `R1_Q`, `SR1_Q1` and counts `C1_CV` (`calls`): TON/TOF/TP
+//! as timers counted as matiec counts them ([`Preset::iec`]), R_TRIG/F_TRIG as one-shots
+//! (`Q := CLK ∧ ¬M; M := CLK`), SR/RS as set and reset in the order their definitions
+//! give, CTU/CTD/CTUD as matiec's library counts. Loops other than constant `FOR`,
+//! `RETURN` and an FB input assigned outside its call are refused with a located error.
 
 mod calls;
 mod expr;
 mod il;
+mod ints;
 mod user;
 
 use calls::Fb;
@@ -22,7 +24,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use super::StError;
 use super::ast::{self, ExprKind, Ident, PouKind, StmtKind, VarClass};
 use crate::diag::{Sources, Span};
-use crate::program::{Block, BoolExpr, Inputs, Program, Stmt, WriteKind};
+use crate::program::{Block, BoolExpr, Inputs, IntVar, Program, Stmt, WriteKind};
 
 /// The cycle used when neither the task nor the command line gives one.
 pub const DEFAULT_CYCLE_US: u64 = 20_000;
@@ -53,9 +55,22 @@ pub struct Assertion {
 enum Ty {
     Bool,
     Fb(Fb, String),
+    /// An integer of a type the scan model computes.
+    Int(crate::program::IntType),
     /// An instance of a function block the file declares (its type, upper-case).
     User(String),
     Other(String),
+}
+
+impl Ty {
+    /// The type's name, for a variable holding a value that is not a BOOL.
+    fn value_type(&self) -> Option<String> {
+        match self {
+            Ty::Other(t) => Some(t.clone()),
+            Ty::Int(t) => Some(ints::type_name(*t).to_string()),
+            _ => None,
+        }
+    }
 }
 
 #[derive(Clone, Debug)]
@@ -127,40 +142,52 @@ pub fn lower(
             *count.entry(v.name.key()).or_default() += 1;
         }
     }
-    let mut l = Lowering::new(sources, cycle_us, warnings);
-    l.user = unit
-        .pous
-        .iter()
-        .filter(|p| p.kind != PouKind::Program)
-        .map(|p| (p.name.key(), p.clone()))
-        .collect();
-    let mut tables = Vec::new();
-    for r in &runs {
-        l.syms = BTreeMap::new();
-        let prefix = r.instance.map(|i| i.name.name.clone());
-        let rename = |name: &str| match &prefix {
-            Some(p) if count.get(&name.to_ascii_uppercase()).is_some_and(|n| *n > 1) => {
-                format!("{p}_{name}")
-            }
-            _ => name.to_string(),
-        };
-        l.declare(r.pou, &globals, &rename);
-        tables.push(std::mem::take(&mut l.syms));
-    }
-    for (r, table) in runs.iter().zip(tables) {
-        l.syms = table;
-        match &r.pou.body {
-            ast::Body::St(stmts) => stmts.iter().for_each(|s| l.block(s)),
-            ast::Body::Il(lines) => {
-                l.il = true;
-                l.il_body(lines)
+    // An integer found opaque while lowering changes what reads it: lowered again
+    // until no new one appears (each round adds one at least).
+    let (mut opaque, mut omitted) = (BTreeMap::new(), BTreeSet::new());
+    loop {
+        let mut l = Lowering::new(sources, cycle_us, warnings.clone());
+        l.opaque = opaque.clone();
+        l.omitted = omitted.clone();
+        l.user = unit
+            .pous
+            .iter()
+            .filter(|p| p.kind != PouKind::Program)
+            .map(|p| (p.name.key(), p.clone()))
+            .collect();
+        let mut tables = Vec::new();
+        for r in &runs {
+            l.syms = BTreeMap::new();
+            let prefix = r.instance.map(|i| i.name.name.clone());
+            let rename = |name: &str| match &prefix {
+                Some(p) if count.get(&name.to_ascii_uppercase()).is_some_and(|n| *n > 1) => {
+                    format!("{p}_{name}")
+                }
+                _ => name.to_string(),
+            };
+            l.declare(r.pou, &globals, &rename);
+            tables.push(std::mem::take(&mut l.syms));
+        }
+        for (r, table) in runs.iter().zip(tables) {
+            l.syms = table;
+            match &r.pou.body {
+                ast::Body::St(stmts) => stmts.iter().for_each(|s| l.block(s)),
+                ast::Body::Il(lines) => {
+                    l.il = true;
+                    l.il_body(lines)
+                }
             }
         }
+        if !l.errors.is_empty() {
+            return Err(l.errors);
+        }
+        if l.opaque.len() > opaque.len() || l.omitted.len() > omitted.len() {
+            (opaque, omitted) = (l.opaque, l.omitted);
+            continue;
+        }
+        l.warn_opaque();
+        return Ok(l.finish());
     }
-    if !l.errors.is_empty() {
-        return Err(l.errors);
-    }
-    Ok(l.finish())
 }
 
 /// One program instance to run each scan: the program, its task, and the prefix its
@@ -308,6 +335,18 @@ struct Lowering<'s> {
     prelude: Vec<Stmt>,
     /// Calls of user functions so far (each call's variables are its own).
     calls: usize,
+    /// The integers: (name in the scan model) → type, start value, whether an input.
+    ints: BTreeMap<String, IntVar>,
+    /// `CONSTANT` integers with their values.
+    constants: BTreeMap<String, i64>,
+    /// Integers whose value is not computed, with the reason (given; grows while
+    /// lowering, which then runs again).
+    opaque: BTreeMap<String, ints::Opaque>,
+    /// Integer globals (not located at `%Q`): inputs unless a statement writes them.
+    int_globals: BTreeSet<String>,
+    /// Counter inputs some call leaves out (instance key, pin): every call that gives
+    /// them keeps them in a hidden bit (given; grows while lowering, like `opaque`).
+    omitted: BTreeSet<(String, String)>,
 }
 
 impl<'s> Lowering<'s> {
@@ -336,6 +375,11 @@ impl<'s> Lowering<'s> {
             inlining: Vec::new(),
             prelude: Vec::new(),
             calls: 0,
+            ints: BTreeMap::new(),
+            constants: BTreeMap::new(),
+            opaque: BTreeMap::new(),
+            int_globals: BTreeSet::new(),
+            omitted: BTreeSet::new(),
         }
     }
 
@@ -398,6 +442,17 @@ impl<'s> Lowering<'s> {
                     Some(_) if input => {}
                     Some(_) => self.bad_bool_init(v),
                 }
+            }
+            if let Ty::Int(t) = ty {
+                let global = k < n_globals
+                    && !v
+                        .location
+                        .as_deref()
+                        .is_some_and(|l| l.to_ascii_uppercase().starts_with("%Q"));
+                if global {
+                    self.int_globals.insert(name.clone());
+                }
+                self.declare_int(v, &name, t, v.class == VarClass::Input);
             }
             self.constant_duration(v, &name);
             if let Ty::Fb(
@@ -557,9 +612,9 @@ impl<'s> Lowering<'s> {
                 vec![Stmt::If { branches, otherwise, span: s.span }]
             }
             StmtKind::Case(selector, arms, otherwise) => {
-                // An `IF` chain on `selector = label`: integer comparisons are
-                // unconstrained, so any arm may be taken (sound: the real selector makes
-                // exactly one of them true).
+                // An `IF` chain on `selector = label` (a label that is not computed is
+                // unconstrained, so any arm may be taken: sound, as the real selector
+                // makes exactly one of them true).
                 let mut branches = Vec::new();
                 for (labels, body) in arms {
                     let terms: Vec<BoolExpr> =
@@ -575,14 +630,45 @@ impl<'s> Lowering<'s> {
                 vec![Stmt::If { branches, otherwise, span: s.span }]
             }
             StmtKind::For(var, from, to, by, body) => {
-                let Some(count) = self.iterations(var, from, to, by.as_ref(), s.span) else {
+                let Some((first, step, count)) =
+                    self.iterations(var, from, to, by.as_ref(), s.span)
+                else {
                     return Vec::new();
                 };
-                // Unrolled: the body once per iteration (the counter is an integer, not
-                // modelled; what reads it is unconstrained).
+                // Unrolled, as matiec runs it: the counter starts at the first value and
+                // takes the next before each later iteration (it ends at the last value).
+                let counter = self.lookup(var);
                 let mut out = Vec::new();
-                for _ in 0..count {
-                    out.extend(body.iter().flat_map(|s| self.stmt(s, depth + 1)));
+                for k in 0..count.max(1) {
+                    if let Some(Sym { ty: Ty::Int(t), name, .. }) = &counter {
+                        let value = crate::program::IntExpr::Const(t.wrap(first + step * k as i64));
+                        if !self.opaque.contains_key(name) {
+                            out.push(Stmt::SetInt { target: name.clone(), value, span: var.span });
+                        }
+                    }
+                    if count > 0 {
+                        let stmts: Vec<Stmt> =
+                            body.iter().flat_map(|s| self.stmt(s, depth + 1)).collect();
+                        let writes_counter = stmts.iter().any(|s| {
+                            let mut hit = false;
+                            s.visit(
+                                &mut |s| {
+                                    hit |= matches!((s, &counter), (Stmt::SetInt { target, .. }, Some(c)) if *target == c.name)
+                                },
+                                &mut |_| {},
+                            );
+                            hit
+                        });
+                        if writes_counter {
+                            self.refuse(
+                                var.span,
+                                "a FOR loop whose body writes its counter",
+                                "the number of iterations then depends on the scan",
+                            );
+                            return Vec::new();
+                        }
+                        out.extend(stmts);
+                    }
                 }
                 out
             }
@@ -661,6 +747,19 @@ impl<'s> Lowering<'s> {
                 let v = self.bool_expr(value);
                 vec![Stmt::Write { target: sym.name, kind: WriteKind::Assign, value: v, span }]
             }
+            Ty::Int(_) if self.ints.get(&sym.name).is_some_and(|v| v.input) => {
+                self.errors.push(StError::new(id.span, format!("`{}` is an input, written from outside the program", sym.name), "what a statement reads would depend on when that write comes; assign a local or output variable instead"));
+                Vec::new()
+            }
+            Ty::Int(_) if self.constants.contains_key(&sym.name) => {
+                self.errors.push(StError::new(
+                    id.span,
+                    format!("`{}` is a CONSTANT", sym.name),
+                    "a constant is not assigned",
+                ));
+                Vec::new()
+            }
+            Ty::Int(t) => self.int_assign(&sym.name, t, value, span),
             Ty::Other(t) => vec![integer_write(span, ":=", &t, &sym.name)],
             Ty::Fb(..) | Ty::User(_) => {
                 self.refuse(id.span, "assigning a function-block instance", "call it instead");
@@ -690,16 +789,28 @@ impl<'s> Lowering<'s> {
         let mut written = BTreeSet::new();
         for s in self.blocks.iter().flat_map(|b| &b.stmts) {
             s.visit(
-                &mut |s| {
-                    if let Stmt::Write { target, .. } = s {
+                &mut |s| match s {
+                    Stmt::Write { target, .. } | Stmt::SetInt { target, .. } => {
                         written.insert(target.clone());
                     }
+                    _ => {}
                 },
                 &mut |_| {},
             );
         }
         let outside: Vec<String> = self.globals.difference(&written).cloned().collect();
         self.inputs.extend(outside);
+        for x in self.int_globals.difference(&written) {
+            if let Some(v) = self.ints.get_mut(x) {
+                *v = IntVar { input: true, init: 0, ..*v };
+            }
+        }
+        // The integers computed exactly; an input's bits are inputs.
+        let opaque = &self.opaque;
+        self.ints.retain(|x, _| !opaque.contains_key(x));
+        for (x, v) in self.ints.iter().filter(|(_, v)| v.input) {
+            self.inputs.extend((0..v.ty.bits).map(|k| Program::int_bit(x, k)));
+        }
         self.starts();
         let mut signals = crate::program::bits(&self.blocks);
         let mut names = self.taken.clone();
@@ -717,7 +828,7 @@ impl<'s> Lowering<'s> {
             names,
             skipped: Vec::new(),
             integer_writers: BTreeMap::new(),
-            integers: BTreeMap::new(),
+            integers: self.ints,
             exact_names: true,
             block_noun: "line",
             language: if self.il { "an Instruction List" } else { "a Structured Text" },

@@ -100,6 +100,27 @@ pub fn mul(a: &[L], b: &[L], name: Namer) -> Bits {
 /// wrapped to the width of `a` (so `min / −1` is `min`), by restoring division of the
 /// magnitudes and the sign put back.
 pub fn div(a: &[L], k: i64, ty: IntType, name: Namer) -> Bits {
+    let (q, _, _) = divide(a, k, ty, name);
+    q
+}
+
+/// `a % k` as C computes it (truncated division: the remainder takes the sign of `a`),
+/// for a value `a` of type `ty` and a literal `k ≠ 0`, in the width of `a`.
+pub fn rem(a: &[L], k: i64, ty: IntType, name: Namer) -> Bits {
+    let w = a.len();
+    let (_, r, negative) = divide(a, k, ty, name);
+    let r = resize(
+        r,
+        IntType { bits: (w + 2) as u32, signed: false },
+        IntType { bits: w as u32, signed: ty.signed },
+    );
+    let minus_r = sub(&constant(0, w as u32), &r, name);
+    r.iter().zip(&minus_r).map(|(x, y)| mux(&negative, y, x)).collect()
+}
+
+/// The quotient (in the width of `a`), the remainder's magnitude (in `w + 2` bits) and
+/// whether `a` is negative, by restoring division of magnitudes.
+fn divide(a: &[L], k: i64, ty: IntType, name: Namer) -> (Bits, Bits, L) {
     let w = a.len();
     // |a| in w + 1 bits (|min| fits there), the remainder in w + 2 (it stays below 2·|k|).
     let (wide, rw) = (w + 1, w + 2);
@@ -122,9 +143,10 @@ pub fn div(a: &[L], k: i64, ty: IntType, name: Namer) -> Bits {
         q[i] = fits;
     }
     // The quotient is negative when exactly one side is.
-    let flip = if k < 0 { simp(&negative.negate()) } else { negative };
+    let flip = if k < 0 { simp(&negative.clone().negate()) } else { negative.clone() };
     let minus_q = sub(&constant(0, wide as u32), &q, name);
-    q.iter().zip(&minus_q).take(w).map(|(x, y)| mux(&flip, y, x)).collect()
+    let q = q.iter().zip(&minus_q).take(w).map(|(x, y)| mux(&flip, y, x)).collect();
+    (q, r, negative)
 }
 
 /// `a op b` for two values of type `ty`.
@@ -215,6 +237,8 @@ mod tests {
                     if vy != 0 {
                         let quotient = div(&a, vy, ty, &mut keep);
                         assert_eq!(read(&quotient), ty.wrap(vx.wrapping_div(vy)), "{vx} / {vy}");
+                        let remainder = rem(&a, vy, ty, &mut keep);
+                        assert_eq!(read(&remainder), ty.wrap(vx.wrapping_rem(vy)), "{vx} % {vy}");
                     }
                 }
             }

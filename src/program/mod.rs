@@ -151,6 +151,13 @@ pub enum IntExpr {
     /// `k` that is not 0: a division by 0 is what a runtime leaves undefined, so a front
     /// end lowers only divisions by nonzero literals here.
     Div(Box<IntExpr>, i64),
+    /// `a % k` for a literal `k` that is not 0, as C computes it: the remainder of the
+    /// division truncated toward zero, with the sign of `a`.
+    Mod(Box<IntExpr>, i64),
+    /// `a` computed in the type given (every operation wraps to it), then converted into
+    /// the type of the context (sign- or zero-extended, or wrapped): C's arithmetic in
+    /// `int` for values narrower than 32 bits, and the `*_TO_*` conversions.
+    Cast(Box<IntExpr>, IntType),
     /// `if c then a else b`.
     Ite(Box<BoolExpr>, Box<IntExpr>, Box<IntExpr>),
 }
@@ -186,7 +193,7 @@ impl IntExpr {
                 a.visit(int, boolean);
                 b.visit(int, boolean);
             }
-            IntExpr::Div(a, _) => a.visit(int, boolean),
+            IntExpr::Div(a, _) | IntExpr::Mod(a, _) | IntExpr::Cast(a, _) => a.visit(int, boolean),
             IntExpr::Ite(c, a, b) => {
                 walk(c, boolean);
                 a.visit(int, boolean);
@@ -497,7 +504,7 @@ pub fn int_walk_mut(e: &mut IntExpr, f: &mut dyn FnMut(&mut BoolExpr)) {
             int_walk_mut(a, f);
             int_walk_mut(b, f);
         }
-        IntExpr::Div(a, _) => int_walk_mut(a, f),
+        IntExpr::Div(a, _) | IntExpr::Mod(a, _) | IntExpr::Cast(a, _) => int_walk_mut(a, f),
         IntExpr::Ite(c, a, b) => {
             walk_mut(c, f);
             int_walk_mut(a, f);

@@ -92,6 +92,14 @@ impl Simulator {
                 self.current.insert(n.clone(), V::of(*v));
             }
         }
+        // An input integer: the value of its bits as given (missing bits 0).
+        for (x, var) in self.program.integers.iter().filter(|(_, v)| v.input) {
+            let bits: Vec<bool> = (0..var.ty.bits)
+                .map(|k| inputs.get(&Program::int_bit(x, k)).copied().unwrap_or(false))
+                .collect();
+            let value = super::bitvec::value_of(&bits, var.ty);
+            self.ints.insert(x.clone(), N { value, known: true });
+        }
         self.temps.clear();
         self.next_count = 0;
         self.next_memory = 0;
@@ -228,6 +236,14 @@ impl Simulator {
             IntExpr::Div(a, k) => {
                 let a = self.int_value(a, ty);
                 N { value: ty.wrap(a.value.wrapping_div(*k)), known: a.known }
+            }
+            IntExpr::Mod(a, k) => {
+                let a = self.int_value(a, ty);
+                N { value: ty.wrap(a.value.wrapping_rem(*k)), known: a.known }
+            }
+            IntExpr::Cast(a, inner) => {
+                let a = self.int_value(a, *inner);
+                N { value: ty.wrap(a.value), known: a.known }
             }
             IntExpr::Ite(c, a, b) => {
                 let c = self.eval(c);

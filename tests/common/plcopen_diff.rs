@@ -553,8 +553,12 @@ pub fn prepare(
     }
     let cycle = plc.cycle_us;
     let mut known: Vec<Src> = Vec::new();
-    let hyps: Vec<Hyp> =
-        compiled.hypotheses.iter().map(|h| Hyp::new(h, &compiled, cycle, &mut known)).collect();
+    let loose = super::scan_eval::loose_names(&compiled);
+    let hyps: Vec<Hyp> = compiled
+        .hypotheses
+        .iter()
+        .map(|h| Hyp::new(h, &compiled, cycle, &mut known, &loose))
+        .collect();
     let mut one_shots = 0;
     for e in lowered.program.blocks.iter().flat_map(|b| &b.stmts).filter_map(|s| s.expr()) {
         walk(e, &mut |x| one_shots += usize::from(matches!(x, BoolExpr::Edge { .. })));

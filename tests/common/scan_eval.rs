@@ -133,6 +133,7 @@ impl Hyp {
         c: &CompiledProgram,
         cycle_us: u64,
         known: &mut Vec<Src>,
+        loose: &BTreeSet<String>,
     ) -> Hyp {
         let mut nodes = Vec::new();
         let mut free: Vec<String> = Vec::new();
@@ -209,7 +210,7 @@ impl Hyp {
                                 Node::Known(slot(known, src))
                             }
                             Some(SignalKind::Intermediate { .. } | SignalKind::Atom)
-                                if !loose(c, s, &mut Vec::new()) =>
+                                if !loose.contains(s) =>
                             {
                                 Node::Known(slot(known, Src::Defined(s.to_string())))
                             }
@@ -412,28 +413,52 @@ impl Hyp {
     }
 }
 
-/// Whether the defined name `n` depends (through its equation, transitively) on an
-/// unconstrained signal; `seen` guards against cycles.
-fn loose(c: &CompiledProgram, n: &str, seen: &mut Vec<String>) -> bool {
-    if seen.iter().any(|x| x == n) {
-        return false;
-    }
-    seen.push(n.to_string());
-    let Some(h) = c
-        .hypotheses
-        .iter()
-        .find(|h| matches!(&h.lhs[ii_prove::term::root(&h.lhs)], Term::Name(x) if x.as_str() == n))
-    else {
-        return true;
+/// The defined names (intermediate values, atoms) that depend, through their equations
+/// and transitively, on an unconstrained signal (or have no equation).
+pub fn loose_names(c: &CompiledProgram) -> BTreeSet<String> {
+    let defined = |n: &str| {
+        matches!(c.signals.get(n), Some(SignalKind::Intermediate { .. } | SignalKind::Atom))
     };
-    h.rhs.as_ref().iter().any(|t| match t {
-        Term::Name(x) => match c.signals.get(x.as_str()) {
-            Some(SignalKind::Fresh { .. }) => true,
-            Some(SignalKind::Intermediate { .. } | SignalKind::Atom) => loose(c, x.as_str(), seen),
-            _ => false,
-        },
-        _ => false,
-    })
+    let mut equations: std::collections::BTreeMap<&str, &ii_prove::ladder::Hypothesis> =
+        std::collections::BTreeMap::new();
+    for h in &c.hypotheses {
+        if let Term::Name(x) = &h.lhs[ii_prove::term::root(&h.lhs)]
+            && defined(x.as_str())
+        {
+            equations.entry(x.as_str()).or_insert(h);
+        }
+    }
+    let mut loose: BTreeSet<String> = c
+        .signals
+        .keys()
+        .filter(|n| defined(n) && !equations.contains_key(n.as_str()))
+        .cloned()
+        .collect();
+    // To a fixpoint: each round adds the names whose equation reads a loose one.
+    loop {
+        let before = loose.len();
+        for (n, h) in &equations {
+            if loose.contains(*n) {
+                continue;
+            }
+            let reads_loose = h.rhs.as_ref().iter().any(|t| match t {
+                Term::Name(x) => match c.signals.get(x.as_str()) {
+                    Some(SignalKind::Fresh { .. }) => true,
+                    Some(SignalKind::Intermediate { .. } | SignalKind::Atom) => {
+                        loose.contains(x.as_str())
+                    }
+                    _ => false,
+                },
+                _ => false,
+            });
+            if reads_loose {
+                loose.insert(n.to_string());
+            }
+        }
+        if loose.len() == before {
+            return loose;
+        }
+    }
 }
 
 pub fn slot(known: &mut Vec<Src>, src: Src) -> usize {
@@ -466,8 +491,12 @@ pub fn check_scans(
     each: &mut dyn FnMut(usize, &ii_prove::program::simulate::Simulator) -> Result<(), String>,
 ) -> Result<Checked, String> {
     let mut known: Vec<Src> = Vec::new();
-    let mut hyps: Vec<Hyp> =
-        compiled.hypotheses.iter().map(|h| Hyp::new(h, compiled, cycle_us, &mut known)).collect();
+    let loose = loose_names(compiled);
+    let mut hyps: Vec<Hyp> = compiled
+        .hypotheses
+        .iter()
+        .map(|h| Hyp::new(h, compiled, cycle_us, &mut known, &loose))
+        .collect();
     let mut sim =
         ii_prove::program::simulate::Simulator::new(program, ii_prove::ladder::TimerModel::Plc);
     let mut vals = Vec::new();

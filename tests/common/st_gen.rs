@@ -1,4 +1,4 @@
-//! Random Structured Text programs for the differential tests: Boolean assignments, IF/ELSIF/ELSE, every modelled function block (TON, TOF, R_TRIG, F_TRIG, SR, RS) with formal inputs and outputs, user functions and function blocks (inputs left out keep their values), FOR loops with constant bounds, the Boolean operators and functions, initial values, and a configuration giving the cycle.
+//! Random Structured Text programs for the differential tests: Boolean assignments, IF/ELSIF/ELSE, every modelled function block (TON, TOF, TP, R_TRIG, F_TRIG, SR, RS, CTU, CTD, CTUD) with formal inputs and outputs, user functions and function blocks (inputs left out keep their values), FOR loops with constant bounds, the Boolean operators and functions, integers of every 8- to 32-bit type (arithmetic, division and MOD by literals, conversions, MIN/MAX/LIMIT/ABS/SEL, comparisons, CASE, integer inputs), initial values, and a configuration giving the cycle.
 #![allow(dead_code)]
 
 use super::rng::Rng;
@@ -15,6 +15,24 @@ pub struct Generated {
     pub bits: Vec<String>,
     /// The scan cycle, in µs.
     pub cycle_us: u64,
+    /// The integer variables worth comparing (name, IEC type), counts (`C0.CV`) included.
+    pub ints: Vec<(String, String)>,
+    /// The integer inputs (name, width): the schedule gives their bits `X_b0 …`.
+    pub int_inputs: Vec<(String, u32)>,
+}
+
+/// Integer types: (name, bits, signed).
+const INT_TYPES: [(&str, u32, bool); 6] = [
+    ("INT", 16, true),
+    ("DINT", 32, true),
+    ("SINT", 8, true),
+    ("UINT", 16, false),
+    ("USINT", 8, false),
+    ("UDINT", 32, false),
+];
+
+fn int_info(t: &str) -> (u32, bool) {
+    INT_TYPES.iter().find(|(n, _, _)| *n == t).map_or((16, true), |(_, b, s)| (*b, *s))
 }
 
 struct Gen<'r> {
@@ -25,6 +43,10 @@ struct Gen<'r> {
     writes: Vec<String>,
     /// User functions of two BOOL inputs it may call.
     funcs: Vec<String>,
+    /// Readable integers: (expression, IEC type).
+    ints: Vec<(String, String)>,
+    /// Writable integers: (name, IEC type).
+    int_writes: Vec<(String, String)>,
 }
 
 impl Gen<'_> {
@@ -33,6 +55,12 @@ impl Gen<'_> {
             return match self.rng.below(12) {
                 0 => "TRUE".into(),
                 1 => "FALSE".into(),
+                3 | 4 if !self.ints.is_empty() => {
+                    let t = self.rng.pick(&self.ints).1.clone();
+                    let (a, b) = (self.iexpr(&t, 1), self.iexpr(&t, 1));
+                    let op = *self.rng.pick(&["<", "<=", ">", ">=", "=", "<>"]);
+                    format!("({a} {op} {b})")
+                }
                 2 if !self.funcs.is_empty() => {
                     let f = self.rng.pick(&self.funcs).clone();
                     let (a, b) =
@@ -63,8 +91,98 @@ impl Gen<'_> {
     }
 
     fn assign(&mut self, indent: &str) -> String {
+        if !self.int_writes.is_empty() && self.rng.chance(35) {
+            let (x, t) = self.rng.pick(&self.int_writes).clone();
+            let depth = 1 + u32::from(int_info(&t).0 < 32 && self.rng.chance(30));
+            return format!("{indent}{x} := {};\n", self.iexpr(&t, depth));
+        }
         let x = self.rng.pick(&self.writes).clone();
         format!("{indent}{x} := {};\n", self.expr(2))
+    }
+
+    /// A literal of type `t` (mostly small, sometimes an extreme).
+    fn literal(&mut self, t: &str) -> String {
+        let (bits, signed) = int_info(t);
+        if self.rng.chance(8) {
+            let max = if signed { (1i64 << (bits - 1)) - 1 } else { (1i64 << bits) - 1 };
+            let v = if signed && self.rng.chance(50) { -max } else { max };
+            return v.to_string();
+        }
+        let v = self.rng.below(25) as i64;
+        if signed && self.rng.chance(30) { format!("-{v}") } else { v.to_string() }
+    }
+
+    /// An integer expression of type `t`.
+    fn iexpr(&mut self, t: &str, depth: u32) -> String {
+        let (bits, signed) = int_info(t);
+        let same: Vec<String> =
+            self.ints.iter().filter(|(_, u)| u == t).map(|(e, _)| e.clone()).collect();
+        if depth == 0 || self.rng.chance(30) {
+            return if !same.is_empty() && self.rng.chance(65) {
+                self.rng.pick(&same).clone()
+            } else {
+                self.literal(t)
+            };
+        }
+        let a = self.iexpr(t, depth - 1);
+        match self.rng.below(13) {
+            0 | 1 => format!("({a} + {})", self.iexpr(t, depth - 1)),
+            2 | 3 => format!("({a} - {})", self.iexpr(t, depth - 1)),
+            // A product of two 32-bit variables is a thousand adders: by literals there.
+            4 if int_info(t).0 < 32 && self.rng.chance(50) => {
+                format!("({a} * {})", self.iexpr(t, depth - 1))
+            }
+            4 => format!("({a} * {})", self.literal(t)),
+            5 | 6 if bits < 32 => {
+                let mut k = 1 + self.rng.below(9) as i64;
+                if signed && self.rng.chance(30) {
+                    k = -k;
+                }
+                let op = if self.rng.chance(50) { "/" } else { "MOD" };
+                format!("({a} {op} {k})")
+            }
+            7 if signed => format!("-({a})"),
+            7 => format!("MAX({a}, {})", self.iexpr(t, depth - 1)),
+            8 => format!("MIN({a}, {})", self.iexpr(t, depth - 1)),
+            9 => {
+                let b = self.iexpr(t, depth - 1);
+                format!("LIMIT({b}, {a}, {})", self.iexpr(t, depth - 1))
+            }
+            10 if signed => format!("ABS({a})"),
+            10 => format!("SEL({}, {a}, {})", self.expr(1), self.iexpr(t, depth - 1)),
+            11 => {
+                let (from, _, _) = *self.rng.pick(&INT_TYPES);
+                if from == t {
+                    return a;
+                }
+                format!("{from}_TO_{t}({})", self.iexpr(from, depth - 1))
+            }
+            _ => a,
+        }
+    }
+
+    /// A `CASE` on an integer.
+    fn case(&mut self, indent: &str, depth: u32) -> String {
+        let (x, t) = self.rng.pick(&self.ints).clone();
+        let inner = format!("{indent}  ");
+        let (_, signed) = int_info(&t);
+        let mut out = format!("{indent}CASE {x} OF\n");
+        let mut next: i64 = if signed { -2 } else { 0 };
+        for _ in 0..1 + self.rng.below(3) {
+            let label = match self.rng.below(3) {
+                0 => format!("{next}..{}", next + 2),
+                1 => format!("{next}, {}", next + 2),
+                _ => next.to_string(),
+            };
+            next += 3 + self.rng.below(3) as i64;
+            out += &format!("{indent}  {label}:\n");
+            out += &self.body(&format!("{inner}  "), depth);
+        }
+        if self.rng.chance(50) {
+            out += &format!("{indent}ELSE\n");
+            out += &self.body(&inner, depth);
+        }
+        out + &format!("{indent}END_CASE;\n")
     }
 
     fn choice(&mut self, indent: &str, depth: u32) -> String {
@@ -87,6 +205,8 @@ impl Gen<'_> {
         for _ in 0..1 + self.rng.below(3) {
             if depth > 0 && self.rng.chance(25) {
                 out += &self.choice(indent, depth - 1);
+            } else if depth > 0 && !self.ints.is_empty() && self.rng.chance(10) {
+                out += &self.case(indent, depth - 1);
             } else {
                 out += &self.assign(indent);
             }
@@ -119,7 +239,57 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
     let out_pin = |t: &str| if t == "SR" || t == "RS" { "Q1" } else { "Q" };
     let mut reads: Vec<String> = inputs.iter().chain(&locals).cloned().collect();
     reads.extend(fbs.iter().map(|(n, t)| format!("{n}.{}", out_pin(t))));
-    let mut g = Gen { rng: &mut rng, reads, writes: locals.clone(), funcs: Vec::new() };
+    // Integers: variables of random types, perhaps an input, a counter, a pulse timer.
+    let with_ints = rng.chance(40);
+    let mut int_vars: Vec<(String, String)> = Vec::new();
+    let mut int_inputs: Vec<(String, u32)> = Vec::new();
+    let mut int_input_decl = String::new();
+    let mut counter: Option<(String, &str)> = None;
+    let mut pulse = false;
+    if with_ints {
+        for k in 0..1 + rng.below(4) {
+            let (t, _, _) = *rng.pick(&INT_TYPES);
+            int_vars.push((format!("N{k}"), t.to_string()));
+        }
+        if rng.chance(35) {
+            let (t, bits, _) = *rng.pick(&INT_TYPES[..5]);
+            int_inputs.push(("Nin".into(), bits));
+            int_input_decl = format!("    Nin : {t};\n");
+        }
+        if rng.chance(50) {
+            counter = Some(("C0".into(), *rng.pick(&["CTU", "CTD", "CTUD"])));
+        }
+        pulse = rng.chance(40);
+    }
+    if let Some((c, t)) = &counter {
+        match *t {
+            "CTUD" => reads.extend([format!("{c}.QU"), format!("{c}.QD")]),
+            _ => reads.push(format!("{c}.Q")),
+        }
+    }
+    if pulse {
+        reads.push("P0.Q".into());
+    }
+    let mut int_reads = int_vars.clone();
+    if with_ints {
+        int_reads.push(("i".into(), "INT".into()));
+    }
+    if let Some((c, _)) = &counter {
+        int_reads.push((format!("{c}.CV"), "INT".into()));
+    }
+    if !int_input_decl.is_empty() {
+        let t =
+            int_input_decl.trim().trim_start_matches("Nin : ").trim_end_matches(';').to_string();
+        int_reads.push(("Nin".into(), t));
+    }
+    let mut g = Gen {
+        rng: &mut rng,
+        reads,
+        writes: locals.clone(),
+        funcs: Vec::new(),
+        ints: int_reads,
+        int_writes: int_vars.clone(),
+    };
     // User POUs: a function of two BOOLs, a function block with a state bit and perhaps a
     // timer or edge detector, called by one or two instances (an input may be left out:
     // it keeps its value from the call before).
@@ -133,6 +303,8 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
             reads: vec!["A".into(), "B".into(), "L".into()],
             writes: vec!["L".into(), "Fn0".into()],
             funcs: Vec::new(),
+            ints: Vec::new(),
+            int_writes: Vec::new(),
         };
         text += "FUNCTION Fn0 : BOOL\n  VAR_INPUT\n    A, B : BOOL;\n  END_VAR\n  VAR\n    L : BOOL;\n  END_VAR\n";
         text += &f.body("  ", 1);
@@ -151,6 +323,8 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
             reads,
             writes: vec!["O0".into(), "O1".into(), "M".into()],
             funcs: g.funcs.clone(),
+            ints: Vec::new(),
+            int_writes: Vec::new(),
         };
         let init = if f.rng.chance(50) { " := TRUE" } else { "" };
         text += "FUNCTION_BLOCK Fb0\n  VAR_INPUT\n    I0, I1 : BOOL;\n  END_VAR\n  VAR_OUTPUT\n    O0, O1 : BOOL;\n  END_VAR\n";
@@ -190,7 +364,18 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
     for i in &inputs {
         text += &format!("    {i} : BOOL;\n");
     }
+    text += &int_input_decl;
     text += "  END_VAR\n  VAR\n";
+    for (n, t) in &int_vars {
+        let init = if g.rng.chance(30) { format!(" := {}", g.literal(t)) } else { String::new() };
+        text += &format!("    {n} : {t}{init};\n");
+    }
+    if let Some((c, t)) = &counter {
+        text += &format!("    {c} : {t};\n");
+    }
+    if pulse {
+        text += "    P0 : TP;\n";
+    }
     for b in &locals {
         let init = if g.rng.chance(30) { " := TRUE" } else { "" };
         text += &format!("    {b} : BOOL{init};\n");
@@ -231,6 +416,33 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
         })
         .collect();
     calls.extend(user_calls);
+    if let Some((c, t)) = &counter {
+        let pv = if g.rng.chance(70) { g.rng.below(5).to_string() } else { g.iexpr("INT", 1) };
+        let mut args = Vec::new();
+        if *t != "CTD" {
+            args.push(format!("CU := {}", g.expr(1)));
+        }
+        if *t != "CTU" {
+            args.push(format!("CD := {}", g.expr(1)));
+        }
+        if *t != "CTD" && g.rng.chance(70) {
+            args.push(format!("R := {}", g.expr(1)));
+        }
+        if *t != "CTU" && g.rng.chance(70) {
+            args.push(format!("LD := {}", g.expr(1)));
+        }
+        args.push(format!("PV := {pv}"));
+        let ints: Vec<String> =
+            int_vars.iter().filter(|(_, u)| u == "INT").map(|(n, _)| n.clone()).collect();
+        if !ints.is_empty() && g.rng.chance(40) {
+            args.push(format!("CV => {}", g.rng.pick(&ints)));
+        }
+        calls.push(format!("  {c}({});\n", args.join(", ")));
+    }
+    if pulse {
+        let pt = g.rng.below(6) * cycle_ms * 1000 + g.rng.below(3) * 700;
+        calls.push(format!("  P0(IN := {}, PT := T#{}us);\n", g.expr(1), pt));
+    }
     let n_stmts = 3 + g.rng.below(7);
     for _ in 0..n_stmts {
         if !calls.is_empty() && g.rng.chance(30) {
@@ -263,7 +475,28 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
     let mut bits = locals;
     bits.extend(fbs.iter().map(|(n, t)| format!("{n}_{}", out_pin(t))));
     bits.extend(user_bits);
-    Generated { text, pou: "Random".into(), inputs, bits, cycle_us: cycle_ms * 1000 }
+    if let Some((c, t)) = &counter {
+        match *t {
+            "CTUD" => bits.extend([format!("{c}_QU"), format!("{c}_QD")]),
+            _ => bits.push(format!("{c}_Q")),
+        }
+    }
+    if pulse {
+        bits.push("P0_Q".into());
+    }
+    let mut ints = int_vars;
+    if let Some((c, _)) = &counter {
+        ints.push((format!("{c}.CV"), "INT".into()));
+    }
+    Generated {
+        text,
+        pou: "Random".into(),
+        inputs,
+        bits,
+        cycle_us: cycle_ms * 1000,
+        ints,
+        int_inputs,
+    }
 }
 
 /// Random values of the program's inputs for `scans` scans, each held for 1 to 12 scans.
@@ -272,7 +505,11 @@ pub fn schedule(
     seed: u64,
     scans: usize,
 ) -> Vec<std::collections::BTreeMap<String, bool>> {
-    schedule_of(&g.inputs, seed, scans)
+    let mut names = g.inputs.clone();
+    for (x, bits) in &g.int_inputs {
+        names.extend((0..*bits).map(|k| format!("{x}_b{k}")));
+    }
+    schedule_of(&names, seed, scans)
 }
 
 /// Random values of `inputs` for `scans` scans, each held for 1 to 12 scans.

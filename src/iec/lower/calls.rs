@@ -1,4 +1,4 @@
-//! Function-block calls in Structured Text, as matiec runs them: TON/TOF, R_TRIG/F_TRIG, SR/RS, and TP and the counters as unconstrained outputs; their inputs, their `=>` outputs and the hidden bits they write.
+//! Function-block calls in Structured Text, as matiec runs them: TON/TOF, TP, R_TRIG/F_TRIG, SR/RS and the counters CTU/CTD/CTUD; their inputs, their `=>` outputs and the hidden bits and integers they write.
 
 use std::collections::BTreeMap;
 
@@ -6,7 +6,10 @@ use super::{Lowering, Sym, Ty};
 use crate::diag::Span;
 use crate::iec::StError;
 use crate::iec::ast::{self, Arg, ExprKind};
-use crate::program::{BoolExpr, EdgeKind, Fresh, Memory, Preset, Stmt, Timer, WriteKind};
+use crate::program::{
+    BoolExpr, CmpOp, Compare, EdgeKind, Fresh, IntExpr, IntType, IntVar, Memory, Preset, Stmt,
+    Timer, WriteKind,
+};
 
 /// Function-block types the lowering knows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -31,7 +34,9 @@ impl Fb {
             "F_TRIG" => Fb::FTrig,
             "SR" => Fb::Sr,
             "RS" => Fb::Rs,
-            "CTU" | "CTD" | "CTUD" => Fb::Counter,
+            "CTU" | "CTD" | "CTUD" | "CTU_DINT" | "CTD_DINT" | "CTUD_DINT" | "CTU_UDINT"
+            | "CTD_UDINT" | "CTUD_UDINT" | "CTU_LINT" | "CTD_LINT" | "CTUD_LINT" | "CTU_ULINT"
+            | "CTD_ULINT" | "CTUD_ULINT" => Fb::Counter,
             _ => return None,
         })
     }
@@ -44,8 +49,9 @@ impl Fb {
             (Fb::RTrig | Fb::FTrig, _) => &["CLK"],
             (Fb::Sr, _) => &["S1", "R"],
             (Fb::Rs, _) => &["S", "R1"],
-            (Fb::Counter, "CTU") => &["CU", "R", "PV"],
-            (Fb::Counter, "CTD") => &["CD", "LD", "PV"],
+            (Fb::Counter, t) if t.starts_with("CTUD") => &["CU", "CD", "R", "LD", "PV"],
+            (Fb::Counter, t) if t.starts_with("CTU") => &["CU", "R", "PV"],
+            (Fb::Counter, t) if t.starts_with("CTD") => &["CD", "LD", "PV"],
             (Fb::Counter, _) => &["CU", "CD", "R", "LD", "PV"],
         }
     }
@@ -254,34 +260,14 @@ impl Lowering<'_> {
                 let reset = Stmt::Write { target: q, kind: WriteKind::Reset, value: r, span };
                 if fb == Fb::Sr { out.extend([reset, set]) } else { out.extend([set, reset]) }
             }
-            Fb::Tp | Fb::Counter => {
-                for (pin, e) in &inputs {
-                    if !matches!(e.kind, ExprKind::Time(_) | ExprKind::Int(_))
-                        && pin != "PT"
-                        && pin != "PV"
-                    {
-                        let _ = self.bool_expr(e);
-                    }
-                }
-                let what = if fb == Fb::Tp { "the pulse timer" } else { "the counter" };
-                for pin in fb.outputs() {
-                    let q = self.hidden(&inst, pin);
-                    let fresh = Fresh {
-                        base: format!("{ty}_{inst}_{pin}"),
-                        keyword: ty.clone(),
-                        why: format!("{what} {inst} ({ty}) is not expressible in the algebra"),
-                        span,
-                    };
-                    out.push(Stmt::Write {
-                        target: q,
-                        kind: WriteKind::Assign,
-                        value: BoolExpr::Fresh(Box::new(fresh)),
-                        span,
-                    });
-                }
-            }
+            Fb::Tp => out.extend(self.pulse(&inst, &ty, &inputs, &input, span)),
+            Fb::Counter => out.extend(self.counter(&inst, &ty, &inputs, &input, span)),
         }
         for (pin, negated, target) in outputs {
+            if fb == Fb::Counter && pin.key() == "CV" && !negated {
+                out.extend(self.counter_output(&inst, &ty, target, span));
+                continue;
+            }
             if !fb.outputs().contains(&pin.key().as_str()) {
                 self.refuse(
                     pin.span,
@@ -351,5 +337,306 @@ impl Lowering<'_> {
             }
             None => Vec::new(),
         }
+    }
+}
+
+/// How a call reads a Boolean input of the instance being called.
+type PinReader<'a, 's> = &'a dyn Fn(&mut Lowering<'s>, &str) -> BoolExpr;
+
+impl<'s> Lowering<'s> {
+    /// The count of the counter instance `inst` of type `t` (an integer of the scan
+    /// model, `{inst}_CV`, from 0).
+    pub(super) fn counter_value(&mut self, inst: &str, t: IntType) -> String {
+        let key = (inst.to_ascii_uppercase(), "CV".to_string());
+        if let Some(n) = self.hidden.get(&key) {
+            return n.clone();
+        }
+        let n = self.unique(&format!("{inst}_CV"));
+        self.hidden.insert(key, n.clone());
+        self.ints.insert(n.clone(), IntVar { ty: t, input: false, init: 0 });
+        n
+    }
+
+    /// A Boolean input of a counter: as given, else the value its last call gave
+    /// (matiec keeps an FB's inputs between calls), kept in a hidden bit.
+    fn kept_input(
+        &mut self,
+        inst: &str,
+        pin: &str,
+        inputs: &BTreeMap<String, &ast::Expr>,
+        read: PinReader<'_, 's>,
+        out: &mut Vec<Stmt>,
+        span: Span,
+    ) -> BoolExpr {
+        let key = (inst.to_ascii_uppercase(), pin.to_string());
+        let kept = self.hidden(inst, &format!("{pin}_in"));
+        if inputs.contains_key(pin) {
+            let v = read(self, pin);
+            let v = self.temp(out, v);
+            if self.omitted.contains(&key) {
+                out.push(Stmt::Write {
+                    target: kept,
+                    kind: WriteKind::Assign,
+                    value: v.clone(),
+                    span,
+                });
+            }
+            v
+        } else {
+            self.omitted.insert(key);
+            BoolExpr::var(&kept)
+        }
+    }
+
+    /// A call of the counter `inst` (CTU, CTD, CTUD and their typed variants), as
+    /// matiec's library computes it: a rising edge of `CU`/`CD` counts, within
+    /// `0 … PV`; `R` resets to 0, `LD` loads `PV`.
+    pub(super) fn counter(
+        &mut self,
+        inst: &str,
+        ty: &str,
+        inputs: &BTreeMap<String, &ast::Expr>,
+        read: PinReader<'_, 's>,
+        span: Span,
+    ) -> Vec<Stmt> {
+        let kind = ty.split('_').next().unwrap_or(ty).to_string();
+        let pv = inputs.get("PV").copied();
+        let t = super::ints::counter_type(ty);
+        let value = match (t, pv) {
+            (Some(t), Some(e)) => self.int_input(e, t).map(|v| (t, v)),
+            (None, _) => Err(format!("{ty} counts in 64 bits, which ii-prove does not compute")),
+            (Some(_), None) => {
+                self.refuse(
+                    span,
+                    &format!("a call of {inst} without PV"),
+                    "give the preset in each call",
+                );
+                Err("no PV".into())
+            }
+        };
+        let mut out = Vec::new();
+        let (t, pv) = match value {
+            Ok(v) => v,
+            Err(why) => {
+                // Not computed: the outputs are unconstrained, the count opaque.
+                for (pin, e) in inputs {
+                    if pin != "PV" {
+                        let _ = self.bool_expr(e);
+                    }
+                }
+                if let Some(t) = t {
+                    let cv = self.counter_value(inst, t);
+                    self.make_opaque(&cv, why.clone());
+                }
+                for pin in Fb::Counter.outputs() {
+                    let q = self.hidden(inst, pin);
+                    let fresh = Fresh {
+                        base: format!("{ty}_{inst}_{pin}"),
+                        keyword: ty.to_string(),
+                        why: format!("the counter {inst} ({ty}) is not computed: {why}"),
+                        span,
+                    };
+                    out.push(Stmt::Write {
+                        target: q,
+                        kind: WriteKind::Assign,
+                        value: BoolExpr::Fresh(Box::new(fresh)),
+                        span,
+                    });
+                }
+                return out;
+            }
+        };
+        let cv_name = self.counter_value(inst, t);
+        let cv = IntExpr::var(&cv_name);
+        let cmp = |op: CmpOp, a: IntExpr, b: IntExpr| {
+            BoolExpr::Compare(Box::new(Compare { op, ty: t, a, b }))
+        };
+        let edge = |l: &mut Self, out: &mut Vec<Stmt>, pin: &str, v: BoolExpr| {
+            let memory =
+                Memory { base: format!("{inst}_{pin}_T"), element: ty.to_string(), index: l.edges };
+            l.edges += 1;
+            let e = BoolExpr::Edge { kind: EdgeKind::Rising, input: Box::new(v), memory };
+            l.temp(out, e)
+        };
+        let one = || IntExpr::Const(1);
+        let up = |cv: &IntExpr| IntExpr::plus(cv.clone(), one());
+        let down = |cv: &IntExpr| IntExpr::minus(cv.clone(), one());
+        let below = cmp(CmpOp::Lt, cv.clone(), pv.clone());
+        let above_zero = cmp(CmpOp::Gt, cv.clone(), IntExpr::Const(0));
+        let (next, outputs) = match kind.as_str() {
+            "CTU" => {
+                let cu = self.kept_input(inst, "CU", inputs, read, &mut out, span);
+                let r = self.kept_input(inst, "R", inputs, read, &mut out, span);
+                let cu = edge(self, &mut out, "CU", cu);
+                let count = IntExpr::ite(BoolExpr::and(cu, below), up(&cv), cv.clone());
+                (IntExpr::ite(r, IntExpr::Const(0), count), vec![("Q", CmpOp::Ge)])
+            }
+            "CTD" => {
+                let cd = self.kept_input(inst, "CD", inputs, read, &mut out, span);
+                let ld = self.kept_input(inst, "LD", inputs, read, &mut out, span);
+                let cd = edge(self, &mut out, "CD", cd);
+                let count = IntExpr::ite(BoolExpr::and(cd, above_zero), down(&cv), cv.clone());
+                (IntExpr::ite(ld, pv.clone(), count), vec![("Q", CmpOp::Le)])
+            }
+            _ => {
+                let cu = self.kept_input(inst, "CU", inputs, read, &mut out, span);
+                let cd = self.kept_input(inst, "CD", inputs, read, &mut out, span);
+                let r = self.kept_input(inst, "R", inputs, read, &mut out, span);
+                let ld = self.kept_input(inst, "LD", inputs, read, &mut out, span);
+                // matiec's CTUD: CD_T(CD); CU_T(CU); neither counts when both rise.
+                let cd = edge(self, &mut out, "CD", cd);
+                let cu = edge(self, &mut out, "CU", cu);
+                let inc =
+                    BoolExpr::and(BoolExpr::and(cu.clone(), BoolExpr::negate(cd.clone())), below);
+                let dec = BoolExpr::and(BoolExpr::and(cd, BoolExpr::negate(cu)), above_zero);
+                let count = IntExpr::ite(inc, up(&cv), IntExpr::ite(dec, down(&cv), cv.clone()));
+                let loaded = IntExpr::ite(ld, pv.clone(), count);
+                (
+                    IntExpr::ite(r, IntExpr::Const(0), loaded),
+                    vec![("QU", CmpOp::Ge), ("QD", CmpOp::Le)],
+                )
+            }
+        };
+        out.push(Stmt::SetInt { target: cv_name, value: next, span });
+        for (pin, op) in outputs {
+            let q = self.hidden(inst, pin);
+            let bound = if op == CmpOp::Ge { pv.clone() } else { IntExpr::Const(0) };
+            out.push(Stmt::Write {
+                target: q,
+                kind: WriteKind::Assign,
+                value: cmp(op, cv.clone(), bound),
+                span,
+            });
+        }
+        // CTU and CTD have one output, `Q`; the others of the shared list stay unwritten.
+        out
+    }
+
+    /// `CV => target`: the count into an integer variable of its type.
+    fn counter_output(
+        &mut self,
+        inst: &str,
+        ty: &str,
+        target: &ast::Expr,
+        span: Span,
+    ) -> Vec<Stmt> {
+        let ExprKind::Var(id) = &target.kind else {
+            self.refuse(
+                target.span,
+                "a write into a member or array element",
+                "write it to an integer variable",
+            );
+            return Vec::new();
+        };
+        let Some(sym) = self.lookup(id) else { return Vec::new() };
+        let Some(t) = super::ints::counter_type(ty) else {
+            if let Ty::Int(_) = sym.ty {
+                self.make_opaque(&sym.name, format!("it takes the 64-bit count of {inst}"));
+            }
+            return Vec::new();
+        };
+        match sym.ty {
+            Ty::Int(u) if u == t => {
+                let cv = self.counter_value(inst, t);
+                if let Some(why) = self.opaque.get(&cv).cloned() {
+                    self.make_opaque(&sym.name, why);
+                    return Vec::new();
+                }
+                if self.opaque.contains_key(&sym.name) {
+                    return Vec::new();
+                }
+                vec![Stmt::SetInt { target: sym.name, value: IntExpr::var(&cv), span }]
+            }
+            _ => {
+                self.errors.push(StError::new(
+                    id.span,
+                    format!("`{}` does not have the type of {inst}.CV", id.name),
+                    format!("expected a variable of {ty}'s count type"),
+                ));
+                Vec::new()
+            }
+        }
+    }
+
+    /// A call of the pulse timer `inst` as matiec's library runs it: a rising edge of
+    /// `IN` while idle starts a pulse of `Q` for `PT` (at least one scan), which no edge
+    /// restarts; after it, `Q` stays off until `IN` falls. In the scan model: `Q`
+    /// (running) and a hidden `DONE` bit, the edge's memory, and an on-delay timer of
+    /// `Q` as it stood at the previous scan.
+    pub(super) fn pulse(
+        &mut self,
+        inst: &str,
+        ty: &str,
+        inputs: &BTreeMap<String, &ast::Expr>,
+        read: PinReader<'_, 's>,
+        span: Span,
+    ) -> Vec<Stmt> {
+        let mut out = Vec::new();
+        let v = read(self, "IN");
+        let pt = match inputs.get("PT").map(|e| &e.kind) {
+            Some(ExprKind::Time(us)) => Some(*us),
+            Some(ExprKind::Var(id)) => self.duration(id),
+            _ => None,
+        };
+        let q = self.hidden(inst, "Q");
+        let Some(pt) = pt else {
+            let fresh = Fresh {
+                base: format!("{ty}_{inst}_Q"),
+                keyword: ty.to_string(),
+                why: format!("the pulse timer {inst} has a preset that is not a constant duration"),
+                span,
+            };
+            out.push(Stmt::Write {
+                target: q,
+                kind: WriteKind::Assign,
+                value: BoolExpr::Fresh(Box::new(fresh)),
+                span,
+            });
+            return out;
+        };
+        let done = self.hidden(inst, "DONE");
+        let input = self.temp(&mut out, v);
+        let memory =
+            Memory { base: format!("{inst}_PREV_IN"), element: ty.to_string(), index: self.edges };
+        self.edges += 1;
+        let rise =
+            BoolExpr::Edge { kind: EdgeKind::Rising, input: Box::new(input.clone()), memory };
+        let rise = self.temp(&mut out, rise);
+        let running = self.temp(&mut out, BoolExpr::var(&q));
+        let finished = self.temp(&mut out, BoolExpr::var(&done));
+        // The pulse has lasted PT when Q has been on K = ⌈PT / cycle⌉ (at least 1) scans
+        // before this one: Q at the previous scan, on for K − 1 scans before.
+        let scans = pt.div_ceil(self.cycle_us).max(1);
+        let elapsed = if scans == 1 {
+            running.clone()
+        } else {
+            BoolExpr::Timer(Box::new(Timer {
+                on_delay: true,
+                keyword: ty.to_string(),
+                accumulator: inst.to_string(),
+                preset: Preset::iec(pt - self.cycle_us, self.cycle_us),
+                input: running.clone(),
+                span,
+            }))
+        };
+        let elapsed = self.temp(&mut out, elapsed);
+        let idle =
+            BoolExpr::and(BoolExpr::negate(running.clone()), BoolExpr::negate(finished.clone()));
+        let start = BoolExpr::and(idle, rise);
+        let keep = BoolExpr::and(running.clone(), BoolExpr::negate(elapsed.clone()));
+        out.push(Stmt::Write {
+            target: q,
+            kind: WriteKind::Assign,
+            value: BoolExpr::Or(vec![start, keep]),
+            span,
+        });
+        let ended = BoolExpr::Or(vec![finished, BoolExpr::and(running, elapsed)]);
+        out.push(Stmt::Write {
+            target: done,
+            kind: WriteKind::Assign,
+            value: BoolExpr::and(ended, input),
+            span,
+        });
+        out
     }
 }

@@ -1,10 +1,10 @@
-//! Boolean expressions of Structured Text in the scan model: variables and FB outputs, `NOT`/`AND`/`OR`/`XOR`, `=`/`<>` between BOOLs, the Boolean functions, and integer comparisons as unconstrained values.
+//! Boolean expressions of Structured Text in the scan model: variables and FB outputs, `NOT`/`AND`/`OR`/`XOR`, `=`/`<>` between BOOLs, the Boolean functions, integer comparisons (`ints`), `CASE` labels and `FOR` bounds.
 
 use super::{Lowering, Sym, Ty};
 use crate::diag::Span;
 use crate::iec::StError;
 use crate::iec::ast::{self, Arg, BinOp, ExprKind, Ident, UnOp};
-use crate::program::{BoolExpr, Fresh};
+use crate::program::{BoolExpr, CmpOp, Fresh};
 
 impl Lowering<'_> {
     /// Whether `e` is Boolean (so `=` between two such is an equivalence).
@@ -28,8 +28,12 @@ impl Lowering<'_> {
                 BinOp::Eq | BinOp::Ne | BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge,
                 ..,
             ) => true,
+            ExprKind::Call(f, args) if f.key() == "SEL" => match args.get(1) {
+                Some(Arg::Positional(x) | Arg::Input(_, x)) => self.is_bool(x),
+                _ => true,
+            },
             ExprKind::Call(f, _) => {
-                ["AND", "OR", "XOR", "NOT", "SEL", "GT", "GE", "EQ", "NE", "LT", "LE"]
+                ["AND", "OR", "XOR", "NOT", "GT", "GE", "EQ", "NE", "LT", "LE"]
                     .contains(&f.key().as_str())
                     || self.bool_function(f)
             }
@@ -72,9 +76,11 @@ impl Lowering<'_> {
                 Some(Sym { ty: Ty::Fb(_, t) | Ty::User(t), name, .. }) => {
                     self.not_bool(e, &format!("the {t} instance `{name}`"))
                 }
-                Some(Sym { ty: Ty::Other(t), name, .. }) => {
+                Some(Sym { ty, name, .. }) if ty.value_type().is_some() => {
+                    let t = ty.value_type().unwrap_or_default();
                     self.not_bool(e, &format!("the {t} variable `{name}`"))
                 }
+                Some(Sym { ty: Ty::Int(_) | Ty::Other(_), .. }) => BoolExpr::Const(false),
                 None => BoolExpr::Const(false),
             },
             ExprKind::Member(of, field) => {
@@ -115,17 +121,18 @@ impl Lowering<'_> {
             }
             ExprKind::Binary(
                 op @ (BinOp::Eq | BinOp::Ne | BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge),
-                ..,
+                a,
+                b,
             ) => {
-                let name = match op {
-                    BinOp::Eq => "EQ",
-                    BinOp::Ne => "NE",
-                    BinOp::Lt => "LT",
-                    BinOp::Le => "LE",
-                    BinOp::Gt => "GT",
-                    _ => "GE",
+                let op = match op {
+                    BinOp::Eq => CmpOp::Eq,
+                    BinOp::Ne => CmpOp::Ne,
+                    BinOp::Lt => CmpOp::Lt,
+                    BinOp::Le => CmpOp::Le,
+                    BinOp::Gt => CmpOp::Gt,
+                    _ => CmpOp::Ge,
                 };
-                self.comparison(name, e.span)
+                self.int_compare(op, a, b, e.span)
             }
             ExprKind::Call(f, args) => self.function(f, args, e),
             ExprKind::Int(_) | ExprKind::Time(_) | ExprKind::Literal(_) => {
@@ -179,7 +186,20 @@ impl Lowering<'_> {
                     BoolExpr::and(g, b),
                 ])
             }
-            "GT" | "GE" | "EQ" | "NE" | "LT" | "LE" => self.comparison(&name, e.span),
+            "GT" | "GE" | "EQ" | "NE" | "LT" | "LE" if values.len() >= 2 => {
+                let op = match name.as_str() {
+                    "GT" => CmpOp::Gt,
+                    "GE" => CmpOp::Ge,
+                    "EQ" => CmpOp::Eq,
+                    "NE" => CmpOp::Ne,
+                    "LT" => CmpOp::Lt,
+                    _ => CmpOp::Le,
+                };
+                // Extensible: `GT(a, b, c)` is `a > b AND b > c`.
+                let all: Vec<BoolExpr> =
+                    values.windows(2).map(|w| self.int_compare(op, w[0], w[1], e.span)).collect();
+                all.into_iter().reduce(BoolExpr::and).unwrap_or(BoolExpr::Const(true))
+            }
             _ => {
                 self.refuse(f.span, &format!("the function `{}`", f.name), "the Boolean functions AND, OR, XOR, NOT and SEL are modelled, comparisons as unconstrained");
                 BoolExpr::Const(false)
@@ -199,8 +219,8 @@ pub(super) fn xor(a: BoolExpr, b: BoolExpr) -> BoolExpr {
 const MAX_ITERATIONS: i128 = 1000;
 
 impl Lowering<'_> {
-    /// Whether `selector` matches a `CASE` label (`a` or `a..b`): exact for a BOOL
-    /// selector, else an unconstrained integer comparison.
+    /// Whether `selector` matches a `CASE` label (`a` or `a..b`): for a BOOL selector an
+    /// equivalence, else integer comparisons.
     pub(super) fn case_label(
         &mut self,
         selector: &ast::Expr,
@@ -210,23 +230,19 @@ impl Lowering<'_> {
             let (s, v) = (self.bool_expr(selector), self.bool_expr(a));
             return BoolExpr::negate(xor(s, v));
         }
-        let label = match b {
-            Some(b) => format!("{}..{}", self.text(a.span), self.text(b.span)),
-            None => self.text(a.span),
-        };
-        let span = b.as_ref().map_or(a.span, |b| a.span.to(b.span));
-        BoolExpr::Fresh(Box::new(Fresh {
-            base: format!("CASE_L{:02}", self.line),
-            keyword: "CASE".into(),
-            why: format!(
-                "the integer comparison of `{}` with the label `{label}` is not expressible in the algebra",
-                self.text(selector.span)
-            ),
-            span,
-        }))
+        match b {
+            None => self.int_compare(CmpOp::Eq, selector, a, a.span),
+            Some(b) => {
+                let span = a.span.to(b.span);
+                let low = self.int_compare(CmpOp::Ge, selector, a, span);
+                let high = self.int_compare(CmpOp::Le, selector, b, span);
+                BoolExpr::and(low, high)
+            }
+        }
     }
 
-    /// How many times a `FOR` loop runs: its bounds and step must be integer literals.
+    /// A `FOR` loop's first value, step and number of iterations: its bounds and step
+    /// must be integer literals.
     pub(super) fn iterations(
         &mut self,
         var: &Ident,
@@ -234,7 +250,7 @@ impl Lowering<'_> {
         to: &ast::Expr,
         by: Option<&ast::Expr>,
         span: Span,
-    ) -> Option<u64> {
+    ) -> Option<(i64, i64, u64)> {
         let _ = self.lookup(var)?;
         let literal = |e: &ast::Expr| match &e.kind {
             ExprKind::Int(v) => Some(*v),
@@ -286,6 +302,6 @@ impl Lowering<'_> {
             );
             return None;
         }
-        u64::try_from(n).ok()
+        Some((i64::try_from(a).ok()?, i64::try_from(step).ok()?, u64::try_from(n).ok()?))
     }
 }

@@ -484,7 +484,9 @@ impl Lowering<'_> {
         }
         match &e.kind {
             ExprKind::Var(id) => match self.lookup(id) {
-                Some(Sym { ty: Ty::Other(t), .. }) => Cr::Other(format!("a {t}")),
+                Some(Sym { ty, .. }) if ty.value_type().is_some() => {
+                    Cr::Other(format!("a {}", ty.value_type().unwrap_or_default()))
+                }
                 Some(Sym { ty: Ty::Fb(_, t) | Ty::User(t), name, .. }) => {
                     self.errors.push(StError::new(
                         e.span,
@@ -559,7 +561,15 @@ impl Lowering<'_> {
         let span = word.span.to(target.span);
         match (&target.kind, &flow.cr) {
             (ExprKind::Var(id), Cr::Other(what)) => match self.lookup(id) {
-                Some(Sym { ty: Ty::Other(t), name, .. }) => {
+                Some(Sym { ty, name, .. }) if ty.value_type().is_some() => {
+                    let t = ty.value_type().unwrap_or_default();
+                    if matches!(ty, Ty::Int(_)) {
+                        let why = format!(
+                            "Instruction List writes it (`{}` at line {}), and ii-prove does not compute IL arithmetic yet",
+                            word.name, self.line
+                        );
+                        self.make_opaque(&name, why);
+                    }
                     vec![super::integer_write(span, &word.name.to_ascii_uppercase(), &t, &name)]
                 }
                 Some(_) => {
@@ -584,9 +594,8 @@ impl Lowering<'_> {
                 let v = self.cr_bool(&flow.cr, word);
                 let v = if negate { BoolExpr::negate(v) } else { v };
                 if let ExprKind::Var(id) = &target.kind
-                    && let Some(Sym { ty: Ty::Other(t), .. }) = self.syms.get(&id.key())
+                    && let Some(t) = self.syms.get(&id.key()).and_then(|s| s.ty.value_type())
                 {
-                    let t = t.clone();
                     self.errors.push(StError::new(
                         span,
                         format!("`{}` stores a BOOL into the {t} `{}`", word.name, id.name),

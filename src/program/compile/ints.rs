@@ -63,6 +63,14 @@ impl Compiler<'_> {
                 let a = self.int(a, ty, span);
                 bitvec::div(&a, *k, ty, &mut |t: L| self.intermediate_over(t, MAX_DIV_TERM))
             }
+            IntExpr::Mod(a, k) => {
+                let a = self.int(a, ty, span);
+                bitvec::rem(&a, *k, ty, &mut |t: L| self.intermediate_over(t, MAX_DIV_TERM))
+            }
+            IntExpr::Cast(a, inner) => {
+                let a = self.int(a, *inner, span);
+                bitvec::resize(a, *inner, ty)
+            }
             IntExpr::Ite(c, a, b) => {
                 // The condition is read by every bit: named unless it is a literal.
                 let c = self.eval(c);
@@ -158,10 +166,11 @@ pub(super) fn int_depth(program: &Program) -> usize {
             match e {
                 IntExpr::Const(k) => *largest = (*largest).max(k.unsigned_abs()),
                 IntExpr::Var(_) => {}
-                IntExpr::Div(a, k) => {
+                IntExpr::Div(a, k) | IntExpr::Mod(a, k) => {
                     *largest = (*largest).max(k.unsigned_abs());
                     walk(a, largest);
                 }
+                IntExpr::Cast(a, _) => walk(a, largest),
                 IntExpr::Add(a, b)
                 | IntExpr::Sub(a, b)
                 | IntExpr::Mul(a, b)

@@ -1,0 +1,527 @@
+//! Integers of Structured Text in the scan model, as matiec compiles them to C: the IEC integer types (`SINT` … `UDINT`, `BYTE` … `DWORD`), literals and constants, `+ - * / MOD`, unary `-`, the `*_TO_*` conversions and `MIN`/`MAX`/`LIMIT`/`SEL`/`ABS`/`MOVE`, comparisons; values narrower than 32 bits are computed as C `int`, as the generated C does. An integer whose value cannot be computed exactly (a division by a variable, a `TIME` or `REAL` operand, a 64-bit type) is *opaque*: what reads it is an unconstrained value, with the reason.
+
+use std::collections::BTreeMap;
+
+use super::{Lowering, Sym, Ty};
+use crate::diag::Span;
+use crate::iec::StError;
+use crate::iec::ast::{self, Arg, BinOp, ExprKind, UnOp};
+use crate::program::{BoolExpr, CmpOp, Compare, Fresh, IntExpr, IntType, IntVar, Stmt};
+
+/// C's `int`: what matiec's generated code computes a value narrower than 32 bits in.
+const C_INT: IntType = IntType { bits: 32, signed: true };
+
+/// The IEC integer type `name` (upper-case) as matiec declares it in C; `None` for the
+/// 64-bit types (not modelled) and every other type.
+pub(super) fn int_type(name: &str) -> Option<IntType> {
+    let (bits, signed) = match name {
+        "SINT" => (8, true),
+        "INT" => (16, true),
+        "DINT" => (32, true),
+        "USINT" | "BYTE" => (8, false),
+        "UINT" | "WORD" => (16, false),
+        "UDINT" | "DWORD" => (32, false),
+        _ => return None,
+    };
+    Some(IntType { bits, signed })
+}
+
+/// The IEC name of an integer type.
+pub(super) fn type_name(t: IntType) -> &'static str {
+    match (t.bits, t.signed) {
+        (8, true) => "SINT",
+        (16, true) => "INT",
+        (32, true) => "DINT",
+        (8, false) => "USINT",
+        (16, false) => "UINT",
+        _ => "UDINT",
+    }
+}
+
+/// The type C computes a value of type `t` in (integer promotion).
+fn promoted(t: IntType) -> IntType {
+    if t.bits < 32 { C_INT } else { t }
+}
+
+/// A typed integer expression: its value, its type (`None`: a literal, typed by where
+/// it is used) and whether it divides (its result then depends on the width it is
+/// computed in).
+#[derive(Clone, Debug)]
+pub(super) struct Int {
+    pub e: IntExpr,
+    pub ty: Option<IntType>,
+    divides: bool,
+}
+
+impl Int {
+    fn literal(v: i128) -> Int {
+        Int {
+            e: IntExpr::Const(v.clamp(i64::MIN.into(), i64::MAX.into()) as i64),
+            ty: None,
+            divides: false,
+        }
+    }
+
+    /// The value as C computes it, read in a context of the type `t` it has: computed
+    /// in `int` where a division makes the width matter, else in `t` itself (sums,
+    /// differences and products wrap alike in any width at least `t`'s).
+    fn in_type(self, t: IntType) -> IntExpr {
+        if self.divides && promoted(t) != t {
+            IntExpr::Cast(Box::new(self.e), promoted(t))
+        } else {
+            self.e
+        }
+    }
+}
+
+/// Why an integer is not computed (said where it is read).
+pub(super) type Opaque = String;
+
+impl Lowering<'_> {
+    /// The integer expression `e`, typed; `Err` with the reason when its value is not
+    /// computed exactly (type errors are also pushed as errors).
+    pub(super) fn int_expr(&mut self, e: &ast::Expr) -> Result<Int, Opaque> {
+        match &e.kind {
+            ExprKind::Int(v) => Ok(Int::literal(*v)),
+            ExprKind::Literal(s) => self.typed_literal(s, e.span),
+            ExprKind::Var(id) => {
+                let Some(sym) = self.lookup(id) else { return Err("an unknown variable".into()) };
+                self.int_var(&sym, e.span)
+            }
+            ExprKind::Member(of, field) => {
+                let ExprKind::Var(id) = &of.kind else {
+                    return Err(format!("`{}` is not modelled", self.text(e.span)));
+                };
+                let Some(sym) = self.lookup(id) else { return Err("an unknown variable".into()) };
+                match (&sym.ty, field.key().as_str()) {
+                    (Ty::Fb(super::calls::Fb::Counter, ty), "CV") => match counter_type(ty) {
+                        Some(t) => {
+                            let cv = self.counter_value(&sym.name, t);
+                            self.int_read(cv, t)
+                        }
+                        None => Err(format!(
+                            "the count of the {ty} `{}` is 64 bits, which ii-prove does not compute",
+                            sym.name
+                        )),
+                    },
+                    (Ty::User(_), _) => match self
+                        .instances
+                        .get(&sym.name)
+                        .and_then(|t| t.get(&field.key()))
+                        .cloned()
+                    {
+                        Some(s) => self.int_var(&s, e.span),
+                        None => {
+                            Err(format!("`{}` is not an integer of `{}`", field.name, sym.name))
+                        }
+                    },
+                    _ => Err(format!("`{}` is not modelled", self.text(e.span))),
+                }
+            }
+            ExprKind::Unary(UnOp::Neg, x) => {
+                let x = self.int_expr(x)?;
+                Ok(match x.e {
+                    IntExpr::Const(v) if x.ty.is_none() => Int::literal(-i128::from(v)),
+                    e => Int { e: IntExpr::minus(IntExpr::Const(0), e), ..x },
+                })
+            }
+            ExprKind::Binary(
+                op @ (BinOp::Add | BinOp::Sub | BinOp::Mul | BinOp::Div | BinOp::Mod),
+                a,
+                b,
+            ) => {
+                let (a, b) = (self.int_expr(a)?, self.int_expr(b)?);
+                self.arithmetic(*op, a, b, e.span)
+            }
+            ExprKind::Binary(BinOp::Pow, ..) => Err("`**` computes in REAL".into()),
+            ExprKind::Call(f, args) => self.int_function(f, args, e),
+            ExprKind::Time(_) => Err("a TIME value is not computed".into()),
+            _ => {
+                self.errors.push(StError::new(
+                    e.span,
+                    "a BOOL where an integer is expected",
+                    "expected an integer",
+                ));
+                Err("a type error".into())
+            }
+        }
+    }
+
+    /// A read of the variable `sym`.
+    fn int_var(&mut self, sym: &Sym, span: Span) -> Result<Int, Opaque> {
+        match &sym.ty {
+            Ty::Int(t) => {
+                if let Some(v) = self.constants.get(&sym.name) {
+                    return Ok(Int { e: IntExpr::Const(*v), ty: Some(*t), divides: false });
+                }
+                if let Some(why) = self.opaque.get(&sym.name) {
+                    return Err(format!("{} is not computed: {why}", sym.name));
+                }
+                self.int_read(sym.name.clone(), *t)
+            }
+            Ty::Other(t) => Err(format!("the {t} variable {} is not computed", sym.name)),
+            Ty::Bool => {
+                self.errors.push(StError::new(
+                    span,
+                    format!("the BOOL `{}` where an integer is expected", sym.name),
+                    "expected an integer (convert with BOOL_TO_INT)",
+                ));
+                Err("a type error".into())
+            }
+            Ty::Fb(_, t) | Ty::User(t) => {
+                Err(format!("the {t} instance {} is not a value", sym.name))
+            }
+        }
+    }
+
+    fn int_read(&mut self, name: String, t: IntType) -> Result<Int, Opaque> {
+        Ok(Int { e: IntExpr::Var(name), ty: Some(t), divides: false })
+    }
+
+    /// `INT#5`, `DINT#16#FF`, `UINT#-0` and such.
+    fn typed_literal(&mut self, s: &str, span: Span) -> Result<Int, Opaque> {
+        let Some((ty, value)) = s.split_once('#') else {
+            return Err(format!("the literal `{s}` is not an integer"));
+        };
+        let Some(t) = int_type(&ty.to_ascii_uppercase()) else {
+            return Err(format!("the literal `{s}` is not computed"));
+        };
+        let digits: String = value.chars().filter(|c| *c != '_').collect();
+        let (negative, digits) = match digits.strip_prefix('-') {
+            Some(d) => (true, d.to_string()),
+            None => (false, digits.trim_start_matches('+').to_string()),
+        };
+        let parsed = match digits.split_once('#') {
+            Some((base, d)) => {
+                base.parse::<u32>().ok().and_then(|b| i128::from_str_radix(d, b).ok())
+            }
+            None => digits.parse::<i128>().ok(),
+        };
+        let Some(v) = parsed.map(|v| if negative { -v } else { v }) else {
+            self.errors.push(StError::new(
+                span,
+                format!("`{s}` is not an integer literal"),
+                "expected digits",
+            ));
+            return Err("a bad literal".into());
+        };
+        Ok(Int { e: IntExpr::Const(t.wrap(v as i64)), ty: Some(t), divides: false })
+    }
+
+    /// The type two operands share (a literal takes the other's).
+    fn unify(&mut self, a: &Int, b: &Int, span: Span) -> Result<Option<IntType>, Opaque> {
+        match (a.ty, b.ty) {
+            (Some(x), Some(y)) if x != y => {
+                let mut e = StError::new(
+                    span,
+                    format!("this mixes {} and {}", type_name(x), type_name(y)),
+                    "operands of different integer types",
+                );
+                e.notes.push(format!(
+                    "IEC 61131-3 (and matiec) want one type: convert one side, e.g. {}_TO_{}(…)",
+                    type_name(x.min_by_bits(y)),
+                    type_name(x.max_by_bits(y))
+                ));
+                self.errors.push(e);
+                Err("a type error".into())
+            }
+            (x, y) => Ok(x.or(y)),
+        }
+    }
+
+    fn arithmetic(&mut self, op: BinOp, a: Int, b: Int, span: Span) -> Result<Int, Opaque> {
+        let ty = self.unify(&a, &b, span)?;
+        if let (IntExpr::Const(x), IntExpr::Const(y), None) = (&a.e, &b.e, ty) {
+            // Two literals: folded (as C folds them, in a wide type).
+            let (x, y) = (i128::from(*x), i128::from(*y));
+            let v = match op {
+                BinOp::Add => Some(x + y),
+                BinOp::Sub => Some(x - y),
+                BinOp::Mul => x.checked_mul(y),
+                BinOp::Div if y != 0 => Some(x / y),
+                BinOp::Mod if y != 0 => Some(x % y),
+                _ => None,
+            };
+            if let Some(v) = v {
+                return Ok(Int::literal(v));
+            }
+        }
+        let divides = a.divides || b.divides || matches!(op, BinOp::Div | BinOp::Mod);
+        let e = match op {
+            BinOp::Add => IntExpr::plus(a.e, b.e),
+            BinOp::Sub => IntExpr::minus(a.e, b.e),
+            BinOp::Mul => IntExpr::Mul(Box::new(a.e), Box::new(b.e)),
+            _ => {
+                let k = match (&b.e, ty) {
+                    (IntExpr::Const(k), Some(t)) => t.wrap(*k),
+                    (IntExpr::Const(k), None) => *k,
+                    _ => {
+                        return Err(format!(
+                            "`{}` divides by a variable, which may be 0 (a run-time error of the PLC)",
+                            self.text(span)
+                        ));
+                    }
+                };
+                if k == 0 {
+                    return Err(format!("`{}` divides by 0", self.text(span)));
+                }
+                if op == BinOp::Div {
+                    IntExpr::Div(Box::new(a.e), k)
+                } else {
+                    IntExpr::Mod(Box::new(a.e), k)
+                }
+            }
+        };
+        Ok(Int { e, ty, divides })
+    }
+
+    /// A function with an integer result: conversions, MIN/MAX/LIMIT/SEL/ABS/MOVE and the
+    /// arithmetic functions.
+    fn int_function(&mut self, f: &ast::Ident, args: &[Arg], e: &ast::Expr) -> Result<Int, Opaque> {
+        let values: Vec<&ast::Expr> = args
+            .iter()
+            .map(|a| match a {
+                Arg::Positional(x) | Arg::Input(_, x) | Arg::Output(_, _, x) => x,
+            })
+            .collect();
+        let name = f.key();
+        if let Some((from, to)) = name.split_once("_TO_") {
+            let (Some(from), Some(to)) = (int_type(from), int_type(to)) else {
+                return Err(format!("the conversion {} is not computed", f.name));
+            };
+            let [x] = values.as_slice() else {
+                return Err(format!("{} takes one argument", f.name));
+            };
+            let x = self.int_expr(x)?;
+            self.unify(&x, &Int { e: IntExpr::Const(0), ty: Some(from), divides: false }, e.span)?;
+            // The argument is a value of `from` (converted as C passes it), then `to`.
+            let v = IntExpr::Cast(Box::new(x.in_type(from)), from);
+            return Ok(Int { e: v, ty: Some(to), divides: false });
+        }
+        let mut ints = Vec::new();
+        let skip = usize::from(name == "SEL" || name == "MUX");
+        for x in values.iter().skip(skip) {
+            ints.push(self.int_expr(x)?);
+        }
+        let mut ty = None;
+        for x in &ints {
+            ty = self.unify(&Int { e: IntExpr::Const(0), ty, divides: false }, x, e.span)?;
+        }
+        let t = ty.unwrap_or(C_INT);
+        let cmp = |op: CmpOp, a: &Int, b: &Int| {
+            // Arguments are passed as values of `t`, and compared so.
+            BoolExpr::Compare(Box::new(Compare {
+                op,
+                ty: t,
+                a: a.clone().in_type(t),
+                b: b.clone().in_type(t),
+            }))
+        };
+        let value = |x: &Int| x.clone().in_type(t);
+        let e2 = match (name.as_str(), ints.as_slice()) {
+            ("MOVE", [x]) => value(x),
+            ("ABS", [x]) => {
+                let zero = Int::literal(0);
+                IntExpr::ite(
+                    cmp(CmpOp::Lt, x, &zero),
+                    IntExpr::minus(IntExpr::Const(0), value(x)),
+                    value(x),
+                )
+            }
+            ("MIN" | "MAX", [first, rest @ ..]) if !rest.is_empty() => {
+                let op = if name == "MIN" { CmpOp::Lt } else { CmpOp::Gt };
+                let mut acc = first.clone();
+                for x in rest {
+                    let e = IntExpr::ite(cmp(op, &acc, x), value(&acc), value(x));
+                    acc = Int { e, ty, divides: false };
+                }
+                acc.e
+            }
+            ("LIMIT", [mn, x, mx]) => {
+                let low = IntExpr::ite(cmp(CmpOp::Lt, x, mn), value(mn), value(x));
+                IntExpr::ite(cmp(CmpOp::Gt, x, mx), value(mx), low)
+            }
+            ("SEL", [a, b]) => {
+                let g = self.bool_expr(values[0]);
+                IntExpr::ite(g, value(b), value(a))
+            }
+            ("ADD" | "MUL" | "SUB" | "DIV" | "MOD", [first, rest @ ..]) if !rest.is_empty() => {
+                let op = match name.as_str() {
+                    "ADD" => BinOp::Add,
+                    "MUL" => BinOp::Mul,
+                    "SUB" => BinOp::Sub,
+                    "DIV" => BinOp::Div,
+                    _ => BinOp::Mod,
+                };
+                if rest.len() > 1 && !matches!(op, BinOp::Add | BinOp::Mul) {
+                    return Err(format!("{} takes two arguments", f.name));
+                }
+                let mut acc = first.clone();
+                for x in rest {
+                    acc = self.arithmetic(op, acc, x.clone(), e.span)?;
+                }
+                acc.in_type(t)
+            }
+            _ => return Err(format!("the function {} is not computed", f.name)),
+        };
+        // A function returns a value of its type: computed (its arguments passed) in `t`.
+        Ok(Int { e: IntExpr::Cast(Box::new(e2), t), ty, divides: false })
+    }
+
+    /// `a op b` for integers: exact, else an unconstrained value with the reason.
+    pub(super) fn int_compare(
+        &mut self,
+        op: CmpOp,
+        a: &ast::Expr,
+        b: &ast::Expr,
+        span: Span,
+    ) -> BoolExpr {
+        let values = self.int_expr(a).and_then(|a| Ok((a, self.int_expr(b)?)));
+        let (a, b) = match values {
+            Ok(v) => v,
+            Err(why) => return self.unknown_comparison(op, span, &why),
+        };
+        let ty = match self.unify(&a, &b, span) {
+            Ok(t) => t,
+            Err(why) => return self.unknown_comparison(op, span, &why),
+        };
+        if let (IntExpr::Const(x), IntExpr::Const(y), None) = (&a.e, &b.e, ty) {
+            return BoolExpr::Const(op.holds(*x, *y));
+        }
+        // Values of literals alone (`MIN(3, 5)`) are C `int`s.
+        let t = ty.unwrap_or(C_INT);
+        // As C compares: in `int` for narrow types (no wrap of `a + 1`), unless both
+        // sides are plain values, which compare alike in their own type.
+        let within = |x: &Int| {
+            matches!(x.e, IntExpr::Const(k) if t.contains(k)) || matches!(x.e, IntExpr::Var(_))
+        };
+        let cty = if within(&a) && within(&b) { t } else { promoted(t) };
+        BoolExpr::Compare(Box::new(Compare { op, ty: cty, a: a.e, b: b.e }))
+    }
+
+    fn unknown_comparison(&mut self, op: CmpOp, span: Span, why: &str) -> BoolExpr {
+        let keyword = match op {
+            CmpOp::Eq => "EQ",
+            CmpOp::Ne => "NE",
+            CmpOp::Lt => "LT",
+            CmpOp::Le => "LE",
+            CmpOp::Gt => "GT",
+            CmpOp::Ge => "GE",
+        };
+        BoolExpr::Fresh(Box::new(Fresh {
+            base: format!("{keyword}_L{:02}", self.line),
+            keyword: keyword.to_string(),
+            why: format!("the comparison `{}` is not computed: {why}", self.text(span)),
+            span,
+        }))
+    }
+
+    /// `target := value` for the integer `target` of type `t` (its name in the scan
+    /// model): exact, else `target` becomes opaque (lowered again without it).
+    pub(super) fn int_assign(
+        &mut self,
+        target: &str,
+        t: IntType,
+        value: &ast::Expr,
+        span: Span,
+    ) -> Vec<Stmt> {
+        if self.opaque.contains_key(target) {
+            let _ = self.int_expr(value);
+            return Vec::new();
+        }
+        match self.int_expr(value).and_then(|v| {
+            self.unify(&v, &Int { e: IntExpr::Const(0), ty: Some(t), divides: false }, value.span)?;
+            Ok(v)
+        }) {
+            Ok(v) => vec![Stmt::SetInt { target: target.to_string(), value: v.in_type(t), span }],
+            Err(why) => {
+                self.make_opaque(target, why);
+                Vec::new()
+            }
+        }
+    }
+
+    /// The value of `e` for an integer input of type `t` (an FB's `PV`), or why not.
+    pub(super) fn int_input(&mut self, e: &ast::Expr, t: IntType) -> Result<IntExpr, Opaque> {
+        let v = self.int_expr(e)?;
+        self.unify(&v, &Int { e: IntExpr::Const(0), ty: Some(t), divides: false }, e.span)?;
+        Ok(v.in_type(t))
+    }
+
+    /// Marks `x` as opaque for `why` (the program is then lowered again).
+    pub(super) fn make_opaque(&mut self, x: &str, why: Opaque) {
+        self.opaque.entry(x.to_string()).or_insert(why);
+    }
+}
+
+/// The type of the count of a counter type (`CTU`, `CTD_DINT`, …); `None` for the
+/// 64-bit ones.
+pub(super) fn counter_type(ty: &str) -> Option<IntType> {
+    match ty.split_once('_') {
+        None => int_type("INT"),
+        Some((_, t)) => int_type(t),
+    }
+}
+
+trait ByBits {
+    fn min_by_bits(self, o: IntType) -> IntType;
+    fn max_by_bits(self, o: IntType) -> IntType;
+}
+
+impl ByBits for IntType {
+    fn min_by_bits(self, o: IntType) -> IntType {
+        if self.bits <= o.bits { self } else { o }
+    }
+    fn max_by_bits(self, o: IntType) -> IntType {
+        if self.bits <= o.bits { o } else { self }
+    }
+}
+
+impl Lowering<'_> {
+    /// Declares the integer `name` of type `t` (`v` its declaration): its start value,
+    /// whether the outside world writes it, or its constant value.
+    pub(super) fn declare_int(&mut self, v: &ast::VarDecl, name: &str, t: IntType, input: bool) {
+        let init = match &v.init {
+            None => Some(0),
+            Some(e) => match self.int_expr(e) {
+                Ok(Int { e: IntExpr::Const(k), ty, .. }) if ty.is_none_or(|x| x == t) => {
+                    Some(t.wrap(k))
+                }
+                _ => None,
+            },
+        };
+        let Some(init) = init else {
+            let why = format!(
+                "its initial value `{}` is not an integer literal",
+                self.text(v.init.as_ref().map_or(v.name.span, |e| e.span))
+            );
+            self.make_opaque(name, why);
+            return;
+        };
+        if v.constant {
+            self.constants.insert(name.to_string(), init);
+            return;
+        }
+        let input = input
+            || v.location.as_deref().is_some_and(|l| l.to_ascii_uppercase().starts_with("%I"));
+        self.ints
+            .insert(name.to_string(), IntVar { ty: t, input, init: if input { 0 } else { init } });
+    }
+}
+
+impl Lowering<'_> {
+    /// A warning for each opaque integer, at its declaration.
+    pub(super) fn warn_opaque(&mut self) {
+        let mut spans: BTreeMap<String, Span> = BTreeMap::new();
+        for s in self.syms.values() {
+            spans.insert(s.name.clone(), s.span);
+        }
+        for (x, why) in &self.opaque {
+            let span = spans.get(x).copied().unwrap_or(Span::new(0, 0..0));
+            self.warnings.push(StError::warning(
+                span,
+                format!("the integer {x} is not computed ({why}): what reads it is unconstrained"),
+            ));
+        }
+    }
+}
