@@ -520,42 +520,16 @@ impl<'s> Lowering<'s> {
         target: &ast::Expr,
         span: Span,
     ) -> Vec<Stmt> {
-        let ExprKind::Var(id) = &target.kind else {
-            self.refuse(
-                target.span,
-                "a write into a member or array element",
-                "write it to an integer variable",
-            );
-            return Vec::new();
-        };
-        let Some(sym) = self.lookup(id) else { return Vec::new() };
         let Some(t) = super::ints::counter_type(ty) else {
-            if let Ty::Int(_) = sym.ty {
-                self.make_opaque(&sym.name, format!("it takes the 64-bit count of {inst}"));
+            if let ExprKind::Var(id) = &target.kind
+                && let Some(Sym { ty: Ty::Int(_), name, .. }) = self.lookup(id)
+            {
+                self.make_opaque(&name, format!("it takes the 64-bit count of {inst}"));
             }
             return Vec::new();
         };
-        match sym.ty {
-            Ty::Int(u) if u == t => {
-                let cv = self.counter_value(inst, t);
-                if let Some(why) = self.opaque.get(&cv).cloned() {
-                    self.make_opaque(&sym.name, why);
-                    return Vec::new();
-                }
-                if self.opaque.contains_key(&sym.name) {
-                    return Vec::new();
-                }
-                vec![Stmt::SetInt { target: sym.name, value: IntExpr::var(&cv), span }]
-            }
-            _ => {
-                self.errors.push(StError::new(
-                    id.span,
-                    format!("`{}` does not have the type of {inst}.CV", id.name),
-                    format!("expected a variable of {ty}'s count type"),
-                ));
-                Vec::new()
-            }
-        }
+        let cv = self.counter_value(inst, t);
+        self.int_copy(target, &cv, t, span)
     }
 
     /// A call of the pulse timer `inst` as matiec's library runs it: a rising edge of

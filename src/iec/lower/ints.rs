@@ -525,3 +525,48 @@ impl Lowering<'_> {
         }
     }
 }
+
+impl Lowering<'_> {
+    /// `target := source` for the integer `source` of type `t` (an FB output given with
+    /// `=>`): exact, else `target` is opaque too.
+    pub(super) fn int_copy(
+        &mut self,
+        target: &ast::Expr,
+        source: &str,
+        t: IntType,
+        span: Span,
+    ) -> Vec<Stmt> {
+        let ExprKind::Var(id) = &target.kind else {
+            self.refuse(
+                target.span,
+                "a write into a member or array element",
+                "write it to an integer variable",
+            );
+            return Vec::new();
+        };
+        let Some(sym) = self.lookup(id) else { return Vec::new() };
+        match sym.ty {
+            Ty::Int(u) if u == t => {
+                if let Some(why) = self.opaque.get(source).cloned() {
+                    self.make_opaque(
+                        &sym.name,
+                        format!("it takes {source}, which is not computed: {why}"),
+                    );
+                    return Vec::new();
+                }
+                if self.opaque.contains_key(&sym.name) {
+                    return Vec::new();
+                }
+                vec![Stmt::SetInt { target: sym.name, value: IntExpr::var(source), span }]
+            }
+            _ => {
+                self.errors.push(StError::new(
+                    id.span,
+                    format!("`{}` is not a {} variable", id.name, type_name(t)),
+                    "the output's type",
+                ));
+                Vec::new()
+            }
+        }
+    }
+}

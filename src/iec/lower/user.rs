@@ -112,6 +112,17 @@ impl Lowering<'_> {
                 ),
                 _ => {}
             }
+            if let Ty::Int(t) = ty {
+                if fresh {
+                    let why = format!(
+                        "it is a variable of the function `{}`, whose integers ii-prove does not compute yet",
+                        pou.name.name
+                    );
+                    self.make_opaque(&name, why);
+                } else {
+                    self.declare_int(v, &name, t, false);
+                }
+            }
             self.constant_duration(v, &name);
             if let Ty::User(fb) = &ty {
                 let fb = fb.clone();
@@ -190,6 +201,15 @@ impl Lowering<'_> {
                     let v = self.bool_expr(e);
                     given.push((key, v, span));
                 }
+                Some(Sym { ty: Ty::Int(t), name, .. }) if is_input => {
+                    let (t, name) = (*t, name.clone());
+                    if !self.opaque.contains_key(&name) {
+                        match self.int_input(e, t) {
+                            Ok(value) => out.push(Stmt::SetInt { target: name, value, span }),
+                            Err(why) => self.make_opaque(&name, why),
+                        }
+                    }
+                }
                 Some(_) if is_input => {}
                 _ => self.errors.push(StError::new(
                     span,
@@ -239,6 +259,10 @@ impl Lowering<'_> {
                     let q = BoolExpr::var(name);
                     let value = if *negated { BoolExpr::negate(q) } else { q };
                     out.extend(self.assign_value(target, value, span));
+                }
+                Some(Sym { ty: Ty::Int(t), name, .. }) if declared && !negated => {
+                    let (t, source) = (*t, name.clone());
+                    out.extend(self.int_copy(target, &source, t, span));
                 }
                 _ => self.refuse(
                     pin.span,
