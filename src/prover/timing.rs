@@ -383,13 +383,15 @@ pub fn clauses(
             }
         }
     }
-    // The chains at the current scan: `¬T_k` and `¬T_k + U_k` (a timer racing another
-    // of the same count), whose reading one scan earlier is about the atoms `pre T_k`.
-    for (c, chain) in chains.chains.iter().enumerate() {
+    // With a memory in the goal (a request waiting for its answer), the chains at the
+    // current scan: `¬T_k` and `¬T_k + U_k` (the request against the timer that answers
+    // it), whose reading one scan earlier is about the atoms `pre T_k`.
+    let current = if memories.is_empty() { &[][..] } else { &chains.chains[..] };
+    for (c, chain) in current.iter().enumerate() {
         for (k, t) in chain.timers.iter().enumerate() {
             let off = crate::term::not(t);
             out.push(off.clone());
-            for (d, other) in chains.chains.iter().enumerate() {
+            for (d, other) in current.iter().enumerate() {
                 if d != c
                     && let Some(u) = other.timers.get(k)
                 {
