@@ -113,8 +113,9 @@ fn after_5s_of_demand_the_valve_is_open() {
 
 #[test]
 fn the_fast_blink_is_never_on_for_150ms() {
-    let good = runs("tests/data/proves_programs/fast_blink.ld", &[], &["Rfast"], 1, 5);
-    let bad = runs("tests/data/refutes_programs/fast_blink_long.ld", &[], &["Rfast"], 1, 6);
+    let (inputs, watch) = (["XEnable"], ["Rfast"]);
+    let good = runs("tests/data/proves_programs/fast_blink.ld", &inputs, &watch, 40, 5);
+    let bad = runs("tests/data/refutes_programs/fast_blink_long.ld", &inputs, &watch, 40, 6);
     // 150 ms is 3 scans of 50 ms; the blink must also blink.
     assert!(good.iter().all(|r| r["Rfast"].iter().any(|x| *x)));
     judged("blink", &good, &bad, &|r| at_most(r, "Rfast", 3));
