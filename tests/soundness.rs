@@ -29,11 +29,39 @@ fn programs_whose_properties_hold_are_proved() {
         let run = report::run_program(&ld, std::slice::from_ref(&ii), &opts())
             .unwrap_or_else(|e| panic!("{ld}: {}", e.rendered));
         assert!(!run.properties.is_empty(), "{ii}: no property");
+        let bounds = trace_bounds(&std::fs::read_to_string(&ii).expect("readable"));
         for p in &run.properties {
             assert_eq!(p.status, Status::Proved, "{ld}: {} ({:?})", p.name, p.reason);
+            if let (Some(&bound), Some(trace)) = (bounds.get(&p.name), &p.trace) {
+                assert!(
+                    trace.length <= bound,
+                    "{ii}: the proof of {} has {} lines, at most {bound} expected",
+                    p.name,
+                    trace.length
+                );
+            }
         }
         assert_eq!(run.timers, Some("plc"));
     }
+}
+
+/// The bounds `// trace: at most N lines` written right above `property NAME` (as in
+/// `tests/verdicts.rs`).
+fn trace_bounds(text: &str) -> std::collections::BTreeMap<String, usize> {
+    let mut bounds = std::collections::BTreeMap::new();
+    let mut pending = None;
+    for line in text.lines().map(str::trim) {
+        if let Some(n) = line.strip_prefix("// trace: at most ") {
+            let n = n.trim_end_matches(" lines").trim_end_matches(" line");
+            pending = Some(n.parse::<usize>().expect("`// trace: at most N lines`"));
+        } else if let Some(rest) = line.strip_prefix("property ") {
+            let name = rest.split(':').next().unwrap_or("").trim().to_string();
+            if let Some(n) = pending.take() {
+                bounds.insert(name, n);
+            }
+        }
+    }
+    bounds
 }
 
 /// Every `refused/NAME.ld` fails to load, and the rendered error contains every

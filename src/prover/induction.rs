@@ -128,7 +128,9 @@ pub fn prove_as(
         let cone = ctx.cone(&[&goal.lhs, &goal.rhs], None);
         let mut terms: Vec<&Expr> = vec![&goal.lhs, &goal.rhs];
         terms.extend(cone.iter().flat_map(|h| [&h.lhs, &h.rhs]));
-        timing::chains(&terms, cycle, lemma)
+        let mut chains = timing::chains(&terms, cycle, lemma);
+        chains.add_memories(&memories(goal), lemma);
+        chains
     });
     let chains = chains.filter(|c| !c.chains.is_empty());
     // With timers, a third of the time without them first (the shorter invariant).
@@ -179,7 +181,7 @@ fn search(
     let mut more = clauses(&state);
     if let Some(chains) = chains {
         goals = goals.iter().map(|g| chains.unfold(g)).collect();
-        more.extend(timing::clauses(chains, &state, &inputs));
+        more.extend(timing::clauses(chains, &state, &inputs, &memories(goal)));
     }
     let mut candidates: Vec<Clause> = goals.iter().map(|g| Clause::new(g, true)).collect();
     candidates.extend(more.iter().map(|c| Clause::new(c, false)));
@@ -231,9 +233,9 @@ fn search(
     if inductive(&alone, &mut atoms).is_none() {
         candidates = alone;
     }
-    if let Err((why, model)) =
-        prune(&mut candidates, &mut rounds, deadline, |c| &c.now, |set| inductive(set, &mut atoms))
-    {
+    let pruned =
+        prune(&mut candidates, &mut rounds, deadline, |c| &c.now, |set| inductive(set, &mut atoms));
+    if let Err((why, model)) = pruned {
         // The goal's names first (state bits or not), then the other state bits.
         let mut shown: Vec<String> = Vec::new();
         for side in [&goal.lhs, &goal.rhs] {
@@ -261,14 +263,15 @@ fn search(
         };
         return Err(stop(stalled, why, candidates.len()));
     }
-    // With timer chains every clause is proved on its own: minimising would cost more
-    // than it saves.
-    let share = if chains.is_some() { 0 } else { 2 };
-    let minimise_until = Instant::now()
-        + deadline.saturating_duration_since(Instant::now()).checked_div(share).unwrap_or_default();
+    // Half the time left (one SAT call per clause): with timer chains every clause kept
+    // is proved on its own, so each one dropped saves a case proof.
+    let minimise_until = Instant::now() + deadline.saturating_duration_since(Instant::now()) / 2;
     // Minimise: a clause goes when the others are still inductive; then one of the
     // goal's own clauses when the others also imply it (a shorter invariant).
-    for goals_now in [false, true] {
+    // (With timer chains the goal's clauses stay: the goal is read from the invariant
+    // through the chains' lemmas at the current scan only.)
+    let passes: &[bool] = if chains.is_some() { &[false] } else { &[false, true] };
+    for &goals_now in passes {
         let mut k = 0;
         while k < candidates.len() && candidates.len() > 1 {
             // Minimising is optional: the set is already inductive.
@@ -405,6 +408,23 @@ fn state_bits(cone: &[Axiom], goal: &Obligation, also: &BTreeSet<String>) -> Vec
     out.extend(also.iter().filter(|n| !out.contains(n)).cloned().collect::<Vec<_>>());
     out.extend(read.into_iter().filter(|n| !out.contains(n)).collect::<Vec<_>>());
     out.truncate(MAX_STATE);
+    out
+}
+
+/// The memories (`SR`, `RS`) of the goal's sides, outermost first: a pattern's request
+/// still waiting for its answer is one.
+fn memories(goal: &Obligation) -> Vec<Expr> {
+    let mut out: Vec<Expr> = Vec::new();
+    for side in [&goal.lhs, &goal.rhs] {
+        for (i, t) in side.as_ref().iter().enumerate().rev() {
+            if matches!(t, Term::Sr(_) | Term::Rs(_)) {
+                let m = subterm(side, Id::from(i));
+                if !out.contains(&m) {
+                    out.push(m);
+                }
+            }
+        }
+    }
     out
 }
 

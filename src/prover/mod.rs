@@ -720,6 +720,9 @@ fn constraints_for(
         }
         constraints.push(c);
     }
+    if let Some(cycle) = ctx.cycle.as_ref().filter(|_| ctx.scans) {
+        constraints.extend(timing::ton_of_pre_instances(atoms, cycle));
+    }
     // What the hypotheses said at the previous scan, for the signals read through `pre`.
     if ctx.scans {
         constraints.extend(boolean::shifted(cone, atoms, SHIFT_ROUNDS));

@@ -189,12 +189,79 @@ pub fn chains(terms: &[&Expr], cycle: &Delay, prefix: &str) -> Chains {
                 out.monotone(on, &name, &timers[k], &timers[k - 1]);
             }
         }
+        if !on {
+            out.started(&format!("{prefix}_t{i}"), &timers[0], cycle);
+        }
         out.chains.push(Chain { on, input, timers, recurrences });
     }
     out
 }
 
 impl Chains {
+    /// The scan recurrence of each memory `M` of `memories` (`sr_scan`, `rs_scan`) as a
+    /// lemma `M = s + ¬r · pre M` (`M = ¬r · (s + pre M)`), named `{prefix}_m{i}`: read
+    /// at the first scan (as the kernel reads a lemma in an induction's base) it gives
+    /// the memory's first value, which the law alone leaves open.
+    pub fn add_memories(&mut self, memories: &[Expr], prefix: &str) {
+        for (i, m) in memories.iter().enumerate() {
+            let (law, rec) = match &m[root(m)] {
+                Term::Sr([a, b]) => {
+                    let (s, r) = (subterm(m, *a), subterm(m, *b));
+                    ("sr_scan", or(&s, &and(&crate::term::not(&r), &pre(m))))
+                }
+                Term::Rs([a, b]) => {
+                    let (s, r) = (subterm(m, *a), subterm(m, *b));
+                    ("rs_scan", and(&crate::term::not(&r), &or(&s, &pre(m))))
+                }
+                _ => continue,
+            };
+            let name = format!("{prefix}_m{i}");
+            let proof = Proof::Chain {
+                start: m.clone(),
+                steps: vec![Step {
+                    path: Vec::new(),
+                    rule: Rule::Cite(Source::Law, law.into(), Use::Forward),
+                    after: rec.clone(),
+                    subst: Vec::new(),
+                    premises: Vec::new(),
+                }],
+            };
+            self.lemmas.push((name.clone(), proof));
+            let stated = Axiom::ground(&name, m.clone(), Rel::Eq, rec);
+            self.now.push(Constraint { source: Source::Lemma, ..constraint(&stated) });
+        }
+    }
+
+    /// `pre U ⇒ δ/1*` (`tof_started`) for an off-delay `U`, now and, as a lemma under
+    /// `pre`, at the previous scan: an off-delay seen on at the previous scan says that
+    /// this is not the first scan (what a count from a release needs).
+    fn started(&mut self, name: &str, off: &Expr, cycle: &Delay) {
+        let (from, to) = (pre(off), timer(true, cycle, &constant(true)));
+        let step = |path: Vec<usize>, source, law: &str, after: &Expr| Step {
+            path,
+            rule: Rule::Cite(source, law.into(), Use::Forward),
+            after: after.clone(),
+            subst: Vec::new(),
+            premises: Vec::new(),
+        };
+        let (now, before) = (format!("{name}_started"), format!("{name}_started_pre"));
+        let proof = Proof::Chain {
+            start: from.clone(),
+            steps: vec![step(vec![], Source::Law, "tof_started", &to)],
+        };
+        self.lemmas.push((now.clone(), proof));
+        let (pf, pt) = (pre(&from), pre(&to));
+        let proof = Proof::Chain {
+            start: pf.clone(),
+            steps: vec![step(vec![0], Source::Lemma, &now, &pt)],
+        };
+        self.lemmas.push((before.clone(), proof));
+        for (name, l, r) in [(now, from, to), (before, pf, pt)] {
+            let stated = Axiom::ground(&name, l, Rel::Implies, r);
+            self.now.push(Constraint { source: Source::Lemma, ..constraint(&stated) });
+        }
+    }
+
     /// `T_k ⇒ T_(k−1)` (`ton_longer`; `U_(k−1) ⇒ U_k` by `tof_shorter`), now and, as
     /// a lemma under `pre` (0 ⇒ 0 before the first scan), at the previous scan.
     fn monotone(&mut self, on: bool, name: &str, longer: &Expr, shorter: &Expr) {
@@ -278,7 +345,12 @@ const MAX_CLAUSES: usize = 20_000;
 /// names and their disjunctions of two; each chain atom `pre T_k` alone, negated, with
 /// `¬pre T_k + pre T_(k−1)`, with `¬pre T_k + pre U_k` for every other chain's atom of
 /// the same count, and `¬pre T_k + ℓ` for the literals `ℓ` of the first state bits.
-pub fn clauses(chains: &Chains, state: &[String], inputs: &BTreeSet<String>) -> Vec<Expr> {
+pub fn clauses(
+    chains: &Chains,
+    state: &[String],
+    inputs: &BTreeSet<String>,
+    memories: &[Expr],
+) -> Vec<Expr> {
     let name = |n: &String| crate::term::name(n);
     let previous: Vec<Expr> = inputs.iter().map(|n| pre(&name(n))).collect();
     let mut lits: Vec<Expr> = Vec::new();
@@ -295,6 +367,51 @@ pub fn clauses(chains: &Chains, state: &[String], inputs: &BTreeSet<String>) -> 
         for j in 0..lits.len() {
             if j / 2 != i / 2 && (j < first_previous || j > i) {
                 out.push(or(&lits[i], &lits[j]));
+            }
+        }
+    }
+    // A memory of the goal (a request still waiting) against the literals of the state
+    // bits and of the chains' inputs.
+    let mut others: Vec<Expr> = state.iter().map(name).collect();
+    others.extend(chains.chains.iter().map(|c| c.input.clone()).filter(|i| !memories.contains(i)));
+    for m in memories {
+        for l in [m.clone(), crate::term::not(m)] {
+            out.push(l.clone());
+            for s in &others {
+                out.push(or(&l, s));
+                out.push(or(&l, &crate::term::not(s)));
+            }
+        }
+    }
+    // With a memory in the goal (a request waiting for its answer), the chains at the
+    // current scan: `¬T_k` and `¬T_k + U_k` (the request against the timer that answers
+    // it), whose reading one scan earlier is about the atoms `pre T_k`.
+    let current = if memories.is_empty() { &[][..] } else { &chains.chains[..] };
+    for (c, chain) in current.iter().enumerate() {
+        for (k, t) in chain.timers.iter().enumerate() {
+            let off = crate::term::not(t);
+            out.push(off.clone());
+            for (d, other) in current.iter().enumerate() {
+                if d != c
+                    && let Some(u) = other.timers.get(k)
+                {
+                    out.push(or(&off, u));
+                }
+            }
+        }
+    }
+    // An off-delay's input last on exactly `k` scans ago (`pre U_k · ¬pre U_(k−1)`,
+    // `U_0` its input) against how long an on-delay's input has been on (`pre T_j`,
+    // `j ≤ k`, `T_0` its input): what a minimum on-time after a release needs.
+    for off in chains.chains.iter().filter(|c| !c.on) {
+        for on in chains.chains.iter().filter(|c| c.on && c.input != off.input) {
+            for k in 0..off.timers.len() {
+                let shorter = if k == 0 { pre(&off.input) } else { pre(&off.timers[k - 1]) };
+                let exact = or(&crate::term::not(&pre(&off.timers[k])), &shorter);
+                for j in 0..=k.min(on.timers.len()) {
+                    let long = if j == 0 { pre(&on.input) } else { pre(&on.timers[j - 1]) };
+                    out.push(or(&exact, &long));
+                }
             }
         }
     }
@@ -404,4 +521,30 @@ pub fn cited(lemmas: Vec<(String, Proof)>, main: &Proof) -> Vec<(String, Proof)>
         }
     }
     lemmas.into_iter().zip(keep).filter_map(|(l, k)| k.then_some(l)).collect()
+}
+
+/// Instances of `ton_of_pre` (`d/pre f ⇒ pre ((d−δ)/f)`, `theories/scan.ii`) for the
+/// atoms `d/pre f` whose delay is two cycles or more, whole: a timer that reads a bit
+/// written later in the scan compiles to such an atom, and this relates it to the
+/// bit's own timers at the previous scan. The search's instance finder leaves this law
+/// out (its `d2` is named on the right side only); the kernel binds it by matching.
+pub fn ton_of_pre_instances(atoms: &mut super::boolean::Atoms, cycle: &Delay) -> Vec<Constraint> {
+    let mut out = Vec::new();
+    let pool: Vec<Expr> = atoms.terms.clone();
+    for a in &pool {
+        let Term::Ton([d, x]) = &a[root(a)] else { continue };
+        let (Term::Delay(d), Term::Pre(f)) = (&a[*d], &a[*x]) else { continue };
+        let ratio = d.seconds() / cycle.seconds();
+        if !ratio.is_integer() || ratio.to_integer() < 2u8.into() {
+            continue;
+        }
+        let Ok(shorter) = Delay::new(d.seconds() - cycle.seconds()) else { continue };
+        let rhs = pre(&timer(true, &shorter, &subterm(a, *f)));
+        let stated = Axiom::ground("ton_of_pre", a.clone(), Rel::Implies, rhs);
+        let c = Constraint { source: Source::Law, ..constraint(&stated) };
+        atoms.view(&c.lhs, root(&c.lhs));
+        atoms.view(&c.rhs, root(&c.rhs));
+        out.push(c);
+    }
+    out
 }
