@@ -192,7 +192,10 @@ def harness(req, types, prog_type, instance, trigs):
         "    __CURRENT_TIME.tv_nsec = (k * %dULL) %% 1000000000ULL;" % req["cycle_ns"],
         "    config_run__(k);",
     ]
-    # One line per scan, one token per want found: 0/1 for a bit, a number for an integer.
+    # One line per scan, `@@` and one token per want found: 0/1 for a bit, a number for an
+    # integer. The marker (on a line of its own) sets the rows apart from what the program
+    # prints itself (a pragma's `printf`).
+    lines.append('    fputs("\\n@@", stdout);')
     for r in reads:
         if r is None:
             continue
@@ -246,7 +249,7 @@ def build_and_run(work, k):
     r = subprocess.run([exe], capture_output=True, text=True, timeout=60)
     if r.returncode != 0:
         return {"status": "run", "message": "exit %d %s" % (r.returncode, r.stderr[-500:])}
-    rows = [line.split() for line in r.stdout.splitlines()]
+    rows = [line[2:].split() for line in r.stdout.splitlines() if line.startswith("@@")]
     if len(rows) != req["scans"]:
         return {"status": "run", "message": "%d scans printed of %d" % (len(rows), req["scans"])}
     trace, column = [], 0
