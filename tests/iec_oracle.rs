@@ -1,4 +1,4 @@
-//! The IEC text front end against matiec, the editors' own compiler: random Structured Text (`common/st_gen.rs`) and Instruction List (`common/il_gen.rs`) programs are compiled by `iec2c` and gcc and run scan by scan (`tools/oracle/run.py`); every BOOL variable and function-block output must have, at every scan, the value the scan-model simulator gives the lowered program — whose compiled equations `tests/st.rs` and `tests/il.rs` check against that simulator.
+//! The IEC text front end against matiec, the editors' own compiler: random Structured Text (`common/st_gen.rs`) and Instruction List (`common/il_gen.rs`) programs are compiled by `iec2c` and gcc and run scan by scan (`tools/oracle/run.py`); every BOOL variable and function-block output must have, at every scan, the value the scan-model simulator gives the lowered program — whose compiled equations `tests/st.rs` and `tests/il.rs` check against that simulator — and so must every integer the lowered program computes (`Program::integers`, `C1_CV`; a TIME in µs), its integer inputs driven with the same random values on both sides.
 //!
 //! Outside the test command (it needs the toolchain built by `tools/oracle/setup.sh DIR`):
 //! `II_ORACLE=DIR cargo test --release --test iec_oracle -- --ignored`, with
@@ -18,6 +18,7 @@ use std::path::{Path, PathBuf};
 
 use ii_prove::diag::Sources;
 use ii_prove::ladder::TimerModel;
+use ii_prove::program::IntType;
 use serde_json::{Value, json};
 
 const SCANS: usize = 120;
@@ -36,26 +37,74 @@ struct Job {
     cycle_us: u64,
 }
 
-/// The scan-model simulator's values of the job's bits, per bit a string of `0`/`1` per
-/// scan.
-fn ours(g: &Job, inputs: &[BTreeMap<String, bool>]) -> Result<Vec<String>, String> {
+/// What the scan-model simulator says of a job.
+struct Expected {
+    /// Per bit of the job, a string of `0`/`1` per scan.
+    bits: Vec<String>,
+    /// Per integer the lowered program computes, its value per scan (`None` where the
+    /// simulator does not know it: derived from an unconstrained value).
+    ints: Vec<(String, Vec<Option<i64>>)>,
+    /// Per integer input of the lowered program, the value it was given per scan.
+    int_inputs: Vec<(String, Vec<i64>)>,
+}
+
+/// Random values of an integer input for `scans` scans, each held for 1 to 12 scans:
+/// small values mostly, and the type's ends (where wrapping and C's promotions show).
+fn int_schedule(ty: IntType, seed: u64, scans: usize) -> Vec<i64> {
+    let mut rng = rng::Rng::new(seed);
+    let mut out = Vec::with_capacity(scans);
+    while out.len() < scans {
+        let v = match rng.below(10) {
+            0 => ty.min(),
+            1 => ty.max(),
+            2 => ty.wrap(rng.next() as i64),
+            _ => ty.wrap(rng.below(41) as i64 - 20),
+        };
+        let hold = 1 + rng.below(12) as usize;
+        out.extend(std::iter::repeat_n(v, hold.min(scans - out.len())));
+    }
+    out
+}
+
+/// The scan-model simulator's run of the job on these inputs (integer inputs drawn from
+/// the seed).
+fn ours(g: &Job, inputs: &[BTreeMap<String, bool>]) -> Result<Expected, String> {
     let mut sources = Sources::new();
     let file = sources.add("random.st", g.text.clone());
     let unit = ii_prove::iec::read(&sources, file).map_err(|e| format!("{e:?}"))?;
     let lowered =
         ii_prove::iec::lower(&sources, &unit, None, None).map_err(|e| format!("{e:?}"))?;
+    let integers = &lowered.program.integers;
+    let int_inputs: Vec<(String, Vec<i64>)> = integers
+        .iter()
+        .enumerate()
+        .filter(|(_, (_, v))| v.input)
+        .map(|(k, (n, v))| {
+            (n.clone(), int_schedule(v.ty, g.seed ^ (0x1A7 + k as u64), inputs.len()))
+        })
+        .collect();
+    let computed: Vec<&String> =
+        integers.iter().filter(|(_, v)| !v.input).map(|(n, _)| n).collect();
     let mut sim = ii_prove::program::simulate::Simulator::new(&lowered.program, TimerModel::Plc);
-    let mut out = vec![String::new(); g.bits.len()];
-    for step in inputs {
+    let mut bits = vec![String::new(); g.bits.len()];
+    let mut ints: Vec<(String, Vec<Option<i64>>)> =
+        computed.iter().map(|n| ((*n).clone(), Vec::new())).collect();
+    for (scan, step) in inputs.iter().enumerate() {
+        for (n, values) in &int_inputs {
+            sim.set_int(n, values[scan]);
+        }
         sim.step(step);
         for (k, b) in g.bits.iter().enumerate() {
             if !sim.is_known(b) {
                 return Err(format!("{b} is unknown"));
             }
-            out[k].push(if sim.bit(b) { '1' } else { '0' });
+            bits[k].push(if sim.bit(b) { '1' } else { '0' });
+        }
+        for (n, values) in &mut ints {
+            values.push(if sim.is_known(n) { sim.int(n) } else { None });
         }
     }
-    Ok(out)
+    Ok(Expected { bits, ints, int_inputs })
 }
 
 #[test]
@@ -103,12 +152,25 @@ fn against_matiec(language: &str, programs: Vec<Job>) {
         let key = format!("{seed:06}");
         let trace =
             |n: &str| inputs.iter().map(|s| if s[n] { '1' } else { '0' }).collect::<String>();
+        let mut drive: serde_json::Map<_, _> =
+            g.inputs.iter().map(|n| (n.clone(), Value::from(trace(n)))).collect();
+        for (n, values) in &expected.int_inputs {
+            drive.insert(n.clone(), Value::from(values.clone()));
+        }
+        // Integers are optional: one the lowering made up (a function's local, a hidden
+        // count) has no member in matiec's program; they are counted, not compared.
+        let want: Vec<Value> = g
+            .bits
+            .iter()
+            .map(|b| json!({"bit": b}))
+            .chain(expected.ints.iter().map(|(n, _)| json!({"int": n, "optional": true})))
+            .collect();
         let req = json!({
             "pou": g.pou,
             "cycle_ns": g.cycle_us * 1000,
             "scans": SCANS,
-            "inputs": g.inputs.iter().map(|n| (n.clone(), Value::from(trace(n)))).collect::<serde_json::Map<_, _>>(),
-            "want": g.bits.iter().map(|b| json!({"bit": b})).collect::<Vec<_>>(),
+            "inputs": drive,
+            "want": want,
         });
         std::fs::write(work.join(format!("{key}.st")), &g.text).expect("write");
         std::fs::write(work.join(format!("{key}.req.json")), req.to_string()).expect("write");
@@ -122,6 +184,8 @@ fn against_matiec(language: &str, programs: Vec<Job>) {
         .expect("run.py");
     assert!(status.success(), "run.py failed");
     let (mut compared, mut refused, mut bit_scans) = (0u64, BTreeMap::<String, u64>::new(), 0u64);
+    // Integer-scans compared, and the integers matiec's program has no member for.
+    let (mut int_scans, mut absent) = (0u64, BTreeMap::<String, u64>::new());
     for (key, seed, g, expected) in jobs {
         let out = std::fs::read_to_string(work.join(format!("{key}.out.json"))).expect("an answer");
         let out: Value = serde_json::from_str(&out).expect("JSON");
@@ -134,34 +198,240 @@ fn against_matiec(language: &str, programs: Vec<Job>) {
             continue;
         }
         compared += 1;
-        let traces: Vec<&str> = out["trace"]
-            .as_array()
-            .map(|a| a.iter().filter_map(Value::as_str).collect())
-            .unwrap_or_default();
+        let traces: &[Value] = out["trace"].as_array().map_or(&[], Vec::as_slice);
+        let mut differs = None;
         for (k, bit) in g.bits.iter().enumerate() {
-            let theirs = traces.get(k).copied().unwrap_or("");
+            let theirs = traces.get(k).and_then(Value::as_str).unwrap_or("");
             bit_scans += theirs.len() as u64;
-            if theirs != expected[k] {
-                let at =
-                    theirs.chars().zip(expected[k].chars()).position(|(a, b)| a != b).unwrap_or(0);
-                failures.push(format!(
-                    "seed {seed}: {bit} differs from scan {at}:\n  matiec {theirs}\n  ours   {}\n{}",
-                    expected[k], g.text
+            if theirs != expected.bits[k] {
+                let at = theirs
+                    .chars()
+                    .zip(expected.bits[k].chars())
+                    .position(|(a, b)| a != b)
+                    .unwrap_or(0);
+                differs = Some(format!(
+                    "{bit} differs from scan {at}:\n  matiec {theirs}\n  ours   {}",
+                    expected.bits[k]
                 ));
                 break;
             }
         }
+        for (k, (name, ours)) in expected.ints.iter().enumerate() {
+            if differs.is_some() {
+                break;
+            }
+            let Some(theirs) = traces.get(g.bits.len() + k).and_then(Value::as_array) else {
+                *absent.entry(name.clone()).or_default() += 1;
+                continue;
+            };
+            let theirs: Vec<Option<i64>> = theirs.iter().map(Value::as_i64).collect();
+            for (scan, (a, b)) in theirs.iter().zip(ours).enumerate() {
+                let Some(b) = b else { continue };
+                int_scans += 1;
+                if *a != Some(*b) {
+                    let show = |v: &[Option<i64>]| {
+                        let v = &v[scan.saturating_sub(3)..(scan + 3).min(v.len())];
+                        v.iter()
+                            .map(|x| x.map_or("?".into(), |x| x.to_string()))
+                            .collect::<Vec<_>>()
+                            .join(" ")
+                    };
+                    differs = Some(format!(
+                        "{name} differs at scan {scan} (scans {}..):\n  matiec {}\n  ours   {}",
+                        scan.saturating_sub(3),
+                        show(&theirs),
+                        show(ours)
+                    ));
+                    break;
+                }
+            }
+        }
+        if let Some(d) = differs {
+            let given: Vec<String> =
+                expected.int_inputs.iter().map(|(n, v)| format!("  {n} = {v:?}")).collect();
+            failures.push(format!("seed {seed}: {d}\n{}\n{}", given.join("\n"), g.text));
+        }
     }
     eprintln!(
-        "random {language} programs against matiec: {n} generated, {compared} run by the toolchain ({refused:?} refused), {bit_scans} bit-scans compared; {} disagreements",
+        "random {language} programs against matiec: {n} generated, {compared} run by the toolchain ({refused:?} refused), {bit_scans} bit-scans and {int_scans} integer-scans compared; {} disagreements",
         failures.len()
     );
+    if !absent.is_empty() {
+        let some: Vec<_> = absent.iter().take(8).collect();
+        eprintln!(
+            "integers of the lowered programs with no member in matiec's ({} names, e.g. {some:?}): not compared",
+            absent.len()
+        );
+    }
     assert!(
         failures.is_empty(),
         "{}",
         failures.iter().take(3).cloned().collect::<Vec<_>>().join("\n\n")
     );
     assert!(compared > 0, "the toolchain ran no program");
+}
+
+/// Runs one request through `run.py` in a fresh work directory: its answer.
+fn run_one(dir: &Path, name: &str, text: &str, req: &Value) -> Value {
+    let work = tempfile::tempdir().expect("temporary directory");
+    std::fs::write(work.path().join(format!("{name}.st")), text).expect("write");
+    std::fs::write(work.path().join(format!("{name}.req.json")), req.to_string()).expect("write");
+    let status = std::process::Command::new("python3")
+        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("tools/oracle/run.py"))
+        .arg(work.path())
+        .env("ORACLE_MATIEC", dir.join("matiec"))
+        .status()
+        .expect("run.py");
+    assert!(status.success(), "run.py failed");
+    let answer = std::fs::read_to_string(work.path().join(format!("{name}.out.json")));
+    serde_json::from_str(&answer.expect("an answer")).expect("JSON")
+}
+
+/// The oracle reads integers: counters' `CV`, a TON's `ET` in µs, integer variables of
+/// every width, with integer inputs driven per scan — checked against values worked out
+/// here from matiec's library (`lib/counter.txt`, `lib/timer.txt`) and C's arithmetic
+/// as matiec generates it: `+`, `/`, comparisons in C `int` after promotion (so
+/// `(A + B) / 2` of two INTs does not wrap at 16 bits, nor does `W1 - W2 > 0` of two
+/// UINTs), wrapping only where the result is stored; `MOD` by 0 is 0.
+#[test]
+#[ignore = "needs the toolchain of tools/oracle/setup.sh (II_ORACLE=DIR)"]
+fn integers_are_read_from_matiec_runs() {
+    let dir = PathBuf::from(std::env::var_os("II_ORACLE").expect("II_ORACLE=DIR"));
+    let text = "PROGRAM Main
+  VAR_INPUT
+    Up : BOOL; Rst : BOOL;
+    A : INT; B : INT; W1 : UINT; W2 : UINT; S : SINT;
+  END_VAR
+  VAR
+    C1 : CTU; D1 : CTD; T1 : TON;
+    N : INT := 5; Half : INT; Big : BOOL; R : INT; UGt : BOOL;
+    SS : SINT; SGt : BOOL; Byt : BYTE; U : UDINT; M : DINT;
+  END_VAR
+  C1(CU := Up, R := Rst, PV := 3);
+  D1(CD := Up, LD := Rst, PV := 2);
+  T1(IN := Up, PT := T#50ms);
+  N := N + A;
+  Half := (A + B) / 2;
+  Big := A + B > 100;
+  R := A MOD B;
+  UGt := W1 - W2 > 0;
+  SS := S + S;
+  SGt := S + S > 100;
+  Byt := INT_TO_BYTE(A);
+  U := UINT_TO_UDINT(W1) - 1;
+  M := INT_TO_DINT(A) * 1000;
+END_PROGRAM
+CONFIGURATION Cfg
+  RESOURCE Res ON PLC
+    TASK Tk(INTERVAL := T#20ms, PRIORITY := 0);
+    PROGRAM Inst WITH Tk : Main;
+  END_RESOURCE
+END_CONFIGURATION
+";
+    let scans = 40;
+    let mut rng = rng::Rng::new(7);
+    let mut held = |lo: i64, hi: i64, edges: &[i64]| -> Vec<i64> {
+        let mut v = Vec::new();
+        while v.len() < scans {
+            let x = if rng.chance(30) {
+                *rng.pick(edges)
+            } else {
+                lo + rng.below((hi - lo + 1) as u64) as i64
+            };
+            v.extend(std::iter::repeat_n(x, 1 + rng.below(4) as usize));
+        }
+        v.truncate(scans);
+        v
+    };
+    let up = held(0, 1, &[1]);
+    let rst: Vec<i64> = (0..scans).map(|k| i64::from(k % 17 == 16)).collect();
+    let a = held(-300, 300, &[i16::MIN.into(), i16::MAX.into(), 20_000, -7]);
+    let b = held(-5, 5, &[0, 20_000, 2, -2]);
+    let w1 = held(0, 6, &[0, 65_535]);
+    let w2 = held(0, 6, &[0, 1]);
+    let s = held(-100, 100, &[i8::MIN.into(), i8::MAX.into(), 100, 60]);
+    let bits = |v: &[i64]| v.iter().map(|x| if *x == 1 { '1' } else { '0' }).collect::<String>();
+    let ints = ["C1_CV", "D1_CV", "T1_ET", "N", "Half", "R", "SS", "Byt", "U", "M"];
+    let flags = ["C1_Q", "D1_Q", "T1_Q", "Big", "UGt", "SGt"];
+    let req = json!({
+        "pou": "Main",
+        "cycle_ns": 20_000_000u64,
+        "scans": scans,
+        "inputs": {"Up": bits(&up), "Rst": bits(&rst), "A": a, "B": b, "W1": w1, "W2": w2, "S": s},
+        "want": flags.iter().map(|n| json!({"bit": n}))
+            .chain(ints.iter().map(|n| json!({"int": n})))
+            .chain([json!({"int": "Nowhere", "optional": true})])
+            .collect::<Vec<_>>(),
+    });
+    let answer = run_one(&dir, "ints", text, &req);
+    assert_eq!(answer["status"], "ok", "{answer}");
+    let trace = answer["trace"].as_array().expect("traces");
+    assert_eq!(trace.len(), flags.len() + ints.len() + 1);
+    assert!(trace[flags.len() + ints.len()].is_null(), "{answer}");
+    // The reference, scan by scan.
+    let mut want_bits: Vec<String> = vec![String::new(); flags.len()];
+    let mut want_ints: Vec<Vec<i64>> = vec![Vec::new(); ints.len()];
+    let (mut c1, mut d1, mut n) = (0i64, 0i64, 5i64);
+    let (mut last_up, mut t_state, mut t_start, mut t_et, mut t_q) = (false, 0, 0i64, 0i64, false);
+    for k in 0..scans {
+        let now = k as i64 * 20_000;
+        let (u, r) = (up[k] == 1, rst[k] == 1);
+        let rising = u && !last_up;
+        last_up = u;
+        if r {
+            c1 = 0;
+        } else if rising && c1 < 3 {
+            c1 += 1;
+        }
+        if r {
+            d1 = 2;
+        } else if rising && d1 > 0 {
+            d1 -= 1;
+        }
+        // TON (lib/timer.txt): PREV_IN is the last scan's IN, as `last_up` was.
+        if t_state == 0 && rising {
+            (t_state, t_q, t_start) = (1, false, now);
+        } else if !u {
+            (t_et, t_q, t_state) = (0, false, 0);
+        } else if t_state == 1 {
+            if t_start + 50_000 <= now {
+                (t_state, t_q, t_et) = (2, true, 50_000);
+            } else {
+                t_et = now - t_start;
+            }
+        }
+        n = i64::from((n + a[k]) as i16);
+        let half = i64::from(((a[k] + b[k]) / 2) as i16);
+        let rem = if b[k] == 0 { 0 } else { a[k] % b[k] };
+        let ss = i64::from((2 * s[k]) as i8);
+        let byt = i64::from(a[k] as u8);
+        let ud = i64::from((w1[k] as u32).wrapping_sub(1));
+        let m = i64::from((a[k] as i32).wrapping_mul(1000));
+        let flag = [c1 >= 3, d1 <= 0, t_q, a[k] + b[k] > 100, w1[k] - w2[k] > 0, 2 * s[k] > 100];
+        for (j, f) in flag.iter().enumerate() {
+            want_bits[j].push(if *f { '1' } else { '0' });
+        }
+        for (j, v) in [c1, d1, t_et, n, half, rem, ss, byt, ud, m].into_iter().enumerate() {
+            want_ints[j].push(v);
+        }
+    }
+    for (j, name) in flags.iter().enumerate() {
+        assert_eq!(trace[j].as_str(), Some(want_bits[j].as_str()), "{name}");
+    }
+    for (j, name) in ints.iter().enumerate() {
+        let got: Vec<i64> = trace[flags.len() + j]
+            .as_array()
+            .expect("an integer trace")
+            .iter()
+            .filter_map(Value::as_i64)
+            .collect();
+        assert_eq!(got, want_ints[j], "{name}");
+    }
+    eprintln!(
+        "{} integers and {} bits over {scans} scans read from matiec as worked out",
+        ints.len(),
+        flags.len()
+    );
 }
 
 /// The value of a counterexample signal (`--json`) at `t`, in seconds.

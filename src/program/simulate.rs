@@ -127,6 +127,15 @@ impl Simulator {
         self.ints.get(name).map(|v| v.value)
     }
 
+    /// Writes an integer before the next scan, as the outside world writes an input
+    /// (an analog reading): its value from now on, reduced into its type as C assignment
+    /// does. `false` (and nothing written) if the program has no such integer.
+    pub fn set_int(&mut self, name: &str, value: i64) -> bool {
+        let Some(var) = self.program.integers.get(name) else { return false };
+        self.ints.insert(name.to_string(), N { value: var.ty.wrap(value), known: true });
+        true
+    }
+
     /// The memory of the one-shot with this index after the last scan.
     pub fn edge_memory(&self, index: usize) -> Option<bool> {
         self.by_index.get(&index).filter(|v| v.known).map(|v| v.value)
@@ -407,5 +416,35 @@ impl ScanSimulator for Simulator {
     }
     fn edge_memory(&self, index: usize) -> Option<bool> {
         Simulator::edge_memory(self, index)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diag::Span;
+    use crate::program::{Block, IntType, IntVar};
+
+    /// `Y := X + 1` with `X` an INT input: `set_int` drives `X` (wrapped into its type).
+    #[test]
+    fn set_int_drives_an_integer_input() {
+        let span = Span::new(0, 0..1);
+        let int = |input| IntVar { ty: IntType::I16, input, init: 0 };
+        let mut program = Program::default();
+        program.integers.insert("X".into(), int(true));
+        program.integers.insert("Y".into(), int(false));
+        let value = IntExpr::Add(Box::new(IntExpr::Var("X".into())), Box::new(IntExpr::Const(1)));
+        let stmts = vec![Stmt::SetInt { target: "Y".into(), value, span }];
+        program.blocks.push(Block { number: 1, label: Some("L1".into()), span, stmts });
+        let mut sim = Simulator::new(&program, TimerModel::Plc);
+        let mut got = Vec::new();
+        for x in [5, -3, 40_000, 32_767] {
+            assert!(sim.set_int("X", x));
+            sim.step(&BTreeMap::new());
+            got.push((sim.int("X"), sim.int("Y")));
+        }
+        let want = [(5, 6), (-3, -2), (-25_536, -25_535), (32_767, -32_768)];
+        assert_eq!(got, want.map(|(x, y)| (Some(x), Some(y))));
+        assert!(!sim.set_int("Z", 1));
     }
 }

@@ -16,19 +16,27 @@ project `K.xml` or Structured Text `K.st`:
 
 The request names what to drive and what to read, in the prover's names:
   {"pou": "main", "cycle_ns": N, "scans": S,
-   "inputs": {"In0": "0110...", ...},          # value per scan
-   "starts": {"B1": 1, ...},                    # written after init (warm restart)
-   "want": [{"bit": "TON0_Q"},                  # a variable or FB member, by flat name
+   "inputs": {"In0": "0110...",                 # a BOOL: its value per scan
+              "N": [3, -7, 12, ...]},           # an integer: its value per scan
+   "starts": {"B1": 1, "N": 40, ...},           # written after init (warm restart)
+   "want": [{"bit": "TON0_Q"},                  # a BOOL variable or FB member, by flat name
+            {"int": "C1_CV"},                   # an integer one (SINT ... ULINT, BYTE ...
+                                                # LWORD; TIME in microseconds: `T1_ET`)
+            {"int": "F_X", "optional": true},   # null in the answer if there is no such
+                                                # member (any want may say so)
             {"edge": [path, localId, field, rank]}]}  # the edge detector Beremiz made
                                                 # for element localId of the POU
                                                 # instance at path (FB instance
                                                 # names), field Q or M
 A flat name is the C member path joined by `_` (matiec upper-cases identifiers), so
-`TON0.Q` is `TON0_Q` and `UF0.TON1.Q` is `UF0_TON1_Q`, the prover's names for them.
+`TON0.Q` is `TON0_Q` and `UF0.TON1.Q` is `UF0_TON1_Q`, the prover's names for them. An
+integer input's value is converted to the member's C type as C assignment does (so it
+wraps into an unsigned type).
 
-The answer `K.out.json` is {"status": "ok", "trace": ["0101", ...]} (one string per
-want, one character per scan) or {"status": "<stage>", "message": ...} when a stage
-refused the program or a name could not be found.
+The answer `K.out.json` is {"status": "ok", "trace": ["0101", [0, 1, 1, 2], ...]} (per
+want in order: a bit's string, one character per scan; an integer's list, one number per
+scan; null for an optional want not found) or {"status": "<stage>", "message": ...}
+when a stage refused the program or a name could not be found.
 """
 import concurrent.futures
 import json
@@ -61,15 +69,21 @@ def structs(*headers):
     return out
 
 
+# matiec's C types of the integers `{"int": ...}` reads (iec_types.h), and TIME.
+INTEGERS = {"SINT", "INT", "DINT", "LINT", "USINT", "UINT", "UDINT", "ULINT",
+            "BYTE", "WORD", "DWORD", "LWORD"}
+UNSIGNED64 = {"ULINT", "LWORD"}
+
+
 def leaves(types, ty, path=()):
-    """Every BOOL member reachable from a struct: flat name -> (path, kind)."""
+    """Every scalar member reachable from a struct: flat name -> (path, kind, C type)."""
     out = {}
     for kind, fty, name in types.get(ty, []):
         p = path + (name,)
         if kind == "FB":
             out.update(leaves(types, fty, p))
-        elif fty == "BOOL":
-            out["_".join(p).upper()] = (p, kind)
+        else:
+            out["_".join(p).upper()] = (p, kind, fty)
     return out
 
 
@@ -93,11 +107,23 @@ def struct_at(types, ty, path):
 def harness(req, types, prog_type, instance, trigs):
     flat = leaves(types, prog_type)
 
-    def bit(name):
+    def member(name, allowed, what):
         hit = flat.get(name.upper())
-        if hit is None:
-            raise LookupError("no member `%s` in %s" % (name, prog_type))
-        return access(instance, *hit)
+        if hit is None or hit[2] not in allowed:
+            raise LookupError("no %s member `%s` in %s" % (what, name, prog_type))
+        return access(instance, hit[0], hit[1]), hit[2]
+
+    def bit(name):
+        return member(name, {"BOOL"}, "BOOL")[0]
+
+    def integer(name):
+        """A C expression of type long long (unsigned for ULINT, LWORD), and its printf."""
+        c, ty = member(name, INTEGERS | {"TIME"}, "integer")
+        if ty == "TIME":
+            return "((long long)%s.tv_sec * 1000000LL + %s.tv_nsec / 1000)" % (c, c), "%lld"
+        if ty in UNSIGNED64:
+            return "((unsigned long long)%s)" % c, "%llu"
+        return "((long long)%s)" % c, "%lld"
 
     def edge(path, local_id, field, rank):
         ty, path = struct_at(types, prog_type, path)
@@ -112,10 +138,22 @@ def harness(req, types, prog_type, instance, trigs):
             raise LookupError("no edge detector %d of element %s of %s" % (rank, local_id, ty))
         return access(instance, tuple(path) + (found[rank][1], field), "VAR")
 
+    # Per want: None (optional, not found), or ("bit", C) or ("int", C, printf format).
     reads = []
     for w in req["want"]:
-        reads.append(bit(w["bit"]) if "bit" in w else edge(*w["edge"]))
+        try:
+            if "bit" in w:
+                reads.append(("bit", bit(w["bit"])))
+            elif "int" in w:
+                reads.append(("int",) + integer(w["int"]))
+            else:
+                reads.append(("bit", edge(*w["edge"])))
+        except LookupError:
+            if not w.get("optional"):
+                raise
+            reads.append(None)
     scans = req["scans"]
+    inputs = list(req["inputs"].items())
     lines = [
         '#include "iec_std_lib.h"',
         "#define __LOCATED_VAR(type, name, ...) type __##name; type *name = &__##name;",
@@ -130,24 +168,43 @@ def harness(req, types, prog_type, instance, trigs):
         "void config_init__(void);",
         "void config_run__(unsigned long tick);",
         "int main(void) {",
-        "  static const char *in[] = {%s};" % ", ".join(
-            '"%s"' % v for v in req["inputs"].values()) if req["inputs"] else "",
-        "  config_init__();",
     ]
+    for j, (name, v) in enumerate(inputs):
+        if isinstance(v, str):
+            lines.append('  static const char in%d[] = "%s";' % (j, v))
+        else:
+            lines.append("  static const long long in%d[] = {%s};" % (j, ", ".join("%dLL" % x for x in v) or "0"))
+    lines.append("  config_init__();")
+
+    def scalar(name):
+        return member(name, INTEGERS | {"BOOL"}, "BOOL or integer")[0]
+
     for name, v in req.get("starts", {}).items():
-        lines.append("  %s = %d;" % (bit(name), v))
+        lines.append("  %s = %d;" % (scalar(name), v))
     lines.append("  for (unsigned long k = 0; k < %d; k++) {" % scans)
-    for j, name in enumerate(req["inputs"]):
-        lines.append("    %s = in[%d][k] == '1';" % (bit(name), j))
+    for j, (name, v) in enumerate(inputs):
+        if isinstance(v, str):
+            lines.append("    %s = in%d[k] == '1';" % (bit(name), j))
+        else:
+            lines.append("    %s = in%d[k];" % (scalar(name), j))
     lines += [
         "    __CURRENT_TIME.tv_sec = (k * %dULL) / 1000000000ULL;" % req["cycle_ns"],
         "    __CURRENT_TIME.tv_nsec = (k * %dULL) %% 1000000000ULL;" % req["cycle_ns"],
         "    config_run__(k);",
     ]
+    # One line per scan, `@@` and one token per want found: 0/1 for a bit, a number for an
+    # integer. The marker (on a line of its own) sets the rows apart from what the program
+    # prints itself (a pragma's `printf`).
+    lines.append('    fputs("\\n@@", stdout);')
     for r in reads:
-        lines.append('    putchar(%s ? \'1\' : \'0\');' % r)
+        if r is None:
+            continue
+        if r[0] == "bit":
+            lines.append('    printf(" %%c", %s ? \'1\' : \'0\');' % r[1])
+        else:
+            lines.append('    printf(" %s", %s);' % (r[2], r[1]))
     lines += ['    putchar(\'\\n\');', "  }", "  return 0;", "}"]
-    return "\n".join(lines) + "\n"
+    return "\n".join(lines) + "\n", reads
 
 
 def build_and_run(work, k):
@@ -170,7 +227,7 @@ def build_and_run(work, k):
     prog_type, instance = instances[0]
     trigs = json.load(open(os.path.join(work, k + ".json")))
     try:
-        main = harness(req, types, prog_type, instance, trigs)
+        main, reads = harness(req, types, prog_type, instance, trigs)
     except LookupError as e:
         return {"status": "map", "message": str(e)}
     open(os.path.join(cdir, "main.c"), "w").write(main)
@@ -192,8 +249,17 @@ def build_and_run(work, k):
     r = subprocess.run([exe], capture_output=True, text=True, timeout=60)
     if r.returncode != 0:
         return {"status": "run", "message": "exit %d %s" % (r.returncode, r.stderr[-500:])}
-    rows = r.stdout.split()
-    trace = ["".join(row[j] for row in rows) for j in range(len(req["want"]))]
+    rows = [line[2:].split() for line in r.stdout.splitlines() if line.startswith("@@")]
+    if len(rows) != req["scans"]:
+        return {"status": "run", "message": "%d scans printed of %d" % (len(rows), req["scans"])}
+    trace, column = [], 0
+    for read in reads:
+        if read is None:
+            trace.append(None)
+            continue
+        values = [row[column] for row in rows]
+        column += 1
+        trace.append("".join(values) if read[0] == "bit" else [int(v) for v in values])
     return {"status": "ok", "trace": trace}
 
 

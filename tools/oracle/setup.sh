@@ -5,8 +5,9 @@
 #
 #   tools/oracle/setup.sh DIR [MATIEC_SRC BEREMIZ_SRC]
 #
-# MATIEC_SRC and BEREMIZ_SRC may be existing source trees (copied); otherwise both are
-# cloned from GitHub.
+# MATIEC_SRC and BEREMIZ_SRC may be existing source trees (copied) or git repositories,
+# bare ones included (a mirror: cloned, its default branch checked out); otherwise both
+# are cloned from GitHub.
 set -euo pipefail
 dir=$(mkdir -p "$1" && cd "$1" && pwd)
 matiec_src=${2:-}
@@ -15,7 +16,9 @@ need() { command -v "$1" >/dev/null || { echo "setup.sh: needs $1 (apt install $
 need flex flex; need bison bison; need autoreconf "autoconf automake libtool"; need gcc gcc; need python3 python3
 fetch() { # name source
   if [ -e "$dir/$1" ]; then return; fi
-  if [ -n "$2" ]; then cp -a "$2" "$dir/$1"; else git clone --depth 1 "https://github.com/beremiz/$1" "$dir/$1"; fi
+  if [ -n "$2" ] && [ -f "$2/HEAD" ] && [ -d "$2/objects" ]; then # a bare repository
+    git clone -q "$2" "$dir/$1"
+  elif [ -n "$2" ]; then cp -a "$2" "$dir/$1"; else git clone --depth 1 "https://github.com/beremiz/$1" "$dir/$1"; fi
 }
 fetch matiec "$matiec_src"
 fetch beremiz "$beremiz_src"
