@@ -92,11 +92,15 @@ impl Simulator {
                 self.current.insert(n.clone(), V::of(*v));
             }
         }
-        // An input integer: the value of its bits as given (missing bits 0).
+        // An input integer given by its bits: their value (missing bits 0); one whose
+        // bits are not given keeps what `set_int` wrote.
         for (x, var) in self.program.integers.iter().filter(|(_, v)| v.input) {
-            let bits: Vec<bool> = (0..var.ty.bits)
-                .map(|k| inputs.get(&Program::int_bit(x, k)).copied().unwrap_or(false))
-                .collect();
+            let given: Vec<Option<bool>> =
+                (0..var.ty.bits).map(|k| inputs.get(&Program::int_bit(x, k)).copied()).collect();
+            if given.iter().all(Option::is_none) {
+                continue;
+            }
+            let bits: Vec<bool> = given.iter().map(|b| b.unwrap_or(false)).collect();
             let value = super::bitvec::value_of(&bits, var.ty);
             self.ints.insert(x.clone(), N { value, known: true });
         }

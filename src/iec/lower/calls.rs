@@ -428,20 +428,9 @@ impl<'s> Lowering<'s> {
                     let cv = self.counter_value(inst, t);
                     self.make_opaque(&cv, why.clone());
                 }
+                let why = format!("the counter {inst} ({ty}) is not computed: {why}");
                 for pin in Fb::Counter.outputs() {
-                    let q = self.hidden(inst, pin);
-                    let fresh = Fresh {
-                        base: format!("{ty}_{inst}_{pin}"),
-                        keyword: ty.to_string(),
-                        why: format!("the counter {inst} ({ty}) is not computed: {why}"),
-                        span,
-                    };
-                    out.push(Stmt::Write {
-                        target: q,
-                        kind: WriteKind::Assign,
-                        value: BoolExpr::Fresh(Box::new(fresh)),
-                        span,
-                    });
+                    out.push(self.unconstrained_output(inst, ty, pin, &why, span));
                 }
                 return out;
             }
@@ -512,6 +501,31 @@ impl<'s> Lowering<'s> {
         out
     }
 
+    /// The write of an unconstrained value into the output `pin` of `inst` (of type `ty`),
+    /// for the reason `why`.
+    fn unconstrained_output(
+        &mut self,
+        inst: &str,
+        ty: &str,
+        pin: &str,
+        why: &str,
+        span: Span,
+    ) -> Stmt {
+        let fresh = Fresh {
+            base: format!("{ty}_{inst}_{pin}"),
+            keyword: ty.to_string(),
+            why: why.to_string(),
+            span,
+        };
+        let target = self.hidden(inst, pin);
+        Stmt::Write {
+            target,
+            kind: WriteKind::Assign,
+            value: BoolExpr::Fresh(Box::new(fresh)),
+            span,
+        }
+    }
+
     /// `CV => target`: the count into an integer variable of its type.
     fn counter_output(
         &mut self,
@@ -552,22 +566,13 @@ impl<'s> Lowering<'s> {
             Some(ExprKind::Var(id)) => self.duration(id),
             _ => None,
         };
-        let q = self.hidden(inst, "Q");
         let Some(pt) = pt else {
-            let fresh = Fresh {
-                base: format!("{ty}_{inst}_Q"),
-                keyword: ty.to_string(),
-                why: format!("the pulse timer {inst} has a preset that is not a constant duration"),
-                span,
-            };
-            out.push(Stmt::Write {
-                target: q,
-                kind: WriteKind::Assign,
-                value: BoolExpr::Fresh(Box::new(fresh)),
-                span,
-            });
+            let why =
+                format!("the pulse timer {inst} has a preset that is not a constant duration");
+            out.push(self.unconstrained_output(inst, ty, "Q", &why, span));
             return out;
         };
+        let q = self.hidden(inst, "Q");
         let done = self.hidden(inst, "DONE");
         let input = self.temp(&mut out, v);
         let memory =

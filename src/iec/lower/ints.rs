@@ -295,13 +295,40 @@ impl Lowering<'_> {
             let x = self.int_expr(x)?;
             self.unify(&x, &Int { e: IntExpr::Const(0), ty: Some(from), divides: false }, e.span)?;
             // The argument is a value of `from` (converted as C passes it), then `to`.
-            let v = IntExpr::Cast(Box::new(x.in_type(from)), from);
+            // A value of `to` in any context: converted from `from`, then wrapped to `to`.
+            let v = IntExpr::Cast(Box::new(IntExpr::Cast(Box::new(x.in_type(from)), from)), to);
             return Ok(Int { e: v, ty: Some(to), divides: false });
         }
         let mut ints = Vec::new();
         let skip = usize::from(name == "SEL" || name == "MUX");
         for x in values.iter().skip(skip) {
             ints.push(self.int_expr(x)?);
+        }
+        // Literals alone are folded as numbers (typed where they are used, as matiec
+        // types them): `MIN(4294967295, 1)` is 1 whatever C `int` would make of it.
+        let literals: Option<Vec<i128>> = ints
+            .iter()
+            .map(|x| match (&x.e, x.ty) {
+                (IntExpr::Const(k), None) => Some(i128::from(*k)),
+                _ => None,
+            })
+            .collect();
+        if let Some(ks) = literals
+            && name != "SEL"
+        {
+            let folded = match (name.as_str(), ks.as_slice()) {
+                ("MOVE", [k]) => Some(*k),
+                ("ABS", [k]) => Some(k.abs()),
+                ("MIN", [_, _, ..]) => ks.iter().min().copied(),
+                ("MAX", [_, _, ..]) => ks.iter().max().copied(),
+                ("LIMIT", [mn, x, mx]) => {
+                    Some(if x > mn { if x < mx { *x } else { *mx } } else { *mn })
+                }
+                _ => None,
+            };
+            if let Some(k) = folded {
+                return Ok(Int::literal(k));
+            }
         }
         let mut ty = None;
         for x in &ints {
@@ -338,8 +365,9 @@ impl Lowering<'_> {
                 acc.e
             }
             ("LIMIT", [mn, x, mx]) => {
-                let low = IntExpr::ite(cmp(CmpOp::Lt, x, mn), value(mn), value(x));
-                IntExpr::ite(cmp(CmpOp::Gt, x, mx), value(mx), low)
+                // matiec: `IN > MN ? IN < MX ? IN : MX : MN` (MN wins when MN > MX).
+                let below_max = IntExpr::ite(cmp(CmpOp::Lt, x, mx), value(x), value(mx));
+                IntExpr::ite(cmp(CmpOp::Gt, x, mn), below_max, value(mn))
             }
             ("SEL", [a, b]) => {
                 let g = self.bool_expr(values[0]);
