@@ -12,6 +12,11 @@ false.
     benches/plants.py generate N DIR [--faulty]   # DIR/plant.ld, DIR/plant.ii, DIR/plant.smv
     benches/plants.py run N...  [--nusmv PATH] [--no-nusmv] [--faulty] [--timeout S]
 
+`--ldmicro01` writes the same plants as LDmicro0.1 files with a 1 s cycle (the shape of
+issue 30's outside generator): a 0.1 timer counts P = delay/cycle - 1 scans, so with the
+default `--timers plc` each unit's P1a and P1b are refuted (the pumps start one scan
+before 5s/L1_up holds) and every other property is proved.
+
 `run` times `ii-prove plant.ld plant.ii` (every property, one process, wall clock and peak
 memory) and `NuSMV -dynamic -df -coi plant.smv` (every INVARSPEC by BDD on its cone of influence, with PLCverif's settings) in
 the same run, checks that the verdicts are what they must be, and prints one table row per
@@ -36,6 +41,22 @@ P = DELAY_US // CYCLE_US  # LDmicro0.2, no adjust field: P = floor(delay / cycle
 BITS = (P + 1).bit_length()
 W = f"0ud{BITS}_"
 CAP = f"{W}{P + 1}"
+# The properties' `5s/x` (on from the (N+1)-th scan of x): the same count for 0.2.
+OBS = CAP
+VERSION = "LDmicro0.2"
+
+
+def ldmicro01():
+    """Switch to LDmicro0.1 with a 1 s cycle: the program's timers fire one scan before 5s/x."""
+    global CYCLE_US, P, BITS, W, CAP, OBS, VERSION
+    CYCLE_US = 1_000_000
+    n = DELAY_US // CYCLE_US
+    P = n - 1  # LDmicro0.1: P = delay / cycle - 1
+    BITS = (n + 1).bit_length()
+    W = f"0ud{BITS}_"
+    CAP = f"{W}{P + 1}"
+    OBS = f"{W}{n + 1}"
+    VERSION = "LDmicro0.1"
 
 
 def unit_rungs(k, faulty):
@@ -128,7 +149,7 @@ def ladder(n, faulty):
     rungs = []
     for k in range(1, n + 1):
         rungs.extend(unit_rungs(k, faulty and k == n))
-    return f"LDmicro0.2\nCYCLE={CYCLE_US}\n\nPROGRAM\n" + "\n".join(rungs) + "\n"
+    return f"{VERSION}\nCYCLE={CYCLE_US}\n\nPROGRAM\n" + "\n".join(rungs) + "\n"
 
 
 def properties(n):
@@ -222,14 +243,14 @@ def smv(n, faulty):
             o = f"o{line}{u}"
             counters.append(o)
             lines_init.append(f"init({o}) := YL{line}_up{u} ? {W}1 : {W}0;")
-            lines_next.append(f"next({o}) := next(YL{line}_up{u}) ? ({o} < {CAP} ? {o} + {W}1 : {CAP}) : {W}0;")
+            lines_next.append(f"next({o}) := next(YL{line}_up{u}) ? ({o} < {OBS} ? {o} + {W}1 : {OBS}) : {W}0;")
         off = " & ".join(
             f"!{s}{u}"
             for s in ["YL1_pump", "YL1_up", "YL1_down", "YL2_pump", "YL2_up", "YL2_down", "YOut_valve", "YBf_valve"]
         )
         specs += [
-            f"INVARSPEC NAME P1a{u} := YL1_pump{u} -> o1{u} >= {CAP}",
-            f"INVARSPEC NAME P1b{u} := YL2_pump{u} -> o2{u} >= {CAP}",
+            f"INVARSPEC NAME P1a{u} := YL1_pump{u} -> o1{u} >= {OBS}",
+            f"INVARSPEC NAME P1b{u} := YL2_pump{u} -> o2{u} >= {OBS}",
             f"INVARSPEC NAME P2{u} := !((YL1_up{u} | YL1_pump{u} | YL1_down{u}) & (YL2_up{u} | YL2_pump{u} | YL2_down{u}))",
             f"INVARSPEC NAME P3{u} := XSP_fail -> ({off})",
             f"INVARSPEC NAME P4a{u} := XL1_fail{u} -> (!YL1_pump{u} & !YL1_up{u} & !YL1_down{u})",
@@ -274,7 +295,7 @@ def timed(cmd, timeout):
 
 
 def run(args):
-    binary = os.path.join(ROOT, "target", "release", "ii-prove")
+    binary = os.environ.get("II_PROVE") or os.path.join(ROOT, "target", "release", "ii-prove")
     if not os.path.exists(binary):
         subprocess.run(["cargo", "build", "--release", "--quiet"], cwd=ROOT, check=True)
     nusmv = None
@@ -290,7 +311,11 @@ def run(args):
             wall, mem, code, out = timed([binary, paths["ld"], paths["ii"], "--timeout", str(args.timeout)], args.limit)
             summary = re.search(r"(\d+) proved, (\d+) refuted, (\d+) unknown", out or "")
             verdict = "timeout" if code is None else (summary.group(0) if summary else f"exit {code}")
-            if summary and not args.faulty:
+            if summary and args.ldmicro01:
+                refuted = sorted(re.findall(r"^(\S+)\s+refuted", out, re.M))
+                want = sorted(f"P1{s}_u{k}" for k in range(1, n + 1) for s in "ab")
+                assert (summary.group(1), refuted) == (str(5 * n), want), f"N={n}: {verdict}"
+            elif summary and not args.faulty:
                 assert summary.group(1) == str(7 * n), f"N={n}: {verdict}"
             if summary and args.faulty:
                 refuted = re.findall(r"^(\S+)\s+refuted", out, re.M)
@@ -317,14 +342,18 @@ def main():
     g.add_argument("n", type=int)
     g.add_argument("dir")
     g.add_argument("--faulty", action="store_true")
+    g.add_argument("--ldmicro01", action="store_true")
     r = sub.add_parser("run")
     r.add_argument("n", type=int, nargs="+")
     r.add_argument("--nusmv")
     r.add_argument("--no-nusmv", action="store_true")
     r.add_argument("--faulty", action="store_true")
+    r.add_argument("--ldmicro01", action="store_true")
     r.add_argument("--timeout", type=float, default=10.0, help="ii-prove's --timeout per property")
     r.add_argument("--limit", type=float, default=600.0, help="wall-clock limit per tool run")
     args = parser.parse_args()
+    if args.ldmicro01:
+        ldmicro01()
     if args.command == "generate":
         for path in generate(args.n, args.dir, args.faulty).values():
             print(path)

@@ -332,13 +332,16 @@ pub fn refute(program: &Program, goal: &Obligation, limits: Limits) -> Verdict {
             continue;
         }
         let steps_of = |d: &Delay| scans_of(d, &cycle).map(|n| n / grid);
+        // One solver per grid: each depth adds a frame, and asks for a violation at its
+        // last step under an assumption (the clauses of the shorter runs are kept).
+        let Ok(mut search) = Bmc::new(&model, goal, &steps_of) else { continue };
         for k in 1..=k_max {
             if Instant::now() > limits.deadline {
                 complete = false;
                 break;
             }
             checked = checked.max(k * grid);
-            let Some(step_trace) = bmc(&model, goal, k, &steps_of) else { continue };
+            let Some(step_trace) = search.deepen() else { continue };
             tried += 1;
             let mut trace =
                 ScanTrace { cycle: cycle.clone(), scans: k * grid, values: BTreeMap::new() };
@@ -389,35 +392,54 @@ pub fn confirm(program: &Program, goal: &Obligation, trace: ScanTrace, limits: L
     }
 }
 
-/// One SAT query: a run of `k` steps violating the goal at the last one, as free values.
-fn bmc(
-    model: &Model,
-    goal: &Obligation,
-    k: usize,
-    steps_of: &dyn Fn(&Delay) -> Option<usize>,
-) -> Option<BTreeMap<String, Vec<bool>>> {
-    let mut cnf = Cnf::new();
-    let mut free: BTreeMap<String, Vec<varisat::Lit>> = BTreeMap::new();
-    let u = unroll(&mut cnf, model, &[&goal.lhs, &goal.rhs], k, steps_of, &mut |b, name, _| {
-        let l = b.fresh();
-        free.entry(name.to_string()).or_default().push(l);
-        l
-    })
-    .ok()?;
-    for (c, (l, r)) in model.constraints.iter().zip(&u.constraints) {
-        for s in 0..k {
-            let v = violated(&mut cnf, c.1, &l[s], &r[s]);
-            cnf.require(!v);
-        }
+/// Incremental bounded model checking of one goal on one grid: one solver, the model
+/// unrolled one frame per depth, the violation at the last step asked as an assumption.
+struct Bmc<'m> {
+    cnf: Cnf,
+    unroller: unroll::Unroller<'m, varisat::Lit>,
+    model: &'m Model,
+    rel: Rel,
+    /// Per free name, its literal at each step.
+    free: BTreeMap<String, Vec<varisat::Lit>>,
+}
+
+impl<'m> Bmc<'m> {
+    fn new(
+        model: &'m Model,
+        goal: &'m Obligation,
+        steps_of: &dyn Fn(&Delay) -> Option<usize>,
+    ) -> Result<Self, String> {
+        let unroller = unroll::Unroller::new(model, &[&goal.lhs, &goal.rhs], steps_of)?;
+        Ok(Bmc { cnf: Cnf::new(), unroller, model, rel: goal.rel, free: BTreeMap::new() })
     }
-    let v = violated(&mut cnf, goal.rel, &u.extra[0][k - 1], &u.extra[1][k - 1]);
-    cnf.require(v);
-    let model_lits = cnf.solve(&[])?;
-    Some(
-        free.into_iter()
-            .map(|(n, ls)| (n, ls.iter().map(|l| model_lits.contains(l)).collect()))
-            .collect(),
-    )
+
+    /// Adds one frame (the assumptions required at it) and asks for a run whose last
+    /// step violates the goal: its free values, step by step.
+    fn deepen(&mut self) -> Option<BTreeMap<String, Vec<bool>>> {
+        let free = &mut self.free;
+        self.unroller
+            .step(&mut self.cnf, &mut |b, name, _| {
+                let l = b.fresh();
+                free.entry(name.to_string()).or_default().push(l);
+                l
+            })
+            .ok()?;
+        let k = self.unroller.steps() - 1;
+        for (i, c) in self.model.constraints.iter().enumerate() {
+            let (l, r) = self.unroller.constraint_at(i, k)?;
+            let v = violated(&mut self.cnf, c.1, &l, &r);
+            self.cnf.require(!v);
+        }
+        let (l, r) = (self.unroller.extra_at(0, k)?, self.unroller.extra_at(1, k)?);
+        let v = violated(&mut self.cnf, self.rel, &l, &r);
+        let model_lits = self.cnf.solve(&[v])?;
+        Some(
+            self.free
+                .iter()
+                .map(|(n, ls)| (n.clone(), ls.iter().map(|l| model_lits.contains(l)).collect()))
+                .collect(),
+        )
+    }
 }
 
 /// Per signal name, one value a scan.
@@ -464,7 +486,6 @@ fn simulate(
     goal: &Obligation,
     trace: &ScanTrace,
 ) -> Result<(Option<usize>, Values), String> {
-    let mut sim = program.reference.simulator();
     // The program's inputs, and free names of the `.ii` files the program does not know.
     let mut inputs: Vec<&String> = program
         .compiled
@@ -494,17 +515,17 @@ fn simulate(
             }
         }
     }
+    // The simulator may run only the rungs that can write what is watched.
+    let mut sim = program.reference.simulator_for(&watched);
     let mut seen: BTreeMap<String, Vec<bool>> = BTreeMap::new();
+    // Every input at every scan (0 where the trace has none), the map built once.
+    let mut step: BTreeMap<String, bool> = inputs.iter().map(|n| ((*n).clone(), false)).collect();
     for k in 0..trace.scans {
-        let step: BTreeMap<String, bool> = inputs
-            .iter()
-            .map(|n| {
-                (
-                    (*n).clone(),
-                    trace.values.get(*n).and_then(|v| v.get(k)).copied().unwrap_or(false),
-                )
-            })
-            .collect();
+        for (n, v) in &trace.values {
+            if let Some(x) = step.get_mut(n) {
+                *x = v.get(k).copied().unwrap_or(false);
+            }
+        }
         sim.step(&step);
         for n in &watched {
             let depends = match program.compiled.signals.get(n) {
@@ -625,10 +646,13 @@ fn exact(
 /// does not have).
 fn hypotheses_hold(program: &Program, env: &Assignment, trace: &ScanTrace) -> bool {
     program.compiled.hypotheses.iter().all(|h| {
-        let mut names = BTreeSet::new();
-        names_of(&h.lhs, &mut names);
-        names_of(&h.rhs, &mut names);
-        if !names.iter().all(|n| env.signals.contains_key(&Symbol::from(n.as_str()))) {
+        let known = |e: &Expr| {
+            e.as_ref().iter().all(|node| match node {
+                Term::Name(n) => env.signals.contains_key(n),
+                _ => true,
+            })
+        };
+        if !known(&h.lhs) || !known(&h.rhs) {
             return true; // outside the cone
         }
         let (Ok(a), Ok(b)) = (eval(&h.lhs, env), eval(&h.rhs, env)) else { return false };
@@ -663,13 +687,25 @@ fn judge(
 ) -> Result<Judged, String> {
     let v = discrete_violation(model, goal, &trace).ok_or("no violation scan by scan")?;
     trace.truncate(v + 1);
+    // The simulator runs the whole program: the trace is minimised on the cone's
+    // equations, and the simulator asked about the result. Only when it shows the
+    // violation on the candidate but not on the minimised trace is the minimisation
+    // redone with the simulator asked at each step (as it keeps both).
     let sim_ok = |t: &ScanTrace| matches!(simulate(program, model, goal, t), Ok((Some(_), _)));
-    let with_sim = sim_ok(&trace);
-    let keep =
-        |t: &ScanTrace| discrete_violation(model, goal, t).is_some() && (!with_sim || sim_ok(t));
-    minimise(&mut trace, &keep, limits);
-    let v = discrete_violation(model, goal, &trace).ok_or("lost the violation")?;
+    let original = trace.clone();
+    let discrete = |t: &ScanTrace| discrete_violation(model, goal, t).is_some();
+    minimise(&mut trace, &discrete, limits);
+    let mut v = discrete_violation(model, goal, &trace).ok_or("lost the violation")?;
     trace.truncate(v + 1);
+    let mut simulated = simulate(program, model, goal, &trace);
+    if !matches!(simulated, Ok((Some(_), _))) && sim_ok(&original) {
+        trace = original;
+        let keep = |t: &ScanTrace| discrete(t) && sim_ok(t);
+        minimise(&mut trace, &keep, limits);
+        v = discrete_violation(model, goal, &trace).ok_or("lost the violation")?;
+        trace.truncate(v + 1);
+        simulated = simulate(program, model, goal, &trace);
+    }
     let run = run_scans(model, goal, &trace)?;
     let (assignment, lhs, rhs) = exact(model, goal, &trace, &run, v)?;
     if !hypotheses_hold(program, &assignment, &trace) {
@@ -693,7 +729,7 @@ fn judge(
         inputs,
         trace,
     };
-    match simulate(program, model, goal, &cex.trace) {
+    match simulated {
         Ok((Some(s), _)) => {
             cex.simulator_scan = Some(s + 1);
             Ok(Judged::Both(Box::new(cex)))
@@ -775,18 +811,31 @@ fn responsible(
 /// Fewer signals, fewer changes, a shorter horizon, while `keep` holds.
 fn minimise(trace: &mut ScanTrace, keep: &dyn Fn(&ScanTrace) -> bool, limits: Limits) {
     let names: Vec<String> = trace.values.keys().cloned().collect();
-    // Signals: constant 0, else constant 1.
-    for n in &names {
+    // Signals: constant 0, else constant 1; a block of signals at once, halved when
+    // neither holds (a run that needs few of many signals costs few checks).
+    // Signals already constant 0 stay so.
+    let varying: Vec<&String> = names.iter().filter(|n| trace.values[*n].contains(&true)).collect();
+    let mut blocks = vec![&varying[..]];
+    while let Some(block) = blocks.pop() {
+        if Instant::now() > limits.deadline {
+            return;
+        }
+        let mut done = false;
         for c in [false, true] {
-            if Instant::now() > limits.deadline {
-                return;
-            }
             let mut t = trace.clone();
-            t.values.insert(n.clone(), vec![c; t.scans]);
-            if t.values.get(n) != trace.values.get(n) && keep(&t) {
+            for n in block {
+                t.values.insert((*n).clone(), vec![c; t.scans]);
+            }
+            if t != *trace && keep(&t) {
                 *trace = t;
+                done = true;
                 break;
             }
+        }
+        if !done && block.len() > 1 {
+            let (a, b) = block.split_at(block.len() / 2);
+            blocks.push(b);
+            blocks.push(a);
         }
     }
     // Changes: extend the previous value over the next run, or the next value back.

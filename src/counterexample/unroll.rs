@@ -281,69 +281,148 @@ pub fn unroll<B: Bits>(
     steps_of: &dyn Fn(&Delay) -> Option<usize>,
     free: &mut dyn FnMut(&mut B, &str, usize) -> B::V,
 ) -> Result<Unrolled<B::V>, String> {
-    let env = Assignment::new(Time::from_integer(1.into()));
-    let mut exprs: Vec<&Expr> = model.defs.iter().map(|(_, e)| e).collect();
-    for (l, _, r) in &model.constraints {
-        exprs.push(l);
-        exprs.push(r);
+    let mut u = Unroller::new(model, extra, steps_of)?;
+    for _ in 0..steps {
+        u.step(bits, free)?;
     }
-    exprs.extend(extra.iter().copied());
-    // Per term: per node, the timer width in steps (resolved once).
-    let mut widths: Vec<Vec<Option<usize>>> = Vec::new();
-    for e in &exprs {
-        let mut w = vec![None; e.as_ref().len()];
-        for (i, node) in e.as_ref().iter().enumerate() {
-            if let Term::Ton([d, _]) | Term::Tof([_, d]) = node {
-                let delay = eval_delay(e, *d, &env).map_err(|x| x.to_string())?;
-                w[i] = Some(
-                    steps_of(&delay)
-                        .ok_or_else(|| format!("the delay {delay} is not on the grid"))?,
-                );
-            }
+    Ok(u.finish())
+}
+
+/// [`unroll`] one step at a time: the values of step `k` depend only on steps `0..=k`,
+/// so a formula of `k + 1` steps is the formula of `k` steps with one frame added (what
+/// incremental bounded model checking asks one solver about, depth after depth).
+pub struct Unroller<'m, V> {
+    exprs: Vec<&'m Expr>,
+    defs: Vec<&'m str>,
+    defined: BTreeSet<&'m str>,
+    constraints: usize,
+    extra: usize,
+    /// Per term: per node, the timer width in steps (resolved once).
+    widths: Vec<Vec<Option<usize>>>,
+    /// Per term: per node, its value before the first step (names, timers, memories 0).
+    inits: Vec<Vec<bool>>,
+    /// Per term: which nodes are needed at their own step.
+    now: Vec<Vec<bool>>,
+    hist: Vec<Vec<Vec<V>>>,
+    signals: BTreeMap<String, Vec<V>>,
+    steps: usize,
+}
+
+impl<'m, V: Clone> Unroller<'m, V> {
+    /// Ready to unroll `model` and the `extra` terms; no step yet.
+    pub fn new(
+        model: &'m Model,
+        extra: &[&'m Expr],
+        steps_of: &dyn Fn(&Delay) -> Option<usize>,
+    ) -> Result<Self, String> {
+        let env = Assignment::new(Time::from_integer(1.into()));
+        let mut exprs: Vec<&Expr> = model.defs.iter().map(|(_, e)| e).collect();
+        for (l, _, r) in &model.constraints {
+            exprs.push(l);
+            exprs.push(r);
         }
-        widths.push(w);
-    }
-    let defined: BTreeSet<&str> = model.defs.iter().map(|(n, _)| n.as_str()).collect();
-    // Per term: per node, its value before the first step (names, timers, memories 0).
-    let inits: Vec<Vec<bool>> = exprs.iter().map(|e| initial_values(e)).collect();
-    // Per term: which nodes are needed at their own step. Nodes read only under `pre`
-    // are evaluated at the end of the step, once every equation of the scan is known.
-    let now: Vec<Vec<bool>> = exprs.iter().map(|e| needed_now(e)).collect();
-    let mut hist: Vec<Vec<Vec<B::V>>> =
-        exprs.iter().map(|e| vec![Vec::with_capacity(steps); e.as_ref().len()]).collect();
-    let mut signals: BTreeMap<String, Vec<B::V>> = BTreeMap::new();
-    let mut cx = Step { bits, defined, free, widths, inits };
-    for k in 0..steps {
-        for (j, e) in exprs.iter().enumerate() {
+        exprs.extend(extra.iter().copied());
+        let mut widths: Vec<Vec<Option<usize>>> = Vec::new();
+        for e in &exprs {
+            let mut w = vec![None; e.as_ref().len()];
             for (i, node) in e.as_ref().iter().enumerate() {
-                let value = if now[j][i] {
-                    cx.node(node, &hist[j], i, j, k, &mut signals)?
+                if let Term::Ton([d, _]) | Term::Tof([_, d]) = node {
+                    let delay = eval_delay(e, *d, &env).map_err(|x| x.to_string())?;
+                    w[i] = Some(
+                        steps_of(&delay)
+                            .ok_or_else(|| format!("the delay {delay} is not on the grid"))?,
+                    );
+                }
+            }
+            widths.push(w);
+        }
+        // Nodes read only under `pre` are evaluated at the end of the step, once every
+        // equation of the scan is known.
+        let inits = exprs.iter().map(|e| initial_values(e)).collect();
+        let now = exprs.iter().map(|e| needed_now(e)).collect();
+        let hist = exprs.iter().map(|e| vec![Vec::new(); e.as_ref().len()]).collect();
+        Ok(Unroller {
+            defs: model.defs.iter().map(|(n, _)| n.as_str()).collect(),
+            defined: model.defs.iter().map(|(n, _)| n.as_str()).collect(),
+            constraints: model.constraints.len(),
+            extra: extra.len(),
+            exprs,
+            widths,
+            inits,
+            now,
+            hist,
+            signals: BTreeMap::new(),
+            steps: 0,
+        })
+    }
+
+    /// How many steps are unrolled.
+    pub fn steps(&self) -> usize {
+        self.steps
+    }
+
+    /// Adds the next step.
+    pub fn step<B: Bits<V = V>>(
+        &mut self,
+        bits: &mut B,
+        free: &mut dyn FnMut(&mut B, &str, usize) -> V,
+    ) -> Result<(), String> {
+        let k = self.steps;
+        let hist = &mut self.hist;
+        let signals = &mut self.signals;
+        let mut cx =
+            Step { bits, defined: &self.defined, free, widths: &self.widths, inits: &self.inits };
+        for (j, e) in self.exprs.iter().enumerate() {
+            for (i, node) in e.as_ref().iter().enumerate() {
+                let value = if self.now[j][i] {
+                    cx.node(node, &hist[j], i, j, k, signals)?
                 } else {
                     cx.bits.konst(false)
                 };
                 hist[j][i].push(value);
             }
-            if let Some((name, _)) = model.defs.get(j) {
+            if let Some(name) = self.defs.get(j) {
                 let top = hist[j].last().and_then(|v| v.get(k)).cloned();
                 let top = top.ok_or_else(|| format!("the equation of `{name}` is empty"))?;
-                signals.entry(name.clone()).or_default().push(top);
+                signals.entry((*name).to_string()).or_default().push(top);
             }
         }
-        for (j, e) in exprs.iter().enumerate() {
+        for (j, e) in self.exprs.iter().enumerate() {
             for (i, node) in e.as_ref().iter().enumerate() {
-                if !now[j][i] {
-                    let value = cx.node(node, &hist[j], i, j, k, &mut signals)?;
+                if !self.now[j][i] {
+                    let value = cx.node(node, &hist[j], i, j, k, signals)?;
                     hist[j][i][k] = value;
                 }
             }
         }
+        self.steps += 1;
+        Ok(())
     }
-    let root = |j: usize| hist[j].last().cloned().unwrap_or_default();
-    let d = model.defs.len();
-    let constraints =
-        (0..model.constraints.len()).map(|c| (root(d + 2 * c), root(d + 2 * c + 1))).collect();
-    let extra = (0..extra.len()).map(|x| root(d + 2 * model.constraints.len() + x)).collect();
-    Ok(Unrolled { signals, constraints, extra })
+
+    fn root(&self, j: usize, k: usize) -> Option<&V> {
+        self.hist[j].last().and_then(|v| v.get(k))
+    }
+
+    /// Constraint `c`'s two sides at step `k`.
+    pub fn constraint_at(&self, c: usize, k: usize) -> Option<(V, V)> {
+        let d = self.defs.len();
+        Some((self.root(d + 2 * c, k)?.clone(), self.root(d + 2 * c + 1, k)?.clone()))
+    }
+
+    /// Extra term `x`'s value at step `k`.
+    pub fn extra_at(&self, x: usize, k: usize) -> Option<V> {
+        self.root(self.defs.len() + 2 * self.constraints + x, k).cloned()
+    }
+
+    /// The values of every step unrolled.
+    pub fn finish(self) -> Unrolled<V> {
+        let root = |j: usize| self.hist[j].last().cloned().unwrap_or_default();
+        let d = self.defs.len();
+        let constraints =
+            (0..self.constraints).map(|c| (root(d + 2 * c), root(d + 2 * c + 1))).collect();
+        let extra = (0..self.extra).map(|x| root(d + 2 * self.constraints + x)).collect();
+        Unrolled { signals: self.signals, constraints, extra }
+    }
 }
 
 /// Which nodes of `e` are read at their own step: the root and everything below it
@@ -367,10 +446,10 @@ pub(super) fn needed_now(e: &Expr) -> Vec<bool> {
 /// What [`unroll`] needs to compute one node at one step.
 struct Step<'a, 'm, B: Bits> {
     bits: &'a mut B,
-    defined: BTreeSet<&'m str>,
+    defined: &'a BTreeSet<&'m str>,
     free: &'a mut dyn FnMut(&mut B, &str, usize) -> B::V,
-    widths: Vec<Vec<Option<usize>>>,
-    inits: Vec<Vec<bool>>,
+    widths: &'a [Vec<Option<usize>>],
+    inits: &'a [Vec<bool>],
 }
 
 impl<B: Bits> Step<'_, '_, B> {

@@ -20,6 +20,8 @@ pub use ldmicro::{
 };
 pub use simulate::{Simulator, run};
 
+use std::collections::{BTreeSet, HashMap, HashSet};
+
 use crate::diag::{Report, Severity, Span};
 
 /// Lowers and compiles an LDmicro program with the default options (PLC timer counts).
@@ -49,6 +51,76 @@ impl From<crate::program::CompileError> for LadderError {
 impl crate::program::simulate::Reference for LdProgram {
     fn simulator(&self) -> Box<dyn ScanSimulator> {
         Box::new(Simulator::new(self))
+    }
+
+    fn simulator_for(&self, names: &BTreeSet<String>) -> Box<dyn ScanSimulator> {
+        match self.slice(names) {
+            Some(part) => Box::new(Simulator::new(&part)),
+            None => Box::new(Simulator::new(self)),
+        }
+    }
+}
+
+impl LdProgram {
+    /// The rungs that can change `names`, in scan order: those that write a name of
+    /// `names` (a coil, a timer's count), then those that write a name a rung taken
+    /// reads (its contacts, coils and timers), and so on. Only for programs whose rungs
+    /// hold nothing but contacts, coils, timers, `SHORT`, `OPEN`, comments and
+    /// placeholders, whose effects are the writes of their coils and timers; `None`
+    /// for any other program (a master relay, a one-shot's memory by position,
+    /// counters and integers: then the whole program runs).
+    pub fn slice(&self, names: &BTreeSet<String>) -> Option<LdProgram> {
+        let mut reads: Vec<Vec<&str>> = Vec::with_capacity(self.rungs.len());
+        let mut writers: HashMap<&str, Vec<usize>> = HashMap::new();
+        for (i, rung) in self.rungs.iter().enumerate() {
+            let mut r = Vec::new();
+            for e in rung.elements() {
+                match &e.kind {
+                    ElementKind::Contacts { name, .. } => r.push(name.as_str()),
+                    ElementKind::Coil { name, .. } | ElementKind::Timer { name, .. } => {
+                        r.push(name.as_str());
+                        writers.entry(name.as_str()).or_default().push(i);
+                    }
+                    ElementKind::Short
+                    | ElementKind::Open
+                    | ElementKind::Comment(_)
+                    | ElementKind::Placeholder => {}
+                    _ => return None,
+                }
+            }
+            reads.push(r);
+        }
+        let mut keep = vec![false; self.rungs.len()];
+        let mut seen: HashSet<&str> = names.iter().map(String::as_str).collect();
+        let mut pending: Vec<&str> = seen.iter().copied().collect();
+        while let Some(n) = pending.pop() {
+            for &i in writers.get(n).map_or(&[][..], Vec::as_slice) {
+                if !keep[i] {
+                    keep[i] = true;
+                    for m in &reads[i] {
+                        if seen.insert(m) {
+                            pending.push(m);
+                        }
+                    }
+                }
+            }
+        }
+        Some(LdProgram {
+            version: self.version.clone(),
+            cycle_us: self.cycle_us,
+            micro: self.micro.clone(),
+            io_list: Vec::new(),
+            rungs: self
+                .rungs
+                .iter()
+                .zip(&keep)
+                .filter(|(_, k)| **k)
+                .map(|(r, _)| r.clone())
+                .collect(),
+            warnings: Vec::new(),
+            inputs: self.inputs.clone(),
+            var_bytes: self.var_bytes.clone(),
+        })
     }
 }
 

@@ -155,7 +155,12 @@ impl Simulator {
     /// the program itself writes them. Names not given keep their previous value.
     pub fn step(&mut self, inputs: &BTreeMap<String, bool>) {
         for (name, value) in inputs {
-            self.bits.insert(name.clone(), *value);
+            match self.bits.get_mut(name) {
+                Some(b) => *b = *value,
+                None => {
+                    self.bits.insert(name.clone(), *value);
+                }
+            }
             self.unknown.remove(name);
         }
         if self.scans == 0 && !self.orig {
@@ -239,17 +244,29 @@ impl Simulator {
         if sure {
             self.unknown.remove(name);
         } else {
-            self.unknown.insert(name.to_string());
+            if !self.unknown.contains(name) {
+                self.unknown.insert(name.to_string());
+            }
         }
     }
 
     fn set_bit(&mut self, name: &str, v: bool, sure: bool) {
-        self.bits.insert(name.to_string(), v);
+        match self.bits.get_mut(name) {
+            Some(b) => *b = v,
+            None => {
+                self.bits.insert(name.to_string(), v);
+            }
+        }
         self.mark(name, sure);
     }
 
     fn set_int(&mut self, name: &str, v: i64, sure: bool) {
-        self.ints.insert(name.to_string(), v);
+        match self.ints.get_mut(name) {
+            Some(x) => *x = v,
+            None => {
+                self.ints.insert(name.to_string(), v);
+            }
+        }
         self.mark(name, sure);
     }
 

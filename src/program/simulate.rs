@@ -395,6 +395,16 @@ pub trait ScanSimulator {
 pub trait Reference: Send + Sync {
     /// A new run from power-up.
     fn simulator(&self) -> Box<dyn ScanSimulator>;
+
+    /// A new run from power-up whose values of `names` are those [`simulator`]'s run
+    /// gives (other names may be left out): a front end may run only the part of the
+    /// program that can write them. By default, the whole program.
+    ///
+    /// [`simulator`]: Reference::simulator
+    fn simulator_for(&self, names: &std::collections::BTreeSet<String>) -> Box<dyn ScanSimulator> {
+        let _ = names;
+        self.simulator()
+    }
 }
 
 /// The scan model as its own reference (languages without a simulator of their own),
