@@ -18,7 +18,7 @@ use std::path::{Path, PathBuf};
 
 use ii_prove::diag::Sources;
 use ii_prove::ladder::TimerModel;
-use ii_prove::program::IntType;
+use ii_prove::program::{IntType, Program};
 use serde_json::{Value, json};
 
 const SCANS: usize = 120;
@@ -90,10 +90,14 @@ fn ours(g: &Job, inputs: &[BTreeMap<String, bool>]) -> Result<Expected, String> 
     let mut ints: Vec<(String, Vec<Option<i64>>)> =
         computed.iter().map(|n| ((*n).clone(), Vec::new())).collect();
     for (scan, step) in inputs.iter().enumerate() {
+        // An integer input is driven as the outside world drives it: through its bits.
+        let mut step = step.clone();
         for (n, values) in &int_inputs {
-            sim.set_int(n, values[scan]);
+            for k in 0..integers[n].ty.bits {
+                step.insert(Program::int_bit(n, k), values[scan] >> k & 1 == 1);
+            }
         }
-        sim.step(step);
+        sim.step(&step);
         for (k, b) in g.bits.iter().enumerate() {
             if !sim.is_known(b) {
                 return Err(format!("{b} is unknown"));

@@ -339,9 +339,9 @@ struct Lowering<'s> {
     ints: BTreeMap<String, IntVar>,
     /// `CONSTANT` integers with their values.
     constants: BTreeMap<String, i64>,
-    /// Integers whose value is not computed, with the reason (given; grows while
-    /// lowering, which then runs again).
-    opaque: BTreeMap<String, ints::Opaque>,
+    /// Integers whose value is not computed, with the reason and where it was found
+    /// (given; grows while lowering, which then runs again).
+    opaque: BTreeMap<String, (ints::Opaque, Span)>,
     /// Integer globals (not located at `%Q`): inputs unless a statement writes them.
     int_globals: BTreeSet<String>,
     /// Counter inputs some call leaves out (instance key, pin): every call that gives

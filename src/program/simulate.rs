@@ -92,15 +92,11 @@ impl Simulator {
                 self.current.insert(n.clone(), V::of(*v));
             }
         }
-        // An input integer given by its bits: their value (missing bits 0); one whose
-        // bits are not given keeps what `set_int` wrote.
+        // An input integer is given by its bits (those not given are 0).
         for (x, var) in self.program.integers.iter().filter(|(_, v)| v.input) {
-            let given: Vec<Option<bool>> =
-                (0..var.ty.bits).map(|k| inputs.get(&Program::int_bit(x, k)).copied()).collect();
-            if given.iter().all(Option::is_none) {
-                continue;
-            }
-            let bits: Vec<bool> = given.iter().map(|b| b.unwrap_or(false)).collect();
+            let bits: Vec<bool> = (0..var.ty.bits)
+                .map(|k| inputs.get(&Program::int_bit(x, k)).copied().unwrap_or(false))
+                .collect();
             let value = super::bitvec::value_of(&bits, var.ty);
             self.ints.insert(x.clone(), N { value, known: true });
         }
@@ -129,15 +125,6 @@ impl Simulator {
     /// integer).
     pub fn int(&self, name: &str) -> Option<i64> {
         self.ints.get(name).map(|v| v.value)
-    }
-
-    /// Writes an integer before the next scan, as the outside world writes an input
-    /// (an analog reading): its value from now on, reduced into its type as C assignment
-    /// does. `false` (and nothing written) if the program has no such integer.
-    pub fn set_int(&mut self, name: &str, value: i64) -> bool {
-        let Some(var) = self.program.integers.get(name) else { return false };
-        self.ints.insert(name.to_string(), N { value: var.ty.wrap(value), known: true });
-        true
     }
 
     /// The memory of the one-shot with this index after the last scan.
@@ -439,9 +426,10 @@ mod tests {
     use crate::diag::Span;
     use crate::program::{Block, IntType, IntVar};
 
-    /// `Y := X + 1` with `X` an INT input: `set_int` drives `X` (wrapped into its type).
+    /// `Y := X + 1` with `X` an INT input driven through its bits (a value outside
+    /// the type given by its low 16 bits, as a 16-bit input register holds it).
     #[test]
-    fn set_int_drives_an_integer_input() {
+    fn an_integer_input_is_driven_by_its_bits() {
         let span = Span::new(0, 0..1);
         let int = |input| IntVar { ty: IntType::I16, input, init: 0 };
         let mut program = Program::default();
@@ -452,13 +440,15 @@ mod tests {
         program.blocks.push(Block { number: 1, label: Some("L1".into()), span, stmts });
         let mut sim = Simulator::new(&program, TimerModel::Plc);
         let mut got = Vec::new();
-        for x in [5, -3, 40_000, 32_767] {
-            assert!(sim.set_int("X", x));
-            sim.step(&BTreeMap::new());
+        for x in [5_i64, -3, 40_000, 32_767] {
+            let bits = (0..16).map(|k| (Program::int_bit("X", k), x >> k & 1 == 1)).collect();
+            sim.step(&bits);
             got.push((sim.int("X"), sim.int("Y")));
         }
         let want = [(5, 6), (-3, -2), (-25_536, -25_535), (32_767, -32_768)];
         assert_eq!(got, want.map(|(x, y)| (Some(x), Some(y))));
-        assert!(!sim.set_int("Z", 1));
+        // Bits not given are 0.
+        sim.step(&BTreeMap::new());
+        assert_eq!((sim.int("X"), sim.int("Y")), (Some(0), Some(1)));
     }
 }

@@ -426,7 +426,7 @@ impl<'s> Lowering<'s> {
                 }
                 if let Some(t) = t {
                     let cv = self.counter_value(inst, t);
-                    self.make_opaque(&cv, why.clone());
+                    self.make_opaque(&cv, why.clone(), span);
                 }
                 let why = format!("the counter {inst} ({ty}) is not computed: {why}");
                 for pin in Fb::Counter.outputs() {
@@ -538,7 +538,7 @@ impl<'s> Lowering<'s> {
             if let ExprKind::Var(id) = &target.kind
                 && let Some(Sym { ty: Ty::Int(_), name, .. }) = self.lookup(id)
             {
-                self.make_opaque(&name, format!("it takes the 64-bit count of {inst}"));
+                self.make_opaque(&name, format!("it takes the 64-bit count of {inst}"), span);
             }
             return Vec::new();
         };

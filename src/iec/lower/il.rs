@@ -568,7 +568,7 @@ impl Lowering<'_> {
                             "Instruction List writes it (`{}` at line {}), and ii-prove does not compute IL arithmetic yet",
                             word.name, self.line
                         );
-                        self.make_opaque(&name, why);
+                        self.make_opaque(&name, why, span);
                     }
                     vec![super::integer_write(span, &word.name.to_ascii_uppercase(), &t, &name)]
                 }

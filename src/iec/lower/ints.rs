@@ -1,7 +1,5 @@
 //! Integers of Structured Text in the scan model, as matiec compiles them to C: the IEC integer types (`SINT` … `UDINT`, `BYTE` … `DWORD`), literals and constants, `+ - * / MOD`, unary `-`, the `*_TO_*` conversions and `MIN`/`MAX`/`LIMIT`/`SEL`/`ABS`/`MOVE`, comparisons; values narrower than 32 bits are computed as C `int`, as the generated C does. An integer whose value cannot be computed exactly (a division by a variable, a `TIME` or `REAL` operand, a 64-bit type) is *opaque*: what reads it is an unconstrained value, with the reason.
 
-use std::collections::BTreeMap;
-
 use super::{Lowering, Sym, Ty};
 use crate::diag::Span;
 use crate::iec::StError;
@@ -154,7 +152,7 @@ impl Lowering<'_> {
                 if let Some(v) = self.constants.get(&sym.name) {
                     return Ok(Int { e: IntExpr::Const(*v), ty: Some(*t), divides: false });
                 }
-                if let Some(why) = self.opaque.get(&sym.name) {
+                if let Some((why, _)) = self.opaque.get(&sym.name) {
                     return Err(format!("{} is not computed: {why}", sym.name));
                 }
                 self.int_read(sym.name.clone(), *t)
@@ -463,7 +461,7 @@ impl Lowering<'_> {
         }) {
             Ok(v) => vec![Stmt::SetInt { target: target.to_string(), value: v.in_type(t), span }],
             Err(why) => {
-                self.make_opaque(target, why);
+                self.make_opaque(target, why, span);
                 Vec::new()
             }
         }
@@ -476,9 +474,9 @@ impl Lowering<'_> {
         Ok(v.in_type(t))
     }
 
-    /// Marks `x` as opaque for `why` (the program is then lowered again).
-    pub(super) fn make_opaque(&mut self, x: &str, why: Opaque) {
-        self.opaque.entry(x.to_string()).or_insert(why);
+    /// Marks `x` as opaque for `why`, found at `at` (the program is then lowered again).
+    pub(super) fn make_opaque(&mut self, x: &str, why: Opaque, at: Span) {
+        self.opaque.entry(x.to_string()).or_insert((why, at));
     }
 }
 
@@ -523,7 +521,7 @@ impl Lowering<'_> {
                 "its initial value `{}` is not an integer literal",
                 self.text(v.init.as_ref().map_or(v.name.span, |e| e.span))
             );
-            self.make_opaque(name, why);
+            self.make_opaque(name, why, v.name.span);
             return;
         };
         if v.constant {
@@ -538,16 +536,11 @@ impl Lowering<'_> {
 }
 
 impl Lowering<'_> {
-    /// A warning for each opaque integer, at its declaration.
+    /// A warning for each opaque integer, where it was found not computed.
     pub(super) fn warn_opaque(&mut self) {
-        let mut spans: BTreeMap<String, Span> = BTreeMap::new();
-        for s in self.syms.values() {
-            spans.insert(s.name.clone(), s.span);
-        }
-        for (x, why) in &self.opaque {
-            let span = spans.get(x).copied().unwrap_or(Span::new(0, 0..0));
+        for (x, (why, at)) in &self.opaque {
             self.warnings.push(StError::warning(
-                span,
+                *at,
                 format!("the integer {x} is not computed ({why}): what reads it is unconstrained"),
             ));
         }
@@ -575,10 +568,11 @@ impl Lowering<'_> {
         let Some(sym) = self.lookup(id) else { return Vec::new() };
         match sym.ty {
             Ty::Int(u) if u == t => {
-                if let Some(why) = self.opaque.get(source).cloned() {
+                if let Some((why, _)) = self.opaque.get(source).cloned() {
                     self.make_opaque(
                         &sym.name,
                         format!("it takes {source}, which is not computed: {why}"),
+                        span,
                     );
                     return Vec::new();
                 }

@@ -118,7 +118,7 @@ impl Lowering<'_> {
                         "it is a variable of the function `{}`, whose integers ii-prove does not compute yet",
                         pou.name.name
                     );
-                    self.make_opaque(&name, why);
+                    self.make_opaque(&name, why, v.name.span);
                 } else {
                     self.declare_int(v, &name, t, false);
                 }
@@ -206,7 +206,7 @@ impl Lowering<'_> {
                     if !self.opaque.contains_key(&name) {
                         match self.int_input(e, t) {
                             Ok(value) => out.push(Stmt::SetInt { target: name, value, span }),
-                            Err(why) => self.make_opaque(&name, why),
+                            Err(why) => self.make_opaque(&name, why, e.span),
                         }
                     }
                 }
