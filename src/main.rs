@@ -39,7 +39,7 @@ Exit status:
 /// which the `assume` statements have held (hypotheses hold "up to now"). Each rung or
 /// statement is compiled to what the PLC does on every scan; timers count scans as the
 /// runtime does (see --timers). What is not modelled yet (LDmicro's GOTO, GOSUB,
-/// SUBPROG/ENDSUB, RETURN, LOCK, SLEEP; ST loops and CASE; IL backward jumps) is refused
+/// SUBPROG/ENDSUB, RETURN, LOCK, SLEEP; ST WHILE and REPEAT loops; IL backward jumps) is refused
 /// with a located error.
 #[derive(Parser)]
 #[command(name = "ii-prove", version, after_help = EXIT_CODES, args_conflicts_with_subcommands = true)]

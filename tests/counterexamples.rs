@@ -107,8 +107,9 @@ fn water_faulty_overlap_replays_on_the_scan_simulator() {
     assert!(swap[scan - 1] && swap[..scan - 1].iter().any(|v| !v));
 }
 
-/// A VCD file read back: timescale, variable names by identifier, value changes.
-type Vcd = (String, BTreeMap<String, String>, Vec<(u64, String, bool)>);
+/// A VCD file read back: timescale, variable names by identifier, value changes (a
+/// bit's `0`/`1`, or a vector's value read as an unsigned word).
+type Vcd = (String, BTreeMap<String, String>, Vec<(u64, String, u64)>);
 
 /// A tiny VCD reader: variable names by identifier and the value changes in time order.
 fn read_vcd(text: &str) -> Vcd {
@@ -123,9 +124,9 @@ fn read_vcd(text: &str) -> Vcd {
             match tok {
                 "$timescale" => timescale = tokens.next().expect("a timescale").to_string(),
                 "$var" => {
-                    let kind = tokens.next().unwrap();
-                    let width = tokens.next().unwrap();
-                    assert_eq!((kind, width), ("wire", "1"));
+                    assert_eq!(tokens.next(), Some("wire"));
+                    let width: u32 = tokens.next().unwrap().parse().expect("a width");
+                    assert!((1..=64).contains(&width));
                     let id = tokens.next().unwrap().to_string();
                     let name = tokens.next().unwrap().to_string();
                     assert_eq!(tokens.next(), Some("$end"));
@@ -143,11 +144,16 @@ fn read_vcd(text: &str) -> Vcd {
             let t: u64 = t.parse().expect("an integer time");
             assert!(now.is_none_or(|n| n <= t), "times increase");
             now = Some(t);
+        } else if let Some(word) = tok.strip_prefix('b') {
+            let id = tokens.next().expect("a vector's identifier");
+            let v = u64::from_str_radix(word, 2).expect("a binary word");
+            assert!(vars.contains_key(id), "unknown identifier {id}");
+            changes.push((now.expect("a time before the first change"), vars[id].clone(), v));
         } else {
             let (v, id) = tok.split_at(1);
             let v = match v {
-                "0" => false,
-                "1" => true,
+                "0" => 0,
+                "1" => 1,
                 other => panic!("bad value {other}"),
             };
             assert!(vars.contains_key(id), "unknown identifier {id}");
@@ -158,21 +164,33 @@ fn read_vcd(text: &str) -> Vcd {
     (timescale, vars, changes)
 }
 
-#[test]
-fn vcd_and_wavedrom_files_read_back() {
-    let dir = std::env::temp_dir().join(format!("ii-prove-cex-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let vcd = dir.join("p2.vcd");
-    let wave = dir.join("p2.json");
+/// Runs `ii-prove ARGS --vcd DIR/NAME.vcd --wavedrom DIR/NAME.json` (a run that
+/// refutes something) and returns the two files' paths.
+fn refute_with_files(dir: &Path, name: &str, args: &[String]) -> (PathBuf, PathBuf) {
+    std::fs::create_dir_all(dir).unwrap();
+    let (vcd, wave) = (dir.join(format!("{name}.vcd")), dir.join(format!("{name}.json")));
     let out = Command::new(env!("CARGO_BIN_EXE_ii-prove"))
-        .args([path("examples/water_faulty.ld"), path("examples/water.ii")])
-        .args(["--timeout", "5", "--vcd"])
+        .args(args)
+        .arg("--vcd")
         .arg(&vcd)
         .arg("--wavedrom")
         .arg(&wave)
         .output()
         .expect("runs");
     assert_eq!(out.status.code(), Some(1), "{}", String::from_utf8_lossy(&out.stderr));
+    (vcd, wave)
+}
+
+#[test]
+fn vcd_and_wavedrom_files_read_back() {
+    let dir = std::env::temp_dir().join(format!("ii-prove-cex-{}", std::process::id()));
+    let args = [
+        path("examples/water_faulty.ld"),
+        path("examples/water.ii"),
+        "--timeout".into(),
+        "5".into(),
+    ];
+    let (vcd, wave) = refute_with_files(&dir, "p2", &args);
     let (timescale, vars, changes) = read_vcd(&std::fs::read_to_string(&vcd).unwrap());
     assert_eq!(timescale, "1ms");
     assert!(vars.values().any(|n| n == "XLine_swap") && vars.values().any(|n| n == "L2_up"));
@@ -183,7 +201,7 @@ fn vcd_and_wavedrom_files_read_back() {
     while i < changes.len() {
         let t = changes[i].0;
         while i < changes.len() && changes[i].0 == t {
-            state.insert(changes[i].1.clone(), changes[i].2);
+            state.insert(changes[i].1.clone(), changes[i].2 == 1);
             i += 1;
         }
         overlap |= state.get("L1_up") == Some(&true) && state.get("L2_up") == Some(&true);
@@ -231,6 +249,50 @@ fn vcd_and_wavedrom_files_read_back() {
         .max()
         .unwrap();
     assert!(json["config"]["hscale"].as_u64().unwrap() as usize * 40 >= longest * 7);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The faulty box counter (its capacity one too high): the count is a 16-bit vector in
+/// VCD and a data lane in WaveDrom. Replayed scan by scan (100 ms, the program's task),
+/// it counts the rising edges of `Part AND Conveyor` (`Conveyor` as the previous scan
+/// wrote it, since the program writes it after the call; `Empty` never resets the
+/// count in the run) up to 10, where `Stop` fails.
+#[test]
+fn integers_are_value_tracks_in_vcd_and_wavedrom() {
+    let dir = std::env::temp_dir().join(format!("ii-prove-int-{}", std::process::id()));
+    let args =
+        [path("examples/box_faulty.st"), path("examples/box.ii"), "--only".into(), "Stop".into()];
+    let (vcd, wave) = refute_with_files(&dir, "stop", &args);
+    let text = std::fs::read_to_string(&vcd).unwrap();
+    assert!(text.contains("$var wire 16 "), "{text}");
+    let (_, vars, changes) = read_vcd(&text);
+    assert!(!vars.values().any(|n| n == "Empty"), "Empty stays 0 in the run");
+    let mut state: BTreeMap<String, u64> = BTreeMap::new();
+    let (mut rises, mut cu, mut i) = (0, false, 0);
+    let end = changes.last().unwrap().0;
+    for t in (0..=end).step_by(100) {
+        let conveyor = state.get("Conveyor") == Some(&1);
+        while i < changes.len() && changes[i].0 <= t {
+            assert_eq!(changes[i].0 % 100, 0, "a change between scans");
+            state.insert(changes[i].1.clone(), changes[i].2);
+            i += 1;
+        }
+        let now = state.get("Part") == Some(&1) && conveyor;
+        rises += u64::from(now && !cu);
+        cu = now;
+        assert_eq!(state["Count_CV"], rises, "at {t} ms: {changes:?}");
+    }
+    assert_eq!(rises, 10);
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&wave).unwrap()).expect("WaveDrom JSON");
+    let lanes = json["signal"][0].as_array().expect("a group");
+    let lane = lanes.iter().find(|l| l["name"] == "Count_CV").expect("a lane for the count");
+    let wave_text = lane["wave"].as_str().unwrap();
+    let data: Vec<String> =
+        lane["data"].as_array().unwrap().iter().map(|d| d.as_str().unwrap().into()).collect();
+    // A data lane: one `=` per new value, each labelled, and the values 0, 1, … 10.
+    assert_eq!(wave_text.matches('=').count(), data.len());
+    assert_eq!(data, (0..=10).map(|k: i32| k.to_string()).collect::<Vec<_>>());
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -131,6 +131,48 @@ fn the_faulty_plant_report_shows_every_verdict_the_diagram_and_the_proofs() {
     }
 }
 
+/// An integer of the counterexample is a bus track in the diagram and a row of numbers
+/// in the table of values: the faulty box's count, the same values as the JSON report
+/// of the same run gives at the start of each piece of the time axis.
+#[test]
+fn an_integer_is_a_bus_track_and_a_row_of_values() {
+    let args = ["examples/box_faulty.st", "examples/box.ii", "--only", "Stop"];
+    let out = ii_prove(&[&args[..], &["--format", "html"]].concat());
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
+    let page = text(&out.stdout);
+    let doc = parse(&page);
+    let bus = doc
+        .descendants()
+        .find(|n| n.attribute("data-integer") == Some("Count_CV"))
+        .expect("a bus track for the count");
+    let labels: Vec<&str> =
+        bus.descendants().filter(|n| n.has_tag_name("text")).filter_map(|n| n.text()).collect();
+    assert!(labels.contains(&"Count_CV") && labels.contains(&"10"), "{labels:?}");
+    let row = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("tr"))
+        .find(|r| r.children().any(|c| c.has_tag_name("th") && c.text() == Some("Count_CV")))
+        .expect("a row of values");
+    let cells: Vec<i64> = row
+        .children()
+        .filter(|c| c.has_tag_name("td"))
+        .map(|c| c.text().unwrap().parse().unwrap())
+        .collect();
+    let json = ii_prove(&[&args[..], &["--format", "json"]].concat());
+    let report: serde_json::Value = serde_json::from_slice(&json.stdout).unwrap();
+    let values: Vec<i64> = report["properties"][0]["counterexample"]["integers"][0]["values"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_i64().unwrap())
+        .collect();
+    // Each piece shows a value the run has; the pieces run through 0 … 10 in order.
+    assert!(cells.iter().all(|v| values.contains(v)), "{cells:?} vs {values:?}");
+    let mut distinct = cells.clone();
+    distinct.dedup();
+    assert_eq!(distinct, (0..=10).collect::<Vec<_>>());
+}
+
 #[test]
 fn html_file_beside_another_format_is_the_same_page() {
     let dir = temp_dir("beside");

@@ -14,6 +14,7 @@ use std::collections::BTreeSet;
 
 use num_traits::ToPrimitive;
 
+use super::tracks::IntegerTrack;
 use super::{CounterexampleReport, RunReport};
 use crate::semantics::{Signal, Time, format_time};
 
@@ -57,6 +58,9 @@ pub fn vcd(report: &RunReport) -> Option<String> {
         for (_, s) in &c.shown {
             times.extend(s.breakpoints().iter().cloned());
         }
+        for t in &c.tracks {
+            times.extend(t.breakpoints());
+        }
     }
     let units = [("s", 1i64), ("ms", 1_000), ("us", 1_000_000), ("ns", 1_000_000_000)];
     let mut chosen = None;
@@ -77,6 +81,7 @@ pub fn vcd(report: &RunReport) -> Option<String> {
     }
     out.push_str(&format!("$timescale 1{unit} $end\n"));
     let mut ids = Vec::new();
+    let mut words: Vec<(String, &IntegerTrack)> = Vec::new();
     let mut n = 0;
     for (name, c) in &cexs {
         out.push_str(&format!("$scope module {} $end\n", vcd_name(name)));
@@ -93,6 +98,13 @@ pub fn vcd(report: &RunReport) -> Option<String> {
             out.push_str(&format!("$var wire 1 {id} {} $end\n", vcd_name(label)));
             ids.push((id, s));
         }
+        // An integer is a vector of its width, its value in two's complement.
+        for t in &c.tracks {
+            let id = vcd_identifier(n);
+            n += 1;
+            out.push_str(&format!("$var wire {} {id} {} $end\n", t.ty.bits, vcd_name(&t.name)));
+            words.push((id, t));
+        }
         out.push_str("$upscope $end\n");
     }
     out.push_str("$enddefinitions $end\n");
@@ -102,7 +114,11 @@ pub fn vcd(report: &RunReport) -> Option<String> {
     for (_, s) in &ids {
         events.extend(s.breakpoints().iter().cloned());
     }
+    for (_, t) in &words {
+        events.extend(t.breakpoints());
+    }
     let mut last: Vec<Option<bool>> = vec![None; ids.len()];
+    let mut last_word: Vec<Option<i64>> = vec![None; words.len()];
     let mut end = 0u64;
     for t in &events {
         let mut lines = String::new();
@@ -121,6 +137,20 @@ pub fn vcd(report: &RunReport) -> Option<String> {
             if last[i] != Some(after) {
                 lines.push_str(&format!("{}{id}\n", u8::from(after)));
                 last[i] = Some(after);
+            }
+        }
+        for (i, (id, w)) in words.iter().enumerate() {
+            if t >= &w.horizon() {
+                continue;
+            }
+            let (at, after) = (w.value_at(t), w.value_after(t));
+            if t > &Time::from_integer(0.into()) && at != after && last_word[i] != Some(at) {
+                lines.push_str(&format!("b{} {id}\n", w.word(at)));
+                last_word[i] = Some(at);
+            }
+            if last_word[i] != Some(after) {
+                lines.push_str(&format!("b{} {id}\n", w.word(after)));
+                last_word[i] = Some(after);
             }
         }
         end = end.max(tick(t));
@@ -160,6 +190,9 @@ pub fn wavedrom(report: &RunReport) -> Option<String> {
         for (_, s) in &c.shown {
             points.extend(s.breakpoints().iter().cloned());
         }
+        for t in &c.tracks {
+            points.extend(t.breakpoints());
+        }
         // Columns: the open interval before each breakpoint, then the breakpoint itself
         // when some signal has an event there.
         let mut columns: Vec<Time> = Vec::new();
@@ -169,6 +202,10 @@ pub fn wavedrom(report: &RunReport) -> Option<String> {
             let event = c.shown.iter().any(|(_, s)| {
                 let v = s.value_at(p);
                 v != s.left_limit(p) && (p == &horizon || v != value_after(s, p))
+            }) || c.tracks.iter().any(|t| {
+                let v = t.value_at(p);
+                v != t.value_at(&((&previous + p) / Time::from_integer(2.into())))
+                    && (p == &horizon || v != t.value_after(p))
             });
             if event && p != &horizon {
                 columns.push(p.clone());
@@ -197,6 +234,21 @@ pub fn wavedrom(report: &RunReport) -> Option<String> {
                 _ => label.as_str(),
             };
             group.push(serde_json::json!({ "name": label, "wave": wave }));
+        }
+        // An integer is a data lane: a new value opens a `=` cell labelled with it.
+        for t in &c.tracks {
+            let (mut wave, mut data, mut last) = (String::new(), Vec::new(), None);
+            for col in &columns {
+                let v = t.value_at(col);
+                if last == Some(v) {
+                    wave.push('.');
+                } else {
+                    wave.push('=');
+                    data.push(v.to_string());
+                }
+                last = Some(v);
+            }
+            group.push(serde_json::json!({ "name": t.name, "wave": wave, "data": data }));
         }
         // Where each column starts: the instant itself for an event, else the
         // breakpoint before the interval.

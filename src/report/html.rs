@@ -249,11 +249,12 @@ fn diagram(out: &mut String, c: &CounterexampleReport) {
     let Some((_, first)) = c.shown.first() else { return };
     let horizon = first.horizon().clone();
     let h = float(&horizon).max(f64::MIN_POSITIVE);
-    let label_w = 14.0
-        + 7.4 * c.shown.iter().map(|(n, _)| label(n).chars().count()).max().unwrap_or(4) as f64;
+    let names = c.shown.iter().map(|(n, _)| n).chain(c.tracks.iter().map(|t| &t.name));
+    let label_w = 14.0 + 7.4 * names.map(|n| label(n).chars().count()).max().unwrap_or(4) as f64;
     let (plot_w, row_h, top) = (560.0, 28.0, 22.0);
+    let rows = c.shown.len() + c.tracks.len();
     let width = label_w + plot_w + 20.0;
-    let height = top + row_h * c.shown.len() as f64 + 26.0;
+    let height = top + row_h * rows as f64 + 26.0;
     let x = |t: f64| label_w + plot_w * (t / h);
     let _ = writeln!(
         out,
@@ -265,8 +266,11 @@ fn diagram(out: &mut String, c: &CounterexampleReport) {
     for (_, s) in &c.shown {
         points.extend(s.breakpoints().iter().cloned());
     }
+    for t in &c.tracks {
+        points.extend(t.breakpoints());
+    }
     points.insert(horizon.clone());
-    let bottom = top + row_h * c.shown.len() as f64;
+    let bottom = top + row_h * rows as f64;
     let _ = writeln!(
         out,
         "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">0</text>",
@@ -333,6 +337,52 @@ fn diagram(out: &mut String, c: &CounterexampleReport) {
         }
         out.push_str("</g>\n");
     }
+    // An integer is a bus: its value written in each piece where it is constant, a
+    // cross where it changes.
+    for (row, t) in c.tracks.iter().enumerate() {
+        let y0 = top + row_h * (c.shown.len() + row) as f64;
+        let (hi, lo) = (y0 + 5.0, y0 + row_h - 7.0);
+        let mid = (hi + lo) / 2.0;
+        let _ = writeln!(out, "<g class=\"track\" data-integer=\"{}\">", esc(&t.name));
+        let _ = writeln!(out, "<title>{}</title>", esc(&t.name));
+        let _ =
+            writeln!(out, "<text x=\"4\" y=\"{:.1}\">{}</text>", lo - 2.0, esc(&label(&t.name)));
+        let mut starts = vec![Time::from_integer(0.into())];
+        starts.extend(t.breakpoints().into_iter().filter(|b| *b < horizon));
+        let mut pieces: Vec<(f64, f64, i64)> = Vec::new();
+        for (k, s) in starts.iter().enumerate() {
+            let end = starts.get(k + 1).unwrap_or(&horizon);
+            let v = t.value_after(s);
+            match pieces.last_mut() {
+                Some(last) if last.2 == v => last.1 = x(float(end)),
+                _ => pieces.push((x(float(s)), x(float(end)), v)),
+            }
+        }
+        let last = pieces.len().saturating_sub(1);
+        for (k, (x0, x1, v)) in pieces.iter().enumerate() {
+            // A hexagon, its ends pointed where the value changes.
+            let bevel = 3.0_f64.min((x1 - x0) / 4.0);
+            let (a, b) = (if k == 0 { 0.0 } else { bevel }, if k == last { 0.0 } else { bevel });
+            let _ = writeln!(
+                out,
+                "<path class=\"wave\" d=\"M{x0:.1},{mid:.1} L{:.1},{hi:.1} L{:.1},{hi:.1} L{x1:.1},{mid:.1} L{:.1},{lo:.1} L{:.1},{lo:.1} Z\"/>",
+                x0 + a,
+                x1 - b,
+                x1 - b,
+                x0 + a
+            );
+            let text = v.to_string();
+            if x1 - x0 > 7.4 * text.len() as f64 + 6.0 {
+                let _ = writeln!(
+                    out,
+                    "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{text}</text>",
+                    (x0 + x1) / 2.0,
+                    mid + 4.0
+                );
+            }
+        }
+        out.push_str("</g>\n");
+    }
     if let Some(m) = &c.mark {
         let mx = x(float(m));
         let _ = writeln!(
@@ -376,6 +426,13 @@ fn values(out: &mut String, c: &CounterexampleReport, points: &BTreeSet<Time>) {
                 if v { "one" } else { "zero" },
                 u8::from(v)
             );
+        }
+        out.push_str("</tr>\n");
+    }
+    for t in &c.tracks {
+        let _ = write!(out, "<tr><th title=\"{}\">{}</th>", esc(&t.name), esc(&label(&t.name)));
+        for s in &starts {
+            let _ = write!(out, "<td class=\"int\">{}</td>", t.value_after(s));
         }
         out.push_str("</tr>\n");
     }

@@ -17,6 +17,7 @@ mod load;
 mod property;
 pub mod text;
 pub mod trace;
+pub mod tracks;
 mod unknown;
 mod vacuity;
 use vacuity::{contradictory, flag_vacuity, forced_by_assumptions, forced_constants, forced_text};
@@ -169,6 +170,9 @@ pub struct CounterexampleReport {
     /// The program's integers the run computed, with their value at each scan.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub integers: Vec<IntegerReport>,
+    /// The integers drawn as value tracks (for `--vcd`, `--wavedrom`, `--html`).
+    #[serde(skip)]
+    pub tracks: Vec<tracks::IntegerTrack>,
     /// The signals shown in the diagram, with their exact pieces (for `--vcd`, `--wavedrom`).
     #[serde(skip)]
     pub shown: Vec<(String, crate::semantics::Signal)>,

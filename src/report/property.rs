@@ -3,6 +3,7 @@
 
 use std::time::{Duration, Instant};
 
+use super::tracks::IntegerTrack;
 use super::{
     CounterexampleReport, IntegerReport, Options, PropertyReport, SignalReport, Status, StepReport,
     TraceReport, obligation, trace, unknown, waveform,
@@ -352,20 +353,16 @@ pub(super) fn program_counterexample(
         confirmed_by.push("scan simulator".into());
     }
     // Integers whose bits the run computed: a value row each, and their bits unshown.
-    let tracked = IntTrack::all(session.compiled, env);
-    shown.retain(|(label, _)| {
-        !tracked.iter().any(|t| {
-            label
-                .strip_prefix(&format!("{}_b", named(&t.name)))
-                .is_some_and(|k| k.parse::<u32>().is_ok())
-        })
-    });
-    let readers: Vec<_> =
-        tracked.iter().map(|t| move |time: &crate::semantics::Time| t.value_at(time)).collect();
+    let tracked = IntegerTrack::all(session.compiled, env, &named);
+    shown.retain(|(label, _)| !tracked.iter().any(|t| t.shows_bit(label)));
+    let readers: Vec<_> = tracked
+        .iter()
+        .map(|t| move |time: &crate::semantics::Time| Some(t.value_at(time)))
+        .collect();
     let values: Vec<waveform::Track> = tracked
         .iter()
         .zip(&readers)
-        .map(|(t, f)| (named(&t.name), f as &dyn Fn(&crate::semantics::Time) -> Option<i64>))
+        .map(|(t, f)| (t.name.clone(), f as &dyn Fn(&crate::semantics::Time) -> Option<i64>))
         .collect();
     CounterexampleReport {
         time: format_time(&c.time),
@@ -385,12 +382,11 @@ pub(super) fn program_counterexample(
         integers: tracked
             .iter()
             .map(|t| IntegerReport {
-                name: named(&t.name),
-                values: (0..c.trace.scans)
-                    .filter_map(|k| t.value_at(&c.trace.instant(k)))
-                    .collect(),
+                name: t.name.clone(),
+                values: (0..c.trace.scans).map(|k| t.value_at(&c.trace.instant(k))).collect(),
             })
             .collect(),
+        tracks: tracked,
         scan: Some(c.scan),
         simulator_scan: c.simulator_scan,
         confirmed_by,
@@ -493,47 +489,12 @@ fn counterexample(
             .collect(),
         diagram: waveform::draw(&shown, Some(&witness.time), glyphs),
         integers: Vec::new(),
+        tracks: Vec::new(),
         scan: None,
         simulator_scan: None,
         confirmed_by: vec!["exact evaluation".into()],
         title: None,
         mark: Some(witness.time.clone()),
         shown,
-    }
-}
-
-/// An integer of the program whose every bit a counterexample's run computed.
-struct IntTrack<'a> {
-    name: String,
-    ty: crate::program::IntType,
-    /// Each bit's signal, and whether the stored bit is flipped by the start value.
-    bits: Vec<(&'a crate::semantics::Signal, bool)>,
-}
-
-impl<'a> IntTrack<'a> {
-    /// The program's integers whose bits `env` holds.
-    fn all(
-        compiled: &crate::program::CompiledProgram,
-        env: &'a crate::semantics::Assignment,
-    ) -> Vec<IntTrack<'a>> {
-        compiled
-            .integers
-            .iter()
-            .filter_map(|(x, var)| {
-                let bits = (0..var.ty.bits)
-                    .map(|k| {
-                        let name = crate::program::Program::int_bit(x, k);
-                        let s = env.signals.get(&crate::term::Symbol::from(name.as_str()))?;
-                        Some((s, var.start_bit(k)))
-                    })
-                    .collect::<Option<Vec<_>>>()?;
-                Some(IntTrack { name: x.clone(), ty: var.ty, bits })
-            })
-            .collect()
-    }
-
-    fn value_at(&self, t: &crate::semantics::Time) -> Option<i64> {
-        let bits: Vec<bool> = self.bits.iter().map(|(s, flip)| s.value_at(t) != *flip).collect();
-        Some(crate::program::bitvec::value_of(&bits, self.ty))
     }
 }

@@ -138,6 +138,7 @@ pub fn step_candidate(
             .collect(),
         diagram,
         integers: Vec::new(),
+        tracks: Vec::new(),
         scan: None,
         simulator_scan: None,
         confirmed_by: Vec::new(),

@@ -1,0 +1,79 @@
+//! An integer of a counterexample's run as a value track: the signals of its bits, its value at each instant and where it changes, for every renderer (text, VCD, WaveDrom, HTML).
+
+use std::collections::BTreeSet;
+
+use crate::program::{CompiledProgram, IntType, Program, bitvec};
+use crate::semantics::{Assignment, Signal, Time};
+use crate::term::Symbol;
+
+/// A program integer whose every bit the run computed.
+#[derive(Clone, Debug)]
+pub struct IntegerTrack {
+    /// Its name, as the report spells it.
+    pub name: String,
+    /// Its type (width and signedness).
+    pub ty: IntType,
+    /// Each bit's signal (least significant first), and whether the stored bit is
+    /// flipped by the start value.
+    bits: Vec<(Signal, bool)>,
+}
+
+impl IntegerTrack {
+    /// The program's integers whose bits `env` holds, named by `named`.
+    pub fn all(
+        compiled: &CompiledProgram,
+        env: &Assignment,
+        named: &dyn Fn(&str) -> String,
+    ) -> Vec<IntegerTrack> {
+        compiled
+            .integers
+            .iter()
+            .filter_map(|(x, var)| {
+                let bits = (0..var.ty.bits)
+                    .map(|k| {
+                        let s = env.signals.get(&Symbol::from(Program::int_bit(x, k).as_str()))?;
+                        Some((s.clone(), var.start_bit(k)))
+                    })
+                    .collect::<Option<Vec<_>>>()?;
+                Some(IntegerTrack { name: named(x), ty: var.ty, bits })
+            })
+            .collect()
+    }
+
+    /// Whether `label` names one of this integer's bits (`X_b3`), which a diagram
+    /// that draws the value does not draw.
+    pub fn shows_bit(&self, label: &str) -> bool {
+        label.strip_prefix(&format!("{}_b", self.name)).is_some_and(|k| k.parse::<u32>().is_ok())
+    }
+
+    fn value(&self, bit: impl Fn(&Signal) -> bool) -> i64 {
+        let bits: Vec<bool> = self.bits.iter().map(|(s, flip)| bit(s) != *flip).collect();
+        bitvec::value_of(&bits, self.ty)
+    }
+
+    /// The value at the instant `t`.
+    pub fn value_at(&self, t: &Time) -> i64 {
+        self.value(|s| s.value_at(t))
+    }
+
+    /// The value just after `t` (on the open interval that starts at `t`).
+    pub fn value_after(&self, t: &Time) -> i64 {
+        self.value(|s| super::export::value_after(s, t))
+    }
+
+    /// The end of the run.
+    pub fn horizon(&self) -> Time {
+        self.bits.first().map_or_else(|| Time::from_integer(0.into()), |(s, _)| s.horizon().clone())
+    }
+
+    /// The instants where some bit changes.
+    pub fn breakpoints(&self) -> BTreeSet<Time> {
+        self.bits.iter().flat_map(|(s, _)| s.breakpoints().iter().cloned()).collect()
+    }
+
+    /// The value as the `bits`-wide two's-complement word (`0110…`, most significant
+    /// first), as VCD writes a vector.
+    pub fn word(&self, value: i64) -> String {
+        (0..self.ty.bits).rev().map(|k| if value >> k & 1 == 1 { '1' } else { '0' }).collect()
+    }
+}
