@@ -62,6 +62,26 @@ fn the_faulty_plants_are_refuted_with_confirmed_counterexamples() {
     }
 }
 
+/// IL arithmetic is computed: the batch counter made full at six parts is refuted, the
+/// count drawn as a value track up to five and confirmed by the scan simulator.
+#[test]
+fn integer_il_programs_are_refuted_with_the_count_drawn() {
+    let files = files_with(Path::new("tests/data/il/refutes"), "il");
+    assert!(!files.is_empty());
+    for program in files {
+        let props = program.with_extension("ii");
+        let (program, props) = (program.display().to_string(), props.display().to_string());
+        let out = ii_prove(&[&program, &props]);
+        let stdout = text(&out.stdout);
+        assert_eq!(out.status.code(), Some(1), "{program}: {stdout}");
+        assert!(stdout.contains("refuted") && stdout.contains("by the scan simulator"), "{stdout}");
+        let row =
+            stdout.lines().find(|l| l.trim_start().starts_with("Count ")).expect("a count row");
+        let values: Vec<i64> = row.split_whitespace().skip(1).map(|v| v.parse().unwrap()).collect();
+        assert!(values.windows(2).all(|w| w[1] == w[0] + 1) && values.last() == Some(&5), "{row}");
+    }
+}
+
 #[test]
 fn show_names_il_lines() {
     let out = ii_prove(&["show", "examples/water.il"]);
@@ -78,7 +98,7 @@ fn show_names_il_lines() {
 /// the block ending only the block (`user_block.il`).
 #[test]
 fn il_programs_with_jumps_and_user_blocks_prove_their_properties() {
-    for name in ["jumps", "user_block"] {
+    for name in ["jumps", "user_block", "batch"] {
         let program = format!("tests/data/il/programs/{name}.il");
         let props = format!("tests/data/il/programs/{name}.ii");
         let out = ii_prove(&["show", &program]);
@@ -118,7 +138,7 @@ fn il_forms_parse() {
 }
 
 fn programs_to_run() -> u64 {
-    std::env::var("II_IL_PROGRAMS").ok().and_then(|v| v.parse().ok()).unwrap_or(1_000)
+    std::env::var("II_IL_PROGRAMS").ok().and_then(|v| v.parse().ok()).unwrap_or(250)
 }
 
 /// Random IL programs: at every scan every local and function-block output has the value
@@ -127,7 +147,7 @@ fn programs_to_run() -> u64 {
 fn random_il_programs_run_as_the_reference_interpreter_runs_them() {
     let first: u64 = std::env::var("II_IL_FIRST").ok().and_then(|v| v.parse().ok()).unwrap_or(0);
     let (mut programs, mut scans, mut checked, mut fired, mut bit_scans) = (0u64, 0, 0, 0, 0u64);
-    let (mut jumps, mut nested) = (0u64, 0u64);
+    let (mut jumps, mut nested, mut int_scans) = (0u64, 0u64, 0u64);
     let mut failures: Vec<String> = Vec::new();
     for seed in first..first + programs_to_run() {
         let g = il_gen::program(seed);
@@ -171,6 +191,16 @@ fn random_il_programs_run_as_the_reference_interpreter_runs_them() {
                 }
             }
             bit_scans += g.bits.len() as u64;
+            for (n, _) in &g.ints {
+                if !sim.is_known(n) || sim.int(n) != Some(reference.int(n)) {
+                    return Err(format!(
+                        "{n} is {:?} at scan {scan}; the interpreter says {}",
+                        sim.int(n).filter(|_| sim.is_known(n)),
+                        reference.int(n)
+                    ));
+                }
+            }
+            int_scans += g.ints.len() as u64;
             Ok(())
         };
         let run = scan_eval::check_scans(
@@ -190,7 +220,7 @@ fn random_il_programs_run_as_the_reference_interpreter_runs_them() {
         }
     }
     eprintln!(
-        "random IL programs: {programs} lowered ({jumps} with jumps, {nested} with parentheses), {scans} scans, {bit_scans} bit-scans compared with the interpreter, {checked} hypotheses checked at every scan, {fired} timer hypotheses fired; {} disagreements",
+        "random IL programs: {programs} lowered ({jumps} with jumps, {nested} with parentheses), {scans} scans, {bit_scans} bit-scans and {int_scans} integer-scans compared with the interpreter, {checked} hypotheses checked at every scan, {fired} timer hypotheses fired; {} disagreements",
         failures.len()
     );
     assert!(

@@ -486,14 +486,10 @@ fn simulate(
     goal: &Obligation,
     trace: &ScanTrace,
 ) -> Result<(Option<usize>, Values), String> {
-    // The program's inputs, and free names of the `.ii` files the program does not know.
-    let mut inputs: Vec<&String> = program
-        .compiled
-        .signals
-        .iter()
-        .filter(|(_, k)| matches!(k, SignalKind::Input))
-        .map(|(n, _)| n)
-        .collect();
+    // The program's inputs (an integer input by its bits), and free names of the `.ii`
+    // files the program does not know.
+    let mut inputs: Vec<&String> =
+        program.compiled.signals.iter().filter(|(_, k)| k.is_input()).map(|(n, _)| n).collect();
     inputs.extend(trace.values.keys().filter(|n| !program.compiled.signals.contains_key(*n)));
     let mut read = BTreeSet::new();
     names_of(&goal.lhs, &mut read);
@@ -715,7 +711,7 @@ fn judge(
         .compiled
         .signals
         .iter()
-        .filter(|(_, k)| matches!(k, SignalKind::Input))
+        .filter(|(_, k)| k.is_input())
         .map(|(n, _)| n.clone())
         .collect();
     let _ = cycle;

@@ -176,6 +176,12 @@ impl SignalKind {
     pub fn is_unconstrained(&self) -> bool {
         matches!(self, SignalKind::Fresh { .. })
     }
+
+    /// Whether the outside world sets this signal at every scan: an input, or a bit of
+    /// an integer input.
+    pub fn is_input(&self) -> bool {
+        matches!(self, SignalKind::Input | SignalKind::IntBit { input: true, .. })
+    }
 }
 
 /// What a hypothesis says about its rung.

@@ -28,6 +28,47 @@ pub enum Logic {
     Ne,
 }
 
+/// An integer operand: an `INT` variable or a literal.
+#[derive(Clone, Debug)]
+pub enum IntOperand {
+    /// A variable.
+    Var(String),
+    /// A literal (not negative).
+    Lit(i64),
+}
+
+/// The arithmetic operators (`DIV` and `MOD` only by a literal that is not 0).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Arith {
+    /// `ADD`.
+    Add,
+    /// `SUB`.
+    Sub,
+    /// `MUL`.
+    Mul,
+    /// `DIV`.
+    Div,
+    /// `MOD`.
+    Mod,
+}
+
+/// The comparison operators on integers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Cmp {
+    /// `GT`.
+    Gt,
+    /// `GE`.
+    Ge,
+    /// `EQ`.
+    Eq,
+    /// `NE`.
+    Ne,
+    /// `LT`.
+    Lt,
+    /// `LE`.
+    Le,
+}
+
 /// When a jump or return acts.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum When {
@@ -80,6 +121,14 @@ pub enum Ins {
     Cal(String, String, Vec<(String, bool, Operand)>, Option<u64>, Form),
     /// `LD x` then `CLK inst` (an edge detector called with the current result).
     Clk(String),
+    /// `LD n` of an `INT`.
+    LdInt(String),
+    /// `ADD x`, `MUL 3`, …: the integer current result.
+    Arith(Arith, IntOperand),
+    /// `GT x`, …: the integer current result compared, a BOOL from then on.
+    Compare(Cmp, IntOperand),
+    /// `ST n` of the integer current result.
+    StInt(String),
 }
 
 /// A random program.
@@ -92,6 +141,8 @@ pub struct Generated {
     pub inputs: Vec<String>,
     /// Its BOOL locals with their initial values.
     pub locals: Vec<(String, bool)>,
+    /// Its `INT` locals with their initial values.
+    pub ints: Vec<(String, i64)>,
     /// Its function-block instances and their types.
     pub fbs: Vec<(String, String)>,
     /// The bits worth comparing: locals and FB outputs, as the lowering names them (`T0_Q`).
@@ -104,6 +155,13 @@ fn operand_text(o: &Operand) -> String {
     match o {
         Operand::Var(v) => v.clone(),
         Operand::Lit(b) => if *b { "TRUE" } else { "FALSE" }.into(),
+    }
+}
+
+fn int_text(o: &IntOperand) -> String {
+    match o {
+        IntOperand::Var(v) => v.clone(),
+        IntOperand::Lit(k) => k.to_string(),
     }
 }
 
@@ -178,6 +236,29 @@ pub fn render(ins: &[Ins]) -> String {
                 out += &format!("  CAL {inst}(\n    {}\n  )\n", a.join(",\n    "));
             }
             Ins::Clk(inst) => out += &format!("  CLK {inst}\n"),
+            Ins::LdInt(n) => out += &format!("  LD {n}\n"),
+            Ins::Arith(a, o) => {
+                let word = match a {
+                    Arith::Add => "ADD",
+                    Arith::Sub => "SUB",
+                    Arith::Mul => "MUL",
+                    Arith::Div => "DIV",
+                    Arith::Mod => "MOD",
+                };
+                out += &format!("  {word} {}\n", int_text(o));
+            }
+            Ins::Compare(c, o) => {
+                let word = match c {
+                    Cmp::Gt => "GT",
+                    Cmp::Ge => "GE",
+                    Cmp::Eq => "EQ",
+                    Cmp::Ne => "NE",
+                    Cmp::Lt => "LT",
+                    Cmp::Le => "LE",
+                };
+                out += &format!("  {word} {}\n", int_text(o));
+            }
+            Ins::StInt(n) => out += &format!("  ST {n}\n"),
         }
     }
     out
@@ -190,6 +271,8 @@ struct Gen<'r> {
     for_matiec: bool,
     reads: Vec<String>,
     locals: Vec<String>,
+    /// The `INT` locals (none in a program without integers).
+    ints: Vec<String>,
     labels: usize,
 }
 
@@ -261,6 +344,42 @@ impl Gen<'_> {
         *self.rng.pick(&[Form::Formal, Form::Formal, Form::Positional, Form::NamedPreset])
     }
 
+    fn int_operand(&mut self) -> IntOperand {
+        if self.rng.chance(50) {
+            IntOperand::Var(self.rng.pick(&self.ints).clone())
+        } else {
+            IntOperand::Lit(*self.rng.pick(&[0, 1, 2, 3, 7, 10, 100, 1000, 20_000, 32_767]))
+        }
+    }
+
+    /// An integer group: `LD n`, arithmetic and stores, then a comparison (the current
+    /// result a BOOL again) and writes of it.
+    fn integers(&mut self, out: &mut Vec<Ins>) {
+        out.push(Ins::LdInt(self.rng.pick(&self.ints).clone()));
+        for _ in 0..1 + self.rng.below(4) {
+            let op = *self.rng.pick(&[
+                Arith::Add,
+                Arith::Add,
+                Arith::Sub,
+                Arith::Mul,
+                Arith::Div,
+                Arith::Mod,
+            ]);
+            let o = match op {
+                Arith::Div | Arith::Mod => IntOperand::Lit(1 + self.rng.below(7) as i64),
+                _ => self.int_operand(),
+            };
+            out.push(Ins::Arith(op, o));
+            if self.rng.chance(40) {
+                out.push(Ins::StInt(self.rng.pick(&self.ints).clone()));
+            }
+        }
+        let c = *self.rng.pick(&[Cmp::Gt, Cmp::Ge, Cmp::Eq, Cmp::Ne, Cmp::Lt, Cmp::Le]);
+        let o = self.int_operand();
+        out.push(Ins::Compare(c, o));
+        self.writes(out);
+    }
+
     fn label(&mut self) -> String {
         self.labels += 1;
         format!("L_{}", self.labels)
@@ -292,7 +411,15 @@ pub fn program_with(seed: u64, for_matiec: bool) -> Generated {
     reads.extend(locals.iter().map(|(n, _)| n.clone()));
     reads.extend(fbs.iter().map(|(n, t)| format!("{n}.{}", out_pin(t))));
     let local_names: Vec<String> = locals.iter().map(|(n, _)| n.clone()).collect();
-    let mut g = Gen { rng: &mut rng, for_matiec, reads, locals: local_names, labels: 0 };
+    // Half the programs compute with INT locals too.
+    let ints: Vec<(String, i64)> = if rng.chance(50) {
+        (0..1 + rng.below(3)).map(|k| (format!("N{k}"), rng.below(41) as i64 - 20)).collect()
+    } else {
+        Vec::new()
+    };
+    let int_names = ints.iter().map(|(n, _)| n.clone()).collect();
+    let mut g =
+        Gen { rng: &mut rng, for_matiec, reads, locals: local_names, ints: int_names, labels: 0 };
     let mut ins = Vec::new();
     // Labels that forward jumps wait for; calls come only where none is pending (a call
     // some jump skips is refused), returns only after the last call.
@@ -339,6 +466,10 @@ pub fn program_with(seed: u64, for_matiec: bool) -> Generated {
                 let form = g.form();
                 ins.push(Ins::Cal(inst, ty, args, pt, form));
             }
+        }
+        if !g.ints.is_empty() && g.rng.chance(40) {
+            g.integers(&mut ins);
+            continue;
         }
         let o = g.operand();
         ins.push(Ins::Ld(g.rng.chance(25), o));
@@ -390,6 +521,9 @@ pub fn program_with(seed: u64, for_matiec: bool) -> Generated {
     for (b, init) in &locals {
         text += &format!("    {b} : BOOL{};\n", if *init { " := TRUE" } else { "" });
     }
+    for (n, init) in &ints {
+        text += &format!("    {n} : INT := {init};\n");
+    }
     for (n, t) in &fbs {
         text += &format!("    {n} : {t};\n");
     }
@@ -413,5 +547,5 @@ pub fn program_with(seed: u64, for_matiec: bool) -> Generated {
     );
     let mut bits: Vec<String> = locals.iter().map(|(n, _)| n.clone()).collect();
     bits.extend(fbs.iter().map(|(n, t)| format!("{n}_{}", out_pin(t))));
-    Generated { text, ins, inputs, locals, fbs, bits, cycle_us: cycle_ms * 1000 }
+    Generated { text, ins, inputs, locals, ints, fbs, bits, cycle_us: cycle_ms * 1000 }
 }

@@ -3,7 +3,7 @@
 
 use std::collections::BTreeMap;
 
-use super::il_gen::{Generated, Ins, Logic, Operand, When};
+use super::il_gen::{Arith, Cmp, Generated, Ins, IntOperand, Logic, Operand, When};
 
 /// A function block's state.
 #[derive(Clone, Debug, Default)]
@@ -21,6 +21,8 @@ struct FbState {
 pub struct IlRef<'g> {
     g: &'g Generated,
     vars: BTreeMap<String, bool>,
+    /// The `INT` variables.
+    ints: BTreeMap<String, i64>,
     fbs: BTreeMap<String, FbState>,
     scan: u64,
 }
@@ -36,7 +38,20 @@ impl<'g> IlRef<'g> {
             vars.insert(b.clone(), *init);
         }
         let fbs = g.fbs.iter().map(|(n, _)| (n.clone(), FbState::default())).collect();
-        IlRef { g, vars, fbs, scan: 0 }
+        let ints = g.ints.iter().cloned().collect();
+        IlRef { g, vars, ints, fbs, scan: 0 }
+    }
+
+    /// An `INT` variable's value.
+    pub fn int(&self, name: &str) -> i64 {
+        self.ints[name]
+    }
+
+    fn int_read(&self, o: &IntOperand) -> i64 {
+        match o {
+            IntOperand::Var(v) => self.ints[v],
+            IntOperand::Lit(k) => *k,
+        }
     }
 
     fn read(&self, o: &Operand) -> bool {
@@ -68,6 +83,9 @@ impl<'g> IlRef<'g> {
         let now = self.scan * self.g.cycle_us;
         let ins = &self.g.ins;
         let mut cr = false;
+        // The current result while it is an INT (matiec's C keeps it in an `INT` field:
+        // `CR += x` wraps to 16 bits at each instruction).
+        let mut int_cr: i64 = 0;
         let mut pc = 0;
         while pc < ins.len() {
             match &ins[pc] {
@@ -123,6 +141,32 @@ impl<'g> IlRef<'g> {
                     let vals: BTreeMap<&str, bool> =
                         args.iter().map(|(p, n, o)| (p.as_str(), self.read(o) != *n)).collect();
                     self.call(inst, ty, &vals, pt.unwrap_or(0), now);
+                }
+                Ins::LdInt(n) => int_cr = self.ints[n],
+                Ins::Arith(a, o) => {
+                    let x = self.int_read(o);
+                    let v = match a {
+                        Arith::Add => int_cr + x,
+                        Arith::Sub => int_cr - x,
+                        Arith::Mul => int_cr * x,
+                        Arith::Div => int_cr / x,
+                        Arith::Mod => int_cr % x,
+                    };
+                    int_cr = i64::from(v as i16);
+                }
+                Ins::Compare(c, o) => {
+                    let x = self.int_read(o);
+                    cr = match c {
+                        Cmp::Gt => int_cr > x,
+                        Cmp::Ge => int_cr >= x,
+                        Cmp::Eq => int_cr == x,
+                        Cmp::Ne => int_cr != x,
+                        Cmp::Lt => int_cr < x,
+                        Cmp::Le => int_cr <= x,
+                    };
+                }
+                Ins::StInt(n) => {
+                    self.ints.insert(n.clone(), int_cr);
                 }
                 Ins::Clk(inst) => {
                     let ty = self.g.fbs.iter().find(|(n, _)| n == inst).map(|(_, t)| t.clone());

@@ -123,17 +123,7 @@ impl Lowering<'_> {
                 op @ (BinOp::Eq | BinOp::Ne | BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge),
                 a,
                 b,
-            ) => {
-                let op = match op {
-                    BinOp::Eq => CmpOp::Eq,
-                    BinOp::Ne => CmpOp::Ne,
-                    BinOp::Lt => CmpOp::Lt,
-                    BinOp::Le => CmpOp::Le,
-                    BinOp::Gt => CmpOp::Gt,
-                    _ => CmpOp::Ge,
-                };
-                self.int_compare(op, a, b, e.span)
-            }
+            ) => self.int_compare(comparison_op(*op), a, b, e.span),
             ExprKind::Call(f, args) => self.function(f, args, e),
             ExprKind::Int(_) | ExprKind::Time(_) | ExprKind::Literal(_) => {
                 self.not_bool(e, "a literal that is not TRUE or FALSE")
@@ -303,5 +293,17 @@ impl Lowering<'_> {
             return None;
         }
         Some((i64::try_from(a).ok()?, i64::try_from(step).ok()?, u64::try_from(n).ok()?))
+    }
+}
+
+/// The comparison of a comparison operator (`=`, `<>`, `<`, `<=`, `>`, `>=`).
+pub(super) fn comparison_op(op: BinOp) -> CmpOp {
+    match op {
+        BinOp::Eq => CmpOp::Eq,
+        BinOp::Ne => CmpOp::Ne,
+        BinOp::Lt => CmpOp::Lt,
+        BinOp::Le => CmpOp::Le,
+        BinOp::Gt => CmpOp::Gt,
+        _ => CmpOp::Ge,
     }
 }

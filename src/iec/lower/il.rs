@@ -13,11 +13,12 @@
 use std::collections::BTreeMap;
 
 use super::calls::Fb;
+use super::ints::{Int, Opaque};
 use super::{Lowering, Sym, Ty};
 use crate::diag::Span;
 use crate::iec::StError;
 use crate::iec::ast::{self, BinOp, ExprKind, IlCond, IlInstr, IlLine, IlOp};
-use crate::program::{BoolExpr, Stmt, WriteKind};
+use crate::program::{BoolExpr, IntExpr, Stmt, WriteKind};
 
 /// The current result.
 #[derive(Clone, Debug)]
@@ -26,8 +27,22 @@ enum Cr {
     Unset,
     /// A BOOL.
     Bool(BoolExpr),
-    /// A value of another type (an integer, a duration), named for messages.
+    /// An integer, or why its value is not computed.
+    Int(Result<Int, Opaque>),
+    /// A value of another type (a duration, a REAL), named for messages.
     Other(String),
+}
+
+impl Cr {
+    /// What it holds, for messages.
+    fn what(&self) -> String {
+        match self {
+            Cr::Int(_) => "an integer".into(),
+            Cr::Other(t) => t.clone(),
+            Cr::Bool(_) => "a BOOL".into(),
+            Cr::Unset => "nothing".into(),
+        }
+    }
 }
 
 /// How many jump conditions a guard's truth table follows.
@@ -207,6 +222,13 @@ impl Lowering<'_> {
                     Cr::Bool(self.temp(out, BoolExpr::Or(terms.collect())))
                 } else if paths.iter().all(|(_, c)| matches!(c, Cr::Unset)) {
                     Cr::Unset
+                } else if let [(_, Cr::Int(Ok(first))), rest @ ..] = paths.as_slice()
+                    && rest.iter().all(|(_, c)| matches!(c, Cr::Int(Ok(v)) if same(v, first)))
+                {
+                    // Every path carries the same integer (settled before its jump).
+                    Cr::Int(Ok(first.clone()))
+                } else if paths.iter().all(|(_, c)| matches!(c, Cr::Int(_))) {
+                    Cr::Int(Err("the current result where jumps meet is not computed".into()))
                 } else {
                     Cr::Other("a value of several types".into())
                 };
@@ -214,13 +236,20 @@ impl Lowering<'_> {
         }
     }
 
-    /// Takes the CR as a scan-local value (so later writes leave what it read).
-    fn settle(&mut self, flow: &mut Flow, out: &mut Vec<Stmt>) {
-        if let Cr::Bool(v) = &flow.cr
-            && !matches!(v, BoolExpr::Const(_) | BoolExpr::Temp(_))
-        {
-            let v = v.clone();
-            flow.cr = Cr::Bool(self.temp(out, v));
+    /// Takes the CR as a scan-local value (so later writes leave what it read); an
+    /// integer CR only where `ints` (before a call, which may write integers): a store
+    /// into an integer leaves the CR that integer's value.
+    fn settle(&mut self, flow: &mut Flow, out: &mut Vec<Stmt>, span: Span, ints: bool) {
+        match &flow.cr {
+            Cr::Bool(v) if !matches!(v, BoolExpr::Const(_) | BoolExpr::Temp(_)) => {
+                let v = v.clone();
+                flow.cr = Cr::Bool(self.temp(out, v));
+            }
+            Cr::Int(Ok(v)) if ints => {
+                let v = v.clone();
+                flow.cr = Cr::Int(Ok(self.int_temp(out, v, span)));
+            }
+            _ => {}
         }
     }
 
@@ -244,10 +273,14 @@ impl Lowering<'_> {
                 ));
                 BoolExpr::Const(false)
             }
-            Cr::Other(t) => {
+            Cr::Other(_) | Cr::Int(_) => {
                 self.errors.push(StError::new(
                     word.span,
-                    format!("`{}` needs a BOOL current result, but it holds {t}", word.name),
+                    format!(
+                        "`{}` needs a BOOL current result, but it holds {}",
+                        word.name,
+                        cr.what()
+                    ),
                     "expected a BOOL current result",
                 ));
                 BoolExpr::Const(false)
@@ -304,10 +337,20 @@ impl Lowering<'_> {
     ) {
         match instr {
             IlInstr::Op { op: IlOp::St | IlOp::S | IlOp::R, negate, operand, word, .. } => {
-                self.settle(flow, out);
+                self.settle(flow, out, word.span, false);
                 let Some(target) = operand else { return };
                 let stmts = match &instr {
-                    IlInstr::Op { op: IlOp::St, .. } => self.il_store(flow, target, *negate, word),
+                    IlInstr::Op { op: IlOp::St, .. } => {
+                        let stmts = self.il_store(flow, target, *negate, word);
+                        // The integer stored holds the CR's value now (same type).
+                        if let (Cr::Int(Ok(v)), [Stmt::SetInt { target, .. }]) =
+                            (&flow.cr, stmts.as_slice())
+                            && let Some(t) = v.ty
+                        {
+                            flow.cr = Cr::Int(Ok(Int::var(target, t)));
+                        }
+                        stmts
+                    }
                     IlInstr::Op { op, .. } => {
                         let set = *op == IlOp::S;
                         self.il_set(flow, target, set, word)
@@ -323,18 +366,20 @@ impl Lowering<'_> {
                 out.append(&mut self.prelude);
             }
             IlInstr::Call { cond, instance, args, word } => {
-                self.settle(flow, out);
+                self.settle(flow, out, word.span, true);
                 let when = self.when(flow, *cond, word, out);
                 self.il_call(instance, args, None, &when.value, word, out);
             }
             IlInstr::FbInput { pin, instance, word } => {
-                self.settle(flow, out);
+                self.settle(flow, out, word.span, true);
                 let v = self.cr_bool(&flow.cr, word);
                 let guard = flow.guard.value.clone();
                 self.il_call(instance, &[], Some((pin, v)), &guard, word, out);
             }
             IlInstr::Jump { cond, label, word } => {
-                self.settle(flow, out);
+                // An integer CR goes to the label as it is: if the jump is taken, nothing
+                // between here and the label runs, so what it reads is unchanged there.
+                self.settle(flow, out, word.span, false);
                 let Some(&(target, _)) = labels.get(&label.key()) else {
                     let mut e = StError::new(
                         label.span,
@@ -395,8 +440,12 @@ impl Lowering<'_> {
     ) -> Cr {
         let not = |v: Cr| match v {
             Cr::Bool(b) if negate => Cr::Bool(BoolExpr::negate(b)),
+            Cr::Int(_) if negate => {
+                Cr::Int(Err(format!("the bitwise `{}N` is not computed", word.name)))
+            }
             v => v,
         };
+        let bitwise = || Cr::Int(Err(format!("the bitwise `{}` is not computed", word.name)));
         let rhs = |l: &mut Self| -> Cr {
             match nested {
                 Some(lines) => {
@@ -411,6 +460,7 @@ impl Lowering<'_> {
             IlOp::Not => match cr {
                 Cr::Bool(b) => Cr::Bool(BoolExpr::negate(b)),
                 Cr::Unset => Cr::Bool(self.cr_bool(&cr, word)),
+                Cr::Int(_) => bitwise(),
                 other => other,
             },
             IlOp::Bin(b @ (BinOp::And | BinOp::Or | BinOp::Xor)) => {
@@ -423,6 +473,7 @@ impl Lowering<'_> {
                     }),
                     (Cr::Unset, _) | (_, Cr::Unset) => Cr::Bool(self.cr_bool(&Cr::Unset, word)),
                     (Cr::Other(t), _) | (_, Cr::Other(t)) => Cr::Other(t),
+                    (Cr::Int(_), _) | (_, Cr::Int(_)) => bitwise(),
                 }
             }
             IlOp::Bin(
@@ -435,6 +486,16 @@ impl Lowering<'_> {
                         Cr::Bool(if *b == BinOp::Ne { x } else { BoolExpr::negate(x) })
                     }
                     (Cr::Unset, _) => Cr::Bool(self.cr_bool(&Cr::Unset, word)),
+                    (Cr::Int(a), Cr::Int(c)) => {
+                        let span = operand.map_or(word.span, |e| word.span.to(e.span));
+                        let op = super::expr::comparison_op(*b);
+                        Cr::Bool(match (a, c) {
+                            (Ok(a), Ok(c)) => self.int_compare_values(op, a, c, span),
+                            (Err(why), _) | (_, Err(why)) => {
+                                self.unknown_comparison(op, span, &why)
+                            }
+                        })
+                    }
                     _ => {
                         let name = word.name.to_ascii_uppercase();
                         let span = operand.map_or(word.span, |e| word.span.to(e.span));
@@ -442,12 +503,23 @@ impl Lowering<'_> {
                     }
                 }
             }
-            IlOp::Bin(_) => {
-                let _ = rhs(self);
-                if matches!(cr, Cr::Unset) {
-                    let _ = self.cr_bool(&cr, word);
+            IlOp::Bin(b) => {
+                let r = rhs(self);
+                let span = operand.map_or(word.span, |e| word.span.to(e.span));
+                match (cr, r) {
+                    (Cr::Int(Ok(a)), Cr::Int(Ok(c))) => Cr::Int(self.il_arithmetic(*b, a, c, span)),
+                    (Cr::Int(Err(why)), _) | (_, Cr::Int(Err(why))) => Cr::Int(Err(why)),
+                    (Cr::Unset, _) => {
+                        let _ = self.cr_bool(&Cr::Unset, word);
+                        Cr::Unset
+                    }
+                    (a, c) => Cr::Int(Err(format!(
+                        "`{}` of {} and {} is not computed",
+                        word.name,
+                        a.what(),
+                        c.what()
+                    ))),
                 }
-                Cr::Other("an integer".into())
             }
             IlOp::Function(f) => self.il_function(cr, f, operand),
             IlOp::St | IlOp::S | IlOp::R => unreachable!("writes are lowered by il_instr"),
@@ -484,6 +556,7 @@ impl Lowering<'_> {
         }
         match &e.kind {
             ExprKind::Var(id) => match self.lookup(id) {
+                Some(Sym { ty: Ty::Int(_), .. }) => Cr::Int(self.int_expr(e)),
                 Some(Sym { ty, .. }) if ty.value_type().is_some() => {
                     Cr::Other(format!("a {}", ty.value_type().unwrap_or_default()))
                 }
@@ -503,8 +576,15 @@ impl Lowering<'_> {
                 }
                 Cr::Other(format!("the output {}", field.name))
             }
-            ExprKind::Int(_) | ExprKind::Unary(ast::UnOp::Neg, _) => Cr::Other("an integer".into()),
+            ExprKind::Int(_) | ExprKind::Unary(ast::UnOp::Neg, _) => Cr::Int(self.int_expr(e)),
             ExprKind::Time(_) => Cr::Other("a duration".into()),
+            ExprKind::Literal(s)
+                if s.split_once('#').is_some_and(|(t, _)| {
+                    super::ints::int_type(&t.to_ascii_uppercase()).is_some()
+                }) =>
+            {
+                Cr::Int(self.int_expr(e))
+            }
             ExprKind::Literal(s) => Cr::Other(format!("the literal {s}")),
             _ => {
                 let _ = self.bool_expr(e);
@@ -560,22 +640,27 @@ impl Lowering<'_> {
     ) -> Vec<Stmt> {
         let span = word.span.to(target.span);
         match (&target.kind, &flow.cr) {
-            (ExprKind::Var(id), Cr::Other(what)) => match self.lookup(id) {
+            (ExprKind::Var(id), Cr::Other(_) | Cr::Int(_)) => match self.lookup(id) {
+                Some(Sym { ty: Ty::Int(t), name, .. }) => {
+                    let v = match &flow.cr {
+                        Cr::Int(v) => v.clone(),
+                        cr => Err(format!("`{}` stores {} into it", word.name, cr.what())),
+                    };
+                    self.int_store(&name, t, v, span, span)
+                }
                 Some(Sym { ty, name, .. }) if ty.value_type().is_some() => {
                     let t = ty.value_type().unwrap_or_default();
-                    if matches!(ty, Ty::Int(_)) {
-                        let why = format!(
-                            "Instruction List writes it (`{}` at line {}), and ii-prove does not compute IL arithmetic yet",
-                            word.name, self.line
-                        );
-                        self.make_opaque(&name, why, span);
-                    }
                     vec![super::integer_write(span, &word.name.to_ascii_uppercase(), &t, &name)]
                 }
                 Some(_) => {
                     self.errors.push(StError::new(
                         span,
-                        format!("`{}` stores {what} into the BOOL `{}`", word.name, id.name),
+                        format!(
+                            "`{}` stores {} into the BOOL `{}`",
+                            word.name,
+                            flow.cr.what(),
+                            id.name
+                        ),
                         "expected a BOOL current result",
                     ));
                     Vec::new()
@@ -683,4 +768,14 @@ fn simplify(e: BoolExpr) -> BoolExpr {
         },
         other => other,
     }
+}
+
+/// Whether two settled integers (a hidden variable or a literal) are the same value.
+fn same(a: &Int, b: &Int) -> bool {
+    a.ty == b.ty
+        && match (&a.e, &b.e) {
+            (IntExpr::Var(x), IntExpr::Var(y)) => x == y,
+            (IntExpr::Const(x), IntExpr::Const(y)) => x == y,
+            _ => false,
+        }
 }

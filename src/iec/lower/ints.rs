@@ -52,6 +52,11 @@ pub(super) struct Int {
 }
 
 impl Int {
+    /// The variable `name` of type `t`.
+    pub(super) fn var(name: &str, t: IntType) -> Int {
+        Int { e: IntExpr::Var(name.to_string()), ty: Some(t), divides: false }
+    }
+
     fn literal(v: i128) -> Int {
         Int {
             e: IntExpr::Const(v.clamp(i64::MIN.into(), i64::MAX.into()) as i64),
@@ -173,7 +178,7 @@ impl Lowering<'_> {
     }
 
     fn int_read(&mut self, name: String, t: IntType) -> Result<Int, Opaque> {
-        Ok(Int { e: IntExpr::Var(name), ty: Some(t), divides: false })
+        Ok(Int::var(&name, t))
     }
 
     /// `INT#5`, `DINT#16#FF`, `UINT#-0` and such.
@@ -403,10 +408,14 @@ impl Lowering<'_> {
         span: Span,
     ) -> BoolExpr {
         let values = self.int_expr(a).and_then(|a| Ok((a, self.int_expr(b)?)));
-        let (a, b) = match values {
-            Ok(v) => v,
-            Err(why) => return self.unknown_comparison(op, span, &why),
-        };
+        match values {
+            Ok((a, b)) => self.int_compare_values(op, a, b, span),
+            Err(why) => self.unknown_comparison(op, span, &why),
+        }
+    }
+
+    /// `a op b` for integer values already lowered.
+    pub(super) fn int_compare_values(&mut self, op: CmpOp, a: Int, b: Int, span: Span) -> BoolExpr {
         let ty = match self.unify(&a, &b, span) {
             Ok(t) => t,
             Err(why) => return self.unknown_comparison(op, span, &why),
@@ -425,7 +434,8 @@ impl Lowering<'_> {
         BoolExpr::Compare(Box::new(Compare { op, ty: cty, a: a.e, b: b.e }))
     }
 
-    fn unknown_comparison(&mut self, op: CmpOp, span: Span, why: &str) -> BoolExpr {
+    /// An unconstrained comparison, with the reason its operands are not computed.
+    pub(super) fn unknown_comparison(&mut self, op: CmpOp, span: Span, why: &str) -> BoolExpr {
         let keyword = match op {
             CmpOp::Eq => "EQ",
             CmpOp::Ne => "NE",
@@ -451,12 +461,25 @@ impl Lowering<'_> {
         value: &ast::Expr,
         span: Span,
     ) -> Vec<Stmt> {
+        let v = self.int_expr(value);
+        self.int_store(target, t, v, value.span, span)
+    }
+
+    /// `target := v` for the integer `target` of type `t`, `v` lowered already (`at`
+    /// its source): exact, else `target` becomes opaque.
+    pub(super) fn int_store(
+        &mut self,
+        target: &str,
+        t: IntType,
+        v: Result<Int, Opaque>,
+        at: Span,
+        span: Span,
+    ) -> Vec<Stmt> {
         if self.opaque.contains_key(target) {
-            let _ = self.int_expr(value);
             return Vec::new();
         }
-        match self.int_expr(value).and_then(|v| {
-            self.unify(&v, &Int { e: IntExpr::Const(0), ty: Some(t), divides: false }, value.span)?;
+        match v.and_then(|v| {
+            self.unify(&v, &Int { e: IntExpr::Const(0), ty: Some(t), divides: false }, at)?;
             Ok(v)
         }) {
             Ok(v) => vec![Stmt::SetInt { target: target.to_string(), value: v.in_type(t), span }],
@@ -465,6 +488,35 @@ impl Lowering<'_> {
                 Vec::new()
             }
         }
+    }
+
+    /// An Instruction List arithmetic instruction (`ADD x`, …) on the current result
+    /// `cr`: matiec's C computes `CR op= x` in the current result's type, so the value
+    /// wraps to that type at each instruction.
+    pub(super) fn il_arithmetic(
+        &mut self,
+        op: BinOp,
+        cr: Int,
+        x: Int,
+        span: Span,
+    ) -> Result<Int, Opaque> {
+        let v = self.arithmetic(op, cr, x, span)?;
+        Ok(match v.ty {
+            Some(t) => {
+                Int { e: IntExpr::Cast(Box::new(v.in_type(t)), t), ty: Some(t), divides: false }
+            }
+            None => v,
+        })
+    }
+
+    /// The integer `v` kept in a hidden variable written here (so later writes leave
+    /// what it read); a literal stays as it is.
+    pub(super) fn int_temp(&mut self, out: &mut Vec<Stmt>, v: Int, span: Span) -> Int {
+        let (false, Some(t)) = (matches!(v.e, IntExpr::Const(_)), v.ty) else { return v };
+        let name = self.unique("_IL_CR");
+        self.ints.insert(name.clone(), IntVar { ty: t, input: false, init: 0 });
+        out.push(Stmt::SetInt { target: name.clone(), value: v.in_type(t), span });
+        Int::var(&name, t)
     }
 
     /// The value of `e` for an integer input of type `t` (an FB's `PV`), or why not.
