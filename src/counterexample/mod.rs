@@ -514,7 +514,10 @@ fn simulate(
     // The simulator may run only the rungs that can write what is watched.
     let mut sim = program.reference.simulator_for(&watched);
     let mut seen: BTreeMap<String, Vec<bool>> = BTreeMap::new();
-    // Every input at every scan (0 where the trace has none), the map built once.
+    // Every input at every scan (0 where the trace has none), the map built once; an
+    // input held at 0 that the run never reads (outside its part of the program) is
+    // left out, so that a scan costs what the part costs.
+    inputs.retain(|n| trace.values.contains_key(*n) || watched.contains(*n) || sim.reads(n));
     let mut step: BTreeMap<String, bool> = inputs.iter().map(|n| ((*n).clone(), false)).collect();
     for k in 0..trace.scans {
         for (n, v) in &trace.values {
@@ -641,7 +644,16 @@ fn exact(
 /// (read at each scan's instant: the end of the horizon is the start of a scan the trace
 /// does not have).
 fn hypotheses_hold(program: &Program, env: &Assignment, trace: &ScanTrace) -> bool {
-    program.compiled.hypotheses.iter().all(|h| {
+    // Only a hypothesis that mentions no name or a name of the run can have all its
+    // names in the run: those are looked up, not the whole program's.
+    let index = program.compiled.equation_index();
+    let mut candidates: Vec<usize> = index.nameless.clone();
+    for n in env.signals.keys() {
+        candidates.extend(index.mentioning.get(n).map_or(&[][..], Vec::as_slice));
+    }
+    candidates.sort_unstable();
+    candidates.dedup();
+    candidates.into_iter().map(|i| &program.compiled.hypotheses[i]).all(|h| {
         let known = |e: &Expr| {
             e.as_ref().iter().all(|node| match node {
                 Term::Name(n) => env.signals.contains_key(n),

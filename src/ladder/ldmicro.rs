@@ -88,6 +88,9 @@ pub struct LdProgram {
     /// The storage size in bytes (1–4) of the integers the `VAR LIST` declares (new
     /// files): `N bytes NAME`, or `NAME signed BITS bit variable`.
     pub var_bytes: BTreeMap<String, u32>,
+    /// What [`LdProgram::slice`] walks, built at the first slice (no part of the
+    /// program's value: equal, and empty in a clone).
+    pub slicing: super::SliceIndex,
 }
 
 /// One rung: a series circuit between the power rails.
@@ -1393,6 +1396,7 @@ pub fn read_ldmicro(sources: &Sources, file: FileId) -> Result<LdProgram, Vec<La
             warnings: p.warnings,
             inputs: None,
             var_bytes: p.var_bytes,
+            slicing: Default::default(),
         }),
         _ => Err(p.errors),
     }

@@ -70,36 +70,17 @@ impl LdProgram {
     /// for any other program (a master relay, a one-shot's memory by position,
     /// counters and integers: then the whole program runs).
     pub fn slice(&self, names: &BTreeSet<String>) -> Option<LdProgram> {
-        let mut reads: Vec<Vec<&str>> = Vec::with_capacity(self.rungs.len());
-        let mut writers: HashMap<&str, Vec<usize>> = HashMap::new();
-        for (i, rung) in self.rungs.iter().enumerate() {
-            let mut r = Vec::new();
-            for e in rung.elements() {
-                match &e.kind {
-                    ElementKind::Contacts { name, .. } => r.push(name.as_str()),
-                    ElementKind::Coil { name, .. } | ElementKind::Timer { name, .. } => {
-                        r.push(name.as_str());
-                        writers.entry(name.as_str()).or_default().push(i);
-                    }
-                    ElementKind::Short
-                    | ElementKind::Open
-                    | ElementKind::Comment(_)
-                    | ElementKind::Placeholder => {}
-                    _ => return None,
-                }
-            }
-            reads.push(r);
-        }
-        let mut keep = vec![false; self.rungs.len()];
+        let tables = self.slicing.0.get_or_init(|| self.slice_tables()).as_ref()?;
+        let (reads, writers) = (&tables.reads, &tables.writers);
+        let mut keep = HashSet::new();
         let mut seen: HashSet<&str> = names.iter().map(String::as_str).collect();
         let mut pending: Vec<&str> = seen.iter().copied().collect();
         while let Some(n) = pending.pop() {
             for &i in writers.get(n).map_or(&[][..], Vec::as_slice) {
-                if !keep[i] {
-                    keep[i] = true;
+                if keep.insert(i) {
                     for m in &reads[i] {
-                        if seen.insert(m) {
-                            pending.push(m);
+                        if seen.insert(m.as_str()) {
+                            pending.push(m.as_str());
                         }
                     }
                 }
@@ -110,17 +91,74 @@ impl LdProgram {
             cycle_us: self.cycle_us,
             micro: self.micro.clone(),
             io_list: Vec::new(),
-            rungs: self
-                .rungs
-                .iter()
-                .zip(&keep)
-                .filter(|(_, k)| **k)
-                .map(|(r, _)| r.clone())
-                .collect(),
+            rungs: {
+                let mut kept: Vec<usize> = keep.into_iter().collect();
+                kept.sort_unstable();
+                kept.into_iter().map(|i| self.rungs[i].clone()).collect()
+            },
             warnings: Vec::new(),
             inputs: self.inputs.clone(),
             var_bytes: self.var_bytes.clone(),
+            slicing: SliceIndex::default(),
         })
+    }
+
+    /// The names each rung reads and the rungs that write each name; `None` for a
+    /// program [`slice`](Self::slice) does not apply to.
+    fn slice_tables(&self) -> Option<SliceTables> {
+        let mut reads = Vec::with_capacity(self.rungs.len());
+        let mut writers: HashMap<String, Vec<usize>> = HashMap::new();
+        for (i, rung) in self.rungs.iter().enumerate() {
+            let mut r = Vec::new();
+            for e in rung.elements() {
+                match &e.kind {
+                    ElementKind::Contacts { name, .. } => r.push(name.clone()),
+                    ElementKind::Coil { name, .. } | ElementKind::Timer { name, .. } => {
+                        r.push(name.clone());
+                        writers.entry(name.clone()).or_default().push(i);
+                    }
+                    ElementKind::Short
+                    | ElementKind::Open
+                    | ElementKind::Comment(_)
+                    | ElementKind::Placeholder => {}
+                    _ => return None,
+                }
+            }
+            reads.push(r);
+        }
+        Some(SliceTables { reads, writers })
+    }
+}
+
+/// The tables [`LdProgram::slice`] walks, built once per program on first use. They
+/// are derived from the rungs, so two programs are equal whatever their tables hold,
+/// and a clone (which may be changed) starts without them.
+#[derive(Default)]
+pub struct SliceIndex(std::sync::OnceLock<Option<SliceTables>>);
+
+/// What each rung reads and which rungs write each name.
+struct SliceTables {
+    reads: Vec<Vec<String>>,
+    writers: HashMap<String, Vec<usize>>,
+}
+
+impl Clone for SliceIndex {
+    fn clone(&self) -> Self {
+        SliceIndex::default()
+    }
+}
+
+impl PartialEq for SliceIndex {
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
+}
+
+impl Eq for SliceIndex {}
+
+impl std::fmt::Debug for SliceIndex {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("SliceIndex")
     }
 }
 
@@ -139,6 +177,9 @@ impl ScanSimulator for Simulator {
     }
     fn is_known(&self, name: &str) -> bool {
         Simulator::is_known(self, name)
+    }
+    fn reads(&self, input: &str) -> bool {
+        Simulator::reads(self, input)
     }
     fn edge_memory(&self, index: usize) -> Option<bool> {
         Simulator::edge_memory(self, index)

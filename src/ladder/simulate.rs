@@ -213,6 +213,13 @@ impl Simulator {
         self.hidden.get(k).map(|(on, _)| *on)
     }
 
+    /// Whether the run can tell `input` held at 0 from `input` never given: it is a
+    /// name of the program's contacts and coils, or one given before, or its value is
+    /// not exact. Any other name reads 0 and is exact either way.
+    pub fn reads(&self, input: &str) -> bool {
+        self.bits.contains_key(input) || self.unknown.contains(input)
+    }
+
     /// Every bit: the program's contact and coil names and every input given so far.
     pub fn bits(&self) -> &BTreeMap<String, bool> {
         &self.bits

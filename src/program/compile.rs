@@ -117,7 +117,7 @@ use crate::syntax::print::{
     GoalKeyword, Notation, delay_to_string, goal_statement_to_string, name_to_string,
 };
 use crate::syntax::{Goal, Relation, Statement};
-use crate::term::{Delay, Expr, Term, root};
+use crate::term::{Delay, Expr, Symbol, Term, root};
 
 /// What a signal of a compiled program is.
 #[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
@@ -375,6 +375,10 @@ pub struct EquationIndex {
     pub equations: Vec<(String, usize)>,
     /// Per name: the positions in `equations` of those that define it.
     pub defining: std::collections::HashMap<String, Vec<usize>>,
+    /// Per name: the hypotheses (any kind, by index) that mention it, in order.
+    pub mentioning: std::collections::HashMap<Symbol, Vec<usize>>,
+    /// The hypotheses that mention no name.
+    pub nameless: Vec<usize>,
 }
 
 impl CompiledProgram {
@@ -402,6 +406,18 @@ impl CompiledProgram {
         self.equation_index.get_or_init(|| {
             let mut index = EquationIndex::default();
             for (i, h) in self.hypotheses.iter().enumerate() {
+                let mut named = BTreeSet::new();
+                for node in h.lhs.as_ref().iter().chain(h.rhs.as_ref()) {
+                    if let Term::Name(n) = node {
+                        named.insert(*n);
+                    }
+                }
+                if named.is_empty() {
+                    index.nameless.push(i);
+                }
+                for n in named {
+                    index.mentioning.entry(n).or_default().push(i);
+                }
                 if h.kind != HypothesisKind::Equation || h.rel != Rel::Eq {
                     continue;
                 }

@@ -365,6 +365,13 @@ pub trait ScanSimulator {
     fn bit(&self, name: &str) -> bool;
     /// Whether the simulator computes the bit.
     fn is_known(&self, name: &str) -> bool;
+    /// Whether a run can tell `input` held at 0 from `input` left out of
+    /// [`step`](Self::step)'s map (by default, any input): a simulator of part of a
+    /// program need not be given the inputs it never reads.
+    fn reads(&self, input: &str) -> bool {
+        let _ = input;
+        true
+    }
     /// The hidden memory of the one-shot with this index (the front end's order, the
     /// scan model's [`Memory::index`](super::Memory::index)) after the last scan; `None`
     /// when the simulator cannot tell which of its memories that is.

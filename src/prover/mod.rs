@@ -309,25 +309,36 @@ pub fn cone_of_influence<'a>(hypotheses: &'a [Axiom], terms: &[&Expr]) -> Vec<&'
 
 /// Tries to prove the goal within the budget.
 pub fn prove(ctx: &Context, goal: &Obligation, budget: Budget) -> Outcome {
-    prove_with(ctx, goal, budget, &mut |_| false)
+    prove_with(ctx, goal, budget, &mut |_, _| false)
 }
 
 /// A model of the Boolean skeleton: atom values under which every constraint holds
 /// and the goal fails.
 pub type Candidate = Vec<(Expr, bool)>;
 
+/// When [`prove_with`] shows the skeleton's model to its caller.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Look {
+    /// Before the invariant search over scans (which cannot prove a false goal, and
+    /// costs more the larger the cone).
+    BeforeInduction,
+    /// After it, before the larger rule sets.
+    BeforeLargerRules,
+}
+
 /// [`prove`], with a look at the skeleton's model before the slow part: when the
 /// smallest rule set and the Boolean skeleton leave the goal open and the skeleton
-/// has a model, `before_larger_rules` gets it first. If it answers `true` (it settled
+/// has a model, `look` gets it, first before the invariant search, then (if that did
+/// not prove the goal) before the larger rule sets. When it answers `true` (it settled
 /// the goal otherwise, e.g. found a counterexample), the attempt stops there,
-/// "unknown" with that candidate; otherwise the larger rule sets run as usual.
+/// "unknown" with that candidate; otherwise the search goes on as usual.
 pub fn prove_with(
     ctx: &Context,
     goal: &Obligation,
     budget: Budget,
-    before_larger_rules: &mut dyn FnMut(&Candidate) -> bool,
+    look: &mut dyn FnMut(&Candidate, Look) -> bool,
 ) -> Outcome {
-    prove_at(ctx, goal, budget, 0, before_larger_rules)
+    prove_at(ctx, goal, budget, 0, look)
 }
 
 /// [`prove_with`], at a nesting depth (side conditions of laws are proved one level
@@ -337,7 +348,7 @@ fn prove_at(
     goal: &Obligation,
     budget: Budget,
     depth: usize,
-    before_larger_rules: &mut dyn FnMut(&Candidate) -> bool,
+    look: &mut dyn FnMut(&Candidate, Look) -> bool,
 ) -> Outcome {
     let started = Instant::now();
     let deadline = started + budget.time;
@@ -414,6 +425,16 @@ fn prove_at(
         }
         _ => {}
     }
+    // The skeleton's model is a likely counterexample: the caller may look for one
+    // before the invariant search, which on a false property can only fail, at a cost
+    // that grows with the cone (one atom per scan of every timer).
+    if let Err(boolean::Failure::Countermodel(candidate)) = &cases
+        && depth == 0
+        && look(candidate, Look::BeforeInduction)
+    {
+        let why = "case splits: the Boolean skeleton has a model in which the goal fails";
+        return unknown(vec![saturation, why.into()], Some(candidate.clone()), None);
+    }
     // What the program did in earlier scans: an inductive invariant.
     let mut stalled = None;
     if let Err(boolean::Failure::Countermodel(_)) = &cases
@@ -455,7 +476,7 @@ fn prove_at(
     }
     if let Err(boolean::Failure::Countermodel(candidate)) = &cases
         && depth == 0
-        && before_larger_rules(candidate)
+        && look(candidate, Look::BeforeLargerRules)
     {
         let lines = tried(&saturation, &cases);
         return unknown(lines, Some(candidate.clone()), stalled.clone());
@@ -703,7 +724,7 @@ fn constraints_for(
                 let known = ctx.premises.lock().ok().and_then(|m| m.get(&key).cloned());
                 let proof = known.unwrap_or_else(|| {
                     let sub = Obligation { lhs: l.clone(), rel: *rel, rhs: r.clone() };
-                    let proof = match prove_at(ctx, &sub, small, depth + 1, &mut |_| false) {
+                    let proof = match prove_at(ctx, &sub, small, depth + 1, &mut |_, _| false) {
                         Outcome::Proved(p) => p.certificate.main,
                         Outcome::Unknown { .. } => None,
                     };

@@ -55,11 +55,15 @@ pub fn attempt(
         search_counterexample(goal, hypotheses, opts, rename, program, deadline)
     };
     // When the Boolean skeleton has a model the property is likely false, and the
-    // larger rule sets are slow to give up: look for a counterexample before them.
+    // invariant search and the larger rule sets are slow to give up: look for a
+    // counterexample before them, once.
     let mut refuted = None;
     // A first look that tried every run it planned need not be repeated.
     let mut first_look = None;
-    let outcome = prover::prove_with(ctx, goal, budget, &mut |_| {
+    let outcome = prover::prove_with(ctx, goal, budget, &mut |_, look| {
+        if look != prover::Look::BeforeInduction {
+            return refuted.is_some();
+        }
         match search((Instant::now() + FIRST_LOOK).min(end)) {
             Search::Refuted(c) => refuted = Some(c),
             found @ Search::NotFound { complete: true, .. } => first_look = Some(found),

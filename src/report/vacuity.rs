@@ -66,7 +66,8 @@ pub(super) fn proves_quickly(ctx: &Context, lhs: &Expr, rhs: &Expr, opts: &Optio
     let goal = Obligation { lhs: lhs.clone(), rel: Rel::Eq, rhs: rhs.clone() };
     let budget = Budget { time: opts.timeout.min(VACUITY_CHECK), ..Budget::default() };
     // A model of the Boolean skeleton is answer enough: no larger rule sets.
-    matches!(prover::prove_with(ctx, &goal, budget, &mut |_| true), Outcome::Proved(_))
+    let stop = &mut |_: &prover::Candidate, look| look == prover::Look::BeforeLargerRules;
+    matches!(prover::prove_with(ctx, &goal, budget, stop), Outcome::Proved(_))
 }
 
 /// The signals a goal reads that the assumptions force to a constant (free signals).
