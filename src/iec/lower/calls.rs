@@ -7,8 +7,7 @@ use crate::diag::Span;
 use crate::iec::StError;
 use crate::iec::ast::{self, Arg, ExprKind};
 use crate::program::{
-    BoolExpr, CmpOp, Compare, EdgeKind, Fresh, IntExpr, IntType, IntVar, Memory, Preset, Stmt,
-    Timer, WriteKind,
+    BoolExpr, EdgeKind, Fresh, IntType, IntVar, Memory, Preset, Stmt, Timer, WriteKind, library,
 };
 
 /// Function-block types the lowering knows.
@@ -436,10 +435,6 @@ impl<'s> Lowering<'s> {
             }
         };
         let cv_name = self.counter_value(inst, t);
-        let cv = IntExpr::var(&cv_name);
-        let cmp = |op: CmpOp, a: IntExpr, b: IntExpr| {
-            BoolExpr::Compare(Box::new(Compare { op, ty: t, a, b }))
-        };
         let edge = |l: &mut Self, out: &mut Vec<Stmt>, pin: &str, v: BoolExpr| {
             let memory =
                 Memory { base: format!("{inst}_{pin}_T"), element: ty.to_string(), index: l.edges };
@@ -447,55 +442,35 @@ impl<'s> Lowering<'s> {
             let e = BoolExpr::Edge { kind: EdgeKind::Rising, input: Box::new(v), memory };
             l.temp(out, e)
         };
-        let one = || IntExpr::Const(1);
-        let up = |cv: &IntExpr| IntExpr::plus(cv.clone(), one());
-        let down = |cv: &IntExpr| IntExpr::minus(cv.clone(), one());
-        let below = cmp(CmpOp::Lt, cv.clone(), pv.clone());
-        let above_zero = cmp(CmpOp::Gt, cv.clone(), IntExpr::Const(0));
-        let (next, outputs) = match kind.as_str() {
-            "CTU" => {
+        let no = || BoolExpr::Const(false);
+        let kind = library::Counter::of(&kind).unwrap_or(library::Counter::UpDown);
+        let (edges, r, ld) = match kind {
+            library::Counter::Up => {
                 let cu = self.kept_input(inst, "CU", inputs, read, &mut out, span);
                 let r = self.kept_input(inst, "R", inputs, read, &mut out, span);
-                let cu = edge(self, &mut out, "CU", cu);
-                let count = IntExpr::ite(BoolExpr::and(cu, below), up(&cv), cv.clone());
-                (IntExpr::ite(r, IntExpr::Const(0), count), vec![("Q", CmpOp::Ge)])
+                ((edge(self, &mut out, "CU", cu), no()), r, no())
             }
-            "CTD" => {
+            library::Counter::Down => {
                 let cd = self.kept_input(inst, "CD", inputs, read, &mut out, span);
                 let ld = self.kept_input(inst, "LD", inputs, read, &mut out, span);
-                let cd = edge(self, &mut out, "CD", cd);
-                let count = IntExpr::ite(BoolExpr::and(cd, above_zero), down(&cv), cv.clone());
-                (IntExpr::ite(ld, pv.clone(), count), vec![("Q", CmpOp::Le)])
+                ((no(), edge(self, &mut out, "CD", cd)), no(), ld)
             }
-            _ => {
+            library::Counter::UpDown => {
                 let cu = self.kept_input(inst, "CU", inputs, read, &mut out, span);
                 let cd = self.kept_input(inst, "CD", inputs, read, &mut out, span);
                 let r = self.kept_input(inst, "R", inputs, read, &mut out, span);
                 let ld = self.kept_input(inst, "LD", inputs, read, &mut out, span);
-                // matiec's CTUD: CD_T(CD); CU_T(CU); neither counts when both rise.
+                // matiec's CTUD: CD_T(CD); CU_T(CU).
                 let cd = edge(self, &mut out, "CD", cd);
                 let cu = edge(self, &mut out, "CU", cu);
-                let inc =
-                    BoolExpr::and(BoolExpr::and(cu.clone(), BoolExpr::negate(cd.clone())), below);
-                let dec = BoolExpr::and(BoolExpr::and(cd, BoolExpr::negate(cu)), above_zero);
-                let count = IntExpr::ite(inc, up(&cv), IntExpr::ite(dec, down(&cv), cv.clone()));
-                let loaded = IntExpr::ite(ld, pv.clone(), count);
-                (
-                    IntExpr::ite(r, IntExpr::Const(0), loaded),
-                    vec![("QU", CmpOp::Ge), ("QD", CmpOp::Le)],
-                )
+                ((cu, cd), r, ld)
             }
         };
+        let (next, outputs) = library::counter(kind, t, &cv_name, pv, edges, r, ld);
         out.push(Stmt::SetInt { target: cv_name, value: next, span });
-        for (pin, op) in outputs {
+        for (pin, value) in outputs {
             let q = self.hidden(inst, pin);
-            let bound = if op == CmpOp::Ge { pv.clone() } else { IntExpr::Const(0) };
-            out.push(Stmt::Write {
-                target: q,
-                kind: WriteKind::Assign,
-                value: cmp(op, cv.clone(), bound),
-                span,
-            });
+            out.push(Stmt::Write { target: q, kind: WriteKind::Assign, value, span });
         }
         // CTU and CTD have one output, `Q`; the others of the shared list stay unwritten.
         out
