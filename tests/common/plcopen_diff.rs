@@ -682,8 +682,8 @@ pub struct Figures {
     pub checked: u64,
     pub skipped: u64,
     pub timer_fired: u64,
-    /// Programs whose compiled equations compute integers (bits of integers).
-    pub int_programs: u64,
+    /// Equations of integer bits checked (each over every scan of its run).
+    pub int_checked: u64,
     pub failures: Vec<String>,
 }
 
@@ -788,8 +788,6 @@ pub fn prepare(
         }
     }
     fig.programs += 1;
-    fig.int_programs +=
-        u64::from(compiled.signals.values().any(|k| matches!(k, SignalKind::IntBit { .. })));
     Some(Prepared { plc, lowered, compiled, known, hyps, edge_of })
 }
 
@@ -870,11 +868,14 @@ pub fn check_run(
         }
         previous = shown;
     }
-    for h in &p.hyps {
+    for (h, c) in p.hyps.iter().zip(&p.compiled.hypotheses) {
         if h.skip.is_some() {
             fig.skipped += 1;
         } else {
             fig.checked += 1;
+            let lhs = &c.lhs[ii_prove::term::root(&c.lhs)];
+            fig.int_checked += u64::from(matches!(lhs, Term::Name(n)
+                if matches!(p.compiled.signals.get(n.as_str()), Some(SignalKind::IntBit { .. }))));
             fig.timer_fired += u64::from(h.has_timer && h.timer_fired);
         }
     }

@@ -6,9 +6,10 @@
 //! `_TRIG12`, see `docs/plcopen.md`), so a value computed once per scan is read by
 //! every consumer, and a read before the writer sees the previous scan, exactly as in
 //! the scan model. Negation of a compound value is pushed to the variables (De
-//! Morgan). What the algebra cannot express (TP, counters, comparisons, blocks run
-//! under a wired `EN`, non-Boolean values in a Boolean place) becomes an unconstrained
-//! value, which the compiler names with a warning naming the block.
+//! Morgan). Integers are the scan model's (`lower/ints.rs`). What the algebra cannot
+//! express (TP, blocks run under a wired `EN`, non-Boolean values in a Boolean place)
+//! becomes an unconstrained value, which the compiler names with a warning naming the
+//! block.
 
 use std::collections::{BTreeMap, BTreeSet};
 

@@ -6,9 +6,10 @@
 //! then) and its outputs are kept; a block reached again while its own inputs
 //! are computed (feedback) gives its previous outputs. TON/TOF/TP follow matiec's
 //! time-based state machines on a clock that advances one cycle per scan; SR,
-//! RS, R_TRIG and F_TRIG are their IEC definitions. Counters, comparisons and
-//! other blocks are not modelled: their Boolean outputs read FALSE (the prover
-//! leaves them unconstrained), and names depending on them are reported by
+//! RS, R_TRIG and F_TRIG are their IEC definitions; integers, their blocks and the
+//! counters are computed concretely as matiec's C does (`simulate/ints.rs`). Other
+//! blocks are not modelled: their Boolean outputs read FALSE (the prover leaves them
+//! unconstrained), and names depending on them are reported by
 //! [`PlcSimulator::unknown`].
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -140,9 +141,9 @@ impl PlcSimulator {
         &self.bits
     }
 
-    /// Whether the simulator has the bit.
+    /// Whether the simulator has the bit or integer.
     pub fn is_known(&self, name: &str) -> bool {
-        self.bits.contains_key(name)
+        self.bits.contains_key(name) || self.ints.contains_key(name)
     }
 
     /// Scans run so far.
