@@ -1,6 +1,7 @@
-//! The IEC standard library's integer elements as matiec's C runs them, built over the scan model for every front end that has them (Structured Text, PLCopen LD/FBD): the integer types, comparisons (extensible), MIN/MAX/LIMIT/ABS and the counters CTU/CTD/CTUD.
+//! The IEC standard library's elements as matiec's C runs them, built over the scan model for every front end that has them (Structured Text, PLCopen LD/FBD): the integer types, comparisons (extensible), MIN/MAX/LIMIT/ABS, the counters CTU/CTD/CTUD and the pulse timer TP.
 
-use super::{BoolExpr, CmpOp, Compare, IntExpr, IntType};
+use super::{BoolExpr, CmpOp, Compare, IntExpr, IntType, Preset, Stmt, Timer, WriteKind};
+use crate::diag::Span;
 
 /// The IEC integer type `name` (upper-case) as matiec declares it in C; `None` for the
 /// 64-bit types (not modelled) and every other type.
@@ -151,4 +152,76 @@ pub fn counter(
         Counter::UpDown => vec![("QU", ge), ("QD", le)],
     };
     (next, outputs)
+}
+
+/// A pulse timer `TP` as matiec's library runs it: a rising edge of `IN` while idle
+/// starts a pulse of `Q` for `PT` (at least one scan), which no edge restarts; after it,
+/// `Q` stays off until `IN` falls. Over `Q` (running), a hidden `DONE` bit and an
+/// on-delay timer of `Q` as it stood at the previous scan; `input` and `rise` are
+/// the scan-local values of `IN` and of its rising edge, `local` makes a scan-local
+/// value of an expression.
+pub struct Pulse<'a> {
+    /// The element keyword (`TP`).
+    pub keyword: &'a str,
+    /// The instance (the timer's accumulator).
+    pub instance: &'a str,
+    /// `Q`'s bit.
+    pub q: &'a str,
+    /// The hidden bit that says the pulse is over and `IN` has not fallen yet.
+    pub done: &'a str,
+    /// `PT` in µs.
+    pub pt_us: u64,
+    /// The cycle in µs.
+    pub cycle_us: u64,
+    /// The call.
+    pub span: Span,
+}
+
+impl Pulse<'_> {
+    /// The statements of one call.
+    pub fn call(
+        &self,
+        input: BoolExpr,
+        rise: BoolExpr,
+        local: &mut dyn FnMut(&mut Vec<Stmt>, BoolExpr) -> BoolExpr,
+    ) -> Vec<Stmt> {
+        let mut out = Vec::new();
+        let span = self.span;
+        let running = local(&mut out, BoolExpr::var(self.q));
+        let finished = local(&mut out, BoolExpr::var(self.done));
+        // The pulse has lasted PT when Q has been on K = ⌈PT / cycle⌉ (at least 1) scans
+        // before this one: Q at the previous scan, on for K − 1 scans before.
+        let scans = self.pt_us.div_ceil(self.cycle_us).max(1);
+        let elapsed = if scans == 1 {
+            running.clone()
+        } else {
+            BoolExpr::Timer(Box::new(Timer {
+                on_delay: true,
+                keyword: self.keyword.to_string(),
+                accumulator: self.instance.to_string(),
+                preset: Preset::iec(self.pt_us - self.cycle_us, self.cycle_us),
+                input: running.clone(),
+                span,
+            }))
+        };
+        let elapsed = local(&mut out, elapsed);
+        let idle =
+            BoolExpr::and(BoolExpr::negate(running.clone()), BoolExpr::negate(finished.clone()));
+        let start = BoolExpr::and(idle, rise);
+        let keep = BoolExpr::and(running.clone(), BoolExpr::negate(elapsed.clone()));
+        out.push(Stmt::Write {
+            target: self.q.to_string(),
+            kind: WriteKind::Assign,
+            value: BoolExpr::Or(vec![start, keep]),
+            span,
+        });
+        let ended = BoolExpr::Or(vec![finished, BoolExpr::and(running, elapsed)]);
+        out.push(Stmt::Write {
+            target: self.done.to_string(),
+            kind: WriteKind::Assign,
+            value: BoolExpr::and(ended, input),
+            span,
+        });
+        out
+    }
 }

@@ -556,41 +556,16 @@ impl<'s> Lowering<'s> {
         let rise =
             BoolExpr::Edge { kind: EdgeKind::Rising, input: Box::new(input.clone()), memory };
         let rise = self.temp(&mut out, rise);
-        let running = self.temp(&mut out, BoolExpr::var(&q));
-        let finished = self.temp(&mut out, BoolExpr::var(&done));
-        // The pulse has lasted PT when Q has been on K = ⌈PT / cycle⌉ (at least 1) scans
-        // before this one: Q at the previous scan, on for K − 1 scans before.
-        let scans = pt.div_ceil(self.cycle_us).max(1);
-        let elapsed = if scans == 1 {
-            running.clone()
-        } else {
-            BoolExpr::Timer(Box::new(Timer {
-                on_delay: true,
-                keyword: ty.to_string(),
-                accumulator: inst.to_string(),
-                preset: Preset::iec(pt - self.cycle_us, self.cycle_us),
-                input: running.clone(),
-                span,
-            }))
+        let pulse = library::Pulse {
+            keyword: ty,
+            instance: inst,
+            q: &q,
+            done: &done,
+            pt_us: pt,
+            cycle_us: self.cycle_us,
+            span,
         };
-        let elapsed = self.temp(&mut out, elapsed);
-        let idle =
-            BoolExpr::and(BoolExpr::negate(running.clone()), BoolExpr::negate(finished.clone()));
-        let start = BoolExpr::and(idle, rise);
-        let keep = BoolExpr::and(running.clone(), BoolExpr::negate(elapsed.clone()));
-        out.push(Stmt::Write {
-            target: q,
-            kind: WriteKind::Assign,
-            value: BoolExpr::Or(vec![start, keep]),
-            span,
-        });
-        let ended = BoolExpr::Or(vec![finished, BoolExpr::and(running, elapsed)]);
-        out.push(Stmt::Write {
-            target: done,
-            kind: WriteKind::Assign,
-            value: BoolExpr::and(ended, input),
-            span,
-        });
+        out.extend(pulse.call(input, rise, &mut |out, e| self.temp(out, e)));
         out
     }
 }

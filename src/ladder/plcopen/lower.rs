@@ -675,12 +675,42 @@ impl<'p> Lower<'p> {
                 self.coil(q, &hidden("Q"), WriteKind::Assign, span);
             }
             Some(Std::Tp) => {
-                let out = fresh(
-                    "TP",
-                    &format!("the pulse timer {}", instance.as_deref().unwrap_or("TP")),
+                let inst = instance.as_deref().map_or_else(String::new, |i| {
+                    p.vars.get(&i.to_ascii_uppercase()).map_or(i.to_string(), |v| v.name.clone())
+                });
+                let Some(pt) = preset else {
+                    let what = format!("the pulse timer {inst} with a PT that is not a literal");
+                    self.coil(fresh("TP", &what, span), &hidden("Q"), WriteKind::Assign, span);
+                    self.no_pull = outer;
+                    self.in_progress.remove(&k);
+                    self.called.insert(k);
+                    return;
+                };
+                let mut stmts = Vec::new();
+                let v = value(self, "IN");
+                let input = self.temp(&mut stmts, v);
+                // matiec's TP remembers IN (`PREV_IN`) to see its rising edge.
+                self.edges.push((self.path.clone(), k, "TP_IN".into()));
+                let memory = Memory {
+                    base: "OSR".into(),
+                    element: "OSR".into(),
+                    index: self.edges.len() - 1,
+                };
+                let edge = crate::program::EdgeKind::Rising;
+                let rise = BoolExpr::Edge { kind: edge, input: Box::new(input.clone()), memory };
+                let rise = self.temp(&mut stmts, rise);
+                let (q, done) = (hidden("Q"), hidden("DONE"));
+                let pulse = crate::program::library::Pulse {
+                    keyword: "TP",
+                    instance: &inst,
+                    q: &q,
+                    done: &done,
+                    pt_us: pt,
+                    cycle_us: p.cycle_us,
                     span,
-                );
-                self.coil(out, &hidden("Q"), WriteKind::Assign, span);
+                };
+                stmts.extend(pulse.call(input, rise, &mut |out, e| self.temp(out, e)));
+                self.push_block(stmts, span);
             }
             Some(s @ (Std::Sr | Std::Rs)) => {
                 let (set, reset) = if s == Std::Sr { ("S1", "R") } else { ("S", "R1") };

@@ -25,7 +25,7 @@ pub enum Std {
     Ton,
     /// Off-delay timer.
     Tof,
-    /// Pulse timer (its output is unconstrained for the prover).
+    /// Pulse timer.
     Tp,
     /// Set-dominant latch.
     Sr,
@@ -824,6 +824,9 @@ fn check_pou(
                         }
                         if matches!(s, Std::Rs) {
                             pins_of.extend(["S".into(), "R1".into()]);
+                        }
+                        if matches!(s, Std::Tp) {
+                            pins_of.push("DONE".into());
                         }
                         for pin in pins_of {
                             if program

@@ -478,8 +478,14 @@ impl PlcSimulator {
                         }
                     }
                     t.prev_in = input;
-                    let q = t.q;
+                    let (q, done) = (t.q, t.state == 2);
                     self.set_hidden(k, "Q", q);
+                    if s == Std::Tp {
+                        // matiec's TP: its PREV_IN, and whether the pulse is over while IN
+                        // is still on (STATE 2).
+                        self.memory.insert((k, "TP_IN".into()), input);
+                        self.set_hidden(k, "DONE", done);
+                    }
                 }
                 Some(s @ (Std::Sr | Std::Rs)) => {
                     let (set, reset) = if s == Std::Sr { ("S1", "R") } else { ("S", "R1") };

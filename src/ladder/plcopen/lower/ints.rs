@@ -192,7 +192,7 @@ impl Lower<'_> {
 
     /// A block of its own with these statements (what the compiler names after it is
     /// named after its number, as [`Lower::coil`] does).
-    fn push_block(&mut self, mut stmts: Vec<Stmt>, span: Span) {
+    pub(super) fn push_block(&mut self, mut stmts: Vec<Stmt>, span: Span) {
         let number = self.blocks.len() + 1;
         let mut rename = |e: &mut BoolExpr| match e {
             BoolExpr::Fresh(f) => f.base = format!("{}_r{number}", f.base),
@@ -217,7 +217,7 @@ impl Lower<'_> {
         self.blocks.push(Block { number, label: None, span, stmts });
     }
 
-    fn temp(&mut self, stmts: &mut Vec<Stmt>, value: BoolExpr) -> BoolExpr {
+    pub(super) fn temp(&mut self, stmts: &mut Vec<Stmt>, value: BoolExpr) -> BoolExpr {
         let temp = self.next_temp;
         self.next_temp += 1;
         stmts.push(Stmt::Let { temp, value });
