@@ -28,8 +28,8 @@ fn temp(name: &str, content: &str) -> PathBuf {
 // ---------------------------------------------------------------- corpus
 
 /// Loaded / refused counts over `tests/data/plcopen/corpus` (recorded in the README).
-const CORPUS_LOADED: usize = 61;
-const CORPUS_REFUSED: usize = 23;
+const CORPUS_LOADED: usize = 60;
+const CORPUS_REFUSED: usize = 24;
 
 #[test]
 fn every_corpus_file_loads_or_is_refused_with_located_errors() {
@@ -160,6 +160,31 @@ fn the_faulty_drawing_is_refuted_with_a_counterexample_the_plcopen_simulator_con
     let stdout = text(&out.stdout);
     assert!(stdout.contains("refuted"), "{stdout}");
     assert!(stdout.contains("by the scan simulator"), "{stdout}");
+}
+
+/// Integers in FBD, exact: a CTU's count and a GT comparison prove the bottle counter's
+/// properties; its early warning is refuted with the count drawn, confirmed by the
+/// PLCopen simulator.
+#[test]
+fn the_bottle_counter_in_fbd_is_proved_and_its_early_warning_refuted() {
+    let proves = "tests/data/proves_programs/bottle_counter_fbd";
+    let (xml, ii) = (format!("{proves}.xml"), format!("{proves}.ii"));
+    let got = verdicts(&[&xml, &ii]);
+    assert!(got.len() == 4 && got.iter().all(|(_, v)| v == "proved"), "{got:?}");
+    let out = ii_prove(&["show", &xml]);
+    let all = format!("{}{}", text(&out.stdout), text(&out.stderr));
+    assert!(!all.contains("unconstrained"), "{all}");
+    assert!(all.contains("Counter_CV_b15"), "the count is compiled into bits: {all}");
+    let refutes = "tests/data/refutes_programs/bottle_counter_warn_early";
+    let out = ii_prove(&[&format!("{refutes}.xml"), &format!("{refutes}.ii")]);
+    let stdout = text(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    assert!(stdout.contains("by the scan simulator"), "{stdout}");
+    let row = stdout.lines().find(|l| l.trim_start().starts_with("Counter_CV"));
+    assert!(
+        row.is_some_and(|r| r.contains(" 3") && r.contains(" 4")),
+        "the count is drawn: {stdout}"
+    );
 }
 
 // ---------------------------------------------------------------- command line

@@ -39,12 +39,19 @@ fn random_programs_agree_with_the_simulator() {
         }
     }
     eprintln!(
-        "plcopen differential: {} programs ({} refused), {} scans, {} hypotheses checked ({} skipped), {} timer hypotheses fired",
-        fig.programs, fig.refused, fig.scans, fig.checked, fig.skipped, fig.timer_fired
+        "plcopen differential: {} programs ({} refused), {} scans, {} hypotheses checked ({} of integer bits) ({} skipped), {} timer hypotheses fired",
+        fig.programs,
+        fig.refused,
+        fig.scans,
+        fig.checked,
+        fig.int_checked,
+        fig.skipped,
+        fig.timer_fired
     );
     assert!(fig.failures.is_empty(), "{}", fig.failures.join("\n\n"));
     assert!(fig.timer_fired > 0 || fig.programs < 50, "no timer ever fired");
     assert!(fig.refused * 10 <= fig.programs, "more than a tenth refused: {}", fig.refused);
+    assert!(fig.int_checked > 0 || fig.programs < 50, "no integer equation was checked");
 }
 
 #[test]

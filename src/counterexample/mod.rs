@@ -527,11 +527,13 @@ fn simulate(
         }
         sim.step(&step);
         for n in &watched {
+            // Compiler-made names (atoms, intermediate values) stand for what they read.
             let depends = match program.compiled.signals.get(n) {
-                Some(SignalKind::IntBit { of, .. }) => of,
-                _ => n,
+                Some(SignalKind::IntBit { of, .. }) => Some(of),
+                Some(SignalKind::Atom | SignalKind::Intermediate { .. }) => None,
+                _ => Some(n),
             };
-            if !sim.is_known(depends) {
+            if depends.is_some_and(|d| !sim.is_known(d)) {
                 return Err(format!("the simulator does not model what `{n}` depends on"));
             }
             // A one-shot's hidden memory is the simulator's memory of that element, never

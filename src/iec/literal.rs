@@ -57,3 +57,35 @@ fn parse_decimal(s: &str, scale: u64) -> Option<u64> {
     }
     Some(v)
 }
+
+/// An IEC integer literal as PLCopen and ST write it (`5`, `-5`, `16#FF`, `2#1010_0101`,
+/// `INT#-3`, `DINT#16#FF`): its value and the type name its prefix gives (upper case),
+/// if any. `None` for anything else (reals, booleans, durations).
+pub fn int_literal(text: &str) -> Option<(i128, Option<String>)> {
+    let t = text.trim();
+    let (ty, value) = match t.split_once('#') {
+        Some((ty, v)) if ty.chars().all(|c| c.is_ascii_alphabetic()) && !ty.is_empty() => {
+            (Some(ty.to_ascii_uppercase()), v)
+        }
+        _ => (None, t),
+    };
+    let digits: String = value.chars().filter(|c| *c != '_').collect();
+    let (negative, digits) = match digits.strip_prefix('-') {
+        Some(d) => (true, d.to_string()),
+        None => (false, digits.strip_prefix('+').unwrap_or(&digits).to_string()),
+    };
+    let v = match digits.split_once('#') {
+        Some((base, d)) => {
+            let b: u32 = base.parse().ok().filter(|b| [2, 8, 16].contains(b))?;
+            if d.is_empty() || d.starts_with(['-', '+']) {
+                return None;
+            }
+            i128::from_str_radix(d, b).ok()?
+        }
+        None if !digits.is_empty() && digits.chars().all(|c| c.is_ascii_digit()) => {
+            digits.parse::<i128>().ok()?
+        }
+        None => return None,
+    };
+    Some((if negative { -v } else { v }, ty))
+}

@@ -199,6 +199,9 @@ impl ScanSimulator for plcopen::PlcSimulator {
     fn is_known(&self, name: &str) -> bool {
         plcopen::PlcSimulator::is_known(self, name)
     }
+    fn int(&self, name: &str) -> Option<i64> {
+        plcopen::PlcSimulator::int(self, name)
+    }
 }
 
 /// A malformed ladder file, or something the reader or compiler reports about it.

@@ -15,6 +15,7 @@
 pub mod atoms;
 pub mod bitvec;
 pub mod compile;
+pub mod library;
 pub mod logic;
 pub mod names;
 pub mod product;

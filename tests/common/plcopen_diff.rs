@@ -25,6 +25,36 @@ const PRESETS: &[&str] = &["T#0ms", "T#10ms", "T#15ms", "T#20ms", "T#35ms", "T#5
 const FBS: &[&str] = &["TON", "TOF", "TP", "SR", "RS", "R_TRIG", "F_TRIG", "CTU"];
 const FUNCTIONS: &[&str] = &["AND", "OR", "XOR", "NOT", "SEL", "MOVE", "GT"];
 
+/// Integer variables of the main program: an input, two the program writes, a SINT.
+const INT_INPUT: &str = "N0";
+const INT_VARS: &[&str] = &["N1", "N2"];
+const SINT_VAR: &str = "S0";
+const INT_OPERANDS: &[&str] = &["N0", "N1", "N2", "0", "1", "3", "-2", "7", "100", "32767"];
+const INT_BLOCKS: &[&str] = &[
+    "ADD",
+    "SUB",
+    "MUL",
+    "DIV",
+    "MOD",
+    "MIN",
+    "MAX",
+    "LIMIT",
+    "ABS",
+    "MOVE",
+    "SEL",
+    "GT",
+    "GE",
+    "EQ",
+    "NE",
+    "LT",
+    "LE",
+    "CTU",
+    "CTD",
+    "CTUD",
+    "CTU",
+    "SINT_TO_INT",
+];
+
 /// The user function block programs may instantiate: inputs `IN0`, `IN1`, outputs
 /// `OUT0`, `OUT1`, a local `L0`.
 const USER_FB: &str = "UserFb";
@@ -45,6 +75,8 @@ struct Gen {
     user_fb: bool,
     /// Every position 0,0 (the statements then run in document order).
     no_layout: bool,
+    /// Whether the body may use the integer variables.
+    ints: bool,
 }
 
 fn pins(rng: &mut Rng, ty: &str) -> Vec<&'static str> {
@@ -70,7 +102,8 @@ fn outputs(ty: &str) -> Vec<&'static str> {
         "TON" | "TOF" | "TP" => vec!["Q", "ET"],
         "SR" | "RS" => vec!["Q1"],
         "R_TRIG" | "F_TRIG" => vec!["Q"],
-        "CTU" => vec!["Q", "CV"],
+        "CTU" | "CTD" => vec!["Q", "CV"],
+        "CTUD" => vec!["QU", "QD", "CV"],
         USER_FB => vec!["OUT0", "OUT1"],
         _ => vec!["OUT"],
     }
@@ -244,6 +277,142 @@ impl Gen {
         (id, ty)
     }
 
+    /// An FBD network over integers: integer operands, arithmetic, comparisons and
+    /// counters, integer and Boolean outputs.
+    fn int_network(&mut self) {
+        let mut ints: Vec<(u64, Option<&'static str>)> = Vec::new();
+        let mut bools: Vec<(u64, Option<&'static str>)> = Vec::new();
+        for _ in 0..2 + self.rng.below(2) {
+            let v = *self.rng.pick(INT_OPERANDS);
+            ints.push((self.in_var(v, true), None));
+        }
+        for _ in 0..1 + self.rng.below(2) {
+            let v = self.operand();
+            bools.push((self.in_var(&v, true), None));
+        }
+        for _ in 0..1 + self.rng.below(4) {
+            let ty = *self.rng.pick(INT_BLOCKS);
+            let counter = ty.starts_with("CT");
+            let extensible = matches!(
+                ty,
+                "ADD" | "MUL" | "MIN" | "MAX" | "GT" | "GE" | "EQ" | "NE" | "LT" | "LE"
+            );
+            let pins: Vec<&str> = match ty {
+                "CTU" => vec!["CU", "R", "PV"],
+                "CTD" => vec!["CD", "LD", "PV"],
+                "CTUD" => vec!["CU", "CD", "R", "LD", "PV"],
+                "LIMIT" => vec!["MN", "IN", "MX"],
+                "ABS" | "MOVE" | "SINT_TO_INT" => vec!["IN"],
+                "SEL" => vec!["G", "IN0", "IN1"],
+                _ if extensible && self.rng.chance(25) => vec!["IN1", "IN2", "IN3"],
+                _ => vec!["IN1", "IN2"],
+            };
+            let mut ins = String::new();
+            for pin in pins {
+                let refs = match pin {
+                    "CU" | "CD" | "R" | "LD" | "G" => {
+                        if counter && pin != "CU" && pin != "CD" && self.rng.chance(30) {
+                            Vec::new()
+                        } else {
+                            vec![*self.rng.pick(&bools)]
+                        }
+                    }
+                    "IN2" if matches!(ty, "DIV" | "MOD") => {
+                        let d = *self.rng.pick(&["0", "1", "2", "3", "-2", "7"]);
+                        vec![(self.in_var(d, true), None)]
+                    }
+                    "IN" if ty == "SINT_TO_INT" => vec![(self.in_var(SINT_VAR, true), None)],
+                    _ => vec![*self.rng.pick(&ints)],
+                };
+                let m = if matches!(pin, "CU" | "CD") && self.rng.chance(15) {
+                    r#" negated="true""#
+                } else {
+                    ""
+                };
+                write!(
+                    ins,
+                    r#"<variable formalParameter="{pin}"{m}>{}</variable>"#,
+                    Gen::conn(&refs)
+                )
+                .unwrap();
+            }
+            let id = self.nid();
+            let inst = if counter {
+                let name = format!("{ty}{id}");
+                self.instances.push((name.clone(), ty));
+                format!(r#" instanceName="{name}""#)
+            } else {
+                String::new()
+            };
+            let outs: Vec<&str> = match ty {
+                "CTU" | "CTD" => vec!["Q", "CV"],
+                "CTUD" => vec!["QU", "QD", "CV"],
+                _ => vec!["OUT"],
+            };
+            let mut o = String::new();
+            for out in &outs {
+                write!(o, r#"<variable formalParameter="{out}"><connectionPointOut/></variable>"#)
+                    .unwrap();
+            }
+            let (p, ord) = (self.pos(200), self.order(true));
+            writeln!(
+                self.body,
+                r#"<block localId="{id}" typeName="{ty}"{inst}{ord}>{p}<inputVariables>{ins}</inputVariables><inOutVariables/><outputVariables>{o}</outputVariables></block>"#
+            )
+            .unwrap();
+            match ty {
+                "GT" | "GE" | "EQ" | "NE" | "LT" | "LE" => bools.push((id, Some("OUT"))),
+                "CTUD" => {
+                    bools.push((id, Some(if self.rng.chance(50) { "QU" } else { "QD" })));
+                    ints.push((id, Some("CV")));
+                }
+                _ if counter => {
+                    bools.push((id, Some("Q")));
+                    ints.push((id, Some("CV")));
+                }
+                _ => ints.push((id, Some("OUT"))),
+            }
+        }
+        // Integer results into integer variables (one through INT_TO_SINT), a Boolean one
+        // into a bit.
+        for _ in 0..1 + self.rng.below(2) {
+            let mut src = *self.rng.pick(&ints);
+            let target = if self.rng.chance(20) {
+                let id = self.nid();
+                let p = self.pos(400);
+                writeln!(
+                    self.body,
+                    r#"<block localId="{id}" typeName="INT_TO_SINT">{p}<inputVariables><variable formalParameter="IN">{}</variable></inputVariables><inOutVariables/><outputVariables><variable formalParameter="OUT"><connectionPointOut/></variable></outputVariables></block>"#,
+                    Gen::conn(&[src])
+                )
+                .unwrap();
+                src = (id, Some("OUT"));
+                SINT_VAR
+            } else {
+                *self.rng.pick(INT_VARS)
+            };
+            let id = self.nid();
+            let (p, o) = (self.pos(500), self.order(true));
+            writeln!(
+                self.body,
+                r#"<outVariable localId="{id}"{o}>{p}{}<expression>{target}</expression></outVariable>"#,
+                Gen::conn(&[src])
+            )
+            .unwrap();
+        }
+        let src = *self.rng.pick(&bools);
+        let id = self.nid();
+        let v = *self.rng.pick(self.bits);
+        let (p, o) = (self.pos(500), self.order(true));
+        writeln!(
+            self.body,
+            r#"<outVariable localId="{id}"{o}>{p}{}<expression>{v}</expression></outVariable>"#,
+            Gen::conn(&[src])
+        )
+        .unwrap();
+        self.y += 100;
+    }
+
     fn ld_rung(&mut self) {
         let rail = self.nid();
         let p = self.pos(0);
@@ -380,11 +549,18 @@ fn random_body(
         ghost,
         user_fb,
         no_layout: false,
+        ints: inputs == INPUTS,
     };
     g.no_layout = g.rng.chance(15);
     let fbd = g.rng.chance(45);
     for _ in 0..1 + g.rng.below(5) {
-        if fbd { g.fbd_network() } else { g.ld_rung() }
+        if fbd && g.ints && g.rng.chance(40) {
+            g.int_network()
+        } else if fbd {
+            g.fbd_network()
+        } else {
+            g.ld_rung()
+        }
     }
     let mut decls = String::new();
     for (inst, ty) in &g.instances {
@@ -453,6 +629,19 @@ pub fn random_program(seed: u64) -> String {
         }
     }
     writeln!(vars, "{}", bools(&[GHOST])).unwrap();
+    for n in INT_VARS {
+        writeln!(vars, r#"<variable name="{n}"><type><INT/></type></variable>"#).unwrap();
+    }
+    writeln!(vars, r#"<variable name="{SINT_VAR}"><type><SINT/></type><initialValue><simpleValue value="-3"/></initialValue></variable>"#).unwrap();
+    if located {
+        writeln!(
+            vars,
+            r#"<variable name="{INT_INPUT}" address="%IW0"><type><INT/></type></variable>"#
+        )
+        .unwrap();
+    } else {
+        writeln!(inputs, r#"<variable name="{INT_INPUT}"><type><INT/></type></variable>"#).unwrap();
+    }
     vars.push_str(&decls);
     let retained = if retained.is_empty() {
         String::new()
@@ -493,6 +682,8 @@ pub struct Figures {
     pub checked: u64,
     pub skipped: u64,
     pub timer_fired: u64,
+    /// Equations of integer bits checked (each over every scan of its run).
+    pub int_checked: u64,
     pub failures: Vec<String>,
 }
 
@@ -603,7 +794,14 @@ pub fn prepare(
 /// Random values of the declared inputs for `scans` scans, each held for a random
 /// number of scans.
 pub fn input_schedule(plc: &PlcProgram, seed: u64, scans: usize) -> Vec<BTreeMap<String, bool>> {
-    let driven: Vec<String> = plc.inputs.iter().cloned().collect();
+    let mut driven: Vec<String> = Vec::new();
+    let mut words: Vec<(String, u32)> = Vec::new();
+    for n in &plc.inputs {
+        match plc.int_var_type(n).and_then(|t| ii_prove::program::library::int_type(&t)) {
+            Some(t) => words.push((n.clone(), t.bits)),
+            None => driven.push(n.clone()),
+        }
+    }
     let mut rng = Rng::new(seed ^ 0x51A7);
     let mut current: BTreeMap<String, bool> = driven.iter().map(|n| (n.clone(), false)).collect();
     let mut hold: BTreeMap<String, u64> = driven.iter().map(|n| (n.clone(), 0)).collect();
@@ -617,6 +815,18 @@ pub fn input_schedule(plc: &PlcProgram, seed: u64, scans: usize) -> Vec<BTreeMap
                 *h = 1 + rng.below(long);
             }
             *h -= 1;
+        }
+        for (n, bits) in &words {
+            // Small values mostly (near presets and limits), sometimes any.
+            if rng.chance(30) {
+                let v: i64 = match rng.below(4) {
+                    0 => rng.below(1 << bits) as i64,
+                    _ => rng.below(12) as i64 - 3,
+                };
+                for k in 0..*bits {
+                    current.insert(format!("{n}_b{k}"), v >> k & 1 == 1);
+                }
+            }
         }
         out.push(current.clone());
     }
@@ -637,7 +847,7 @@ pub fn check_run(
     let mut stats = TimerStats::default();
     let mut previous = String::new();
     for scan in 0..scans {
-        let (known, shown) = match values(scan) {
+        let (mut known, shown) = match values(scan) {
             Ok(v) => v,
             Err(e) => {
                 fig.failures.push(format!("seed {seed}: {e}\n{xml}"));
@@ -646,7 +856,7 @@ pub fn check_run(
         };
         fig.scans += 1;
         for h in p.hyps.iter_mut() {
-            if !h.scan(&known, &mut vals, &mut stats) {
+            if !h.run(&mut known, &mut vals, &mut stats) {
                 fig.failures.push(format!(
                     "seed {seed}: {}: {} fails at scan {scan}; bits: {shown}; previous: {previous}\n{}\n{xml}",
                     h.name,
@@ -658,11 +868,14 @@ pub fn check_run(
         }
         previous = shown;
     }
-    for h in &p.hyps {
+    for (h, c) in p.hyps.iter().zip(&p.compiled.hypotheses) {
         if h.skip.is_some() {
             fig.skipped += 1;
         } else {
             fig.checked += 1;
+            let lhs = &c.lhs[ii_prove::term::root(&c.lhs)];
+            fig.int_checked += u64::from(matches!(lhs, Term::Name(n)
+                if matches!(p.compiled.signals.get(n.as_str()), Some(SignalKind::IntBit { .. }))));
             fig.timer_fired += u64::from(h.has_timer && h.timer_fired);
         }
     }
@@ -704,8 +917,9 @@ pub fn check(xml: &str, seed: u64, fig: &mut Figures, must_load: bool) {
                     let (path, owner, pin) = &lowered[edge_of[k]];
                     sim.edge_memory_of(path, *owner, pin).unwrap_or(false)
                 }
-                // PLCopen programs compile no integers yet.
-                Src::IntBit { .. } | Src::Defined(_) => false,
+                Src::IntBit { .. } | Src::Defined(_) => {
+                    src.read(&|_| false, &|_| None, &|x| sim.int(x))
+                }
             })
             .collect();
         let shown: Vec<String> =

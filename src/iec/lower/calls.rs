@@ -7,8 +7,7 @@ use crate::diag::Span;
 use crate::iec::StError;
 use crate::iec::ast::{self, Arg, ExprKind};
 use crate::program::{
-    BoolExpr, CmpOp, Compare, EdgeKind, Fresh, IntExpr, IntType, IntVar, Memory, Preset, Stmt,
-    Timer, WriteKind,
+    BoolExpr, EdgeKind, Fresh, IntType, IntVar, Memory, Preset, Stmt, Timer, WriteKind, library,
 };
 
 /// Function-block types the lowering knows.
@@ -436,10 +435,6 @@ impl<'s> Lowering<'s> {
             }
         };
         let cv_name = self.counter_value(inst, t);
-        let cv = IntExpr::var(&cv_name);
-        let cmp = |op: CmpOp, a: IntExpr, b: IntExpr| {
-            BoolExpr::Compare(Box::new(Compare { op, ty: t, a, b }))
-        };
         let edge = |l: &mut Self, out: &mut Vec<Stmt>, pin: &str, v: BoolExpr| {
             let memory =
                 Memory { base: format!("{inst}_{pin}_T"), element: ty.to_string(), index: l.edges };
@@ -447,55 +442,35 @@ impl<'s> Lowering<'s> {
             let e = BoolExpr::Edge { kind: EdgeKind::Rising, input: Box::new(v), memory };
             l.temp(out, e)
         };
-        let one = || IntExpr::Const(1);
-        let up = |cv: &IntExpr| IntExpr::plus(cv.clone(), one());
-        let down = |cv: &IntExpr| IntExpr::minus(cv.clone(), one());
-        let below = cmp(CmpOp::Lt, cv.clone(), pv.clone());
-        let above_zero = cmp(CmpOp::Gt, cv.clone(), IntExpr::Const(0));
-        let (next, outputs) = match kind.as_str() {
-            "CTU" => {
+        let no = || BoolExpr::Const(false);
+        let kind = library::Counter::of(&kind).unwrap_or(library::Counter::UpDown);
+        let (edges, r, ld) = match kind {
+            library::Counter::Up => {
                 let cu = self.kept_input(inst, "CU", inputs, read, &mut out, span);
                 let r = self.kept_input(inst, "R", inputs, read, &mut out, span);
-                let cu = edge(self, &mut out, "CU", cu);
-                let count = IntExpr::ite(BoolExpr::and(cu, below), up(&cv), cv.clone());
-                (IntExpr::ite(r, IntExpr::Const(0), count), vec![("Q", CmpOp::Ge)])
+                ((edge(self, &mut out, "CU", cu), no()), r, no())
             }
-            "CTD" => {
+            library::Counter::Down => {
                 let cd = self.kept_input(inst, "CD", inputs, read, &mut out, span);
                 let ld = self.kept_input(inst, "LD", inputs, read, &mut out, span);
-                let cd = edge(self, &mut out, "CD", cd);
-                let count = IntExpr::ite(BoolExpr::and(cd, above_zero), down(&cv), cv.clone());
-                (IntExpr::ite(ld, pv.clone(), count), vec![("Q", CmpOp::Le)])
+                ((no(), edge(self, &mut out, "CD", cd)), no(), ld)
             }
-            _ => {
+            library::Counter::UpDown => {
                 let cu = self.kept_input(inst, "CU", inputs, read, &mut out, span);
                 let cd = self.kept_input(inst, "CD", inputs, read, &mut out, span);
                 let r = self.kept_input(inst, "R", inputs, read, &mut out, span);
                 let ld = self.kept_input(inst, "LD", inputs, read, &mut out, span);
-                // matiec's CTUD: CD_T(CD); CU_T(CU); neither counts when both rise.
+                // matiec's CTUD: CD_T(CD); CU_T(CU).
                 let cd = edge(self, &mut out, "CD", cd);
                 let cu = edge(self, &mut out, "CU", cu);
-                let inc =
-                    BoolExpr::and(BoolExpr::and(cu.clone(), BoolExpr::negate(cd.clone())), below);
-                let dec = BoolExpr::and(BoolExpr::and(cd, BoolExpr::negate(cu)), above_zero);
-                let count = IntExpr::ite(inc, up(&cv), IntExpr::ite(dec, down(&cv), cv.clone()));
-                let loaded = IntExpr::ite(ld, pv.clone(), count);
-                (
-                    IntExpr::ite(r, IntExpr::Const(0), loaded),
-                    vec![("QU", CmpOp::Ge), ("QD", CmpOp::Le)],
-                )
+                ((cu, cd), r, ld)
             }
         };
+        let (next, outputs) = library::counter(kind, t, &cv_name, pv, edges, r, ld);
         out.push(Stmt::SetInt { target: cv_name, value: next, span });
-        for (pin, op) in outputs {
+        for (pin, value) in outputs {
             let q = self.hidden(inst, pin);
-            let bound = if op == CmpOp::Ge { pv.clone() } else { IntExpr::Const(0) };
-            out.push(Stmt::Write {
-                target: q,
-                kind: WriteKind::Assign,
-                value: cmp(op, cv.clone(), bound),
-                span,
-            });
+            out.push(Stmt::Write { target: q, kind: WriteKind::Assign, value, span });
         }
         // CTU and CTD have one output, `Q`; the others of the shared list stay unwritten.
         out
@@ -581,41 +556,16 @@ impl<'s> Lowering<'s> {
         let rise =
             BoolExpr::Edge { kind: EdgeKind::Rising, input: Box::new(input.clone()), memory };
         let rise = self.temp(&mut out, rise);
-        let running = self.temp(&mut out, BoolExpr::var(&q));
-        let finished = self.temp(&mut out, BoolExpr::var(&done));
-        // The pulse has lasted PT when Q has been on K = ⌈PT / cycle⌉ (at least 1) scans
-        // before this one: Q at the previous scan, on for K − 1 scans before.
-        let scans = pt.div_ceil(self.cycle_us).max(1);
-        let elapsed = if scans == 1 {
-            running.clone()
-        } else {
-            BoolExpr::Timer(Box::new(Timer {
-                on_delay: true,
-                keyword: ty.to_string(),
-                accumulator: inst.to_string(),
-                preset: Preset::iec(pt - self.cycle_us, self.cycle_us),
-                input: running.clone(),
-                span,
-            }))
+        let pulse = library::Pulse {
+            keyword: ty,
+            instance: inst,
+            q: &q,
+            done: &done,
+            pt_us: pt,
+            cycle_us: self.cycle_us,
+            span,
         };
-        let elapsed = self.temp(&mut out, elapsed);
-        let idle =
-            BoolExpr::and(BoolExpr::negate(running.clone()), BoolExpr::negate(finished.clone()));
-        let start = BoolExpr::and(idle, rise);
-        let keep = BoolExpr::and(running.clone(), BoolExpr::negate(elapsed.clone()));
-        out.push(Stmt::Write {
-            target: q,
-            kind: WriteKind::Assign,
-            value: BoolExpr::Or(vec![start, keep]),
-            span,
-        });
-        let ended = BoolExpr::Or(vec![finished, BoolExpr::and(running, elapsed)]);
-        out.push(Stmt::Write {
-            target: done,
-            kind: WriteKind::Assign,
-            value: BoolExpr::and(ended, input),
-            span,
-        });
+        out.extend(pulse.call(input, rise, &mut |out, e| self.temp(out, e)));
         out
     }
 }

@@ -4,37 +4,12 @@ use super::{Lowering, Sym, Ty};
 use crate::diag::Span;
 use crate::iec::StError;
 use crate::iec::ast::{self, Arg, BinOp, ExprKind, UnOp};
-use crate::program::{BoolExpr, CmpOp, Compare, Fresh, IntExpr, IntType, IntVar, Stmt};
+use crate::program::{BoolExpr, CmpOp, Compare, Fresh, IntExpr, IntType, IntVar, Stmt, library};
 
 /// C's `int`: what matiec's generated code computes a value narrower than 32 bits in.
 const C_INT: IntType = IntType { bits: 32, signed: true };
 
-/// The IEC integer type `name` (upper-case) as matiec declares it in C; `None` for the
-/// 64-bit types (not modelled) and every other type.
-pub(super) fn int_type(name: &str) -> Option<IntType> {
-    let (bits, signed) = match name {
-        "SINT" => (8, true),
-        "INT" => (16, true),
-        "DINT" => (32, true),
-        "USINT" | "BYTE" => (8, false),
-        "UINT" | "WORD" => (16, false),
-        "UDINT" | "DWORD" => (32, false),
-        _ => return None,
-    };
-    Some(IntType { bits, signed })
-}
-
-/// The IEC name of an integer type.
-pub(super) fn type_name(t: IntType) -> &'static str {
-    match (t.bits, t.signed) {
-        (8, true) => "SINT",
-        (16, true) => "INT",
-        (32, true) => "DINT",
-        (8, false) => "USINT",
-        (16, false) => "UINT",
-        _ => "UDINT",
-    }
-}
+pub(super) use crate::program::library::{counter_type, int_type, type_name};
 
 /// The type C computes a value of type `t` in (integer promotion).
 fn promoted(t: IntType) -> IntType {
@@ -338,40 +313,15 @@ impl Lowering<'_> {
             ty = self.unify(&Int { e: IntExpr::Const(0), ty, divides: false }, x, e.span)?;
         }
         let t = ty.unwrap_or(C_INT);
-        let cmp = |op: CmpOp, a: &Int, b: &Int| {
-            // Arguments are passed as values of `t`, and compared so.
-            BoolExpr::Compare(Box::new(Compare {
-                op,
-                ty: t,
-                a: a.clone().in_type(t),
-                b: b.clone().in_type(t),
-            }))
-        };
         let value = |x: &Int| x.clone().in_type(t);
         let e2 = match (name.as_str(), ints.as_slice()) {
             ("MOVE", [x]) => value(x),
-            ("ABS", [x]) => {
-                let zero = Int::literal(0);
-                IntExpr::ite(
-                    cmp(CmpOp::Lt, x, &zero),
-                    IntExpr::minus(IntExpr::Const(0), value(x)),
-                    value(x),
-                )
+            ("ABS", [x]) => library::abs(t, value(x)),
+            ("MIN" | "MAX", [_, rest @ ..]) if !rest.is_empty() => {
+                let vals: Vec<IntExpr> = ints.iter().map(value).collect();
+                library::extreme(name == "MIN", t, &vals)
             }
-            ("MIN" | "MAX", [first, rest @ ..]) if !rest.is_empty() => {
-                let op = if name == "MIN" { CmpOp::Lt } else { CmpOp::Gt };
-                let mut acc = first.clone();
-                for x in rest {
-                    let e = IntExpr::ite(cmp(op, &acc, x), value(&acc), value(x));
-                    acc = Int { e, ty, divides: false };
-                }
-                acc.e
-            }
-            ("LIMIT", [mn, x, mx]) => {
-                // matiec: `IN > MN ? IN < MX ? IN : MX : MN` (MN wins when MN > MX).
-                let below_max = IntExpr::ite(cmp(CmpOp::Lt, x, mx), value(x), value(mx));
-                IntExpr::ite(cmp(CmpOp::Gt, x, mn), below_max, value(mn))
-            }
+            ("LIMIT", [mn, x, mx]) => library::limit(t, value(mn), value(x), value(mx)),
             ("SEL", [a, b]) => {
                 let g = self.bool_expr(values[0]);
                 IntExpr::ite(g, value(b), value(a))
@@ -529,15 +479,6 @@ impl Lowering<'_> {
     /// Marks `x` as opaque for `why`, found at `at` (the program is then lowered again).
     pub(super) fn make_opaque(&mut self, x: &str, why: Opaque, at: Span) {
         self.opaque.entry(x.to_string()).or_insert((why, at));
-    }
-}
-
-/// The type of the count of a counter type (`CTU`, `CTD_DINT`, …); `None` for the
-/// 64-bit ones.
-pub(super) fn counter_type(ty: &str) -> Option<IntType> {
-    match ty.split_once('_') {
-        None => int_type("INT"),
-        Some((_, t)) => int_type(t),
     }
 }
 

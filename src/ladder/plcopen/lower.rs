@@ -6,9 +6,10 @@
 //! `_TRIG12`, see `docs/plcopen.md`), so a value computed once per scan is read by
 //! every consumer, and a read before the writer sees the previous scan, exactly as in
 //! the scan model. Negation of a compound value is pushed to the variables (De
-//! Morgan). What the algebra cannot express (TP, counters, comparisons, blocks run
-//! under a wired `EN`, non-Boolean values in a Boolean place) becomes an unconstrained
-//! value, which the compiler names with a warning naming the block.
+//! Morgan). Integers are the scan model's (`lower/ints.rs`). What the algebra cannot
+//! express (TP, blocks run under a wired `EN`, non-Boolean values in a Boolean place)
+//! becomes an unconstrained value, which the compiler names with a warning naming the
+//! block.
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -17,8 +18,10 @@ use super::{
 };
 use crate::diag::Span;
 use crate::program::{
-    Block, BoolExpr, Fresh, Inputs, Memory, Preset, Program, Stmt, Timer, WriteKind,
+    Block, BoolExpr, Fresh, Inputs, IntVar, Memory, Preset, Program, Stmt, Timer, WriteKind,
 };
+
+mod ints;
 
 /// A lowered program: the scan model and the warnings of reading and lowering.
 pub struct Lowered {
@@ -61,6 +64,14 @@ struct Lower<'p> {
     /// The block called as a statement of its own (its reader comes later, after other
     /// statements: never inlined).
     direct: Option<usize>,
+    /// The integers computed so far (declared ones, block outputs, counts).
+    ints: BTreeMap<String, IntVar>,
+    /// Integers not computed, with the reason (from the previous pass).
+    opaque: BTreeMap<String, String>,
+    /// Integers found not computed in this pass.
+    new_opaque: BTreeMap<String, String>,
+    /// The next scan-local value's index.
+    next_temp: usize,
 }
 
 fn one() -> BoolExpr {
@@ -105,6 +116,12 @@ fn fresh(keyword: &str, what: &str, span: Span) -> BoolExpr {
         why: format!("{what} is not expressible in the algebra"),
         span,
     }))
+}
+
+/// An unconstrained value for the reason `why`, named after `keyword`.
+fn fresh_because(keyword: &str, why: String, span: Span) -> BoolExpr {
+    let keyword = keyword.to_ascii_uppercase();
+    BoolExpr::Fresh(Box::new(Fresh { base: keyword.clone(), keyword, why, span }))
 }
 
 /// A Boolean output of a block the algebra does not express (counters, comparisons, …).
@@ -167,7 +184,23 @@ impl<'p> Lower<'p> {
             direct: None,
             path: Vec::new(),
             edges: Vec::new(),
+            ints: BTreeMap::new(),
+            opaque: BTreeMap::new(),
+            new_opaque: BTreeMap::new(),
+            next_temp: 0,
         }
+    }
+
+    /// Hands the state one scan shares (blocks so far, names, one-shots, integers) from
+    /// `self` to `other`.
+    fn hand_over(&mut self, other: &mut Lower<'_>) {
+        other.blocks = std::mem::take(&mut self.blocks);
+        other.emitted = std::mem::take(&mut self.emitted);
+        other.edges = std::mem::take(&mut self.edges);
+        other.ints = std::mem::take(&mut self.ints);
+        other.opaque = std::mem::take(&mut self.opaque);
+        other.new_opaque = std::mem::take(&mut self.new_opaque);
+        other.next_temp = self.next_temp;
     }
 
     /// `trig(edge, v)`, recording which detector of the program it stands for.
@@ -512,6 +545,19 @@ impl<'p> Lower<'p> {
         if let Some(var) = self.p.sub_var(k, pin, true).filter(|_| runs) {
             return contact(var, false);
         }
+        if let Some(b) = self.p.int_block(k) {
+            let boolean = match &b {
+                super::IntBlock::Compare(_) => pin.eq_ignore_ascii_case("OUT"),
+                super::IntBlock::Counter(_) => {
+                    ["Q", "QU", "QD"].iter().any(|q| pin.eq_ignore_ascii_case(q))
+                }
+                _ => false,
+            };
+            return match self.p.hidden_name(k, &pin.to_ascii_uppercase()) {
+                Some(n) if runs && boolean => contact(n, false),
+                _ => opaque(type_name, instance.as_deref(), pin, span),
+            };
+        }
         match Std::of(type_name) {
             Some(s) if runs && s.output().eq_ignore_ascii_case(pin) => {
                 match self.p.hidden_name(k, s.output()) {
@@ -540,6 +586,13 @@ impl<'p> Lower<'p> {
         // simulator does; the block's own rungs come after every call they trigger.
         if let Some(pin) = p.en_pin(k) {
             let _ = self.pin_value(k, pin);
+        }
+        if let Some(b) = p.int_block(k) {
+            self.int_call(k, &b, runs, span);
+            self.no_pull = outer;
+            self.in_progress.remove(&k);
+            self.called.insert(k);
+            return;
         }
         let mut vals: BTreeMap<String, BoolExpr> = BTreeMap::new();
         let mut preset = None;
@@ -622,12 +675,42 @@ impl<'p> Lower<'p> {
                 self.coil(q, &hidden("Q"), WriteKind::Assign, span);
             }
             Some(Std::Tp) => {
-                let out = fresh(
-                    "TP",
-                    &format!("the pulse timer {}", instance.as_deref().unwrap_or("TP")),
+                let inst = instance.as_deref().map_or_else(String::new, |i| {
+                    p.vars.get(&i.to_ascii_uppercase()).map_or(i.to_string(), |v| v.name.clone())
+                });
+                let Some(pt) = preset else {
+                    let what = format!("the pulse timer {inst} with a PT that is not a literal");
+                    self.coil(fresh("TP", &what, span), &hidden("Q"), WriteKind::Assign, span);
+                    self.no_pull = outer;
+                    self.in_progress.remove(&k);
+                    self.called.insert(k);
+                    return;
+                };
+                let mut stmts = Vec::new();
+                let v = value(self, "IN");
+                let input = self.temp(&mut stmts, v);
+                // matiec's TP remembers IN (`PREV_IN`) to see its rising edge.
+                self.edges.push((self.path.clone(), k, "TP_IN".into()));
+                let memory = Memory {
+                    base: "OSR".into(),
+                    element: "OSR".into(),
+                    index: self.edges.len() - 1,
+                };
+                let edge = crate::program::EdgeKind::Rising;
+                let rise = BoolExpr::Edge { kind: edge, input: Box::new(input.clone()), memory };
+                let rise = self.temp(&mut stmts, rise);
+                let (q, done) = (hidden("Q"), hidden("DONE"));
+                let pulse = crate::program::library::Pulse {
+                    keyword: "TP",
+                    instance: &inst,
+                    q: &q,
+                    done: &done,
+                    pt_us: pt,
+                    cycle_us: p.cycle_us,
                     span,
-                );
-                self.coil(out, &hidden("Q"), WriteKind::Assign, span);
+                };
+                stmts.extend(pulse.call(input, rise, &mut |out, e| self.temp(out, e)));
+                self.push_block(stmts, span);
             }
             Some(s @ (Std::Sr | Std::Rs)) => {
                 let (set, reset) = if s == Std::Sr { ("S1", "R") } else { ("S", "R1") };
@@ -661,14 +744,10 @@ impl<'p> Lower<'p> {
                 }
                 if let Some(child) = p.subs.get(&k) {
                     let mut sub = Lower::new(child);
-                    sub.blocks = std::mem::take(&mut self.blocks);
-                    sub.emitted = std::mem::take(&mut self.emitted);
-                    sub.edges = std::mem::take(&mut self.edges);
+                    self.hand_over(&mut sub);
                     sub.path = [self.path.as_slice(), &[k]].concat();
                     sub.run();
-                    self.blocks = std::mem::take(&mut sub.blocks);
-                    self.emitted = std::mem::take(&mut sub.emitted);
-                    self.edges = std::mem::take(&mut sub.edges);
+                    sub.hand_over(self);
                     self.errors.append(&mut sub.errors);
                     self.warnings.append(&mut sub.warnings);
                 }
@@ -709,6 +788,11 @@ impl<'p> Lower<'p> {
             return;
         }
         match &o.kind {
+            ObjKind::OutVar { input, .. } | ObjKind::InOutVar { input, .. } if matches!(p.operands.get(&k), Some(super::Operand::Other(n)) if p.int_var_type(n).is_some()) => {
+                if let Some(super::Operand::Other(name)) = p.operands.get(&k) {
+                    self.int_assign(&p.vars[&name.to_ascii_uppercase()].name.clone(), input, span);
+                }
+            }
             ObjKind::Coil { input, negated, storage, edge, .. }
             | ObjKind::OutVar { input, negated, storage, edge, .. } => {
                 let power = self.pin_power(input, k);
@@ -761,7 +845,24 @@ impl<'p> Lower<'p> {
 
 /// Lowers a checked program into the scan model, in evaluation order. Never panics.
 pub fn lower(p: &PlcProgram) -> Result<Lowered, Vec<PlcError>> {
-    let mut l = Lower::new(p);
+    // Integers found not computed make what reads them unconstrained: lowered again
+    // until no new one is found.
+    let mut opaque = BTreeMap::new();
+    loop {
+        let mut l = Lower::new(p);
+        l.opaque = opaque.clone();
+        l.declare_ints(p, false);
+        lower_pass(&mut l);
+        if l.new_opaque.is_empty() || !l.errors.is_empty() {
+            return finish(p, l);
+        }
+        opaque.append(&mut l.new_opaque);
+    }
+}
+
+/// One pass of the lowering: start values, latches, the statements.
+fn lower_pass(l: &mut Lower<'_>) {
+    let p = l.p;
     let file_span = p.pou.span;
     // Start values: on the first scan (STARTED still 0) each such variable is set to its
     // start value before any statement reads it; STARTED is 1 from then on.
@@ -784,6 +885,10 @@ pub fn lower(p: &PlcProgram) -> Result<Lowered, Vec<PlcError>> {
         l.coil(contact(latch, false), x, WriteKind::Assign, file_span);
     }
     l.run();
+}
+
+/// The program and warnings of the last pass.
+fn finish(p: &PlcProgram, mut l: Lower<'_>) -> Result<Lowered, Vec<PlcError>> {
     if !l.errors.is_empty() {
         l.errors.dedup();
         return Err(l.errors);
@@ -804,12 +909,20 @@ pub fn lower(p: &PlcProgram) -> Result<Lowered, Vec<PlcError>> {
         names,
         skipped: Vec::new(),
         integer_writers: BTreeMap::new(),
-        integers: BTreeMap::new(),
+        integers: std::mem::take(&mut l.ints),
         exact_names: true,
         block_noun: "rung",
         language: "a PLCopen",
     };
     let mut warnings = p.warnings.clone();
     warnings.append(&mut l.warnings);
+    for (x, why) in &l.opaque {
+        warnings.push(PlcError::Note {
+            span: p.span_of_name(x),
+            message: format!(
+                "the integer {x} is not computed ({why}): what reads it is unconstrained"
+            ),
+        });
+    }
     Ok(Lowered { program, warnings, edges: l.edges })
 }

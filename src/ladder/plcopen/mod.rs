@@ -9,6 +9,7 @@
 //! lowering ([`lower()`]) and the scan simulator ([`simulate`]) both consume.
 
 mod ast;
+pub mod ints;
 pub mod lower;
 mod read;
 mod select;
@@ -18,6 +19,7 @@ mod text;
 use crate::diag::{Report, Severity, Span};
 
 pub use ast::*;
+pub use ints::IntBlock;
 pub use lower::{EdgeKey, Lowered, lower};
 pub use read::*;
 pub use select::*;

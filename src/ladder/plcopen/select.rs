@@ -4,6 +4,7 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use super::*;
 use crate::diag::{FileId, Span, did_you_mean};
+use crate::program::library;
 
 /// The standard blocks the prover interprets (`shared/formats/plcopen-xml.md` §5.4).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -24,7 +25,7 @@ pub enum Std {
     Ton,
     /// Off-delay timer.
     Tof,
-    /// Pulse timer (its output is unconstrained for the prover).
+    /// Pulse timer.
     Tp,
     /// Set-dominant latch.
     Sr,
@@ -824,6 +825,9 @@ fn check_pou(
                         if matches!(s, Std::Rs) {
                             pins_of.extend(["S".into(), "R1".into()]);
                         }
+                        if matches!(s, Std::Tp) {
+                            pins_of.push("DONE".into());
+                        }
                         for pin in pins_of {
                             if program
                                 .hidden
@@ -857,6 +861,29 @@ fn check_pou(
                             ),
                         );
                         program.hidden.insert((k, s.output().to_string()), n);
+                    }
+                    None if let Some(b) = IntBlock::of(type_name) => {
+                        let inst = instance.as_deref().and_then(|i| {
+                            let v = program.vars.get(&i.to_ascii_uppercase())?;
+                            matches!(&v.ty, Ty::Derived(t) if t.eq_ignore_ascii_case(type_name))
+                                .then(|| v.name.clone())
+                        });
+                        match (&b, inst) {
+                            (IntBlock::Counter(ty), Some(inst)) => {
+                                let kind = library::Counter::of(ty);
+                                let outs = kind.map_or(&[][..], library::Counter::outputs);
+                                for pin in outs.iter().chain(&["CV"]) {
+                                    let n = hide(&mut taken, format!("{inst}_{pin}"));
+                                    program.hidden.insert((k, pin.to_string()), n);
+                                }
+                            }
+                            (IntBlock::Counter(_), None) => {}
+                            _ => {
+                                let upper = type_name.to_ascii_uppercase();
+                                let n = hide(&mut taken, format!("_TMP_{upper}{}_OUT", o.id));
+                                program.hidden.insert((k, "OUT".into()), n);
+                            }
+                        }
                     }
                     None if is_known_library_block(type_name) => {}
                     None if let Some(child) = inline(

@@ -6,14 +6,17 @@
 //! then) and its outputs are kept; a block reached again while its own inputs
 //! are computed (feedback) gives its previous outputs. TON/TOF/TP follow matiec's
 //! time-based state machines on a clock that advances one cycle per scan; SR,
-//! RS, R_TRIG and F_TRIG are their IEC definitions. Counters, comparisons and
-//! other blocks are not modelled: their Boolean outputs read FALSE (the prover
-//! leaves them unconstrained), and names depending on them are reported by
+//! RS, R_TRIG and F_TRIG are their IEC definitions; integers, their blocks and the
+//! counters are computed concretely as matiec's C does (`simulate/ints.rs`). Other
+//! blocks are not modelled: their Boolean outputs read FALSE (the prover leaves them
+//! unconstrained), and names depending on them are reported by
 //! [`PlcSimulator::unknown`].
 
 use std::collections::{BTreeMap, BTreeSet};
 
 use super::{Edge, ObjKind, Operand, PinIn, PlcProgram, Source, Std, Storage};
+
+mod ints;
 
 #[derive(Clone, Copy, Debug, Default)]
 struct Timer {
@@ -44,6 +47,8 @@ pub struct PlcSimulator {
     unknown: BTreeSet<String>,
     /// The simulators of inlined function block instances (they run on this one's bits).
     subs: BTreeMap<usize, PlcSimulator>,
+    /// Integer variables, block outputs and counts: value and C type.
+    ints: BTreeMap<String, (i64, ints::CType)>,
 }
 
 impl PlcSimulator {
@@ -67,7 +72,10 @@ impl PlcSimulator {
         for sub in subs.values() {
             bits.extend(sub.bits.iter().map(|(n, v)| (n.clone(), *v)));
         }
+        let mut ints = BTreeMap::new();
+        PlcSimulator::init_ints(p, &mut ints);
         PlcSimulator {
+            ints,
             subs,
             p: p.clone(),
             bits,
@@ -90,6 +98,7 @@ impl PlcSimulator {
                 self.bits.insert(n.clone(), *v);
             }
         }
+        self.read_int_inputs(inputs);
         // A retained variable starts with the value it kept (given as its start input).
         if self.scans == 0 {
             for (x, start) in &self.p.starts {
@@ -132,9 +141,9 @@ impl PlcSimulator {
         &self.bits
     }
 
-    /// Whether the simulator has the bit.
+    /// Whether the simulator has the bit or integer.
     pub fn is_known(&self, name: &str) -> bool {
-        self.bits.contains_key(name)
+        self.bits.contains_key(name) || self.ints.contains_key(name)
     }
 
     /// Scans run so far.
@@ -295,6 +304,11 @@ impl PlcSimulator {
         if let Some(var) = self.p.sub_var(k, pin, true) {
             return self.bit(var);
         }
+        if self.p.int_block(k).is_some() {
+            let boolean = ["OUT", "Q", "QU", "QD"].iter().any(|q| pin.eq_ignore_ascii_case(q));
+            return boolean
+                && self.p.hidden_name(k, &pin.to_ascii_uppercase()).is_some_and(|h| self.bit(h));
+        }
         match self.p.std_block(k) {
             Some(s) if s.output().eq_ignore_ascii_case(pin) => {
                 self.p.hidden_name(k, s.output()).is_some_and(|h| self.bit(h))
@@ -393,7 +407,9 @@ impl PlcSimulator {
         }
         self.no_pull = outer;
         let get = |n: &str| values.get(n).copied().unwrap_or(false);
-        if en {
+        if en && let Some(b) = self.p.int_block(k) {
+            self.int_exec(k, &b, &values);
+        } else if en {
             let now = self.now();
             match std {
                 Some(Std::And) => {
@@ -462,8 +478,14 @@ impl PlcSimulator {
                         }
                     }
                     t.prev_in = input;
-                    let q = t.q;
+                    let (q, done) = (t.q, t.state == 2);
                     self.set_hidden(k, "Q", q);
+                    if s == Std::Tp {
+                        // matiec's TP: its PREV_IN, and whether the pulse is over while IN
+                        // is still on (STATE 2).
+                        self.memory.insert((k, "TP_IN".into()), input);
+                        self.set_hidden(k, "DONE", done);
+                    }
                 }
                 Some(s @ (Std::Sr | Std::Rs)) => {
                     let (set, reset) = if s == Std::Sr { ("S1", "R") } else { ("S", "R1") };
@@ -491,9 +513,11 @@ impl PlcSimulator {
                     }
                     if let Some(mut sub) = self.subs.remove(&k) {
                         sub.bits = std::mem::take(&mut self.bits);
+                        sub.ints = std::mem::take(&mut self.ints);
                         sub.scans = self.scans;
                         sub.body();
                         self.bits = std::mem::take(&mut sub.bits);
+                        self.ints = std::mem::take(&mut sub.ints);
                         self.subs.insert(k, sub);
                     }
                 }
@@ -510,7 +534,20 @@ impl PlcSimulator {
         if super::unconnected(&o.kind) {
             return;
         }
+        let int_target = match self.p.operands.get(&k) {
+            Some(Operand::Other(n)) => {
+                self.p.vars.get(&n.to_ascii_uppercase()).map(|v| v.name.clone())
+            }
+            _ => None,
+        }
+        .filter(|n| self.ints.contains_key(n));
         match &o.kind {
+            ObjKind::OutVar { input, .. } | ObjKind::InOutVar { input, .. }
+                if let Some(target) = &int_target =>
+            {
+                let _ = self.pin_power(input);
+                self.int_assign(target, input);
+            }
             ObjKind::Coil { input, negated, storage, edge, .. }
             | ObjKind::OutVar { input, negated, storage, edge, .. } => {
                 let _ = self.pin_power(input);

@@ -1,0 +1,200 @@
+//! Integer elements of PLCopen LD/FBD bodies, as read from the XML: which blocks compute integers (comparisons, arithmetic, MIN/MAX/LIMIT/ABS, conversions, integer MOVE/SEL, counters), the integer type of a declared variable, and which wires carry integers.
+
+use super::{ObjKind, PinIn, PlcProgram, Source, Ty};
+use crate::iec::literal::int_literal;
+use crate::program::CmpOp;
+
+/// An arithmetic block.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Arith {
+    /// `ADD` (extensible).
+    Add,
+    /// `SUB`.
+    Sub,
+    /// `MUL` (extensible).
+    Mul,
+    /// `DIV`.
+    Div,
+    /// `MOD`.
+    Mod,
+}
+
+/// A standard block over integers.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum IntBlock {
+    /// `GT`, `GE`, `EQ`, `NE`, `LT`, `LE` (extensible): a BOOL `OUT`.
+    Compare(CmpOp),
+    /// `ADD`, `SUB`, `MUL`, `DIV`, `MOD`.
+    Arith(Arith),
+    /// `MIN` (extensible).
+    Min,
+    /// `MAX` (extensible).
+    Max,
+    /// `LIMIT(MN, IN, MX)`.
+    Limit,
+    /// `ABS`.
+    Abs,
+    /// `MOVE` of an integer.
+    Move,
+    /// `SEL(G, IN0, IN1)` of integers.
+    Sel,
+    /// `FROM_TO_TO` between two integer types (upper-case names).
+    Convert(String, String),
+    /// `CTU`, `CTD`, `CTUD` and their typed variants (the type name).
+    Counter(String),
+}
+
+impl IntBlock {
+    /// The integer block of a `typeName` (`MOVE`/`SEL` are integer ones only when their
+    /// data inputs carry integers: see [`PlcProgram::int_block`]).
+    pub fn of(type_name: &str) -> Option<IntBlock> {
+        let upper = type_name.to_ascii_uppercase();
+        Some(match upper.as_str() {
+            "GT" => IntBlock::Compare(CmpOp::Gt),
+            "GE" => IntBlock::Compare(CmpOp::Ge),
+            "EQ" => IntBlock::Compare(CmpOp::Eq),
+            "NE" => IntBlock::Compare(CmpOp::Ne),
+            "LT" => IntBlock::Compare(CmpOp::Lt),
+            "LE" => IntBlock::Compare(CmpOp::Le),
+            "ADD" => IntBlock::Arith(Arith::Add),
+            "SUB" => IntBlock::Arith(Arith::Sub),
+            "MUL" => IntBlock::Arith(Arith::Mul),
+            "DIV" => IntBlock::Arith(Arith::Div),
+            "MOD" => IntBlock::Arith(Arith::Mod),
+            "MIN" => IntBlock::Min,
+            "MAX" => IntBlock::Max,
+            "LIMIT" => IntBlock::Limit,
+            "ABS" => IntBlock::Abs,
+            "MOVE" => IntBlock::Move,
+            "SEL" => IntBlock::Sel,
+            t if matches!(t.split('_').next(), Some("CTU" | "CTD" | "CTUD")) => {
+                IntBlock::Counter(upper.clone())
+            }
+            t => {
+                let (from, to) = t.split_once("_TO_")?;
+                IntBlock::Convert(from.to_string(), to.to_string())
+            }
+        })
+    }
+
+    /// Whether it is a function block (an instance with state).
+    pub fn is_fb(&self) -> bool {
+        matches!(self, IntBlock::Counter(_))
+    }
+
+    /// Whether input `pin` is a BOOL (the others are integers).
+    pub fn bool_input(&self, pin: &str) -> bool {
+        match self {
+            IntBlock::Counter(_) => matches!(pin, "CU" | "CD" | "R" | "LD"),
+            IntBlock::Sel => pin == "G",
+            _ => false,
+        }
+    }
+}
+
+/// Whether an IEC type name (upper case) is an integer type, 64-bit ones included.
+pub fn is_int_type_name(t: &str) -> bool {
+    matches!(
+        t,
+        "SINT"
+            | "INT"
+            | "DINT"
+            | "LINT"
+            | "USINT"
+            | "UINT"
+            | "UDINT"
+            | "ULINT"
+            | "BYTE"
+            | "WORD"
+            | "DWORD"
+            | "LWORD"
+    )
+}
+
+impl PlcProgram {
+    /// The declared variable named `name` (its declared name), if it is of an integer
+    /// type: the type's name (upper case).
+    pub fn int_var_type(&self, name: &str) -> Option<String> {
+        let v = self.vars.get(&name.to_ascii_uppercase())?;
+        match &v.ty {
+            Ty::Other(t) if is_int_type_name(&t.to_ascii_uppercase()) => {
+                Some(t.to_ascii_uppercase())
+            }
+            _ => None,
+        }
+    }
+
+    /// Whether the operand text names an integer: a literal or an integer variable.
+    pub fn int_text(&self, text: &str) -> bool {
+        int_literal(text).is_some_and(|(_, t)| t.is_none_or(|t| is_int_type_name(&t)))
+            || self.int_var_type(text.trim()).is_some()
+    }
+
+    /// The integer block at `k`, if it is one: its kind by type name, `MOVE` and `SEL`
+    /// only when their data inputs carry integers.
+    pub fn int_block(&self, k: usize) -> Option<IntBlock> {
+        self.int_block_at(k, 0)
+    }
+
+    fn int_block_at(&self, k: usize, depth: usize) -> Option<IntBlock> {
+        let ObjKind::Block { type_name, .. } = &self.obj(k)?.kind else { return None };
+        let b = IntBlock::of(type_name)?;
+        let carries = |pin: &str| self.pin(k, pin).is_some_and(|p| self.carries_int(p, depth));
+        match &b {
+            IntBlock::Move if !carries("IN") => None,
+            IntBlock::Sel if !carries("IN0") && !carries("IN1") => None,
+            _ => Some(b),
+        }
+    }
+
+    /// Whether the value at a consumer pin is an integer (by what produces it).
+    pub fn carries_int(&self, pin: &PinIn, depth: usize) -> bool {
+        if depth > 64 {
+            return false;
+        }
+        if let Some((text, _)) = &pin.expr {
+            return self.int_text(text);
+        }
+        let [c] = pin.conns.as_slice() else { return false };
+        match self.source(c) {
+            Some(Source::Object(j)) => match self.obj(j).map(|o| &o.kind) {
+                Some(ObjKind::InVar { expr, .. } | ObjKind::InOutVar { expr, .. }) => {
+                    self.int_text(&expr.0)
+                }
+                Some(ObjKind::Connector { input, .. }) => self.carries_int(input, depth + 1),
+                _ => false,
+            },
+            Some(Source::BlockOut(j, p)) => {
+                let (name, _) = self.output_pin(j, p);
+                match self.int_block_at(j, depth + 1) {
+                    Some(IntBlock::Compare(_)) | None => false,
+                    Some(IntBlock::Counter(_)) => name == "CV",
+                    Some(_) => name == "OUT",
+                }
+            }
+            _ => false,
+        }
+    }
+}
+
+impl PlcProgram {
+    /// Where the variable or hidden variable `name` comes from: its declaration, or the
+    /// block it is an output of (in this body or an inlined one), else the POU.
+    pub fn span_of_name(&self, name: &str) -> crate::diag::Span {
+        if let Some(v) = self.vars.values().find(|v| v.name == name) {
+            return v.span;
+        }
+        if let Some(((k, _), _)) = self.hidden.iter().find(|(_, h)| *h == name)
+            && let Some(o) = self.obj(*k)
+        {
+            return o.span;
+        }
+        for sub in self.subs.values() {
+            let s = sub.span_of_name(name);
+            if s != sub.pou.span {
+                return s;
+            }
+        }
+        self.pou.span
+    }
+}

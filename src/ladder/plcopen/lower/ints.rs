@@ -1,0 +1,465 @@
+//! Integers of PLCopen LD/FBD bodies in the scan model: integer variables and literals on wires, output variables that write integers, and the standard integer blocks (comparisons, arithmetic, MIN/MAX/LIMIT/ABS, MOVE/SEL, conversions, counters) as matiec's C computes them after Beremiz's generator: every argument a value of the block's type, the result wrapped to it. An integer that cannot be computed exactly is *opaque*: what reads it is unconstrained, with the reason.
+
+use std::collections::BTreeMap;
+
+use super::{Lower, fresh_because};
+use crate::diag::Span;
+use crate::iec::literal::int_literal;
+use crate::ladder::plcopen::ints::{Arith, IntBlock};
+use crate::ladder::plcopen::{Edge, ObjKind, PinIn, PlcProgram, Source, VarClass};
+use crate::program::library::{self, Counter};
+use crate::program::{Block, BoolExpr, EdgeKind, IntExpr, IntType, IntVar, Memory, Stmt};
+
+/// An integer value on a wire and its type (`None`: a literal, typed by its reader), or
+/// why it is not computed.
+pub(super) type IntVal = Result<(IntExpr, Option<IntType>), String>;
+
+/// `e` as a value of `t` (a literal wrapped into it, as the C cast `(INT)70000` does).
+fn coerce(e: IntExpr, t: IntType) -> IntExpr {
+    match e {
+        IntExpr::Const(v) => IntExpr::Const(t.wrap(v)),
+        e => e,
+    }
+}
+
+/// The one type of a block's integer arguments (literals take it).
+fn unify<'a>(args: impl IntoIterator<Item = &'a Option<IntType>>) -> Result<IntType, String> {
+    let mut t: Option<IntType> = None;
+    for ty in args.into_iter().flatten() {
+        match t {
+            Some(a) if a != *ty => {
+                return Err(format!(
+                    "it mixes {} and {}",
+                    library::type_name(a),
+                    library::type_name(*ty)
+                ));
+            }
+            _ => t = Some(*ty),
+        }
+    }
+    t.ok_or_else(|| {
+        "its inputs are literals only, whose type the generated code leaves open".into()
+    })
+}
+
+impl Lower<'_> {
+    /// Declares the integer variables of `p` (and of its inlined bodies): their types,
+    /// start values and whether the outside world writes them; those not computed are
+    /// opaque with the reason.
+    pub(super) fn declare_ints(&mut self, p: &PlcProgram, inlined: bool) {
+        for v in p.vars.values() {
+            let Some(ty) = p.int_var_type(&v.name) else { continue };
+            if self.opaque.contains_key(&v.name) {
+                continue;
+            }
+            let why = match library::int_type(&ty) {
+                None => Some(format!("{ty} is 64 bits wide, which ii-prove does not compute")),
+                Some(_) if inlined && v.class == VarClass::Input => {
+                    Some("an integer input of an inlined block is not passed in".to_string())
+                }
+                Some(_) if v.retain => {
+                    Some("it is retained, so it starts with any value after a warm restart".into())
+                }
+                Some(_) => None,
+            };
+            let Some(t) = library::int_type(&ty).filter(|_| why.is_none()) else {
+                self.make_opaque(&v.name, why.unwrap_or_default());
+                continue;
+            };
+            let init = match v.init.as_deref() {
+                None => Some(0),
+                Some(text) => int_literal(text)
+                    .filter(|(_, lt)| lt.as_deref().is_none_or(|lt| lt == ty))
+                    .map(|(k, _)| t.wrap(k.clamp(i64::MIN.into(), i64::MAX.into()) as i64)),
+            };
+            let Some(init) = init else {
+                let why = format!(
+                    "its initial value `{}` is not an integer literal of its type",
+                    v.init.as_deref().unwrap_or("")
+                );
+                self.make_opaque(&v.name, why);
+                continue;
+            };
+            let input = p.inputs.contains(&v.name);
+            self.ints.insert(
+                v.name.clone(),
+                IntVar { ty: t, input, init: if input { 0 } else { init } },
+            );
+        }
+        for sub in p.subs.values() {
+            self.declare_ints(sub, true);
+        }
+    }
+
+    /// Marks the integer `x` as not computed, for `why` (the program is then lowered again
+    /// with it opaque).
+    pub(super) fn make_opaque(&mut self, x: &str, why: String) {
+        self.ints.remove(x);
+        if !self.opaque.contains_key(x) {
+            self.new_opaque.entry(x.to_string()).or_insert(why);
+        }
+    }
+
+    /// A read of the integer `name` (declared or hidden).
+    fn int_read(&self, name: &str) -> IntVal {
+        if let Some(why) = self.opaque.get(name).or_else(|| self.new_opaque.get(name)) {
+            return Err(format!("{name} is not computed: {why}"));
+        }
+        match self.ints.get(name) {
+            Some(v) => Ok((IntExpr::var(name), Some(v.ty))),
+            None => Err(format!("{name} is not computed")),
+        }
+    }
+
+    /// The integer an operand text gives: a literal or an integer variable.
+    fn int_operand(&self, text: &str) -> IntVal {
+        if let Some((v, ty)) = int_literal(text) {
+            let v = v.clamp(i64::MIN.into(), i64::MAX.into()) as i64;
+            return match ty.map(|t| library::int_type(&t)) {
+                None => Ok((IntExpr::Const(v), None)),
+                Some(Some(t)) => Ok((IntExpr::Const(t.wrap(v)), Some(t))),
+                Some(None) => Err(format!("the literal `{text}` is not computed")),
+            };
+        }
+        match self.p.vars.get(&text.trim().to_ascii_uppercase()) {
+            Some(v) => self.int_read(&v.name),
+            None => Err(format!("`{text}` is not an integer ii-prove computes")),
+        }
+    }
+
+    /// The integer at a consumer pin.
+    pub(super) fn int_pin(&mut self, pin: &PinIn) -> IntVal {
+        if pin.negated || pin.edge != Edge::None {
+            return Err("a negated or edge pin carries an integer".into());
+        }
+        if let Some((text, _)) = &pin.expr {
+            return self.int_operand(text);
+        }
+        match pin.conns.as_slice() {
+            [c] => match self.p.source(c) {
+                Some(src) => self.int_source(src),
+                None => Err("a wire from nowhere".into()),
+            },
+            [] => Err("an unconnected integer input".into()),
+            _ => Err("several wires into an integer input".into()),
+        }
+    }
+
+    fn int_source(&mut self, src: Source) -> IntVal {
+        match src {
+            Source::Object(j) => match self.p.obj(j).map(|o| &o.kind) {
+                Some(ObjKind::InVar { expr, .. } | ObjKind::InOutVar { expr, .. }) => {
+                    let text = expr.0.clone();
+                    self.int_operand(&text)
+                }
+                Some(ObjKind::Connector { input, .. }) => {
+                    if !self.visiting.insert(j) {
+                        return Err("a loop of connectors".into());
+                    }
+                    let v = self.int_pin(input);
+                    self.visiting.remove(&j);
+                    v
+                }
+                _ => Err("a BOOL where an integer is expected".into()),
+            },
+            Source::BlockOut(j, pin) => {
+                let (name, negated) = self.p.output_pin(j, pin);
+                if negated {
+                    return Err("a negated integer output".into());
+                }
+                self.int_block_output(j, &name)
+            }
+            Source::BlockPin(..) | Source::Rail => {
+                Err("a BOOL where an integer is expected".into())
+            }
+        }
+    }
+
+    /// The integer output `pin` of block `j` (calling it at its first use this scan).
+    fn int_block_output(&mut self, j: usize, pin: &str) -> IntVal {
+        let before = self.no_pull && !self.called.contains(&j);
+        if self.in_progress.contains(&j) || before {
+            self.fed_back.insert(j);
+        }
+        if !before {
+            self.call(j);
+        }
+        match self.p.hidden_name(j, pin).map(str::to_string) {
+            Some(name) => self.int_read(&name),
+            None => Err(format!("the output {pin} of this block is not computed")),
+        }
+    }
+
+    /// A block of its own with these statements (what the compiler names after it is
+    /// named after its number, as [`Lower::coil`] does).
+    pub(super) fn push_block(&mut self, mut stmts: Vec<Stmt>, span: Span) {
+        let number = self.blocks.len() + 1;
+        let mut rename = |e: &mut BoolExpr| match e {
+            BoolExpr::Fresh(f) => f.base = format!("{}_r{number}", f.base),
+            BoolExpr::Edge { memory, .. } => memory.base = format!("{}_r{number}", memory.base),
+            _ => {}
+        };
+        for s in &mut stmts {
+            match s {
+                Stmt::Let { value, .. } | Stmt::Write { value, .. } => {
+                    crate::program::walk_mut(value, &mut rename)
+                }
+                Stmt::SetInt { value, target, .. } => {
+                    self.emitted.insert(target.clone());
+                    crate::program::int_walk_mut(value, &mut rename)
+                }
+                _ => {}
+            }
+            if let Stmt::Write { target, .. } = s {
+                self.emitted.insert(target.clone());
+            }
+        }
+        self.blocks.push(Block { number, label: None, span, stmts });
+    }
+
+    pub(super) fn temp(&mut self, stmts: &mut Vec<Stmt>, value: BoolExpr) -> BoolExpr {
+        let temp = self.next_temp;
+        self.next_temp += 1;
+        stmts.push(Stmt::Let { temp, value });
+        BoolExpr::Temp(temp)
+    }
+
+    /// `target := ` the integer at `input` (an output or in-out variable on an integer).
+    pub(super) fn int_assign(&mut self, target: &str, input: &PinIn, span: Span) {
+        let value = self.int_pin(input);
+        let Some(var) = self.ints.get(target).copied() else { return };
+        let exact = value.and_then(|(e, ty)| {
+            if var.input {
+                return Err("both the outside world and the program write it".into());
+            }
+            match ty {
+                Some(t) if t != var.ty => Err(format!(
+                    "it is a {} written with a {}",
+                    library::type_name(var.ty),
+                    library::type_name(t)
+                )),
+                _ => Ok(coerce(e, var.ty)),
+            }
+        });
+        match exact {
+            Ok(value) => {
+                let set = Stmt::SetInt { target: target.to_string(), value, span };
+                self.push_block(vec![set], span);
+            }
+            Err(why) => self.make_opaque(target, why),
+        }
+    }
+
+    /// The call of the integer block `k`: its inputs computed in document order, then
+    /// its outputs written (opaque when it does not run every scan or is not computed).
+    pub(super) fn int_call(&mut self, k: usize, b: &IntBlock, runs: bool, span: Span) {
+        let p = self.p;
+        let Some(ObjKind::Block { inputs, type_name, instance, .. }) = p.obj(k).map(|o| &o.kind)
+        else {
+            return;
+        };
+        let mut bools: BTreeMap<String, BoolExpr> = BTreeMap::new();
+        let mut ints: Vec<(String, IntVal)> = Vec::new();
+        for pin in inputs {
+            let n = pin.name.to_ascii_uppercase();
+            if n == "EN" {
+                continue;
+            }
+            if b.bool_input(&n) {
+                let v = self.pin_value(k, pin);
+                bools.insert(n, v);
+            } else if pin.conns.is_empty() && pin.expr.is_none() {
+                ints.push((n, Ok((IntExpr::Const(0), None))));
+            } else {
+                let v = self.int_pin(pin);
+                ints.push((n, v));
+            }
+        }
+        let upper = type_name.to_ascii_uppercase();
+        let name = instance.as_deref().unwrap_or(&upper).to_string();
+        if !runs {
+            for pin in ["OUT", "CV"] {
+                if let Some(h) = p.hidden_name(k, pin).map(str::to_string) {
+                    self.make_opaque(&h, format!("{name} runs under a wired EN"));
+                }
+            }
+            return;
+        }
+        if let IntBlock::Counter(ty) = b {
+            self.counter_call(k, ty, &name, bools, ints, span);
+            return;
+        }
+        let Some(out) = p.hidden_name(k, "OUT").map(str::to_string) else { return };
+        match self.int_function(b, &bools, &ints) {
+            Ok((Some(e), t)) => {
+                self.ints.insert(out.clone(), IntVar { ty: t, input: false, init: 0 });
+                let set = Stmt::SetInt { target: out, value: e, span };
+                self.push_block(vec![set], span);
+            }
+            Ok((None, t)) => {
+                let vals: Vec<IntExpr> = ints
+                    .iter()
+                    .filter_map(|(_, v)| v.clone().ok())
+                    .map(|(e, _)| coerce(e, t))
+                    .collect();
+                let IntBlock::Compare(op) = b else { return };
+                let value = library::compare_chain(*op, t, &vals);
+                self.coil(value, &out, crate::program::WriteKind::Assign, span);
+            }
+            Err(why) => {
+                if matches!(b, IntBlock::Compare(_)) {
+                    let why = format!("the comparison {upper} is not computed: {why}");
+                    let value = fresh_because(&upper, why, span);
+                    self.coil(value, &out, crate::program::WriteKind::Assign, span);
+                } else {
+                    self.make_opaque(&out, format!("the {upper} block is not computed: {why}"));
+                }
+            }
+        }
+    }
+
+    /// The value of a function block over integers (`None` for a comparison, whose
+    /// arguments are then compared in the type given), with its type.
+    fn int_function(
+        &self,
+        b: &IntBlock,
+        bools: &BTreeMap<String, BoolExpr>,
+        ints: &[(String, IntVal)],
+    ) -> Result<(Option<IntExpr>, IntType), String> {
+        let mut vals: Vec<(&str, IntExpr, Option<IntType>)> = Vec::new();
+        for (n, v) in ints {
+            let (e, t) = v.clone().map_err(|why| format!("its input {n}: {why}"))?;
+            vals.push((n, e, t));
+        }
+        if let IntBlock::Convert(from, to) = b {
+            let (Some(f), Some(t)) = (library::int_type(from), library::int_type(to)) else {
+                return Err(format!("the conversion {from}_TO_{to} is not computed"));
+            };
+            let [(_, x, ty)] = vals.as_slice() else { return Err("it takes one input".into()) };
+            if ty.is_some_and(|ty| ty != f) {
+                return Err(format!("its input is not a {from}"));
+            }
+            // A value of `from`, then converted to `to` (sign- or zero-extended, or wrapped).
+            return Ok((Some(IntExpr::Cast(Box::new(coerce(x.clone(), f)), f)), t));
+        }
+        let t = unify(vals.iter().map(|(_, _, t)| t))?;
+        let args: Vec<IntExpr> = vals.iter().map(|(_, e, _)| coerce(e.clone(), t)).collect();
+        let named = |pin: &str| -> Result<IntExpr, String> {
+            vals.iter()
+                .find(|(n, _, _)| *n == pin)
+                .map(|(_, e, _)| coerce(e.clone(), t))
+                .ok_or_else(|| format!("it has no input {pin}"))
+        };
+        let e = match (b, args.as_slice()) {
+            (IntBlock::Compare(_), [_, _, ..]) => return Ok((None, t)),
+            (IntBlock::Arith(Arith::Add), [first, rest @ ..]) if !rest.is_empty() => {
+                rest.iter().cloned().fold(first.clone(), IntExpr::plus)
+            }
+            (IntBlock::Arith(Arith::Mul), [first, rest @ ..]) if !rest.is_empty() => rest
+                .iter()
+                .cloned()
+                .fold(first.clone(), |a, b| IntExpr::Mul(Box::new(a), Box::new(b))),
+            (IntBlock::Arith(Arith::Sub), [a, b]) => IntExpr::minus(a.clone(), b.clone()),
+            (IntBlock::Arith(op @ (Arith::Div | Arith::Mod)), [a, b]) => match b {
+                // matiec's DIV and MOD give 0 for a divisor 0.
+                IntExpr::Const(0) => IntExpr::Const(0),
+                IntExpr::Const(d) if *op == Arith::Div => IntExpr::Div(Box::new(a.clone()), *d),
+                IntExpr::Const(d) => IntExpr::Mod(Box::new(a.clone()), *d),
+                _ => return Err("it divides by a variable, which ii-prove does not compute".into()),
+            },
+            (IntBlock::Min, [_, _, ..]) => library::extreme(true, t, &args),
+            (IntBlock::Max, [_, _, ..]) => library::extreme(false, t, &args),
+            (IntBlock::Limit, [_, _, _]) => {
+                library::limit(t, named("MN")?, named("IN")?, named("MX")?)
+            }
+            (IntBlock::Abs, [x]) => library::abs(t, x.clone()),
+            (IntBlock::Move, [x]) => x.clone(),
+            (IntBlock::Sel, [_, _]) => {
+                let g = bools.get("G").cloned().unwrap_or(BoolExpr::Const(false));
+                IntExpr::ite(g, named("IN1")?, named("IN0")?)
+            }
+            _ => return Err("its inputs are not the ones ii-prove computes".into()),
+        };
+        Ok((Some(e), t))
+    }
+
+    /// A counter call as matiec's `lib/counter.txt` runs it (see [`library::counter`]):
+    /// the edges of `CU`/`CD` over hidden memories, the count, its Boolean outputs.
+    fn counter_call(
+        &mut self,
+        k: usize,
+        ty: &str,
+        name: &str,
+        bools: BTreeMap<String, BoolExpr>,
+        ints: Vec<(String, IntVal)>,
+        span: Span,
+    ) {
+        let p = self.p;
+        let Some(cv) = p.hidden_name(k, "CV").map(str::to_string) else { return };
+        let kind = Counter::of(ty).unwrap_or(Counter::UpDown);
+        let pv = ints
+            .into_iter()
+            .find(|(n, _)| n == "PV")
+            .map_or(Ok((IntExpr::Const(0), None)), |(_, v)| v);
+        let exact = match library::counter_type(ty) {
+            None => Err(format!("{ty} counts in 64 bits, which ii-prove does not compute")),
+            Some(t) => pv.and_then(|(e, pt)| match pt {
+                Some(pt) if pt != t => Err(format!(
+                    "its PV is a {}, its count a {}",
+                    library::type_name(pt),
+                    library::type_name(t)
+                )),
+                _ => Ok((t, coerce(e, t))),
+            }),
+        };
+        let (t, pv) = match exact {
+            Ok(x) => x,
+            Err(why) => {
+                let why = format!("the counter {name} ({ty}) is not computed: {why}");
+                for pin in kind.outputs() {
+                    if let Some(q) = p.hidden_name(k, pin).map(str::to_string) {
+                        let value = fresh_because(ty, why.clone(), span);
+                        self.coil(value, &q, crate::program::WriteKind::Assign, span);
+                    }
+                }
+                self.make_opaque(&cv, why);
+                return;
+            }
+        };
+        self.ints.insert(cv.clone(), IntVar { ty: t, input: false, init: 0 });
+        let mut stmts = Vec::new();
+        let input = |n: &str| bools.get(n).cloned().unwrap_or(BoolExpr::Const(false));
+        let edge = |l: &mut Self, stmts: &mut Vec<Stmt>, pin: &str| {
+            l.edges.push((l.path.clone(), k, format!("{pin}_T")));
+            let memory =
+                Memory { base: "OSR".into(), element: "OSR".into(), index: l.edges.len() - 1 };
+            let e = BoolExpr::Edge { kind: EdgeKind::Rising, input: Box::new(input(pin)), memory };
+            l.temp(stmts, e)
+        };
+        let no = || BoolExpr::Const(false);
+        let edges = match kind {
+            Counter::Up => (edge(self, &mut stmts, "CU"), no()),
+            Counter::Down => (no(), edge(self, &mut stmts, "CD")),
+            Counter::UpDown => {
+                // matiec's CTUD: CD_T(CD); CU_T(CU).
+                let cd = edge(self, &mut stmts, "CD");
+                (edge(self, &mut stmts, "CU"), cd)
+            }
+        };
+        let r = self.temp(&mut stmts, input("R"));
+        let ld = self.temp(&mut stmts, input("LD"));
+        let (next, outputs) = library::counter(kind, t, &cv, pv, edges, r, ld);
+        stmts.push(Stmt::SetInt { target: cv, value: next, span });
+        for (pin, value) in outputs {
+            if let Some(q) = p.hidden_name(k, pin).map(str::to_string) {
+                stmts.push(Stmt::Write {
+                    target: q,
+                    kind: crate::program::WriteKind::Assign,
+                    value,
+                    span,
+                });
+            }
+        }
+        self.push_block(stmts, span);
+    }
+}

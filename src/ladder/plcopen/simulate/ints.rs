@@ -1,0 +1,314 @@
+//! The PLCopen simulator's integers, evaluated concretely as matiec's C runs them (written from `iec_std_functions.h` and `lib/counter.txt`, not from the lowering): integer variables, literals on wires, the standard integer blocks and the counters.
+
+use std::collections::BTreeMap;
+
+use super::PlcSimulator;
+use crate::iec::literal::int_literal;
+use crate::ladder::plcopen::ints::{Arith, IntBlock};
+use crate::ladder::plcopen::{ObjKind, PinIn, PlcProgram, Source};
+use crate::program::CmpOp;
+
+/// An integer type as C declares it: width and signedness.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct CType {
+    bits: u32,
+    signed: bool,
+}
+
+impl CType {
+    /// The C type matiec declares for an IEC integer type (64-bit ones not kept).
+    pub(super) fn of(name: &str) -> Option<CType> {
+        let (bits, signed) = match name.to_ascii_uppercase().as_str() {
+            "SINT" => (8, true),
+            "USINT" | "BYTE" => (8, false),
+            "INT" => (16, true),
+            "UINT" | "WORD" => (16, false),
+            "DINT" => (32, true),
+            "UDINT" | "DWORD" => (32, false),
+            _ => return None,
+        };
+        Some(CType { bits, signed })
+    }
+
+    /// `v` stored into a variable of this type (C's conversion: modulo 2^bits).
+    pub(super) fn store(self, v: i128) -> i64 {
+        let m = v.rem_euclid(1i128 << self.bits);
+        let v =
+            if self.signed && m >= 1i128 << (self.bits - 1) { m - (1i128 << self.bits) } else { m };
+        v as i64
+    }
+}
+
+/// A value on a wire: the number and its type (`None`: a literal).
+type Val = Option<(i64, Option<CType>)>;
+
+impl PlcSimulator {
+    /// The integer variables at power-up: each at its declared value.
+    pub(super) fn init_ints(p: &PlcProgram, ints: &mut BTreeMap<String, (i64, CType)>) {
+        for v in p.vars.values() {
+            let super::super::Ty::Other(t) = &v.ty else { continue };
+            let Some(ct) = CType::of(t) else { continue };
+            let init = v.init.as_deref().and_then(int_literal).map_or(0, |(k, _)| ct.store(k));
+            ints.insert(v.name.clone(), (init, ct));
+        }
+        for sub in p.subs.values() {
+            PlcSimulator::init_ints(sub, ints);
+        }
+    }
+
+    /// An integer input takes the value its bits give (`{name}_b{k}`), when given.
+    pub(super) fn read_int_inputs(&mut self, inputs: &BTreeMap<String, bool>) {
+        let names: Vec<String> = self.ints.keys().filter(|n| self.p.is_input(n)).cloned().collect();
+        for n in names {
+            let (_, ct) = self.ints[&n];
+            let bits: Vec<Option<&bool>> =
+                (0..ct.bits).map(|k| inputs.get(&format!("{n}_b{k}"))).collect();
+            if bits.iter().all(Option::is_none) {
+                continue;
+            }
+            let raw = bits
+                .iter()
+                .enumerate()
+                .fold(0i128, |acc, (k, b)| acc | (i128::from(b.copied().unwrap_or(false)) << k));
+            self.ints.insert(n, (ct.store(raw), ct));
+        }
+    }
+
+    /// An integer's value after the last scan.
+    pub fn int(&self, name: &str) -> Option<i64> {
+        self.ints.get(name).map(|(v, _)| *v)
+    }
+
+    fn int_text(&self, text: &str) -> Val {
+        if let Some((v, ty)) = int_literal(text) {
+            return match ty {
+                None => Some((v.clamp(i64::MIN.into(), i64::MAX.into()) as i64, None)),
+                Some(t) => CType::of(&t).map(|ct| (ct.store(v), Some(ct))),
+            };
+        }
+        let v = self.p.vars.get(&text.trim().to_ascii_uppercase())?;
+        self.ints.get(&v.name).map(|(x, t)| (*x, Some(*t)))
+    }
+
+    /// The integer at a consumer pin (its blocks called).
+    pub(super) fn int_pin(&mut self, pin: &PinIn) -> Val {
+        if let Some((text, _)) = &pin.expr {
+            return self.int_text(text);
+        }
+        let [c] = pin.conns.as_slice() else { return None };
+        match self.p.source(c)? {
+            Source::Object(j) => match self.p.obj(j).map(|o| o.kind.clone()) {
+                Some(ObjKind::InVar { expr, .. } | ObjKind::InOutVar { expr, .. }) => {
+                    self.int_text(&expr.0)
+                }
+                Some(ObjKind::Connector { input, .. }) => {
+                    if !self.visiting.insert(j) {
+                        return None;
+                    }
+                    let v = self.int_pin(&input);
+                    self.visiting.remove(&j);
+                    v
+                }
+                _ => None,
+            },
+            Source::BlockOut(j, p) => {
+                // Its block was called (or not, by the order) when the inputs were computed.
+                let (name, _) = self.p.output_pin(j, p);
+                let h = self.p.hidden_name(j, &name)?;
+                self.ints.get(h).map(|(x, t)| (*x, Some(*t)))
+            }
+            _ => None,
+        }
+    }
+
+    /// `target := ` the integer at `input` (an output or in-out variable).
+    pub(super) fn int_assign(&mut self, target: &str, input: &PinIn) {
+        let v = self.int_pin(input);
+        if let (Some((x, _)), Some((_, ct))) = (v, self.ints.get(target).copied()) {
+            self.ints.insert(target.to_string(), (ct.store(x.into()), ct));
+        }
+    }
+
+    /// One execution of the integer block `k` (its `EN` on): its outputs written.
+    pub(super) fn int_exec(&mut self, k: usize, b: &IntBlock, bools: &BTreeMap<String, bool>) {
+        let pins: Vec<PinIn> = match self.p.obj(k).map(|o| &o.kind) {
+            Some(ObjKind::Block { inputs, .. }) => inputs.clone(),
+            _ => return,
+        };
+        let mut args: Vec<(String, Val)> = Vec::new();
+        for pin in &pins {
+            let n = pin.name.to_ascii_uppercase();
+            if n == "EN" || b.bool_input(&n) {
+                continue;
+            }
+            let v = if pin.conns.is_empty() && pin.expr.is_none() {
+                Some((0, None))
+            } else {
+                self.int_pin(pin)
+            };
+            args.push((n, v));
+        }
+        let get = |n: &str| bools.get(n).copied().unwrap_or(false);
+        if let IntBlock::Counter(ty) = b {
+            self.count(k, ty, get("CU"), get("CD"), get("R"), get("LD"), &args);
+            return;
+        }
+        let Some(out) = self.p.hidden_name(k, "OUT").map(str::to_string) else { return };
+        // Every argument a value of the block's one type (a literal takes it).
+        let vals: Option<Vec<(String, i64, Option<CType>)>> =
+            args.into_iter().map(|(n, v)| v.map(|(x, t)| (n, x, t))).collect();
+        let Some(vals) = vals else { return };
+        if let IntBlock::Convert(from, to) = b {
+            if let (Some(f), Some(t), [(_, x, _)]) =
+                (CType::of(from), CType::of(to), vals.as_slice())
+            {
+                let v = t.store(f.store((*x).into()).into());
+                self.ints.insert(out, (v, t));
+            }
+            return;
+        }
+        let types: Vec<CType> = vals.iter().filter_map(|(_, _, t)| *t).collect();
+        let Some(&ct) = types.first() else { return };
+        if types.iter().any(|t| *t != ct) {
+            return;
+        }
+        let xs: Vec<i128> =
+            vals.iter().map(|(_, x, _)| i128::from(ct.store((*x).into()))).collect();
+        let named =
+            |pin: &str| vals.iter().position(|(n, _, _)| n == pin).map(|j| xs[j]).unwrap_or(0);
+        let result: i128 = match b {
+            IntBlock::Compare(op) => {
+                let holds = xs.windows(2).all(|w| match op {
+                    CmpOp::Gt => w[0] > w[1],
+                    CmpOp::Ge => w[0] >= w[1],
+                    CmpOp::Eq => w[0] == w[1],
+                    CmpOp::Ne => w[0] != w[1],
+                    CmpOp::Lt => w[0] < w[1],
+                    CmpOp::Le => w[0] <= w[1],
+                });
+                self.bits.insert(out, holds);
+                return;
+            }
+            IntBlock::Arith(Arith::Add) => xs.iter().fold(0, |a, x| i128::from(ct.store(a + x))),
+            IntBlock::Arith(Arith::Mul) => xs.iter().fold(1, |a, x| i128::from(ct.store(a * x))),
+            IntBlock::Arith(op) => {
+                let [a, d] = xs.as_slice() else { return };
+                match op {
+                    Arith::Sub => a - d,
+                    // matiec's DIV and MOD give 0 for a divisor 0.
+                    _ if *d == 0 => 0,
+                    Arith::Div => a / d,
+                    _ => a % d,
+                }
+            }
+            IntBlock::Min => {
+                xs.iter().copied().reduce(|a, x| if a > x { x } else { a }).unwrap_or(0)
+            }
+            IntBlock::Max => {
+                xs.iter().copied().reduce(|a, x| if a < x { x } else { a }).unwrap_or(0)
+            }
+            IntBlock::Limit => {
+                let (mn, x, mx) = (named("MN"), named("IN"), named("MX"));
+                if x > mn { if x < mx { x } else { mx } } else { mn }
+            }
+            IntBlock::Abs => {
+                let x = named("IN");
+                if x < 0 { -x } else { x }
+            }
+            IntBlock::Move => named("IN"),
+            IntBlock::Sel => {
+                if get("G") {
+                    named("IN1")
+                } else {
+                    named("IN0")
+                }
+            }
+            IntBlock::Convert(..) | IntBlock::Counter(_) => return,
+        };
+        self.ints.insert(out, (ct.store(result), ct));
+    }
+
+    /// A counter call as `lib/counter.txt` writes it.
+    #[allow(clippy::too_many_arguments)]
+    fn count(
+        &mut self,
+        k: usize,
+        ty: &str,
+        cu: bool,
+        cd: bool,
+        r: bool,
+        ld: bool,
+        args: &[(String, Val)],
+    ) {
+        let kind = ty.split('_').next().unwrap_or(ty).to_string();
+        let ct = match ty.split_once('_') {
+            None => CType::of("INT"),
+            Some((_, t)) => CType::of(t),
+        };
+        let (Some(ct), Some(cv_name)) = (ct, self.p.hidden_name(k, "CV").map(str::to_string))
+        else {
+            return;
+        };
+        let pv = match args.iter().find(|(n, _)| n == "PV") {
+            None => 0,
+            Some((_, Some((x, t)))) if t.is_none_or(|t| t == ct) => ct.store((*x).into()),
+            Some(_) => return,
+        };
+        // R_TRIG: Q := CLK AND NOT M; M := CLK.
+        let trig = |s: &mut Self, pin: &str, clk: bool| {
+            let key = (k, format!("{pin}_T"));
+            let m = s.memory.get(&key).copied().unwrap_or(false);
+            s.memory.insert(key, clk);
+            clk && !m
+        };
+        let (cu_q, cd_q) = match kind.as_str() {
+            "CTU" => (trig(self, "CU", cu), false),
+            "CTD" => (false, trig(self, "CD", cd)),
+            _ => {
+                let cd_q = trig(self, "CD", cd);
+                (trig(self, "CU", cu), cd_q)
+            }
+        };
+        let mut cv = self.ints.get(&cv_name).map_or(0, |(v, _)| *v);
+        match kind.as_str() {
+            "CTU" => {
+                if r {
+                    cv = 0;
+                } else if cu_q && cv < pv {
+                    cv += 1;
+                }
+            }
+            "CTD" => {
+                if ld {
+                    cv = pv;
+                } else if cd_q && cv > 0 {
+                    cv -= 1;
+                }
+            }
+            _ => {
+                if r {
+                    cv = 0;
+                } else if ld {
+                    cv = pv;
+                } else if !(cu_q && cd_q) {
+                    if cu_q && cv < pv {
+                        cv += 1;
+                    } else if cd_q && cv > 0 {
+                        cv -= 1;
+                    }
+                }
+            }
+        }
+        self.ints.insert(cv_name, (cv, ct));
+        let outs: &[(&str, bool)] = if kind == "CTUD" {
+            &[("QU", cv >= pv), ("QD", cv <= 0)]
+        } else if kind == "CTU" {
+            &[("Q", cv >= pv)]
+        } else {
+            &[("Q", cv <= 0)]
+        };
+        for (pin, v) in outs {
+            self.set_hidden(k, pin, *v);
+        }
+    }
+}

@@ -1,0 +1,227 @@
+//! The IEC standard library's elements as matiec's C runs them, built over the scan model for every front end that has them (Structured Text, PLCopen LD/FBD): the integer types, comparisons (extensible), MIN/MAX/LIMIT/ABS, the counters CTU/CTD/CTUD and the pulse timer TP.
+
+use super::{BoolExpr, CmpOp, Compare, IntExpr, IntType, Preset, Stmt, Timer, WriteKind};
+use crate::diag::Span;
+
+/// The IEC integer type `name` (upper-case) as matiec declares it in C; `None` for the
+/// 64-bit types (not modelled) and every other type.
+pub fn int_type(name: &str) -> Option<IntType> {
+    let (bits, signed) = match name {
+        "SINT" => (8, true),
+        "INT" => (16, true),
+        "DINT" => (32, true),
+        "USINT" | "BYTE" => (8, false),
+        "UINT" | "WORD" => (16, false),
+        "UDINT" | "DWORD" => (32, false),
+        _ => return None,
+    };
+    Some(IntType { bits, signed })
+}
+
+/// The IEC name of an integer type.
+pub fn type_name(t: IntType) -> &'static str {
+    match (t.bits, t.signed) {
+        (8, true) => "SINT",
+        (16, true) => "INT",
+        (32, true) => "DINT",
+        (8, false) => "USINT",
+        (16, false) => "UINT",
+        _ => "UDINT",
+    }
+}
+
+/// The type of the count of a counter type (`CTU`, `CTD_DINT`, …); `None` for the
+/// 64-bit ones.
+pub fn counter_type(ty: &str) -> Option<IntType> {
+    match ty.split_once('_') {
+        None => int_type("INT"),
+        Some((_, t)) => int_type(t),
+    }
+}
+
+/// `a op b` in the type `t`.
+pub fn compare(op: CmpOp, t: IntType, a: IntExpr, b: IntExpr) -> BoolExpr {
+    BoolExpr::Compare(Box::new(Compare { op, ty: t, a, b }))
+}
+
+/// matiec's extensible comparison `GT(a, b, c, …)`: `a op b AND b op c AND …`.
+pub fn compare_chain(op: CmpOp, t: IntType, args: &[IntExpr]) -> BoolExpr {
+    let mut pairs = args.windows(2).map(|w| compare(op, t, w[0].clone(), w[1].clone()));
+    let first = pairs.next().unwrap_or(BoolExpr::Const(true));
+    pairs.fold(first, BoolExpr::and)
+}
+
+/// `MIN(…)` (`min`) or `MAX(…)` of values of `t`, as matiec's `__extrem_` folds them.
+pub fn extreme(min: bool, t: IntType, args: &[IntExpr]) -> IntExpr {
+    let op = if min { CmpOp::Lt } else { CmpOp::Gt };
+    let mut it = args.iter().cloned();
+    let first = it.next().unwrap_or(IntExpr::Const(0));
+    it.fold(first, |acc, x| IntExpr::ite(compare(op, t, acc.clone(), x.clone()), acc, x))
+}
+
+/// `LIMIT(mn, x, mx)` as matiec computes it: `x > mn ? x < mx ? x : mx : mn` (so `mn`
+/// wins when `mn > mx`).
+pub fn limit(t: IntType, mn: IntExpr, x: IntExpr, mx: IntExpr) -> IntExpr {
+    let below_max = IntExpr::ite(compare(CmpOp::Lt, t, x.clone(), mx.clone()), x.clone(), mx);
+    IntExpr::ite(compare(CmpOp::Gt, t, x, mn.clone()), below_max, mn)
+}
+
+/// `ABS(x)` in the type `t`: `x < 0 ? 0 - x : x` (wrapped: `ABS` of the smallest value is
+/// itself).
+pub fn abs(t: IntType, x: IntExpr) -> IntExpr {
+    IntExpr::ite(
+        compare(CmpOp::Lt, t, x.clone(), IntExpr::Const(0)),
+        IntExpr::minus(IntExpr::Const(0), x.clone()),
+        x,
+    )
+}
+
+/// Which counter.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Counter {
+    /// `CTU`: counts up, `Q := CV >= PV`.
+    Up,
+    /// `CTD`: counts down, `Q := CV <= 0`.
+    Down,
+    /// `CTUD`: both, `QU := CV >= PV`, `QD := CV <= 0`.
+    UpDown,
+}
+
+impl Counter {
+    /// The counter kind of a type name (`CTU`, `CTD_DINT`, …).
+    pub fn of(ty: &str) -> Option<Counter> {
+        match ty.split('_').next().unwrap_or(ty) {
+            "CTU" => Some(Counter::Up),
+            "CTD" => Some(Counter::Down),
+            "CTUD" => Some(Counter::UpDown),
+            _ => None,
+        }
+    }
+
+    /// Its Boolean outputs.
+    pub fn outputs(self) -> &'static [&'static str] {
+        match self {
+            Counter::UpDown => &["QU", "QD"],
+            _ => &["Q"],
+        }
+    }
+}
+
+/// One call of a counter as matiec's `lib/counter.txt` computes it, given its count
+/// `cv` (of type `t`), the preset `pv`, the rising edges `cu`/`cd` of its count inputs
+/// (as their `R_TRIG`s give them) and its `r`/`ld` inputs (unused ones ignored): the
+/// new count, and each Boolean output as a function of the new count.
+pub fn counter(
+    kind: Counter,
+    t: IntType,
+    cv: &str,
+    pv: IntExpr,
+    edges: (BoolExpr, BoolExpr),
+    r: BoolExpr,
+    ld: BoolExpr,
+) -> (IntExpr, Vec<(&'static str, BoolExpr)>) {
+    let (cu, cd) = edges;
+    let cv = IntExpr::var(cv);
+    let one = || IntExpr::Const(1);
+    let up = IntExpr::plus(cv.clone(), one());
+    let down = IntExpr::minus(cv.clone(), one());
+    let below = compare(CmpOp::Lt, t, cv.clone(), pv.clone());
+    let above_zero = compare(CmpOp::Gt, t, cv.clone(), IntExpr::Const(0));
+    let next = match kind {
+        Counter::Up => {
+            let count = IntExpr::ite(BoolExpr::and(cu, below), up, cv.clone());
+            IntExpr::ite(r, IntExpr::Const(0), count)
+        }
+        Counter::Down => {
+            let count = IntExpr::ite(BoolExpr::and(cd, above_zero), down, cv.clone());
+            IntExpr::ite(ld, pv.clone(), count)
+        }
+        Counter::UpDown => {
+            // Neither counts when both rise.
+            let inc = BoolExpr::and(BoolExpr::and(cu.clone(), BoolExpr::negate(cd.clone())), below);
+            let dec = BoolExpr::and(BoolExpr::and(cd, BoolExpr::negate(cu)), above_zero);
+            let count = IntExpr::ite(inc, up, IntExpr::ite(dec, down, cv.clone()));
+            IntExpr::ite(r, IntExpr::Const(0), IntExpr::ite(ld, pv.clone(), count))
+        }
+    };
+    let ge = compare(CmpOp::Ge, t, cv.clone(), pv);
+    let le = compare(CmpOp::Le, t, cv, IntExpr::Const(0));
+    let outputs = match kind {
+        Counter::Up => vec![("Q", ge)],
+        Counter::Down => vec![("Q", le)],
+        Counter::UpDown => vec![("QU", ge), ("QD", le)],
+    };
+    (next, outputs)
+}
+
+/// A pulse timer `TP` as matiec's library runs it: a rising edge of `IN` while idle
+/// starts a pulse of `Q` for `PT` (at least one scan), which no edge restarts; after it,
+/// `Q` stays off until `IN` falls. Over `Q` (running), a hidden `DONE` bit and an
+/// on-delay timer of `Q` as it stood at the previous scan; `input` and `rise` are
+/// the scan-local values of `IN` and of its rising edge, `local` makes a scan-local
+/// value of an expression.
+pub struct Pulse<'a> {
+    /// The element keyword (`TP`).
+    pub keyword: &'a str,
+    /// The instance (the timer's accumulator).
+    pub instance: &'a str,
+    /// `Q`'s bit.
+    pub q: &'a str,
+    /// The hidden bit that says the pulse is over and `IN` has not fallen yet.
+    pub done: &'a str,
+    /// `PT` in µs.
+    pub pt_us: u64,
+    /// The cycle in µs.
+    pub cycle_us: u64,
+    /// The call.
+    pub span: Span,
+}
+
+impl Pulse<'_> {
+    /// The statements of one call.
+    pub fn call(
+        &self,
+        input: BoolExpr,
+        rise: BoolExpr,
+        local: &mut dyn FnMut(&mut Vec<Stmt>, BoolExpr) -> BoolExpr,
+    ) -> Vec<Stmt> {
+        let mut out = Vec::new();
+        let span = self.span;
+        let running = local(&mut out, BoolExpr::var(self.q));
+        let finished = local(&mut out, BoolExpr::var(self.done));
+        // The pulse has lasted PT when Q has been on K = ⌈PT / cycle⌉ (at least 1) scans
+        // before this one: Q at the previous scan, on for K − 1 scans before.
+        let scans = self.pt_us.div_ceil(self.cycle_us).max(1);
+        let elapsed = if scans == 1 {
+            running.clone()
+        } else {
+            BoolExpr::Timer(Box::new(Timer {
+                on_delay: true,
+                keyword: self.keyword.to_string(),
+                accumulator: self.instance.to_string(),
+                preset: Preset::iec(self.pt_us - self.cycle_us, self.cycle_us),
+                input: running.clone(),
+                span,
+            }))
+        };
+        let elapsed = local(&mut out, elapsed);
+        let idle =
+            BoolExpr::and(BoolExpr::negate(running.clone()), BoolExpr::negate(finished.clone()));
+        let start = BoolExpr::and(idle, rise);
+        let keep = BoolExpr::and(running.clone(), BoolExpr::negate(elapsed.clone()));
+        out.push(Stmt::Write {
+            target: self.q.to_string(),
+            kind: WriteKind::Assign,
+            value: BoolExpr::Or(vec![start, keep]),
+            span,
+        });
+        let ended = BoolExpr::Or(vec![finished, BoolExpr::and(running, elapsed)]);
+        out.push(Stmt::Write {
+            target: self.done.to_string(),
+            kind: WriteKind::Assign,
+            value: BoolExpr::and(ended, input),
+            span,
+        });
+        out
+    }
+}
