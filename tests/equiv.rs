@@ -57,6 +57,53 @@ fn differing_pairs_are_refuted_on_both_simulators() {
 }
 
 #[test]
+fn any_state_pairs_are_equivalent_from_power_up_and_from_any_matched_state() {
+    for (a, b) in pairs("equivalent_any_state") {
+        for extra in [None, Some("--any-state")] {
+            let mut args = vec!["equiv", a.as_str(), b.as_str()];
+            args.extend(extra);
+            let v = verdicts(&args);
+            assert!(!v.is_empty(), "{args:?}: no verdict");
+            assert!(v.iter().all(|(_, s)| s == "proved"), "{args:?}: {v:?}");
+            assert_eq!(ii_prove(&args).status.code(), Some(0), "{args:?}");
+        }
+    }
+}
+
+#[test]
+fn differs_any_state_pairs_are_equivalent_from_power_up_only() {
+    for (a, b) in pairs("differs_any_state") {
+        let v = verdicts(&["equiv", &a, &b]);
+        assert!(!v.is_empty() && v.iter().all(|(_, s)| s == "proved"), "{a} {b}: {v:?}");
+        let args = ["equiv", a.as_str(), b.as_str(), "--any-state"];
+        let out = ii_prove(&args);
+        let stdout = text(&out.stdout);
+        let v = verdicts(&args);
+        assert!(v.iter().any(|(_, s)| s == "refuted"), "{a} {b}: {v:?}\n{stdout}");
+        assert!(v.iter().all(|(_, s)| s != "proved"), "{a} {b}: {v:?}\n{stdout}");
+        // Replayed on the programs' own simulators started from the state found.
+        assert!(stdout.contains("by the scan simulator"), "{a} {b}: {stdout}");
+        assert_eq!(out.status.code(), Some(1), "{a} {b}");
+        // The state that starts on its own is named.
+        assert!(text(&out.stderr).contains("starts arbitrary on its own"), "{a} {b}");
+    }
+}
+
+#[test]
+fn any_state_refuses_timers_where_they_are_written() {
+    let out = ii_prove(&[
+        "equiv",
+        "tests/data/equivalent/latch_a.ld",
+        "tests/data/equivalent/latch_b.st",
+        "--any-state",
+    ]);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("tests/data/equivalent/latch_a.ld:15:5"), "{stderr}");
+    assert!(stderr.contains("count of the timer TDelay"), "{stderr}");
+}
+
+#[test]
 fn water_refactorings_are_equivalent_and_variants_differ() {
     for b in [
         "examples/water_setreset.ld",

@@ -12,6 +12,7 @@
 //! equations that hold at every scan.
 #![warn(missing_docs)]
 
+pub mod any_state;
 pub mod atoms;
 pub mod bitvec;
 pub mod compile;
@@ -59,6 +60,9 @@ pub struct Program {
     /// The integer variables the program computes exactly (canonical names): each is
     /// compiled into the bits of its two's-complement value ([`Program::int_bit`]).
     pub integers: BTreeMap<String, IntVar>,
+    /// The bit the front end writes 1 at every scan to tell the first scan (start-up
+    /// values keyed to it): under `--any-state` it starts at 1, as after power-up.
+    pub started: Option<String>,
 }
 
 /// An integer variable of the scan model.
@@ -580,6 +584,7 @@ impl Default for Program {
             block_noun: "rung",
             language: "an LDmicro",
             integers: BTreeMap::new(),
+            started: None,
         }
     }
 }

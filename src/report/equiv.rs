@@ -24,6 +24,10 @@ pub struct EquivOptions {
     pub b_timers: Option<TimerModel>,
     /// The second program's POU and cycle (default: as the first's).
     pub b_plcopen: Option<crate::ladder::plcopen::Selection>,
+    /// Compare from matched arbitrary states instead of from power-up: the state both
+    /// programs keep under one name (or a `--map` pair) starts equal and arbitrary, the
+    /// rest arbitrary.
+    pub any_state: bool,
 }
 
 /// A located error in a `--map` file.
@@ -82,8 +86,11 @@ fn has_pins(c: &CompiledProgram) -> bool {
     c.signals.values().any(|k| matches!(k, SignalKind::Output))
 }
 
+/// The inputs of `c` the outside world writes (not the start values of `--any-state`).
 fn inputs(c: &CompiledProgram) -> BTreeSet<String> {
-    of_kind(c, |k| matches!(k, SignalKind::Input))
+    let mut out = of_kind(c, |k| matches!(k, SignalKind::Input));
+    out.retain(|n| !c.starts.contains_key(n));
+    out
 }
 
 /// Pairs of `a` and `b` names: exactly equal first, then by [`key`] where that is
@@ -195,9 +202,14 @@ pub fn run_equiv_with(
 ) -> Result<RunReport, InputError> {
     let mut sources = Sources::new();
     let theory = theory::standard(&mut sources).map_err(|d| fail(&sources, d, opts))?;
-    let a = load_program_with(&mut sources, a_path, &compile_options(opts), &opts.plcopen)
+    let a_compile =
+        crate::ladder::CompileOptions { any_state: equiv.any_state, ..compile_options(opts) };
+    let a = load_program_with(&mut sources, a_path, &a_compile, &opts.plcopen)
         .map_err(|d| fail(&sources, d, opts))?;
-    let b_compile = crate::ladder::CompileOptions { timers: equiv.b_timers.unwrap_or(opts.timers) };
+    let b_compile = crate::ladder::CompileOptions {
+        timers: equiv.b_timers.unwrap_or(opts.timers),
+        any_state: equiv.any_state,
+    };
     let b_selection = equiv.b_plcopen.as_ref().unwrap_or(&opts.plcopen);
     let b = load_program_with(&mut sources, b_path, &b_compile, b_selection)
         .map_err(|d| fail(&sources, d, opts))?;
@@ -304,12 +316,27 @@ pub fn run_equiv_with(
         )));
     }
     output_pairs.sort();
-    let renaming =
+    let mut renaming =
         Renaming { shared: input_pairs.iter().map(|(x, y)| (y.clone(), x.clone())).collect() };
+    let (a_bits, b_bits) = (written(&a.compiled), written(&b.compiled));
+    let mut state_pairs = Vec::new();
+    match_names(&a.compiled, &a_bits, &b.compiled, &b_bits, &mut state_pairs);
+    if equiv.any_state {
+        let mut matched = state_pairs.clone();
+        matched.extend(output_pairs.iter().cloned());
+        let (a_ints, b_ints) = (written_ints(&a.compiled), written_ints(&b.compiled));
+        let mut int_pairs = Vec::new();
+        match_names(&a.compiled, &a_ints, &b.compiled, &b_ints, &mut int_pairs);
+        let starts = super::any_state::match_starts(&a.compiled, &b.compiled, &matched, &int_pairs);
+        for w in &starts.unmatched {
+            warnings.push(note(w.clone()));
+        }
+        renaming.shared.extend(starts.shared);
+    }
     let compiled = product(&a.compiled, &b.compiled, &renaming).map_err(error)?;
     let reference = ProductReference::new(
-        a.reference.clone(),
-        b.reference.clone(),
+        reference_of(&a),
+        reference_of(&b),
         b.compiled.signals.keys().cloned(),
         &renaming,
     );
@@ -319,9 +346,6 @@ pub fn run_equiv_with(
     // The state correspondence: bits both programs write under one name, each proved
     // equal in the two (by the algebra or induction over scans) in the product's own
     // context; the outputs' context adds those theorems as hypotheses.
-    let (a_bits, b_bits) = (written(&a.compiled), written(&b.compiled));
-    let mut state_pairs = Vec::new();
-    match_names(&a.compiled, &a_bits, &b.compiled, &b_bits, &mut state_pairs);
     state_pairs.retain(|p| !output_pairs.contains(p));
     let mut lemmas: Vec<(PropertyReport, Axiom)> = Vec::new();
     let identity = |e: &Expr| e.clone();
@@ -429,6 +453,23 @@ pub fn run_equiv_with(
     Ok(report)
 }
 
+/// A program's reference: its own simulator, started from the state of the first scan's
+/// start values when it is compiled with `--any-state`.
+fn reference_of(p: &LoadedProgram) -> std::sync::Arc<dyn crate::ladder::Reference> {
+    match p.compiled.started {
+        Some(_) => std::sync::Arc::new(crate::program::any_state::AnyStateReference::new(
+            p.reference.clone(),
+            &p.compiled,
+        )),
+        None => p.reference.clone(),
+    }
+}
+
+/// The integers `program` writes (not its input integers).
+fn written_ints(c: &CompiledProgram) -> BTreeSet<String> {
+    c.integers.iter().filter(|(_, v)| !v.input).map(|(n, _)| n.clone()).collect()
+}
+
 /// The bits `program` writes (outputs and internal relays).
 fn written(c: &CompiledProgram) -> BTreeSet<String> {
     of_kind(c, |k| matches!(k, SignalKind::Relay | SignalKind::Output))
@@ -498,7 +539,8 @@ fn search_on_simulators(
     };
     let (x, y) = (side(&goal.lhs)?, side(&goal.rhs)?);
     let compiled = session.compiled;
-    let inputs = inputs(compiled);
+    // The start values of `--any-state` too: the runs start from random states.
+    let inputs = of_kind(compiled, |k| matches!(k, SignalKind::Input));
     let longest =
         compiled.timer_info.iter().filter_map(|t| usize::try_from(t.scans).ok()).max().unwrap_or(0);
     let mut lengths: Vec<usize> = vec![

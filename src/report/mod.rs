@@ -8,6 +8,7 @@
 //! result as soon as it is known, in file order.
 
 pub mod aiger;
+mod any_state;
 pub mod console;
 pub mod equiv;
 pub mod export;
@@ -687,7 +688,7 @@ pub fn run_free_with(
 
 /// The rung compiler's options a run asks for.
 pub fn compile_options(opts: &Options) -> crate::ladder::CompileOptions {
-    crate::ladder::CompileOptions { timers: opts.timers }
+    crate::ladder::CompileOptions { timers: opts.timers, any_state: false }
 }
 
 /// The session for `ii-prove PROGRAM.ld PROPS.ii…`: the properties are goals about the

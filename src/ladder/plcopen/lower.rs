@@ -808,6 +808,7 @@ pub fn lower(p: &PlcProgram) -> Result<Lowered, Vec<PlcError>> {
         exact_names: true,
         block_noun: "rung",
         language: "a PLCopen",
+        started: p.started.clone(),
     };
     let mut warnings = p.warnings.clone();
     warnings.append(&mut l.warnings);
