@@ -90,6 +90,46 @@ fn differs_any_state_pairs_are_equivalent_from_power_up_only() {
 }
 
 #[test]
+fn integers_are_matched_by_name_and_compared_bit_for_bit() {
+    // An INT input shared, an INT output compared at every bit.
+    let v = verdicts(&[
+        "equiv",
+        "tests/data/equivalent/scale_a.st",
+        "tests/data/equivalent/scale_b.st",
+    ]);
+    assert_eq!(v.len(), 17, "{v:?}");
+    assert!(v.iter().any(|(n, _)| n == "Double_b15"), "{v:?}");
+    // Counting every scan instead of rising edges: the count's bits part.
+    let v = verdicts(&[
+        "equiv",
+        "tests/data/differs_integers/counter_a.st",
+        "tests/data/differs_integers/counter_b.st",
+        "--only",
+        "Done",
+        "--only",
+        "Count_b0",
+    ]);
+    assert!(v.contains(&("Count_b0".to_string(), "refuted".to_string())), "{v:?}");
+    assert!(v.contains(&("Done".to_string(), "refuted".to_string())), "{v:?}");
+    // One side's integer of another type: a located error at its declaration.
+    let dir = std::env::temp_dir().join(format!("ii-equiv-int-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let wide = dir.join("wide.st");
+    let text_b = std::fs::read_to_string("tests/data/equivalent/scale_b.st").expect("read");
+    let text_b = text_b
+        .replace("Double : INT", "Double : DINT")
+        .replace("Double := Level + (-3);", "Double := INT_TO_DINT(Level) - 3;");
+    std::fs::write(&wide, text_b).expect("write");
+    let out = ii_prove(&["equiv", "tests/data/equivalent/scale_a.st", &wide.to_string_lossy()]);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("wide.st:7:5"), "{stderr}");
+    assert!(stderr.contains("a 32-bit signed integer here"), "{stderr}");
+    assert!(stderr.contains("scale_a.st:7:5"), "{stderr}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn any_state_refuses_timers_where_they_are_written() {
     let out = ii_prove(&[
         "equiv",

@@ -486,12 +486,13 @@ fn simulate(
     goal: &Obligation,
     trace: &ScanTrace,
 ) -> Result<(Option<usize>, Values), String> {
-    // The program's inputs, and free names of the `.ii` files the program does not know.
+    // The program's inputs (bits, and the bits of input integers), and free names of
+    // the `.ii` files the program does not know.
     let mut inputs: Vec<&String> = program
         .compiled
         .signals
         .iter()
-        .filter(|(_, k)| matches!(k, SignalKind::Input))
+        .filter(|(_, k)| matches!(k, SignalKind::Input | SignalKind::IntBit { input: true, .. }))
         .map(|(n, _)| n)
         .collect();
     inputs.extend(trace.values.keys().filter(|n| !program.compiled.signals.contains_key(*n)));

@@ -606,7 +606,11 @@ impl Program {
 
     /// The name of bit `k` (0 the least significant) of integer `x`: `Ccount_b3`.
     pub fn int_bit(x: &str, k: u32) -> String {
-        format!("{x}_b{k}")
+        // The second program's integer `X'` in `equiv`'s product has the bits `X_bk'`.
+        match x.strip_suffix('\'') {
+            Some(base) => format!("{base}_b{k}'"),
+            None => format!("{x}_b{k}"),
+        }
     }
 
     /// Every statement, block by block.

@@ -11,6 +11,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use super::*;
 use crate::diag::{Report, Span};
 use crate::ladder::{CompiledProgram, SignalKind, TimerModel};
+use crate::program::Program;
 use crate::program::product::{ProductReference, Renaming, product};
 
 /// What `equiv` compares besides the common options.
@@ -167,9 +168,12 @@ fn read_map(
             let col = from + side.len() - side.trim_start().len();
             let found = match program.lookup(name) {
                 Lookup::Signal(n) => Some(n),
-                _ => {
-                    program.signals.keys().find(|n| key(program, n) == key(program, name)).cloned()
-                }
+                _ => program
+                    .signals
+                    .keys()
+                    .chain(program.integers.keys())
+                    .find(|n| key(program, n) == key(program, name))
+                    .cloned(),
             };
             if found.is_none() {
                 errors.push(
@@ -219,10 +223,32 @@ pub fn run_equiv_with(
     let mut output_pairs = Vec::new();
     let (a_in, b_in) = (inputs(&a.compiled), inputs(&b.compiled));
     let (a_out, b_out) = (outputs(&a), outputs(&b));
+    let (a_int_in, b_int_in) = (int_inputs(&a.compiled), int_inputs(&b.compiled));
+    let (a_int_out, b_int_out) = (written_ints(&a.compiled), written_ints(&b.compiled));
+    let mut int_in_pairs = Vec::new();
+    let mut int_out_pairs = Vec::new();
     if let Some(map) = &equiv.map {
         let renames = read_map(&mut sources, map, &a.compiled, &b.compiled)
             .map_err(|d| fail(&sources, d, opts))?;
         for (x, y) in renames {
+            let ints = (a.compiled.integers.get(&x), b.compiled.integers.get(&y));
+            if let (Some(u), Some(v)) = ints {
+                match (u.input, v.input) {
+                    (true, true) => int_in_pairs.push((x, y)),
+                    (false, false) => int_out_pairs.push((x, y)),
+                    _ => {
+                        return Err(error(format!(
+                            "{map}: `{x}` and `{y}` cannot be matched: one is an input, the other is not"
+                        )));
+                    }
+                }
+                continue;
+            }
+            if ints.0.is_some() || ints.1.is_some() {
+                return Err(error(format!(
+                    "{map}: `{x}` and `{y}` cannot be matched: one is an integer, the other a bit"
+                )));
+            }
             match (a_in.contains(&x), b_in.contains(&y)) {
                 (true, true) => input_pairs.push((x, y)),
                 (false, false) => output_pairs.push((x, y)),
@@ -235,6 +261,17 @@ pub fn run_equiv_with(
         }
     }
     match_names(&a.compiled, &a_in, &b.compiled, &b_in, &mut input_pairs);
+    match_names(&a.compiled, &a_int_in, &b.compiled, &b_int_in, &mut int_in_pairs);
+    match_names(&a.compiled, &a_int_out, &b.compiled, &b_int_out, &mut int_out_pairs);
+    // Integers matched are one type, or the comparison would not be of equal values.
+    let mismatched: Vec<Diagnostic> = int_in_pairs
+        .iter()
+        .chain(&int_out_pairs)
+        .filter_map(|(x, y)| type_mismatch(&sources, &a.compiled, x, &b.compiled, y))
+        .collect();
+    if !mismatched.is_empty() {
+        return Err(fail(&sources, mismatched, opts));
+    }
     // An output renamed by the map may be any written bit; the others are outputs.
     let mut a_cmp = a_out.clone();
     let mut b_cmp = b_out.clone();
@@ -251,6 +288,26 @@ pub fn run_equiv_with(
         for n in all.iter().filter(|n| !pairs_of.contains(n)) {
             warnings.push(note(format!(
                 "input `{n}` is read only by the {side} program: it is free (any value at every scan) in the comparison"
+            )));
+        }
+    }
+    for (side, all, pairs_of) in [
+        ("first", &a_int_in, int_in_pairs.iter().map(|p| &p.0).collect::<BTreeSet<_>>()),
+        ("second", &b_int_in, int_in_pairs.iter().map(|p| &p.1).collect()),
+    ] {
+        for n in all.iter().filter(|n| !pairs_of.contains(n)) {
+            warnings.push(note(format!(
+                "integer input `{n}` is read only by the {side} program: it is free (any value at every scan) in the comparison"
+            )));
+        }
+    }
+    for (side, all, pairs_of) in [
+        ("first", &a_int_out, int_out_pairs.iter().map(|p| &p.0).collect::<BTreeSet<_>>()),
+        ("second", &b_int_out, int_out_pairs.iter().map(|p| &p.1).collect()),
+    ] {
+        for n in all.iter().filter(|n| !pairs_of.contains(n)) {
+            warnings.push(note(format!(
+                "integer `{n}` of the {side} program has no counterpart in the other (name it in a --map file): not compared"
             )));
         }
     }
@@ -278,30 +335,23 @@ pub fn run_equiv_with(
     // `--outputs`: by either program's name.
     if !equiv.outputs.is_empty() {
         let wanted: Vec<String> = equiv.outputs.iter().map(|n| n.to_ascii_lowercase()).collect();
-        let picks = |p: &(String, String)| {
-            wanted.iter().any(|w| {
-                *w == key(&a.compiled, &p.0)
-                    || *w == key(&b.compiled, &p.1)
-                    || *w == p.0.to_ascii_lowercase()
-                    || *w == p.1.to_ascii_lowercase()
-            })
+        let names = |w: &String, p: &(String, String)| {
+            *w == key(&a.compiled, &p.0)
+                || *w == key(&b.compiled, &p.1)
+                || *w == p.0.to_ascii_lowercase()
+                || *w == p.1.to_ascii_lowercase()
         };
+        let picks = |p: &(String, String)| wanted.iter().any(|w| names(w, p));
         let missing: Vec<&String> = equiv
             .outputs
             .iter()
             .zip(&wanted)
-            .filter(|(_, w)| {
-                !output_pairs.iter().any(|p| {
-                    **w == key(&a.compiled, &p.0)
-                        || **w == key(&b.compiled, &p.1)
-                        || **w == p.0.to_ascii_lowercase()
-                        || **w == p.1.to_ascii_lowercase()
-                })
-            })
+            .filter(|(_, w)| !output_pairs.iter().chain(&int_out_pairs).any(|p| names(w, p)))
             .map(|(n, _)| n)
             .collect();
         if !missing.is_empty() {
-            let all: Vec<&str> = output_pairs.iter().map(|p| p.0.as_str()).collect();
+            let all: Vec<&str> =
+                output_pairs.iter().chain(&int_out_pairs).map(|p| p.0.as_str()).collect();
             return Err(error(format!(
                 "no matched output `{}`; the matched outputs are: {}",
                 missing.iter().map(|s| s.as_str()).collect::<Vec<_>>().join("`, `"),
@@ -309,31 +359,48 @@ pub fn run_equiv_with(
             )));
         }
         output_pairs.retain(picks);
+        int_out_pairs.retain(picks);
     }
-    if output_pairs.is_empty() {
+    if output_pairs.is_empty() && int_out_pairs.is_empty() {
         return Err(error(format!(
             "no output of `{a_path}` matches one of `{b_path}` by name: name the pairs in a --map file (`NAME_IN_A = NAME_IN_B`)"
         )));
     }
     output_pairs.sort();
+    int_out_pairs.sort();
     let mut renaming =
         Renaming { shared: input_pairs.iter().map(|(x, y)| (y.clone(), x.clone())).collect() };
+    // An integer input is shared bit by bit (and by name, for the simulators' values).
+    for (x, y) in &int_in_pairs {
+        let bits = a.compiled.integers.get(x).map_or(0, |v| v.ty.bits);
+        for k in 0..bits {
+            renaming.shared.insert(Program::int_bit(y, k), Program::int_bit(x, k));
+        }
+        renaming.shared.insert(y.clone(), x.clone());
+    }
     let (a_bits, b_bits) = (written(&a.compiled), written(&b.compiled));
     let mut state_pairs = Vec::new();
     match_names(&a.compiled, &a_bits, &b.compiled, &b_bits, &mut state_pairs);
     if equiv.any_state {
         let mut matched = state_pairs.clone();
         matched.extend(output_pairs.iter().cloned());
-        let (a_ints, b_ints) = (written_ints(&a.compiled), written_ints(&b.compiled));
-        let mut int_pairs = Vec::new();
-        match_names(&a.compiled, &a_ints, &b.compiled, &b_ints, &mut int_pairs);
-        let starts = super::any_state::match_starts(&a.compiled, &b.compiled, &matched, &int_pairs);
+        let starts =
+            super::any_state::match_starts(&a.compiled, &b.compiled, &matched, &int_out_pairs);
         for w in &starts.unmatched {
             warnings.push(note(w.clone()));
         }
         renaming.shared.extend(starts.shared);
     }
     let compiled = product(&a.compiled, &b.compiled, &renaming).map_err(error)?;
+    // Each integer output pair is compared bit for bit: `X_bk = X_bk'`.
+    let mut int_bits = Vec::new();
+    for (x, y) in &int_out_pairs {
+        let bits = a.compiled.integers.get(x).map_or(0, |v| v.ty.bits);
+        for k in 0..bits {
+            let (p, q) = (Program::int_bit(x, k), Program::int_bit(&renaming.of(y), k));
+            int_bits.push((p, q));
+        }
+    }
     let reference = ProductReference::new(
         reference_of(&a),
         reference_of(&b),
@@ -384,6 +451,21 @@ pub fn run_equiv_with(
                 },
             }
         })
+        .chain(int_bits.iter().map(|(p, q)| {
+            let span = writer(&a.compiled, p).unwrap_or(Span::new(a_file, 0..0));
+            crate::syntax::Statement {
+                name: p.clone(),
+                name_span: span,
+                span,
+                value: Goal {
+                    lhs: crate::term::name(p),
+                    relation: crate::syntax::Relation::Equals,
+                    rhs: crate::term::name(q),
+                    after: None,
+                    pattern: None,
+                },
+            }
+        }))
         .collect();
     let selection = Selection::new(&opts.only)?;
     let statements: Vec<_> =
@@ -465,6 +547,62 @@ fn reference_of(p: &LoadedProgram) -> std::sync::Arc<dyn crate::ladder::Referenc
     }
 }
 
+/// The integers the outside world writes.
+fn int_inputs(c: &CompiledProgram) -> BTreeSet<String> {
+    c.integers.iter().filter(|(_, v)| v.input).map(|(n, _)| n.clone()).collect()
+}
+
+/// A located error when the integers `x` of `a` and `y` of `b` are not of one type: at
+/// the second program's first mention of its integer, naming the first's.
+fn type_mismatch(
+    sources: &Sources,
+    a: &CompiledProgram,
+    x: &str,
+    b: &CompiledProgram,
+    y: &str,
+) -> Option<Diagnostic> {
+    let (u, v) = (a.integers.get(x)?, b.integers.get(y)?);
+    if u.ty == v.ty {
+        return None;
+    }
+    let file = b.hypotheses.first().map_or(0, |h| h.span.file);
+    let span = first_mention(sources, file, y).unwrap_or(Span::new(file, 0..0));
+    let a_file = a.hypotheses.first().map_or(0, |h| h.span.file);
+    let at_a = first_mention(sources, a_file, x).map_or(String::new(), |s| {
+        let (line, col) = sources.line_col(a_file, s.start);
+        format!(" ({}:{line}:{col})", sources.name(a_file))
+    });
+    Some(
+        MapError {
+            span,
+            message: format!(
+                "`{y}` is {} here, but `{x}` of the first program{at_a} is {}: integers are compared bit for bit and must be of one type",
+                v.ty.describe(),
+                u.ty.describe()
+            ),
+        }
+        .into(),
+    )
+}
+
+/// The first whole-word mention of `name` (ignoring case) in `file`.
+fn first_mention(sources: &Sources, file: crate::diag::FileId, name: &str) -> Option<Span> {
+    let text = sources.text(file);
+    let lower = text.to_ascii_lowercase();
+    let want = name.to_ascii_lowercase();
+    let word = |c: Option<char>| c.is_some_and(|c| c.is_ascii_alphanumeric() || c == '_');
+    let mut from = 0;
+    while let Some(k) = lower[from..].find(&want) {
+        let at = from + k;
+        let end = at + want.len();
+        if !word(lower[..at].chars().next_back()) && !word(lower[end..].chars().next()) {
+            return Some(Span::new(file, at..end));
+        }
+        from = end;
+    }
+    None
+}
+
 /// The integers `program` writes (not its input integers).
 fn written_ints(c: &CompiledProgram) -> BTreeSet<String> {
     c.integers.iter().filter(|(_, v)| !v.input).map(|(n, _)| n.clone()).collect()
@@ -540,7 +678,9 @@ fn search_on_simulators(
     let (x, y) = (side(&goal.lhs)?, side(&goal.rhs)?);
     let compiled = session.compiled;
     // The start values of `--any-state` too: the runs start from random states.
-    let inputs = of_kind(compiled, |k| matches!(k, SignalKind::Input));
+    let inputs = of_kind(compiled, |k| {
+        matches!(k, SignalKind::Input | SignalKind::IntBit { input: true, .. })
+    });
     let longest =
         compiled.timer_info.iter().filter_map(|t| usize::try_from(t.scans).ok()).max().unwrap_or(0);
     let mut lengths: Vec<usize> = vec![
