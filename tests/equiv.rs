@@ -385,7 +385,7 @@ fn mutate(rng: &mut Rng, rungs: &[Rung]) -> Option<(Vec<Rung>, &'static str)> {
     for _ in 0..10 {
         let i = rng.below(rungs.len() as u64) as usize;
         let mut out = rungs.to_vec();
-        match rng.below(3) {
+        match rng.below(4) {
             0 if out[i].items.len() >= 2 => {
                 let k = rng.below(out[i].items.len() as u64) as usize;
                 out[i].items.remove(k);
@@ -397,6 +397,14 @@ fn mutate(rng: &mut Rng, rungs: &[Rung]) -> Option<(Vec<Rung>, &'static str)> {
                     out.swap(i, i + 1);
                     return Some((out, "dependent rungs swapped"));
                 }
+            }
+            3 => {
+                let k = rng.below(out[i].items.len() as u64) as usize;
+                match &mut out[i].items[k] {
+                    Item::Contact(_, neg) => *neg = !*neg,
+                    Item::Parallel(cs) => cs[0].1 = !cs[0].1,
+                }
+                return Some((out, "contact negated"));
             }
             2 if out[i].timer.is_some() => {
                 if let Some((_, us)) = &mut out[i].timer {
@@ -411,7 +419,12 @@ fn mutate(rng: &mut Rng, rungs: &[Rung]) -> Option<(Vec<Rung>, &'static str)> {
 }
 
 /// The outputs whose values the LDmicro simulator shows differ on some random run.
-fn simulated_differences(a: &str, b: &str, seed: u64) -> BTreeSet<String> {
+fn simulated_differences(
+    a: &str,
+    b: &str,
+    seed: u64,
+    renamed: &dyn Fn(&str) -> String,
+) -> BTreeSet<String> {
     let load = |text: &str| {
         let mut sources = ii_prove::diag::Sources::new();
         let f = sources.add("p.ld", text.to_string());
@@ -435,7 +448,7 @@ fn simulated_differences(a: &str, b: &str, seed: u64) -> BTreeSet<String> {
             sa.step(&inputs);
             sb.step(&inputs);
             for y in OUTPUTS {
-                if sa.bit(y) != sb.bit(y) {
+                if sa.bit(y) != sb.bit(&renamed(y)) {
                     out.insert(y.to_string());
                 }
             }
@@ -453,6 +466,7 @@ struct Figures {
     mutant_refuted: usize,
     mutant_proved: usize,
     unknown: usize,
+    renamed: usize,
 }
 
 #[test]
@@ -472,19 +486,26 @@ fn random_refactorings_are_proved_and_mutants_never_are() {
             _ => mutate(&mut rng, &program).map(|(p, w)| (p, w, false)),
         };
         let Some((other, what, preserving)) = changed else { continue };
-        let (ta, tb) = (render(&program), render(&other));
+        let (ta, mut tb) = (render(&program), render(&other));
         let (pa, pb) = (dir.join(format!("{seed}_a.ld")), dir.join(format!("{seed}_b.ld")));
+        // Every third pair also renames an output in B, matched by a --map file.
+        let mut equiv = EquivOptions::default();
+        let rename = seed % 3 == 0;
+        if rename {
+            tb = tb.replace("YU", "YRenamed");
+            let map = dir.join(format!("{seed}.map"));
+            std::fs::write(&map, "YU = YRenamed\n").expect("write");
+            equiv.map = Some(map.to_string_lossy().to_string());
+            fig.renamed += 1;
+        }
+        let renamed =
+            |y: &str| if rename && y == "YU" { "YRenamed".to_string() } else { y.to_string() };
         std::fs::write(&pa, &ta).expect("write");
         std::fs::write(&pb, &tb).expect("write");
-        let differ = simulated_differences(&ta, &tb, seed);
-        let run = run_equiv_with(
-            &pa.to_string_lossy(),
-            &pb.to_string_lossy(),
-            &opts,
-            &EquivOptions::default(),
-            &mut (),
-        )
-        .unwrap_or_else(|e| panic!("seed {seed} ({what}):\n{}\n{ta}\n{tb}", e.rendered));
+        let differ = simulated_differences(&ta, &tb, seed, &renamed);
+        let run =
+            run_equiv_with(&pa.to_string_lossy(), &pb.to_string_lossy(), &opts, &equiv, &mut ())
+                .unwrap_or_else(|e| panic!("seed {seed} ({what}):\n{}\n{ta}\n{tb}", e.rendered));
         for p in &run.properties {
             let proved = p.status == Status::Proved;
             assert!(
@@ -511,6 +532,15 @@ fn random_refactorings_are_proved_and_mutants_never_are() {
     }
     let _ = std::fs::remove_dir_all(&dir);
     eprintln!("{fig:?}");
+    eprintln!(
+        "equivalent pairs' outputs proved: {} of {} ({:.1} %); mutants' outputs the simulators show to differ: {}, refuted {}, proved {} (none may be)",
+        fig.refactored_proved,
+        fig.refactored_outputs,
+        100.0 * fig.refactored_proved as f64 / fig.refactored_outputs.max(1) as f64,
+        fig.mutant_differing,
+        fig.mutant_refuted,
+        fig.mutant_proved
+    );
     assert!(fig.refactored_outputs > 0 && fig.mutant_outputs > 0, "{fig:?}");
     assert!(
         fig.refactored_proved * 10 >= fig.refactored_outputs * 9,

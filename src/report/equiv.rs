@@ -484,21 +484,7 @@ pub fn run_equiv_with(
     }
     let mut properties = Vec::new();
     for (report, _) in &lemmas {
-        let Some(trace) = &report.trace else { continue };
-        let mut message = format!(
-            "state correspondence {} proved by {} ({} line{}): the outputs' proofs may cite it as `{}`",
-            report.statement,
-            trace.method,
-            trace.length,
-            if trace.length == 1 { "" } else { "s" },
-            report.name
-        );
-        if opts.trace {
-            message.extend(trace.lines.iter().map(|l| format!("\n    {l}")));
-        }
-        let note = WarningReport { message, location: None };
-        observer.warning(&note);
-        warnings.push(note);
+        observer.correspondence(report);
     }
     in_order(
         &statements,
@@ -531,6 +517,7 @@ pub fn run_equiv_with(
     );
     let mut report =
         finish(Some(a_path.to_string()), vec![b_path.to_string()], warnings, properties);
+    report.correspondences = lemmas.into_iter().map(|(r, _)| r).collect();
     report.timers = Some(opts.timers.as_str());
     Ok(report)
 }

@@ -315,6 +315,10 @@ pub struct RunReport {
     pub warnings: Vec<WarningReport>,
     /// Per property.
     pub properties: Vec<PropertyReport>,
+    /// `equiv`: the state correspondences `X = X'` proved before the outputs, which
+    /// their proofs may cite (`state_X`); not verdicts of their own.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub correspondences: Vec<PropertyReport>,
     /// Totals.
     pub summary: Summary,
     /// The run was interrupted (Ctrl-C): `properties` are those finished before.
@@ -420,6 +424,8 @@ pub trait Observer {
     fn started(&mut self, _index: usize) {}
     /// A property's result.
     fn finished(&mut self, _report: &PropertyReport) {}
+    /// `equiv`: a state correspondence proved before the outputs.
+    fn correspondence(&mut self, _report: &PropertyReport) {}
 }
 
 /// Hears nothing.
@@ -848,6 +854,7 @@ fn finish(
         timers: None,
         warnings,
         properties,
+        correspondences: Vec::new(),
         summary,
         interrupted: false,
         unchecked: Vec::new(),
