@@ -533,7 +533,7 @@ fn random_refactorings_are_proved_and_mutants_never_are() {
     let _ = std::fs::remove_dir_all(&dir);
     eprintln!("{fig:?}");
     eprintln!(
-        "equivalent pairs' outputs proved: {} of {} ({:.1} %); mutants' outputs the simulators show to differ: {}, refuted {}, proved {} (none may be)",
+        "equivalent pairs' outputs proved: {} of {} ({:.1} %); mutants' outputs the simulators show to differ: {}, refuted {}; mutants' outputs proved {} (all among those no run shows to differ)",
         fig.refactored_proved,
         fig.refactored_outputs,
         100.0 * fig.refactored_proved as f64 / fig.refactored_outputs.max(1) as f64,
