@@ -234,6 +234,17 @@ fn json_reports_one_verdict_per_output() {
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
     assert_eq!(json["properties"].as_array().map(Vec::len), Some(8));
     assert_eq!(json["summary"]["refuted"], 4);
+    // State correspondences: a section of their own, never warnings.
+    let args = ["equiv", "examples/water.ld", "examples/water_setreset.ld"];
+    let out = ii_prove(&args);
+    let (stdout, stderr) = (text(&out.stdout), text(&out.stderr));
+    assert!(stdout.starts_with("state correspondences"), "{stdout}");
+    assert!(stdout.contains("state_RL1_Prod   RL1_Prod = `RL1_Prod'`"), "{stdout}");
+    assert!(!stderr.contains("correspondence"), "{stderr}");
+    let out = ii_prove(&[args[0], args[1], args[2], "--json"]);
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    assert_eq!(json["correspondences"].as_array().map(Vec::len), Some(4), "{json}");
+    assert!(json["warnings"].as_array().is_none_or(|w| w.is_empty()), "{json}");
 }
 
 // ------------------------------------------------------------- randomized pairs
