@@ -280,8 +280,8 @@ enum Command {
     /// `proved` (equivalent: a kernel-checked proof of `X = X'` from both programs'
     /// equations, by the algebra or by induction over scans), `refuted` (differs: an
     /// input sequence replayed on both programs' simulators, the scan where they part
-    /// marked) or `unknown`. Both programs must scan at the same cycle and start from
-    /// power-up (matched arbitrary start states, `--any-state`, are not implemented).
+    /// marked) or `unknown`. Both programs must scan at the same cycle; they start from
+    /// power-up, or with `--any-state` from matched arbitrary states.
     #[command(after_help = EXIT_CODES)]
     Equiv {
         /// The first program.
@@ -300,6 +300,11 @@ enum Command {
         /// B's scan cycle, for a PLCopen, ST or IL program (default: as --cycle).
         #[arg(long, value_parser = parse_cycle, value_name = "DURATION")]
         cycle_b: Option<u64>,
+        /// Start both programs from any state instead of power-up: the bits and integers
+        /// both write under one name (or a --map pair) start equal, the rest (one-shot
+        /// memories too) arbitrary; a timer is refused (its count is not modelled).
+        #[arg(long)]
+        any_state: bool,
         #[command(flatten)]
         common: Common,
     },
@@ -457,7 +462,7 @@ fn main() -> ExitCode {
                 Err(e) => Err(report::InputError { rendered: format!("error: {e}\n") }),
             }
         }
-        Some(Command::Equiv { a, b, map, outputs, timers_b, cycle_b, common }) => {
+        Some(Command::Equiv { a, b, map, outputs, timers_b, cycle_b, any_state, common }) => {
             let b_plcopen = ii_prove::ladder::plcopen::Selection {
                 cycle_us: cycle_b.or(common.compilation.cycle),
                 ..common.compilation.selection()
@@ -467,6 +472,7 @@ fn main() -> ExitCode {
                 outputs,
                 b_timers: timers_b.map(Timers::model),
                 b_plcopen: Some(b_plcopen),
+                any_state,
             };
             let run = Run { files: vec![a.clone(), b.clone()], equiv: Some((a, b, equiv)) };
             return prove(run, common);

@@ -57,6 +57,93 @@ fn differing_pairs_are_refuted_on_both_simulators() {
 }
 
 #[test]
+fn any_state_pairs_are_equivalent_from_power_up_and_from_any_matched_state() {
+    for (a, b) in pairs("equivalent_any_state") {
+        for extra in [None, Some("--any-state")] {
+            let mut args = vec!["equiv", a.as_str(), b.as_str()];
+            args.extend(extra);
+            let v = verdicts(&args);
+            assert!(!v.is_empty(), "{args:?}: no verdict");
+            assert!(v.iter().all(|(_, s)| s == "proved"), "{args:?}: {v:?}");
+            assert_eq!(ii_prove(&args).status.code(), Some(0), "{args:?}");
+        }
+    }
+}
+
+#[test]
+fn differs_any_state_pairs_are_equivalent_from_power_up_only() {
+    for (a, b) in pairs("differs_any_state") {
+        let v = verdicts(&["equiv", &a, &b]);
+        assert!(!v.is_empty() && v.iter().all(|(_, s)| s == "proved"), "{a} {b}: {v:?}");
+        let args = ["equiv", a.as_str(), b.as_str(), "--any-state"];
+        let out = ii_prove(&args);
+        let stdout = text(&out.stdout);
+        let v = verdicts(&args);
+        assert!(v.iter().any(|(_, s)| s == "refuted"), "{a} {b}: {v:?}\n{stdout}");
+        assert!(v.iter().all(|(_, s)| s != "proved"), "{a} {b}: {v:?}\n{stdout}");
+        // Replayed on the programs' own simulators started from the state found.
+        assert!(stdout.contains("by the scan simulator"), "{a} {b}: {stdout}");
+        assert_eq!(out.status.code(), Some(1), "{a} {b}");
+        // The state that starts on its own is named.
+        assert!(text(&out.stderr).contains("starts arbitrary on its own"), "{a} {b}");
+    }
+}
+
+#[test]
+fn integers_are_matched_by_name_and_compared_bit_for_bit() {
+    // An INT input shared, an INT output compared at every bit.
+    let v = verdicts(&[
+        "equiv",
+        "tests/data/equivalent/scale_a.st",
+        "tests/data/equivalent/scale_b.st",
+    ]);
+    assert_eq!(v.len(), 17, "{v:?}");
+    assert!(v.iter().any(|(n, _)| n == "Double_b15"), "{v:?}");
+    // Counting every scan instead of rising edges: the count's bits part.
+    let v = verdicts(&[
+        "equiv",
+        "tests/data/differs_integers/counter_a.st",
+        "tests/data/differs_integers/counter_b.st",
+        "--only",
+        "Done",
+        "--only",
+        "Count_b0",
+    ]);
+    assert!(v.contains(&("Count_b0".to_string(), "refuted".to_string())), "{v:?}");
+    assert!(v.contains(&("Done".to_string(), "refuted".to_string())), "{v:?}");
+    // One side's integer of another type: a located error at its declaration.
+    let dir = std::env::temp_dir().join(format!("ii-equiv-int-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let wide = dir.join("wide.st");
+    let text_b = std::fs::read_to_string("tests/data/equivalent/scale_b.st").expect("read");
+    let text_b = text_b
+        .replace("Double : INT", "Double : DINT")
+        .replace("Double := Level + (-3);", "Double := INT_TO_DINT(Level) - 3;");
+    std::fs::write(&wide, text_b).expect("write");
+    let out = ii_prove(&["equiv", "tests/data/equivalent/scale_a.st", &wide.to_string_lossy()]);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("wide.st:7:5"), "{stderr}");
+    assert!(stderr.contains("a 32-bit signed integer here"), "{stderr}");
+    assert!(stderr.contains("scale_a.st:7:5"), "{stderr}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn any_state_refuses_timers_where_they_are_written() {
+    let out = ii_prove(&[
+        "equiv",
+        "tests/data/equivalent/latch_a.ld",
+        "tests/data/equivalent/latch_b.st",
+        "--any-state",
+    ]);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("tests/data/equivalent/latch_a.ld:15:5"), "{stderr}");
+    assert!(stderr.contains("count of the timer TDelay"), "{stderr}");
+}
+
+#[test]
 fn water_refactorings_are_equivalent_and_variants_differ() {
     for b in [
         "examples/water_setreset.ld",
@@ -147,6 +234,17 @@ fn json_reports_one_verdict_per_output() {
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
     assert_eq!(json["properties"].as_array().map(Vec::len), Some(8));
     assert_eq!(json["summary"]["refuted"], 4);
+    // State correspondences: a section of their own, never warnings.
+    let args = ["equiv", "examples/water.ld", "examples/water_setreset.ld"];
+    let out = ii_prove(&args);
+    let (stdout, stderr) = (text(&out.stdout), text(&out.stderr));
+    assert!(stdout.starts_with("state correspondences"), "{stdout}");
+    assert!(stdout.contains("state_RL1_Prod   RL1_Prod = `RL1_Prod'`"), "{stdout}");
+    assert!(!stderr.contains("correspondence"), "{stderr}");
+    let out = ii_prove(&[args[0], args[1], args[2], "--json"]);
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    assert_eq!(json["correspondences"].as_array().map(Vec::len), Some(4), "{json}");
+    assert!(json["warnings"].as_array().is_none_or(|w| w.is_empty()), "{json}");
 }
 
 // ------------------------------------------------------------- randomized pairs
@@ -298,7 +396,7 @@ fn mutate(rng: &mut Rng, rungs: &[Rung]) -> Option<(Vec<Rung>, &'static str)> {
     for _ in 0..10 {
         let i = rng.below(rungs.len() as u64) as usize;
         let mut out = rungs.to_vec();
-        match rng.below(3) {
+        match rng.below(4) {
             0 if out[i].items.len() >= 2 => {
                 let k = rng.below(out[i].items.len() as u64) as usize;
                 out[i].items.remove(k);
@@ -310,6 +408,14 @@ fn mutate(rng: &mut Rng, rungs: &[Rung]) -> Option<(Vec<Rung>, &'static str)> {
                     out.swap(i, i + 1);
                     return Some((out, "dependent rungs swapped"));
                 }
+            }
+            3 => {
+                let k = rng.below(out[i].items.len() as u64) as usize;
+                match &mut out[i].items[k] {
+                    Item::Contact(_, neg) => *neg = !*neg,
+                    Item::Parallel(cs) => cs[0].1 = !cs[0].1,
+                }
+                return Some((out, "contact negated"));
             }
             2 if out[i].timer.is_some() => {
                 if let Some((_, us)) = &mut out[i].timer {
@@ -324,7 +430,12 @@ fn mutate(rng: &mut Rng, rungs: &[Rung]) -> Option<(Vec<Rung>, &'static str)> {
 }
 
 /// The outputs whose values the LDmicro simulator shows differ on some random run.
-fn simulated_differences(a: &str, b: &str, seed: u64) -> BTreeSet<String> {
+fn simulated_differences(
+    a: &str,
+    b: &str,
+    seed: u64,
+    renamed: &dyn Fn(&str) -> String,
+) -> BTreeSet<String> {
     let load = |text: &str| {
         let mut sources = ii_prove::diag::Sources::new();
         let f = sources.add("p.ld", text.to_string());
@@ -348,7 +459,7 @@ fn simulated_differences(a: &str, b: &str, seed: u64) -> BTreeSet<String> {
             sa.step(&inputs);
             sb.step(&inputs);
             for y in OUTPUTS {
-                if sa.bit(y) != sb.bit(y) {
+                if sa.bit(y) != sb.bit(&renamed(y)) {
                     out.insert(y.to_string());
                 }
             }
@@ -366,6 +477,7 @@ struct Figures {
     mutant_refuted: usize,
     mutant_proved: usize,
     unknown: usize,
+    renamed: usize,
 }
 
 #[test]
@@ -385,19 +497,26 @@ fn random_refactorings_are_proved_and_mutants_never_are() {
             _ => mutate(&mut rng, &program).map(|(p, w)| (p, w, false)),
         };
         let Some((other, what, preserving)) = changed else { continue };
-        let (ta, tb) = (render(&program), render(&other));
+        let (ta, mut tb) = (render(&program), render(&other));
         let (pa, pb) = (dir.join(format!("{seed}_a.ld")), dir.join(format!("{seed}_b.ld")));
+        // Every third pair also renames an output in B, matched by a --map file.
+        let mut equiv = EquivOptions::default();
+        let rename = seed % 3 == 0;
+        if rename {
+            tb = tb.replace("YU", "YRenamed");
+            let map = dir.join(format!("{seed}.map"));
+            std::fs::write(&map, "YU = YRenamed\n").expect("write");
+            equiv.map = Some(map.to_string_lossy().to_string());
+            fig.renamed += 1;
+        }
+        let renamed =
+            |y: &str| if rename && y == "YU" { "YRenamed".to_string() } else { y.to_string() };
         std::fs::write(&pa, &ta).expect("write");
         std::fs::write(&pb, &tb).expect("write");
-        let differ = simulated_differences(&ta, &tb, seed);
-        let run = run_equiv_with(
-            &pa.to_string_lossy(),
-            &pb.to_string_lossy(),
-            &opts,
-            &EquivOptions::default(),
-            &mut (),
-        )
-        .unwrap_or_else(|e| panic!("seed {seed} ({what}):\n{}\n{ta}\n{tb}", e.rendered));
+        let differ = simulated_differences(&ta, &tb, seed, &renamed);
+        let run =
+            run_equiv_with(&pa.to_string_lossy(), &pb.to_string_lossy(), &opts, &equiv, &mut ())
+                .unwrap_or_else(|e| panic!("seed {seed} ({what}):\n{}\n{ta}\n{tb}", e.rendered));
         for p in &run.properties {
             let proved = p.status == Status::Proved;
             assert!(
@@ -424,6 +543,15 @@ fn random_refactorings_are_proved_and_mutants_never_are() {
     }
     let _ = std::fs::remove_dir_all(&dir);
     eprintln!("{fig:?}");
+    eprintln!(
+        "equivalent pairs' outputs proved: {} of {} ({:.1} %); mutants' outputs the simulators show to differ: {}, refuted {}; mutants' outputs proved {} (all among those no run shows to differ)",
+        fig.refactored_proved,
+        fig.refactored_outputs,
+        100.0 * fig.refactored_proved as f64 / fig.refactored_outputs.max(1) as f64,
+        fig.mutant_differing,
+        fig.mutant_refuted,
+        fig.mutant_proved
+    );
     assert!(fig.refactored_outputs > 0 && fig.mutant_outputs > 0, "{fig:?}");
     assert!(
         fig.refactored_proved * 10 >= fig.refactored_outputs * 9,

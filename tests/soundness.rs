@@ -173,7 +173,7 @@ fn ideal_timers_between_scan_cycles_are_refused() {
     let path = data("ldmicro/refused_ideal/between.ld");
     let shown = path.display().to_string();
     let mut sources = Sources::new();
-    let ideal = CompileOptions { timers: TimerModel::Ideal };
+    let ideal = CompileOptions { timers: TimerModel::Ideal, ..CompileOptions::default() };
     let Err(errors) = load_program(&mut sources, &shown, &ideal) else {
         panic!("{shown} loaded with --timers ideal");
     };

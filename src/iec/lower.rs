@@ -308,6 +308,8 @@ struct Lowering<'s> {
     globals: BTreeSet<String>,
     /// BOOL variables with the initial value TRUE.
     starts: Vec<String>,
+    /// The bit the start-up block keys on (1 from the first scan on).
+    started: Option<String>,
     /// Hidden bits of FB instances: (instance key, pin) → name.
     hidden: BTreeMap<(String, String), String>,
     taken: BTreeSet<String>,
@@ -358,6 +360,7 @@ impl<'s> Lowering<'s> {
             inputs: BTreeSet::new(),
             globals: BTreeSet::new(),
             starts: Vec::new(),
+            started: None,
             hidden: BTreeMap::new(),
             taken: BTreeSet::new(),
             blocks: Vec::new(),
@@ -524,6 +527,7 @@ impl<'s> Lowering<'s> {
             return;
         }
         let started = self.unique("_STARTED");
+        self.started = Some(started.clone());
         let first = BoolExpr::negate(BoolExpr::var(&started));
         let span = self.syms.values().next().map_or(Span::new(0, 0..0), |s| s.span);
         let mut stmts: Vec<Stmt> = self
@@ -832,6 +836,7 @@ impl<'s> Lowering<'s> {
             exact_names: true,
             block_noun: "line",
             language: if self.il { "an Instruction List" } else { "a Structured Text" },
+            started: self.started,
         };
         Lowered { program, asserts: self.asserts, warnings: self.warnings }
     }

@@ -312,6 +312,7 @@ impl<'a> Lowering<'a> {
             exact_names: program.inputs.is_some(),
             block_noun: "rung",
             language: "an LDmicro",
+            started: None,
         }
     }
 

@@ -187,6 +187,9 @@ impl ScanSimulator for Simulator {
     fn int(&self, name: &str) -> Option<i64> {
         Some(Simulator::int(self, name))
     }
+    fn start_from(&mut self, state: &crate::program::any_state::StartState) -> bool {
+        Simulator::start_from(self, state)
+    }
 }
 
 impl ScanSimulator for plcopen::PlcSimulator {

@@ -220,6 +220,25 @@ impl Simulator {
         self.bits.contains_key(input) || self.unknown.contains(input)
     }
 
+    /// Before the first scan: every bit, hidden edge memory and integer of `state`
+    /// instead of its power-up value. `false` (nothing changed) after the first scan or
+    /// when an edge memory's index is not an element's.
+    pub fn start_from(&mut self, state: &crate::program::any_state::StartState) -> bool {
+        if self.scans > 0 || state.edges.keys().any(|k| *k >= self.hidden.len()) {
+            return false;
+        }
+        for (n, v) in &state.bits {
+            self.bits.insert(n.clone(), *v);
+        }
+        for (&k, &v) in &state.edges {
+            self.hidden[k].0 = v;
+        }
+        for (n, v) in &state.ints {
+            self.ints.insert(n.clone(), *v);
+        }
+        true
+    }
+
     /// Every bit: the program's contact and coil names and every input given so far.
     pub fn bits(&self) -> &BTreeMap<String, bool> {
         &self.bits

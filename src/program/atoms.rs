@@ -68,7 +68,7 @@ impl CompiledProgram {
     }
 
     /// The signal of the atom `[a op b]`, recorded for [`CompiledProgram::with_atoms`].
-    pub(super) fn comparison_atom(
+    pub fn comparison_atom(
         &self,
         op: CmpOp,
         a: &IntOperand,

@@ -106,6 +106,7 @@
 #![warn(missing_docs)]
 
 mod ints;
+pub mod start;
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -162,6 +163,9 @@ pub enum SignalKind {
         /// File rung number (1-based, comment rungs counted).
         rung: usize,
     },
+    /// Under `--any-state`: `1*` at every scan, so that its `pre` is 0 at the first scan
+    /// only (where the state's free start values are read).
+    Started,
     /// The output of an element the algebra cannot express; unconstrained.
     Fresh {
         /// File rung number (1-based, comment rungs counted).
@@ -309,6 +313,9 @@ impl TimerModel {
 pub struct CompileOptions {
     /// How timer delays are compiled.
     pub timers: TimerModel,
+    /// Whether the program's state starts arbitrary instead of at its power-up values
+    /// (`equiv --any-state`; see [`start`]).
+    pub any_state: bool,
 }
 
 /// One TON/TOF timer as compiled: what the file says and the delay the equations use.
@@ -362,6 +369,15 @@ pub struct CompiledProgram {
     pub integers: BTreeMap<String, super::IntVar>,
     /// The comparison atoms properties have used ([`CompiledProgram::with_atoms`]).
     pub(super) atoms: super::atoms::Atoms,
+    /// Under `--any-state` ([`CompileOptions::any_state`]): each free start value, by its
+    /// name, and the state it is the value of at the first scan.
+    pub starts: BTreeMap<String, start::StartOf>,
+    /// Under `--any-state`: the signal that is 1 at every scan, whose `pre` is 0 only at
+    /// the first scan.
+    pub started: Option<String>,
+    /// Under `--any-state`: the front end's start-up flag ([`Program::started`]), which
+    /// starts at 1.
+    pub start_flag: Option<String>,
     /// How many scans a run may need before an integer reaches a constant of the program
     /// (`2·|k| + 2` for the largest constant `k`, at most 10,000; 0 without integers): a
     /// counter counting edges needs two scans per step. The bounded searches go that far.
@@ -464,6 +480,16 @@ pub fn compile(
     program: &Program,
     options: &CompileOptions,
 ) -> Result<CompiledProgram, Vec<CompileError>> {
+    // From an arbitrary state the power-up values play no part: integers are stored
+    // as their values, every bit of them a start value.
+    let arbitrary;
+    let program = match options.any_state {
+        true => {
+            arbitrary = start::without_start_values(program);
+            &arbitrary
+        }
+        false => program,
+    };
     let mut c = Compiler::new(program, *options);
     c.run();
     if !c.errors.is_empty() {
@@ -516,6 +542,10 @@ struct Compiler<'a> {
     /// What the equations cannot describe soundly with these options: the program is refused.
     errors: Vec<CompileError>,
     timer_info: Vec<TimerInfo>,
+    /// Under `--any-state`: per variable whose previous-scan value is read, its free
+    /// start value; and the signal telling the first scan.
+    starts: BTreeMap<String, String>,
+    started: Option<String>,
 }
 
 fn letters(mut k: usize) -> String {
@@ -555,8 +585,13 @@ impl<'a> Compiler<'a> {
             warnings: Vec::new(),
             errors: Vec::new(),
             timer_info: Vec::new(),
+            starts: BTreeMap::new(),
+            started: None,
         };
         c.prepass();
+        if options.any_state {
+            c.started = Some(c.unique("started"));
+        }
         c
     }
 
@@ -638,6 +673,10 @@ impl<'a> Compiler<'a> {
             return p.clone();
         }
         let pre = self.unique(&format!("pre_{x}"));
+        if self.options.any_state && self.program.started.as_deref() != Some(x) {
+            let start = self.unique(&format!("start_{x}"));
+            self.starts.insert(x.to_string(), start);
+        }
         self.pre_names.insert(x.to_string(), pre.clone());
         self.pre_of.insert(pre.clone(), x.to_string());
         pre
@@ -648,8 +687,9 @@ impl<'a> Compiler<'a> {
         let mut names = Vec::new();
         e.names(&mut names);
         names.into_iter().filter(|n| self.pre_of.contains_key(n)).fold(e.clone(), |acc, p| {
-            let of = self.exact(&L::Var(self.pre_of[&p].clone()));
-            acc.subst(&p, &L::Pre(Box::new(of)))
+            let x = &self.pre_of[&p];
+            let of = L::Pre(Box::new(self.exact(&L::Var(x.clone()))));
+            acc.subst(&p, &self.start_or(x, of))
         })
     }
 
@@ -657,7 +697,8 @@ impl<'a> Compiler<'a> {
     /// one-shot's hidden bit, 0 before the first scan): `pre X` when the power is one
     /// signal `X`, else `pre M` for a new memory `M = input` stated with this block.
     fn previous_power(&mut self, memory: &Memory, input: &L) -> L {
-        if let L::Var(x) = input {
+        // From an arbitrary state the hidden bit is not the power's previous value.
+        if let (L::Var(x), false) = (input, self.options.any_state) {
             return L::Var(self.pre_name(x));
         }
         let m = self.unique(&canonical(&memory.base));
@@ -857,6 +898,9 @@ impl<'a> Compiler<'a> {
     }
 
     fn timer(&mut self, t: &Timer, input: L) -> L {
+        if self.options.any_state {
+            return self.timer_from_any_state(t);
+        }
         let keyword = t.keyword.clone();
         let name = &t.accumulator;
         let cycle = self.program.cycle_us;
@@ -1050,7 +1094,8 @@ impl<'a> Compiler<'a> {
 
     /// The end-of-scan value `g(pre)` of `x` as a term: an equation, or a memory.
     fn finish_var(&self, pre: &str, g: L, prefer_rs: Option<bool>) -> L {
-        if !g.mentions(pre) || g.mentions_temporally(pre) {
+        // `SR`/`RS` start at 0: from an arbitrary state the scan recurrence is the equation.
+        if !g.mentions(pre) || g.mentions_temporally(pre) || self.options.any_state {
             return g;
         }
         let g0 = simp(&g.subst(pre, &L::Zero));
@@ -1113,6 +1158,7 @@ impl<'a> Compiler<'a> {
             });
             self.fresh.insert(x, SignalKind::Unwritten);
         }
+        self.state_start();
         let mut signals: BTreeMap<String, SignalKind> = BTreeMap::new();
         let written: BTreeSet<&String> = self.last_write.keys().collect();
         let classify = |n: &str| -> SignalKind {
@@ -1157,6 +1203,7 @@ impl<'a> Compiler<'a> {
                 }
             }
         }
+        let starts = self.start_targets(&signals);
         CompiledProgram {
             hypotheses: self.hypotheses,
             signals,
@@ -1173,6 +1220,9 @@ impl<'a> Compiler<'a> {
             integers: self.program.integers.clone(),
             atoms: Default::default(),
             int_depth: ints::int_depth(self.program),
+            starts,
+            started: self.started.clone(),
+            start_flag: self.started.as_ref().and(self.program.started.clone()),
         }
     }
 }

@@ -12,6 +12,7 @@
 //! equations that hold at every scan.
 #![warn(missing_docs)]
 
+pub mod any_state;
 pub mod atoms;
 pub mod bitvec;
 pub mod compile;
@@ -60,6 +61,9 @@ pub struct Program {
     /// The integer variables the program computes exactly (canonical names): each is
     /// compiled into the bits of its two's-complement value ([`Program::int_bit`]).
     pub integers: BTreeMap<String, IntVar>,
+    /// The bit the front end writes 1 at every scan to tell the first scan (start-up
+    /// values keyed to it): under `--any-state` it starts at 1, as after power-up.
+    pub started: Option<String>,
 }
 
 /// An integer variable of the scan model.
@@ -581,6 +585,7 @@ impl Default for Program {
             block_noun: "rung",
             language: "an LDmicro",
             integers: BTreeMap::new(),
+            started: None,
         }
     }
 }
@@ -602,7 +607,11 @@ impl Program {
 
     /// The name of bit `k` (0 the least significant) of integer `x`: `Ccount_b3`.
     pub fn int_bit(x: &str, k: u32) -> String {
-        format!("{x}_b{k}")
+        // The second program's integer `X'` in `equiv`'s product has the bits `X_bk'`.
+        match x.strip_suffix('\'') {
+            Some(base) => format!("{base}_b{k}'"),
+            None => format!("{x}_b{k}"),
+        }
     }
 
     /// Every statement, block by block.

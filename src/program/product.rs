@@ -79,7 +79,8 @@ pub fn product(
             other => other.clone(),
         };
         if renaming.shared.contains_key(name) {
-            if !matches!(kind, SignalKind::Input) || a.signals.get(&renamed) != Some(&kind) {
+            let input = matches!(kind, SignalKind::Input | SignalKind::IntBit { input: true, .. });
+            if !input || a.signals.get(&renamed) != Some(&kind) {
                 return Err(format!(
                     "`{name}` of the second program is matched with `{renamed}` of the first, but the two are not both input bits"
                 ));

@@ -54,6 +54,8 @@ pub struct Simulator {
     memories: Vec<V>,
     /// A one-shot's memory by its index in the front end's order.
     by_index: BTreeMap<usize, V>,
+    /// The one-shots' memories before the first scan where not 0 (`start_from`).
+    edge_starts: BTreeMap<usize, bool>,
     // During a scan.
     current: BTreeMap<String, V>,
     temps: BTreeMap<Temp, V>,
@@ -77,6 +79,7 @@ impl Simulator {
             counts: Vec::new(),
             memories: Vec::new(),
             by_index: BTreeMap::new(),
+            edge_starts: BTreeMap::new(),
             current: BTreeMap::new(),
             temps: BTreeMap::new(),
             next_count: 0,
@@ -264,7 +267,7 @@ impl Simulator {
         let k = self.next_memory;
         self.next_memory += 1;
         if self.memories.len() <= k {
-            self.memories.push(V::ZERO);
+            self.memories.push(V::of(self.edge_starts.get(&index).copied().unwrap_or(false)));
         }
         let last = self.memories[k];
         self.memories[k] = power;
@@ -382,6 +385,12 @@ pub trait ScanSimulator {
     fn int(&self, _name: &str) -> Option<i64> {
         None
     }
+    /// Before the first scan: starts the run from `state` instead of the power-up
+    /// values (`equiv --any-state`); `false` when the simulator cannot, and then its
+    /// run is not one from that state.
+    fn start_from(&mut self, _state: &super::any_state::StartState) -> bool {
+        false
+    }
 }
 
 /// What a program's counterexamples are replayed on: a front end's own simulator of the
@@ -424,6 +433,21 @@ impl ScanSimulator for Simulator {
     }
     fn edge_memory(&self, index: usize) -> Option<bool> {
         Simulator::edge_memory(self, index)
+    }
+    fn start_from(&mut self, state: &super::any_state::StartState) -> bool {
+        for (n, v) in &state.bits {
+            self.bits.insert(n.clone(), V::of(*v));
+        }
+        for (&index, &v) in &state.edges {
+            self.edge_starts.insert(index, v);
+        }
+        // An integer starts from its value reduced into its type; `false` for one the
+        // program does not have.
+        state.ints.iter().all(|(n, v)| {
+            let Some(var) = self.program.integers.get(n) else { return false };
+            self.ints.insert(n.clone(), N { value: var.ty.wrap(*v), known: true });
+            true
+        })
     }
 }
 

@@ -102,6 +102,7 @@ impl Console {
             timers,
             warnings: Vec::new(),
             properties: Vec::new(),
+            correspondences: Vec::new(),
             summary: Summary::default(),
             interrupted: false,
             unchecked: Vec::new(),
@@ -237,6 +238,17 @@ impl Observer for Console {
 
     fn started(&mut self, index: usize) {
         lock(&self.state).current = Some(index);
+    }
+
+    fn correspondence(&mut self, report: &PropertyReport) {
+        let mut s = lock(&self.state);
+        let first = s.partial.correspondences.is_empty();
+        s.partial.correspondences.push(report.clone());
+        if self.console.quiet || !self.console.format.streams() {
+            return;
+        }
+        clear_progress(&mut s);
+        emit(self.console, &text::render_correspondence(report, first, &self.opts));
     }
 
     fn finished(&mut self, report: &PropertyReport) {

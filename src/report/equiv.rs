@@ -11,6 +11,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use super::*;
 use crate::diag::{Report, Span};
 use crate::ladder::{CompiledProgram, SignalKind, TimerModel};
+use crate::program::Program;
 use crate::program::product::{ProductReference, Renaming, product};
 
 /// What `equiv` compares besides the common options.
@@ -24,6 +25,10 @@ pub struct EquivOptions {
     pub b_timers: Option<TimerModel>,
     /// The second program's POU and cycle (default: as the first's).
     pub b_plcopen: Option<crate::ladder::plcopen::Selection>,
+    /// Compare from matched arbitrary states instead of from power-up: the state both
+    /// programs keep under one name (or a `--map` pair) starts equal and arbitrary, the
+    /// rest arbitrary.
+    pub any_state: bool,
 }
 
 /// A located error in a `--map` file.
@@ -82,8 +87,11 @@ fn has_pins(c: &CompiledProgram) -> bool {
     c.signals.values().any(|k| matches!(k, SignalKind::Output))
 }
 
+/// The inputs of `c` the outside world writes (not the start values of `--any-state`).
 fn inputs(c: &CompiledProgram) -> BTreeSet<String> {
-    of_kind(c, |k| matches!(k, SignalKind::Input))
+    let mut out = of_kind(c, |k| matches!(k, SignalKind::Input));
+    out.retain(|n| !c.starts.contains_key(n));
+    out
 }
 
 /// Pairs of `a` and `b` names: exactly equal first, then by [`key`] where that is
@@ -160,9 +168,12 @@ fn read_map(
             let col = from + side.len() - side.trim_start().len();
             let found = match program.lookup(name) {
                 Lookup::Signal(n) => Some(n),
-                _ => {
-                    program.signals.keys().find(|n| key(program, n) == key(program, name)).cloned()
-                }
+                _ => program
+                    .signals
+                    .keys()
+                    .chain(program.integers.keys())
+                    .find(|n| key(program, n) == key(program, name))
+                    .cloned(),
             };
             if found.is_none() {
                 errors.push(
@@ -195,9 +206,14 @@ pub fn run_equiv_with(
 ) -> Result<RunReport, InputError> {
     let mut sources = Sources::new();
     let theory = theory::standard(&mut sources).map_err(|d| fail(&sources, d, opts))?;
-    let a = load_program_with(&mut sources, a_path, &compile_options(opts), &opts.plcopen)
+    let a_compile =
+        crate::ladder::CompileOptions { any_state: equiv.any_state, ..compile_options(opts) };
+    let a = load_program_with(&mut sources, a_path, &a_compile, &opts.plcopen)
         .map_err(|d| fail(&sources, d, opts))?;
-    let b_compile = crate::ladder::CompileOptions { timers: equiv.b_timers.unwrap_or(opts.timers) };
+    let b_compile = crate::ladder::CompileOptions {
+        timers: equiv.b_timers.unwrap_or(opts.timers),
+        any_state: equiv.any_state,
+    };
     let b_selection = equiv.b_plcopen.as_ref().unwrap_or(&opts.plcopen);
     let b = load_program_with(&mut sources, b_path, &b_compile, b_selection)
         .map_err(|d| fail(&sources, d, opts))?;
@@ -207,10 +223,32 @@ pub fn run_equiv_with(
     let mut output_pairs = Vec::new();
     let (a_in, b_in) = (inputs(&a.compiled), inputs(&b.compiled));
     let (a_out, b_out) = (outputs(&a), outputs(&b));
+    let (a_int_in, b_int_in) = (int_inputs(&a.compiled), int_inputs(&b.compiled));
+    let (a_int_out, b_int_out) = (written_ints(&a.compiled), written_ints(&b.compiled));
+    let mut int_in_pairs = Vec::new();
+    let mut int_out_pairs = Vec::new();
     if let Some(map) = &equiv.map {
         let renames = read_map(&mut sources, map, &a.compiled, &b.compiled)
             .map_err(|d| fail(&sources, d, opts))?;
         for (x, y) in renames {
+            let ints = (a.compiled.integers.get(&x), b.compiled.integers.get(&y));
+            if let (Some(u), Some(v)) = ints {
+                match (u.input, v.input) {
+                    (true, true) => int_in_pairs.push((x, y)),
+                    (false, false) => int_out_pairs.push((x, y)),
+                    _ => {
+                        return Err(error(format!(
+                            "{map}: `{x}` and `{y}` cannot be matched: one is an input, the other is not"
+                        )));
+                    }
+                }
+                continue;
+            }
+            if ints.0.is_some() || ints.1.is_some() {
+                return Err(error(format!(
+                    "{map}: `{x}` and `{y}` cannot be matched: one is an integer, the other a bit"
+                )));
+            }
             match (a_in.contains(&x), b_in.contains(&y)) {
                 (true, true) => input_pairs.push((x, y)),
                 (false, false) => output_pairs.push((x, y)),
@@ -223,6 +261,17 @@ pub fn run_equiv_with(
         }
     }
     match_names(&a.compiled, &a_in, &b.compiled, &b_in, &mut input_pairs);
+    match_names(&a.compiled, &a_int_in, &b.compiled, &b_int_in, &mut int_in_pairs);
+    match_names(&a.compiled, &a_int_out, &b.compiled, &b_int_out, &mut int_out_pairs);
+    // Integers matched are one type, or the comparison would not be of equal values.
+    let mismatched: Vec<Diagnostic> = int_in_pairs
+        .iter()
+        .chain(&int_out_pairs)
+        .filter_map(|(x, y)| type_mismatch(&sources, &a.compiled, x, &b.compiled, y))
+        .collect();
+    if !mismatched.is_empty() {
+        return Err(fail(&sources, mismatched, opts));
+    }
     // An output renamed by the map may be any written bit; the others are outputs.
     let mut a_cmp = a_out.clone();
     let mut b_cmp = b_out.clone();
@@ -239,6 +288,26 @@ pub fn run_equiv_with(
         for n in all.iter().filter(|n| !pairs_of.contains(n)) {
             warnings.push(note(format!(
                 "input `{n}` is read only by the {side} program: it is free (any value at every scan) in the comparison"
+            )));
+        }
+    }
+    for (side, all, pairs_of) in [
+        ("first", &a_int_in, int_in_pairs.iter().map(|p| &p.0).collect::<BTreeSet<_>>()),
+        ("second", &b_int_in, int_in_pairs.iter().map(|p| &p.1).collect()),
+    ] {
+        for n in all.iter().filter(|n| !pairs_of.contains(n)) {
+            warnings.push(note(format!(
+                "integer input `{n}` is read only by the {side} program: it is free (any value at every scan) in the comparison"
+            )));
+        }
+    }
+    for (side, all, pairs_of) in [
+        ("first", &a_int_out, int_out_pairs.iter().map(|p| &p.0).collect::<BTreeSet<_>>()),
+        ("second", &b_int_out, int_out_pairs.iter().map(|p| &p.1).collect()),
+    ] {
+        for n in all.iter().filter(|n| !pairs_of.contains(n)) {
+            warnings.push(note(format!(
+                "integer `{n}` of the {side} program has no counterpart in the other (name it in a --map file): not compared"
             )));
         }
     }
@@ -266,30 +335,23 @@ pub fn run_equiv_with(
     // `--outputs`: by either program's name.
     if !equiv.outputs.is_empty() {
         let wanted: Vec<String> = equiv.outputs.iter().map(|n| n.to_ascii_lowercase()).collect();
-        let picks = |p: &(String, String)| {
-            wanted.iter().any(|w| {
-                *w == key(&a.compiled, &p.0)
-                    || *w == key(&b.compiled, &p.1)
-                    || *w == p.0.to_ascii_lowercase()
-                    || *w == p.1.to_ascii_lowercase()
-            })
+        let names = |w: &String, p: &(String, String)| {
+            *w == key(&a.compiled, &p.0)
+                || *w == key(&b.compiled, &p.1)
+                || *w == p.0.to_ascii_lowercase()
+                || *w == p.1.to_ascii_lowercase()
         };
+        let picks = |p: &(String, String)| wanted.iter().any(|w| names(w, p));
         let missing: Vec<&String> = equiv
             .outputs
             .iter()
             .zip(&wanted)
-            .filter(|(_, w)| {
-                !output_pairs.iter().any(|p| {
-                    **w == key(&a.compiled, &p.0)
-                        || **w == key(&b.compiled, &p.1)
-                        || **w == p.0.to_ascii_lowercase()
-                        || **w == p.1.to_ascii_lowercase()
-                })
-            })
+            .filter(|(_, w)| !output_pairs.iter().chain(&int_out_pairs).any(|p| names(w, p)))
             .map(|(n, _)| n)
             .collect();
         if !missing.is_empty() {
-            let all: Vec<&str> = output_pairs.iter().map(|p| p.0.as_str()).collect();
+            let all: Vec<&str> =
+                output_pairs.iter().chain(&int_out_pairs).map(|p| p.0.as_str()).collect();
             return Err(error(format!(
                 "no matched output `{}`; the matched outputs are: {}",
                 missing.iter().map(|s| s.as_str()).collect::<Vec<_>>().join("`, `"),
@@ -297,19 +359,51 @@ pub fn run_equiv_with(
             )));
         }
         output_pairs.retain(picks);
+        int_out_pairs.retain(picks);
     }
-    if output_pairs.is_empty() {
+    if output_pairs.is_empty() && int_out_pairs.is_empty() {
         return Err(error(format!(
             "no output of `{a_path}` matches one of `{b_path}` by name: name the pairs in a --map file (`NAME_IN_A = NAME_IN_B`)"
         )));
     }
     output_pairs.sort();
-    let renaming =
+    int_out_pairs.sort();
+    let mut renaming =
         Renaming { shared: input_pairs.iter().map(|(x, y)| (y.clone(), x.clone())).collect() };
+    // An integer input is shared bit by bit (and by name, for the simulators' values).
+    for (x, y) in &int_in_pairs {
+        let bits = a.compiled.integers.get(x).map_or(0, |v| v.ty.bits);
+        for k in 0..bits {
+            renaming.shared.insert(Program::int_bit(y, k), Program::int_bit(x, k));
+        }
+        renaming.shared.insert(y.clone(), x.clone());
+    }
+    let (a_bits, b_bits) = (written(&a.compiled), written(&b.compiled));
+    let mut state_pairs = Vec::new();
+    match_names(&a.compiled, &a_bits, &b.compiled, &b_bits, &mut state_pairs);
+    if equiv.any_state {
+        let mut matched = state_pairs.clone();
+        matched.extend(output_pairs.iter().cloned());
+        let starts =
+            super::any_state::match_starts(&a.compiled, &b.compiled, &matched, &int_out_pairs);
+        for w in &starts.unmatched {
+            warnings.push(note(w.clone()));
+        }
+        renaming.shared.extend(starts.shared);
+    }
     let compiled = product(&a.compiled, &b.compiled, &renaming).map_err(error)?;
+    // Each integer output pair is compared bit for bit: `X_bk = X_bk'`.
+    let mut int_bits = Vec::new();
+    for (x, y) in &int_out_pairs {
+        let bits = a.compiled.integers.get(x).map_or(0, |v| v.ty.bits);
+        for k in 0..bits {
+            let (p, q) = (Program::int_bit(x, k), Program::int_bit(&renaming.of(y), k));
+            int_bits.push((p, q));
+        }
+    }
     let reference = ProductReference::new(
-        a.reference.clone(),
-        b.reference.clone(),
+        reference_of(&a),
+        reference_of(&b),
         b.compiled.signals.keys().cloned(),
         &renaming,
     );
@@ -319,9 +413,6 @@ pub fn run_equiv_with(
     // The state correspondence: bits both programs write under one name, each proved
     // equal in the two (by the algebra or induction over scans) in the product's own
     // context; the outputs' context adds those theorems as hypotheses.
-    let (a_bits, b_bits) = (written(&a.compiled), written(&b.compiled));
-    let mut state_pairs = Vec::new();
-    match_names(&a.compiled, &a_bits, &b.compiled, &b_bits, &mut state_pairs);
     state_pairs.retain(|p| !output_pairs.contains(p));
     let mut lemmas: Vec<(PropertyReport, Axiom)> = Vec::new();
     let identity = |e: &Expr| e.clone();
@@ -360,6 +451,21 @@ pub fn run_equiv_with(
                 },
             }
         })
+        .chain(int_bits.iter().map(|(p, q)| {
+            let span = writer(&a.compiled, p).unwrap_or(Span::new(a_file, 0..0));
+            crate::syntax::Statement {
+                name: p.clone(),
+                name_span: span,
+                span,
+                value: Goal {
+                    lhs: crate::term::name(p),
+                    relation: crate::syntax::Relation::Equals,
+                    rhs: crate::term::name(q),
+                    after: None,
+                    pattern: None,
+                },
+            }
+        }))
         .collect();
     let selection = Selection::new(&opts.only)?;
     let statements: Vec<_> =
@@ -378,21 +484,7 @@ pub fn run_equiv_with(
     }
     let mut properties = Vec::new();
     for (report, _) in &lemmas {
-        let Some(trace) = &report.trace else { continue };
-        let mut message = format!(
-            "state correspondence {} proved by {} ({} line{}): the outputs' proofs may cite it as `{}`",
-            report.statement,
-            trace.method,
-            trace.length,
-            if trace.length == 1 { "" } else { "s" },
-            report.name
-        );
-        if opts.trace {
-            message.extend(trace.lines.iter().map(|l| format!("\n    {l}")));
-        }
-        let note = WarningReport { message, location: None };
-        observer.warning(&note);
-        warnings.push(note);
+        observer.correspondence(report);
     }
     in_order(
         &statements,
@@ -425,8 +517,82 @@ pub fn run_equiv_with(
     );
     let mut report =
         finish(Some(a_path.to_string()), vec![b_path.to_string()], warnings, properties);
+    report.correspondences = lemmas.into_iter().map(|(r, _)| r).collect();
     report.timers = Some(opts.timers.as_str());
     Ok(report)
+}
+
+/// A program's reference: its own simulator, started from the state of the first scan's
+/// start values when it is compiled with `--any-state`.
+fn reference_of(p: &LoadedProgram) -> std::sync::Arc<dyn crate::ladder::Reference> {
+    match p.compiled.started {
+        Some(_) => std::sync::Arc::new(crate::program::any_state::AnyStateReference::new(
+            p.reference.clone(),
+            &p.compiled,
+        )),
+        None => p.reference.clone(),
+    }
+}
+
+/// The integers the outside world writes.
+fn int_inputs(c: &CompiledProgram) -> BTreeSet<String> {
+    c.integers.iter().filter(|(_, v)| v.input).map(|(n, _)| n.clone()).collect()
+}
+
+/// A located error when the integers `x` of `a` and `y` of `b` are not of one type: at
+/// the second program's first mention of its integer, naming the first's.
+fn type_mismatch(
+    sources: &Sources,
+    a: &CompiledProgram,
+    x: &str,
+    b: &CompiledProgram,
+    y: &str,
+) -> Option<Diagnostic> {
+    let (u, v) = (a.integers.get(x)?, b.integers.get(y)?);
+    if u.ty == v.ty {
+        return None;
+    }
+    let file = b.hypotheses.first().map_or(0, |h| h.span.file);
+    let span = first_mention(sources, file, y).unwrap_or(Span::new(file, 0..0));
+    let a_file = a.hypotheses.first().map_or(0, |h| h.span.file);
+    let at_a = first_mention(sources, a_file, x).map_or(String::new(), |s| {
+        let (line, col) = sources.line_col(a_file, s.start);
+        format!(" ({}:{line}:{col})", sources.name(a_file))
+    });
+    Some(
+        MapError {
+            span,
+            message: format!(
+                "`{y}` is {} here, but `{x}` of the first program{at_a} is {}: integers are compared bit for bit and must be of one type",
+                v.ty.describe(),
+                u.ty.describe()
+            ),
+        }
+        .into(),
+    )
+}
+
+/// The first whole-word mention of `name` (ignoring case) in `file`.
+fn first_mention(sources: &Sources, file: crate::diag::FileId, name: &str) -> Option<Span> {
+    let text = sources.text(file);
+    let lower = text.to_ascii_lowercase();
+    let want = name.to_ascii_lowercase();
+    let word = |c: Option<char>| c.is_some_and(|c| c.is_ascii_alphanumeric() || c == '_');
+    let mut from = 0;
+    while let Some(k) = lower[from..].find(&want) {
+        let at = from + k;
+        let end = at + want.len();
+        if !word(lower[..at].chars().next_back()) && !word(lower[end..].chars().next()) {
+            return Some(Span::new(file, at..end));
+        }
+        from = end;
+    }
+    None
+}
+
+/// The integers `program` writes (not its input integers).
+fn written_ints(c: &CompiledProgram) -> BTreeSet<String> {
+    c.integers.iter().filter(|(_, v)| !v.input).map(|(n, _)| n.clone()).collect()
 }
 
 /// The bits `program` writes (outputs and internal relays).
@@ -498,7 +664,10 @@ fn search_on_simulators(
     };
     let (x, y) = (side(&goal.lhs)?, side(&goal.rhs)?);
     let compiled = session.compiled;
-    let inputs = inputs(compiled);
+    // The start values of `--any-state` too: the runs start from random states.
+    let inputs = of_kind(compiled, |k| {
+        matches!(k, SignalKind::Input | SignalKind::IntBit { input: true, .. })
+    });
     let longest =
         compiled.timer_info.iter().filter_map(|t| usize::try_from(t.scans).ok()).max().unwrap_or(0);
     let mut lengths: Vec<usize> = vec![

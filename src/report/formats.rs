@@ -255,6 +255,11 @@ const RULES: &[(&str, &str, &str)] = &[
     ("refuted", "The property is false: a confirmed counterexample violates it.", "error"),
     ("unknown", "The property was neither proved nor refuted within the limits.", "warning"),
     ("vacuous", "The property holds only vacuously: its hypotheses force it.", "warning"),
+    (
+        "correspondence",
+        "A state correspondence of two compared programs, proved and cited by the outputs' proofs.",
+        "note",
+    ),
     ("input-warning", "The input has an element or assumption that weakens the proofs.", "warning"),
 ];
 
@@ -295,6 +300,15 @@ pub fn sarif(report: &RunReport, opts: &Options) -> String {
             result["locations"] = json!([sarif_location(at)]);
         }
         results.push(result);
+    }
+    for c in &report.correspondences {
+        results.push(json!({
+            "ruleId": "correspondence",
+            "ruleIndex": RULES.len() - 2,
+            "level": "note",
+            "message": { "text": format!("state correspondence {} proved: the outputs' proofs may cite it as `{}`", c.statement, c.name) },
+            "properties": { "property": c.name, "time_ms": c.time_ms },
+        }));
     }
     for w in &report.warnings {
         let mut result = json!({

@@ -8,6 +8,7 @@
 //! result as soon as it is known, in file order.
 
 pub mod aiger;
+mod any_state;
 pub mod console;
 pub mod equiv;
 pub mod export;
@@ -318,6 +319,10 @@ pub struct RunReport {
     pub warnings: Vec<WarningReport>,
     /// Per property.
     pub properties: Vec<PropertyReport>,
+    /// `equiv`: the state correspondences `X = X'` proved before the outputs, which
+    /// their proofs may cite (`state_X`); not verdicts of their own.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub correspondences: Vec<PropertyReport>,
     /// Totals.
     pub summary: Summary,
     /// The run was interrupted (Ctrl-C): `properties` are those finished before.
@@ -423,6 +428,8 @@ pub trait Observer {
     fn started(&mut self, _index: usize) {}
     /// A property's result.
     fn finished(&mut self, _report: &PropertyReport) {}
+    /// `equiv`: a state correspondence proved before the outputs.
+    fn correspondence(&mut self, _report: &PropertyReport) {}
 }
 
 /// Hears nothing.
@@ -691,7 +698,7 @@ pub fn run_free_with(
 
 /// The rung compiler's options a run asks for.
 pub fn compile_options(opts: &Options) -> crate::ladder::CompileOptions {
-    crate::ladder::CompileOptions { timers: opts.timers }
+    crate::ladder::CompileOptions { timers: opts.timers, any_state: false }
 }
 
 /// The session for `ii-prove PROGRAM.ld PROPS.ii…`: the properties are goals about the
@@ -851,6 +858,7 @@ fn finish(
         timers: None,
         warnings,
         properties,
+        correspondences: Vec::new(),
         summary,
         interrupted: false,
         unchecked: Vec::new(),

@@ -68,6 +68,32 @@ pub fn render_warning(w: &WarningReport, paint: Paint) -> String {
     format!("{} {w}\n", paint.warning())
 }
 
+/// A state correspondence of `equiv` (under a heading when it is the `first`): its
+/// name, statement and proof method, the proof's lines under `--trace`.
+pub fn render_correspondence(report: &PropertyReport, first: bool, opts: &Options) -> String {
+    let mut out = String::new();
+    if first {
+        out.push_str("state correspondences (proved first; the outputs' proofs may cite them):\n");
+    }
+    let how = report.trace.as_ref().map_or(String::new(), |t| {
+        format!(
+            "   proved by {} ({} line{})",
+            t.method,
+            t.length,
+            if t.length == 1 { "" } else { "s" }
+        )
+    });
+    out.push_str(&format!("  {}   {}{how}\n", report.name, report.statement));
+    if opts.trace
+        && let Some(t) = &report.trace
+    {
+        for l in &t.lines {
+            out.push_str(&format!("      {l}\n"));
+        }
+    }
+    out
+}
+
 /// One property: its line (name, verdict, time, statement, location), the reason, the
 /// proof when `--trace`, a vacuity warning, the counterexample.
 pub fn render_property(p: &PropertyReport, width: usize, opts: &Options, paint: Paint) -> String {

@@ -913,6 +913,7 @@ fn finish(p: &PlcProgram, mut l: Lower<'_>) -> Result<Lowered, Vec<PlcError>> {
         exact_names: true,
         block_noun: "rung",
         language: "a PLCopen",
+        started: p.started.clone(),
     };
     let mut warnings = p.warnings.clone();
     warnings.append(&mut l.warnings);
