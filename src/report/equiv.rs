@@ -281,36 +281,34 @@ pub fn run_equiv_with(
     let mut warnings: Vec<WarningReport> = a.located.clone();
     warnings.extend(b.located.iter().cloned());
     let note = |message: String| WarningReport { message, location: None };
-    for (side, all, pairs_of) in [
-        ("first", &a_in, input_pairs.iter().map(|p| &p.0).collect::<BTreeSet<_>>()),
-        ("second", &b_in, input_pairs.iter().map(|p| &p.1).collect()),
-    ] {
-        for n in all.iter().filter(|n| !pairs_of.contains(n)) {
-            warnings.push(note(format!(
-                "input `{n}` is read only by the {side} program: it is free (any value at every scan) in the comparison"
-            )));
+    // The names of each side that no pair takes, each said with `say(name, side)`.
+    let mut unpaired = |a_all: &BTreeSet<String>,
+                        b_all: &BTreeSet<String>,
+                        pairs: &[(String, String)],
+                        say: &dyn Fn(&str, &str) -> String| {
+        let (a_paired, b_paired): (BTreeSet<&String>, BTreeSet<&String>) =
+            (pairs.iter().map(|p| &p.0).collect(), pairs.iter().map(|p| &p.1).collect());
+        for (side, all, paired) in [("first", a_all, a_paired), ("second", b_all, b_paired)] {
+            for n in all.iter().filter(|n| !paired.contains(n)) {
+                warnings.push(note(say(n, side)));
+            }
         }
-    }
-    for (side, all, pairs_of) in [
-        ("first", &a_int_in, int_in_pairs.iter().map(|p| &p.0).collect::<BTreeSet<_>>()),
-        ("second", &b_int_in, int_in_pairs.iter().map(|p| &p.1).collect()),
-    ] {
-        for n in all.iter().filter(|n| !pairs_of.contains(n)) {
-            warnings.push(note(format!(
-                "integer input `{n}` is read only by the {side} program: it is free (any value at every scan) in the comparison"
-            )));
-        }
-    }
-    for (side, all, pairs_of) in [
-        ("first", &a_int_out, int_out_pairs.iter().map(|p| &p.0).collect::<BTreeSet<_>>()),
-        ("second", &b_int_out, int_out_pairs.iter().map(|p| &p.1).collect()),
-    ] {
-        for n in all.iter().filter(|n| !pairs_of.contains(n)) {
-            warnings.push(note(format!(
-                "integer `{n}` of the {side} program has no counterpart in the other (name it in a --map file): not compared"
-            )));
-        }
-    }
+    };
+    unpaired(&a_in, &b_in, &input_pairs, &|n, side| {
+        format!(
+            "input `{n}` is read only by the {side} program: it is free (any value at every scan) in the comparison"
+        )
+    });
+    unpaired(&a_int_in, &b_int_in, &int_in_pairs, &|n, side| {
+        format!(
+            "integer input `{n}` is read only by the {side} program: it is free (any value at every scan) in the comparison"
+        )
+    });
+    unpaired(&a_int_out, &b_int_out, &int_out_pairs, &|n, side| {
+        format!(
+            "integer `{n}` of the {side} program has no counterpart in the other (name it in a --map file): not compared"
+        )
+    });
     // A program without output pins (ST, IL, PLCopen) compared with one that has them:
     // its other written bits are internal, not outputs without a partner.
     let (a_pins, b_pins) = (has_pins(&a.compiled), has_pins(&b.compiled));
