@@ -90,6 +90,11 @@ fn edge_rank(kind: &ObjKind, pin: &str) -> Option<usize> {
     }
 }
 
+/// Why a program is not compared: its hypotheses read integers, which this oracle's
+/// reading of the toolchain's run does not cover yet (the PLCopen simulator checks them:
+/// `tests/plcopen_differential.rs`).
+const READS_INTEGERS: &str = "the hypotheses read integers";
+
 /// What to read from the toolchain's run for each value the hypotheses read.
 fn wants(p: &Prepared) -> Result<Vec<Want>, String> {
     let plc = &p.plc;
@@ -112,7 +117,7 @@ fn wants(p: &Prepared) -> Result<Vec<Want>, String> {
                 edge.unwrap_or_else(|| Want::Member(n.clone()))
             }
             Src::IntBit { .. } | Src::Defined(_) => {
-                return Err("the oracle compares no integers (PLCopen compiles none yet)".into());
+                return Err(READS_INTEGERS.into());
             }
             Src::Edge(k) => {
                 let (path, owner, pin) = &p.lowered.edges[p.edge_of[k]];
@@ -224,6 +229,8 @@ struct Toolchain {
     refused: BTreeMap<String, u64>,
     /// One message per stage.
     examples: BTreeMap<String, String>,
+    /// Programs not compared because their hypotheses read integers.
+    integers: u64,
 }
 
 /// Runs every program through the toolchain and checks the hypotheses on its runs.
@@ -238,6 +245,10 @@ fn run(programs: Vec<(u64, String, bool)>, fig: &mut Figures, tc: &mut Toolchain
         let schedule = input_schedule(&p.plc, seed, SCANS);
         let (req, wants) = match request(&p, &schedule) {
             Ok(x) => x,
+            Err(e) if e == READS_INTEGERS => {
+                tc.integers += 1;
+                continue;
+            }
             Err(e) => {
                 fig.failures.push(format!("seed {seed}: no reading of {e}\n{xml}"));
                 continue;
@@ -304,8 +315,15 @@ fn run(programs: Vec<(u64, String, bool)>, fig: &mut Figures, tc: &mut Toolchain
 
 fn report(what: &str, fig: &Figures, tc: &Toolchain) {
     eprintln!(
-        "oracle on {what}: {} programs loaded ({} refused by ii-prove), toolchain refusals {:?}, {} scans, {} hypotheses checked ({} skipped), {} timer hypotheses fired",
-        fig.programs, fig.refused, tc.refused, fig.scans, fig.checked, fig.skipped, fig.timer_fired
+        "oracle on {what}: {} programs loaded ({} refused by ii-prove, {} not compared: {READS_INTEGERS}), toolchain refusals {:?}, {} scans, {} hypotheses checked ({} skipped), {} timer hypotheses fired",
+        fig.programs,
+        fig.refused,
+        tc.integers,
+        tc.refused,
+        fig.scans,
+        fig.checked,
+        fig.skipped,
+        fig.timer_fired
     );
     for (stage, e) in &tc.examples {
         eprintln!("  first {stage} refusal: {}", e.chars().take(400).collect::<String>());
