@@ -493,7 +493,6 @@ fn counterexamples_of_the_faulty_text_plants_replay_on_matiec() {
                 !inputs.contains(&n) && !n.starts_with("lhs") && !n.starts_with("rhs")
             })
             .collect();
-        let work = tempfile::tempdir().expect("temporary directory");
         let req = json!({
             "pou": "Water",
             "cycle_ns": 10_000_000u64,
@@ -502,17 +501,7 @@ fn counterexamples_of_the_faulty_text_plants_replay_on_matiec() {
             "want": shown.iter().map(|s| json!({"bit": s["name"]})).collect::<Vec<_>>(),
         });
         let text = std::fs::read_to_string(program).expect("read");
-        std::fs::write(work.path().join("water.st"), text).expect("write");
-        std::fs::write(work.path().join("water.req.json"), req.to_string()).expect("write");
-        let status = std::process::Command::new("python3")
-            .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("tools/oracle/run.py"))
-            .arg(work.path())
-            .env("ORACLE_MATIEC", dir.join("matiec"))
-            .status()
-            .expect("run.py");
-        assert!(status.success(), "run.py failed");
-        let answer = std::fs::read_to_string(work.path().join("water.out.json")).expect("answer");
-        let answer: Value = serde_json::from_str(&answer).expect("JSON");
+        let answer = run_one(&dir, "water", &text, &req);
         assert_eq!(answer["status"], "ok", "{program}: {answer}");
         let traces = answer["trace"].as_array().expect("traces");
         for (s, theirs) in shown.iter().zip(traces) {

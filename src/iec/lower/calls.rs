@@ -306,6 +306,25 @@ impl Lowering<'_> {
         self.write_value(target, WriteKind::Assign, value, span)
     }
 
+    /// The variable `target` names, where a write goes (`expected`: what it should be,
+    /// "a BOOL variable"); `None` (refused with a located error) for a member or array
+    /// element.
+    pub(super) fn written_variable<'e>(
+        &mut self,
+        target: &'e ast::Expr,
+        expected: &str,
+    ) -> Option<&'e ast::Ident> {
+        if let ExprKind::Var(id) = &target.kind {
+            return Some(id);
+        }
+        self.refuse(
+            target.span,
+            "a write into a member or array element",
+            &format!("write it to {expected}"),
+        );
+        None
+    }
+
     /// A write of a lowered value into the BOOL variable `target`.
     pub(super) fn write_value(
         &mut self,
@@ -314,14 +333,7 @@ impl Lowering<'_> {
         value: BoolExpr,
         span: Span,
     ) -> Vec<Stmt> {
-        let ExprKind::Var(id) = &target.kind else {
-            self.refuse(
-                target.span,
-                "a write into a member or array element",
-                "write it to a BOOL variable",
-            );
-            return Vec::new();
-        };
+        let Some(id) = self.written_variable(target, "a BOOL variable") else { return Vec::new() };
         match self.lookup(id) {
             Some(Sym { ty: Ty::Bool, name, .. }) if !self.inputs.contains(&name) => {
                 vec![Stmt::Write { target: name, kind, value, span }]

@@ -550,12 +550,7 @@ impl Lowering<'_> {
         t: IntType,
         span: Span,
     ) -> Vec<Stmt> {
-        let ExprKind::Var(id) = &target.kind else {
-            self.refuse(
-                target.span,
-                "a write into a member or array element",
-                "write it to an integer variable",
-            );
+        let Some(id) = self.written_variable(target, "an integer variable") else {
             return Vec::new();
         };
         let Some(sym) = self.lookup(id) else { return Vec::new() };
