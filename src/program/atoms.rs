@@ -167,6 +167,29 @@ impl CompiledProgram {
         Some(atom.op.holds(value(&atom.a)?, value(&atom.b)?))
     }
 
+    /// Candidate invariants for the invariant search over scans (untrusted: it keeps only
+    /// those it finds inductive, and the kernel checks what it keeps): each integer the
+    /// program computes against each of the program's constants, `x <= k` and `x >= k`,
+    /// as Boolean functions of the integer's bits. At most `limit`, the integers in name
+    /// order.
+    pub fn bound_hints(&self, limit: usize) -> Vec<crate::term::Expr> {
+        let mut out = Vec::new();
+        for (x, var) in self.integers.iter().filter(|(_, v)| !v.input) {
+            let bits = self.int_bits(x, var.ty);
+            for &k in self.constants.iter().filter(|k| var.ty.contains(**k)) {
+                for op in [CmpOp::Le, CmpOp::Ge] {
+                    if out.len() == limit {
+                        return out;
+                    }
+                    let k = bitvec::constant(k, var.ty.bits);
+                    let term = bitvec::compare(op, var.ty, &bits, &k, &mut |t: L| t);
+                    out.push(super::logic::simp(&term).to_expr());
+                }
+            }
+        }
+        out
+    }
+
     /// The value of integer `x` at the end of a scan, in `ty`, from its bit signals.
     fn int_bits(&self, x: &str, ty: IntType) -> Bits {
         let Some(var) = self.integers.get(x) else { return bitvec::constant(0, ty.bits) };

@@ -382,6 +382,9 @@ pub struct CompiledProgram {
     /// (`2·|k| + 2` for the largest constant `k`, at most 10,000; 0 without integers): a
     /// counter counting edges needs two scans per step. The bounded searches go that far.
     pub int_depth: usize,
+    /// The program's integer constants ([`CompiledProgram::bound_hints`] compares its
+    /// integers with them).
+    pub constants: Vec<i64>,
 }
 
 /// The program's equations `X = term` in scan order, and which define each name.
@@ -1204,6 +1207,7 @@ impl<'a> Compiler<'a> {
             }
         }
         let starts = self.start_targets(&signals);
+        let constants = ints::constants(self.program);
         CompiledProgram {
             hypotheses: self.hypotheses,
             signals,
@@ -1219,7 +1223,8 @@ impl<'a> Compiler<'a> {
             equation_index: std::sync::OnceLock::new(),
             integers: self.program.integers.clone(),
             atoms: Default::default(),
-            int_depth: ints::int_depth(self.program),
+            int_depth: ints::int_depth(self.program, &constants),
+            constants,
             starts,
             started: self.started.clone(),
             start_flag: self.started.as_ref().and(self.program.started.clone()),

@@ -175,10 +175,16 @@ fn search(
         return Err(stalled);
     }
     let cone: Vec<Axiom> = ctx.cone(&[&goal.lhs, &goal.rhs], None).into_iter().cloned().collect();
-    let mut goals = goal_clauses(&expand_atoms(&cone, goal));
+    let expanded = expand_atoms(&cone, goal);
+    // A goal over comparison atoms reads integers' bits (see below).
+    let integers = expanded.lhs != goal.lhs || expanded.rhs != goal.rhs;
+    let mut goals = goal_clauses(&expanded);
     let inputs = chains.map(Chains::input_names).unwrap_or_default();
     let state = state_bits(&cone, goal, &inputs);
     let mut more = clauses(&state);
+    // The program's bounds of its integers, where the cone reads every bit they read.
+    let read = read_before(&cone);
+    more.extend(ctx.hints.iter().filter(|h| names_in(h).iter().all(|n| read.contains(n))).cloned());
     if let Some(chains) = chains {
         goals = goals.iter().map(|g| chains.unfold(g)).collect();
         more.extend(timing::clauses(chains, &state, &inputs, &memories(goal)));
@@ -230,6 +236,7 @@ fn search(
     };
     // The goal alone, when it is inductive: the shortest invariant, found at once.
     let alone: Vec<Clause> = candidates.iter().filter(|c| c.goal).cloned().collect();
+    let all = candidates.clone();
     if inductive(&alone, &mut atoms).is_none() {
         candidates = alone;
     }
@@ -301,8 +308,34 @@ fn search(
     }
     let kept = candidates.len();
     let candidates: Vec<Expr> = candidates.into_iter().map(|c| c.now).collect();
-    certificate(ctx, goal, (&cone, &first), &candidates, (budget, deadline), (lemma, chains))
-        .ok_or_else(|| stop(stalled, Stop::Certificate, kept))
+    // A minimal invariant can be inductive and still too hard to certify by cases: a
+    // bound on a counter (`[C <= 10]`) is, but its step reasons through the adder's
+    // carries. The single-bit facts and the program's integer bounds of the largest
+    // inductive set (the counter's high bits stay 0) cut those case splits short.
+    // (Timer chains have their own clauses and a certificate per clause.)
+    let mut strengthen = || {
+        if chains.is_some() {
+            return None;
+        }
+        let mut all = all.clone();
+        let pruned =
+            prune(&mut all, &mut rounds, deadline, |c| &c.now, |set| inductive(set, &mut atoms));
+        all.retain(|c| {
+            c.goal || !matches!(c.now[root(&c.now)], Term::Or(_)) || ctx.hints.contains(&c.now)
+        });
+        let stronger = pruned.is_ok() && all.len() > kept && inductive(&all, &mut atoms).is_none();
+        stronger.then(|| all.into_iter().map(|c| c.now).collect::<Vec<Expr>>())
+    };
+    let certify = |clauses: &[Expr], deadline| {
+        certificate(ctx, goal, (&cone, &first), clauses, (budget, deadline), (lemma, chains))
+    };
+    // Over integers the minimal set gets a third of the time left, so that the stronger
+    // one still has its chance.
+    let share = if integers { 3 } else { 1 };
+    let first_try = Instant::now() + deadline.saturating_duration_since(Instant::now()) / share;
+    let proved = certify(&candidates, first_try)
+        .or_else(|| strengthen().and_then(|s| certify(&s, deadline)));
+    proved.ok_or_else(|| stop(stalled, Stop::Certificate, kept))
 }
 
 /// A candidate clause: as it reads now, at the first scan, and at the previous scan
@@ -382,18 +415,7 @@ fn goal_clauses(goal: &Obligation) -> Vec<Expr> {
 /// The state bits: names whose previous value the cone reads, the goal's names first,
 /// then `also` (the inputs of timer chains).
 fn state_bits(cone: &[Axiom], goal: &Obligation, also: &BTreeSet<String>) -> Vec<String> {
-    let mut read: BTreeSet<String> = BTreeSet::new();
-    for h in cone {
-        for side in [&h.lhs, &h.rhs] {
-            for t in side.as_ref() {
-                if let Term::Pre(a) = t
-                    && let Term::Name(n) = &side[*a]
-                {
-                    read.insert(n.as_str().to_string());
-                }
-            }
-        }
-    }
+    let read = read_before(cone);
     let mut out: Vec<String> = Vec::new();
     for side in [&goal.lhs, &goal.rhs] {
         for t in side.as_ref() {
@@ -409,6 +431,34 @@ fn state_bits(cone: &[Axiom], goal: &Obligation, also: &BTreeSet<String>) -> Vec
     out.extend(read.into_iter().filter(|n| !out.contains(n)).collect::<Vec<_>>());
     out.truncate(MAX_STATE);
     out
+}
+
+/// The names whose previous value (`pre X`) the cone reads.
+fn read_before(cone: &[Axiom]) -> BTreeSet<String> {
+    let mut read: BTreeSet<String> = BTreeSet::new();
+    for h in cone {
+        for side in [&h.lhs, &h.rhs] {
+            for t in side.as_ref() {
+                if let Term::Pre(a) = t
+                    && let Term::Name(n) = &side[*a]
+                {
+                    read.insert(n.as_str().to_string());
+                }
+            }
+        }
+    }
+    read
+}
+
+/// The names a term mentions.
+fn names_in(e: &Expr) -> BTreeSet<String> {
+    e.as_ref()
+        .iter()
+        .filter_map(|t| match t {
+            Term::Name(n) => Some(n.as_str().to_string()),
+            _ => None,
+        })
+        .collect()
 }
 
 /// The memories (`SR`, `RS`) of the goal's sides, outermost first: a pattern's request

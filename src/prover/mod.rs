@@ -118,6 +118,9 @@ pub struct Context {
     pub scans: bool,
     /// A program's scan cycle, for the laws that need it (see [`kernel::CYCLE`]).
     pub cycle: Option<Delay>,
+    /// Candidate invariants the program suggests (bounds of its integers), over its
+    /// state bits: the invariant search tries them beside its own clauses.
+    pub hints: Vec<Expr>,
 }
 
 impl Context {
@@ -163,6 +166,7 @@ impl Context {
             shared_lemmas,
             scans,
             cycle,
+            hints: Vec::new(),
         })
     }
 

@@ -631,21 +631,14 @@ impl Session {
         let statement = self.goal_text(&goal);
         match outcome {
             Attempt::Proved(proved) => {
-                let Some(main) = proved.certificate.main.clone() else {
+                let parts = (lhs, rel, rhs);
+                let Some(claim) = ProvedClaim::from_certificate(&name, parts, &proved.certificate)
+                else {
                     return "error: the prover returned no proof\n".into();
                 };
-                if let Err(e) = self.checker.check(&BTreeSet::new(), main.clone(), &lhs, rel, &rhs)
-                {
+                if let Err(e) = self.checker.add_checked(claim) {
                     return format!("error: the kernel rejects the proof: {e}\n");
                 }
-                self.checker.add_proved(ProvedClaim {
-                    name: name.clone(),
-                    lhs,
-                    rel,
-                    rhs,
-                    proof: main,
-                    deps: BTreeSet::new(),
-                });
                 let program = self.program.as_ref().map(|(_, c)| c);
                 let rename = |e: &Expr| match program {
                     Some(c) => c.rename_for_display(e),
@@ -759,6 +752,7 @@ impl Session {
                     rhs: open.rhs.clone(),
                     proof: main,
                     deps,
+                    own: Vec::new(),
                 });
                 let steps = open.steps.iter().map(|(s, _)| s.clone()).collect();
                 self.done.push(Statement {

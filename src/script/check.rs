@@ -69,6 +69,44 @@ pub struct ProvedClaim {
     pub proof: Proof,
     /// The earlier claims its proof cites, directly or not.
     pub deps: BTreeSet<String>,
+    /// The lemmas of its own certificate (an induction's invariant and chains), named
+    /// `CLAIM/LEMMA` so that no two claims' lemmas clash; replayed before its proof.
+    pub own: Vec<(String, Proof)>,
+}
+
+impl ProvedClaim {
+    /// A claim from a whole certificate the search returned: its lemmas are renamed
+    /// `NAME/LEMMA`, in their proofs and in the main proof alike (`None` without a main
+    /// proof).
+    pub fn from_certificate(
+        name: &str,
+        (lhs, rel, rhs): (Expr, Rel, Expr),
+        certificate: &Certificate,
+    ) -> Option<ProvedClaim> {
+        let own: BTreeSet<&str> = certificate.lemmas.iter().map(|(n, _)| n.as_str()).collect();
+        let rename = |proof: &mut Proof| {
+            proof.for_each_step_mut(&mut |s| {
+                if let Rule::Cite(Source::Lemma, lemma, _) = &mut s.rule
+                    && own.contains(lemma.as_str())
+                {
+                    *lemma = format!("{name}/{lemma}");
+                }
+            })
+        };
+        let mut proof = certificate.main.clone()?;
+        rename(&mut proof);
+        let own = certificate
+            .lemmas
+            .iter()
+            .map(|(lemma, p)| {
+                let mut p = p.clone();
+                rename(&mut p);
+                (format!("{name}/{lemma}"), p)
+            })
+            .collect();
+        let deps = BTreeSet::new();
+        Some(ProvedClaim { name: name.to_string(), lhs, rel, rhs, proof, deps, own })
+    }
 }
 
 /// A claim the kernel accepted.
@@ -342,9 +380,20 @@ impl Checker {
             .proved
             .iter()
             .filter(|p| needed.contains(&p.name))
-            .map(|p| (p.name.clone(), p.proof.clone()))
+            .flat_map(|p| p.own.iter().cloned().chain([(p.name.clone(), p.proof.clone())]))
             .collect();
         Certificate { lemmas, main: Some(main) }
+    }
+
+    /// Checks a claim made by [`ProvedClaim::from_certificate`] (its own lemmas, then its
+    /// proof, citing no earlier claim) and adds it.
+    pub fn add_checked(&mut self, claim: ProvedClaim) -> Result<Theorem, KernelError> {
+        let certificate =
+            Certificate { lemmas: claim.own.clone(), main: Some(claim.proof.clone()) };
+        let theorem =
+            self.ctx.kernel.check_goal(&certificate, &claim.lhs, claim.rel, &claim.rhs)?;
+        self.add_proved(claim);
+        Ok(theorem)
     }
 
     /// Checks `proof` as a proof of `from rel to` (earlier claims as lemmas).
@@ -717,6 +766,7 @@ impl Checker {
                         rhs,
                         proof,
                         deps,
+                        own: Vec::new(),
                     });
                 }
                 (main, BTreeSet::from([name]))
@@ -813,6 +863,7 @@ impl Checker {
             rhs,
             proof: main,
             deps: self.closure(&lemmas),
+            own: Vec::new(),
         });
         Ok(Checked { name: statement.name.clone(), theorem, certificate, time: started.elapsed() })
     }

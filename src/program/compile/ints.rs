@@ -155,36 +155,33 @@ impl Compiler<'_> {
     }
 }
 
-/// [`CompiledProgram::int_depth`] of a program.
-pub(super) fn int_depth(program: &Program) -> usize {
-    if program.integers.is_empty() {
-        return 0;
-    }
-    let mut largest = program.integers.values().map(|v| v.init.unsigned_abs()).max().unwrap_or(0);
-    let mut consts = |e: &IntExpr| {
-        fn walk(e: &IntExpr, largest: &mut u64) {
-            match e {
-                IntExpr::Const(k) => *largest = (*largest).max(k.unsigned_abs()),
-                IntExpr::Var(_) => {}
-                IntExpr::Div(a, k) | IntExpr::Mod(a, k) => {
-                    *largest = (*largest).max(k.unsigned_abs());
-                    walk(a, largest);
-                }
-                IntExpr::Cast(a, _) => walk(a, largest),
-                IntExpr::Add(a, b)
-                | IntExpr::Sub(a, b)
-                | IntExpr::Mul(a, b)
-                | IntExpr::Ite(_, a, b) => {
-                    walk(a, largest);
-                    walk(b, largest);
-                }
+/// The integer constants of a program: start values, and the literals of its integer
+/// writes and comparisons (divisors included), in increasing order.
+pub(super) fn constants(program: &Program) -> Vec<i64> {
+    fn walk(e: &IntExpr, out: &mut std::collections::BTreeSet<i64>) {
+        match e {
+            IntExpr::Const(k) => {
+                out.insert(*k);
+            }
+            IntExpr::Var(_) => {}
+            IntExpr::Div(a, k) | IntExpr::Mod(a, k) => {
+                out.insert(*k);
+                walk(a, out);
+            }
+            IntExpr::Cast(a, _) => walk(a, out),
+            IntExpr::Add(a, b)
+            | IntExpr::Sub(a, b)
+            | IntExpr::Mul(a, b)
+            | IntExpr::Ite(_, a, b) => {
+                walk(a, out);
+                walk(b, out);
             }
         }
-        walk(e, &mut largest);
-    };
+    }
+    let mut out: std::collections::BTreeSet<i64> =
+        program.integers.values().map(|v| v.init).collect();
     for (_, s) in program.stmts() {
-        let mut sets = Vec::new();
-        let mut cmps = Vec::new();
+        let (mut sets, mut cmps) = (Vec::new(), Vec::new());
         s.visit(
             &mut |s| {
                 if let Stmt::SetInt { value, .. } = s {
@@ -198,7 +195,16 @@ pub(super) fn int_depth(program: &Program) -> usize {
                 }
             },
         );
-        sets.iter().chain(&cmps).for_each(&mut consts);
+        sets.iter().chain(&cmps).for_each(|e| walk(e, &mut out));
     }
+    out.into_iter().collect()
+}
+
+/// [`CompiledProgram::int_depth`] of a program with these [`constants`].
+pub(super) fn int_depth(program: &Program, constants: &[i64]) -> usize {
+    if program.integers.is_empty() {
+        return 0;
+    }
+    let largest = constants.iter().map(|k| k.unsigned_abs()).max().unwrap_or(0);
     usize::try_from(largest.saturating_mul(2).saturating_add(2)).unwrap_or(usize::MAX).min(10_000)
 }
