@@ -19,7 +19,8 @@ fn opts() -> Options {
 }
 
 /// Every `NAME.ld` (or PLCopen `NAME.xml`) of `proves_programs/` with its `NAME.ii`: every
-/// property proved.
+/// property proved, its printed trace (`--trace`, lemmas folded) within the bound written
+/// above it.
 #[test]
 fn programs_whose_properties_hold_are_proved() {
     let mut files = common::files_with(&data("proves_programs"), "ld");
@@ -35,16 +36,60 @@ fn programs_whose_properties_hold_are_proved() {
         for p in &run.properties {
             assert_eq!(p.status, Status::Proved, "{ld}: {} ({:?})", p.name, p.reason);
             if let (Some(&bound), Some(trace)) = (bounds.get(&p.name), &p.trace) {
+                let printed = printed_lines(&trace.lines);
                 assert!(
-                    trace.length <= bound,
-                    "{ii}: the proof of {} has {} lines, at most {bound} expected",
+                    printed <= bound,
+                    "{ii}: the proof of {} prints {printed} lines, at most {bound} expected:\n{}",
                     p.name,
-                    trace.length
+                    trace.lines.join("\n")
                 );
             }
         }
         assert_eq!(run.timers, Some("plc"));
     }
+}
+
+/// Every property of `proves_programs/` proved by induction over scans (the timing
+/// cases): its folded trace is at most 25 lines, and the trace of `--trace-all` prints
+/// every lemma the kernel checked with the proof, each under its name.
+#[test]
+fn induction_traces_fold_and_the_full_trace_lists_every_lemma() {
+    let mut files = common::files_with(&data("proves_programs"), "ld");
+    files.extend(common::files_with(&data("proves_programs"), "xml"));
+    let full = Options { trace_all: true, ..opts() };
+    let mut inductions = 0;
+    for ld in files {
+        let ii = ld.with_extension("ii").display().to_string();
+        let ld = ld.display().to_string();
+        let folded = report::run_program(&ld, std::slice::from_ref(&ii), &opts()).expect("runs");
+        let whole = report::run_program(&ld, std::slice::from_ref(&ii), &full).expect("runs");
+        for (p, q) in folded.properties.iter().zip(&whole.properties) {
+            let (Some(t), Some(u)) = (&p.trace, &q.trace) else { continue };
+            if t.method != "induction" {
+                continue;
+            }
+            inductions += 1;
+            let (short, long) = (printed_lines(&t.lines), printed_lines(&u.lines));
+            println!("{ii} {}: {short} lines folded, {long} in full", p.name);
+            assert!(short <= 25, "{ii}: {} prints {short} lines:\n{}", p.name, t.lines.join("\n"));
+            assert!(!u.lemmas.is_empty(), "{ii}: {}: an induction with no lemma", p.name);
+            for lemma in &u.lemmas {
+                let header = format!("lemma {lemma}:");
+                assert!(
+                    u.lines.iter().any(|l| *l == header),
+                    "{ii}: {}: `{header}` missing from the full trace",
+                    p.name
+                );
+            }
+            assert_eq!(t.lemmas, u.lemmas, "{ii}: {}: the same proof both ways", p.name);
+        }
+    }
+    assert!(inductions >= 8, "only {inductions} properties proved by induction");
+}
+
+/// The lines a trace prints (a term broken over several lines counts each).
+fn printed_lines(lines: &[String]) -> usize {
+    lines.iter().map(|l| l.lines().count().max(1)).sum()
 }
 
 /// The bounds `// trace: at most N lines` written right above `property NAME` (as in
