@@ -76,7 +76,7 @@ fn induction_traces_fold_and_the_full_trace_lists_every_lemma() {
             for lemma in &u.lemmas {
                 let header = format!("lemma {lemma}:");
                 assert!(
-                    u.lines.iter().any(|l| *l == header),
+                    u.lines.contains(&header),
                     "{ii}: {}: `{header}` missing from the full trace",
                     p.name
                 );

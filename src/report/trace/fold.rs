@@ -474,10 +474,8 @@ impl<'a> Folder<'a> {
         if members.len() < 2 {
             return None;
         }
-        let delays: Vec<Vec<BigRational>> = members
-            .iter()
-            .map(|&i| items[i].terms.iter().flat_map(delays_of).collect())
-            .collect();
+        let delays: Vec<Vec<BigRational>> =
+            members.iter().map(|&i| items[i].terms.iter().flat_map(delays_of).collect()).collect();
         let first = &delays[0];
         let varying: Vec<usize> =
             (0..first.len()).filter(|&j| delays.iter().any(|d| d[j] != first[j])).collect();
