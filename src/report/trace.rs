@@ -384,6 +384,18 @@ pub fn length(proved: &Proved) -> usize {
     proved.certificate.main.as_ref().map_or(0, |m| count(m, &proved.lines))
 }
 
+/// The proofs a proof is made of, in order (a chain's: its steps' premises).
+fn parts(p: &Proof) -> Vec<&Proof> {
+    match p {
+        Proof::Chain { steps, .. } => steps.iter().flat_map(|s| &s.premises).collect(),
+        Proof::CaseSplit { one: p, zero: q, .. }
+        | Proof::Induction { base: p, step: q, .. }
+        | Proof::Antisym(p, q)
+        | Proof::Trans(p, q) => vec![p, q],
+        Proof::Symm(p) | Proof::ImpliesByMeet(p) | Proof::ImpliesByZero(p) => vec![p],
+    }
+}
+
 /// The atomic steps of the main chain, for the JSON output.
 pub fn atomic_steps(proved: &Proved, style: &Style) -> Vec<(String, &'static str, String)> {
     fn walk(p: &Proof, style: &Style, out: &mut Vec<(String, &'static str, String)>) {
@@ -393,21 +405,7 @@ pub fn atomic_steps(proved: &Proved, style: &Style) -> Vec<(String, &'static str
                     .iter()
                     .map(|s| (rule_label(&s.rule), rule_kind(&s.rule), style.term(&s.after))),
             ),
-            Proof::CaseSplit { one, zero, .. } => {
-                walk(one, style, out);
-                walk(zero, style, out);
-            }
-            Proof::Symm(p) | Proof::ImpliesByMeet(p) | Proof::ImpliesByZero(p) => {
-                walk(p, style, out)
-            }
-            Proof::Antisym(p, q) | Proof::Trans(p, q) => {
-                walk(p, style, out);
-                walk(q, style, out);
-            }
-            Proof::Induction { base, step, .. } => {
-                walk(base, style, out);
-                walk(step, style, out);
-            }
+            _ => parts(p).into_iter().for_each(|q| walk(q, style, out)),
         }
     }
     let mut out = Vec::new();

@@ -21,7 +21,7 @@ use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational;
 
-use super::{Style, is_bookkeeping, proof_text, rule_label, start_of};
+use super::{Style, is_bookkeeping, parts, proof_text, rule_label, start_of};
 use crate::kernel::{Proof, Rel, Rule, Source};
 use crate::prover::Proved;
 use crate::prover::timing::{ChainForm, LemmaKind, chain_family, lemma_kind, step_lemma};
@@ -232,19 +232,21 @@ impl<'a> Folder<'a> {
             let rel = self.rel(m.form.rel());
             let mut text = format!("{} {rel} {}", g.texts[0], g.texts[1]);
             if !g.ks.is_empty() {
-                text.push_str(&format!(" for k = {}", self.range_big(&g.ks)));
+                text.push_str(&format!(" for k = {}", self.range(&g.ks)));
             }
-            let before: Vec<usize> = g
+            // The members proved one scan earlier too, by their `k` in the template.
+            let before: Vec<BigInt> = g
                 .members
                 .iter()
-                .map(|&i| base[i])
-                .filter(|m| earlier.contains(&(m.k, m.form)))
-                .map(|m| m.k)
+                .zip(g.ks.iter().map(Some).chain(std::iter::repeat(None)))
+                .filter(|(i, _)| earlier.contains(&(base[**i].k, base[**i].form)))
+                .filter_map(|(_, k)| k.cloned())
                 .collect();
-            if before.len() == g.members.len() {
+            let all = g.members.iter().all(|i| earlier.contains(&(base[*i].k, base[*i].form)));
+            if all {
                 text.push_str(", and one scan earlier");
             } else if !before.is_empty() {
-                text.push_str(&format!(", and one scan earlier for k = {}", self.range(before)));
+                text.push_str(&format!(", and one scan earlier for k = {}", self.range(&before)));
             }
             let laws = cited(m.proof, &|_| None).join(", ");
             segments.push(format!("{text}   [{laws}]"));
@@ -295,7 +297,7 @@ impl<'a> Folder<'a> {
                 };
                 match g.ks.is_empty() {
                     true => text,
-                    false => format!("{text} for k = {}", self.range_big(&g.ks)),
+                    false => format!("{text} for k = {}", self.range(&g.ks)),
                 }
             })
             .collect();
@@ -407,12 +409,7 @@ impl<'a> Folder<'a> {
     }
 
     /// `2…5, 10` (ASCII `2..5, 10`).
-    fn range(&self, ks: impl IntoIterator<Item = usize>) -> String {
-        let ks: Vec<BigInt> = ks.into_iter().map(BigInt::from).collect();
-        self.range_big(&ks)
-    }
-
-    fn range_big(&self, ks: &[BigInt]) -> String {
+    fn range(&self, ks: &[BigInt]) -> String {
         let mut ks = ks.to_vec();
         ks.sort();
         ks.dedup();
@@ -632,50 +629,32 @@ fn end_of(proof: &Proof) -> Option<&Expr> {
     }
 }
 
+/// Whether a proof splits cases (an induction counts as one).
 fn has_cases(p: &Proof) -> bool {
-    match p {
-        Proof::Chain { .. } => false,
-        Proof::CaseSplit { .. } | Proof::Induction { .. } => true,
-        Proof::Symm(q) | Proof::ImpliesByMeet(q) | Proof::ImpliesByZero(q) => has_cases(q),
-        Proof::Antisym(q, r) | Proof::Trans(q, r) => has_cases(q) || has_cases(r),
-    }
+    matches!(p, Proof::CaseSplit { .. } | Proof::Induction { .. })
+        || parts(p).into_iter().any(has_cases)
 }
 
 /// What a proof cites, in order, without repeats or bookkeeping; a cited lemma that
 /// `inner` opens is read through (its own citations instead of its name).
 fn cited<'p>(proof: &'p Proof, inner: &dyn Fn(&str) -> Option<&'p Proof>) -> Vec<String> {
     fn walk<'p>(p: &'p Proof, inner: &dyn Fn(&str) -> Option<&'p Proof>, out: &mut Vec<String>) {
-        match p {
-            Proof::Chain { steps, .. } => {
-                for s in steps {
-                    if let Rule::Cite(Source::Lemma, name, _) = &s.rule
-                        && let Some(q) = inner(name)
-                    {
-                        walk(q, inner, out);
-                        continue;
-                    }
-                    let label = rule_label(&s.rule);
-                    if !is_bookkeeping(&s.rule) && !out.contains(&label) {
-                        out.push(label);
-                    }
-                    s.premises.iter().for_each(|q| walk(q, inner, out));
-                }
-            }
-            Proof::CaseSplit { one, zero, .. } => {
-                walk(one, inner, out);
-                walk(zero, inner, out);
-            }
-            Proof::Induction { base, step, .. } => {
-                walk(base, inner, out);
-                walk(step, inner, out);
-            }
-            Proof::Symm(q) | Proof::ImpliesByMeet(q) | Proof::ImpliesByZero(q) => {
-                walk(q, inner, out)
-            }
-            Proof::Antisym(q, r) | Proof::Trans(q, r) => {
+        let Proof::Chain { steps, .. } = p else {
+            parts(p).into_iter().for_each(|q| walk(q, inner, out));
+            return;
+        };
+        for s in steps {
+            if let Rule::Cite(Source::Lemma, name, _) = &s.rule
+                && let Some(q) = inner(name)
+            {
                 walk(q, inner, out);
-                walk(r, inner, out);
+                continue;
             }
+            let label = rule_label(&s.rule);
+            if !is_bookkeeping(&s.rule) && !out.contains(&label) {
+                out.push(label);
+            }
+            s.premises.iter().for_each(|q| walk(q, inner, out));
         }
     }
     let mut out = Vec::new();
