@@ -183,12 +183,18 @@ impl<'a> Folder<'a> {
     /// A chain's lemmas: a header naming the chain, then its forms on one line.
     fn chain(&mut self, family: &str, members: &[Member], out: &mut Vec<String>) {
         let statement = |m: &Member| Some((start_of(m.proof)?.clone(), end_of(m.proof)?.clone()));
-        // The chain's input and cycle, from a timer `kδ/f` (or `f/kδ`) on a left side.
-        let timer = members.iter().find_map(|m| {
-            let (lhs, _) = statement(m)?;
-            let (d, f) = timer_parts(&lhs)?;
-            Some((d, f, m.k))
-        });
+        // The chain's input, from a timer `kδ/f` (or `f/kδ`) on a left side, and its
+        // cycle where that timer is `T_k` of the lemma's name (not in an off-delay's
+        // `T_(k−1) ⇒ T_k`).
+        let timer = |exact: bool| {
+            members.iter().find_map(|m| {
+                let (lhs, _) = statement(m)?;
+                let (d, f) = timer_parts(&lhs)?;
+                let named = m.form != ChainForm::Monotone;
+                (named || !exact).then_some((d, f, if named { m.k } else { 0 }))
+            })
+        };
+        let timer = timer(true).or_else(|| timer(false));
         let (low, high) =
             members.iter().fold((usize::MAX, 0), |(l, h), m| (l.min(m.k), h.max(m.k)));
         let mut header = match low == high {
