@@ -69,9 +69,13 @@ struct Common {
 /// How a run reports (the options before the notation and compilation).
 #[derive(Args)]
 struct ReportHead {
-    /// Print each kernel-checked proof as a calculation.
+    /// Print each kernel-checked proof as a calculation (an induction's timer chains,
+    /// step lemmas and invariant folded to a few lines).
     #[arg(long)]
     trace: bool,
+    /// As `--trace`, with every lemma the kernel checked printed in full.
+    #[arg(long)]
+    trace_all: bool,
     /// The report format on standard output.
     #[arg(long, value_enum, default_value_t = Format::Text)]
     format: Format,
@@ -521,7 +525,8 @@ fn prove(run: Run, common: Common) -> ExitCode {
         return ExitCode::from(2);
     }
     let opts = Options {
-        trace: head.trace,
+        trace: head.trace || head.trace_all,
+        trace_all: head.trace_all,
         ascii: notation.ascii,
         timeout: tail.timeout,
         only: tail.only.clone(),
@@ -533,6 +538,7 @@ fn prove(run: Run, common: Common) -> ExitCode {
             usize::from,
         ),
         proof_text: head.trace
+            || head.trace_all
             || head.json
             || matches!(head.format, Format::Json | Format::Html)
             || tail.html.is_some(),

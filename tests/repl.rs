@@ -285,3 +285,16 @@ fn prove_and_auto_search_for_counterexamples_as_the_command_line_does() {
         "{out}"
     );
 }
+
+#[test]
+fn trace_all_prints_the_last_proof_with_every_lemma() {
+    let mut session = ii_prove::repl::Session::new().unwrap();
+    session.execute(&format!("load {}/examples/water.ld", env!("CARGO_MANIFEST_DIR")));
+    let out = session.execute("prove Fig9: SP_fail => !Bf_valve");
+    assert!(out.starts_with("proved Fig9:"), "{out}");
+    // Without an induction nothing folds: both views are the whole proof.
+    let (folded, full) = (session.execute("trace"), session.execute("trace all"));
+    assert!(!folded.is_empty() && folded != "no proof yet\n", "{folded}");
+    assert_eq!(folded, full);
+    assert!(session.execute("trace some").starts_with("error: expected `trace` or `trace all`"));
+}

@@ -19,7 +19,8 @@ fn opts() -> Options {
 }
 
 /// Every `NAME.ld` (or PLCopen `NAME.xml`) of `proves_programs/` with its `NAME.ii`: every
-/// property proved.
+/// property proved, its printed trace (`--trace`, lemmas folded) within the bound written
+/// above it.
 #[test]
 fn programs_whose_properties_hold_are_proved() {
     let mut files = common::files_with(&data("proves_programs"), "ld");
@@ -35,16 +36,188 @@ fn programs_whose_properties_hold_are_proved() {
         for p in &run.properties {
             assert_eq!(p.status, Status::Proved, "{ld}: {} ({:?})", p.name, p.reason);
             if let (Some(&bound), Some(trace)) = (bounds.get(&p.name), &p.trace) {
+                let printed = printed_lines(&trace.lines);
                 assert!(
-                    trace.length <= bound,
-                    "{ii}: the proof of {} has {} lines, at most {bound} expected",
+                    printed <= bound,
+                    "{ii}: the proof of {} prints {printed} lines, at most {bound} expected:\n{}",
                     p.name,
-                    trace.length
+                    trace.lines.join("\n")
                 );
             }
         }
         assert_eq!(run.timers, Some("plc"));
     }
+}
+
+/// Every property of `proves_programs/` proved by induction over scans (the timing
+/// cases): its folded trace is at most 25 lines, the trace of `--trace-all` prints
+/// every lemma the kernel checked with the proof, each under its name, and each timer
+/// chain's template, written out for every count it lists, is a lemma of the full trace.
+#[test]
+fn induction_traces_fold_and_the_full_trace_lists_every_lemma() {
+    let mut files = common::files_with(&data("proves_programs"), "ld");
+    files.extend(common::files_with(&data("proves_programs"), "xml"));
+    let full = Options { trace_all: true, ..opts() };
+    let (mut inductions, mut templates) = (0, 0);
+    for ld in files {
+        let ii = ld.with_extension("ii").display().to_string();
+        let ld = ld.display().to_string();
+        let folded = report::run_program(&ld, std::slice::from_ref(&ii), &opts()).expect("runs");
+        let whole = report::run_program(&ld, std::slice::from_ref(&ii), &full).expect("runs");
+        for (p, q) in folded.properties.iter().zip(&whole.properties) {
+            let (Some(t), Some(u)) = (&p.trace, &q.trace) else { continue };
+            if t.method != "induction" {
+                continue;
+            }
+            inductions += 1;
+            let (short, long) = (printed_lines(&t.lines), printed_lines(&u.lines));
+            println!("{ii} {}: {short} lines folded, {long} in full", p.name);
+            assert!(short <= 25, "{ii}: {} prints {short} lines:\n{}", p.name, t.lines.join("\n"));
+            assert!(!u.lemmas.is_empty(), "{ii}: {}: an induction with no lemma", p.name);
+            for lemma in &u.lemmas {
+                let header = format!("lemma {lemma}:");
+                assert!(
+                    u.lines.contains(&header),
+                    "{ii}: {}: `{header}` missing from the full trace",
+                    p.name
+                );
+            }
+            assert_eq!(t.lemmas, u.lemmas, "{ii}: {}: the same proof both ways", p.name);
+            templates += chain_templates_match(&t.lines, &u.lines, &format!("{ii}: {}", p.name));
+        }
+    }
+    assert!(inductions >= 8, "only {inductions} properties proved by induction");
+    assert!(templates >= 100, "only {templates} chain lemmas read back from templates");
+}
+
+/// Reads the folded trace's timer chains back — each header's abbreviation (`X = …`) and
+/// `δ`, each form's template in `k` for every count listed — and finds each statement so
+/// written as a lemma (its first term, then its last step) in the full trace. Returns how
+/// many were found.
+fn chain_templates_match(folded: &[String], full: &[String], what: &str) -> usize {
+    let mut delta_us: Option<u64> = None;
+    let mut found = 0;
+    for pair in folded.windows(2) {
+        let Some((_, chain)) = pair[0].split_once(", the timer chain of ") else { continue };
+        let chain = chain.trim_end_matches(':');
+        let (chain, delta) = match chain.rsplit_once(", δ = ") {
+            Some((c, d)) => (c, Some(d)),
+            None => (chain, None),
+        };
+        if let Some(d) = delta {
+            delta_us = Some(micros(d));
+        }
+        let short = chain.split_once(" = ");
+        for segment in pair[1].trim().split(";  ") {
+            let statement = segment.rsplit_once("   [").map_or(segment, |(s, _)| s);
+            let statement = statement.split(", and one scan earlier").next().unwrap_or("");
+            let (statement, ks) = match statement.split_once(" for k = ") {
+                Some((s, ks)) => (s, counts(ks)),
+                None => (statement, vec![0]),
+            };
+            let (lhs, rhs) = statement
+                .split_once(" = ")
+                .or_else(|| statement.split_once(" ⇒ "))
+                .unwrap_or_else(|| panic!("{what}: no relation in `{statement}`"));
+            for k in ks {
+                let side = |s: &str| {
+                    let mut s = s.to_string();
+                    if let Some(d) = delta_us {
+                        for o in -3i64..=3 {
+                            let mark = match o {
+                                0 => "kδ".to_string(),
+                                o if o < 0 => format!("(k−{})δ", -o),
+                                o => format!("(k+{o})δ"),
+                            };
+                            let count = u64::try_from(k as i64 + o).unwrap_or(0);
+                            s = s.replace(&mark, &delay(count * d));
+                        }
+                    }
+                    if let Some((name, term)) = short {
+                        let atomic = !term.contains(' ') || term.starts_with("SR(");
+                        let term = if atomic { term.to_string() } else { format!("({term})") };
+                        s = replace_word(&s, name, &term);
+                    }
+                    s
+                };
+                let (l, r) = (format!("      {}", side(lhs)), format!("    = {}   [", side(rhs)));
+                let ok = full.iter().enumerate().filter(|(_, line)| **line == l).any(|(i, _)| {
+                    full[i + 1..]
+                        .iter()
+                        .take_while(|line| !line.starts_with("lemma "))
+                        .any(|line| line.starts_with(&r))
+                });
+                assert!(
+                    ok,
+                    "{what}: `{segment}` at k = {k}: no lemma\n{l}\n{r}… in the full trace"
+                );
+                found += 1;
+            }
+        }
+    }
+    found
+}
+
+/// `2…5, 10` as the counts.
+fn counts(text: &str) -> Vec<usize> {
+    let mut out = Vec::new();
+    for part in text.split(", ") {
+        match part.split_once('…') {
+            Some((a, b)) => out.extend(a.parse::<usize>().unwrap()..=b.parse::<usize>().unwrap()),
+            None => out.push(part.parse().unwrap()),
+        }
+    }
+    out
+}
+
+/// `100ms`, `1.5s` in µs.
+fn micros(text: &str) -> u64 {
+    if let Some(ms) = text.strip_suffix("ms") {
+        return ms.parse::<u64>().expect("whole ms") * 1000;
+    }
+    let s = text.strip_suffix('s').expect("a delay");
+    let (whole, frac) = s.split_once('.').unwrap_or((s, ""));
+    let frac = format!("{frac:0<6}");
+    whole.parse::<u64>().unwrap() * 1_000_000 + frac[..6].parse::<u64>().unwrap()
+}
+
+/// A delay as the trace prints it: `900ms`, `1s`, `1.1s`.
+fn delay(us: u64) -> String {
+    if us < 1_000_000 && us.is_multiple_of(1000) {
+        return format!("{}ms", us / 1000);
+    }
+    let frac = format!("{:06}", us % 1_000_000);
+    let frac = frac.trim_end_matches('0');
+    if frac.is_empty() {
+        format!("{}s", us / 1_000_000)
+    } else {
+        format!("{}.{frac}s", us / 1_000_000)
+    }
+}
+
+/// `text` with the word `name` (not part of a longer name) replaced by `by`.
+fn replace_word(text: &str, name: &str, by: &str) -> String {
+    let word = |c: char| c.is_alphanumeric() || c == '_';
+    let mut out = String::new();
+    let mut rest = text;
+    while let Some(at) = rest.find(name) {
+        let before = rest[..at].chars().next_back();
+        let after = rest[at + name.len()..].chars().next();
+        out.push_str(&rest[..at]);
+        if before.is_some_and(word) || after.is_some_and(word) {
+            out.push_str(name);
+        } else {
+            out.push_str(by);
+        }
+        rest = &rest[at + name.len()..];
+    }
+    out.push_str(rest);
+    out
+}
+
+/// The lines a trace prints (a term broken over several lines counts each).
+fn printed_lines(lines: &[String]) -> usize {
+    lines.iter().map(|l| l.lines().count().max(1)).sum()
 }
 
 /// The bounds `// trace: at most N lines` written right above `property NAME` (as in

@@ -209,3 +209,90 @@ fn a_diagram_cut_to_a_width_keeps_the_mark_and_the_last_pieces() {
     assert!(cut[1].ends_with("60"), "{cut:#?}");
     assert!(cut[2].ends_with('^'), "{cut:#?}");
 }
+
+/// Every program of `examples/` and of the corpus (`tests/data/ldmicro/corpus`,
+/// `tests/data/plcopen/corpus`) that loads, with generated properties over its written
+/// bits (outputs and relays, else the other bits it computes: `o1 ⇒ o2`, `o1 · o2 = 0*`
+/// for neighbours in name order, at most four; `o ⇒ pre o` for a single one), under `--trace` (whose reason is a line longer): each unknown's
+/// text is short in every format. `--nocapture` prints the figures.
+#[test]
+fn unknowns_of_every_example_and_corpus_program_stay_short() {
+    use ii_prove::diag::Sources;
+    use ii_prove::ladder::SignalKind;
+    use ii_prove::syntax::print::name_to_string;
+    let opts = Options { jobs: 2, ..opts(true) };
+    let mut files = Vec::new();
+    for ext in ["ld", "xml", "st", "il"] {
+        files.extend(common::files_with(&root().join("examples"), ext));
+    }
+    files.extend(common::files_with(&root().join("tests/data/ldmicro/corpus"), "ld"));
+    files.extend(common::files_with(&root().join("tests/data/plcopen/corpus"), "xml"));
+    let dir = std::env::temp_dir().join(format!("ii-prove-unknowns-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a temporary folder");
+    let (mut programs, mut refused, mut silent, mut properties, mut unknowns) = (0, 0, 0, 0, 0);
+    let mut longest: (usize, String) = (0, String::new());
+    for path in &files {
+        let shown = path.display().to_string();
+        let mut sources = Sources::new();
+        let Ok(loaded) = report::load_program(&mut sources, &shown, &Default::default()) else {
+            refused += 1;
+            continue;
+        };
+        // Outputs and relays; without two of them, the other bits the program computes.
+        let of = |pick: fn(&SignalKind) -> bool| -> Vec<&String> {
+            loaded.compiled.signals.iter().filter(|(_, k)| pick(k)).map(|(n, _)| n).collect()
+        };
+        let mut written = of(|k| matches!(k, SignalKind::Output | SignalKind::Relay));
+        if written.len() < 2 {
+            written.extend(of(|k| {
+                matches!(
+                    k,
+                    SignalKind::Intermediate { .. }
+                        | SignalKind::EdgeMemory { .. }
+                        | SignalKind::IntBit { input: false, .. }
+                )
+            }));
+        }
+        let mut text = String::new();
+        for (i, pair) in written.windows(2).take(2).enumerate() {
+            let (a, b) = (name_to_string(pair[0]), name_to_string(pair[1]));
+            text.push_str(&format!("property implies_{i}: {a} => {b}\n"));
+            text.push_str(&format!("property exclusive_{i}: {a} . {b} = 0*\n"));
+        }
+        if let [only] = written[..] {
+            let o = name_to_string(only);
+            text.push_str(&format!("property kept: {o} => pre {o}\n"));
+        }
+        if text.is_empty() {
+            silent += 1;
+            continue;
+        }
+        programs += 1;
+        let ii = dir.join(format!("p{programs}.ii"));
+        std::fs::write(&ii, &text).expect("writable");
+        let ii = ii.display().to_string();
+        let run = match report::run_program(&shown, std::slice::from_ref(&ii), &opts) {
+            Ok(run) => run,
+            Err(e) => panic!("{shown} with\n{text}: {}", e.rendered),
+        };
+        properties += run.properties.len();
+        for (name, each) in texts(&run, &opts) {
+            unknowns += 1;
+            for (format, t) in each {
+                let n = t.chars().count();
+                if n > longest.0 {
+                    longest = (n, format!("{shown}: {name} in {format}"));
+                }
+                assert!(n <= MAX_TEXT, "{shown}: {name}: {n} characters in {format}:\n{t}");
+            }
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    println!(
+        "{} files: {programs} programs with written bits, {silent} without, {refused} refused; {properties} properties, {unknowns} unknown; longest unknown text {} characters ({})",
+        files.len(),
+        longest.0,
+        longest.1
+    );
+    assert!(unknowns >= 20, "only {unknowns} unknowns");
+}

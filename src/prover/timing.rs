@@ -24,6 +24,94 @@ use crate::term::{Delay, Expr, Id, Term, and, constant, copy_into, or, root, sub
 /// At most this many chain atoms (`pre T_k`) over all timers of a goal.
 pub const MAX_ATOMS: usize = 400;
 
+/// The lemma names of this module, after the invariant's own name `P`: `P_t{i}_{k}`
+/// (chain `i`'s recurrence of `T_k`), `…_mono` (`T_k ⇒ T_(k−1)`), `P_t{i}_started`,
+/// `P_m{i}` (a memory's recurrence), `P_s{i}` (the step's clause `i`), and `…_pre`, a
+/// lemma one scan earlier.
+const CHAIN: &str = "_t";
+const MONO: &str = "_mono";
+const STARTED: &str = "_started";
+const PREVIOUS: &str = "_pre";
+const MEMORY: &str = "_m";
+const STEP: &str = "_s";
+
+/// What a lemma of the induction search states, read back from its name (for the
+/// trace's folded view; the kernel never reads names).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LemmaKind {
+    /// A lemma of a timer chain.
+    Chain {
+        /// Which chain (`i` of `P_t{i}`).
+        chain: usize,
+        /// The count `k` of `T_k` (1 for `started`).
+        k: usize,
+        /// `T_k`'s recurrence, `T_k ⇒ T_(k−1)`, or an off-delay's `pre U ⇒ δ/1*`.
+        form: ChainForm,
+        /// The same one scan earlier.
+        previous: bool,
+    },
+    /// A memory's scan recurrence.
+    Memory(usize),
+    /// The induction step for one clause of the invariant.
+    Step(usize),
+}
+
+/// The forms of a chain's lemmas.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum ChainForm {
+    /// `T_k = f · pre T_(k−1)` (an equation).
+    Recurrence,
+    /// `T_k ⇒ T_(k−1)`.
+    Monotone,
+    /// `pre U ⇒ δ/1*`.
+    Started,
+}
+
+impl ChainForm {
+    /// The relation the lemma states.
+    pub fn rel(self) -> Rel {
+        if self == ChainForm::Recurrence { Rel::Eq } else { Rel::Implies }
+    }
+}
+
+/// The name chain `chain`'s lemmas start with (`P_t{chain}`).
+pub fn chain_family(prefix: &str, chain: usize) -> String {
+    format!("{prefix}{CHAIN}{chain}")
+}
+
+/// The name of the step lemma of clause `i`.
+pub fn step_lemma(prefix: &str, i: usize) -> String {
+    format!("{prefix}{STEP}{i}")
+}
+
+/// The kind of the lemma `name` made by the induction of invariant `prefix`.
+pub fn lemma_kind(name: &str, prefix: &str) -> Option<LemmaKind> {
+    let rest = name.strip_prefix(prefix)?;
+    let number =
+        |s: &str| s.parse::<usize>().ok().filter(|_| s.bytes().all(|b| b.is_ascii_digit()));
+    if let Some(i) = rest.strip_prefix(STEP) {
+        return number(i).map(LemmaKind::Step);
+    }
+    if let Some(i) = rest.strip_prefix(MEMORY) {
+        return number(i).map(LemmaKind::Memory);
+    }
+    let rest = rest.strip_prefix(CHAIN)?;
+    let (rest, previous) = match rest.strip_suffix(PREVIOUS) {
+        Some(r) => (r, true),
+        None => (rest, false),
+    };
+    let (chain, tail) = rest.split_once('_')?;
+    let chain = number(chain)?;
+    let (k, form) = if tail == &STARTED[1..] {
+        (1, ChainForm::Started)
+    } else if let Some(k) = tail.strip_suffix(MONO) {
+        (number(k)?, ChainForm::Monotone)
+    } else {
+        (number(tail)?, ChainForm::Recurrence)
+    };
+    Some(LemmaKind::Chain { chain, k, form, previous })
+}
+
 /// One timer's chain: its input, kind and the terms `T_1 … T_P`.
 #[derive(Clone, Debug)]
 pub struct Chain {
@@ -149,7 +237,7 @@ pub fn chains(terms: &[&Expr], cycle: &Delay, prefix: &str) -> Chains {
         let mut recurrences = Vec::new();
         for k in 0..p {
             let rec = recurrence(on, &input, &timers, k, cycle);
-            let name = format!("{prefix}_t{i}_{}", k + 1);
+            let name = format!("{}_{}", chain_family(prefix, i), k + 1);
             let (law, statement) =
                 (law(on, k), Axiom::ground(&name, timers[k].clone(), Rel::Eq, rec.clone()));
             let proof = Proof::Chain {
@@ -176,7 +264,7 @@ pub fn chains(terms: &[&Expr], cycle: &Delay, prefix: &str) -> Chains {
                     premises: Vec::new(),
                 }];
                 steps.extend(push);
-                let earlier = format!("{name}_pre");
+                let earlier = format!("{name}{PREVIOUS}");
                 let lhs = pre(&timers[k]);
                 let proof = Proof::Chain { start: lhs.clone(), steps };
                 out.lemmas.push((earlier.clone(), proof));
@@ -190,7 +278,7 @@ pub fn chains(terms: &[&Expr], cycle: &Delay, prefix: &str) -> Chains {
             }
         }
         if !on {
-            out.started(&format!("{prefix}_t{i}"), &timers[0], cycle);
+            out.started(&chain_family(prefix, i), &timers[0], cycle);
         }
         out.chains.push(Chain { on, input, timers, recurrences });
     }
@@ -215,7 +303,7 @@ impl Chains {
                 }
                 _ => continue,
             };
-            let name = format!("{prefix}_m{i}");
+            let name = format!("{prefix}{MEMORY}{i}");
             let proof = Proof::Chain {
                 start: m.clone(),
                 steps: vec![Step {
@@ -244,7 +332,7 @@ impl Chains {
             subst: Vec::new(),
             premises: Vec::new(),
         };
-        let (now, before) = (format!("{name}_started"), format!("{name}_started_pre"));
+        let (now, before) = (format!("{name}{STARTED}"), format!("{name}{STARTED}{PREVIOUS}"));
         let proof = Proof::Chain {
             start: from.clone(),
             steps: vec![step(vec![], Source::Law, "tof_started", &to)],
@@ -274,7 +362,7 @@ impl Chains {
             subst: Vec::new(),
             premises: Vec::new(),
         };
-        let (now, before) = (format!("{name}_mono"), format!("{name}_mono_pre"));
+        let (now, before) = (format!("{name}{MONO}"), format!("{name}{MONO}{PREVIOUS}"));
         let proof =
             Proof::Chain { start: from.clone(), steps: vec![step(vec![], Source::Law, law, to)] };
         self.lemmas.push((now.clone(), proof));
@@ -456,7 +544,7 @@ pub fn implies_clauses(
     for (i, c) in clauses.iter().enumerate() {
         let zero = crate::term::and_not(p, c);
         let proof = Proof::ImpliesByZero(Box::new(prove(&zero)?));
-        lemmas.push((format!("{prefix}_s{i}"), proof));
+        lemmas.push((step_lemma(prefix, i), proof));
     }
     // The products c1 · … · cj, left-nested.
     let mut prefixes = vec![clauses.first()?.clone()];

@@ -103,8 +103,8 @@ pub const COMMANDS: &[CommandInfo] = &[
     },
     CommandInfo {
         name: "trace",
-        usage: "trace",
-        help: "show the current calculation, or the last finished proof",
+        usage: "trace [all]",
+        help: "show the current calculation, or the last finished proof (`all`: every lemma in full)",
     },
     CommandInfo {
         name: "show",

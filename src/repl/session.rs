@@ -54,7 +54,9 @@ pub struct Session {
     open: Option<Open>,
     closed: Option<Open>,
     done: Vec<Statement<Claim>>,
+    /// The last finished proof, folded and (`trace all`) with every lemma in full.
     last_trace: Vec<String>,
+    last_trace_all: Vec<String>,
     notation: Notation,
     counter: usize,
     program: Option<(String, CompiledProgram)>,
@@ -169,6 +171,7 @@ impl Session {
             closed: None,
             done: Vec::new(),
             last_trace: Vec::new(),
+            last_trace_all: Vec::new(),
             notation: Notation::Paper,
             counter: 0,
             program: None,
@@ -253,7 +256,7 @@ impl Session {
             "apply" => self.apply(rest),
             "auto" => self.auto(),
             "undo" => self.undo(),
-            "trace" => self.trace(),
+            "trace" => self.trace(rest),
             "show" => self.show(rest),
             "simulate" => self.simulate(rest),
             "axioms" => self.axioms(rest),
@@ -645,7 +648,8 @@ impl Session {
                     None => e.clone(),
                 };
                 let style = trace::Style { notation: self.notation, rename: &rename };
-                self.last_trace = trace::render(&proved, rel, &style);
+                self.last_trace = trace::render(&proved, rel, &style, trace::Detail::Folded);
+                self.last_trace_all = trace::render(&proved, rel, &style, trace::Detail::Full);
                 self.done.push(Statement {
                     name: name.clone(),
                     name_span: span,
@@ -771,6 +775,7 @@ impl Session {
                     },
                 });
                 self.last_trace = self.calculation(&open).lines().map(str::to_string).collect();
+                self.last_trace_all = self.last_trace.clone();
                 let text = format!(
                     "proved {}: {}  (kernel-checked, {})\n",
                     open.name,
@@ -1013,7 +1018,12 @@ impl Session {
         "nothing to undo\n".into()
     }
 
-    fn trace(&self) -> String {
+    fn trace(&self, rest: &str) -> String {
+        let all = match rest {
+            "" => false,
+            "all" => true,
+            _ => return format!("error: expected `trace` or `trace all`, found `{rest}`\n"),
+        };
         if let Some(open) = &self.open {
             return format!(
                 "goal {}: {}\n{}",
@@ -1022,10 +1032,11 @@ impl Session {
                 self.calculation(open)
             );
         }
-        if self.last_trace.is_empty() {
+        let lines = if all { &self.last_trace_all } else { &self.last_trace };
+        if lines.is_empty() {
             return "no proof yet\n".into();
         }
-        self.last_trace.iter().map(|l| format!("{l}\n")).collect()
+        lines.iter().map(|l| format!("{l}\n")).collect()
     }
 
     fn show(&self, rest: &str) -> String {

@@ -46,6 +46,8 @@ use crate::theory;
 pub struct Options {
     /// Print each checked proof.
     pub trace: bool,
+    /// Print every lemma of a proof in full (`--trace-all`), not the folded view.
+    pub trace_all: bool,
     /// ASCII notation and diagrams.
     pub ascii: bool,
     /// Time limit per property.
@@ -70,6 +72,7 @@ impl Default for Options {
     fn default() -> Self {
         Options {
             trace: false,
+            trace_all: false,
             ascii: false,
             timeout: Duration::from_secs(10),
             only: Vec::new(),
@@ -121,8 +124,11 @@ pub struct StepReport {
 pub struct TraceReport {
     /// `saturation` or `case-split`.
     pub method: String,
-    /// The printed calculation, line by line.
+    /// The printed calculation, line by line (a line may hold a term broken over
+    /// several); an induction's lemmas folded unless `--trace-all`.
     pub lines: Vec<String>,
+    /// The names of the lemmas the kernel checked with the proof, each one.
+    pub lemmas: Vec<String>,
     /// The length of the calculation (its lines, as the paper's proofs are counted).
     pub length: usize,
     /// Every kernel-checked step.

@@ -212,7 +212,13 @@ pub(super) fn trace_report(
             prover::Method::CaseSplit => "case-split".into(),
             prover::Method::Induction => "induction".into(),
         },
-        lines: if opts.proof_text { trace::render(proved, rel, style) } else { Vec::new() },
+        lines: if opts.proof_text {
+            let detail = if opts.trace_all { trace::Detail::Full } else { trace::Detail::Folded };
+            trace::render(proved, rel, style, detail)
+        } else {
+            Vec::new()
+        },
+        lemmas: proved.certificate.lemmas.iter().map(|(n, _)| n.clone()).collect(),
         length: trace::length(proved),
         steps: if opts.proof_text {
             trace::atomic_steps(proved, style)

@@ -6,6 +6,8 @@
 //! constant evaluation folded into the next citation. Every atomic step was
 //! checked by the kernel; the grouping is presentation only.
 
+mod fold;
+
 use crate::kernel::{Proof, Rel, Rule, Source, Step};
 use crate::prover::Proved;
 use crate::syntax::{Notation, term_to_string};
@@ -292,14 +294,29 @@ fn cases_text(proof: &Proof, style: &Style, indent: &str, out: &mut Vec<String>)
     }
 }
 
+/// How much of a proof's lemmas a trace prints.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Detail {
+    /// An induction's timer chains, step lemmas and invariant folded (`fold`).
+    #[default]
+    Folded,
+    /// Every lemma in full.
+    Full,
+}
+
 /// The calculation of a checked proof of a goal with relation `goal`, as text lines
-/// (without the goal line). An implication proved by an equation ends with the
-/// implication it gives.
-pub fn render(proved: &Proved, goal: Rel, style: &Style) -> Vec<String> {
-    let mut out = Vec::new();
-    for (name, lemma) in &proved.certificate.lemmas {
-        out.push(format!("lemma {name}:"));
-        proof_text(lemma, &[], style, "    ", &mut out);
+/// (without the goal line; a line may hold a term broken over several). An
+/// implication proved by an equation ends with the implication it gives.
+pub fn render(proved: &Proved, goal: Rel, style: &Style, detail: Detail) -> Vec<String> {
+    let mut out = match detail {
+        Detail::Folded => fold::lemmas(proved, style),
+        Detail::Full => Vec::new(),
+    };
+    if detail == Detail::Full {
+        for (name, lemma) in &proved.certificate.lemmas {
+            out.push(format!("lemma {name}:"));
+            proof_text(lemma, &[], style, "    ", &mut out);
+        }
     }
     // A shared lemma is cited by its statement, as the reader's names print it.
     let statement = |t: &crate::kernel::Theorem| {
@@ -367,6 +384,18 @@ pub fn length(proved: &Proved) -> usize {
     proved.certificate.main.as_ref().map_or(0, |m| count(m, &proved.lines))
 }
 
+/// The proofs a proof is made of, in order (a chain's: its steps' premises).
+fn parts(p: &Proof) -> Vec<&Proof> {
+    match p {
+        Proof::Chain { steps, .. } => steps.iter().flat_map(|s| &s.premises).collect(),
+        Proof::CaseSplit { one: p, zero: q, .. }
+        | Proof::Induction { base: p, step: q, .. }
+        | Proof::Antisym(p, q)
+        | Proof::Trans(p, q) => vec![p, q],
+        Proof::Symm(p) | Proof::ImpliesByMeet(p) | Proof::ImpliesByZero(p) => vec![p],
+    }
+}
+
 /// The atomic steps of the main chain, for the JSON output.
 pub fn atomic_steps(proved: &Proved, style: &Style) -> Vec<(String, &'static str, String)> {
     fn walk(p: &Proof, style: &Style, out: &mut Vec<(String, &'static str, String)>) {
@@ -376,21 +405,7 @@ pub fn atomic_steps(proved: &Proved, style: &Style) -> Vec<(String, &'static str
                     .iter()
                     .map(|s| (rule_label(&s.rule), rule_kind(&s.rule), style.term(&s.after))),
             ),
-            Proof::CaseSplit { one, zero, .. } => {
-                walk(one, style, out);
-                walk(zero, style, out);
-            }
-            Proof::Symm(p) | Proof::ImpliesByMeet(p) | Proof::ImpliesByZero(p) => {
-                walk(p, style, out)
-            }
-            Proof::Antisym(p, q) | Proof::Trans(p, q) => {
-                walk(p, style, out);
-                walk(q, style, out);
-            }
-            Proof::Induction { base, step, .. } => {
-                walk(base, style, out);
-                walk(step, style, out);
-            }
+            _ => parts(p).into_iter().for_each(|q| walk(q, style, out)),
         }
     }
     let mut out = Vec::new();
