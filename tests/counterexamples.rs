@@ -29,7 +29,7 @@ fn pairs(folder: &str) -> Vec<(String, String)> {
     let mut out: Vec<(String, String)> = std::fs::read_dir(&dir)
         .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
         .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|x| x == "ld" || x == "xml"))
+        .filter(|p| p.extension().is_some_and(|x| x == "ld" || x == "xml" || x == "st"))
         .map(|p| (p.display().to_string(), p.with_extension("ii").display().to_string()))
         .collect();
     out.sort();

@@ -18,13 +18,14 @@ fn opts() -> Options {
     Options { timeout: Duration::from_secs(20), ..Options::default() }
 }
 
-/// Every `NAME.ld` (or PLCopen `NAME.xml`) of `proves_programs/` with its `NAME.ii`: every
-/// property proved, its printed trace (`--trace`, lemmas folded) within the bound written
-/// above it.
+/// Every `NAME.ld` (or PLCopen `NAME.xml`, Structured Text `NAME.st`) of
+/// `proves_programs/` with its `NAME.ii`: every property proved, its printed trace
+/// (`--trace`, lemmas folded) within the bound written above it.
 #[test]
 fn programs_whose_properties_hold_are_proved() {
     let mut files = common::files_with(&data("proves_programs"), "ld");
     files.extend(common::files_with(&data("proves_programs"), "xml"));
+    files.extend(common::files_with(&data("proves_programs"), "st"));
     assert!(files.len() >= 3, "only {} cases", files.len());
     for ld in files {
         let ii = ld.with_extension("ii").display().to_string();

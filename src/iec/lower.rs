@@ -13,8 +13,10 @@
 
 mod calls;
 mod expr;
+mod flow;
 mod il;
 mod ints;
+mod known;
 mod user;
 
 use calls::Fb;
@@ -171,7 +173,7 @@ pub fn lower(
         for (r, table) in runs.iter().zip(tables) {
             l.syms = table;
             match &r.pou.body {
-                ast::Body::St(stmts) => stmts.iter().for_each(|s| l.block(s)),
+                ast::Body::St(stmts) => l.program_body(stmts),
                 ast::Body::Il(lines) => {
                     l.il = true;
                     l.il_body(lines)
@@ -349,6 +351,14 @@ struct Lowering<'s> {
     /// Counter inputs some call leaves out (instance key, pin): every call that gives
     /// them keeps them in a hidden bit (given; grows while lowering, like `opaque`).
     omitted: BTreeSet<(String, String)>,
+    /// The values known at this point of the scan (to count `WHILE`/`REPEAT` loops).
+    known: known::Known,
+    /// The bodies being lowered, with their `RETURN` and loop bits, innermost last.
+    frames: Vec<flow::Frame>,
+    /// The hidden bits of `EXIT`, `CONTINUE` and `RETURN`, by statement.
+    flow_bits: BTreeMap<(Span, &'static str), String>,
+    /// Where a top-level `#ASSERT` stands after a `RETURN`: when it is reached.
+    reached: Option<BoolExpr>,
 }
 
 impl<'s> Lowering<'s> {
@@ -383,6 +393,10 @@ impl<'s> Lowering<'s> {
             opaque: BTreeMap::new(),
             int_globals: BTreeSet::new(),
             omitted: BTreeSet::new(),
+            known: known::Known::default(),
+            frames: Vec::new(),
+            flow_bits: BTreeMap::new(),
+            reached: None,
         }
     }
 
@@ -553,12 +567,6 @@ impl<'s> Lowering<'s> {
         self.sources.line_col(span.file, span.start).0
     }
 
-    fn block(&mut self, s: &ast::Stmt) {
-        self.line = self.line_of(s.span);
-        let stmts = self.stmt(s, 0);
-        self.push_block(s.span, stmts);
-    }
-
     /// A block of the current line's statements (none: no block).
     fn push_block(&mut self, span: Span, stmts: Vec<Stmt>) {
         if stmts.is_empty() {
@@ -608,11 +616,9 @@ impl<'s> Lowering<'s> {
                 let branches = conditions
                     .into_iter()
                     .zip(branches)
-                    .map(|(c, (_, body))| {
-                        (c, body.iter().flat_map(|s| self.stmt(s, depth + 1)).collect())
-                    })
+                    .map(|(c, (_, body))| (c, self.branch(body, depth + 1)))
                     .collect();
-                let otherwise = otherwise.iter().flat_map(|s| self.stmt(s, depth + 1)).collect();
+                let otherwise = self.branch(otherwise, depth + 1);
                 vec![Stmt::If { branches, otherwise, span: s.span }]
             }
             StmtKind::Case(selector, arms, otherwise) => {
@@ -624,78 +630,21 @@ impl<'s> Lowering<'s> {
                     let terms: Vec<BoolExpr> =
                         labels.iter().map(|l| self.case_label(selector, l)).collect();
                     let condition = BoolExpr::Or(terms);
-                    let body = body.iter().flat_map(|s| self.stmt(s, depth + 1)).collect();
+                    let body = self.branch(body, depth + 1);
                     branches.push((condition, body));
                 }
-                let otherwise = otherwise.iter().flat_map(|s| self.stmt(s, depth + 1)).collect();
+                let otherwise = self.branch(otherwise, depth + 1);
                 if branches.is_empty() {
                     return otherwise;
                 }
                 vec![Stmt::If { branches, otherwise, span: s.span }]
             }
             StmtKind::For(var, from, to, by, body) => {
-                let Some((first, step, count)) =
-                    self.iterations(var, from, to, by.as_ref(), s.span)
-                else {
-                    return Vec::new();
-                };
-                // Unrolled, as matiec runs it: the counter starts at the first value and
-                // takes the next before each later iteration (it ends at the last value).
-                let counter = self.lookup(var);
-                let mut out = Vec::new();
-                for k in 0..count.max(1) {
-                    if let Some(Sym { ty: Ty::Int(t), name, .. }) = &counter {
-                        let value = crate::program::IntExpr::Const(t.wrap(first + step * k as i64));
-                        if !self.opaque.contains_key(name) {
-                            out.push(Stmt::SetInt { target: name.clone(), value, span: var.span });
-                        }
-                    }
-                    if count > 0 {
-                        let stmts: Vec<Stmt> =
-                            body.iter().flat_map(|s| self.stmt(s, depth + 1)).collect();
-                        let writes_counter = stmts.iter().any(|s| {
-                            let mut hit = false;
-                            s.visit(
-                                &mut |s| {
-                                    hit |= matches!((s, &counter), (Stmt::SetInt { target, .. }, Some(c)) if *target == c.name)
-                                },
-                                &mut |_| {},
-                            );
-                            hit
-                        });
-                        if writes_counter {
-                            self.refuse(
-                                var.span,
-                                "a FOR loop whose body writes its counter",
-                                "the number of iterations then depends on the scan",
-                            );
-                            return Vec::new();
-                        }
-                        out.extend(stmts);
-                    }
-                }
-                out
+                self.for_loop(s, var, (from, to, by.as_ref()), body, depth)
             }
-            StmtKind::While(..) | StmtKind::Repeat(..) => {
-                self.refuse(
-                    self.keyword(s.span),
-                    "a WHILE or REPEAT loop",
-                    "its number of iterations is not known before the scan; write a FOR loop with constant bounds",
-                );
-                Vec::new()
-            }
-            StmtKind::Exit | StmtKind::Continue => {
-                self.refuse(
-                    self.keyword(s.span),
-                    "`EXIT`/`CONTINUE`",
-                    "a FOR loop is unrolled whole; leave it with an IF around the rest of its body",
-                );
-                Vec::new()
-            }
-            StmtKind::Return => {
-                self.refuse(self.keyword(s.span), "`RETURN`", "it skips the rest of the scan on some scans; the equations describe a whole scan");
-                Vec::new()
-            }
+            StmtKind::While(cond, body) => self.while_loop(s, cond, body, depth, false),
+            StmtKind::Repeat(body, cond) => self.while_loop(s, cond, body, depth, true),
+            StmtKind::Exit | StmtKind::Continue | StmtKind::Return => self.jump(s),
             StmtKind::Empty => Vec::new(),
             StmtKind::Assert(e, name) => {
                 if depth > 0 {
@@ -706,7 +655,8 @@ impl<'s> Lowering<'s> {
                     );
                     return Vec::new();
                 }
-                self.assertion(e, name.as_ref(), None)
+                let reached = self.reached.clone();
+                self.assertion(e, name.as_ref(), reached)
             }
         }
     }

@@ -1,4 +1,4 @@
-//! Random Structured Text programs for the differential tests: Boolean assignments, IF/ELSIF/ELSE, every modelled function block (TON, TOF, TP, R_TRIG, F_TRIG, SR, RS, CTU, CTD, CTUD) with formal inputs and outputs, user functions and function blocks (inputs left out keep their values), FOR loops with constant bounds, the Boolean operators and functions, integers of every 8- to 32-bit type (arithmetic, division and MOD by literals, conversions, MIN/MAX/LIMIT/ABS/SEL, comparisons, CASE, integer inputs), initial values, and a configuration giving the cycle.
+//! Random Structured Text programs for the differential tests: Boolean assignments, IF/ELSIF/ELSE, every modelled function block (TON, TOF, TP, R_TRIG, F_TRIG, SR, RS, CTU, CTD, CTUD) with formal inputs and outputs, user functions and function blocks (inputs left out keep their values), FOR loops with constant bounds and WHILE/REPEAT loops counted before the scan (EXIT and CONTINUE under IF in their bodies), RETURN under IF in a program and a function block, the Boolean operators and functions, integers of every 8- to 32-bit type (arithmetic, division and MOD by literals, conversions, MIN/MAX/LIMIT/ABS/SEL, comparisons, CASE, integer inputs), initial values, and a configuration giving the cycle.
 #![allow(dead_code)]
 
 use super::rng::Rng;
@@ -200,6 +200,48 @@ impl Gen<'_> {
         out + &format!("{indent}END_IF;\n")
     }
 
+    /// A loop's body: assignments and choices, perhaps an `EXIT` or `CONTINUE` under an
+    /// IF among them.
+    fn loop_body(&mut self, indent: &str) -> String {
+        let mut out = String::new();
+        for _ in 0..1 + self.rng.below(3) {
+            if self.rng.chance(35) {
+                let word = if self.rng.chance(50) { "EXIT" } else { "CONTINUE" };
+                let inner = format!("{indent}  ");
+                let before = if self.rng.chance(40) { self.assign(&inner) } else { String::new() };
+                out += &format!(
+                    "{indent}IF {} THEN\n{before}{inner}{word};\n{indent}END_IF;\n",
+                    self.expr(1)
+                );
+            } else if self.rng.chance(25) {
+                out += &self.choice(indent, 0);
+            } else {
+                out += &self.assign(indent);
+            }
+        }
+        out
+    }
+
+    /// A `WHILE` or `REPEAT` loop counted by `i`, set just before it: its count is known
+    /// before the scan (the body's `CONTINUE` comes after the count's update).
+    fn counted_loop(&mut self, indent: &str) -> String {
+        let inner = format!("{indent}  ");
+        let from = self.rng.below(3);
+        let to = from + self.rng.below(4);
+        let step = 1 + self.rng.below(2);
+        let body = self.loop_body(&inner);
+        let mut out = format!("{indent}i := {from};\n");
+        if self.rng.chance(50) {
+            let test = if step == 1 && self.rng.chance(30) { "<>" } else { "<" };
+            out += &format!("{indent}WHILE i {test} {to} DO\n{inner}i := i + {step};\n{body}");
+            out += &format!("{indent}END_WHILE;\n");
+        } else {
+            out += &format!("{indent}REPEAT\n{inner}i := i + {step};\n{body}");
+            out += &format!("{indent}UNTIL i >= {} END_REPEAT;\n", to.max(from + 1));
+        }
+        out
+    }
+
     fn body(&mut self, indent: &str, depth: u32) -> String {
         let mut out = String::new();
         for _ in 0..1 + self.rng.below(3) {
@@ -342,6 +384,9 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
             "R_TRIG" => text += &format!("  K(CLK := {});\n", f.expr(1)),
             _ => {}
         }
+        if f.rng.chance(30) {
+            text += &format!("  IF {} THEN\n    RETURN;\n  END_IF;\n", f.expr(1));
+        }
         text += &f.body("  ", 1);
         text += "END_FUNCTION_BLOCK\n\n";
         for k in 0..1 + g.rng.below(2) {
@@ -457,7 +502,10 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
             if g.rng.chance(15) {
                 from = to + 1; // no iteration
             }
-            text += &format!("  FOR i := {from} TO {to} DO\n{}  END_FOR;\n", g.body("    ", 1));
+            let body = if g.rng.chance(50) { g.loop_body("    ") } else { g.body("    ", 1) };
+            text += &format!("  FOR i := {from} TO {to} DO\n{body}  END_FOR;\n");
+        } else if g.rng.chance(8) {
+            text += &g.counted_loop("  ");
         } else {
             text += &g.assign("  ");
         }
@@ -467,6 +515,11 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
     }
     for c in calls {
         text += &c;
+    }
+    // A RETURN after the calls (a call it may skip would be a timer run on some scans).
+    if g.rng.chance(20) {
+        text += &format!("  IF {} THEN\n    RETURN;\n  END_IF;\n", g.expr(1));
+        text += &g.body("  ", 1);
     }
     text += "END_PROGRAM\n\n";
     text += &format!(

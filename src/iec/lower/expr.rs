@@ -1,5 +1,6 @@
 //! Boolean expressions of Structured Text in the scan model: variables and FB outputs, `NOT`/`AND`/`OR`/`XOR`, `=`/`<>` between BOOLs, the Boolean functions, integer comparisons (`ints`), `CASE` labels and `FOR` bounds.
 
+use super::flow::MAX_ITERATIONS;
 use super::{Lowering, Sym, Ty};
 use crate::diag::Span;
 use crate::iec::StError;
@@ -205,9 +206,6 @@ pub(super) fn xor(a: BoolExpr, b: BoolExpr) -> BoolExpr {
     ])
 }
 
-/// The most iterations a `FOR` loop is unrolled to.
-const MAX_ITERATIONS: i128 = 1000;
-
 impl Lowering<'_> {
     /// Whether `selector` matches a `CASE` label (`a` or `a..b`): for a BOOL selector an
     /// equivalence, else integer comparisons.
@@ -232,7 +230,8 @@ impl Lowering<'_> {
     }
 
     /// A `FOR` loop's first value, step and number of iterations: its bounds and step
-    /// must be integer literals.
+    /// must be known before the scan (literals, constants, values fixed by assignments
+    /// earlier in the scan).
     pub(super) fn iterations(
         &mut self,
         var: &Ident,
@@ -242,25 +241,19 @@ impl Lowering<'_> {
         span: Span,
     ) -> Option<(i64, i64, u64)> {
         let _ = self.lookup(var)?;
-        let literal = |e: &ast::Expr| match &e.kind {
-            ExprKind::Int(v) => Some(*v),
-            ExprKind::Unary(UnOp::Neg, x) => match x.kind {
-                ExprKind::Int(v) => Some(-v),
-                _ => None,
-            },
-            _ => None,
-        };
         let bounds = [Some(from), Some(to), by];
         let mut values = Vec::new();
         for e in bounds.into_iter().flatten() {
-            match literal(e) {
-                Some(v) => values.push(v),
-                None => {
-                    self.refuse(
+            let errors = self.errors.len();
+            match self.known_value(e) {
+                Ok(v) => values.push(i128::from(v)),
+                Err(_) if self.errors.len() > errors => return None,
+                Err(detail) => {
+                    self.errors.push(StError::new(
                         e.span,
-                        "a FOR loop whose bound or step is not an integer literal",
-                        "ii-prove unrolls a loop it can count before the scan",
-                    );
+                        format!("this FOR loop's bound or step is not known before the scan: {detail}"),
+                        "ii-prove unrolls a loop only when the values that count its iterations are fixed by assignments earlier in the same scan",
+                    ));
                     return None;
                 }
             }
@@ -284,7 +277,7 @@ impl Lowering<'_> {
             );
             return None;
         }
-        if n > MAX_ITERATIONS {
+        if n > i128::from(MAX_ITERATIONS) {
             self.refuse(
                 span,
                 &format!("a FOR loop of {n} iterations"),

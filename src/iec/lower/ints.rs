@@ -469,6 +469,14 @@ impl Lowering<'_> {
         Int::var(&name, t)
     }
 
+    /// The value of `e` here, computed as C computes it (in `int` at least), when the
+    /// values it reads are known before the scan; else what is not known.
+    pub(super) fn known_value(&mut self, e: &ast::Expr) -> Result<i64, String> {
+        let v = self.int_expr(e)?;
+        let t = v.ty.map_or(C_INT, promoted);
+        self.known_int(&v.in_type(t), t).map_err(|x| format!("it reads {x}"))
+    }
+
     /// The value of `e` for an integer input of type `t` (an FB's `PV`), or why not.
     pub(super) fn int_input(&mut self, e: &ast::Expr, t: IntType) -> Result<IntExpr, Opaque> {
         let v = self.int_expr(e)?;

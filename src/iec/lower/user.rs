@@ -139,13 +139,15 @@ impl Lowering<'_> {
         let line = self.line;
         self.inlining.push(pou.name.key());
         let stmts = match &pou.body {
-            ast::Body::St(body) => body
-                .iter()
-                .flat_map(|s| {
-                    self.line = self.line_of(s.span);
-                    self.stmt(s, 1)
-                })
-                .collect(),
+            ast::Body::St(body) => {
+                let mut out = body.first().map_or(Vec::new(), |s| self.enter_body(body, s.span));
+                self.run_known(&out);
+                out.extend(self.seq(body, 1, true));
+                if !body.is_empty() {
+                    self.leave_body();
+                }
+                out
+            }
             ast::Body::Il(lines) => self.il_run(lines).into_iter().flat_map(|r| r.2).collect(),
         };
         self.inlining.pop();
