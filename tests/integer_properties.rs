@@ -137,19 +137,9 @@ fn simulate(p: &Program, rng: &mut Rng, scans: usize) -> Run {
     let program = read_ldmicro(&sources, file).expect("a generated program reads");
     let mut sim = Simulator::new(&program);
     let mut run = Run::default();
-    let mut inputs: BTreeMap<String, bool> =
-        INPUTS.iter().map(|n| (n.to_string(), false)).collect();
-    let mut hold = [0u64; 3];
+    let mut inputs = rng::HeldInputs::new(&INPUTS, 35, 6);
     for _ in 0..scans {
-        for (i, n) in INPUTS.iter().enumerate() {
-            if hold[i] == 0 {
-                // The reset input (and the others) mostly off, so counts run up.
-                inputs.insert(n.to_string(), rng.chance(35));
-                hold[i] = 1 + rng.below(6);
-            }
-            hold[i] -= 1;
-        }
-        sim.step(&inputs);
+        sim.step(inputs.next(rng));
         for n in INPUTS.iter().chain(RELAYS.iter()) {
             run.bits.entry(n.to_string()).or_default().push(sim.bit(n));
         }

@@ -84,18 +84,9 @@ fn simulate(ld: &str, rng: &mut Rng, scans: usize) -> BTreeMap<String, Vec<bool>
     let program = read_ldmicro(&sources, file).expect("a generated program reads");
     let mut sim = Simulator::new(&program);
     let mut run: BTreeMap<String, Vec<bool>> = BTreeMap::new();
-    let mut inputs: BTreeMap<String, bool> =
-        INPUTS.iter().map(|n| (n.to_string(), false)).collect();
-    let mut hold = [0u64; 3];
+    let mut inputs = rng::HeldInputs::new(&INPUTS, 50, 8);
     for _ in 0..scans {
-        for (i, n) in INPUTS.iter().enumerate() {
-            if hold[i] == 0 {
-                inputs.insert(n.to_string(), rng.chance(50));
-                hold[i] = 1 + rng.below(8);
-            }
-            hold[i] -= 1;
-        }
-        sim.step(&inputs);
+        sim.step(inputs.next(rng));
         for n in INPUTS.iter().chain(RELAYS.iter()) {
             run.entry(n.to_string()).or_default().push(sim.bit(n));
         }

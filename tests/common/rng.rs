@@ -28,3 +28,32 @@ impl Rng {
         &xs[self.below(xs.len() as u64) as usize]
     }
 }
+
+/// Inputs that each hold a random value for a random stretch of scans: a new value is
+/// drawn (1 with `percent` % chance) when an input's stretch ends, and stretches last 1 to
+/// `longest` scans.
+pub struct HeldInputs {
+    values: std::collections::BTreeMap<String, bool>,
+    left: Vec<u64>,
+    percent: u64,
+    longest: u64,
+}
+
+impl HeldInputs {
+    pub fn new(names: &[&str], percent: u64, longest: u64) -> HeldInputs {
+        let values = names.iter().map(|n| (n.to_string(), false)).collect();
+        HeldInputs { values, left: vec![0; names.len()], percent, longest }
+    }
+
+    /// The inputs of the next scan.
+    pub fn next(&mut self, rng: &mut Rng) -> &std::collections::BTreeMap<String, bool> {
+        for (left, value) in self.left.iter_mut().zip(self.values.values_mut()) {
+            if *left == 0 {
+                *value = rng.chance(self.percent);
+                *left = 1 + rng.below(self.longest);
+            }
+            *left -= 1;
+        }
+        &self.values
+    }
+}
