@@ -180,17 +180,23 @@ fn search(
     let integers = expanded.lhs != goal.lhs || expanded.rhs != goal.rhs;
     let mut goals = goal_clauses(&expanded);
     let inputs = chains.map(Chains::input_names).unwrap_or_default();
-    let state = state_bits(&cone, goal, &inputs);
-    let mut more = clauses(&state);
-    // The program's bounds of its integers, where the cone reads every bit they read.
     let read = read_before(&cone);
+    let state = state_bits(read.clone(), goal, &inputs);
+    let mut more = clauses(&state);
+    // Which of `more` are disjunctions of two literals (after the literals themselves).
+    let pairs = 2 * state.len()..more.len();
+    // The program's bounds of its integers, where the cone reads every bit they read.
     more.extend(ctx.hints.iter().filter(|h| names_in(h).iter().all(|n| read.contains(n))).cloned());
     if let Some(chains) = chains {
         goals = goals.iter().map(|g| chains.unfold(g)).collect();
         more.extend(timing::clauses(chains, &state, &inputs, &memories(goal)));
     }
     let mut candidates: Vec<Clause> = goals.iter().map(|g| Clause::new(g, true)).collect();
-    candidates.extend(more.iter().map(|c| Clause::new(c, false)));
+    candidates.extend(
+        more.iter()
+            .enumerate()
+            .map(|(i, c)| Clause { pair: pairs.contains(&i), ..Clause::new(c, false) }),
+    );
     stalled.state_bits = state.len();
     stalled.candidates = candidates.len();
     let stop = |mut stalled: Stalled, stop: Stop, kept: usize| {
@@ -310,8 +316,9 @@ fn search(
     let candidates: Vec<Expr> = candidates.into_iter().map(|c| c.now).collect();
     // A minimal invariant can be inductive and still too hard to certify by cases: a
     // bound on a counter (`[C <= 10]`) is, but its step reasons through the adder's
-    // carries. The single-bit facts and the program's integer bounds of the largest
-    // inductive set (the counter's high bits stay 0) cut those case splits short.
+    // carries. The largest inductive set without its two-literal clauses (its single-bit
+    // facts, the counter's high bits staying 0, and the program's integer bounds) cuts
+    // those case splits short.
     // (Timer chains have their own clauses and a certificate per clause.)
     let mut strengthen = || {
         if chains.is_some() {
@@ -320,9 +327,7 @@ fn search(
         let mut all = all.clone();
         let pruned =
             prune(&mut all, &mut rounds, deadline, |c| &c.now, |set| inductive(set, &mut atoms));
-        all.retain(|c| {
-            c.goal || !matches!(c.now[root(&c.now)], Term::Or(_)) || ctx.hints.contains(&c.now)
-        });
+        all.retain(|c| !c.pair);
         let stronger = pruned.is_ok() && all.len() > kept && inductive(&all, &mut atoms).is_none();
         stronger.then(|| all.into_iter().map(|c| c.now).collect::<Vec<Expr>>())
     };
@@ -339,18 +344,26 @@ fn search(
 }
 
 /// A candidate clause: as it reads now, at the first scan, and at the previous scan
-/// (`pre` pushed down to its atoms); `goal` for the goal's own clauses.
+/// (`pre` pushed down to its atoms); `goal` for the goal's own clauses, `pair` for a
+/// disjunction of two state-bit literals.
 #[derive(Clone)]
 struct Clause {
     now: Expr,
     first: Expr,
     before: Expr,
     goal: bool,
+    pair: bool,
 }
 
 impl Clause {
     fn new(c: &Expr, goal: bool) -> Clause {
-        Clause { now: c.clone(), first: at_first_scan(c), before: push_pre(&pre(c)).0, goal }
+        Clause {
+            now: c.clone(),
+            first: at_first_scan(c),
+            before: push_pre(&pre(c)).0,
+            goal,
+            pair: false,
+        }
     }
 }
 
@@ -412,10 +425,9 @@ fn goal_clauses(goal: &Obligation) -> Vec<Expr> {
     out
 }
 
-/// The state bits: names whose previous value the cone reads, the goal's names first,
+/// The state bits: names whose previous value the cone reads (`read`), the goal's names first,
 /// then `also` (the inputs of timer chains).
-fn state_bits(cone: &[Axiom], goal: &Obligation, also: &BTreeSet<String>) -> Vec<String> {
-    let read = read_before(cone);
+fn state_bits(read: BTreeSet<String>, goal: &Obligation, also: &BTreeSet<String>) -> Vec<String> {
     let mut out: Vec<String> = Vec::new();
     for side in [&goal.lhs, &goal.rhs] {
         for t in side.as_ref() {
