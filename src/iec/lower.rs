@@ -8,8 +8,10 @@
 //! write hidden bits `T1_Q`, `R1_Q`, `SR1_Q1` and counts `C1_CV` (`calls`): TON/TOF/TP
 //! as timers counted as matiec counts them ([`Preset::iec`]), R_TRIG/F_TRIG as one-shots
 //! (`Q := CLK ∧ ¬M; M := CLK`), SR/RS as set and reset in the order their definitions
-//! give, CTU/CTD/CTUD as matiec's library counts. Loops other than constant `FOR`,
-//! `RETURN` and an FB input assigned outside its call are refused with a located error.
+//! give, CTU/CTD/CTUD as matiec's library counts. Loops are unrolled where their counts
+//! are known before the scan (`flow`, `known`), and `EXIT`, `CONTINUE` and `RETURN` guard
+//! what follows them with hidden bits; a loop whose count is not known then, and an FB
+//! input assigned outside its call, are refused with a located error.
 
 mod calls;
 mod expr;

@@ -18,6 +18,9 @@ use crate::diag::Span;
 use crate::kernel::Rel;
 use crate::syntax::IntOperand;
 
+/// At most this many integer bounds are offered to the invariant search as candidates.
+pub const BOUND_HINTS: usize = 256;
+
 /// The comparison atoms properties have used, by signal name; the copies of one compiled
 /// program share them.
 #[derive(Clone, Debug, Default)]
@@ -170,15 +173,15 @@ impl CompiledProgram {
     /// Candidate invariants for the invariant search over scans (untrusted: it keeps only
     /// those it finds inductive, and the kernel checks what it keeps): each integer the
     /// program computes against each of the program's constants, `x <= k` and `x >= k`,
-    /// as Boolean functions of the integer's bits. At most `limit`, the integers in name
-    /// order.
-    pub fn bound_hints(&self, limit: usize) -> Vec<crate::term::Expr> {
+    /// as Boolean functions of the integer's bits. At most [`BOUND_HINTS`], the integers
+    /// in name order.
+    pub fn bound_hints(&self) -> Vec<crate::term::Expr> {
         let mut out = Vec::new();
         for (x, var) in self.integers.iter().filter(|(_, v)| !v.input) {
             let bits = self.int_bits(x, var.ty);
             for &k in self.constants.iter().filter(|k| var.ty.contains(**k)) {
                 for op in [CmpOp::Le, CmpOp::Ge] {
-                    if out.len() == limit {
+                    if out.len() == BOUND_HINTS {
                         return out;
                     }
                     let k = bitvec::constant(k, var.ty.bits);

@@ -328,6 +328,7 @@ impl Session {
         checker.failed = std::mem::take(&mut self.checker.failed);
         checker.notation = self.notation;
         checker.display = self.program.as_ref().map(|(_, c)| c.clone());
+        checker.ctx.hints = self.program.as_ref().map(|(_, c)| c.bound_hints()).unwrap_or_default();
         self.checker = checker;
         Ok(())
     }

@@ -407,9 +407,6 @@ pub fn binary(bytes: &[u8]) -> Option<String> {
 /// At most this many diagnostics are printed for one run; the rest are counted.
 pub const MAX_ERRORS: usize = 20;
 
-/// At most this many integer bounds are offered to the invariant search as candidates.
-const BOUND_HINTS: usize = 256;
-
 fn fail(sources: &Sources, diagnostics: Vec<Diagnostic>, opts: &Options) -> InputError {
     let style = RenderStyle { ascii: opts.ascii };
     let mut rendered: String =
@@ -753,7 +750,7 @@ pub fn run_program_with(
         hypotheses.extend(assumed.iter().cloned());
         let mut ctx = Context::with_scans(theory.axioms(), hypotheses, Some(compiled.scan_cycle()))
             .map_err(|e| InputError { rendered: format!("error: {path}: {e}\n") })?;
-        ctx.hints = compiled.bound_hints(BOUND_HINTS);
+        ctx.hints = compiled.bound_hints();
         let session = counterexample::Program {
             reference: loaded.reference.as_ref(),
             compiled,

@@ -248,6 +248,7 @@ impl Checker {
     pub fn snapshot(&self) -> Result<Checker, KernelError> {
         let (laws, hypotheses) = (self.ctx.laws.clone(), self.ctx.hypotheses().to_vec());
         let mut copy = Checker::with_scans(laws, hypotheses, self.ctx.cycle.clone())?;
+        copy.ctx.hints = self.ctx.hints.clone();
         copy.proved = self.proved.clone();
         copy.failed = self.failed.clone();
         copy.budget = self.budget;

@@ -55,8 +55,8 @@ impl ScriptRun {
 }
 
 /// The checker for a script document: the standard laws, the program's equations and
-/// bounds (for a script about a `program`'s scans, with its cycle) and the
-/// document's `assume`s.
+/// bounds (for a script about a `program`'s scans, with its cycle, and its integer bounds as
+/// candidates for the invariant search) and the document's `assume`s.
 pub fn checker_for(
     theory: &Theory,
     doc: &Document,
@@ -65,10 +65,14 @@ pub fn checker_for(
     let mut hypotheses = program.map(CompiledProgram::axioms).unwrap_or_default();
     hypotheses.extend(report::assumptions(doc));
     let cycle = program.map(CompiledProgram::scan_cycle);
-    Checker::with_scans(theory.axioms(), hypotheses, cycle).map_err(|e| ScriptError::BadContext {
-        span: doc.assumptions.first().map_or(Span::new(doc.file, 0..0), |s| s.span),
-        reason: format!("the hypotheses cannot be loaded: {e}"),
-    })
+    let mut checker = Checker::with_scans(theory.axioms(), hypotheses, cycle).map_err(|e| {
+        ScriptError::BadContext {
+            span: doc.assumptions.first().map_or(Span::new(doc.file, 0..0), |s| s.span),
+            reason: format!("the hypotheses cannot be loaded: {e}"),
+        }
+    })?;
+    checker.ctx.hints = program.map(CompiledProgram::bound_hints).unwrap_or_default();
+    Ok(checker)
 }
 
 /// Checks every claim of one parsed script; returns the reports and the errors.
