@@ -276,6 +276,29 @@ fn search(
         };
         return Err(stop(stalled, why, candidates.len()));
     }
+    // Grow from the goal's clauses: while they are not inductive, the step's model starts
+    // from a state the inductive set excludes, so one of its clauses is 0 there before the
+    // scan; add it (those that are not pairs first). A small invariant is then found in a
+    // few calls, where dropping clauses one at a time from the large set costs one each.
+    let mut core: Vec<Clause> = candidates.iter().filter(|c| c.goal).cloned().collect();
+    while !core.is_empty() && Instant::now() < deadline {
+        let Some(model) = inductive(&core, &mut atoms) else {
+            candidates = core;
+            break;
+        };
+        let fails = |c: &Clause| {
+            !core.iter().any(|k| k.now == c.now) && value(&c.before, &model) == Some(false)
+        };
+        let add: Vec<Clause> =
+            match candidates.iter().filter(|c| !c.pair && fails(c)).cloned().collect::<Vec<_>>() {
+                singles if !singles.is_empty() => singles,
+                _ => candidates.iter().filter(|c| fails(c)).take(1).cloned().collect(),
+            };
+        if add.is_empty() {
+            break;
+        }
+        core.extend(add);
+    }
     // Half the time left (one SAT call per clause): with timer chains every clause kept
     // is proved on its own, so each one dropped saves a case proof.
     let minimise_until = Instant::now() + deadline.saturating_duration_since(Instant::now()) / 2;
