@@ -119,8 +119,10 @@ pub fn attempt(
                         candidate.as_ref(),
                         expert,
                     ),
-                    candidate: induction
-                        .and_then(|s| unknown::step_candidate(s, rename, opts.notation(), glyphs)),
+                    candidate: induction.and_then(|s| {
+                        let compiled = program.map(|p| p.compiled);
+                        unknown::step_candidate(s, compiled, rename, opts.notation(), glyphs)
+                    }),
                 },
             }
         }

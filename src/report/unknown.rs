@@ -2,11 +2,13 @@
 //! missing, and a possible counterexample drawn small — a few lines, the same in every
 //! format, never a dump of terms.
 
-use super::{CounterexampleReport, SignalReport, trace, waveform};
+use super::tracks::IntegerTrack;
+use super::{CounterexampleReport, IntegerReport, SignalReport, trace, waveform};
+use crate::program::CompiledProgram;
 use crate::prover::induction::{Stalled, Stop};
 use crate::prover::{Candidate, REASON_LINE, clip};
-use crate::semantics::{Signal, Time, format_time};
-use crate::term::Expr;
+use crate::semantics::{Assignment, Signal, Time, format_time};
+use crate::term::{Expr, Symbol};
 
 /// At most this many signals in a possible counterexample's diagram.
 pub const DIAGRAM_ROWS: usize = 8;
@@ -95,6 +97,7 @@ pub fn bounded(mut c: CounterexampleReport, glyphs: waveform::Glyphs) -> Counter
 /// that breaks the goal), when the invariant search stopped there.
 pub fn step_candidate(
     stalled: &Stalled,
+    compiled: Option<&CompiledProgram>,
     rename: &dyn Fn(&Expr) -> Expr,
     notation: crate::syntax::Notation,
     glyphs: waveform::Glyphs,
@@ -104,22 +107,43 @@ pub fn step_candidate(
     }
     let one = Time::from_integer(1.into());
     let two = Time::from_integer(2.into());
-    let shown: Vec<(String, Signal)> = stalled
+    let named = |n: &str| crate::syntax::term_to_string(&rename(&crate::term::name(n)), notation);
+    let all: Vec<(String, Signal)> = stalled
         .step_model
         .iter()
-        .take(DIAGRAM_ROWS)
         .map(|(name, before, now)| {
-            let label = crate::syntax::term_to_string(&rename(&crate::term::name(name)), notation);
             let (b, n) = (before.unwrap_or(false), now.unwrap_or(false));
-            (
-                label,
-                Signal::from_fn(two.clone(), vec![one.clone()], |t| if *t <= one { b } else { n }),
-            )
+            let s =
+                Signal::from_fn(two.clone(), vec![one.clone()], |t| if *t <= one { b } else { n });
+            (name.clone(), s)
         })
         .collect();
-    let mut diagram = waveform::draw_within(&shown, None, glyphs, DIAGRAM_WIDTH);
+    // An integer whose every bit is a state bit is drawn as its value, not its bits.
+    let mut env = Assignment::new(two.clone());
+    env.signals.extend(all.iter().map(|(n, s)| (Symbol::from(n.as_str()), s.clone())));
+    let tracked = compiled.map(|c| IntegerTrack::all(c, &env, &named)).unwrap_or_default();
+    let shown: Vec<(String, Signal)> = all
+        .into_iter()
+        .map(|(n, s)| (named(&n), s))
+        .filter(|(label, _)| !tracked.iter().any(|t| t.shows_bit(label)))
+        .take(DIAGRAM_ROWS.saturating_sub(tracked.len()).max(1))
+        .collect();
+    let readers: Vec<_> =
+        tracked.iter().map(|t| move |time: &Time| Some(t.value_at(time))).collect();
+    let values: Vec<waveform::Track> = tracked
+        .iter()
+        .zip(&readers)
+        .map(|(t, f)| (t.name.clone(), f as &dyn Fn(&Time) -> Option<i64>))
+        .collect();
+    let mut diagram = waveform::draw_with_values(&shown, &values, None, glyphs);
     // The columns are a scan and the next, not instants of a run: the axis says so.
-    let width = shown.iter().map(|(n, _)| n.chars().count()).max().unwrap_or(0).max(4);
+    let width = shown
+        .iter()
+        .map(|(n, _)| n.chars().count())
+        .chain(tracked.iter().map(|t| t.name.chars().count()))
+        .max()
+        .unwrap_or(0)
+        .max(4);
     if let Some(axis) = diagram.last_mut() {
         *axis = format!("{:<width$} {:^5} {:^5}", "scan", "k-1", "k").trim_end().to_string();
     }
@@ -137,8 +161,11 @@ pub fn step_candidate(
             })
             .collect(),
         diagram,
-        integers: Vec::new(),
-        tracks: Vec::new(),
+        integers: tracked
+            .iter()
+            .map(|t| IntegerReport { name: t.name.clone(), values: vec![t.value_at(&one), t.value_at(&two)] })
+            .collect(),
+        tracks: tracked,
         scan: None,
         simulator_scan: None,
         confirmed_by: Vec::new(),
