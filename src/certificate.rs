@@ -235,6 +235,17 @@ pub enum Proof {
     ImpliesByMeet(Box<Proof>),
     /// `f ⇒ g` from a proof of `f·¬g = 0*`.
     ImpliesByZero(Box<Proof>),
+    /// `goal = 0*` from the proved `facts` and `lemmas`, clauses over the variables
+    /// [`crate::refutation::Cnf`] gives the goal and the facts' statements, each implied
+    /// by unit propagation, the last the empty clause.
+    Refutation {
+        /// The term shown to be `0*`.
+        goal: Expr,
+        /// Proofs of the statements the refutation rests on.
+        facts: Vec<Proof>,
+        /// The derived clauses, in order.
+        lemmas: Vec<Vec<i32>>,
+    },
 }
 
 impl Proof {
@@ -256,6 +267,9 @@ impl Proof {
             }
             Proof::Symm(p) | Proof::ImpliesByMeet(p) | Proof::ImpliesByZero(p) => {
                 p.for_each_step_mut(f)
+            }
+            Proof::Refutation { facts, .. } => {
+                facts.iter_mut().for_each(|p| p.for_each_step_mut(f))
             }
         }
     }

@@ -28,6 +28,7 @@
 //! | implication from meet | `f·g = f` | `f ⇒ g` |
 //! | implication from zero | `f·¬g = 0*` | `f ⇒ g` |
 //! | shared lemma | a theorem this kernel checked before ([`Kernel::check_using`]) | the same, cited as a step |
+//! | propositional refutation | `Γi ⊢ li Ri ri` and clauses each implied by unit propagation ([`crate::refutation`]), the last empty | `∪Γi ⊢ g = 0*` |
 //!
 //! On a program's scans ([`Kernel::for_scans`]) every delay is a whole number of cycles.
 //! Laws and hypotheses are the kernel's axioms, given to [`Kernel::new`] (the hypotheses
@@ -43,6 +44,7 @@ pub use crate::certificate::{
     Axiom, CYCLE, Certificate, Cmp, KernelError, Proof, Rel, Rule, Source, Step, Use, Uses,
 };
 use crate::certificate::{KernelError::BadAxiom, bound};
+use crate::refutation::Cnf;
 use crate::term::{
     Delay, Expr, Id, Language, Symbol, Term, and, at_first_scan, fold_delay, is_delay_node,
     matches, mentions_pre, not, or, root, same, same_tree, subterm,
@@ -364,6 +366,18 @@ impl Kernel {
                 }
                 Err(KernelError::Mismatch("expected a proof of `f·¬g = 0*`".into()))
             }
+            Proof::Refutation { goal, facts, lemmas: derived } => {
+                self.admit("a refuted term", goal)?;
+                let (mut cnf, zero) = (Cnf::with_goal(goal), crate::term::constant(false));
+                let mut thm = self.start(goal.clone(), zero);
+                for fact in facts {
+                    let t = self.replay(fact, lemmas)?;
+                    cnf.fact(&t.lhs, t.rel == Rel::Eq, &t.rhs);
+                    thm = merge(thm, t);
+                }
+                cnf.refuted_by(derived).map_err(KernelError::Mismatch)?;
+                Ok(thm)
+            }
         }
     }
 
@@ -401,16 +415,16 @@ impl Kernel {
         Ok(merge(Theorem { lhs: inv.clone(), rel: Rel::Eq, rhs: one, ..b }, s))
     }
 
+    /// `lhs = rhs` resting on nothing yet: only where the rule itself shows it (`t = t`,
+    /// the start of a chain) or checks it before returning it (a refutation).
+    fn start(&self, lhs: Expr, rhs: Expr) -> Theorem {
+        let (local, uses) = (Vec::new(), Arc::default());
+        Theorem { lhs, rel: Rel::Eq, rhs, local, uses, kernel: self.id }
+    }
+
     fn chain(&self, start: &Expr, steps: &[Step], lemmas: &Lemmas) -> Result<Theorem> {
         self.admit("the start of a chain", start)?;
-        let mut thm = Theorem {
-            lhs: start.clone(),
-            rel: Rel::Eq,
-            rhs: start.clone(),
-            local: Vec::new(),
-            uses: Arc::default(),
-            kernel: self.id,
-        };
+        let mut thm = self.start(start.clone(), start.clone());
         for step in steps {
             let rel = self.step(&mut thm, step, lemmas)?;
             if rel == Rel::Implies {

@@ -16,6 +16,7 @@ pub mod kernel;
 pub mod ladder;
 pub mod program;
 pub mod prover;
+pub mod refutation;
 pub mod repl;
 pub mod report;
 pub mod script;

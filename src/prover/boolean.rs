@@ -12,9 +12,10 @@
 use std::collections::{BTreeMap, HashMap};
 use std::time::Instant;
 
-use varisat::{ExtendFormula, Lit, Solver};
+use varisat::{ExtendFormula, Lit, ProofFormat, Solver};
 
 use crate::kernel::{Axiom, Proof, Rel, Rule, Source, Step, Use};
+use crate::refutation::Cnf;
 use crate::term::{Expr, Id, Language, Symbol, Term, and, constant, mentions_pre, root, subterm};
 
 use super::induction::{pre, push_pre};
@@ -870,6 +871,7 @@ pub fn prove_zero(
     max_leaves: usize,
     deadline: Instant,
 ) -> Result<Proof, Failure> {
+    let given = constraints;
     let (constraints, goal_view, views, reps) = skeleton(goal, constraints, atoms);
     let constraints = &constraints[..];
     let mut members = vec![Vec::new(); reps.len()];
@@ -919,10 +921,82 @@ pub fn prove_zero(
         atoms_of,
         leaves: 0,
         max_leaves,
-        deadline,
+        // A quarter of the time left: the refutation below gets the rest.
+        deadline: Instant::now() + deadline.saturating_duration_since(Instant::now()) / 4,
     };
     let mut sigma = vec![None; search.atoms.terms.len()];
-    search.prove(&mut sigma, None).map(prune).map_err(Failure::Limit)
+    // Cases read best; where they run past their limits (an adder's carries under an
+    // invariant), a refutation the kernel checks clause by clause.
+    match search.prove(&mut sigma, None) {
+        Ok(proof) => Ok(prune(proof)),
+        Err(why) if Instant::now() < deadline => refute(goal, given).ok_or(Failure::Limit(why)),
+        Err(why) => Err(Failure::Limit(why)),
+    }
+}
+
+/// At most this many clauses derived by the SAT solver are put in a refutation.
+const MAX_DERIVED: usize = 50_000;
+
+/// `goal = 0*` by a propositional refutation: the constraints as facts, the goal and the
+/// facts as clauses ([`Cnf`], the kernel's own encoding), and the clauses the SAT solver
+/// derives on its way to the empty one (its DRAT proof without deletions), which the
+/// kernel checks by unit propagation.
+pub fn refute(goal: &Expr, constraints: &[Constraint]) -> Option<Proof> {
+    let facts: Vec<(Proof, Expr, Expr)> = constraints.iter().map(fact).collect();
+    let mut cnf = Cnf::with_goal(goal);
+    for (_, lhs, rhs) in &facts {
+        cnf.fact(lhs, true, rhs);
+    }
+    let mut drat: Vec<u8> = Vec::new();
+    {
+        let mut solver = Solver::new();
+        solver.write_proof(&mut drat, ProofFormat::Drat);
+        for clause in &cnf.clauses {
+            let lits: Vec<Lit> = clause.iter().map(|&l| Lit::from_dimacs(l as isize)).collect();
+            solver.add_clause(&lits);
+        }
+        if solver.solve().ok()? {
+            return None;
+        }
+        solver.close_proof().ok()?;
+    }
+    let text = String::from_utf8(drat).ok()?;
+    let mut lemmas: Vec<Vec<i32>> = Vec::new();
+    for line in text.lines().filter(|l| !l.starts_with('d')) {
+        let lits: Vec<i32> = line.split_whitespace().filter_map(|w| w.parse().ok()).collect();
+        match lits.split_last() {
+            Some((0, clause)) => lemmas.push(clause.to_vec()),
+            _ => return None,
+        }
+        if lemmas.len() > MAX_DERIVED {
+            return None;
+        }
+    }
+    let facts = facts.into_iter().map(|(proof, ..)| proof).collect();
+    Some(Proof::Refutation { goal: goal.clone(), facts, lemmas })
+}
+
+/// A proof of constraint `c` as an equation between the terms it relates (`a ⇒ b` as
+/// `a = a·b`), with `pre` pushed down to the atoms for one a scan earlier; and that
+/// equation's sides.
+fn fact(c: &Constraint) -> (Proof, Expr, Expr) {
+    let (how, result) = match c.rel {
+        Rel::Eq => (Use::Forward, c.raw.1.clone()),
+        Rel::Implies => (Use::Meet, and(&c.raw.0, &c.raw.1)),
+    };
+    let cite = Rule::Cite(c.source, c.name.clone(), how);
+    let (start, steps) = if c.shifted {
+        let (start, push) = push_pre(&pre(&c.raw.0));
+        let mut steps = reverse(&start, push);
+        steps.push(step(vec![0], cite, pre(&result)));
+        steps.extend(push_pre(&pre(&result)).1);
+        (start, steps)
+    } else {
+        let cited = Step { premises: c.premises.clone(), ..step(vec![], cite, result) };
+        (c.raw.0.clone(), vec![cited])
+    };
+    let end = steps.last().map_or_else(|| start.clone(), |s| s.after.clone());
+    (Proof::Chain { start: start.clone(), steps }, start, end)
 }
 
 /// Does any step of the proof rewrite with the case assumption on `atom`?
@@ -936,6 +1010,7 @@ fn uses_case(proof: &Proof, atom: &Expr) -> bool {
         Proof::Antisym(p, q) | Proof::Trans(p, q) => uses_case(p, atom) || uses_case(q, atom),
         // Its base and step are closed proofs: no case assumption of the context reaches them.
         Proof::Induction { .. } => false,
+        Proof::Refutation { facts, .. } => facts.iter().any(|p| uses_case(p, atom)),
     }
 }
 

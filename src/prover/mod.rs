@@ -611,7 +611,7 @@ fn has_temporal(e: &Expr) -> bool {
 pub fn case_leaves(proved: &Proved) -> usize {
     fn count(p: &Proof) -> usize {
         match p {
-            Proof::Chain { .. } => 1,
+            Proof::Chain { .. } | Proof::Refutation { .. } => 1,
             Proof::CaseSplit { one, zero, .. } => count(one) + count(zero),
             Proof::Symm(p) | Proof::ImpliesByMeet(p) | Proof::ImpliesByZero(p) => count(p),
             Proof::Antisym(p, q) | Proof::Trans(p, q) => count(p) + count(q),

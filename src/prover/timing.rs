@@ -596,6 +596,7 @@ pub fn cited(lemmas: Vec<(String, Proof)>, main: &Proof) -> Vec<(String, Proof)>
             Proof::Induction { base, step, .. } => [base, step].iter().for_each(|q| walk(q, out)),
             Proof::Symm(q) | Proof::ImpliesByMeet(q) | Proof::ImpliesByZero(q) => walk(q, out),
             Proof::Antisym(q, r) | Proof::Trans(q, r) => [q, r].iter().for_each(|q| walk(q, out)),
+            Proof::Refutation { facts, .. } => facts.iter().for_each(|q| walk(q, out)),
         }
     }
     let mut wanted = BTreeSet::new();

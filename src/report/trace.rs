@@ -158,6 +158,30 @@ fn proof_text(proof: &Proof, sizes: &[usize], style: &Style, indent: &str, out: 
         Proof::ImpliesByMeet(p) | Proof::ImpliesByZero(p) => {
             proof_text(p, sizes, style, indent, out);
         }
+        Proof::Refutation { goal, facts, lemmas } => {
+            let mut cited: Vec<String> = Vec::new();
+            for s in facts.iter().flat_map(|f| match f {
+                Proof::Chain { steps, .. } => steps.as_slice(),
+                _ => &[],
+            }) {
+                let label = rule_label(&s.rule);
+                if matches!(s.rule, Rule::Cite(..)) && !cited.contains(&label) {
+                    cited.push(label);
+                }
+            }
+            const SHOWN: usize = 6;
+            let more = cited.len().saturating_sub(SHOWN);
+            cited.truncate(SHOWN);
+            if more > 0 {
+                cited.push(format!("{more} more"));
+            }
+            out.push(format!("{indent}  {}", style.term(goal)));
+            out.push(format!(
+                "{indent}= 0*   [refuted with {}: {} clauses derived by unit propagation]",
+                cited.join(", "),
+                lemmas.len()
+            ));
+        }
         Proof::Induction { inv, base, step } => {
             let inv = style.term(inv);
             out.push(format!("{indent}{inv} = 1*, by induction over scans:"));
@@ -201,6 +225,7 @@ fn start_of(proof: &Proof) -> Option<&Expr> {
         }
         Proof::Antisym(p, _) => start_of(p),
         Proof::Induction { inv, .. } => Some(inv),
+        Proof::Refutation { goal, .. } => Some(goal),
     }
 }
 
@@ -379,6 +404,7 @@ pub fn length(proved: &Proved) -> usize {
             Proof::Symm(p) | Proof::ImpliesByMeet(p) | Proof::ImpliesByZero(p) => count(p, sizes),
             Proof::Antisym(p, q) | Proof::Trans(p, q) => count(p, sizes) + count(q, sizes),
             Proof::Induction { base, step, .. } => 3 + count(base, &[]) + count(step, &[]),
+            Proof::Refutation { .. } => 2,
         }
     }
     proved.certificate.main.as_ref().map_or(0, |m| count(m, &proved.lines))
@@ -393,6 +419,7 @@ fn parts(p: &Proof) -> Vec<&Proof> {
         | Proof::Antisym(p, q)
         | Proof::Trans(p, q) => vec![p, q],
         Proof::Symm(p) | Proof::ImpliesByMeet(p) | Proof::ImpliesByZero(p) => vec![p],
+        Proof::Refutation { facts, .. } => facts.iter().collect(),
     }
 }
 

@@ -329,7 +329,7 @@ impl<'a> Folder<'a> {
         }
         out.push(line);
         let implies = self.rel(Rel::Implies);
-        let how = |p: &Proof| if has_cases(p) { "by cases" } else { "by rewriting" };
+        let how = |p: &Proof| method(std::slice::from_ref(&p));
         let from = |n: &str| self.step_of(n);
         out.push(format!(
             "    first scan (every previous value 0): 1* {implies} I, {}{}",
@@ -337,10 +337,7 @@ impl<'a> Folder<'a> {
             self.capped(cited(base, &from))
         ));
         let steps: Vec<&Proof> = (0..).map_while(|i| self.lemma(&step_lemma(name, i))).collect();
-        let (cases, d) = (
-            if steps.iter().any(|p| has_cases(p)) { "by cases" } else { "by rewriting" },
-            self.dots(),
-        );
+        let (cases, d) = (method(&steps), self.dots());
         let per_clause = match steps.len() {
             0 => how(step).to_string(),
             1 => format!("one clause at a time ({}, {cases})", step_lemma(name, 0)),
@@ -639,6 +636,22 @@ fn end_of(proof: &Proof) -> Option<&Expr> {
 fn has_cases(p: &Proof) -> bool {
     matches!(p, Proof::CaseSplit { .. } | Proof::Induction { .. })
         || parts(p).into_iter().any(has_cases)
+}
+
+fn has_refutation(p: &Proof) -> bool {
+    matches!(p, Proof::Refutation { .. }) || parts(p).into_iter().any(has_refutation)
+}
+
+/// How proofs go, in a word: a refutation (clauses checked by unit propagation) if one
+/// of them has one, else by cases if one splits, else by rewriting.
+fn method(proofs: &[&Proof]) -> &'static str {
+    if proofs.iter().any(|p| has_refutation(p)) {
+        "by refutation"
+    } else if proofs.iter().any(|p| has_cases(p)) {
+        "by cases"
+    } else {
+        "by rewriting"
+    }
 }
 
 /// What a proof cites, in order, without repeats or bookkeeping; a cited lemma that
