@@ -5,6 +5,7 @@ mod rng;
 
 use ii_prove::kernel::{Axiom, Certificate, Kernel, Proof, Rel, Rule, Source, Step, Use};
 use ii_prove::prover::boolean::{Constraint, refute};
+use ii_prove::prover::constraint;
 use ii_prove::term::{Expr, sexp};
 use rng::Rng;
 
@@ -168,20 +169,7 @@ fn random_refutations_are_accepted_exactly_when_the_goal_is_refuted() {
             continue;
         };
         let goal = sexp(&term(&mut rng, 3));
-        let constraints: Vec<Constraint> = hyps
-            .iter()
-            .map(|h| Constraint {
-                source: Source::Hypothesis,
-                name: h.name.clone(),
-                raw: (h.lhs.clone(), h.rhs.clone()),
-                lhs: h.lhs.clone(),
-                rel: h.rel,
-                rhs: h.rhs.clone(),
-                conditions: vec![],
-                premises: vec![],
-                shifted: false,
-            })
-            .collect();
+        let constraints: Vec<Constraint> = hyps.iter().map(constraint).collect();
         let truth = refuted(&goal, &hyps);
         let zero = sexp("0*");
         match refute(&goal, &constraints) {

@@ -683,7 +683,7 @@ fn bridge(
 }
 
 /// A hypothesis as a constraint of the Boolean skeleton.
-fn constraint(h: &Axiom) -> boolean::Constraint {
+pub fn constraint(h: &Axiom) -> boolean::Constraint {
     boolean::Constraint {
         source: Source::Hypothesis,
         name: h.name.clone(),
