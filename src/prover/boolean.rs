@@ -786,7 +786,7 @@ impl Search<'_> {
         if c.shifted {
             // Back from the atoms to `pre` of the side, the hypothesis under `pre`, and
             // `pre` pushed down again.
-            let (pushed, push) = push_pre(&pre(raw_from));
+            let (_, push) = push_pre(&pre(raw_from));
             let sub = |s: Step, whole: &mut Expr, steps: &mut Vec<Step>| {
                 *whole = replace_at(whole, &[1], &s.after);
                 steps.push(Step {
@@ -795,7 +795,7 @@ impl Search<'_> {
                     ..s
                 });
             };
-            for s in reverse(&pushed, push) {
+            for s in reverse(&pre(raw_from), push) {
                 sub(s, &mut whole, &mut steps);
             }
             whole = replace_at(&whole, &[1], &pre(&result_raw));
@@ -987,7 +987,7 @@ fn fact(c: &Constraint) -> (Proof, Expr, Expr) {
     let cite = Rule::Cite(c.source, c.name.clone(), how);
     let (start, steps) = if c.shifted {
         let (start, push) = push_pre(&pre(&c.raw.0));
-        let mut steps = reverse(&start, push);
+        let mut steps = reverse(&pre(&c.raw.0), push);
         steps.push(step(vec![0], cite, pre(&result)));
         steps.extend(push_pre(&pre(&result)).1);
         (start, steps)
