@@ -160,6 +160,29 @@ fn trace_adds_a_bounded_model() {
     assert!(reason.contains("skeleton model ("), "{reason}");
 }
 
+/// The state an induction step fails from draws a counter as its value at the two scans
+/// (consistent with its bits), not as a row per bit.
+#[test]
+fn the_induction_step_draws_a_counter_as_its_value() {
+    let ii = root().join("tests/data/unknown_programs/readable/count_down.ii");
+    let name = ii.display().to_string();
+    let opts = opts(false);
+    let run = report::run_program(&program_of(&ii), std::slice::from_ref(&name), &opts)
+        .unwrap_or_else(|e| panic!("{name}: {}", e.rendered));
+    let p = &run.properties[0];
+    assert_eq!(p.status, Status::Unknown, "{:?}", p.status);
+    let c = p.candidate.as_ref().expect("a possible counterexample of the step");
+    assert!(c.title.as_deref().is_some_and(|t| t.contains("induction step")), "{:?}", c.title);
+    let cn = c.integers.iter().find(|i| i.name == "Cn").expect("Cn drawn as a value");
+    assert_eq!(cn.values.len(), 2, "{:?}", cn.values);
+    let row = c.diagram.iter().find(|l| l.starts_with("Cn ")).expect("a value row for Cn");
+    for v in &cn.values {
+        assert!(row.contains(&v.to_string()), "{row} lacks {v}");
+    }
+    assert!(!c.diagram.iter().any(|l| l.starts_with("Cn_b")), "{:?}", c.diagram);
+    assert!(!c.signals.iter().any(|s| s.name.starts_with("Cn_b")));
+}
+
 #[test]
 fn other_unknowns_and_the_examples_stay_short() {
     let opts = opts(false);
