@@ -229,6 +229,31 @@ fn unmatched_names_are_reported_and_maps_are_located() {
 }
 
 #[test]
+fn names_the_front_end_made_are_neither_compared_nor_reported() {
+    // A CTU's count and output against a count written out: only Count and Done (the
+    // unmatched names are said before `--only` picks).
+    let (a, b) =
+        ("tests/data/differs_integers/counter_a.st", "tests/data/differs_integers/counter_b.st");
+    let out = ii_prove(&["equiv", a, b, "--only", "Done"]);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(!stderr.contains("Counter_"), "{stderr}");
+    for hidden in ["Counter_CV", "Counter_Q"] {
+        let out = ii_prove(&["equiv", a, b, "--only", hidden]);
+        assert_eq!(out.status.code(), Some(2), "{hidden} is no output: {}", text(&out.stdout));
+    }
+    // Timer instances' outputs and the start-up bit between ST and IL: the declared
+    // bits only.
+    let args = ["equiv", "examples/water.st", "examples/water.il", "--only", "Demand"];
+    let out = ii_prove(&args);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    assert!(!stderr.contains("_Q`") && !stderr.contains("_STARTED"), "{stderr}");
+    let out = ii_prove(&["equiv", "examples/water.st", "examples/water.il", "--only", "T1_Q"]);
+    assert_eq!(out.status.code(), Some(2), "T1_Q is no output: {}", text(&out.stdout));
+}
+
+#[test]
 fn json_reports_one_verdict_per_output() {
     let out = ii_prove(&["equiv", "examples/water.ld", "examples/water_4s.ld", "--json"]);
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");

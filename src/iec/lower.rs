@@ -776,6 +776,13 @@ impl<'s> Lowering<'s> {
                 signals.insert(s.name.clone());
             }
         }
+        let declared: BTreeSet<&String> = self.syms.values().map(|s| &s.name).collect();
+        let hidden = signals
+            .iter()
+            .chain(self.ints.keys())
+            .filter(|n| !declared.contains(n))
+            .cloned()
+            .collect();
         let program = Program {
             cycle_us: self.cycle_us,
             blocks: self.blocks,
@@ -789,6 +796,7 @@ impl<'s> Lowering<'s> {
             block_noun: "line",
             language: if self.il { "an Instruction List" } else { "a Structured Text" },
             started: self.started,
+            hidden,
         };
         Lowered { program, asserts: self.asserts, warnings: self.warnings }
     }

@@ -313,6 +313,7 @@ impl<'a> Lowering<'a> {
             block_noun: "rung",
             language: "an LDmicro",
             started: None,
+            hidden: BTreeSet::new(),
         }
     }
 

@@ -64,6 +64,10 @@ pub struct Program {
     /// The bit the front end writes 1 at every scan to tell the first scan (start-up
     /// values keyed to it): under `--any-state` it starts at 1, as after power-up.
     pub started: Option<String>,
+    /// Bits and integers the front end made itself, not declared in the source (a
+    /// function block instance's pins and count, the start-up bit, guard bits, kept
+    /// integers): never an output a user sees, though they are state like any other.
+    pub hidden: BTreeSet<String>,
 }
 
 /// An integer variable of the scan model.
@@ -586,6 +590,7 @@ impl Default for Program {
             language: "an LDmicro",
             integers: BTreeMap::new(),
             started: None,
+            hidden: BTreeSet::new(),
         }
     }
 }

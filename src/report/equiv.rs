@@ -56,8 +56,9 @@ fn key(program: &CompiledProgram, name: &str) -> String {
 }
 
 /// The signals of `program` compared as outputs: its output pins, or, for a language
-/// without them (ST, IL, PLCopen), every bit its code writes except the bits of its
-/// own `#ASSERT` properties.
+/// without them (ST, IL, PLCopen), every declared bit its code writes except the bits
+/// of its own `#ASSERT` properties (never the bits the front end made: a function
+/// block's `T1_Q`, `_STARTED`).
 fn outputs(loaded: &LoadedProgram) -> BTreeSet<String> {
     let c = &loaded.compiled;
     let pins = of_kind(c, |k| matches!(k, SignalKind::Output));
@@ -74,7 +75,7 @@ fn outputs(loaded: &LoadedProgram) -> BTreeSet<String> {
         })
         .collect();
     let mut relays = of_kind(c, |k| matches!(k, SignalKind::Relay));
-    relays.retain(|n| !asserted.contains(n));
+    relays.retain(|n| !asserted.contains(n) && !loaded.scan.hidden.contains(n));
     relays
 }
 
@@ -224,7 +225,7 @@ pub fn run_equiv_with(
     let (a_in, b_in) = (inputs(&a.compiled), inputs(&b.compiled));
     let (a_out, b_out) = (outputs(&a), outputs(&b));
     let (a_int_in, b_int_in) = (int_inputs(&a.compiled), int_inputs(&b.compiled));
-    let (a_int_out, b_int_out) = (written_ints(&a.compiled), written_ints(&b.compiled));
+    let (a_int_out, b_int_out) = (written_ints(&a), written_ints(&b));
     let mut int_in_pairs = Vec::new();
     let mut int_out_pairs = Vec::new();
     if let Some(map) = &equiv.map {
@@ -588,9 +589,12 @@ fn first_mention(sources: &Sources, file: crate::diag::FileId, name: &str) -> Op
     None
 }
 
-/// The integers `program` writes (not its input integers).
-fn written_ints(c: &CompiledProgram) -> BTreeSet<String> {
-    c.integers.iter().filter(|(_, v)| !v.input).map(|(n, _)| n.clone()).collect()
+/// The integers `program` writes (not its input integers), without those its front end
+/// made (a counter's `C1_CV`, a kept `_IL_CR`).
+fn written_ints(loaded: &LoadedProgram) -> BTreeSet<String> {
+    let visible = |n: &&String| !loaded.scan.hidden.contains(*n);
+    let written = loaded.compiled.integers.iter().filter(|(_, v)| !v.input);
+    written.map(|(n, _)| n).filter(visible).cloned().collect()
 }
 
 /// The bits `program` writes (outputs and internal relays).

@@ -901,6 +901,9 @@ fn finish(p: &PlcProgram, mut l: Lower<'_>) -> Result<Lowered, Vec<PlcError>> {
     let signals = crate::program::bits(&blocks);
     let mut names = signals.clone();
     names.extend(p.vars.values().map(|v| v.name.clone()));
+    let declared: BTreeSet<&String> = p.vars.values().map(|v| &v.name).collect();
+    let hidden =
+        signals.iter().chain(l.ints.keys()).filter(|n| !declared.contains(n)).cloned().collect();
     let program = Program {
         cycle_us: p.cycle_us,
         blocks,
@@ -914,6 +917,7 @@ fn finish(p: &PlcProgram, mut l: Lower<'_>) -> Result<Lowered, Vec<PlcError>> {
         block_noun: "rung",
         language: "a PLCopen",
         started: p.started.clone(),
+        hidden,
     };
     let mut warnings = p.warnings.clone();
     warnings.append(&mut l.warnings);
