@@ -1,6 +1,8 @@
 //! `ii-prove equiv`: the pairs of tests/data/equivalent are proved output by output, those of tests/data/differs refuted with the simulators' confirmation; the water plant's refactorings and variants; located refusals; and a randomized check on random LDmicro programs, their behaviour-preserving refactorings and their mutants, against the LDmicro simulator (`II_EQUIV_PAIRS=N` scales it, `II_EQUIV_SEED=S` starts elsewhere).
 
 mod common;
+#[path = "common/ld_to_st.rs"]
+mod ld_to_st;
 #[path = "common/rng.rs"]
 mod rng;
 
@@ -520,24 +522,27 @@ fn mutate(rng: &mut Rng, rungs: &[Rung]) -> Option<(Vec<Rung>, &'static str)> {
     None
 }
 
-/// The outputs whose values the LDmicro simulator shows differ on some random run.
+/// The outputs whose values the programs' own simulators (LDmicro's for a `.ld`, the
+/// scan model's for a `.st`) show differ on some random run.
 fn simulated_differences(
-    a: &str,
-    b: &str,
+    a: &Path,
+    b: &Path,
     seed: u64,
     renamed: &dyn Fn(&str) -> String,
 ) -> BTreeSet<String> {
-    let load = |text: &str| {
+    let load = |path: &Path| {
         let mut sources = ii_prove::diag::Sources::new();
-        let f = sources.add("p.ld", text.to_string());
-        ii_prove::ladder::read_ldmicro(&sources, f).expect("the generated program reads")
+        let options = ii_prove::ladder::CompileOptions::default();
+        let path = path.to_string_lossy();
+        let loaded = ii_prove::report::load_program(&mut sources, &path, &options);
+        loaded.unwrap_or_else(|_| panic!("{path} does not read")).reference
     };
-    let (pa, pb) = (load(a), load(b));
+    let (ra, rb) = (load(a), load(b));
     let mut rng = Rng::new(seed);
     let mut out = BTreeSet::new();
     for _ in 0..40 {
-        let mut sa = ii_prove::ladder::Simulator::new(&pa);
-        let mut sb = ii_prove::ladder::Simulator::new(&pb);
+        let mut sa = ra.simulator();
+        let mut sb = rb.simulator();
         let mut inputs: BTreeMap<String, bool> =
             INPUTS.iter().map(|n| (n.to_string(), false)).collect();
         for _ in 0..40 {
@@ -605,6 +610,64 @@ impl Figures {
     }
 }
 
+/// One random pair: its seed, what was changed, whether that preserves behaviour, and
+/// both programs' texts (for messages).
+struct Case<'a> {
+    seed: u64,
+    what: &'static str,
+    preserving: bool,
+    texts: (&'a str, &'a str),
+}
+
+/// `ii-prove equiv` on the files `paths` of `case`, its verdicts counted in `fig`
+/// against the outputs the simulators show to differ (`differ`): none of those may be
+/// proved, and a behaviour-preserving change's outputs are never refuted.
+fn compare(
+    fig: &mut Figures,
+    case: &Case,
+    paths: (&Path, &Path),
+    differ: &BTreeSet<String>,
+    opts: &Options,
+    equiv: &EquivOptions,
+) {
+    let Case { seed, what, preserving, texts: (ta, tb) } = case;
+    let (pa, pb) = (paths.0.to_string_lossy(), paths.1.to_string_lossy());
+    let run = run_equiv_with(&pa, &pb, opts, equiv, &mut ())
+        .unwrap_or_else(|e| panic!("seed {seed} ({what}):\n{}\n{ta}\n{tb}", e.rendered));
+    assert!(!run.properties.is_empty(), "seed {seed} ({what}): no output compared");
+    for p in &run.properties {
+        let proved = p.status == Status::Proved;
+        assert!(
+            !(proved && differ.contains(&p.name)),
+            "seed {seed} ({what}): `{}` proved equivalent, but the simulators differ\n{ta}\n{tb}",
+            p.name
+        );
+        fig.unknown += usize::from(p.status == Status::Unknown);
+        if *preserving {
+            assert!(differ.is_empty(), "seed {seed}: the change ({what}) is not one\n{ta}\n{tb}");
+            assert!(p.status != Status::Refuted, "seed {seed} ({what}): {} refuted", p.name);
+            fig.refactored_outputs += 1;
+            fig.refactored_proved += usize::from(proved);
+        } else {
+            fig.mutant_outputs += 1;
+            fig.mutant_differing += usize::from(differ.contains(&p.name));
+            fig.mutant_refuted += usize::from(p.status == Status::Refuted);
+            fig.mutant_proved += usize::from(proved);
+        }
+    }
+}
+
+/// The figures of every kind, printed a line each, and their sum.
+fn summed(kinds: &BTreeMap<&'static str, Figures>, pairs: u64) -> Figures {
+    let mut fig = Figures::default();
+    for (what, f) in kinds {
+        eprintln!("{what}: {}", f.line());
+        fig.add(f);
+    }
+    eprintln!("all {pairs} seeds: {}", fig.line());
+    fig
+}
+
 #[test]
 fn random_refactorings_are_proved_and_mutants_never_are() {
     let pairs: u64 =
@@ -639,41 +702,12 @@ fn random_refactorings_are_proved_and_mutants_never_are() {
             |y: &str| if rename && y == "YU" { "YRenamed".to_string() } else { y.to_string() };
         std::fs::write(&pa, &ta).expect("write");
         std::fs::write(&pb, &tb).expect("write");
-        let differ = simulated_differences(&ta, &tb, seed, &renamed);
-        let run =
-            run_equiv_with(&pa.to_string_lossy(), &pb.to_string_lossy(), &opts, &equiv, &mut ())
-                .unwrap_or_else(|e| panic!("seed {seed} ({what}):\n{}\n{ta}\n{tb}", e.rendered));
-        for p in &run.properties {
-            let proved = p.status == Status::Proved;
-            assert!(
-                !(proved && differ.contains(&p.name)),
-                "seed {seed} ({what}): `{}` proved equivalent, but the simulators differ\n{ta}\n{tb}",
-                p.name
-            );
-            fig.unknown += usize::from(p.status == Status::Unknown);
-            if preserving {
-                assert!(
-                    differ.is_empty(),
-                    "seed {seed}: the refactoring ({what}) is not one\n{ta}\n{tb}"
-                );
-                assert!(p.status != Status::Refuted, "seed {seed} ({what}): {} refuted", p.name);
-                fig.refactored_outputs += 1;
-                fig.refactored_proved += usize::from(proved);
-            } else {
-                fig.mutant_outputs += 1;
-                fig.mutant_differing += usize::from(differ.contains(&p.name));
-                fig.mutant_refuted += usize::from(p.status == Status::Refuted);
-                fig.mutant_proved += usize::from(proved);
-            }
-        }
+        let differ = simulated_differences(&pa, &pb, seed, &renamed);
+        let case = Case { seed, what, preserving, texts: (&ta, &tb) };
+        compare(fig, &case, (&pa, &pb), &differ, &opts, &equiv);
     }
     let _ = std::fs::remove_dir_all(&dir);
-    let mut fig = Figures::default();
-    for (what, f) in &kinds {
-        eprintln!("{what}: {}", f.line());
-        fig.add(f);
-    }
-    eprintln!("all {pairs} seeds: {}", fig.line());
+    let fig = summed(&kinds, pairs);
     assert!(fig.refactored_outputs > 0 && fig.mutant_outputs > 0, "{fig:?}");
     // The default size exercises the seal-in rewrite, the one engineers make most.
     let seal_ins = kinds.get("seal-in to set/reset").map_or(0, |f| f.refactored_outputs);
@@ -681,5 +715,67 @@ fn random_refactorings_are_proved_and_mutants_never_are() {
     assert!(
         fig.refactored_proved * 10 >= fig.refactored_outputs * 9,
         "fewer than 90 % of the refactored outputs proved: {fig:?}"
+    );
+}
+
+/// Random LDmicro programs ported to Structured Text (`tests/common/ld_to_st.rs`, from
+/// the format note), and ports of their mutants: a port counts as an equivalent pair
+/// when the LDmicro simulator on the `.ld` and the scan model's simulator on the `.st`
+/// agree on every random run; then `equiv` must prove it. No output the simulators
+/// show to differ is ever proved.
+#[test]
+fn random_ld_to_st_ports_are_proved_and_ported_mutants_never_are() {
+    let pairs: u64 =
+        std::env::var("II_EQUIV_PAIRS").ok().and_then(|v| v.parse().ok()).unwrap_or(60) / 2;
+    let start: u64 = std::env::var("II_EQUIV_SEED").ok().and_then(|v| v.parse().ok()).unwrap_or(1);
+    let dir = std::env::temp_dir().join(format!("ii-equiv-port-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let opts = Options { timeout: std::time::Duration::from_secs(2), ..Options::default() };
+    let mut kinds: BTreeMap<&'static str, Figures> = BTreeMap::new();
+    let mut disagreeing = Vec::new();
+    for seed in start..start + pairs {
+        let mut rng = Rng::new(seed);
+        let program = random_program(&mut rng);
+        let (ported, what, preserving) = match seed % 2 {
+            0 => (program.clone(), "LD to ST port", true),
+            _ => match mutate(&mut rng, &program) {
+                Some((p, _)) => (p, "LD to ST port of a mutant", false),
+                None => continue,
+            },
+        };
+        let ta = render(&program);
+        let ld = render(&ported);
+        let tb = ld_to_st::port(&ld, "Port")
+            .unwrap_or_else(|e| panic!("seed {seed}: not ported: {e}\n{ld}"));
+        let (pa, pb) = (dir.join(format!("{seed}_a.ld")), dir.join(format!("{seed}_b.st")));
+        std::fs::write(&pa, &ta).expect("write");
+        std::fs::write(&pb, &tb).expect("write");
+        let differ = simulated_differences(&pa, &pb, seed, &|y| y.to_string());
+        if preserving && !differ.is_empty() {
+            disagreeing.push(seed);
+            continue;
+        }
+        let case = Case { seed, what, preserving, texts: (&ta, &tb) };
+        compare(
+            kinds.entry(what).or_default(),
+            &case,
+            (&pa, &pb),
+            &differ,
+            &opts,
+            &EquivOptions::default(),
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    eprintln!("ports the two simulators disagree on (not counted): {disagreeing:?}");
+    let fig = summed(&kinds, pairs);
+    assert!(fig.refactored_outputs > 0 && fig.mutant_outputs > 0, "{fig:?}");
+    // The port is the LDmicro program's meaning: the simulators agree on all of them.
+    assert!(
+        disagreeing.is_empty(),
+        "the simulators disagree on the ports of seeds {disagreeing:?}"
+    );
+    assert!(
+        fig.refactored_proved * 10 >= fig.refactored_outputs * 9,
+        "fewer than 90 % of the ported outputs proved: {fig:?}"
     );
 }
