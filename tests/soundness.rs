@@ -18,7 +18,7 @@ fn opts() -> Options {
     Options { timeout: Duration::from_secs(20), ..Options::default() }
 }
 
-/// Every `NAME.ld` (or PLCopen `NAME.xml`, Structured Text `NAME.st`) of
+/// Every `NAME.ld` (or PLCopen `NAME.xml`, Structured Text `NAME.st`, `NAME.il`) of
 /// `proves_programs/` with its `NAME.ii`: every property proved, its printed trace
 /// (`--trace`, lemmas folded) within the bound written above it.
 #[test]
@@ -26,6 +26,7 @@ fn programs_whose_properties_hold_are_proved() {
     let mut files = common::files_with(&data("proves_programs"), "ld");
     files.extend(common::files_with(&data("proves_programs"), "xml"));
     files.extend(common::files_with(&data("proves_programs"), "st"));
+    files.extend(common::files_with(&data("proves_programs"), "il"));
     assert!(files.len() >= 3, "only {} cases", files.len());
     for ld in files {
         let ii = ld.with_extension("ii").display().to_string();
