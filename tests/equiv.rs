@@ -1,4 +1,4 @@
-//! `ii-prove equiv`: the pairs of tests/data/equivalent are proved output by output, those of tests/data/differs refuted with the simulators' confirmation; the water plant's refactorings and variants; located refusals; and a randomized check on random LDmicro programs, their behaviour-preserving refactorings and their mutants, against the LDmicro simulator (`II_EQUIV_PAIRS=N` scales it, `II_EQUIV_SEED=S` starts elsewhere).
+//! `ii-prove equiv`: the pairs of tests/data/equivalent are proved output by output, those of tests/data/differs refuted with the simulators' confirmation; the water plant's refactorings and variants; located refusals; the front ends' hidden names never compared; and randomized checks on random LDmicro programs, their behaviour-preserving refactorings (seal-in to set/reset among them), their ports to Structured Text and their mutants, against both programs' own simulators (`II_EQUIV_PAIRS=N` scales them, `II_EQUIV_SEED=S` starts elsewhere).
 
 mod common;
 #[path = "common/ld_to_st.rs"]
