@@ -219,8 +219,7 @@ fn no_failing_integer_property_is_proved_and_most_that_hold_are() {
         println!("  not proved: {u}");
     }
     assert!(hold > 0);
-    // A floor against regressions, below the figure measured when it was set (35 of 54 at
-    // 30 programs): the goal is 95 %, not met yet; the certificates of arithmetic steps
-    // (by case splits) are what most unproved properties lack.
-    assert!(2 * proved >= hold, "only {proved} of {hold} properties that hold are proved");
+    // The bar is 95 % (measured: 53 of 54 at 30 programs, 217 of 222 at 100); the
+    // floor leaves room for one or two more unknowns in a small sample.
+    assert!(10 * proved >= 9 * hold, "only {proved} of {hold} properties that hold are proved");
 }

@@ -407,24 +407,44 @@ pub fn run_equiv_with(
         &renaming,
     );
     let cycle = Some(compiled.scan_cycle());
-    let first = Context::with_scans(theory.axioms(), compiled.axioms(), cycle.clone())
-        .map_err(|e| error(format!("{a_path}, {b_path}: {e}")))?;
     // The state correspondence: bits both programs write under one name, each proved
     // equal in the two (by the algebra or induction over scans) in the product's own
-    // context; the outputs' context adds those theorems as hypotheses.
-    state_pairs.retain(|p| !output_pairs.contains(p));
+    // context; the outputs' context adds those theorems as hypotheses. An output the
+    // programs read back (an ST output that starts a timer) is state too. In rounds: a
+    // pair proved is a hypothesis of the next round's attempts at the others.
+    let read = read_names(&compiled);
+    state_pairs.retain(|(x, y)| {
+        let is_output = output_pairs.contains(&(x.clone(), y.clone()));
+        !is_output || read.contains(x) || read.contains(&renaming.of(y))
+    });
     let mut lemmas: Vec<(PropertyReport, Axiom)> = Vec::new();
     let identity = |e: &Expr| e.clone();
-    in_order(
-        &state_pairs,
-        opts.jobs,
-        |(x, y)| correspondence(&first, x, &renaming.of(y), opts, &identity),
-        |event| {
-            if let InOrder::Done(Some(found)) = event {
-                lemmas.push(found);
-            }
-        },
-    );
+    for _ in 0..MAX_ROUNDS {
+        let mut hypotheses = compiled.axioms();
+        hypotheses.extend(lemmas.iter().map(|(_, axiom)| axiom.clone()));
+        let round = Context::with_scans(theory.axioms(), hypotheses, cycle.clone())
+            .map_err(|e| error(format!("{a_path}, {b_path}: {e}")))?;
+        let mut found = Vec::new();
+        in_order(
+            &state_pairs,
+            opts.jobs,
+            |(x, y)| correspondence(&round, x, &renaming.of(y), opts, &identity),
+            |event| {
+                if let InOrder::Done(Some(lemma)) = event {
+                    found.push(lemma);
+                }
+            },
+        );
+        if found.is_empty() {
+            break;
+        }
+        state_pairs
+            .retain(|(x, _)| !found.iter().any(|(_, axiom)| axiom.name == format!("state_{x}")));
+        lemmas.extend(found);
+        if state_pairs.is_empty() {
+            break;
+        }
+    }
     let mut hypotheses = compiled.axioms();
     hypotheses.extend(lemmas.iter().map(|(_, axiom)| axiom.clone()));
     let ctx = Context::with_scans(theory.axioms(), hypotheses, cycle)
@@ -595,6 +615,23 @@ fn written_ints(loaded: &LoadedProgram) -> BTreeSet<String> {
     let visible = |n: &&String| !loaded.scan.hidden.contains(*n);
     let written = loaded.compiled.integers.iter().filter(|(_, v)| !v.input);
     written.map(|(n, _)| n).filter(visible).cloned().collect()
+}
+
+/// At most this many rounds of state correspondences (each retries the pairs not yet
+/// proved with those proved so far as hypotheses).
+const MAX_ROUNDS: usize = 4;
+
+/// The names the product's hypotheses read (on their right-hand sides).
+fn read_names(c: &CompiledProgram) -> BTreeSet<String> {
+    let mut read = BTreeSet::new();
+    for h in c.axioms() {
+        for node in h.rhs.as_ref() {
+            if let crate::term::Term::Name(n) = node {
+                read.insert(n.as_str().to_string());
+            }
+        }
+    }
+    read
 }
 
 /// The bits `program` writes (outputs and internal relays).
