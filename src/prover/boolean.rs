@@ -786,22 +786,13 @@ impl Search<'_> {
         if c.shifted {
             // Back from the atoms to `pre` of the side, the hypothesis under `pre`, and
             // `pre` pushed down again.
-            let (_, push) = push_pre(&pre(raw_from));
-            let sub = |s: Step, whole: &mut Expr, steps: &mut Vec<Step>| {
-                *whole = replace_at(whole, &[1], &s.after);
+            for s in cite_shifted(raw_from, cite, &result_raw).1 {
+                whole = replace_at(&whole, &[1], &s.after);
                 steps.push(Step {
                     path: [vec![1], s.path.clone()].concat(),
                     after: whole.clone(),
                     ..s
                 });
-            };
-            for s in reverse(&pre(raw_from), push) {
-                sub(s, &mut whole, &mut steps);
-            }
-            whole = replace_at(&whole, &[1], &pre(&result_raw));
-            steps.push(step(vec![1, 0], cite, whole.clone()));
-            for s in push_pre(&pre(&result_raw)).1 {
-                sub(s, &mut whole, &mut steps);
             }
         } else {
             align_delays(&mut whole, &[1], from_term, raw_from, &mut steps);
@@ -986,17 +977,24 @@ fn fact(c: &Constraint) -> (Proof, Expr, Expr) {
     };
     let cite = Rule::Cite(c.source, c.name.clone(), how);
     let (start, steps) = if c.shifted {
-        let (start, push) = push_pre(&pre(&c.raw.0));
-        let mut steps = reverse(&pre(&c.raw.0), push);
-        steps.push(step(vec![0], cite, pre(&result)));
-        steps.extend(push_pre(&pre(&result)).1);
-        (start, steps)
+        cite_shifted(&c.raw.0, cite, &result)
     } else {
         let cited = Step { premises: c.premises.clone(), ..step(vec![], cite, result) };
         (c.raw.0.clone(), vec![cited])
     };
     let end = steps.last().map_or_else(|| start.clone(), |s| s.after.clone());
     (Proof::Chain { start: start.clone(), steps }, start, end)
+}
+
+/// A constraint cited one scan earlier, from its side `from` with `pre` pushed down to the
+/// atoms: back up to `pre from`, the citation under `pre` (giving `pre result`), and `pre`
+/// pushed down again. The chain's start and steps.
+fn cite_shifted(from: &Expr, cite: Rule, result: &Expr) -> (Expr, Vec<Step>) {
+    let (start, push) = push_pre(&pre(from));
+    let mut steps = reverse(&pre(from), push);
+    steps.push(step(vec![0], cite, pre(result)));
+    steps.extend(push_pre(&pre(result)).1);
+    (start, steps)
 }
 
 /// Does any step of the proof rewrite with the case assumption on `atom`?
