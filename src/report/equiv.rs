@@ -419,16 +419,24 @@ pub fn run_equiv_with(
     });
     let mut lemmas: Vec<(PropertyReport, Axiom)> = Vec::new();
     let identity = |e: &Expr| e.clone();
-    for _ in 0..MAX_ROUNDS {
+    let context = |lemmas: &[(PropertyReport, Axiom)]| {
         let mut hypotheses = compiled.axioms();
         hypotheses.extend(lemmas.iter().map(|(_, axiom)| axiom.clone()));
-        let round = Context::with_scans(theory.axioms(), hypotheses, cycle.clone())
-            .map_err(|e| error(format!("{a_path}, {b_path}: {e}")))?;
+        Context::with_scans(theory.axioms(), hypotheses, cycle.clone())
+            .map_err(|e| error(format!("{a_path}, {b_path}: {e}")))
+    };
+    let mut ctx = context(&lemmas)?;
+    for _ in 0..MAX_ROUNDS {
+        if state_pairs.is_empty() {
+            break;
+        }
         let mut found = Vec::new();
         in_order(
             &state_pairs,
             opts.jobs,
-            |(x, y)| correspondence(&round, x, &renaming.of(y), opts, &identity),
+            |(x, y)| {
+                correspondence(&ctx, x, &renaming.of(y), opts, &identity).map(|l| (x.clone(), l))
+            },
             |event| {
                 if let InOrder::Done(Some(lemma)) = event {
                     found.push(lemma);
@@ -438,17 +446,11 @@ pub fn run_equiv_with(
         if found.is_empty() {
             break;
         }
-        state_pairs
-            .retain(|(x, _)| !found.iter().any(|(_, axiom)| axiom.name == format!("state_{x}")));
-        lemmas.extend(found);
-        if state_pairs.is_empty() {
-            break;
-        }
+        let proved: BTreeSet<String> = found.iter().map(|(x, _)| x.clone()).collect();
+        lemmas.extend(found.into_iter().map(|(_, lemma)| lemma));
+        state_pairs.retain(|(x, _)| !proved.contains(x));
+        ctx = context(&lemmas)?;
     }
-    let mut hypotheses = compiled.axioms();
-    hypotheses.extend(lemmas.iter().map(|(_, axiom)| axiom.clone()));
-    let ctx = Context::with_scans(theory.axioms(), hypotheses, cycle)
-        .map_err(|e| error(format!("{a_path}, {b_path}: {e}")))?;
     let session =
         counterexample::Program { reference: &reference, compiled: &compiled, assumptions: &[] };
     // Each output's statement stands where the first program writes it.
@@ -624,7 +626,7 @@ const MAX_ROUNDS: usize = 4;
 /// The names the product's hypotheses read (on their right-hand sides).
 fn read_names(c: &CompiledProgram) -> BTreeSet<String> {
     let mut read = BTreeSet::new();
-    for h in c.axioms() {
+    for h in &c.hypotheses {
         for node in h.rhs.as_ref() {
             if let crate::term::Term::Name(n) = node {
                 read.insert(n.as_str().to_string());
