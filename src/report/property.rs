@@ -367,15 +367,6 @@ pub(super) fn program_counterexample(
     // Integers whose bits the run computed: a value row each, and their bits unshown.
     let tracked = IntegerTrack::all(session.compiled, env, &named);
     shown.retain(|(label, _)| !tracked.iter().any(|t| t.shows_bit(label)));
-    let readers: Vec<_> = tracked
-        .iter()
-        .map(|t| move |time: &crate::semantics::Time| Some(t.value_at(time)))
-        .collect();
-    let values: Vec<waveform::Track> = tracked
-        .iter()
-        .zip(&readers)
-        .map(|(t, f)| (t.name.clone(), f as &dyn Fn(&crate::semantics::Time) -> Option<i64>))
-        .collect();
     CounterexampleReport {
         time: format_time(&c.time),
         lhs: c.lhs,
@@ -390,7 +381,7 @@ pub(super) fn program_counterexample(
                 points: s.point_values().to_vec(),
             })
             .collect(),
-        diagram: waveform::draw_with_values(&shown, &values, Some(&c.time), glyphs),
+        diagram: super::tracks::draw(&shown, &tracked, Some(&c.time), glyphs),
         integers: tracked
             .iter()
             .map(|t| IntegerReport {

@@ -2,6 +2,7 @@
 
 use std::collections::BTreeSet;
 
+use super::waveform;
 use crate::program::{CompiledProgram, IntType, Program, bitvec};
 use crate::semantics::{Assignment, Signal, Time};
 use crate::term::Symbol;
@@ -76,4 +77,21 @@ impl IntegerTrack {
     pub fn word(&self, value: i64) -> String {
         (0..self.ty.bits).rev().map(|k| if value >> k & 1 == 1 { '1' } else { '0' }).collect()
     }
+}
+
+/// `signals` drawn with a value row for each of `tracks` (`Cparts  0    1    2 …`).
+pub fn draw(
+    signals: &[(String, Signal)],
+    tracks: &[IntegerTrack],
+    mark: Option<&Time>,
+    glyphs: waveform::Glyphs,
+) -> Vec<String> {
+    let readers: Vec<_> =
+        tracks.iter().map(|t| move |time: &Time| Some(t.value_at(time))).collect();
+    let values: Vec<waveform::Track> = tracks
+        .iter()
+        .zip(&readers)
+        .map(|(t, f)| (t.name.clone(), f as &dyn Fn(&Time) -> Option<i64>))
+        .collect();
+    waveform::draw_with_values(signals, &values, mark, glyphs)
 }
