@@ -121,21 +121,18 @@ pub fn step_candidate(
     // An integer whose every bit is a state bit is drawn as its value, not its bits.
     let mut env = Assignment::new(two.clone());
     env.signals.extend(all.iter().map(|(n, s)| (Symbol::from(n.as_str()), s.clone())));
-    let tracked = compiled.map(|c| IntegerTrack::all(c, &env, &named)).unwrap_or_default();
+    let mut tracked = compiled.map(|c| IntegerTrack::all(c, &env, &named)).unwrap_or_default();
+    // At most DIAGRAM_ROWS rows in all, one of them a signal; the integers in the order
+    // of their bits in the model (the goal's first).
+    tracked.sort_by_cached_key(|t| all.iter().position(|(n, _)| t.shows_bit(&named(n))));
+    tracked.truncate(DIAGRAM_ROWS - 1);
     let shown: Vec<(String, Signal)> = all
         .into_iter()
         .map(|(n, s)| (named(&n), s))
         .filter(|(label, _)| !tracked.iter().any(|t| t.shows_bit(label)))
-        .take(DIAGRAM_ROWS.saturating_sub(tracked.len()).max(1))
+        .take(DIAGRAM_ROWS - tracked.len())
         .collect();
-    let readers: Vec<_> =
-        tracked.iter().map(|t| move |time: &Time| Some(t.value_at(time))).collect();
-    let values: Vec<waveform::Track> = tracked
-        .iter()
-        .zip(&readers)
-        .map(|(t, f)| (t.name.clone(), f as &dyn Fn(&Time) -> Option<i64>))
-        .collect();
-    let mut diagram = waveform::draw_with_values(&shown, &values, None, glyphs);
+    let mut diagram = super::tracks::draw(&shown, &tracked, None, glyphs);
     // The columns are a scan and the next, not instants of a run: the axis says so.
     let width = shown
         .iter()
