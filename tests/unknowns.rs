@@ -148,13 +148,19 @@ fn readable_cases_are_unknown_and_short_in_every_format() {
     assert!(step_diagrams >= 1, "no induction step drawn");
 }
 
-#[test]
-fn trace_adds_a_bounded_model() {
-    let ii = root().join("tests/data/unknown_programs/readable/traffic_light_fbd.ii");
+/// One case of `readable/`, run with a one-second limit: its name, report and options.
+fn readable_case(file: &str, trace: bool) -> (String, RunReport, Options) {
+    let ii = root().join("tests/data/unknown_programs/readable").join(file);
     let name = ii.display().to_string();
-    let opts = opts(true);
+    let opts = opts(trace);
     let run = report::run_program(&program_of(&ii), std::slice::from_ref(&name), &opts)
         .unwrap_or_else(|e| panic!("{name}: {}", e.rendered));
+    (name, run, opts)
+}
+
+#[test]
+fn trace_adds_a_bounded_model() {
+    let (name, run, opts) = readable_case("traffic_light_fbd.ii", true);
     assert!(check(&name, &run, &opts) > 0);
     let reason = run.properties[0].reason.as_deref().unwrap_or("");
     assert!(reason.contains("skeleton model ("), "{reason}");
@@ -164,11 +170,7 @@ fn trace_adds_a_bounded_model() {
 /// (consistent with its bits), not as a row per bit.
 #[test]
 fn the_induction_step_draws_a_counter_as_its_value() {
-    let ii = root().join("tests/data/unknown_programs/readable/count_down.ii");
-    let name = ii.display().to_string();
-    let opts = opts(false);
-    let run = report::run_program(&program_of(&ii), std::slice::from_ref(&name), &opts)
-        .unwrap_or_else(|e| panic!("{name}: {}", e.rendered));
+    let (_, run, _) = readable_case("count_down.ii", false);
     let p = &run.properties[0];
     assert_eq!(p.status, Status::Unknown, "{:?}", p.status);
     let c = p.candidate.as_ref().expect("a possible counterexample of the step");
