@@ -82,13 +82,52 @@ impl Report for StError {
 /// `PROGRAM`, `FUNCTION_BLOCK`, `FUNCTION`, `CONFIGURATION` or `TYPE`, in capitals (a
 /// property file's lower-case `program` header is not one).
 pub fn is_st(text: &str) -> bool {
-    let Ok(toks) = lexer::lex(0, text, 0..text.len()) else { return false };
-    toks.iter().find(|t| !matches!(t.tok, lexer::Tok::Assert(..))).is_some_and(|t| {
-        matches!(&t.tok, lexer::Tok::Ident(w) if ["PROGRAM", "FUNCTION_BLOCK", "FUNCTION", "CONFIGURATION", "TYPE"].contains(&w.as_str()))
-    })
+    // Only the first token counts: lex a prefix, longer until that token lies wholly
+    // inside it (a comment or a token cut by the prefix's end makes it longer), so that
+    // a large file of another language costs a few kilobytes, not a lexing of it all.
+    let mut len = 4096;
+    loop {
+        let end = (len..=text.len()).find(|&e| text.is_char_boundary(e)).unwrap_or(text.len());
+        let whole = end == text.len();
+        let first = match lexer::lex(0, text, 0..end) {
+            Ok(toks) => toks.into_iter().find(|t| !matches!(t.tok, lexer::Tok::Assert(..))),
+            Err(_) if whole => return false,
+            Err(_) => None,
+        };
+        match first {
+            Some(t) if whole || t.span.end < end => {
+                return matches!(&t.tok, lexer::Tok::Ident(w) if ["PROGRAM", "FUNCTION_BLOCK", "FUNCTION", "CONFIGURATION", "TYPE"].contains(&w.as_str()));
+            }
+            None if whole => return false,
+            _ => len = end * 4,
+        }
+    }
 }
 
 /// Reads a `.st` or `.il` file of `sources`.
 pub fn read(sources: &Sources, file: usize) -> Result<ast::Unit, Vec<StError>> {
     parser::parse_unit(file, sources.text(file)).map_err(|e| vec![e])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::is_st;
+
+    #[test]
+    fn the_first_word_decides_wherever_the_prefix_ends() {
+        let comment = format!("(* {} *)\n", "x".repeat(10_000));
+        assert!(is_st(&format!("{comment}PROGRAM p\nEND_PROGRAM\n")));
+        // A keyword cut by the first prefix's end is read whole.
+        for pad in 4090..4100 {
+            let text = format!("{}PROGRAM p END_PROGRAM", " ".repeat(pad));
+            assert!(is_st(&text), "padding {pad}");
+            let text = format!("{}PROGRAMME p", " ".repeat(pad));
+            assert!(!is_st(&text), "padding {pad}");
+        }
+        assert!(!is_st("LDmicro0.1\nCYCLE=10000\n"));
+        assert!(!is_st("program water\n"));
+        assert!(!is_st(""));
+        // An unterminated comment is not a program.
+        assert!(!is_st(&format!("(* {}", "x".repeat(10_000))));
+    }
 }
