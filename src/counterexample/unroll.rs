@@ -10,7 +10,7 @@
 //! step is a scan. What is read only under `pre` is computed at the end of its step.
 #![warn(missing_docs)]
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 use varisat::{ExtendFormula, Lit, Solver};
 
@@ -294,7 +294,16 @@ pub fn unroll<B: Bits>(
 pub struct Unroller<'m, V> {
     exprs: Vec<&'m Expr>,
     defs: Vec<&'m str>,
-    defined: BTreeSet<&'m str>,
+    /// Every name the terms read or the model defines, each once: the defined ones
+    /// first, in the model's order. Values are kept per slot, names resolved once here
+    /// rather than looked up at every node of every step.
+    names: Vec<&'m str>,
+    /// Per slot, whether the model defines it.
+    defined: Vec<bool>,
+    /// Per equation, the slot of the name it defines.
+    def_slot: Vec<usize>,
+    /// Per term: per node, the slot of the name it reads (`NO_SLOT` for other nodes).
+    slots: Vec<Vec<usize>>,
     constraints: usize,
     extra: usize,
     /// Per term: per node, the timer width in steps (resolved once).
@@ -304,9 +313,13 @@ pub struct Unroller<'m, V> {
     /// Per term: which nodes are needed at their own step.
     now: Vec<Vec<bool>>,
     hist: Vec<Vec<Vec<V>>>,
-    signals: BTreeMap<String, Vec<V>>,
+    /// Per slot, its value at each step computed so far.
+    values: Vec<Vec<V>>,
     steps: usize,
 }
+
+/// The slot of a node that reads no name.
+const NO_SLOT: usize = usize::MAX;
 
 impl<'m, V: Clone> Unroller<'m, V> {
     /// Ready to unroll `model` and the `extra` terms; no step yet.
@@ -341,9 +354,39 @@ impl<'m, V: Clone> Unroller<'m, V> {
         let inits = exprs.iter().map(|e| initial_values(e)).collect();
         let now = exprs.iter().map(|e| needed_now(e)).collect();
         let hist = exprs.iter().map(|e| vec![Vec::new(); e.as_ref().len()]).collect();
+        let defs: Vec<&str> = model.defs.iter().map(|(n, _)| n.as_str()).collect();
+        let mut names: Vec<&str> = Vec::new();
+        let mut slot_of: HashMap<&str, usize> = HashMap::new();
+        let mut slot = |n: &'m str| {
+            *slot_of.entry(n).or_insert_with(|| {
+                names.push(n);
+                names.len() - 1
+            })
+        };
+        let def_slot: Vec<usize> = defs.iter().map(|n| slot(n)).collect();
+        let slots = exprs
+            .iter()
+            .map(|e| {
+                e.as_ref()
+                    .iter()
+                    .map(|node| match node {
+                        Term::Name(n) => slot(n.as_str()),
+                        _ => NO_SLOT,
+                    })
+                    .collect()
+            })
+            .collect();
+        let mut defined = vec![false; names.len()];
+        for &d in &def_slot {
+            defined[d] = true;
+        }
         Ok(Unroller {
-            defs: model.defs.iter().map(|(n, _)| n.as_str()).collect(),
-            defined: model.defs.iter().map(|(n, _)| n.as_str()).collect(),
+            values: vec![Vec::new(); names.len()],
+            defs,
+            names,
+            defined,
+            def_slot,
+            slots,
             constraints: model.constraints.len(),
             extra: extra.len(),
             exprs,
@@ -351,7 +394,6 @@ impl<'m, V: Clone> Unroller<'m, V> {
             inits,
             now,
             hist,
-            signals: BTreeMap::new(),
             steps: 0,
         })
     }
@@ -369,13 +411,19 @@ impl<'m, V: Clone> Unroller<'m, V> {
     ) -> Result<(), String> {
         let k = self.steps;
         let hist = &mut self.hist;
-        let signals = &mut self.signals;
-        let mut cx =
-            Step { bits, defined: &self.defined, free, widths: &self.widths, inits: &self.inits };
+        let values = &mut self.values;
+        let mut cx = Step {
+            bits,
+            names: &self.names,
+            defined: &self.defined,
+            free,
+            widths: &self.widths,
+            inits: &self.inits,
+        };
         for (j, e) in self.exprs.iter().enumerate() {
             for (i, node) in e.as_ref().iter().enumerate() {
                 let value = if self.now[j][i] {
-                    cx.node(node, &hist[j], i, j, k, signals)?
+                    cx.node(node, &hist[j], (i, self.slots[j][i]), j, k, values)?
                 } else {
                     cx.bits.konst(false)
                 };
@@ -384,13 +432,13 @@ impl<'m, V: Clone> Unroller<'m, V> {
             if let Some(name) = self.defs.get(j) {
                 let top = hist[j].last().and_then(|v| v.get(k)).cloned();
                 let top = top.ok_or_else(|| format!("the equation of `{name}` is empty"))?;
-                signals.entry((*name).to_string()).or_default().push(top);
+                values[self.def_slot[j]].push(top);
             }
         }
         for (j, e) in self.exprs.iter().enumerate() {
             for (i, node) in e.as_ref().iter().enumerate() {
                 if !self.now[j][i] {
-                    let value = cx.node(node, &hist[j], i, j, k, signals)?;
+                    let value = cx.node(node, &hist[j], (i, self.slots[j][i]), j, k, values)?;
                     hist[j][i][k] = value;
                 }
             }
@@ -421,7 +469,14 @@ impl<'m, V: Clone> Unroller<'m, V> {
         let constraints =
             (0..self.constraints).map(|c| (root(d + 2 * c), root(d + 2 * c + 1))).collect();
         let extra = (0..self.extra).map(|x| root(d + 2 * self.constraints + x)).collect();
-        Unrolled { signals: self.signals, constraints, extra }
+        let signals = self
+            .names
+            .iter()
+            .zip(self.values)
+            .filter(|(_, v)| !v.is_empty())
+            .map(|(n, v)| (n.to_string(), v))
+            .collect();
+        Unrolled { signals, constraints, extra }
     }
 }
 
@@ -446,22 +501,24 @@ pub(super) fn needed_now(e: &Expr) -> Vec<bool> {
 /// What [`unroll`] needs to compute one node at one step.
 struct Step<'a, 'm, B: Bits> {
     bits: &'a mut B,
-    defined: &'a BTreeSet<&'m str>,
+    names: &'a [&'m str],
+    defined: &'a [bool],
     free: &'a mut dyn FnMut(&mut B, &str, usize) -> B::V,
     widths: &'a [Vec<Option<usize>>],
     inits: &'a [Vec<bool>],
 }
 
 impl<B: Bits> Step<'_, '_, B> {
-    /// The value at step `k` of node `i` of term `j`, whose history is `h`.
+    /// The value at step `k` of node `i` of term `j`, whose history is `h`; `slot` is
+    /// the slot of the name the node reads.
     fn node(
         &mut self,
         node: &Term,
         h: &[Vec<B::V>],
-        i: usize,
+        (i, slot): (usize, usize),
         j: usize,
         k: usize,
-        signals: &mut BTreeMap<String, Vec<B::V>>,
+        values: &mut [Vec<B::V>],
     ) -> Result<B::V, String> {
         let bits = &mut *self.bits;
         let at = |id: &Id| h[usize::from(*id)][k].clone();
@@ -512,15 +569,17 @@ impl<B: Bits> Step<'_, '_, B> {
                 let xs: Vec<B::V> = h[usize::from(*f)][k.saturating_sub(n)..=k].to_vec();
                 bits.or_all(&xs)
             }
-            Term::Name(n) => {
-                let n = n.as_str();
-                if let Some(v) = signals.get(n).and_then(|v| v.get(k)) {
+            Term::Name(_) => {
+                if let Some(v) = values[slot].get(k) {
                     v.clone()
-                } else if self.defined.contains(n) {
-                    return Err(format!("`{n}` is read before the scan computes it"));
+                } else if self.defined[slot] {
+                    return Err(format!(
+                        "`{}` is read before the scan computes it",
+                        self.names[slot]
+                    ));
                 } else {
-                    let v = (self.free)(bits, n, k);
-                    signals.entry(n.to_string()).or_default().push(v.clone());
+                    let v = (self.free)(bits, self.names[slot], k);
+                    values[slot].push(v.clone());
                     v
                 }
             }
