@@ -574,6 +574,7 @@ fn prove(run: Run, common: Common) -> ExitCode {
             quiet: tail.quiet,
             progress: true,
             results_to_stderr: outputs.to_stdout(),
+            files_after: outputs.any(),
         },
     );
     console.exit_on_interrupt();

@@ -501,3 +501,30 @@ fn jobs_change_neither_the_verdicts_nor_their_order() {
     let out = ii_prove(&["examples/water.ld", "examples/water.ii", "--jobs", "0"]);
     assert_eq!(out.status.code(), Some(2), "--jobs 0 is refused");
 }
+
+#[test]
+fn ctrl_c_under_json_closes_the_document_written_so_far_and_lists_the_rest() {
+    use std::io::Read;
+    use std::process::Stdio;
+    let dir = temp_dir("interrupt-json");
+    let file = quick_then_slow(&dir);
+    let mut child = Command::new(env!("CARGO_BIN_EXE_ii-prove"))
+        .args([file.to_str().unwrap(), "--timeout", "60s", "--format", "json"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    let kill = Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
+    assert!(kill.success());
+    let mut out = String::new();
+    child.stdout.take().unwrap().read_to_string(&mut out).unwrap();
+    assert_eq!(child.wait().unwrap().code(), Some(130));
+    let json: serde_json::Value = serde_json::from_str(&out).expect("a whole JSON document");
+    assert_eq!(json["interrupted"], true, "{out}");
+    let props = json["properties"].as_array().unwrap();
+    assert_eq!(props.len(), 1, "{out}");
+    assert_eq!(props[0]["name"], "quick");
+    assert_eq!(json["unchecked"][0]["name"], "slow", "{out}");
+    assert_eq!(json["summary"]["proved"], 1, "{out}");
+}

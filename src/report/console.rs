@@ -11,6 +11,7 @@ use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
 use super::formats::{self, Format};
+use super::stream::JsonStream;
 use super::text::{self, Paint};
 use super::{
     Location, Observer, Options, PropertyReport, RunReport, Summary, Unchecked, WarningReport,
@@ -61,6 +62,9 @@ pub struct ConsoleOptions {
     pub progress: bool,
     /// The results go to standard error (standard output carries `--vcd -`).
     pub results_to_stderr: bool,
+    /// Files are written from the whole report after the run (`--vcd`, `--html`…): the
+    /// run keeps every result in full.
+    pub files_after: bool,
 }
 
 struct State {
@@ -74,6 +78,8 @@ struct State {
     /// The progress line on screen, if one is.
     progress_shown: Option<String>,
     done: bool,
+    /// The JSON document as far as it is written (`--format json`).
+    json: Option<JsonStream>,
 }
 
 /// Prints a run as it goes ([`Observer`]), and the whole report at the end.
@@ -116,6 +122,7 @@ impl Console {
             began: Instant::now(),
             progress_shown: None,
             done: false,
+            json: (console.format == Format::Json).then(JsonStream::default),
         };
         Console { state: Arc::new(Mutex::new(state)), console, opts: opts.clone() }
     }
@@ -133,20 +140,17 @@ impl Console {
             }
             clear_progress(&mut s);
             s.partial.interrupted = true;
-            let unchecked: Vec<Unchecked> = s
-                .plan
+            // Results come in the plan's order: those not finished are the plan's rest.
+            let (done, total) = (s.partial.summary.total(), s.plan.len());
+            let unchecked: Vec<Unchecked> = s.plan[done.min(total)..]
                 .iter()
-                .filter(|(name, at)| {
-                    !s.partial
-                        .properties
-                        .iter()
-                        .any(|p| &p.name == name && p.location.as_ref() == Some(at))
-                })
                 .map(|(name, at)| Unchecked { name: name.clone(), location: at.clone() })
                 .collect();
             s.partial.unchecked = unchecked;
-            let (done, total) = (s.partial.summary.total(), s.plan.len());
-            let text = if console.format.streams() {
+            let s = &mut *s;
+            let text = if let Some(json) = &mut s.json {
+                json.tail(&s.partial)
+            } else if console.format.streams() {
                 format!(
                     "interrupted after {done} of {total} properties: {}",
                     text::summary_line(&s.partial.summary, s.partial.timers)
@@ -164,7 +168,10 @@ impl Console {
         let mut s = lock(&self.state);
         s.done = true;
         clear_progress(&mut s);
-        let text = if self.console.format.streams() {
+        let s = &mut *s;
+        let text = if let Some(json) = &mut s.json {
+            json.tail(report)
+        } else if self.console.format.streams() {
             text::summary_line(&report.summary, report.timers)
         } else {
             formats::render(self.console.format, report, &self.opts)
@@ -213,11 +220,17 @@ fn clear_progress(s: &mut State) {
 }
 
 impl Observer for Console {
-    fn begin(&mut self, plan: &[(String, Location)]) {
-        let mut s = lock(&self.state);
-        s.plan = plan.to_vec();
-        s.width = text::name_width(plan.iter().map(|(n, _)| n.as_str()));
-        drop(s);
+    fn begin(&mut self, plan: &[(String, Location)], files: &[String]) {
+        {
+            let mut guard = lock(&self.state);
+            let s = &mut *guard;
+            s.plan = plan.to_vec();
+            s.partial.files = files.to_vec();
+            s.width = text::name_width(plan.iter().map(|(n, _)| n.as_str()));
+            if let Some(json) = &mut s.json {
+                emit(self.console, &json.head(&s.partial));
+            }
+        }
         if self.console.progress && io::stderr().is_terminal() {
             self.spawn_progress();
         }
@@ -240,31 +253,49 @@ impl Observer for Console {
         lock(&self.state).current = Some(index);
     }
 
+    fn wants_results(&self) -> bool {
+        self.console.files_after
+            || !(self.console.format.streams() || self.console.format == Format::Json)
+    }
+
     fn correspondence(&mut self, report: &PropertyReport) {
-        let mut s = lock(&self.state);
+        let mut guard = lock(&self.state);
+        let s = &mut *guard;
+        if let Some(json) = &mut s.json {
+            emit(self.console, &json.correspondence(&s.partial, report));
+            return;
+        }
         let first = s.partial.correspondences.is_empty();
         s.partial.correspondences.push(report.clone());
         if self.console.quiet || !self.console.format.streams() {
             return;
         }
-        clear_progress(&mut s);
+        clear_progress(s);
         emit(self.console, &text::render_correspondence(report, first, &self.opts));
     }
 
     fn finished(&mut self, report: &PropertyReport) {
-        let mut s = lock(&self.state);
+        let mut guard = lock(&self.state);
+        let s = &mut *guard;
         s.partial.summary.count(report);
+        s.current = None;
+        if s.json.is_some() {
+            clear_progress(s);
+        }
+        if let Some(json) = &mut s.json {
+            emit(self.console, &json.property(&s.partial, report));
+            return;
+        }
         if !self.console.format.streams() {
             s.partial.properties.push(report.clone());
         }
-        s.current = None;
         let width = s.width;
         let text = match self.console.format {
             Format::Text => text::render_property(report, width, &self.opts, self.console.paint),
             Format::Github => formats::github_property(report, width, &self.opts),
             _ => return,
         };
-        clear_progress(&mut s);
+        clear_progress(s);
         emit(self.console, &text);
     }
 }

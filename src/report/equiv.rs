@@ -499,7 +499,7 @@ pub fn run_equiv_with(
     }
     let plan: Vec<(String, Location)> =
         statements.iter().map(|s| (s.name.clone(), Location::of(&sources, s.span))).collect();
-    observer.begin(&plan);
+    observer.begin(&plan, &[b_path.to_string()]);
     for w in &warnings {
         observer.warning(w);
     }
@@ -532,7 +532,7 @@ pub fn run_equiv_with(
             InOrder::Next => observer.started(properties.len()),
             InOrder::Done(report) => {
                 observer.finished(&report);
-                properties.push(report);
+                properties.push(super::kept(observer, report));
             }
         },
     );

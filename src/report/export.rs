@@ -301,6 +301,11 @@ impl Outputs<'_> {
         [("--vcd", self.vcd), ("--wavedrom", self.wavedrom), ("--html", self.html)]
     }
 
+    /// Whether any file is asked for.
+    pub fn any(&self) -> bool {
+        self.named().iter().any(|(_, p)| p.is_some())
+    }
+
     /// Whether one of them goes to standard output (the report then goes to standard error).
     pub fn to_stdout(&self) -> bool {
         self.named().iter().any(|(_, p)| *p == Some("-"))

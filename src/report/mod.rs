@@ -16,6 +16,7 @@ pub mod formats;
 pub mod html;
 mod load;
 mod property;
+pub mod stream;
 pub mod text;
 pub mod trace;
 pub mod tracks;
@@ -270,6 +271,13 @@ pub struct PropertyReport {
     pub vacuity: Option<String>,
 }
 
+impl PropertyReport {
+    /// The report without its proof and runs: what a summary and an exit status read.
+    pub fn outline(self) -> PropertyReport {
+        PropertyReport { trace: None, counterexample: None, candidate: None, ..self }
+    }
+}
+
 /// Counts of verdicts.
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct Summary {
@@ -321,14 +329,15 @@ pub struct RunReport {
     pub files: Vec<String>,
     /// How the program's timers were compiled (`plc` or `ideal`); null without a program.
     pub timers: Option<&'static str>,
-    /// Warnings (unconstrained elements and the like).
-    pub warnings: Vec<WarningReport>,
-    /// Per property.
-    pub properties: Vec<PropertyReport>,
     /// `equiv`: the state correspondences `X = X'` proved before the outputs, which
     /// their proofs may cite (`state_X`); not verdicts of their own.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub correspondences: Vec<PropertyReport>,
+    /// Per property.
+    pub properties: Vec<PropertyReport>,
+    /// Warnings (unconstrained elements and the like). After the results, so that a
+    /// document written as the run goes ([`stream`]) has them all.
+    pub warnings: Vec<WarningReport>,
     /// Totals.
     pub summary: Summary,
     /// The run was interrupted (Ctrl-C): `properties` are those finished before.
@@ -426,8 +435,15 @@ fn fail(sources: &Sources, diagnostics: Vec<Diagnostic>, opts: &Options) -> Inpu
 /// known (in file order), draws a progress line, and can print a partial summary when
 /// interrupted. Every method does nothing by default.
 pub trait Observer {
-    /// Every file is read: these properties (name, location) will be checked, in order.
-    fn begin(&mut self, _plan: &[(String, Location)]) {}
+    /// Every file is read: these properties (name, location) of these files (the
+    /// report's `files`) will be checked, in order.
+    fn begin(&mut self, _plan: &[(String, Location)], _files: &[String]) {}
+    /// Must the run's report hold every result in full? When not (the observer has
+    /// shown or written each one already), it keeps only what the summary and the exit
+    /// status need, so that a run of many properties does not hold every proof.
+    fn wants_results(&self) -> bool {
+        true
+    }
     /// A warning about the input.
     fn warning(&mut self, _warning: &WarningReport) {}
     /// The property at `index` of the plan is being checked.
@@ -461,10 +477,15 @@ fn check_selected(
             InOrder::Next => observer.started(properties.len()),
             InOrder::Done(report) => {
                 observer.finished(&report);
-                properties.push(report);
+                properties.push(kept(observer, report));
             }
         },
     );
+}
+
+/// What the run keeps of a result the observer has had: all of it, or its outline.
+fn kept(observer: &dyn Observer, report: PropertyReport) -> PropertyReport {
+    if observer.wants_results() { report } else { report.outline() }
 }
 
 /// What [`in_order`] tells its caller.
@@ -656,7 +677,7 @@ pub fn run_free_with(
     let theory = theory::standard(&mut sources).map_err(|d| fail(&sources, d, opts))?;
     let docs = read_documents(&mut sources, paths, &NoProgram, opts)?;
     let (selection, plan) = plan(&sources, &docs, paths, opts)?;
-    observer.begin(&plan);
+    observer.begin(&plan, paths);
     let identity = |e: &Expr| e.clone();
     let mut warnings = Vec::new();
     let mut properties = Vec::new();
@@ -733,7 +754,7 @@ pub fn run_program_with(
     let with_atoms = loaded.compiled.with_atoms();
     let compiled = &with_atoms;
     let (selection, plan) = plan(&sources, &docs, &paths, opts)?;
-    observer.begin(&plan);
+    observer.begin(&plan, &paths);
     let rename = |e: &Expr| compiled.rename_for_display(e);
     let mut warnings = loaded.located.clone();
     for w in &warnings {
