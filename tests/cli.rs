@@ -446,14 +446,15 @@ fn the_progress_line_is_not_drawn_when_standard_error_is_not_a_terminal() {
     assert!(!text(&out.stderr).contains('\r') && !text(&out.stderr).contains("checking"));
 }
 
-#[test]
-fn ctrl_c_under_junit_writes_the_partial_document_and_marks_the_rest() {
+/// The quick-then-slow file checked in `format`, interrupted by Ctrl-C once the quick
+/// property is done: what the run wrote to standard output.
+fn interrupted(format: &str) -> String {
     use std::io::Read;
     use std::process::Stdio;
-    let dir = temp_dir("interrupt-junit");
+    let dir = temp_dir(&format!("interrupt-{format}"));
     let file = quick_then_slow(&dir);
     let mut child = Command::new(env!("CARGO_BIN_EXE_ii-prove"))
-        .args([file.to_str().unwrap(), "--timeout", "60s", "--format", "junit"])
+        .args([file.to_str().unwrap(), "--timeout", "60s", "--format", format])
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
@@ -462,9 +463,15 @@ fn ctrl_c_under_junit_writes_the_partial_document_and_marks_the_rest() {
     std::thread::sleep(std::time::Duration::from_millis(1500));
     let kill = Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
     assert!(kill.success());
-    let mut xml = String::new();
-    child.stdout.take().unwrap().read_to_string(&mut xml).unwrap();
+    let mut out = String::new();
+    child.stdout.take().unwrap().read_to_string(&mut out).unwrap();
     assert_eq!(child.wait().unwrap().code(), Some(130));
+    out
+}
+
+#[test]
+fn ctrl_c_under_junit_writes_the_partial_document_and_marks_the_rest() {
+    let xml = interrupted("junit");
     let doc = roxmltree::Document::parse(&xml).expect("well-formed XML");
     let cases: Vec<_> = doc.descendants().filter(|n| n.has_tag_name("testcase")).collect();
     assert_eq!(cases.len(), 2, "{xml}");
@@ -504,22 +511,7 @@ fn jobs_change_neither_the_verdicts_nor_their_order() {
 
 #[test]
 fn ctrl_c_under_json_closes_the_document_written_so_far_and_lists_the_rest() {
-    use std::io::Read;
-    use std::process::Stdio;
-    let dir = temp_dir("interrupt-json");
-    let file = quick_then_slow(&dir);
-    let mut child = Command::new(env!("CARGO_BIN_EXE_ii-prove"))
-        .args([file.to_str().unwrap(), "--timeout", "60s", "--format", "json"])
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    std::thread::sleep(std::time::Duration::from_millis(1500));
-    let kill = Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
-    assert!(kill.success());
-    let mut out = String::new();
-    child.stdout.take().unwrap().read_to_string(&mut out).unwrap();
-    assert_eq!(child.wait().unwrap().code(), Some(130));
+    let out = interrupted("json");
     let json: serde_json::Value = serde_json::from_str(&out).expect("a whole JSON document");
     assert_eq!(json["interrupted"], true, "{out}");
     let props = json["properties"].as_array().unwrap();
