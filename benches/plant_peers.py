@@ -39,7 +39,7 @@ TOOLS = {
 
 
 def add_options(parser):
-    parser.add_argument("--ii-prove", help="the ii-prove binary (default: ROOT/target/release/ii-prove)")
+    parser.add_argument("--ii-prove", help="the ii-prove binary (default: $II_PROVE, else ROOT/target/release/ii-prove)")
     parser.add_argument("--nusmv", help="the NuSMV binary (default: built by benches/peers/build_nusmv.sh)")
     parser.add_argument("--abc", default="berkeley-abc", help="the ABC binary (Debian: berkeley-abc)")
     parser.add_argument("--no-nusmv", action="store_true", help="leave NuSMV out")
@@ -149,7 +149,7 @@ def abc(binary, aig, mode, args):
     return Outcome(wall, user, mib, killed, verdicts, note)
 
 
-def cell(o, limit):
+def cell(o, limit, expected_total):
     """`wall (user CPU, MiB) proved/disproved/unknown`."""
     held, failed = o.counts()
     total = len(o.verdicts)
@@ -157,6 +157,8 @@ def cell(o, limit):
     text = f"{time_part} ({o.user:.2f} u, {o.mib:.0f} MiB) {held}/{failed}"
     if total - held - failed:
         text += f"/{total - held - failed}?"
+    if o.killed:
+        text += f" of {expected_total} before the kill"
     return text + (f", {o.note}" if o.note else "")
 
 
@@ -173,7 +175,7 @@ def compare(label, outcome, want, bounded=False):
 
 
 def peers(args):
-    binary = args.ii_prove or os.path.join(ROOT, "target", "release", "ii-prove")
+    binary = args.ii_prove or os.environ.get("II_PROVE") or os.path.join(ROOT, "target", "release", "ii-prove")
     if not os.path.exists(binary):
         sys.exit(f"no ii-prove binary at {binary}: build it or pass --ii-prove PATH")
     tools = [t.strip() for t in args.tools.split(",") if t.strip()]
@@ -234,7 +236,7 @@ def run(args, plants):
                     for p in problems:
                         print(f"DISAGREEMENT ({shape_name}, N = {n}, {TOOLS[t]}): {p}", file=sys.stderr, flush=True)
                     disagreements += len(problems)
-                    cells[t] = cell(o, args.limit) + (" ‼" if problems else "")
+                    cells[t] = cell(o, args.limit, len(want)) + (" ‼" if problems else "")
                 row += [cells[t] for t in tools if t.startswith("ii")]
                 if export is not None:
                     row.append(f"{export.wall:.2f} s ({export.user:.2f} u, {export.mib:.0f} MiB)")
