@@ -374,9 +374,9 @@ def main():
     args = parser.parse_args()
     if args.ldmicro01:
         ldmicro01()
+    if min([args.n] if args.command == "generate" else args.n) < 1:
+        parser.error("N must be at least 1")
     if args.command == "generate":
-        if args.n < 1:
-            parser.error("N must be at least 1")
         for path in generate(Shape(args.shape, args.n), args.dir, args.faulty).values():
             print(path)
         return 0
