@@ -293,7 +293,6 @@ pub fn unroll<B: Bits>(
 /// incremental bounded model checking asks one solver about, depth after depth).
 pub struct Unroller<'m, V> {
     exprs: Vec<&'m Expr>,
-    defs: Vec<&'m str>,
     /// Every name the terms read or the model defines, each once: the defined ones
     /// first, in the model's order. Values are kept per slot, names resolved once here
     /// rather than looked up at every node of every step.
@@ -354,7 +353,6 @@ impl<'m, V: Clone> Unroller<'m, V> {
         let inits = exprs.iter().map(|e| initial_values(e)).collect();
         let now = exprs.iter().map(|e| needed_now(e)).collect();
         let hist = exprs.iter().map(|e| vec![Vec::new(); e.as_ref().len()]).collect();
-        let defs: Vec<&str> = model.defs.iter().map(|(n, _)| n.as_str()).collect();
         let mut names: Vec<&str> = Vec::new();
         let mut slot_of: HashMap<&str, usize> = HashMap::new();
         let mut slot = |n: &'m str| {
@@ -363,7 +361,7 @@ impl<'m, V: Clone> Unroller<'m, V> {
                 names.len() - 1
             })
         };
-        let def_slot: Vec<usize> = defs.iter().map(|n| slot(n)).collect();
+        let def_slot: Vec<usize> = model.defs.iter().map(|(n, _)| slot(n.as_str())).collect();
         let slots = exprs
             .iter()
             .map(|e| {
@@ -382,7 +380,6 @@ impl<'m, V: Clone> Unroller<'m, V> {
         }
         Ok(Unroller {
             values: vec![Vec::new(); names.len()],
-            defs,
             names,
             defined,
             def_slot,
@@ -429,10 +426,11 @@ impl<'m, V: Clone> Unroller<'m, V> {
                 };
                 hist[j][i].push(value);
             }
-            if let Some(name) = self.defs.get(j) {
+            if let Some(&slot) = self.def_slot.get(j) {
                 let top = hist[j].last().and_then(|v| v.get(k)).cloned();
+                let name = self.names[slot];
                 let top = top.ok_or_else(|| format!("the equation of `{name}` is empty"))?;
-                values[self.def_slot[j]].push(top);
+                values[slot].push(top);
             }
         }
         for (j, e) in self.exprs.iter().enumerate() {
@@ -453,19 +451,19 @@ impl<'m, V: Clone> Unroller<'m, V> {
 
     /// Constraint `c`'s two sides at step `k`.
     pub fn constraint_at(&self, c: usize, k: usize) -> Option<(V, V)> {
-        let d = self.defs.len();
+        let d = self.def_slot.len();
         Some((self.root(d + 2 * c, k)?.clone(), self.root(d + 2 * c + 1, k)?.clone()))
     }
 
     /// Extra term `x`'s value at step `k`.
     pub fn extra_at(&self, x: usize, k: usize) -> Option<V> {
-        self.root(self.defs.len() + 2 * self.constraints + x, k).cloned()
+        self.root(self.def_slot.len() + 2 * self.constraints + x, k).cloned()
     }
 
     /// The values of every step unrolled.
     pub fn finish(self) -> Unrolled<V> {
         let root = |j: usize| self.hist[j].last().cloned().unwrap_or_default();
-        let d = self.defs.len();
+        let d = self.def_slot.len();
         let constraints =
             (0..self.constraints).map(|c| (root(d + 2 * c), root(d + 2 * c + 1))).collect();
         let extra = (0..self.extra).map(|x| root(d + 2 * self.constraints + x)).collect();
