@@ -261,17 +261,18 @@ impl Observer for Console {
     fn correspondence(&mut self, report: &PropertyReport) {
         let mut guard = lock(&self.state);
         let s = &mut *guard;
-        if let Some(json) = &mut s.json {
-            emit(self.console, &json.correspondence(&s.partial, report));
-            return;
-        }
-        let first = s.partial.correspondences.is_empty();
-        s.partial.correspondences.push(report.clone());
-        if self.console.quiet || !self.console.format.streams() {
-            return;
-        }
+        let text = if let Some(json) = &mut s.json {
+            json.correspondence(&s.partial, report)
+        } else {
+            let first = s.partial.correspondences.is_empty();
+            s.partial.correspondences.push(report.clone());
+            if self.console.quiet || !self.console.format.streams() {
+                return;
+            }
+            text::render_correspondence(report, first, &self.opts)
+        };
         clear_progress(s);
-        emit(self.console, &text::render_correspondence(report, first, &self.opts));
+        emit(self.console, &text);
     }
 
     fn finished(&mut self, report: &PropertyReport) {
@@ -279,21 +280,20 @@ impl Observer for Console {
         let s = &mut *guard;
         s.partial.summary.count(report);
         s.current = None;
-        if s.json.is_some() {
-            clear_progress(s);
-        }
-        if let Some(json) = &mut s.json {
-            emit(self.console, &json.property(&s.partial, report));
-            return;
-        }
-        if !self.console.format.streams() {
-            s.partial.properties.push(report.clone());
-        }
-        let width = s.width;
-        let text = match self.console.format {
-            Format::Text => text::render_property(report, width, &self.opts, self.console.paint),
-            Format::Github => formats::github_property(report, width, &self.opts),
-            _ => return,
+        let text = if let Some(json) = &mut s.json {
+            json.property(&s.partial, report)
+        } else {
+            if !self.console.format.streams() {
+                s.partial.properties.push(report.clone());
+            }
+            let width = s.width;
+            match self.console.format {
+                Format::Text => {
+                    text::render_property(report, width, &self.opts, self.console.paint)
+                }
+                Format::Github => formats::github_property(report, width, &self.opts),
+                _ => return,
+            }
         };
         clear_progress(s);
         emit(self.console, &text);

@@ -122,9 +122,7 @@ impl JsonStream {
     /// warnings, summary and whether the run was interrupted, from `report`.
     pub fn tail(&mut self, report: &RunReport) -> String {
         let mut out = self.head(report);
-        if self.section != Section::Properties {
-            out.push_str(&self.enter(Section::Properties));
-        }
+        out.push_str(&self.enter(Section::Properties));
         let closing = if self.count > 0 { "\n  ]" } else { "]" };
         out.push_str(closing);
         self.section = Section::Head;
