@@ -73,7 +73,8 @@ const COIL_BITS: &[&str] =
 /// `T1` is also a stage of `SHIFT_REGISTER T 2`, and `Ta` a `PERSIST`ed variable.
 const TIMERS: &[&str] = &["Ta", "Tb", "Tc", "Ra", "Ya", "T1", "T1"];
 const COUNTERS: &[&str] = &["Ca", "Cb"];
-const INTS: &[&str] = &["va", "vb", "Ca", "Ta"];
+/// `Aa` is what `READ_ADC Aa` reads, `vb` what `UART_RECV vb` receives.
+const INTS: &[&str] = &["va", "vb", "Ca", "Ta", "Aa"];
 const CYCLES: &[u64] = &[10_000, 10_000, 1_000, 5_000, 20_000, 2_500, 100_000, 40_000, 3_333];
 
 struct Gen {
@@ -568,6 +569,11 @@ fn check_program(label: &str, text: &str, program: &LdProgram, seed: u64) -> Fig
     // The bits the outside world writes.
     let driven: Vec<String> =
         program.signals().into_iter().filter(|n| n.starts_with(['X', 'I', 'M'])).collect();
+    // The bits of the peripheral reads' values and arrival flags (free integer inputs).
+    let reads: Vec<(String, u32)> = ii_prove::ladder::readings(program)
+        .into_values()
+        .flat_map(|r| std::iter::once((r.value, 16)).chain(r.arrived.map(|g| (g, 1))))
+        .collect();
     for (name, kind) in &compiled.signals {
         if *kind == SignalKind::Input && !driven.contains(name) {
             fail(
@@ -645,6 +651,14 @@ fn check_program(label: &str, text: &str, program: &LdProgram, seed: u64) -> Fig
             *h -= 1;
         }
         frozen = frozen.saturating_sub(1);
+        for (name, width) in &reads {
+            // Mostly values near the literals the comparisons use, sometimes any.
+            let v =
+                if rng.chance(80) { rng.below(8) as i64 - 3 } else { rng.below(1 << 16) as i64 };
+            for k in 0..*width {
+                current.insert(format!("{name}_b{k}"), v >> k & 1 == 1);
+            }
+        }
         sim.step(&current);
         if exact_model {
             input_trace.push(current.clone());
@@ -846,6 +860,7 @@ const COVERAGE: &[&str] = &[
     "IF_BIT_SET",
     "SHIFT_REGISTER",
     "READ_ADC",
+    "UART_RECV",
     "SET_PWM",
     "UART_SEND",
     "PERSIST",

@@ -116,6 +116,8 @@ struct Lowering<'a> {
     ints: BTreeMap<String, IntVar>,
     /// Why each integer that is not computed is not (see [`integers`]).
     opaque: BTreeMap<String, String>,
+    /// The peripheral reads, by element index (see [`super::readings`]).
+    readings: BTreeMap<usize, super::Reading>,
 }
 
 impl<'a> Lowering<'a> {
@@ -144,7 +146,8 @@ impl<'a> Lowering<'a> {
                 _ => None,
             })
             .collect();
-        let (ints, opaque) = integers(program);
+        let readings = super::readings(program);
+        let (ints, opaque) = integers(program, &readings);
         Lowering {
             program,
             index,
@@ -156,6 +159,7 @@ impl<'a> Lowering<'a> {
             number: 0,
             ints,
             opaque,
+            readings,
         }
     }
 
@@ -246,6 +250,36 @@ impl<'a> Lowering<'a> {
         }
     }
 
+    /// A peripheral read (ldmicro.md §4): when the power is on, `READ_ADC` writes the
+    /// reading, a free integer input, and passes the power; `UART_RECV` writes the
+    /// received value only when a byte arrived (a free 1-bit input) and gives the power
+    /// and-ed with that arrival.
+    fn read(&mut self, e: &Element, input: BoolExpr) -> BoolExpr {
+        let index = self.index.get(&(e as *const Element)).copied().unwrap_or(usize::MAX);
+        let Some(r) = self.readings.get(&index).cloned() else { return input };
+        let power = match &r.arrived {
+            Some(got) => {
+                let ty = IntType { bits: 1, signed: false };
+                let (a, b) = (IntExpr::Var(canonical(got)), IntExpr::Const(1));
+                let got = BoolExpr::Compare(Box::new(Compare { op: CmpOp::Eq, ty, a, b }));
+                self.temp(BoolExpr::and(input, got))
+            }
+            None => input,
+        };
+        let message = format!(
+            "a peripheral read: {} is the free input {}{}",
+            r.var,
+            r.value,
+            match &r.arrived {
+                Some(got) => format!(", written when {got} = 1 (a byte arrived)"),
+                None => String::new(),
+            }
+        );
+        self.warn(e.span, e.kind.keyword(), &message);
+        self.set_int(e, &r.var, &power, IntExpr::Var(canonical(&r.value)));
+        power
+    }
+
     fn run(&mut self) {
         let program = self.program;
         let version = &program.version;
@@ -286,6 +320,10 @@ impl<'a> Lowering<'a> {
         for e in program.elements() {
             names.extend(e.names_read().into_iter().map(canonical));
             names.extend(e.names_written().iter().map(|n| canonical(n)));
+        }
+        for r in self.readings.values() {
+            names.insert(canonical(&r.value));
+            names.extend(r.arrived.iter().map(|n| canonical(n)));
         }
         let skipped = program
             .rungs
@@ -548,6 +586,9 @@ impl<'a> Lowering<'a> {
             }
             // A label only marks a place to jump to (jumps are refused, see `lower`).
             ElementKind::Other { keyword, .. } if keyword == "LABEL" => input,
+            ElementKind::Other { keyword, .. } if self.exact(e) && is_read(keyword) => {
+                self.read(e, input)
+            }
             ElementKind::Other { args, .. } if self.exact(e) => {
                 // SHIFT_REGISTER (ldmicro.md §4): on the rising edge of the power,
                 // `name{k} := name{k-1}` for k = stages-1 down to 1; the power passes.
@@ -619,6 +660,7 @@ fn int_names(e: &Element) -> Vec<String> {
             v.push(dest.clone());
             v
         }
+        ElementKind::Other { keyword, .. } if is_read(keyword) => e.names_written(),
         ElementKind::Other { keyword, .. } if shift_stages(e).is_some() => {
             debug_assert_eq!(keyword, "SHIFT_REGISTER");
             e.names_written()
@@ -643,7 +685,10 @@ fn shift_stages(e: &Element) -> Option<u32> {
 /// `PERSIST`), those computed from such, and counters whose limit or start value is not
 /// a 16-bit literal or exact integer; those come back with why. Each is 16-bit signed; a counter of a new file starts at its `init`
 /// (the last counter of that name wins, as the runtime initialises them in order).
-fn integers(program: &LdProgram) -> (BTreeMap<String, IntVar>, BTreeMap<String, String>) {
+fn integers(
+    program: &LdProgram,
+    readings: &BTreeMap<usize, super::Reading>,
+) -> (BTreeMap<String, IntVar>, BTreeMap<String, String>) {
     let orig = program.version.is_orig();
     let live: Vec<&Element> = program
         .rungs
@@ -673,7 +718,9 @@ fn integers(program: &LdProgram) -> (BTreeMap<String, IntVar>, BTreeMap<String, 
             }
             // What a peripheral or an operation ii-prove does not compute writes, and a
             // PERSIST variable (its power-up value is what EEPROM holds).
-            ElementKind::Other { keyword, .. } if shift_stages(e).is_none() => {
+            ElementKind::Other { keyword, .. }
+                if shift_stages(e).is_none() && !is_read(keyword) =>
+            {
                 let why = if keyword == "PERSIST" {
                     "it is PERSIST (its power-up value is what EEPROM holds)".to_string()
                 } else {
@@ -745,7 +792,7 @@ fn integers(program: &LdProgram) -> (BTreeMap<String, IntVar>, BTreeMap<String, 
             break;
         }
     }
-    let ints = used
+    let mut ints: BTreeMap<String, IntVar> = used
         .into_iter()
         .filter(|n| !opaque.contains_key(n))
         .map(|n| {
@@ -753,7 +800,23 @@ fn integers(program: &LdProgram) -> (BTreeMap<String, IntVar>, BTreeMap<String, 
             (canonical(&n), IntVar { ty: IntType::I16, input: false, init: start })
         })
         .collect();
+    // The values peripheral reads give the integers computed exactly: free inputs.
+    for r in readings.values() {
+        if !ints.contains_key(&canonical(&r.var)) {
+            continue;
+        }
+        ints.insert(canonical(&r.value), IntVar { ty: IntType::I16, input: true, init: 0 });
+        if let Some(got) = &r.arrived {
+            let ty = IntType { bits: 1, signed: false };
+            ints.insert(canonical(got), IntVar { ty, input: true, init: 0 });
+        }
+    }
     (ints, opaque)
+}
+
+/// Whether `keyword` is a peripheral read modelled as a free integer input.
+fn is_read(keyword: &str) -> bool {
+    matches!(keyword, "READ_ADC" | "UART_RECV")
 }
 
 /// The relay LDmicro ≥ 2016 sets on an integer overflow.

@@ -42,6 +42,57 @@ pub fn compile_with(
         .map_err(|errors| errors.into_iter().map(LadderError::from).collect())
 }
 
+/// A peripheral read of an LDmicro program (`READ_ADC var`, `UART_RECV var`): the free
+/// integer inputs the outside world gives it at each scan (ldmicro.md §4, "peripheral
+/// reads"). Both the lowering and the simulator take their values from these names.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Reading {
+    /// The variable the element writes.
+    pub var: String,
+    /// The value read (16-bit signed): the ADC's reading, or the received byte(s).
+    pub value: String,
+    /// For `UART_RECV`, the 1-bit unsigned integer that is 1 when a byte arrived.
+    pub arrived: Option<String>,
+}
+
+/// The peripheral reads of `program`, by element index (`program.elements()` order).
+/// The value of the read in rung `n` of `KEYWORD var` is named `KEYWORD_var_rn`, and its
+/// arrival flag `KEYWORD_var_rn_got`; a suffix `_2`, `_3`, … keeps them apart from
+/// each other and from the program's names.
+pub fn readings(program: &LdProgram) -> std::collections::BTreeMap<usize, Reading> {
+    let mut taken: BTreeSet<String> = program.signals().into_iter().collect();
+    for e in program.elements() {
+        taken.extend(e.names_read().into_iter().map(str::to_string));
+        taken.extend(e.names_written());
+    }
+    let mut fresh = |base: String| {
+        let mut name = base.clone();
+        let mut k = 1;
+        while taken.contains(&name) || taken.contains(&format!("{name}_got")) {
+            k += 1;
+            name = format!("{base}_{k}");
+        }
+        taken.insert(name.clone());
+        name
+    };
+    let mut out = std::collections::BTreeMap::new();
+    let mut index = 0;
+    for rung in &program.rungs {
+        for e in rung.elements() {
+            if let ElementKind::Other { keyword, .. } = &e.kind
+                && matches!(keyword.as_str(), "READ_ADC" | "UART_RECV")
+                && let [var] = e.names_written().as_slice()
+            {
+                let value = fresh(format!("{keyword}_{var}_r{}", rung.number));
+                let arrived = (keyword == "UART_RECV").then(|| format!("{value}_got"));
+                out.insert(index, Reading { var: var.clone(), value, arrived });
+            }
+            index += 1;
+        }
+    }
+    out
+}
+
 impl From<crate::program::CompileError> for LadderError {
     fn from(e: crate::program::CompileError) -> LadderError {
         LadderError::Unsupported { span: e.span, keyword: e.keyword, reason: e.reason }

@@ -19,7 +19,9 @@
 //! `P`; a variable delay is `P` scans; a zero cycle makes timers never expire),
 //! OSR, OSF, ODR, CTU/CTD/CTC (orig semantics for `LDmicro0.1`/headerless files,
 //! new semantics otherwise; CTR always new), RES, EQU…LEQ, MOVE and
-//! ADD/SUB/MUL/DIV with 16-bit two's-complement wrap.
+//! ADD/SUB/MUL/DIV with 16-bit two's-complement wrap, and the peripheral reads
+//! READ_ADC and UART_RECV, whose values (and UART_RECV's "a byte arrived") are free
+//! integer inputs given in `step`'s input map ([`super::readings`] names them).
 //!
 //! Everything else (THI, TLO, TCY, ODF, OSC, the other integer, peripheral and
 //! text elements, division by zero) is **not modelled**: the simulator keeps a
@@ -94,6 +96,8 @@ pub struct Simulator {
     scans: u64,
     /// The program contains control flow: which rungs run is not modelled.
     control_flow: bool,
+    /// The peripheral reads, by element index: what the outside world gives them.
+    readings: BTreeMap<usize, super::Reading>,
 }
 
 /// Elements that change which rungs run or stop the scan (ldmicro.md §4, last table).
@@ -118,6 +122,7 @@ impl Simulator {
             mcr: Pow { on: true, sure: true },
             scans: 0,
             control_flow: false,
+            readings: super::readings(program),
         };
         // Only the rungs that run: a comment rung's timers and counters do not initialise
         // anything, and its control flow never executes.
@@ -162,6 +167,18 @@ impl Simulator {
                 }
             }
             self.unknown.remove(name);
+        }
+        // A peripheral read's value is a free integer input given, like every integer
+        // input, as its two's-complement bits `NAME_b0`, `NAME_b1`, … (0 when absent).
+        let readings: Vec<super::Reading> = self.readings.values().cloned().collect();
+        for r in readings {
+            let bit = |name: &str, k: u32| inputs.get(&format!("{name}_b{k}")).copied();
+            let value =
+                (0..16).fold(0i64, |v, k| v | i64::from(bit(&r.value, k) == Some(true)) << k);
+            self.set_int(&r.value, wrap16(value), true);
+            if let Some(got) = &r.arrived {
+                self.set_int(got, i64::from(bit(got, 0) == Some(true)), true);
+            }
         }
         if self.scans == 0 && !self.orig {
             // New counters copy a variable `init` on the first scan.
@@ -543,6 +560,19 @@ impl Simulator {
                     }
                 }
                 i
+            }
+            // ldmicro.md §4, peripheral reads: READ_ADC writes the reading and passes its
+            // input; UART_RECV writes the received value only when a byte arrived, and
+            // its output is its input and-ed with that arrival.
+            ElementKind::Other { .. } if self.readings.contains_key(&k) => {
+                let r = self.readings[&k].clone();
+                let o = match &r.arrived {
+                    Some(got) => i.and(self.int(got) == 1, true),
+                    None => i,
+                };
+                let v = self.int(&r.value);
+                self.assign(&r.var, o, v, true);
+                o
             }
             // Loaded from EEPROM at power-up (see `new`); saving it changes nothing here.
             ElementKind::Other { keyword, .. } if keyword == "PERSIST" => i,
