@@ -572,7 +572,7 @@ fn check_program(label: &str, text: &str, program: &LdProgram, seed: u64) -> Fig
     // The bits of the peripheral reads' values and arrival flags (free integer inputs).
     let reads: Vec<(String, u32)> = ii_prove::ladder::readings(program)
         .into_values()
-        .flat_map(|r| std::iter::once((r.value, 16)).chain(r.arrived.map(|g| (g, 1))))
+        .flat_map(|r| std::iter::once((r.value, r.ty.bits)).chain(r.arrived.map(|g| (g, 1))))
         .collect();
     for (name, kind) in &compiled.signals {
         if *kind == SignalKind::Input && !driven.contains(name) {

@@ -606,6 +606,13 @@ impl<'a> Lowering<'a> {
                 }
                 input
             }
+            // A reading not computed (its target's ADC range is not known): the value is
+            // opaque, but READ_ADC passes its input all the same (ldmicro.md §4).
+            ElementKind::Other { keyword, .. } if keyword == "READ_ADC" => {
+                let why = format!("a peripheral read: it writes {}", self.opaque_why(e));
+                self.warn(e.span, keyword, &why);
+                input
+            }
             ElementKind::Other { keyword, .. } => {
                 if super::ldmicro::PASS_THROUGH.contains(&keyword.as_str()) {
                     self.warn(
@@ -690,6 +697,9 @@ fn integers(
     readings: &BTreeMap<usize, super::Reading>,
 ) -> (BTreeMap<String, IntVar>, BTreeMap<String, String>) {
     let orig = program.version.is_orig();
+    let adc = super::adc_bits(program.micro.as_deref());
+    // A peripheral read whose values are known (see `super::readings`).
+    let known = |keyword: &str| keyword != "READ_ADC" || adc.is_ok();
     let live: Vec<&Element> = program
         .rungs
         .iter()
@@ -719,10 +729,12 @@ fn integers(
             // What a peripheral or an operation ii-prove does not compute writes, and a
             // PERSIST variable (its power-up value is what EEPROM holds).
             ElementKind::Other { keyword, .. }
-                if shift_stages(e).is_none() && !is_read(keyword) =>
+                if shift_stages(e).is_none() && !(is_read(keyword) && known(keyword)) =>
             {
                 let why = if keyword == "PERSIST" {
                     "it is PERSIST (its power-up value is what EEPROM holds)".to_string()
+                } else if let (true, Err(why)) = (is_read(keyword), &adc) {
+                    format!("it is written by {keyword}, and {why}")
                 } else {
                     format!("it is written by {keyword}, which ii-prove does not compute")
                 };
@@ -805,7 +817,7 @@ fn integers(
         if !ints.contains_key(&canonical(&r.var)) {
             continue;
         }
-        ints.insert(canonical(&r.value), IntVar { ty: IntType::I16, input: true, init: 0 });
+        ints.insert(canonical(&r.value), IntVar { ty: r.ty, input: true, init: 0 });
         if let Some(got) = &r.arrived {
             let ty = IntType { bits: 1, signed: false };
             ints.insert(canonical(got), IntVar { ty, input: true, init: 0 });
@@ -814,7 +826,8 @@ fn integers(
     (ints, opaque)
 }
 
-/// Whether `keyword` is a peripheral read modelled as a free integer input.
+/// Whether `keyword` is a peripheral read, modelled as a free integer input when the
+/// values it gives are known (see [`super::readings`]).
 fn is_read(keyword: &str) -> bool {
     matches!(keyword, "READ_ADC" | "UART_RECV")
 }

@@ -23,6 +23,7 @@ pub use simulate::{Simulator, run};
 use std::collections::{BTreeSet, HashMap, HashSet};
 
 use crate::diag::{Report, Severity, Span};
+use crate::program::IntType;
 
 /// Lowers and compiles an LDmicro program with the default options (PLC timer counts).
 pub fn compile(program: &LdProgram) -> Result<CompiledProgram, Vec<LadderError>> {
@@ -49,16 +50,41 @@ pub fn compile_with(
 pub struct Reading {
     /// The variable the element writes.
     pub var: String,
-    /// The value read (16-bit signed): the ADC's reading, or the received byte(s).
+    /// The value read: the ADC's reading, or the received byte(s).
     pub value: String,
+    /// The values the hardware gives: the ADC's resolution (unsigned), one byte
+    /// (unsigned), or the variable's 16 bits for a read of several bytes.
+    pub ty: IntType,
     /// For `UART_RECV`, the 1-bit unsigned integer that is 1 when a byte arrived.
     pub arrived: Option<String>,
 }
 
-/// The peripheral reads of `program`, by element index (`program.elements()` order).
-/// The value of the read in rung `n` of `KEYWORD var` is named `KEYWORD_var_rn`, and its
-/// arrival flag `KEYWORD_var_rn_got`; a suffix `_2`, `_3`, … keeps them apart from
-/// each other and from the program's names.
+/// The resolution in bits of the ADC of LDmicro's target `micro` (`MICRO=`), from
+/// `adcMax` in LDmicro's `mcutable.h`: 8 bits (ATtiny10, PIC16F72), 12 bits (the STM32
+/// targets), 10 bits for every other target with an ADC, and for a file with no target,
+/// as LDmicro's simulator reads it (`maxVal = 1023` in `iolist.cpp`). Err: why the
+/// readings of that target are not known (no ADC, or a target ii-prove does not know).
+pub fn adc_bits(micro: Option<&str>) -> Result<u32, String> {
+    let Some(micro) = micro.map(str::trim) else { return Ok(10) };
+    let known = |names: &[&str]| names.iter().any(|n| micro.starts_with(n));
+    if known(&["Atmel AVR ATtiny10", "Microchip PIC16F72 "]) {
+        Ok(8)
+    } else if known(&["St ARM STM32"]) {
+        Ok(12)
+    } else if known(&["Atmel AVR ATmega162", "Microchip PIC16F628", "Microchip PIC10F", "PC LPT"]) {
+        Err(format!("the target {micro} has no ADC"))
+    } else if known(&["Atmel AVR ", "Microchip PIC", "ESP8266", "Controllino"]) {
+        Ok(10)
+    } else {
+        Err(format!("the ADC range of the target {micro} is not known"))
+    }
+}
+
+/// The peripheral reads of `program` whose values are known, by element index
+/// (`program.elements()` order). The value of the read in rung `n` of `KEYWORD var` is
+/// named `KEYWORD_var_rn`, and its arrival flag `KEYWORD_var_rn_got`; a suffix `_2`,
+/// `_3`, … keeps them apart from each other and from the program's names. A `READ_ADC`
+/// of a target whose ADC range is not known ([`adc_bits`]) is not among them.
 pub fn readings(program: &LdProgram) -> std::collections::BTreeMap<usize, Reading> {
     let mut taken: BTreeSet<String> = program.signals().into_iter().collect();
     for e in program.elements() {
@@ -75,17 +101,28 @@ pub fn readings(program: &LdProgram) -> std::collections::BTreeMap<usize, Readin
         taken.insert(name.clone());
         name
     };
+    let adc = adc_bits(program.micro.as_deref());
     let mut out = std::collections::BTreeMap::new();
     let mut index = 0;
     for rung in &program.rungs {
         for e in rung.elements() {
-            if let ElementKind::Other { keyword, .. } = &e.kind
-                && matches!(keyword.as_str(), "READ_ADC" | "UART_RECV")
+            if let ElementKind::Other { keyword, args } = &e.kind
                 && let [var] = e.names_written().as_slice()
             {
-                let value = fresh(format!("{keyword}_{var}_r{}", rung.number));
-                let arrived = (keyword == "UART_RECV").then(|| format!("{value}_got"));
-                out.insert(index, Reading { var: var.clone(), value, arrived });
+                let ty = match keyword.as_str() {
+                    "READ_ADC" => adc.as_ref().ok().map(|&bits| IntType { bits, signed: false }),
+                    // `UART_RECV var [bytes wait]`: one byte unless more are asked for.
+                    "UART_RECV" => Some(match args.get(1).and_then(|b| b.parse::<u32>().ok()) {
+                        Some(n) if n > 1 => IntType::I16,
+                        _ => IntType { bits: 8, signed: false },
+                    }),
+                    _ => None,
+                };
+                if let Some(ty) = ty {
+                    let value = fresh(format!("{keyword}_{var}_r{}", rung.number));
+                    let arrived = (keyword == "UART_RECV").then(|| format!("{value}_got"));
+                    out.insert(index, Reading { var: var.clone(), value, ty, arrived });
+                }
             }
             index += 1;
         }

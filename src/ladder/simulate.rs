@@ -169,13 +169,14 @@ impl Simulator {
             self.unknown.remove(name);
         }
         // A peripheral read's value is a free integer input given, like every integer
-        // input, as its two's-complement bits `NAME_b0`, `NAME_b1`, … (0 when absent).
+        // input, as the bits `NAME_b0`, `NAME_b1`, … of its type (0 when absent): an
+        // unsigned reading of the ADC's resolution or of one byte, or 16 bits.
         let readings: Vec<super::Reading> = self.readings.values().cloned().collect();
         for r in readings {
             let bit = |name: &str, k: u32| inputs.get(&format!("{name}_b{k}")).copied();
-            let value =
-                (0..16).fold(0i64, |v, k| v | i64::from(bit(&r.value, k) == Some(true)) << k);
-            self.set_int(&r.value, wrap16(value), true);
+            let value = (0..r.ty.bits)
+                .fold(0i64, |v, k| v | i64::from(bit(&r.value, k) == Some(true)) << k);
+            self.set_int(&r.value, r.ty.wrap(value), true);
             if let Some(got) = &r.arrived {
                 self.set_int(got, i64::from(bit(got, 0) == Some(true)), true);
             }
