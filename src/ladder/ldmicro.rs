@@ -1403,8 +1403,23 @@ pub fn read_ldmicro(sources: &Sources, file: FileId) -> Result<LdProgram, Vec<La
 }
 
 /// The integer and peripheral elements that LDmicro runs only when their input is true
-/// and that pass their input through unchanged (`o = i`, ldmicro.md §4).
+/// and that pass their input through unchanged (`o = i`, ldmicro.md §4). The peripheral
+/// writes among them (`SET_PWM` to `BUS`) are `if (in) { … }` blocks that leave the
+/// power as it is in LDmicro's `intcode.cpp` (`ELEM_SET_PWM`, `ELEM_I2C_RD`,
+/// `ELEM_I2C_WR`, `ELEM_SPI`, `ELEM_SPI_WR`, `ELEM_STRING`, `ELEM_7SEG` … `ELEM_16SEG`,
+/// `ELEM_BUS`); what they read or write in the peripheral is not computed.
 pub const PASS_THROUGH: &[&str] = &[
+    "SET_PWM",
+    "I2C_RD",
+    "I2C_WR",
+    "SPI",
+    "SPI_WR",
+    "STRING",
+    "7SEGMENTS",
+    "9SEGMENTS",
+    "14SEGMENTS",
+    "16SEGMENTS",
+    "BUS",
     "MOD",
     "AND",
     "OR",

@@ -11,8 +11,11 @@
 //! name space). A TON/TOF with a literal delay is a timer of the scan model; what the
 //! algebra cannot express is an unconstrained value with the reason (counters, the
 //! one-shots ODF and OSC, comparisons `IN · fresh`, RTO/RTL/THI/TLO/TCY, a timer whose
-//! accumulator another element writes, peripheral and text elements); integer side
-//! effects (MOVE, math, RES) pass the power with a note. Elements that change which
+//! accumulator another element writes, UART_SEND and FORMATTED_STRING, whose outputs
+//! follow the UART's transmission); integer side effects (MOVE, math, RES) and the
+//! peripheral writes (SET_PWM, I2C, SPI, segment and bus elements) pass the power with a
+//! note. The peripheral reads (READ_ADC, UART_RECV and the UART's status contacts) are
+//! free integer inputs holding what the hardware gives (see [`super::readings`]). Elements that change which
 //! rungs run (`GOTO`, `GOSUB`, `SUBPROG`/`ENDSUB`, `RETURN`, `LOCK`, `SLEEP`) and coils
 //! on bits the outside world writes refuse the program with a located error.
 #![warn(missing_docs)]
@@ -253,30 +256,36 @@ impl<'a> Lowering<'a> {
     /// A peripheral read (ldmicro.md §4): when the power is on, `READ_ADC` writes the
     /// reading, a free integer input, and passes the power; `UART_RECV` writes the
     /// received value only when a byte arrived (a free 1-bit input) and gives the power
-    /// and-ed with that arrival.
+    /// and-ed with that arrival; a status contact gives the power and-ed with its flag.
     fn read(&mut self, e: &Element, input: BoolExpr) -> BoolExpr {
         let index = self.index.get(&(e as *const Element)).copied().unwrap_or(usize::MAX);
         let Some(r) = self.readings.get(&index).cloned() else { return input };
-        let power = match &r.arrived {
-            Some(got) => {
+        let power = match r.gate() {
+            Some(gate) => {
                 let ty = IntType { bits: 1, signed: false };
-                let (a, b) = (IntExpr::Var(canonical(got)), IntExpr::Const(1));
-                let got = BoolExpr::Compare(Box::new(Compare { op: CmpOp::Eq, ty, a, b }));
-                self.temp(BoolExpr::and(input, got))
+                let (a, b) = (IntExpr::Var(canonical(gate)), IntExpr::Const(1));
+                let gate = BoolExpr::Compare(Box::new(Compare { op: CmpOp::Eq, ty, a, b }));
+                self.temp(BoolExpr::and(input, gate))
             }
             None => input,
         };
-        let message = format!(
-            "a peripheral read: {} is the free input {}{}",
-            r.var,
-            r.value,
-            match &r.arrived {
-                Some(got) => format!(", written when {got} = 1 (a byte arrived)"),
-                None => String::new(),
-            }
-        );
+        let message = match (&r.var, &r.arrived) {
+            (None, _) => format!(
+                "a peripheral read: the UART's flag is the free input {}, the output is the \
+                 input and {} = 1",
+                r.value, r.value
+            ),
+            (Some(var), None) => format!("a peripheral read: {var} is the free input {}", r.value),
+            (Some(var), Some(got)) => format!(
+                "a peripheral read: {var} is the free input {}, written when {got} = 1 (a byte \
+                 arrived)",
+                r.value
+            ),
+        };
         self.warn(e.span, e.kind.keyword(), &message);
-        self.set_int(e, &r.var, &power, IntExpr::Var(canonical(&r.value)));
+        if let Some(var) = &r.var {
+            self.set_int(e, var, &power, IntExpr::Var(canonical(&r.value)));
+        }
         power
     }
 
@@ -586,7 +595,9 @@ impl<'a> Lowering<'a> {
             }
             // A label only marks a place to jump to (jumps are refused, see `lower`).
             ElementKind::Other { keyword, .. } if keyword == "LABEL" => input,
-            ElementKind::Other { keyword, .. } if self.exact(e) && is_read(keyword) => {
+            ElementKind::Other { keyword, .. }
+                if is_read(keyword) && (self.exact(e) || e.names_written().is_empty()) =>
+            {
                 self.read(e, input)
             }
             ElementKind::Other { args, .. } if self.exact(e) => {
@@ -622,7 +633,12 @@ impl<'a> Lowering<'a> {
                     );
                     input
                 } else {
-                    let why = "an integer, peripheral or text element is not expressible";
+                    let why = if matches!(keyword.as_str(), "UART_SEND" | "FORMATTED_STRING") {
+                        "a peripheral: its output follows the UART's transmission, which the \
+                         hardware times and ii-prove does not model"
+                    } else {
+                        "an integer, peripheral or text element is not expressible"
+                    };
                     self.fresh(format!("{keyword}_r{number}"), e, why)
                 }
             }
@@ -814,7 +830,7 @@ fn integers(
         .collect();
     // The values peripheral reads give the integers computed exactly: free inputs.
     for r in readings.values() {
-        if !ints.contains_key(&canonical(&r.var)) {
+        if r.var.as_ref().is_some_and(|var| !ints.contains_key(&canonical(var))) {
             continue;
         }
         ints.insert(canonical(&r.value), IntVar { ty: r.ty, input: true, init: 0 });
@@ -829,7 +845,7 @@ fn integers(
 /// Whether `keyword` is a peripheral read, modelled as a free integer input when the
 /// values it gives are known (see [`super::readings`]).
 fn is_read(keyword: &str) -> bool {
-    matches!(keyword, "READ_ADC" | "UART_RECV")
+    matches!(keyword, "READ_ADC" | "UART_RECV") || super::STATUS_CONTACTS.contains(&keyword)
 }
 
 /// The relay LDmicro ≥ 2016 sets on an integer overflow.

@@ -43,21 +43,39 @@ pub fn compile_with(
         .map_err(|errors| errors.into_iter().map(LadderError::from).collect())
 }
 
-/// A peripheral read of an LDmicro program (`READ_ADC var`, `UART_RECV var`): the free
-/// integer inputs the outside world gives it at each scan (ldmicro.md §4, "peripheral
-/// reads"). Both the lowering and the simulator take their values from these names.
+/// A peripheral read of an LDmicro program (`READ_ADC var`, `UART_RECV var`, and the
+/// UART's status contacts `UART_RECV_AVAIL`, `UART_SEND_READY`): the free integer
+/// inputs the outside world gives it at each scan (ldmicro.md §4, "peripheral reads").
+/// Both the lowering and the simulator take their values from these names.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Reading {
-    /// The variable the element writes.
-    pub var: String,
-    /// The value read: the ADC's reading, or the received byte(s).
+    /// The variable the element writes; none for a status contact.
+    pub var: Option<String>,
+    /// The value read: the ADC's reading, the received byte(s), or the status flag.
     pub value: String,
     /// The values the hardware gives: the ADC's resolution (unsigned), one byte
-    /// (unsigned), or the variable's 16 bits for a read of several bytes.
+    /// (unsigned), the variable's 16 bits for a read of several bytes, or one bit.
     pub ty: IntType,
     /// For `UART_RECV`, the 1-bit unsigned integer that is 1 when a byte arrived.
     pub arrived: Option<String>,
 }
+
+impl Reading {
+    /// The 1-bit input the element's output is its input and-ed with: the arrival of
+    /// `UART_RECV`, a status contact's flag; none for `READ_ADC`, which passes its input.
+    pub fn gate(&self) -> Option<&str> {
+        match &self.var {
+            Some(_) => self.arrived.as_deref(),
+            None => Some(&self.value),
+        }
+    }
+}
+
+/// The UART's status contacts and their aliases (`loadsave.cpp`): `o = i · flag`, the
+/// flag read from the hardware (`intcode.cpp`, `ELEM_UART_RECV_AVAIL`,
+/// `ELEM_UART_SEND_READY`).
+pub const STATUS_CONTACTS: &[&str] =
+    &["UART_RECV_AVAIL", "UART_SEND_READY", "UART_SEND_BUSY", "UART_UDRE"];
 
 /// The resolution in bits of the ADC of LDmicro's target `micro` (`MICRO=`), from
 /// `adcMax` in LDmicro's `mcutable.h`: 8 bits (ATtiny10, PIC16F72), 12 bits (the STM32
@@ -106,7 +124,13 @@ pub fn readings(program: &LdProgram) -> std::collections::BTreeMap<usize, Readin
     let mut index = 0;
     for rung in &program.rungs {
         for e in rung.elements() {
-            if let ElementKind::Other { keyword, args } = &e.kind
+            if let ElementKind::Other { keyword, .. } = &e.kind
+                && STATUS_CONTACTS.contains(&keyword.as_str())
+            {
+                let value = fresh(format!("{keyword}_r{}", rung.number));
+                let ty = IntType { bits: 1, signed: false };
+                out.insert(index, Reading { var: None, value, ty, arrived: None });
+            } else if let ElementKind::Other { keyword, args } = &e.kind
                 && let [var] = e.names_written().as_slice()
             {
                 let ty = match keyword.as_str() {
@@ -121,7 +145,7 @@ pub fn readings(program: &LdProgram) -> std::collections::BTreeMap<usize, Readin
                 if let Some(ty) = ty {
                     let value = fresh(format!("{keyword}_{var}_r{}", rung.number));
                     let arrived = (keyword == "UART_RECV").then(|| format!("{value}_got"));
-                    out.insert(index, Reading { var: var.clone(), value, ty, arrived });
+                    out.insert(index, Reading { var: Some(var.clone()), value, ty, arrived });
                 }
             }
             index += 1;
@@ -483,5 +507,25 @@ impl Report for LadderError {
             LadderError::IgnoredLine { .. } | LadderError::Placeholder { .. } => Severity::Warning,
             _ => Severity::Error,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::adc_bits;
+
+    #[test]
+    fn the_adc_range_follows_ldmicros_table_of_targets() {
+        assert_eq!(adc_bits(None), Ok(10));
+        assert_eq!(adc_bits(Some("Atmel AVR ATmega328 28-PDIP")), Ok(10));
+        assert_eq!(adc_bits(Some("Microchip PIC16F877 40-PDIP")), Ok(10));
+        assert_eq!(adc_bits(Some("Microchip PIC12F675 8-pin packages")), Ok(10));
+        assert_eq!(adc_bits(Some("Atmel AVR ATtiny10 6-Pin packages")), Ok(8));
+        assert_eq!(adc_bits(Some("Microchip PIC16F72 28-Pin PDIP, SOIC, SSOP")), Ok(8));
+        assert_eq!(adc_bits(Some("St ARM STM32F40X 144-LQFP")), Ok(12));
+        let none = adc_bits(Some("Atmel AVR ATmega162 40-PDIP")).unwrap_err();
+        assert!(none.contains("has no ADC"), "{none}");
+        let unknown = adc_bits(Some("ANSI C Code")).unwrap_err();
+        assert!(unknown.contains("not known"), "{unknown}");
     }
 }

@@ -565,14 +565,18 @@ impl Simulator {
             // ldmicro.md §4, peripheral reads: READ_ADC writes the reading and passes its
             // input; UART_RECV writes the received value only when a byte arrived, and
             // its output is its input and-ed with that arrival.
+            // A status contact (UART_RECV_AVAIL, UART_SEND_READY and its aliases) is its
+            // input and-ed with the UART's flag (intcode.cpp: `if (in) in = flag`).
             ElementKind::Other { .. } if self.readings.contains_key(&k) => {
                 let r = self.readings[&k].clone();
-                let o = match &r.arrived {
-                    Some(got) => i.and(self.int(got) == 1, true),
+                let o = match r.gate() {
+                    Some(gate) => i.and(self.int(gate) == 1, true),
                     None => i,
                 };
-                let v = self.int(&r.value);
-                self.assign(&r.var, o, v, true);
+                if let Some(var) = &r.var {
+                    let v = self.int(&r.value);
+                    self.assign(var, o, v, true);
+                }
                 o
             }
             // Loaded from EEPROM at power-up (see `new`); saving it changes nothing here.
