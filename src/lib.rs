@@ -19,6 +19,7 @@ pub mod prover;
 pub mod refutation;
 pub mod repl;
 pub mod report;
+pub mod sat_trace;
 pub mod script;
 pub mod semantics;
 pub mod syntax;

@@ -410,7 +410,7 @@ impl<'m> Bmc<'m> {
         steps_of: &dyn Fn(&Delay) -> Option<usize>,
     ) -> Result<Self, String> {
         let unroller = unroll::Unroller::new(model, &[&goal.lhs, &goal.rhs], steps_of)?;
-        Ok(Bmc { cnf: Cnf::new(), unroller, model, rel: goal.rel, free: BTreeMap::new() })
+        Ok(Bmc { cnf: Cnf::named("bmc"), unroller, model, rel: goal.rel, free: BTreeMap::new() })
     }
 
     /// Adds one frame (the assumptions required at it) and asks for a run whose last
@@ -980,7 +980,7 @@ fn bounded(
     let exprs: Vec<Expr> = read.iter().map(|n| crate::term::name(n)).collect();
     let refs: Vec<&Expr> = exprs.iter().collect();
     let steps_of = |d: &Delay| scans_of(d, cycle).map(|n| n / grid);
-    let mut cnf = Cnf::new();
+    let mut cnf = Cnf::named("bounded");
     let u = unroll(&mut cnf, model, &refs, k, &steps_of, &mut |b, _, _| b.fresh()).ok()?;
     for (c, (l, r)) in model.constraints.iter().zip(&u.constraints) {
         for s in 0..k {

@@ -12,7 +12,9 @@
 
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
-use varisat::{ExtendFormula, Lit, Solver};
+use varisat::Lit;
+
+use crate::sat_trace::Traced;
 
 use crate::kernel::Rel;
 use crate::semantics::{Assignment, Time, eval_delay};
@@ -125,8 +127,9 @@ impl Bits for Runs64 {
 
 /// A SAT formula under construction (Tseitin encoding, constants folded).
 pub struct Cnf {
-    /// The solver holding the clauses.
-    pub solver: Solver<'static>,
+    /// The solver holding the clauses (its queries recorded when `II_PROVE_SAT_TRACE`
+    /// asks for it, see [`crate::sat_trace`]).
+    solver: Traced<'static>,
     truth: Lit,
 }
 
@@ -139,7 +142,12 @@ impl Default for Cnf {
 impl Cnf {
     /// An empty formula.
     pub fn new() -> Cnf {
-        let mut solver = Solver::new();
+        Cnf::named("unroll")
+    }
+
+    /// An empty formula whose queries are recorded as `kind` ([`crate::sat_trace`]).
+    pub fn named(kind: &str) -> Cnf {
+        let mut solver = Traced::new(kind);
         let truth = solver.new_lit();
         solver.add_clause(&[truth]);
         Cnf { solver, truth }
@@ -162,9 +170,8 @@ impl Cnf {
 
     /// Solves under assumptions; `Some(true literals)` when satisfiable.
     pub fn solve(&mut self, assumptions: &[Lit]) -> Option<BTreeSet<Lit>> {
-        self.solver.assume(assumptions);
-        match self.solver.solve() {
-            Ok(true) => self.solver.model().map(|m| m.into_iter().collect()),
+        match self.solver.solve(assumptions) {
+            Ok(true) => self.solver.solver.model().map(|m| m.into_iter().collect()),
             _ => None,
         }
     }

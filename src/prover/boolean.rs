@@ -12,7 +12,9 @@
 use std::collections::{BTreeMap, HashMap};
 use std::time::Instant;
 
-use varisat::{ExtendFormula, Lit, ProofFormat, Solver};
+use varisat::{Lit, ProofFormat};
+
+use crate::sat_trace::Traced;
 
 use crate::kernel::{Axiom, Proof, Rel, Rule, Source, Step, Use};
 use crate::refutation::Cnf;
@@ -940,16 +942,16 @@ pub fn refute(goal: &Expr, constraints: &[Constraint]) -> Option<Proof> {
     }
     let mut drat: Vec<u8> = Vec::new();
     {
-        let mut solver = Solver::new();
-        solver.write_proof(&mut drat, ProofFormat::Drat);
+        let mut solver = Traced::new("refute");
+        solver.solver.write_proof(&mut drat, ProofFormat::Drat);
         for clause in &cnf.clauses {
             let lits: Vec<Lit> = clause.iter().map(|&l| Lit::from_dimacs(l as isize)).collect();
             solver.add_clause(&lits);
         }
-        if solver.solve().ok()? {
+        if solver.solve(&[]).ok()? {
             return None;
         }
-        solver.close_proof().ok()?;
+        solver.solver.close_proof().ok()?;
     }
     let text = String::from_utf8(drat).ok()?;
     let mut lemmas: Vec<Vec<i32>> = Vec::new();
@@ -1037,13 +1039,13 @@ fn satisfiable(
     views: &[(B, B)],
     reps: &[usize],
 ) -> Option<Vec<bool>> {
-    let mut solver = Solver::new();
+    let mut solver = Traced::new("split");
     // Atoms of one class share the representative's variable.
     let own: Vec<Lit> = (0..reps.len()).map(|_| solver.new_lit()).collect();
     let atom_vars: Vec<Lit> = reps.iter().map(|r| own[*r]).collect();
     let truth = solver.new_lit();
     solver.add_clause(&[truth]);
-    fn encode(b: &B, s: &mut Solver, atoms: &[Lit], truth: Lit) -> Lit {
+    fn encode(b: &B, s: &mut Traced, atoms: &[Lit], truth: Lit) -> Lit {
         match b {
             B::Const(v) => {
                 if *v {
@@ -1080,9 +1082,9 @@ fn satisfiable(
             solver.add_clause(&[x, !y]);
         }
     }
-    match solver.solve() {
+    match solver.solve(&[]) {
         Ok(true) => {
-            let model = solver.model()?;
+            let model = solver.solver.model()?;
             let set: std::collections::HashSet<Lit> = model.into_iter().collect();
             Some(atom_vars.iter().map(|l| set.contains(l)).collect())
         }
