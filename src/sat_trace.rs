@@ -89,12 +89,15 @@ pub struct Traced<'a> {
     /// The solver.
     pub solver: varisat::Solver<'a>,
     trace: Trace,
+    /// Whether assumptions are set (a solver writing a DRAT proof must never be given
+    /// any, not even an empty set).
+    assumed: bool,
 }
 
 impl<'a> Traced<'a> {
     /// A new solver, recorded as `kind`.
     pub fn new(kind: &str) -> Traced<'a> {
-        Traced { solver: varisat::Solver::new(), trace: Trace::start(kind) }
+        Traced { solver: varisat::Solver::new(), trace: Trace::start(kind), assumed: false }
     }
 
     /// A fresh variable.
@@ -112,7 +115,10 @@ impl<'a> Traced<'a> {
 
     /// Solves under `assumptions` (none: `&[]`), recording the query and its time.
     pub fn solve(&mut self, assumptions: &[Lit]) -> Result<bool, varisat::solver::SolverError> {
-        self.solver.assume(assumptions);
+        if self.assumed || !assumptions.is_empty() {
+            self.solver.assume(assumptions);
+            self.assumed = !assumptions.is_empty();
+        }
         let start = self.trace.on().then(std::time::Instant::now);
         let answer = self.solver.solve();
         if let Some(start) = start {

@@ -44,6 +44,18 @@ fn replay(text: &str) -> (usize, Option<String>) {
     (solves, None)
 }
 
+/// Runs ii-prove on `program` and `properties` with the trace in `dir`; its exit status.
+fn traced(program: &Path, properties: &Path, dir: &Path) -> Option<i32> {
+    let out = Command::new(env!("CARGO_BIN_EXE_ii-prove"))
+        .arg(program)
+        .arg(properties)
+        .env("II_PROVE_SAT_TRACE", dir)
+        .output()
+        .unwrap();
+    eprint!("{}", String::from_utf8_lossy(&out.stderr));
+    out.status.code()
+}
+
 #[test]
 fn a_traced_run_records_queries_that_replay_to_the_same_answers() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
@@ -51,14 +63,15 @@ fn a_traced_run_records_queries_that_replay_to_the_same_answers() {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     // A refuted property: bounded model checking.
-    let data = root.join("tests/data/refutes_programs");
-    let out = Command::new(env!("CARGO_BIN_EXE_ii-prove"))
-        .arg(data.join("lamp_short.ld"))
-        .arg(data.join("lamp_short.ii"))
-        .env("II_PROVE_SAT_TRACE", &dir)
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(1), "{}", String::from_utf8_lossy(&out.stderr));
+    let refutes = root.join("tests/data/refutes_programs");
+    let status = traced(&refutes.join("lamp_short.ld"), &refutes.join("lamp_short.ii"), &dir);
+    assert_eq!(status, Some(1));
+    // Proved properties whose proof is a propositional refutation with a DRAT proof (a
+    // solver that must never be given assumptions) and case splits.
+    let proves = root.join("tests/data/proves_programs");
+    let (program, properties) =
+        (proves.join("var_timer_delay_range.ld"), proves.join("var_timer_delay_range.ii"));
+    assert_eq!(traced(&program, &properties, &dir), Some(0));
     let mut kinds = std::collections::BTreeSet::new();
     let mut solves = 0;
     for entry in std::fs::read_dir(&dir).unwrap() {
@@ -70,14 +83,16 @@ fn a_traced_run_records_queries_that_replay_to_the_same_answers() {
         assert_eq!(differs, None, "{}", path.display());
         solves += n;
     }
-    assert!(kinds.contains("bmc"), "no bounded model checking recorded: {kinds:?}");
+    for kind in ["bmc", "refute", "split"] {
+        assert!(kinds.contains(kind), "no {kind} query recorded: {kinds:?}");
+    }
     assert!(solves > 0, "no solve recorded");
     // Without the variable nothing is written.
     let quiet = dir.join("quiet");
     std::fs::create_dir_all(&quiet).unwrap();
     let out = Command::new(env!("CARGO_BIN_EXE_ii-prove"))
-        .arg(data.join("lamp_short.ld"))
-        .arg(data.join("lamp_short.ii"))
+        .arg(refutes.join("lamp_short.ld"))
+        .arg(refutes.join("lamp_short.ii"))
         .env_remove("II_PROVE_SAT_TRACE")
         .current_dir(&quiet)
         .output()
