@@ -362,14 +362,37 @@ impl<'p> Lower<'p> {
         pin.conns.len() == 1
             && pin.conns.iter().all(|c| match self.p.source(c) {
                 Some(Source::Rail) => true,
-                Some(Source::BlockPin(j, _)) => self.en_const(j, depth + 1),
+                Some(Source::BlockPin(j, _)) => self.en_const(j, depth + 1) && !self.divides(j),
                 Some(Source::BlockOut(j, pin)) => {
                     matches!(self.p.obj(j).map(|o| &o.kind), Some(ObjKind::Block { outputs, .. })
                         if outputs.get(pin).is_some_and(|o| o.name.eq_ignore_ascii_case("ENO") && !o.negated))
                         && self.en_const(j, depth + 1)
+                        && !self.divides(j)
                 }
                 _ => false,
             })
+    }
+
+    /// The guard Beremiz puts around an output variable fed by one wire straight from a
+    /// block whose `EN` is wired: `IF _TMP_ADD7_ENO THEN x := …; END_IF;`
+    /// (`PLCGenerator.py`, `GetUsedEno` and its use in `ComputeProgram`). Only where the
+    /// block's ENO is computed (an integer function's `_TMP_…_ENO`); the other blocks
+    /// under a wired EN give unconstrained outputs, which need no guard.
+    fn eno_guard(&self, input: &PinIn) -> Option<BoolExpr> {
+        let [c] = input.conns.as_slice() else { return None };
+        let j = *self.p.index.get(&c.from)?;
+        let Some(ObjKind::Block { inputs, .. }) = self.p.obj(j).map(|o| &o.kind) else {
+            return None;
+        };
+        let wired = inputs.iter().any(|p| p.name.eq_ignore_ascii_case("EN") && !p.conns.is_empty());
+        let eno = self.p.hidden_name(j, "ENO").filter(|_| wired)?;
+        Some(contact(eno, false))
+    }
+
+    /// Whether block `k` is a DIV, whose ENO matiec clears for a divisor 0
+    /// (`TEST_EN_COND(TYPENAME, op2 == 0)`, `lib/C/iec_std_functions.h`).
+    fn divides(&self, k: usize) -> bool {
+        matches!(self.p.int_block(k), Some(super::IntBlock::Arith(super::ints::Arith::Div)))
     }
 
     /// The power at a consumer pin: the OR of its wires, or its expression (unconnected: FALSE).
@@ -536,6 +559,9 @@ impl<'p> Lower<'p> {
         };
         let runs = self.en_const(k, 0);
         if pin.eq_ignore_ascii_case("ENO") {
+            if let Some(eno) = self.p.hidden_name(k, "ENO") {
+                return contact(eno, false);
+            }
             return if runs {
                 one()
             } else {
@@ -553,8 +579,10 @@ impl<'p> Lower<'p> {
                 }
                 _ => false,
             };
+            // A comparison under a wired EN writes FALSE when it does not run (`lower/ints.rs`).
+            let written = runs || matches!(b, super::IntBlock::Compare(_));
             return match self.p.hidden_name(k, &pin.to_ascii_uppercase()) {
-                Some(n) if runs && boolean => contact(n, false),
+                Some(n) if written && boolean => contact(n, false),
                 _ => opaque(type_name, instance.as_deref(), pin, span),
             };
         }
@@ -584,11 +612,10 @@ impl<'p> Lower<'p> {
         let std = Std::of(type_name).filter(|_| runs);
         // Inputs are computed first, `EN` then the others in document order, as the scan
         // simulator does; the block's own rungs come after every call they trigger.
-        if let Some(pin) = p.en_pin(k) {
-            let _ = self.pin_value(k, pin);
-        }
+        let en = p.en_pin(k).map(|pin| self.pin_value(k, pin));
         if let Some(b) = p.int_block(k) {
-            self.int_call(k, &b, runs, span);
+            let en = if runs { one() } else { en.unwrap_or_else(one) };
+            self.int_call(k, &b, en, span);
             self.no_pull = outer;
             self.in_progress.remove(&k);
             self.called.insert(k);
@@ -799,14 +826,20 @@ impl<'p> Lower<'p> {
                 // A non-Boolean target has no Boolean effect (its inputs were computed).
                 if let Some(Operand::Bool(name)) = p.operands.get(&k) {
                     let name = name.clone();
-                    self.assign(k, power, &name, *negated, *storage, *edge, span);
+                    let guard = match &o.kind {
+                        ObjKind::OutVar { .. } => self.eno_guard(input),
+                        _ => None,
+                    };
+                    let write = (*negated, *storage, *edge);
+                    self.assign(k, power, &name, write, guard, span);
                 }
             }
             ObjKind::InOutVar { input, .. } => {
                 let power = self.pin_power(input, k);
                 if let Some(Operand::Bool(name)) = p.operands.get(&k) {
                     let name = name.clone();
-                    self.assign(k, power, &name, false, Storage::None, Edge::None, span);
+                    let guard = self.eno_guard(input);
+                    self.assign(k, power, &name, (false, Storage::None, Edge::None), guard, span);
                 }
             }
             ObjKind::Block { .. } => {
@@ -821,15 +854,15 @@ impl<'p> Lower<'p> {
         }
     }
 
-    #[allow(clippy::too_many_arguments)]
+    /// The write of a coil or output variable: `(negated, storage, edge)` as drawn, under
+    /// the `guard` of [`Lower::eno_guard`] (the variable keeps its value when it is FALSE).
     fn assign(
         &mut self,
         k: usize,
         power: BoolExpr,
         name: &str,
-        negated: bool,
-        storage: Storage,
-        edge: Edge,
+        (negated, storage, edge): (bool, Storage, Edge),
+        guard: Option<BoolExpr>,
         span: Span,
     ) {
         let kind = match (negated, storage) {
@@ -838,7 +871,25 @@ impl<'p> Lower<'p> {
             (_, Storage::Reset) => WriteKind::Reset,
             _ => WriteKind::Assign,
         };
-        let power = if edge == Edge::None { power } else { self.trig_of(k, "COIL", edge, power) };
+        let Some(g) = guard else {
+            let power =
+                if edge == Edge::None { power } else { self.trig_of(k, "COIL", edge, power) };
+            self.coil(power, name, kind, span);
+            return;
+        };
+        if edge != Edge::None {
+            let why = format!("{name} is written through an edge detector under its block's ENO");
+            self.coil(fresh_because("ENO", why, span), name, WriteKind::Assign, span);
+            return;
+        }
+        let (kind, power) = match kind {
+            WriteKind::Set | WriteKind::Reset => (kind, and(vec![g, power])),
+            _ => {
+                let power = if matches!(kind, WriteKind::AssignNot) { not(power) } else { power };
+                let kept = and(vec![not(g.clone()), contact(name, false)]);
+                (WriteKind::Assign, or(vec![and(vec![g, power]), kept]))
+            }
+        };
         self.coil(power, name, kind, span);
     }
 }

@@ -882,6 +882,13 @@ fn check_pou(
                                 let upper = type_name.to_ascii_uppercase();
                                 let n = hide(&mut taken, format!("_TMP_{upper}{}_OUT", o.id));
                                 program.hidden.insert((k, "OUT".into()), n);
+                                // Drawn with EN/ENO: Beremiz's `_TMP_…_ENO` variable.
+                                if inputs.iter().any(|p| p.name.eq_ignore_ascii_case("EN"))
+                                    || outputs.iter().any(|p| p.name.eq_ignore_ascii_case("ENO"))
+                                {
+                                    let n = hide(&mut taken, format!("_TMP_{upper}{}_ENO", o.id));
+                                    program.hidden.insert((k, "ENO".into()), n);
+                                }
                             }
                         }
                     }

@@ -8,7 +8,9 @@ use crate::iec::literal::int_literal;
 use crate::ladder::plcopen::ints::{Arith, IntBlock};
 use crate::ladder::plcopen::{Edge, ObjKind, PinIn, PlcProgram, Source, VarClass};
 use crate::program::library::{self, Counter};
-use crate::program::{Block, BoolExpr, EdgeKind, IntExpr, IntType, IntVar, Memory, Stmt};
+use crate::program::{
+    Block, BoolExpr, CmpOp, EdgeKind, IntExpr, IntType, IntVar, Memory, Stmt, WriteKind,
+};
 
 /// An integer value on a wire and its type (`None`: a literal, typed by its reader), or
 /// why it is not computed.
@@ -40,6 +42,20 @@ fn unify<'a>(args: impl IntoIterator<Item = &'a Option<IntType>>) -> Result<IntT
     t.ok_or_else(|| {
         "its inputs are literals only, whose type the generated code leaves open".into()
     })
+}
+
+/// Whether the divisor (the second input) of a DIV is not 0, as matiec's
+/// `TEST_EN_COND(TYPENAME, op2 == 0)` tests it: the divisor as a value of the block's type.
+fn divisor_not_zero(keyword: &str, ints: &[(String, IntVal)], span: Span) -> BoolExpr {
+    let divisor = ints.get(1).map_or(Ok((IntExpr::Const(0), None)), |(_, v)| v.clone());
+    let typed = unify(ints.iter().filter_map(|(_, v)| v.as_ref().ok()).map(|(_, t)| t));
+    match divisor.and_then(|(d, _)| Ok((d, typed?))) {
+        Ok((d, t)) => library::compare_chain(CmpOp::Ne, t, &[coerce(d, t), IntExpr::Const(0)]),
+        Err(why) => {
+            let why = format!("the ENO of {keyword}, whose divisor is not computed: {why}");
+            fresh_because(keyword, why, span)
+        }
+    }
 }
 
 impl Lower<'_> {
@@ -243,6 +259,10 @@ impl Lower<'_> {
         });
         match exact {
             Ok(value) => {
+                let value = match self.eno_guard(input) {
+                    Some(g) => IntExpr::ite(g, value, IntExpr::var(target)),
+                    None => value,
+                };
                 let set = Stmt::SetInt { target: target.to_string(), value, span };
                 self.push_block(vec![set], span);
             }
@@ -250,9 +270,20 @@ impl Lower<'_> {
         }
     }
 
-    /// The call of the integer block `k`: its inputs computed in document order, then
-    /// its outputs written (opaque when it does not run every scan or is not computed).
-    pub(super) fn int_call(&mut self, k: usize, b: &IntBlock, runs: bool, span: Span) {
+    /// The call of the integer block `k` with `EN` (`1` when it runs every scan): its
+    /// inputs computed in document order, then its outputs written (opaque where not
+    /// computed).
+    ///
+    /// Under a wired `EN`, Beremiz's `PLCGenerator.py` writes `_TMP_ADD7_OUT := ADD(EN
+    /// := …, IN1 := …, ENO => _TMP_ADD7_ENO);` (`GenerateBlock`), and matiec calls the
+    /// function every scan: its `TEST_EN` (`lib/C/iec_std_functions.h`) returns the
+    /// type's initial value (`__INIT_INT 0`, `__INIT_BOOL 0`, `lib/C/iec_types.h`) and
+    /// clears `ENO` when `EN` is FALSE, sets `ENO` otherwise (DIV: `TEST_EN_COND(…, op2
+    /// == 0)` also clears it for a divisor 0); the wrapper `generate_c_inlinefcall.cc`
+    /// writes `ENO` back after the call. So `OUT := EN ? f(…) : 0` and `ENO := EN ∧ ok`,
+    /// no state. A counter is a function block: under a wired `EN` its body (and its
+    /// edge detectors' memories) does not run, which is not modelled: opaque.
+    pub(super) fn int_call(&mut self, k: usize, b: &IntBlock, en: BoolExpr, span: Span) {
         let p = self.p;
         let Some(ObjKind::Block { inputs, type_name, instance, .. }) = p.obj(k).map(|o| &o.kind)
         else {
@@ -277,44 +308,66 @@ impl Lower<'_> {
         }
         let upper = type_name.to_ascii_uppercase();
         let name = instance.as_deref().unwrap_or(&upper).to_string();
-        if !runs {
-            for pin in ["OUT", "CV"] {
-                if let Some(h) = p.hidden_name(k, pin).map(str::to_string) {
-                    self.make_opaque(&h, format!("{name} runs under a wired EN"));
-                }
-            }
-            return;
-        }
+        let runs = matches!(en, BoolExpr::Const(true));
         if let IntBlock::Counter(ty) = b {
-            self.counter_call(k, ty, &name, bools, ints, span);
+            if runs {
+                self.counter_call(k, ty, &name, bools, ints, span);
+            } else if let Some(cv) = p.hidden_name(k, "CV").map(str::to_string) {
+                let why = format!(
+                    "the counter {name} runs under a wired EN, which skips its body and its edge \
+                     detectors' memories, not modelled"
+                );
+                self.make_opaque(&cv, why);
+            }
             return;
         }
-        let Some(out) = p.hidden_name(k, "OUT").map(str::to_string) else { return };
-        match self.int_function(b, &bools, &ints) {
-            Ok((Some(e), t)) => {
-                self.ints.insert(out.clone(), IntVar { ty: t, input: false, init: 0 });
-                let set = Stmt::SetInt { target: out, value: e, span };
-                self.push_block(vec![set], span);
-            }
-            Ok((None, t)) => {
-                let vals: Vec<IntExpr> = ints
-                    .iter()
-                    .filter_map(|(_, v)| v.clone().ok())
-                    .map(|(e, _)| coerce(e, t))
-                    .collect();
-                let IntBlock::Compare(op) = b else { return };
-                let value = library::compare_chain(*op, t, &vals);
-                self.coil(value, &out, crate::program::WriteKind::Assign, span);
-            }
-            Err(why) => {
-                if matches!(b, IntBlock::Compare(_)) {
+        let mut stmts = Vec::new();
+        let en = if runs { en } else { self.temp(&mut stmts, en) };
+        let enabled = |v: BoolExpr| if runs { v } else { BoolExpr::and(en.clone(), v) };
+        if let Some(out) = p.hidden_name(k, "OUT").map(str::to_string) {
+            match self.int_function(b, &bools, &ints) {
+                Ok((Some(e), t)) => {
+                    self.ints.insert(out.clone(), IntVar { ty: t, input: false, init: 0 });
+                    let value =
+                        if runs { e } else { IntExpr::ite(en.clone(), e, IntExpr::Const(0)) };
+                    stmts.push(Stmt::SetInt { target: out, value, span });
+                }
+                Ok((None, t)) => {
+                    let vals: Vec<IntExpr> = ints
+                        .iter()
+                        .filter_map(|(_, v)| v.clone().ok())
+                        .map(|(e, _)| coerce(e, t))
+                        .collect();
+                    if let IntBlock::Compare(op) = b {
+                        let value = enabled(library::compare_chain(*op, t, &vals));
+                        stmts.push(Stmt::Write {
+                            target: out,
+                            kind: WriteKind::Assign,
+                            value,
+                            span,
+                        });
+                    }
+                }
+                Err(why) if matches!(b, IntBlock::Compare(_)) => {
                     let why = format!("the comparison {upper} is not computed: {why}");
-                    let value = fresh_because(&upper, why, span);
-                    self.coil(value, &out, crate::program::WriteKind::Assign, span);
-                } else {
-                    self.make_opaque(&out, format!("the {upper} block is not computed: {why}"));
+                    let value = enabled(fresh_because(&upper, why, span));
+                    stmts.push(Stmt::Write { target: out, kind: WriteKind::Assign, value, span });
+                }
+                Err(why) => {
+                    self.make_opaque(&out, format!("the {upper} block is not computed: {why}"))
                 }
             }
+        }
+        if let Some(eno) = p.hidden_name(k, "ENO").map(str::to_string) {
+            let ok = match b {
+                IntBlock::Arith(Arith::Div) => divisor_not_zero(&upper, &ints, span),
+                _ => BoolExpr::Const(true),
+            };
+            let value = enabled(ok);
+            stmts.push(Stmt::Write { target: eno, kind: WriteKind::Assign, value, span });
+        }
+        if !stmts.is_empty() {
+            self.push_block(stmts, span);
         }
     }
 
