@@ -308,6 +308,13 @@ impl Gen {
                 _ => vec!["IN1", "IN2"],
             };
             let mut ins = String::new();
+            // EN wired to a random Boolean (Beremiz draws EN first, ENO first).
+            let en = self.rng.chance(30);
+            if en {
+                let src = *self.rng.pick(&bools);
+                write!(ins, r#"<variable formalParameter="EN">{}</variable>"#, Gen::conn(&[src]))
+                    .unwrap();
+            }
             for pin in pins {
                 let refs = match pin {
                     "CU" | "CD" | "R" | "LD" | "G" => {
@@ -350,6 +357,9 @@ impl Gen {
                 _ => vec!["OUT"],
             };
             let mut o = String::new();
+            if en {
+                o.push_str(r#"<variable formalParameter="ENO"><connectionPointOut/></variable>"#);
+            }
             for out in &outs {
                 write!(o, r#"<variable formalParameter="{out}"><connectionPointOut/></variable>"#)
                     .unwrap();
@@ -371,6 +381,9 @@ impl Gen {
                     ints.push((id, Some("CV")));
                 }
                 _ => ints.push((id, Some("OUT"))),
+            }
+            if en && self.rng.chance(40) {
+                bools.push((id, Some("ENO")));
             }
         }
         // Integer results into integer variables (one through INT_TO_SINT), a Boolean one

@@ -782,6 +782,10 @@ impl<'p> Lower<'p> {
             // Not interpreted (or run under a wired EN): only its inputs were computed.
             None => {}
         }
+        // A function's `_TMP_…_ENO`: matiec's `TEST_EN` sets it to EN.
+        if let Some(eno) = p.hidden_name(k, "ENO") {
+            self.coil(en.unwrap_or_else(one), eno, WriteKind::Assign, span);
+        }
         self.no_pull = outer;
         self.in_progress.remove(&k);
         self.called.insert(k);

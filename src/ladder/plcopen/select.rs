@@ -882,13 +882,6 @@ fn check_pou(
                                 let upper = type_name.to_ascii_uppercase();
                                 let n = hide(&mut taken, format!("_TMP_{upper}{}_OUT", o.id));
                                 program.hidden.insert((k, "OUT".into()), n);
-                                // Drawn with EN/ENO: Beremiz's `_TMP_…_ENO` variable.
-                                if inputs.iter().any(|p| p.name.eq_ignore_ascii_case("EN"))
-                                    || outputs.iter().any(|p| p.name.eq_ignore_ascii_case("ENO"))
-                                {
-                                    let n = hide(&mut taken, format!("_TMP_{upper}{}_ENO", o.id));
-                                    program.hidden.insert((k, "ENO".into()), n);
-                                }
                             }
                         }
                     }
@@ -954,6 +947,19 @@ fn check_pou(
                             }),
                         }
                     }
+                }
+                // A function drawn with EN/ENO: Beremiz's `_TMP_…_ENO` variable, which the
+                // call writes (`ENO => _TMP_ADD7_ENO`, `PLCGenerator.py` `GenerateBlock`).
+                let function = Std::of(type_name).map(|s| !s.is_fb()).unwrap_or_else(|| {
+                    IntBlock::of(type_name).is_some_and(|b| !matches!(b, IntBlock::Counter(_)))
+                });
+                if function
+                    && (inputs.iter().any(|p| p.name.eq_ignore_ascii_case("EN"))
+                        || outputs.iter().any(|p| p.name.eq_ignore_ascii_case("ENO")))
+                {
+                    let upper = type_name.to_ascii_uppercase();
+                    let n = hide(&mut taken, format!("_TMP_{upper}{}_ENO", o.id));
+                    program.hidden.insert((k, "ENO".into()), n);
                 }
                 for p in inputs.iter().filter(|p| p.edge != Edge::None) {
                     let n = hide(&mut taken, format!("_TRIG{}_{}", o.id, p.name));

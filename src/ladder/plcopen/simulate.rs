@@ -299,6 +299,10 @@ impl PlcSimulator {
             self.call(k)
         };
         if pin.eq_ignore_ascii_case("ENO") {
+            // An integer function's `_TMP_…_ENO` variable, as its last call left it.
+            if let Some(h) = self.p.hidden_name(k, "ENO") {
+                return self.bit(h);
+            }
             return enabled;
         }
         if let Some(var) = self.p.sub_var(k, pin, true) {
@@ -407,8 +411,11 @@ impl PlcSimulator {
         }
         self.no_pull = outer;
         let get = |n: &str| values.get(n).copied().unwrap_or(false);
-        if en && let Some(b) = self.p.int_block(k) {
-            self.int_exec(k, &b, &values);
+        if let Some(b) = self.p.int_block(k) {
+            self.int_exec(k, &b, en, &values);
+        } else if let Some(s) = std.filter(|s| !en && !s.is_fb()) {
+            // A function under EN = FALSE returns FALSE (matiec's `TEST_EN(BOOL)`).
+            self.set_hidden(k, s.output(), false);
         } else if en {
             let now = self.now();
             match std {
@@ -523,10 +530,29 @@ impl PlcSimulator {
                 }
             }
         }
+        if self.p.int_block(k).is_none() {
+            // A function's `_TMP_…_ENO` (an integer one's is written by `int_exec`).
+            self.set_hidden(k, "ENO", en);
+        }
         self.edges.insert((k, "ENO".into()), en);
         self.in_progress.remove(&k);
         self.called.insert(k);
         en
+    }
+
+    /// Whether an output variable fed by `input` is written: Beremiz's `PLCGenerator.py`
+    /// (`GetUsedEno`) writes `IF <ENO> THEN x := …; END_IF;` when its one wire comes
+    /// straight from a block whose `EN` has a wire.
+    fn eno_allows(&mut self, input: &PinIn) -> bool {
+        let [c] = input.conns.as_slice() else { return true };
+        let Some(&j) = self.p.index.get(&c.from) else { return true };
+        let wired = match self.p.obj(j).map(|o| &o.kind) {
+            Some(ObjKind::Block { inputs, .. }) => {
+                inputs.iter().any(|p| p.name.eq_ignore_ascii_case("EN") && !p.conns.is_empty())
+            }
+            _ => false,
+        };
+        !wired || self.output(j, "ENO")
     }
 
     fn statement(&mut self, k: usize) {
@@ -546,13 +572,18 @@ impl PlcSimulator {
                 if let Some(target) = &int_target =>
             {
                 let _ = self.pin_power(input);
-                self.int_assign(target, input);
+                if self.eno_allows(input) {
+                    self.int_assign(target, input);
+                }
             }
             ObjKind::Coil { input, negated, storage, edge, .. }
             | ObjKind::OutVar { input, negated, storage, edge, .. } => {
                 let _ = self.pin_power(input);
                 let power = self.pin_power(input);
-                if let Some(Operand::Bool(name)) = self.p.operands.get(&k).cloned() {
+                let coil = matches!(o.kind, ObjKind::Coil { .. });
+                if let Some(Operand::Bool(name)) = self.p.operands.get(&k).cloned()
+                    && (coil || self.eno_allows(input))
+                {
                     let power = self.trigger(k, "COIL", *edge, power);
                     let old = self.bit(&name);
                     let new = match (negated, storage) {
@@ -567,7 +598,9 @@ impl PlcSimulator {
             ObjKind::InOutVar { input, .. } => {
                 let _ = self.pin_power(input);
                 let power = self.pin_power(input);
-                if let Some(Operand::Bool(name)) = self.p.operands.get(&k).cloned() {
+                if let Some(Operand::Bool(name)) = self.p.operands.get(&k).cloned()
+                    && self.eno_allows(input)
+                {
                     self.bits.insert(name, power);
                 }
             }

@@ -42,6 +42,80 @@ impl CType {
 /// A value on a wire: the number and its type (`None`: a literal).
 type Val = Option<(i64, Option<CType>)>;
 
+/// What an integer function computes.
+enum Out {
+    /// A number, before it is stored into the result's type.
+    Int(i128, CType),
+    /// A comparison's result.
+    Bool(bool),
+}
+
+/// The value of the integer function `b` over its arguments, as matiec's C computes it
+/// (`None`: not computed, e.g. arguments of different types).
+fn function(b: &IntBlock, args: Vec<(String, Val)>, get: impl Fn(&str) -> bool) -> Option<Out> {
+    // Every argument a value of the block's one type (a literal takes it).
+    let vals: Vec<(String, i64, Option<CType>)> =
+        args.into_iter().map(|(n, v)| v.map(|(x, t)| (n, x, t))).collect::<Option<_>>()?;
+    if let IntBlock::Convert(from, to) = b {
+        let (Some(f), Some(t), [(_, x, _)]) = (CType::of(from), CType::of(to), vals.as_slice())
+        else {
+            return None;
+        };
+        return Some(Out::Int(f.store((*x).into()).into(), t));
+    }
+    let types: Vec<CType> = vals.iter().filter_map(|(_, _, t)| *t).collect();
+    let &ct = types.first()?;
+    if types.iter().any(|t| *t != ct) {
+        return None;
+    }
+    let xs: Vec<i128> = vals.iter().map(|(_, x, _)| i128::from(ct.store((*x).into()))).collect();
+    let named = |pin: &str| vals.iter().position(|(n, _, _)| n == pin).map(|j| xs[j]).unwrap_or(0);
+    let result: i128 = match b {
+        IntBlock::Compare(op) => {
+            return Some(Out::Bool(xs.windows(2).all(|w| match op {
+                CmpOp::Gt => w[0] > w[1],
+                CmpOp::Ge => w[0] >= w[1],
+                CmpOp::Eq => w[0] == w[1],
+                CmpOp::Ne => w[0] != w[1],
+                CmpOp::Lt => w[0] < w[1],
+                CmpOp::Le => w[0] <= w[1],
+            })));
+        }
+        IntBlock::Arith(Arith::Add) => xs.iter().fold(0, |a, x| i128::from(ct.store(a + x))),
+        IntBlock::Arith(Arith::Mul) => xs.iter().fold(1, |a, x| i128::from(ct.store(a * x))),
+        IntBlock::Arith(op) => {
+            let [a, d] = xs.as_slice() else { return None };
+            match op {
+                Arith::Sub => a - d,
+                // matiec's DIV and MOD give 0 for a divisor 0.
+                _ if *d == 0 => 0,
+                Arith::Div => a / d,
+                _ => a % d,
+            }
+        }
+        IntBlock::Min => xs.iter().copied().reduce(|a, x| if a > x { x } else { a }).unwrap_or(0),
+        IntBlock::Max => xs.iter().copied().reduce(|a, x| if a < x { x } else { a }).unwrap_or(0),
+        IntBlock::Limit => {
+            let (mn, x, mx) = (named("MN"), named("IN"), named("MX"));
+            if x > mn { if x < mx { x } else { mx } } else { mn }
+        }
+        IntBlock::Abs => {
+            let x = named("IN");
+            if x < 0 { -x } else { x }
+        }
+        IntBlock::Move => named("IN"),
+        IntBlock::Sel => {
+            if get("G") {
+                named("IN1")
+            } else {
+                named("IN0")
+            }
+        }
+        IntBlock::Convert(..) | IntBlock::Counter(_) => return None,
+    };
+    Some(Out::Int(result, ct))
+}
+
 impl PlcSimulator {
     /// The integer variables at power-up: each at its declared value.
     pub(super) fn init_ints(p: &PlcProgram, ints: &mut BTreeMap<String, (i64, CType)>) {
@@ -129,8 +203,18 @@ impl PlcSimulator {
         }
     }
 
-    /// One execution of the integer block `k` (its `EN` on): its outputs written.
-    pub(super) fn int_exec(&mut self, k: usize, b: &IntBlock, bools: &BTreeMap<String, bool>) {
+    /// One call of the integer block `k` with its `EN`: its outputs written. A function
+    /// runs every scan: under `EN` FALSE it returns its type's initial value 0 (FALSE for
+    /// a comparison) and clears its `ENO` (matiec's `TEST_EN`); DIV also clears `ENO` for
+    /// a divisor 0 (`TEST_EN_COND(TYPENAME, op2 == 0)`). A counter is a function block:
+    /// under `EN` FALSE its body does not run, its outputs and memories kept.
+    pub(super) fn int_exec(
+        &mut self,
+        k: usize,
+        b: &IntBlock,
+        en: bool,
+        bools: &BTreeMap<String, bool>,
+    ) {
         let pins: Vec<PinIn> = match self.p.obj(k).map(|o| &o.kind) {
             Some(ObjKind::Block { inputs, .. }) => inputs.clone(),
             _ => return,
@@ -150,82 +234,31 @@ impl PlcSimulator {
         }
         let get = |n: &str| bools.get(n).copied().unwrap_or(false);
         if let IntBlock::Counter(ty) = b {
-            self.count(k, ty, get("CU"), get("CD"), get("R"), get("LD"), &args);
+            if en {
+                self.count(k, ty, get("CU"), get("CD"), get("R"), get("LD"), &args);
+            }
             return;
         }
+        let typed = args.iter().find_map(|(_, v)| v.and_then(|(_, t)| t));
+        let divisor = args
+            .get(1)
+            .and_then(|(_, v)| *v)
+            .map(|(x, t)| t.or(typed).map_or(x, |ct| ct.store(x.into())));
+        let divides_by_zero = matches!(b, IntBlock::Arith(Arith::Div)) && divisor == Some(0);
+        self.set_hidden(k, "ENO", en && !divides_by_zero);
         let Some(out) = self.p.hidden_name(k, "OUT").map(str::to_string) else { return };
-        // Every argument a value of the block's one type (a literal takes it).
-        let vals: Option<Vec<(String, i64, Option<CType>)>> =
-            args.into_iter().map(|(n, v)| v.map(|(x, t)| (n, x, t))).collect();
-        let Some(vals) = vals else { return };
-        if let IntBlock::Convert(from, to) = b {
-            if let (Some(f), Some(t), [(_, x, _)]) =
-                (CType::of(from), CType::of(to), vals.as_slice())
-            {
-                let v = t.store(f.store((*x).into()).into());
-                self.ints.insert(out, (v, t));
+        match function(b, args, get) {
+            Some(Out::Int(_, ct)) if !en => {
+                self.ints.insert(out, (0, ct));
             }
-            return;
+            Some(Out::Int(v, ct)) => {
+                self.ints.insert(out, (ct.store(v), ct));
+            }
+            Some(Out::Bool(holds)) => {
+                self.bits.insert(out, en && holds);
+            }
+            None => {}
         }
-        let types: Vec<CType> = vals.iter().filter_map(|(_, _, t)| *t).collect();
-        let Some(&ct) = types.first() else { return };
-        if types.iter().any(|t| *t != ct) {
-            return;
-        }
-        let xs: Vec<i128> =
-            vals.iter().map(|(_, x, _)| i128::from(ct.store((*x).into()))).collect();
-        let named =
-            |pin: &str| vals.iter().position(|(n, _, _)| n == pin).map(|j| xs[j]).unwrap_or(0);
-        let result: i128 = match b {
-            IntBlock::Compare(op) => {
-                let holds = xs.windows(2).all(|w| match op {
-                    CmpOp::Gt => w[0] > w[1],
-                    CmpOp::Ge => w[0] >= w[1],
-                    CmpOp::Eq => w[0] == w[1],
-                    CmpOp::Ne => w[0] != w[1],
-                    CmpOp::Lt => w[0] < w[1],
-                    CmpOp::Le => w[0] <= w[1],
-                });
-                self.bits.insert(out, holds);
-                return;
-            }
-            IntBlock::Arith(Arith::Add) => xs.iter().fold(0, |a, x| i128::from(ct.store(a + x))),
-            IntBlock::Arith(Arith::Mul) => xs.iter().fold(1, |a, x| i128::from(ct.store(a * x))),
-            IntBlock::Arith(op) => {
-                let [a, d] = xs.as_slice() else { return };
-                match op {
-                    Arith::Sub => a - d,
-                    // matiec's DIV and MOD give 0 for a divisor 0.
-                    _ if *d == 0 => 0,
-                    Arith::Div => a / d,
-                    _ => a % d,
-                }
-            }
-            IntBlock::Min => {
-                xs.iter().copied().reduce(|a, x| if a > x { x } else { a }).unwrap_or(0)
-            }
-            IntBlock::Max => {
-                xs.iter().copied().reduce(|a, x| if a < x { x } else { a }).unwrap_or(0)
-            }
-            IntBlock::Limit => {
-                let (mn, x, mx) = (named("MN"), named("IN"), named("MX"));
-                if x > mn { if x < mx { x } else { mx } } else { mn }
-            }
-            IntBlock::Abs => {
-                let x = named("IN");
-                if x < 0 { -x } else { x }
-            }
-            IntBlock::Move => named("IN"),
-            IntBlock::Sel => {
-                if get("G") {
-                    named("IN1")
-                } else {
-                    named("IN0")
-                }
-            }
-            IntBlock::Convert(..) | IntBlock::Counter(_) => return,
-        };
-        self.ints.insert(out, (ct.store(result), ct));
     }
 
     /// A counter call as `lib/counter.txt` writes it.
