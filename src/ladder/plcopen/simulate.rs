@@ -7,7 +7,11 @@
 //! are computed (feedback) gives its previous outputs. TON/TOF/TP follow matiec's
 //! time-based state machines on a clock that advances one cycle per scan; SR,
 //! RS, R_TRIG and F_TRIG are their IEC definitions; integers, their blocks and the
-//! counters are computed concretely as matiec's C does (`simulate/ints.rs`). Other
+//! counters are computed concretely as matiec's C does (`simulate/ints.rs`). Under
+//! `EN` FALSE a function block does not run (outputs kept) and a function returns
+//! 0/FALSE with its `ENO` FALSE (matiec's `TEST_EN`); an output variable fed straight
+//! from a block whose `EN` has a wire is written only under that block's `ENO`
+//! (Beremiz's `GetUsedEno`). Other
 //! blocks are not modelled: their Boolean outputs read FALSE (the prover leaves them
 //! unconstrained), and names depending on them are reported by
 //! [`PlcSimulator::unknown`].
