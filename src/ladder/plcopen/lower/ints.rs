@@ -366,7 +366,7 @@ impl Lower<'_> {
             let value = enabled(ok);
             stmts.push(Stmt::Write { target: eno, kind: WriteKind::Assign, value, span });
         }
-        if !stmts.is_empty() {
+        if stmts.iter().any(|s| !matches!(s, Stmt::Let { .. })) {
             self.push_block(stmts, span);
         }
     }
