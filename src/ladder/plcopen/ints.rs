@@ -112,10 +112,13 @@ pub fn is_int_type_name(t: &str) -> bool {
 }
 
 impl PlcProgram {
-    /// The declared variable named `name` (its declared name), if it is of an integer
-    /// type: the type's name (upper case).
+    /// The declared variable named `name` (its declared name, or in an inlined body
+    /// its prefixed one), if it is of an integer type: the type's name (upper case).
     pub fn int_var_type(&self, name: &str) -> Option<String> {
-        let v = self.vars.get(&name.to_ascii_uppercase())?;
+        let v = self
+            .vars
+            .get(&name.to_ascii_uppercase())
+            .or_else(|| self.vars.values().find(|v| v.name == name))?;
         match &v.ty {
             Ty::Other(t) if is_int_type_name(&t.to_ascii_uppercase()) => {
                 Some(t.to_ascii_uppercase())

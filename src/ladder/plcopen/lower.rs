@@ -855,9 +855,7 @@ fn lower_pass(l: &mut Lower<'_>) {
         }
         l.coil(one(), started, WriteKind::Assign, file_span);
     }
-    for (x, latch) in &p.latches {
-        l.coil(contact(latch, false), x, WriteKind::Assign, file_span);
-    }
+    l.latch_inputs(p, file_span);
     l.run();
 }
 

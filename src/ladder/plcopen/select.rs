@@ -208,10 +208,15 @@ pub struct PlcProgram {
     /// declared TRUE that nothing writes), and for each such variable the program also
     /// writes, its latch instead (see `latches`).
     pub inputs: BTreeSet<String>,
-    /// Inputs the program also writes: variable → the hidden name of the value latched
-    /// from outside at the start of the scan (`In0_IN`); reads before the program's
-    /// first write see the latch, not the previous scan.
+    /// Inputs the program also writes (BOOLs and integers): variable → the hidden name
+    /// of the value latched from outside at the start of the scan (`In0_IN`); reads
+    /// before the program's first write see the latch, not the previous scan. Those of
+    /// inlined function blocks are here too, under their prefixed names.
     pub latches: BTreeMap<String, String>,
+    /// Variables of Beremiz's SVGHMI types (`HMI_INT`, …), which the HMI writes at the
+    /// start of any scan: variable → the declared type's name. Their `Var::ty` is the
+    /// base type (see [`hmi_base`]); they are inputs (or latched, when written).
+    pub hmi: BTreeMap<String, String>,
     /// Written BOOLs that do not start FALSE: variable → `None` when it starts TRUE (its
     /// declared initial value), or the hidden input whose value it starts with (a
     /// retained variable after a warm restart: any value, `Lamp_START`).
@@ -593,6 +598,15 @@ fn check_pou(
     for v in &project.globals {
         vars.entry(v.name.to_ascii_uppercase()).or_insert_with(|| v.clone());
     }
+    let mut hmi = BTreeMap::new();
+    for v in vars.values_mut() {
+        if let Ty::Derived(t) = &v.ty
+            && let Some(base) = hmi_base(t)
+        {
+            hmi.insert(v.name.clone(), t.to_ascii_uppercase());
+            v.ty = base;
+        }
+    }
     let mut inputs = BTreeSet::new();
     for v in vars.values() {
         let addr = v.address.as_deref().unwrap_or("").to_ascii_uppercase();
@@ -600,7 +614,8 @@ fn check_pou(
         let external = interface
             || matches!(v.class, VarClass::External | VarClass::Global | VarClass::Access)
             || addr.starts_with("%I")
-            || addr.starts_with("%M");
+            || addr.starts_with("%M")
+            || hmi.contains_key(&v.name);
         if external {
             inputs.insert(v.name.clone());
         }
@@ -646,6 +661,7 @@ fn check_pou(
         operands: BTreeMap::new(),
         inputs,
         latches: BTreeMap::new(),
+        hmi,
         starts: BTreeMap::new(),
         started: None,
         subs: BTreeMap::new(),
@@ -917,6 +933,7 @@ fn check_pou(
                             }
                         }
                         program.inputs.extend(child.inputs.iter().cloned());
+                        program.latches.extend(child.latches.clone());
                         program.subs.insert(k, child);
                     }
                     None => {
@@ -1043,7 +1060,25 @@ fn check_pou(
     if !errors.is_empty() {
         return Err(errors);
     }
-    // Inputs the program also writes are latched from outside at the start of every scan.
+    // Inputs the program also writes (BOOLs by coils and output variables, integers by
+    // output variables) are latched from outside at the start of every scan.
+    let written_ints = program.operands.iter().filter_map(|(k, op)| match (program.obj(*k), op) {
+        (Some(o), Operand::Other(n))
+            if matches!(o.kind, ObjKind::OutVar { .. } | ObjKind::InOutVar { .. })
+                && !unconnected(&o.kind)
+                && program.int_var_type(n).is_some() =>
+        {
+            program.vars.get(&n.to_ascii_uppercase()).map(|v| v.name.clone())
+        }
+        _ => None,
+    });
+    // An HMI input of an inlined block is written by its caller when the pin is wired.
+    let passed = program.hmi.keys().filter(|x| {
+        depth > 0
+            && program.vars.get(&x.to_ascii_uppercase()).is_some_and(|v| v.class == VarClass::Input)
+    });
+    let written: BTreeSet<String> =
+        written.into_iter().chain(written_ints.collect::<Vec<_>>()).chain(passed.cloned()).collect();
     let written: Vec<String> = written.into_iter().filter(|n| program.inputs.contains(n)).collect();
     for x in written {
         let latch = hide(&mut taken, format!("{x}_IN"));
@@ -1051,9 +1086,26 @@ fn check_pou(
         program.inputs.insert(latch.clone());
         program.latches.insert(x, latch);
     }
+    warnings.extend(program.hmi_notes(depth));
     program.order_statements(&mut warnings)?;
     program.warnings = warnings;
     Ok(program)
+}
+
+/// The base type of one of Beremiz's SVGHMI types (`svghmi/pous.xml`: `HMI_INT` is a
+/// derived type of `INT`, `HMI_BOOL` and `HMI_NODE` of `BOOL`, …), which the project
+/// file names without declaring. `HMI_REAL` and `HMI_STRING` stay opaque, as `REAL`
+/// and `STRING` variables are.
+pub fn hmi_base(type_name: &str) -> Option<Ty> {
+    let upper = type_name.to_ascii_uppercase();
+    let base = upper.strip_prefix("HMI_")?;
+    Some(match base {
+        "BOOL" | "NODE" => Ty::Bool,
+        "SINT" | "INT" | "DINT" | "LINT" | "USINT" | "UINT" | "UDINT" | "ULINT" => {
+            Ty::Other(base.to_string())
+        }
+        _ => return None,
+    })
 }
 
 /// Whether an assignment (coil, output or in-out variable) has nothing wired to it:
@@ -1118,10 +1170,22 @@ fn inline(
         Ok(c) => c,
         Err(e) => return Some(Err(e)),
     };
-    if !child.latches.is_empty() || !child.starts.is_empty() {
+    // Latches of the outside world's writes run at the start of the scan, before the
+    // caller: only those of variables the body owns (not globals) are hoisted to it.
+    let owned = |x: &String| {
+        child.vars.get(&x.to_ascii_uppercase()).is_some_and(|v| {
+            !matches!(v.class, VarClass::External | VarClass::Global | VarClass::Access)
+        })
+    };
+    if !child.latches.keys().all(owned) || !child.starts.is_empty() {
         return None;
     }
-    warnings.append(&mut child.warnings);
+    // The same note at the same place, once for all instances.
+    for w in std::mem::take(&mut child.warnings) {
+        if !warnings.contains(&w) {
+            warnings.push(w);
+        }
+    }
     child.prefix_names(&format!("{}_", inst.name));
     Some(Ok(child))
 }
@@ -1173,7 +1237,14 @@ impl PlcProgram {
                 v.name = new;
             }
         }
+        // A latch is of a variable this body or an inlined one owns (see `inline`).
+        for (x, l) in &self.latches {
+            map.insert(x.clone(), format!("{prefix}{x}"));
+            map.insert(l.clone(), format!("{prefix}{l}"));
+        }
         let rename = |n: &String| map.get(n).cloned().unwrap_or_else(|| n.clone());
+        self.latches = self.latches.iter().map(|(x, l)| (rename(x), rename(l))).collect();
+        self.hmi = self.hmi.iter().map(|(x, t)| (rename(x), t.clone())).collect();
         for op in self.operands.values_mut() {
             match op {
                 Operand::Bool(n) => *n = rename(n),
@@ -1190,6 +1261,35 @@ impl PlcProgram {
         }
     }
 
+    /// What the program's HMI variables are (those it owns, and at `depth` 0 the
+    /// globals): a note at each declaration.
+    fn hmi_notes(&self, depth: usize) -> Vec<PlcError> {
+        let mut notes = Vec::new();
+        for (x, ty) in &self.hmi {
+            let Some(v) = self.vars.get(&x.to_ascii_uppercase()) else { continue };
+            let global = matches!(v.class, VarClass::Global | VarClass::Access);
+            if v.class == VarClass::External || (global && depth > 0) {
+                continue;
+            }
+            let base = match &v.ty {
+                Ty::Bool => "BOOL".to_string(),
+                Ty::Derived(t) | Ty::Other(t) => t.to_ascii_uppercase(),
+            };
+            let mut message = format!(
+                "`{x}` is an {ty}: Beremiz's SVGHMI server may write it before any scan, so \
+                 the outside world writes it: a free {base} input"
+            );
+            if let Some(latch) = self.latches.get(x) {
+                message.push_str(&format!(
+                    "; the program writes it too, so each scan starts with the value from \
+                     outside (`{latch}`) and then sees the program's writes"
+                ));
+            }
+            notes.push(PlcError::Note { span: v.span, message });
+        }
+        notes
+    }
+
     /// Every name this body owns (its variables and hidden variables, recursively).
     pub fn names(&self) -> Vec<String> {
         let mut out: Vec<String> = self
@@ -1200,10 +1300,14 @@ impl PlcProgram {
             })
             .map(|v| v.name.clone())
             .chain(self.hidden.values().cloned())
+            .chain(self.latches.values().cloned())
             .collect();
         for sub in self.subs.values() {
             out.extend(sub.names());
         }
+        // An inlined body's latches are its caller's too.
+        out.sort();
+        out.dedup();
         out
     }
 

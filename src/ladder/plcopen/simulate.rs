@@ -78,6 +78,13 @@ impl PlcSimulator {
         }
         let mut ints = BTreeMap::new();
         PlcSimulator::init_ints(p, &mut ints);
+        // The latch of an integer is an integer input, not a bit.
+        for (x, latch) in &p.latches {
+            if let Some((_, ct)) = ints.get(x).copied() {
+                bits.remove(latch);
+                ints.insert(latch.clone(), (0, ct));
+            }
+        }
         PlcSimulator {
             ints,
             subs,
@@ -114,8 +121,12 @@ impl PlcSimulator {
         }
         // A latched input is the outside value at the start of the scan.
         for (x, latch) in &self.p.latches {
-            let v = self.bit(latch);
-            self.bits.insert(x.clone(), v);
+            if let Some(v) = self.ints.get(latch).copied() {
+                self.ints.insert(x.clone(), v);
+            } else {
+                let v = self.bit(latch);
+                self.bits.insert(x.clone(), v);
+            }
         }
         self.body();
         if let Some(started) = &self.p.started {

@@ -73,7 +73,8 @@ impl Lower<'_> {
                 Some(_) if inlined && v.class == VarClass::Input => {
                     Some("an integer input of an inlined block is not passed in".to_string())
                 }
-                Some(_) if v.retain => {
+                // Written from outside at the start of every scan (an input, or latched).
+                Some(_) if v.retain && !p.inputs.contains(&v.name) && !p.latches.contains_key(&v.name) => {
                     Some("it is retained, so it starts with any value after a warm restart".into())
                 }
                 Some(_) => None,
@@ -104,6 +105,27 @@ impl Lower<'_> {
         }
         for sub in p.subs.values() {
             self.declare_ints(sub, true);
+        }
+        // The value an integer input the program also writes is latched from: an input
+        // of its type.
+        for (x, latch) in &p.latches {
+            if let Some(t) = self.ints.get(x).map(|v| v.ty) {
+                self.ints.insert(latch.clone(), IntVar { ty: t, input: true, init: 0 });
+            }
+        }
+    }
+
+    /// At the start of the scan, each latched input takes the value from outside: a BOOL
+    /// by a coil, an integer by a write (none when the integer is opaque).
+    pub(super) fn latch_inputs(&mut self, p: &PlcProgram, span: Span) {
+        for (x, latch) in &p.latches {
+            if self.ints.contains_key(x) {
+                let set = Stmt::SetInt { target: x.clone(), value: IntExpr::var(latch), span };
+                self.push_block(vec![set], span);
+            } else if !self.opaque.contains_key(x) && !self.new_opaque.contains_key(x) {
+                let value = BoolExpr::var(latch);
+                self.coil(value, x, crate::program::WriteKind::Assign, span);
+            }
         }
     }
 
