@@ -586,6 +586,16 @@ fn random_body(
     (g.body, if fbd { "FBD" } else { "LD" }, decls, g.rng)
 }
 
+/// A variable of an elementary type (`INT`) or a derived one (`HMI_INT`).
+fn typed(name: &str, ty: &str) -> String {
+    let t = if ty.starts_with("HMI_") {
+        format!(r#"<derived name="{ty}"/>"#)
+    } else {
+        format!("<{ty}/>")
+    };
+    format!(r#"<variable name="{name}"><type>{t}</type></variable>"#)
+}
+
 fn bools(names: &[&str]) -> String {
     names
         .iter()
@@ -614,6 +624,10 @@ pub fn random_program(seed: u64) -> String {
         );
     }
     let (body, lang, decls, mut rng) = random_body(rng, INPUTS, BITS, GHOST, user_fb);
+    // Beremiz SVGHMI variables (the HMI writes them before any scan): the first bit an
+    // HMI_BOOL, the first integer an HMI_INT (both written by the program too, so latched),
+    // the integer input an HMI_INT; drawn apart so that the other draws stay as they were.
+    let hmi = Rng::new(seed ^ 0x4D11).chance(30);
     let mut vars = String::new();
     let located = rng.chance(50);
     let mut inputs = String::new();
@@ -632,6 +646,7 @@ pub fn random_program(seed: u64) -> String {
     let mut retained = String::new();
     for n in BITS {
         match rng.below(8) {
+            _ if hmi && *n == BITS[0] => writeln!(vars, "{}", typed(n, "HMI_BOOL")).unwrap(),
             0 => writeln!(
                 vars,
                 r#"<variable name="{n}"><type><BOOL/></type><initialValue><simpleValue value="TRUE"/></initialValue></variable>"#
@@ -643,7 +658,8 @@ pub fn random_program(seed: u64) -> String {
     }
     writeln!(vars, "{}", bools(&[GHOST])).unwrap();
     for n in INT_VARS {
-        writeln!(vars, r#"<variable name="{n}"><type><INT/></type></variable>"#).unwrap();
+        let ty = if hmi && *n == INT_VARS[0] { "HMI_INT" } else { "INT" };
+        writeln!(vars, "{}", typed(n, ty)).unwrap();
     }
     writeln!(vars, r#"<variable name="{SINT_VAR}"><type><SINT/></type><initialValue><simpleValue value="-3"/></initialValue></variable>"#).unwrap();
     if located {
@@ -652,6 +668,8 @@ pub fn random_program(seed: u64) -> String {
             r#"<variable name="{INT_INPUT}" address="%IW0"><type><INT/></type></variable>"#
         )
         .unwrap();
+    } else if hmi {
+        writeln!(vars, "{}", typed(INT_INPUT, "HMI_INT")).unwrap();
     } else {
         writeln!(inputs, r#"<variable name="{INT_INPUT}"><type><INT/></type></variable>"#).unwrap();
     }
@@ -810,7 +828,7 @@ pub fn input_schedule(plc: &PlcProgram, seed: u64, scans: usize) -> Vec<BTreeMap
     let mut driven: Vec<String> = Vec::new();
     let mut words: Vec<(String, u32)> = Vec::new();
     for n in &plc.inputs {
-        match plc.int_var_type(n).and_then(|t| ii_prove::program::library::int_type(&t)) {
+        match plc.input_int_type(n).and_then(|t| ii_prove::program::library::int_type(&t)) {
             Some(t) => words.push((n.clone(), t.bits)),
             None => driven.push(n.clone()),
         }

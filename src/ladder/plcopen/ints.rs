@@ -127,6 +127,15 @@ impl PlcProgram {
         }
     }
 
+    /// The integer type of an input the outside world writes: an integer variable's, or
+    /// for the latch of one the program also writes (`N0_IN`), that variable's.
+    pub fn input_int_type(&self, name: &str) -> Option<String> {
+        self.int_var_type(name).or_else(|| {
+            let (x, _) = self.latches.iter().find(|(_, latch)| *latch == name)?;
+            self.int_var_type(x)
+        })
+    }
+
     /// Whether the operand text names an integer: a literal or an integer variable.
     pub fn int_text(&self, text: &str) -> bool {
         int_literal(text).is_some_and(|(_, t)| t.is_none_or(|t| is_int_type_name(&t)))

@@ -1077,8 +1077,11 @@ fn check_pou(
         depth > 0
             && program.vars.get(&x.to_ascii_uppercase()).is_some_and(|v| v.class == VarClass::Input)
     });
-    let written: BTreeSet<String> =
-        written.into_iter().chain(written_ints.collect::<Vec<_>>()).chain(passed.cloned()).collect();
+    let written: BTreeSet<String> = written
+        .into_iter()
+        .chain(written_ints.collect::<Vec<_>>())
+        .chain(passed.cloned())
+        .collect();
     let written: Vec<String> = written.into_iter().filter(|n| program.inputs.contains(n)).collect();
     for x in written {
         let latch = hide(&mut taken, format!("{x}_IN"));

@@ -74,7 +74,11 @@ impl Lower<'_> {
                     Some("an integer input of an inlined block is not passed in".to_string())
                 }
                 // Written from outside at the start of every scan (an input, or latched).
-                Some(_) if v.retain && !p.inputs.contains(&v.name) && !p.latches.contains_key(&v.name) => {
+                Some(_)
+                    if v.retain
+                        && !p.inputs.contains(&v.name)
+                        && !p.latches.contains_key(&v.name) =>
+                {
                     Some("it is retained, so it starts with any value after a warm restart".into())
                 }
                 Some(_) => None,
