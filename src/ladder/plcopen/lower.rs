@@ -725,6 +725,8 @@ impl<'p> Lower<'p> {
                     let n = pin.name.to_ascii_uppercase();
                     if let (Some(var), Some(v)) = (p.sub_var(k, &n, false), vals.get(&n)) {
                         self.coil(v.clone(), var, WriteKind::Assign, span);
+                    } else if let Some(var) = p.sub_int_input(k, &n) {
+                        self.int_assign(var, pin, span);
                     }
                 }
                 if let Some(child) = p.subs.get(&k) {
@@ -825,7 +827,7 @@ pub fn lower(p: &PlcProgram) -> Result<Lowered, Vec<PlcError>> {
     loop {
         let mut l = Lower::new(p);
         l.opaque = opaque.clone();
-        l.declare_ints(p, false);
+        l.declare_ints(p);
         lower_pass(&mut l);
         if l.new_opaque.is_empty() || !l.errors.is_empty() {
             return finish(p, l);

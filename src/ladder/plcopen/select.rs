@@ -1322,6 +1322,15 @@ impl PlcProgram {
             if output { v.class == VarClass::Output } else { v.class == VarClass::Input };
         (class_ok && v.ty == Ty::Bool).then_some(v.name.as_str())
     }
+
+    /// The integer input variable of an inlined block's interface (`IN1` of the
+    /// instance at `k`), if it is one.
+    pub fn sub_int_input(&self, k: usize, pin: &str) -> Option<&str> {
+        let sub = self.subs.get(&k)?;
+        let v = sub.vars.get(&pin.to_ascii_uppercase())?;
+        (v.class == VarClass::Input && sub.int_var_type(&v.name).is_some())
+            .then_some(v.name.as_str())
+    }
 }
 
 fn is_member(n: &str) -> bool {

@@ -533,6 +533,13 @@ impl PlcSimulator {
                             self.bits.insert(var.to_string(), *v);
                         }
                     }
+                    // An integer input takes the value wired to its pin.
+                    for pin in &names {
+                        let n = pin.name.to_ascii_uppercase();
+                        if let Some(var) = self.p.sub_int_input(k, &n).map(str::to_string) {
+                            self.int_assign(&var, pin);
+                        }
+                    }
                     if let Some(mut sub) = self.subs.remove(&k) {
                         sub.bits = std::mem::take(&mut self.bits);
                         sub.ints = std::mem::take(&mut self.ints);

@@ -6,7 +6,7 @@ use super::{Lower, fresh_because};
 use crate::diag::Span;
 use crate::iec::literal::int_literal;
 use crate::ladder::plcopen::ints::{Arith, IntBlock};
-use crate::ladder::plcopen::{Edge, ObjKind, PinIn, PlcProgram, Source, VarClass};
+use crate::ladder::plcopen::{Edge, ObjKind, PinIn, PlcProgram, Source};
 use crate::program::library::{self, Counter};
 use crate::program::{
     Block, BoolExpr, CmpOp, EdgeKind, IntExpr, IntType, IntVar, Memory, Stmt, WriteKind,
@@ -62,7 +62,7 @@ impl Lower<'_> {
     /// Declares the integer variables of `p` (and of its inlined bodies): their types,
     /// start values and whether the outside world writes them; those not computed are
     /// opaque with the reason.
-    pub(super) fn declare_ints(&mut self, p: &PlcProgram, inlined: bool) {
+    pub(super) fn declare_ints(&mut self, p: &PlcProgram) {
         for v in p.vars.values() {
             let Some(ty) = p.int_var_type(&v.name) else { continue };
             if self.opaque.contains_key(&v.name) {
@@ -70,9 +70,6 @@ impl Lower<'_> {
             }
             let why = match library::int_type(&ty) {
                 None => Some(format!("{ty} is 64 bits wide, which ii-prove does not compute")),
-                Some(_) if inlined && v.class == VarClass::Input => {
-                    Some("an integer input of an inlined block is not passed in".to_string())
-                }
                 // Written from outside at the start of every scan (an input, or latched).
                 Some(_)
                     if v.retain
@@ -108,7 +105,7 @@ impl Lower<'_> {
             );
         }
         for sub in p.subs.values() {
-            self.declare_ints(sub, true);
+            self.declare_ints(sub);
         }
         // The value an integer input the program also writes is latched from: an input
         // of its type.
