@@ -14,8 +14,9 @@
 //! accumulator another element writes, UART_SEND and FORMATTED_STRING, whose outputs
 //! follow the UART's transmission); integer side effects (MOVE, math, RES) and the
 //! peripheral writes (SET_PWM, I2C, SPI, segment and bus elements) pass the power with a
-//! note. The peripheral reads (READ_ADC, UART_RECV and the UART's status contacts) are
-//! free integer inputs holding what the hardware gives (see [`super::readings`]). Elements that change which
+//! note. The peripheral reads (READ_ADC, UART_RECV, the UART's status contacts and
+//! PERSIST's load from EEPROM) are free integer inputs holding what the hardware gives
+//! (see [`super::readings`]). Elements that change which
 //! rungs run (`GOTO`, `GOSUB`, `SUBPROG`/`ENDSUB`, `RETURN`, `LOCK`, `SLEEP`) and coils
 //! on bits the outside world writes refuse the program with a located error.
 #![warn(missing_docs)]
@@ -260,16 +261,21 @@ impl<'a> Lowering<'a> {
     fn read(&mut self, e: &Element, input: BoolExpr) -> BoolExpr {
         let index = self.index.get(&(e as *const Element)).copied().unwrap_or(usize::MAX);
         let Some(r) = self.readings.get(&index).cloned() else { return input };
+        let bit = IntType { bits: 1, signed: false };
+        let is = |name: &str, v: i64| {
+            let (a, b) = (IntExpr::Var(canonical(name)), IntExpr::Const(v));
+            BoolExpr::Compare(Box::new(Compare { op: CmpOp::Eq, ty: bit, a, b }))
+        };
         let power = match r.gate() {
-            Some(gate) => {
-                let ty = IntType { bits: 1, signed: false };
-                let (a, b) = (IntExpr::Var(canonical(gate)), IntExpr::Const(1));
-                let gate = BoolExpr::Compare(Box::new(Compare { op: CmpOp::Eq, ty, a, b }));
-                self.temp(BoolExpr::and(input, gate))
-            }
+            Some(gate) => self.temp(BoolExpr::and(input, is(gate, 1))),
             None => input,
         };
         let message = match (&r.var, &r.arrived) {
+            (Some(var), Some(ready)) if r.once.is_some() => format!(
+                "a peripheral read: {var} is loaded once from EEPROM, the free input {}, at \
+                 the first scan its input is on and {ready} = 1 (the EEPROM ready)",
+                r.value
+            ),
             (None, _) => format!(
                 "a peripheral read: the UART's flag is the free input {}, the output is the \
                  input and {} = 1",
@@ -283,8 +289,19 @@ impl<'a> Lowering<'a> {
             ),
         };
         self.warn(e.span, e.kind.keyword(), &message);
+        // PERSIST loads the variable once, at the first scan its input is on and the
+        // EEPROM ready (intcode.cpp `ELEM_PERSIST`: its one-shot `isInit`).
+        let write = match (&r.once, &r.arrived) {
+            (Some(once), Some(ready)) => {
+                self.temp(BoolExpr::and(BoolExpr::and(power.clone(), is(once, 0)), is(ready, 1)))
+            }
+            _ => power.clone(),
+        };
         if let Some(var) = &r.var {
-            self.set_int(e, var, &power, IntExpr::Var(canonical(&r.value)));
+            self.set_int(e, var, &write, IntExpr::Var(canonical(&r.value)));
+        }
+        if let Some(once) = &r.once {
+            self.set_int(e, once, &write, IntExpr::Const(1));
         }
         power
     }
@@ -529,14 +546,24 @@ impl<'a> Lowering<'a> {
                     CompareOp::Les => CmpOp::Lt,
                     CompareOp::Leq => CmpOp::Le,
                 };
-                // Literals are compared as written: a wider type when one does not fit.
-                let fits = [a, b].iter().all(|o| match o {
-                    Operand::Literal(v) => IntType::I16.contains(*v),
-                    Operand::Var(_) => true,
+                // A literal that does not fit 16 bits (`0xffff`) goes through a temporary
+                // whose size LDmicro chooses (intcode.cpp `VarFromExpr`): 65535 in two
+                // bytes reads as -1, in three as 65535. Which one runs is not modelled.
+                let wide = [a, b].iter().find_map(|o| match o {
+                    Operand::Literal(v) if !IntType::I16.contains(*v) => Some(*v),
+                    _ => None,
                 });
-                let ty = if fits { IntType::I16 } else { IntType { bits: 63, signed: true } };
+                if let Some(v) = wide {
+                    let why = format!(
+                        "the literal {v} does not fit 16 bits, and the size of the temporary \
+                         LDmicro stores it in (so whether it reads as {}) is not modelled",
+                        IntType::I16.wrap(v)
+                    );
+                    let f = self.fresh(format!("{}_r{number}", e.kind.keyword()), e, &why);
+                    return self.temp(BoolExpr::and(input, f));
+                }
                 let (a, b) = (self.operand(a), self.operand(b));
-                let c = BoolExpr::Compare(Box::new(Compare { op, ty, a, b }));
+                let c = BoolExpr::Compare(Box::new(Compare { op, ty: IntType::I16, a, b }));
                 self.temp(BoolExpr::and(input, c))
             }
             ElementKind::Move { dest, src } if self.exact(e) => {
@@ -704,8 +731,8 @@ fn shift_stages(e: &Element) -> Option<u32> {
 
 /// The integers computed exactly: every integer the counters, comparisons, `MOVE`,
 /// `ADD`/`SUB`/`MUL`/`DIV` and `RES` of the rungs that run read or write, except those
-/// something else writes (a timer's count, a `DIV` by a variable or 0, a peripheral or
-/// `PERSIST`), those computed from such, and counters whose limit or start value is not
+/// something else writes (a timer's count, a `DIV` by a variable or 0, a peripheral
+/// ii-prove does not read), those computed from such, and counters whose limit or start value is not
 /// a 16-bit literal or exact integer; those come back with why. Each is 16-bit signed; a counter of a new file starts at its `init`
 /// (the last counter of that name wins, as the runtime initialises them in order).
 fn integers(
@@ -742,14 +769,11 @@ fn integers(
                 };
                 cause(dest, why);
             }
-            // What a peripheral or an operation ii-prove does not compute writes, and a
-            // PERSIST variable (its power-up value is what EEPROM holds).
+            // What a peripheral or an operation ii-prove does not compute writes.
             ElementKind::Other { keyword, .. }
                 if shift_stages(e).is_none() && !(is_read(keyword) && known(keyword)) =>
             {
-                let why = if keyword == "PERSIST" {
-                    "it is PERSIST (its power-up value is what EEPROM holds)".to_string()
-                } else if let (true, Err(why)) = (is_read(keyword), &adc) {
+                let why = if let (true, Err(why)) = (is_read(keyword), &adc) {
                     format!("it is written by {keyword}, and {why}")
                 } else {
                     format!("it is written by {keyword}, which ii-prove does not compute")
@@ -834,9 +858,12 @@ fn integers(
             continue;
         }
         ints.insert(canonical(&r.value), IntVar { ty: r.ty, input: true, init: 0 });
+        let bit = IntType { bits: 1, signed: false };
         if let Some(got) = &r.arrived {
-            let ty = IntType { bits: 1, signed: false };
-            ints.insert(canonical(got), IntVar { ty, input: true, init: 0 });
+            ints.insert(canonical(got), IntVar { ty: bit, input: true, init: 0 });
+        }
+        if let Some(once) = &r.once {
+            ints.insert(canonical(once), IntVar { ty: bit, input: false, init: 0 });
         }
     }
     (ints, opaque)
@@ -845,7 +872,8 @@ fn integers(
 /// Whether `keyword` is a peripheral read, modelled as a free integer input when the
 /// values it gives are known (see [`super::readings`]).
 fn is_read(keyword: &str) -> bool {
-    matches!(keyword, "READ_ADC" | "UART_RECV") || super::STATUS_CONTACTS.contains(&keyword)
+    matches!(keyword, "READ_ADC" | "UART_RECV" | "PERSIST")
+        || super::STATUS_CONTACTS.contains(&keyword)
 }
 
 /// The relay LDmicro ≥ 2016 sets on an integer overflow.

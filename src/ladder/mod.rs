@@ -43,9 +43,10 @@ pub fn compile_with(
         .map_err(|errors| errors.into_iter().map(LadderError::from).collect())
 }
 
-/// A peripheral read of an LDmicro program (`READ_ADC var`, `UART_RECV var`, and the
-/// UART's status contacts `UART_RECV_AVAIL`, `UART_SEND_READY`): the free integer
-/// inputs the outside world gives it at each scan (ldmicro.md §4, "peripheral reads").
+/// A peripheral read of an LDmicro program (`READ_ADC var`, `UART_RECV var`, the
+/// UART's status contacts `UART_RECV_AVAIL`, `UART_SEND_READY`, and `PERSIST var`'s load
+/// from EEPROM): the free integer inputs the outside world gives it at each scan
+/// (ldmicro.md §4, "peripheral reads").
 /// Both the lowering and the simulator take their values from these names.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Reading {
@@ -56,17 +57,23 @@ pub struct Reading {
     /// The values the hardware gives: the ADC's resolution (unsigned), one byte
     /// (unsigned), the variable's 16 bits for a read of several bytes, or one bit.
     pub ty: IntType,
-    /// For `UART_RECV`, the 1-bit unsigned integer that is 1 when a byte arrived.
+    /// The 1-bit unsigned input that lets the write happen: for `UART_RECV`, 1 when a
+    /// byte arrived; for `PERSIST`, 1 when the EEPROM is ready.
     pub arrived: Option<String>,
+    /// For `PERSIST`, the hidden 1-bit integer that becomes 1 once the variable is loaded
+    /// from EEPROM (its one-shot `isInit`, 0 at power-up).
+    pub once: Option<String>,
 }
 
 impl Reading {
     /// The 1-bit input the element's output is its input and-ed with: the arrival of
-    /// `UART_RECV`, a status contact's flag; none for `READ_ADC`, which passes its input.
+    /// `UART_RECV`, a status contact's flag; none for `READ_ADC` and `PERSIST`, which
+    /// pass their input.
     pub fn gate(&self) -> Option<&str> {
-        match &self.var {
-            Some(_) => self.arrived.as_deref(),
-            None => Some(&self.value),
+        match (&self.var, &self.once) {
+            (None, _) => Some(&self.value),
+            (Some(_), Some(_)) => None,
+            (Some(_), None) => self.arrived.as_deref(),
         }
     }
 }
@@ -112,7 +119,10 @@ pub fn readings(program: &LdProgram) -> std::collections::BTreeMap<usize, Readin
     let mut fresh = |base: String| {
         let mut name = base.clone();
         let mut k = 1;
-        while taken.contains(&name) || taken.contains(&format!("{name}_got")) {
+        while ["", "_got", "_ready", "_loaded"]
+            .iter()
+            .any(|suffix| taken.contains(&format!("{name}{suffix}")))
+        {
             k += 1;
             name = format!("{base}_{k}");
         }
@@ -129,7 +139,7 @@ pub fn readings(program: &LdProgram) -> std::collections::BTreeMap<usize, Readin
             {
                 let value = fresh(format!("{keyword}_r{}", rung.number));
                 let ty = IntType { bits: 1, signed: false };
-                out.insert(index, Reading { var: None, value, ty, arrived: None });
+                out.insert(index, Reading { var: None, value, ty, arrived: None, once: None });
             } else if let ElementKind::Other { keyword, args } = &e.kind
                 && let [var] = e.names_written().as_slice()
             {
@@ -140,12 +150,20 @@ pub fn readings(program: &LdProgram) -> std::collections::BTreeMap<usize, Readin
                         Some(n) if n > 1 => IntType::I16,
                         _ => IntType { bits: 8, signed: false },
                     }),
+                    // What EEPROM holds: any 16-bit value.
+                    "PERSIST" => Some(IntType::I16),
                     _ => None,
                 };
                 if let Some(ty) = ty {
                     let value = fresh(format!("{keyword}_{var}_r{}", rung.number));
-                    let arrived = (keyword == "UART_RECV").then(|| format!("{value}_got"));
-                    out.insert(index, Reading { var: Some(var.clone()), value, ty, arrived });
+                    let arrived = match keyword.as_str() {
+                        "UART_RECV" => Some(format!("{value}_got")),
+                        "PERSIST" => Some(format!("{value}_ready")),
+                        _ => None,
+                    };
+                    let once = (keyword == "PERSIST").then(|| format!("{value}_loaded"));
+                    let var = Some(var.clone());
+                    out.insert(index, Reading { var, value, ty, arrived, once });
                 }
             }
             index += 1;

@@ -19,9 +19,11 @@
 //! `P`; a variable delay is `P` scans; a zero cycle makes timers never expire),
 //! OSR, OSF, ODR, CTU/CTD/CTC (orig semantics for `LDmicro0.1`/headerless files,
 //! new semantics otherwise; CTR always new), RES, EQU…LEQ, MOVE and
-//! ADD/SUB/MUL/DIV with 16-bit two's-complement wrap, and the peripheral reads
-//! READ_ADC and UART_RECV, whose values (and UART_RECV's "a byte arrived") are free
-//! integer inputs given in `step`'s input map ([`super::readings`] names them).
+//! ADD/SUB/MUL/DIV with 16-bit two's-complement wrap, the peripheral reads READ_ADC,
+//! UART_RECV, the UART's status contacts and PERSIST's load from EEPROM, whose values
+//! and flags are free integer inputs given in `step`'s input map ([`super::readings`]
+//! names them), and the peripheral writes that pass their input (SET_PWM, I2C, SPI,
+//! segments, BUS: `ldmicro::PASS_THROUGH`).
 //!
 //! Everything else (THI, TLO, TCY, ODF, OSC, the other integer, peripheral and
 //! text elements, division by zero) is **not modelled**: the simulator keeps a
@@ -132,12 +134,6 @@ impl Simulator {
                 ElementKind::Other { keyword, .. } if CONTROL_FLOW.contains(&keyword.as_str()) => {
                     sim.control_flow = true;
                     sim.unmodelled.insert(keyword.clone());
-                }
-                // A persistent variable starts with what EEPROM holds: any value.
-                ElementKind::Other { keyword, args } if keyword == "PERSIST" => {
-                    if let Some(var) = args.first() {
-                        sim.unknown.insert(var.clone());
-                    }
                 }
                 ElementKind::Timer { kind: TimerKind::Tof, name, delay, adjust, .. } => {
                     let (p, _) = sim.period(delay, *adjust);
@@ -504,6 +500,11 @@ impl Simulator {
                 i
             }
             ElementKind::Compare { op, a, b } => {
+                // A literal beyond 16 bits goes through a temporary whose size LDmicro
+                // chooses (`VarFromExpr`): 0xffff may read as -1 or as 65535.
+                let wide = [a, b]
+                    .iter()
+                    .any(|o| matches!(o, Operand::Literal(v) if !(-32768..=32767).contains(v)));
                 let (a, a_sure) = self.value(a);
                 let (b, b_sure) = self.value(b);
                 let v = match op {
@@ -514,7 +515,7 @@ impl Simulator {
                     CompareOp::Les => a < b,
                     CompareOp::Leq => a <= b,
                 };
-                i.and(v, a_sure && b_sure)
+                i.and(v, a_sure && b_sure && !wide)
             }
             ElementKind::Move { dest, src } => {
                 let (v, s) = self.value(src);
@@ -573,9 +574,22 @@ impl Simulator {
                     Some(gate) => i.and(self.int(gate) == 1, true),
                     None => i,
                 };
+                // PERSIST (intcode.cpp `ELEM_PERSIST`): while its input is on and its
+                // one-shot `isInit` clear, the first scan the EEPROM is ready sets
+                // `isInit` and loads the variable from EEPROM; its output is its input.
+                let write = match (&r.once, &r.arrived) {
+                    (Some(once), Some(ready)) => {
+                        let first = self.int(once) == 0 && self.int(ready) == 1;
+                        o.and(first, true)
+                    }
+                    _ => o,
+                };
                 if let Some(var) = &r.var {
                     let v = self.int(&r.value);
-                    self.assign(var, o, v, true);
+                    self.assign(var, write, v, true);
+                }
+                if let Some(once) = &r.once {
+                    self.assign(once, write, 1, true);
                 }
                 o
             }

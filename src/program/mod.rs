@@ -118,9 +118,10 @@ impl IntType {
         if self.signed { -(1i64 << (self.bits - 1)) } else { 0 }
     }
 
-    /// The largest value.
+    /// The largest value (computed wide: `(1 << 63) - 1` is the largest 63-bit one).
     pub fn max(self) -> i64 {
-        if self.signed { (1i64 << (self.bits - 1)) - 1 } else { (1i64 << self.bits) - 1 }
+        let bits = if self.signed { self.bits - 1 } else { self.bits };
+        ((1i128 << bits) - 1) as i64
     }
 
     /// Whether `v` is a value of the type.
@@ -130,8 +131,12 @@ impl IntType {
 
     /// `v` reduced into the type as the runtime's arithmetic wraps it.
     pub fn wrap(self, v: i64) -> i64 {
-        let m = v & ((1i64 << self.bits) - 1);
-        if self.signed && m > self.max() { m - (1i64 << self.bits) } else { m }
+        // In 128 bits: the 63-bit type a comparison with a wide literal uses reaches
+        // `1 << 63`, out of i64.
+        let m = i128::from(v) & ((1i128 << self.bits) - 1);
+        let r =
+            if self.signed && m > i128::from(self.max()) { m - (1i128 << self.bits) } else { m };
+        r as i64
     }
 
     /// `INT`-style name for messages: `a 16-bit signed integer`.
@@ -622,5 +627,25 @@ impl Program {
     /// Every statement, block by block.
     pub fn stmts(&self) -> impl Iterator<Item = (&Block, &Stmt)> {
         self.blocks.iter().flat_map(|b| b.stmts.iter().map(move |s| (b, s)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::IntType;
+
+    #[test]
+    fn the_widest_types_wrap_without_overflow() {
+        let wide = IntType { bits: 63, signed: true };
+        assert_eq!(wide.max(), (1i64 << 62) - 1);
+        assert_eq!(wide.wrap(65535), 65535);
+        assert_eq!(wide.wrap(-1), -1);
+        assert_eq!(wide.wrap(1i64 << 62), -(1i64 << 62));
+        let unsigned = IntType { bits: 63, signed: false };
+        assert_eq!(unsigned.max(), i64::MAX);
+        assert_eq!(unsigned.wrap(-1), i64::MAX);
+        assert_eq!(IntType::I16.wrap(65535), -1);
+        assert_eq!(IntType::I16.wrap(32768), -32768);
+        assert_eq!(IntType { bits: 1, signed: false }.wrap(3), 1);
     }
 }
