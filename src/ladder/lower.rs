@@ -21,6 +21,8 @@
 //! on bits the outside world writes refuse the program with a located error.
 #![warn(missing_docs)]
 
+mod timers;
+
 use std::collections::{BTreeMap, BTreeSet};
 
 use super::LadderError;
@@ -105,8 +107,9 @@ struct Lowering<'a> {
     /// Each element's position among all the program's elements, in file order (the
     /// simulator's key of a one-shot's memory).
     index: BTreeMap<*const Element, usize>,
-    /// Timer accumulators written by more than one element.
-    shared_timers: BTreeSet<String>,
+    /// The timers whose accumulator is an integer of the scan model
+    /// ([`timers::integer_timers`]).
+    int_timers: BTreeSet<String>,
     blocks: Vec<Block>,
     stmts: Vec<Stmt>,
     next_temp: Temp,
@@ -127,35 +130,13 @@ struct Lowering<'a> {
 impl<'a> Lowering<'a> {
     fn new(program: &'a LdProgram) -> Lowering<'a> {
         let index = program.elements().enumerate().map(|(k, e)| (e as *const Element, k)).collect();
-        // Bits are written only by coils; timers, counters, RES, MOVE and the integer
-        // elements write integers, a separate name space (ldmicro.md §5).
-        let mut int_writers: BTreeMap<String, usize> = BTreeMap::new();
-        for rung in program.rungs.iter().filter(|r| !r.is_comment(&program.version)) {
-            for e in rung.elements() {
-                if !matches!(e.kind, ElementKind::Coil { .. }) {
-                    for n in e.names_written() {
-                        *int_writers.entry(canonical(&n)).or_default() += 1;
-                    }
-                }
-            }
-        }
-        let shared_timers = program
-            .elements()
-            .filter_map(|e| match &e.kind {
-                ElementKind::Timer { name, .. }
-                    if int_writers.get(&canonical(name)).copied().unwrap_or(0) > 1 =>
-                {
-                    Some(canonical(name))
-                }
-                _ => None,
-            })
-            .collect();
+        let int_timers = timers::integer_timers(&live(program));
         let readings = super::readings(program);
         let (ints, opaque) = integers(program, &readings);
         Lowering {
             program,
             index,
-            shared_timers,
+            int_timers,
             blocks: Vec::new(),
             stmts: Vec::new(),
             next_temp: 1,
@@ -487,13 +468,12 @@ impl<'a> Lowering<'a> {
                 self.stmts.push(Stmt::Let { temp: self.mcr, value: mcr });
                 input
             }
+            ElementKind::Timer { name, .. } if self.int_timers.contains(name) => {
+                self.int_timer(e, input)
+            }
             ElementKind::Timer { kind, name, delay, adjust, adjust_given } => {
                 let keyword = e.kind.keyword();
-                let acc = canonical(name);
                 let why = match kind {
-                    _ if self.shared_timers.contains(&acc) => format!(
-                        "the accumulator {name} is also written by another element (RES, MOVE, a SHIFT_REGISTER stage, PERSIST at power-up, another timer, …)"
-                    ),
                     TimerKind::Ton | TimerKind::Tof => {
                         let preset = match delay {
                             TimerDelay::Micros(us) => Preset::Micros {
@@ -513,7 +493,7 @@ impl<'a> Lowering<'a> {
                         };
                         return self.temp(BoolExpr::Timer(Box::new(timer)));
                     }
-                    _ => format!("the {keyword} timer is not expressible in the algebra"),
+                    _ => format!("the {keyword} timer is not modelled"),
                 };
                 self.fresh(format!("{keyword}_{name}"), e, &why)
             }
@@ -532,8 +512,13 @@ impl<'a> Lowering<'a> {
             }
             ElementKind::Counter { .. } if self.exact(e) => self.counter(e, input),
             ElementKind::Res { name } if self.ints.contains_key(&canonical(name)) => {
-                // orig clears to 0, new to the counter's start value (§6.5).
-                let init = self.ints[&canonical(name)].init;
+                // orig clears to 0, new to the counter's start value (§6.5), a timer's
+                // count to 0.
+                let init = if self.int_timers.contains(name) {
+                    0
+                } else {
+                    self.ints[&canonical(name)].init
+                };
                 self.set_int(e, name, &input, IntExpr::Const(init));
                 input
             }
@@ -699,6 +684,13 @@ fn int_names(e: &Element) -> Vec<String> {
             v
         }
         ElementKind::Res { name } => vec![name.clone()],
+        ElementKind::Timer { name, delay, .. } => {
+            let mut v = vec![name.clone()];
+            if let TimerDelay::Variable(d) = delay {
+                v.push(d.clone());
+            }
+            v
+        }
         ElementKind::Compare { a, b, .. } => vars(&[a, b]),
         ElementKind::Move { dest, src } => {
             let mut v = vars(&[src]);
@@ -743,12 +735,8 @@ fn integers(
     let adc = super::adc_bits(program.micro.as_deref());
     // A peripheral read whose values are known (see `super::readings`).
     let known = |keyword: &str| keyword != "READ_ADC" || adc.is_ok();
-    let live: Vec<&Element> = program
-        .rungs
-        .iter()
-        .filter(|r| !r.is_comment(&program.version))
-        .flat_map(|r| r.elements())
-        .collect();
+    let live = live(program);
+    let timers = timers::Accumulators::new(program, &live);
     // Each integer ii-prove does not compute, with why (the first cause found).
     let mut opaque: BTreeMap<String, String> = BTreeMap::new();
     let mut used: BTreeSet<String> = BTreeSet::new();
@@ -756,9 +744,14 @@ fn integers(
     let mut cause = |name: &str, why: String| {
         opaque.entry(name.to_string()).or_insert(why);
     };
+    for (name, why) in &timers.causes {
+        cause(name, why.clone());
+    }
     for e in &live {
         match &e.kind {
-            ElementKind::Timer { name, .. } => cause(name, "it is a timer's count".into()),
+            ElementKind::Counter { name, .. } if timers.names.contains(name) => {
+                cause(name, "it is both a counter's and a timer's count".into());
+            }
             ElementKind::Math { op: MathOp::Div, dest, b, .. } if nonzero_literal(b).is_none() => {
                 let why = match b {
                     Operand::Var(v) => format!(
@@ -797,6 +790,7 @@ fn integers(
         }
         used.extend(int_names(e));
     }
+    init.extend(timers.init.iter().map(|(n, p)| (n.clone(), *p)));
     // LDmicro ≥ 2016 stores an integer in 1 to 4 bytes: a counter in as many as its start
     // value and limit need, any other integer as the VAR LIST says (2 by default). The
     // values computed here are 2-byte ones: an integer of another size is exact only when
@@ -804,6 +798,7 @@ fn integers(
     // limit, which its size holds).
     if !orig {
         let mut bytes = program.var_bytes.clone();
+        bytes.extend(timers.bytes.iter().map(|(n, b)| (n.clone(), *b)));
         let mut other_writers: BTreeSet<String> = BTreeSet::new();
         for e in &live {
             match &e.kind {
@@ -815,7 +810,11 @@ fn integers(
                 } => {
                     bytes.insert(name.clone(), bytes_needed(*i).max(bytes_needed(*l)));
                 }
-                ElementKind::Counter { .. } | ElementKind::Res { .. } => {}
+                // A timer with a literal delay keeps its count within its period, which
+                // its size holds (`timers::Accumulators`).
+                ElementKind::Counter { .. }
+                | ElementKind::Res { .. }
+                | ElementKind::Timer { delay: TimerDelay::Micros(_), .. } => {}
                 _ => other_writers.extend(e.names_written()),
             }
         }
@@ -867,6 +866,16 @@ fn integers(
         }
     }
     (ints, opaque)
+}
+
+/// The elements of the rungs that run (not comment rungs), in scan order.
+fn live(program: &LdProgram) -> Vec<&Element> {
+    program
+        .rungs
+        .iter()
+        .filter(|r| !r.is_comment(&program.version))
+        .flat_map(|r| r.elements())
+        .collect()
 }
 
 /// Whether `keyword` is a peripheral read, modelled as a free integer input when the

@@ -16,7 +16,8 @@
 //! Modelled exactly: CONTACTS, COIL (plain, negated, set, reset, toggle), SHORT,
 //! OPEN, PLACEHOLDER (as OPEN), COMMENT (as a wire), MASTER_RELAY, TON, TOF, RTO,
 //! RTL (§6.3 scan arithmetic, `P = floor(delay/cycle) + adjust`, TOF starting at
-//! `P`; a variable delay is `P` scans; a zero cycle makes timers never expire),
+//! `P`: new sets it before the first scan, orig as the first TOF of the name runs,
+//! per its `intcode.cpp`; a variable delay is `P` scans; a zero cycle makes timers never expire),
 //! OSR, OSF, ODR, CTU/CTD/CTC (orig semantics for `LDmicro0.1`/headerless files,
 //! new semantics otherwise; CTR always new), RES, EQU…LEQ, MOVE and
 //! ADD/SUB/MUL/DIV with 16-bit two's-complement wrap, the peripheral reads READ_ADC,
@@ -92,6 +93,9 @@ pub struct Simulator {
     /// Per element (in execution order): edge memory and whether it is exact.
     hidden: Vec<(bool, bool)>,
     counter_init: BTreeMap<String, Operand>,
+    /// orig: the TOF names whose "antiglitch" bit is set (`$T_antiglitch` of LDmicro
+    /// 2.x's `intcode.cpp`): the first TOF of a name to run loads `T := P` once.
+    antiglitch: BTreeSet<String>,
     unknown: BTreeSet<String>,
     unmodelled: BTreeSet<String>,
     mcr: Pow,
@@ -106,8 +110,9 @@ pub struct Simulator {
 const CONTROL_FLOW: &[&str] = &["GOTO", "GOSUB", "SUBPROG", "ENDSUB", "RETURN", "LOCK", "SLEEP"];
 
 impl Simulator {
-    /// A simulator at power-up: every bit and integer 0, except TOF counts (`P`)
-    /// and, for new-semantics files, counters with a literal `init`.
+    /// A simulator at power-up: every bit and integer 0, except, for new-semantics
+    /// files, TOF counts (`P`, the last TOF of a name wins) and counters with a literal
+    /// `init`; an orig TOF loads its count `P` when the first TOF of its name runs.
     pub fn new(program: &LdProgram) -> Simulator {
         let orig = program.version.is_orig();
         let mut sim = Simulator {
@@ -119,6 +124,7 @@ impl Simulator {
             ints: BTreeMap::new(),
             hidden: vec![(false, true); program.elements().count()],
             counter_init: BTreeMap::new(),
+            antiglitch: BTreeSet::new(),
             unknown: BTreeSet::new(),
             unmodelled: BTreeSet::new(),
             mcr: Pow { on: true, sure: true },
@@ -135,7 +141,9 @@ impl Simulator {
                     sim.control_flow = true;
                     sim.unmodelled.insert(keyword.clone());
                 }
-                ElementKind::Timer { kind: TimerKind::Tof, name, delay, adjust, .. } => {
+                // new initialises a TOF's count before the first scan (`InitVarsCircuit`);
+                // orig loads it as the TOF first runs (see `timer`).
+                ElementKind::Timer { kind: TimerKind::Tof, name, delay, adjust, .. } if !orig => {
                     let (p, _) = sim.period(delay, *adjust);
                     sim.ints.insert(name.clone(), p);
                 }
@@ -630,6 +638,9 @@ impl Simulator {
         i: Pow,
     ) -> Pow {
         let (p, p_sure) = self.period(delay, adjust);
+        if kind == TimerKind::Tof && self.orig && self.antiglitch.insert(name.to_string()) {
+            self.set_int(name, p, p_sure);
+        }
         let t = self.int(name);
         let t_sure = self.is_known(name);
         let (t, on, sure) = match kind {

@@ -1,0 +1,224 @@
+//! LDmicro timers the algebra cannot express, as exact 16-bit accumulators of the scan model: RTO, RTL, a TON with a variable delay, and a TON/TOF whose accumulator another element writes or reads.
+//!
+//! The accumulator `T` counts scans exactly as LDmicro's generated code does
+//! (`intcode.cpp`, the same in orig 2.x and new; ldmicro.md §6.3), with `lt` the
+//! comparison `T < P` made as the element runs:
+//!
+//! * TON: `if i { if lt { T := T+1 } } else { T := 0 }`, output `i · ¬lt`;
+//! * TOF: `if ¬i { if lt { T := T+1 } } else { T := 0 }`, output `i + lt`;
+//! * RTO: `if lt ∧ i { T := T+1 }`, RTL: `if lt ∧ ¬i { T := T+1 }`, output `¬lt`.
+//!
+//! `P` is `floor(delay/cycle) + adjust`, or a TON's delay variable. A TOF's accumulator
+//! starts at `P`: new LDmicro sets it before the first scan (the last TOF of that name
+//! wins); orig loads it when its first TOF runs in the first scan (an "antiglitch" bit
+//! per name), which is the same unless an element before that TOF touches the
+//! accumulator or TOFs of that name count to different periods: such an accumulator is
+//! not computed. THI, TLO and TCY stay unconstrained.
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use super::{Lowering, bytes_needed, int_names};
+use crate::ladder::ldmicro::{Element, ElementKind, LdProgram, TimerDelay, TimerKind};
+use crate::program::{BoolExpr, CmpOp, Compare, IntExpr, IntType, canonical};
+
+/// The timers whose accumulator is an integer of the scan model: every RTO and RTL,
+/// every TON with a variable delay, and every TON/TOF whose accumulator another element
+/// of the rungs that run also writes (`RES`, `MOVE`, a SHIFT_REGISTER stage, `PERSIST`,
+/// another timer) or reads (a comparison, arithmetic, a counter of that name).
+pub(super) fn integer_timers(live: &[&Element]) -> BTreeSet<String> {
+    let mut writers: BTreeMap<String, usize> = BTreeMap::new();
+    let mut mentioned: BTreeSet<String> = BTreeSet::new();
+    for e in live {
+        if matches!(e.kind, ElementKind::Coil { .. }) {
+            continue;
+        }
+        for n in e.names_written() {
+            *writers.entry(n).or_default() += 1;
+        }
+        if !matches!(e.kind, ElementKind::Timer { .. }) {
+            mentioned.extend(int_names(e));
+        }
+    }
+    live.iter()
+        .filter_map(|e| match &e.kind {
+            ElementKind::Timer { kind, name, delay, .. } => {
+                let own = matches!(kind, TimerKind::Rto | TimerKind::Rtl)
+                    || (*kind == TimerKind::Ton && matches!(delay, TimerDelay::Variable(_)));
+                let shared =
+                    writers.get(name).copied().unwrap_or(0) > 1 || mentioned.contains(name);
+                let countable = matches!(
+                    kind,
+                    TimerKind::Ton | TimerKind::Tof | TimerKind::Rto | TimerKind::Rtl
+                );
+                (countable && (own || shared)).then(|| name.clone())
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+/// What the timers say about the integers (see [`super::integers`]).
+#[derive(Default)]
+pub(super) struct Accumulators {
+    /// The accumulators of every timer.
+    pub names: BTreeSet<String>,
+    /// Why each timer accumulator that is not computed is not.
+    pub causes: BTreeMap<String, String>,
+    /// The power-up value of a TOF's accumulator (its `P`).
+    pub init: BTreeMap<String, i64>,
+    /// new: how many bytes LDmicro gives an accumulator (`byteNeeded` of its delay in
+    /// scans, `TestTimerPeriod`), for the timers with a literal delay.
+    pub bytes: BTreeMap<String, u32>,
+}
+
+impl Accumulators {
+    /// The accumulators of the live elements `live` of `program`.
+    pub(super) fn new(program: &LdProgram, live: &[&Element]) -> Accumulators {
+        let orig = program.version.is_orig();
+        let modelled = integer_timers(live);
+        let mut acc = Accumulators::default();
+        let mut sizes: BTreeMap<String, BTreeSet<u32>> = BTreeMap::new();
+        let cause = |causes: &mut BTreeMap<String, String>, name: &str, why: String| {
+            causes.entry(name.to_string()).or_insert(why);
+        };
+        // orig: the names whose first TOF has been met, and every name touched so far.
+        let mut tof_seen: BTreeSet<String> = BTreeSet::new();
+        let mut touched: BTreeSet<String> = BTreeSet::new();
+        for e in live {
+            let ElementKind::Timer { kind, name, delay, adjust, .. } = &e.kind else {
+                touched.extend(int_names(e));
+                touched.extend(e.names_written());
+                continue;
+            };
+            let keyword = e.kind.keyword();
+            acc.names.insert(name.clone());
+            if !modelled.contains(name) {
+                let why = if matches!(kind, TimerKind::Thi | TimerKind::Tlo | TimerKind::Tcy) {
+                    format!("it is the count of a {keyword} timer, which ii-prove does not model")
+                } else {
+                    "it is a timer's count".to_string()
+                };
+                cause(&mut acc.causes, name, why);
+                touched.insert(name.clone());
+                continue;
+            }
+            match delay {
+                TimerDelay::Variable(v) if *kind != TimerKind::Ton => {
+                    let why = format!(
+                        "it is the count of a {keyword} with the variable delay {v}, whose \
+                         period LDmicro computes from a literal delay only"
+                    );
+                    cause(&mut acc.causes, name, why);
+                }
+                TimerDelay::Variable(_) => {}
+                TimerDelay::Micros(_) if program.cycle_us == 0 => {
+                    cause(&mut acc.causes, name, "the PLC cycle is 0".into());
+                }
+                TimerDelay::Micros(us) => {
+                    let n = us / program.cycle_us;
+                    let p = program.timer_scans(delay, *adjust).unwrap_or(i64::MAX);
+                    if !(1..=i64::from(i16::MAX)).contains(&p) {
+                        let why = format!(
+                            "its {keyword} counts to {p} scans, outside the 1..32767 LDmicro \
+                             accepts"
+                        );
+                        cause(&mut acc.causes, name, why);
+                    }
+                    if !orig {
+                        let size = bytes_needed(i64::try_from(n).unwrap_or(i64::MAX));
+                        let max = (1i64 << (8 * size.min(4) - 1)) - 1;
+                        if p > max {
+                            let why = format!(
+                                "LDmicro stores it in {size} byte(s), too few for its period \
+                                 of {p} scans"
+                            );
+                            cause(&mut acc.causes, name, why);
+                        }
+                        sizes.entry(name.clone()).or_default().insert(size);
+                    }
+                    if *kind == TimerKind::Tof {
+                        if !orig {
+                            acc.init.insert(name.clone(), p);
+                        } else if tof_seen.insert(name.clone()) {
+                            if touched.contains(name) {
+                                let why = "orig LDmicro loads it when its first TOF runs in the \
+                                           first scan, after an element before that TOF \
+                                           touched it"
+                                    .to_string();
+                                cause(&mut acc.causes, name, why);
+                            }
+                            acc.init.insert(name.clone(), p);
+                        } else if acc.init.get(name) != Some(&p) {
+                            // A 0.1 file run by new LDmicro takes the last TOF's `P`.
+                            let why = "its TOFs count to different periods, and orig LDmicro \
+                                       loads the first one's where new loads the last one's"
+                                .to_string();
+                            cause(&mut acc.causes, name, why);
+                        }
+                    }
+                }
+            }
+            touched.insert(name.clone());
+        }
+        for (name, set) in sizes {
+            match set.iter().next() {
+                Some(size) if set.len() == 1 => {
+                    acc.bytes.insert(name, *size);
+                }
+                _ => {
+                    let why = "its timers give it different sizes in LDmicro".to_string();
+                    cause(&mut acc.causes, &name, why);
+                }
+            }
+        }
+        acc
+    }
+}
+
+impl Lowering<'_> {
+    /// A timer whose accumulator is an integer of the scan model (see
+    /// [`integer_timers`]): its output.
+    pub(super) fn int_timer(&mut self, e: &Element, input: BoolExpr) -> BoolExpr {
+        let ElementKind::Timer { kind, name, delay, adjust, .. } = &e.kind else { return input };
+        let acc = canonical(name);
+        if !self.ints.contains_key(&acc) {
+            let why = match self.opaque.get(name) {
+                Some(why) => format!("the accumulator {name} is not computed: {why}"),
+                None => format!("the accumulator {name} is not computed"),
+            };
+            return self.fresh(format!("{}_{name}", e.kind.keyword()), e, &why);
+        }
+        let p = match delay {
+            TimerDelay::Variable(v) => IntExpr::Var(canonical(v)),
+            TimerDelay::Micros(_) => {
+                IntExpr::Const(self.program.timer_scans(delay, *adjust).unwrap_or(0))
+            }
+        };
+        let t = || IntExpr::Var(acc.clone());
+        let lt = BoolExpr::Compare(Box::new(Compare { op: CmpOp::Lt, ty: IntType::I16, a: t(), b: p }));
+        let lt = self.temp(lt);
+        let step = IntExpr::plus(t(), IntExpr::Const(1));
+        let not_input = || BoolExpr::negate(input.clone());
+        match kind {
+            TimerKind::Ton | TimerKind::Tof => {
+                let on = *kind == TimerKind::Ton;
+                let counting = if on { input.clone() } else { not_input() };
+                let power = self.temp(BoolExpr::and(counting, lt.clone()));
+                self.set_int(e, name, &power, step);
+                let clear = if on { not_input() } else { input.clone() };
+                self.set_int(e, name, &clear, IntExpr::Const(0));
+                if on {
+                    self.temp(BoolExpr::and(input, BoolExpr::negate(lt)))
+                } else {
+                    self.temp(BoolExpr::Or(vec![input, lt]))
+                }
+            }
+            _ => {
+                let counting = if *kind == TimerKind::Rto { input.clone() } else { not_input() };
+                let power = self.temp(BoolExpr::and(counting, lt.clone()));
+                self.set_int(e, name, &power, step);
+                self.temp(BoolExpr::negate(lt))
+            }
+        }
+    }
+}
