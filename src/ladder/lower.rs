@@ -8,15 +8,17 @@
 //! the master-relay bit, modelled exactly (§6.6: `MASTER_RELAY` with input `i` makes it
 //! `¬mcr + i`; it is `1*` at the start of every scan). Bits are written only by coils
 //! (timers, counters, `RES`, `MOVE` and the integer elements write integers, a separate
-//! name space). A TON/TOF with a literal delay is a timer of the scan model; what the
-//! algebra cannot express is an unconstrained value with the reason (counters, the
-//! one-shots ODF and OSC, comparisons `IN · fresh`, RTO/RTL/THI/TLO/TCY, a timer whose
-//! accumulator another element writes, UART_SEND and FORMATTED_STRING, whose outputs
-//! follow the UART's transmission); integer side effects (MOVE, math, RES) and the
-//! peripheral writes (SET_PWM, I2C, SPI, segment and bus elements) pass the power with a
-//! note. The peripheral reads (READ_ADC, UART_RECV, the UART's status contacts and
-//! PERSIST's load from EEPROM) are free integer inputs holding what the hardware gives
-//! (see [`super::readings`]). Elements that change which
+//! name space). A TON/TOF with a literal delay is a timer of the scan model; RTO, RTL,
+//! a TON with a variable delay and a TON/TOF whose accumulator another element writes
+//! or reads count their accumulator as an exact 16-bit integer, as LDmicro's code does
+//! ([`timers`]). What the scan model does not compute is an unconstrained value with
+//! the reason (counters and comparisons over integers not computed, the one-shots ODF
+//! and OSC, THI/TLO/TCY, text elements, UART_SEND and FORMATTED_STRING, whose outputs
+//! follow the UART's transmission); integer side effects (MOVE, math, RES) over integers
+//! not computed and the peripheral writes (SET_PWM, I2C, SPI, segment and bus elements)
+//! pass the power with a note. The peripheral reads (READ_ADC, UART_RECV, the UART's
+//! status contacts and PERSIST's load from EEPROM) are free integer inputs holding what
+//! the hardware gives (see [`super::readings`]). Elements that change which
 //! rungs run (`GOTO`, `GOSUB`, `SUBPROG`/`ENDSUB`, `RETURN`, `LOCK`, `SLEEP`) and coils
 //! on bits the outside world writes refuse the program with a located error.
 #![warn(missing_docs)]
