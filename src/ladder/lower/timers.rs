@@ -92,8 +92,9 @@ impl Accumulators {
             };
             let keyword = e.kind.keyword();
             acc.names.insert(name.clone());
-            if !modelled.contains(name) {
-                let why = if matches!(kind, TimerKind::Thi | TimerKind::Tlo | TimerKind::Tcy) {
+            let unmodelled = matches!(kind, TimerKind::Thi | TimerKind::Tlo | TimerKind::Tcy);
+            if unmodelled || !modelled.contains(name) {
+                let why = if unmodelled {
                     format!("it is the count of a {keyword} timer, which ii-prove does not model")
                 } else {
                     "it is a timer's count".to_string()
@@ -181,7 +182,9 @@ impl Lowering<'_> {
     pub(super) fn int_timer(&mut self, e: &Element, input: BoolExpr) -> BoolExpr {
         let ElementKind::Timer { kind, name, delay, adjust, .. } = &e.kind else { return input };
         let acc = canonical(name);
-        if !self.ints.contains_key(&acc) {
+        let countable =
+            matches!(kind, TimerKind::Ton | TimerKind::Tof | TimerKind::Rto | TimerKind::Rtl);
+        if !countable || !self.ints.contains_key(&acc) {
             let why = match self.opaque.get(name) {
                 Some(why) => format!("the accumulator {name} is not computed: {why}"),
                 None => format!("the accumulator {name} is not computed"),
@@ -213,12 +216,13 @@ impl Lowering<'_> {
                     self.temp(BoolExpr::Or(vec![input, lt]))
                 }
             }
-            _ => {
+            TimerKind::Rto | TimerKind::Rtl => {
                 let counting = if *kind == TimerKind::Rto { input.clone() } else { not_input() };
                 let power = self.temp(BoolExpr::and(counting, lt.clone()));
                 self.set_int(e, name, &power, step);
                 self.temp(BoolExpr::negate(lt))
             }
+            TimerKind::Thi | TimerKind::Tlo | TimerKind::Tcy => input,
         }
     }
 }
