@@ -198,7 +198,8 @@ impl Lowering<'_> {
             }
         };
         let t = || IntExpr::Var(acc.clone());
-        let lt = BoolExpr::Compare(Box::new(Compare { op: CmpOp::Lt, ty: IntType::I16, a: t(), b: p }));
+        let lt =
+            BoolExpr::Compare(Box::new(Compare { op: CmpOp::Lt, ty: IntType::I16, a: t(), b: p }));
         let lt = self.temp(lt);
         let step = IntExpr::plus(t(), IntExpr::Const(1));
         let not_input = || BoolExpr::negate(input.clone());
