@@ -71,11 +71,11 @@ const COIL_BITS: &[&str] =
     &["Ra", "Rb", "Rc", "Ya", "Yb", "Yc", "Ra", "Rb", "Ya", "pre_Ra", "OSR_r2", "TOGGLE_r3"];
 /// Timer accumulators; `Ra` and `Ya` are also bit names (separate name spaces).
 /// `T1` is also a stage of `SHIFT_REGISTER T 2`, and `Ta` a `PERSIST`ed variable;
-/// `Ta` and `Tb` are also integers that `MOVE`, arithmetic and comparisons write and read.
+/// `Ta` is also an integer that `MOVE`, arithmetic and comparisons write and read.
 const TIMERS: &[&str] = &["Ta", "Tb", "Tc", "Ra", "Ya", "T1", "T1"];
 const COUNTERS: &[&str] = &["Ca", "Cb"];
 /// `Aa` is what `READ_ADC Aa` reads, `vb` what `UART_RECV vb` receives.
-const INTS: &[&str] = &["va", "vb", "Ca", "Ta", "Aa", "Tb"];
+const INTS: &[&str] = &["va", "vb", "Ca", "Ta", "Aa"];
 const CYCLES: &[u64] = &[10_000, 10_000, 1_000, 5_000, 20_000, 2_500, 100_000, 40_000, 3_333];
 
 struct Gen {
