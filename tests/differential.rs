@@ -946,8 +946,11 @@ fn random_programs_agree_with_the_simulator() {
         "timers rarely on: {}",
         fig.summary()
     );
+    // A TON/TOF whose count another element reads or writes is an integer accumulator
+    // (its bits checked at every scan above), not a timer of the algebra: about 58% of
+    // the algebra's timer hypotheses fire, where 60% did before.
     assert!(
-        fig.timer_hyps > n / 3 && fig.timer_hyps_fired * 10 >= 6 * fig.timer_hyps,
+        fig.timer_hyps > n / 3 && fig.timer_hyps_fired * 2 >= fig.timer_hyps,
         "timers rarely on: {}",
         fig.summary()
     );
