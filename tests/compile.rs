@@ -329,7 +329,7 @@ fn master_relay_zones_are_exact() {
 #[test]
 fn unsupported_elements_are_fresh_and_reported() {
     let c = compile(&rungs(
-        "RUNG\nCONTACTS Xa 0\nOSR\nCOIL Yp 0 0 0\nEND\nRUNG\nCONTACTS Xa 0\nCTU Cpieces 5\nCOIL Yfull 0 0 0\nEND\nRUNG\nGRT Cpieces 3\nCOIL Ymany 0 0 0\nEND\nRUNG\nCONTACTS Xa 0\nRTO Tr 20000\nCOIL Yr 0 0 0\nEND\nRUNG\nCONTACTS Xa 0\nCOIL Yt 0 0 0 1\nEND\nRUNG\nCONTACTS Yt 0\nCOIL Yu 0 0 0\nEND\n",
+        "RUNG\nCONTACTS Xa 0\nOSR\nCOIL Yp 0 0 0\nEND\nRUNG\nCONTACTS Xa 0\nCTU Cpieces 5\nCOIL Yfull 0 0 0\nEND\nRUNG\nGRT Cpieces 3\nCOIL Ymany 0 0 0\nEND\nRUNG\nCONTACTS Xa 0\nTCY Tr 20000\nCOIL Yr 0 0 0\nEND\nRUNG\nCONTACTS Xa 0\nCOIL Yt 0 0 0 1\nEND\nRUNG\nCONTACTS Yt 0\nCOIL Yu 0 0 0\nEND\n",
     ));
     // A one-shot is an edge: its input now and not at the previous scan.
     assert_eq!(stmt(&c, "L01"), "Yp = Xa · ¬pre Xa");
@@ -341,7 +341,7 @@ fn unsupported_elements_are_fresh_and_reported() {
     };
     assert!(of("Yfull").contains("Cpieces_"), "{}", of("Yfull"));
     assert!(of("Ymany").contains("Cpieces_b"), "{}", of("Ymany"));
-    assert_eq!(stmt(&c, "L04"), "Yr = RTO_Tr");
+    assert_eq!(stmt(&c, "L04"), "Yr = TCY_Tr");
     // A toggle flips its bit on a rising edge of its power.
     let toggle = stmt(&c, "L05");
     assert!(toggle.contains("pre Yt") && toggle.contains("pre Xa"), "{toggle}");
@@ -351,7 +351,7 @@ fn unsupported_elements_are_fresh_and_reported() {
     let rungs_warned: Vec<usize> = c.warnings.iter().map(|w| w.rung).collect();
     assert_eq!(rungs_warned, [4]);
     let text = program_to_ii(&c, Notation::Paper);
-    assert!(text.contains("// warning: rung 4 (L04): RTO:"), "{text}");
+    assert!(text.contains("// warning: rung 4 (L04): TCY:"), "{text}");
     // With the sources, a warning names its file, line and column.
     let mut s = Sources::new();
     let f = s.add(
@@ -369,13 +369,16 @@ fn unsupported_elements_are_fresh_and_reported() {
 }
 
 #[test]
-fn res_on_a_ton_makes_it_fresh() {
+fn res_on_a_ton_makes_its_count_an_integer() {
     let c = compile(&rungs(
         "RUNG\nCONTACTS Xa 0\nTON Tt 50000\nCOIL Yq 0 0 0\nEND\nRUNG\nCONTACTS Xr 0\nRES Tt\nEND\n",
     ));
-    assert_eq!(stmt(&c, "L01"), "Yq = TON_Tt");
-    assert!(c.warnings.iter().any(|w| w.rung == 1 && w.element == "TON"));
-    assert!(c.warnings.iter().any(|w| w.rung == 2 && w.element == "RES"));
+    // The accumulator RES also writes is counted as LDmicro counts it, bit by bit.
+    assert!(c.integers.contains_key("Tt"), "{:?}", c.integers.keys());
+    let yq = c.hypotheses.iter().find(|h| p(&h.lhs) == "Yq").map(|h| p(&h.rhs)).expect("Yq");
+    assert!(yq.contains("Tt_"), "{yq}");
+    assert!(!c.signals.contains_key("TON_Tt"));
+    assert!(c.warnings.is_empty(), "{:?}", c.warnings);
 }
 
 #[test]
@@ -438,7 +441,9 @@ fn every_unsupported_element_is_reported_with_its_rung() {
                 ElementKind::Counter { name, limit, init, .. } => {
                     [Some(name.clone()), var(limit), var(init)].into_iter().flatten().collect()
                 }
-                ElementKind::Res { name } => vec![name.clone()],
+                // A timer whose count is an integer of the program (RTO, RTL, a count
+                // another element writes or reads) is exact.
+                ElementKind::Res { name } | ElementKind::Timer { name, .. } => vec![name.clone()],
                 ElementKind::Compare { a, b, .. } => {
                     [var(a), var(b)].into_iter().flatten().collect()
                 }
