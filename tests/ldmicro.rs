@@ -597,3 +597,25 @@ fn a_slice_given_only_what_it_reads_agrees_with_the_whole_program() {
     }
     assert!(compared > 400, "only {compared} comparisons");
 }
+
+/// The names a peripheral read adds: its value and flags are free inputs, PERSIST's
+/// one-shot is the lowering's own integer (hidden: `equiv` never compares it as an
+/// output), and none of them is among the names the compiler must avoid by accident.
+#[test]
+fn a_persist_load_names_its_inputs_and_hides_its_one_shot() {
+    let path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/proves_programs/persist_count.ld");
+    let (_, program) = load(&path);
+    let program = program.expect("loads");
+    let scan = ii_prove::ladder::lower::lower(&program).expect("lowers");
+    let once = "PERSIST_saved_r1_loaded";
+    assert!(scan.hidden.contains(once), "{:?}", scan.hidden);
+    assert!(!scan.integers[once].input);
+    for input in ["PERSIST_saved_r1", "PERSIST_saved_r1_ready"] {
+        assert!(scan.integers[input].input, "{input}");
+        assert!(!scan.hidden.contains(input), "{input}");
+    }
+    for name in [once, "PERSIST_saved_r1", "PERSIST_saved_r1_ready"] {
+        assert!(scan.names.contains(name), "{name}");
+    }
+}

@@ -244,10 +244,9 @@ impl<'a> Lowering<'a> {
     fn read(&mut self, e: &Element, input: BoolExpr) -> BoolExpr {
         let index = self.index.get(&(e as *const Element)).copied().unwrap_or(usize::MAX);
         let Some(r) = self.readings.get(&index).cloned() else { return input };
-        let bit = IntType { bits: 1, signed: false };
         let is = |name: &str, v: i64| {
             let (a, b) = (IntExpr::Var(canonical(name)), IntExpr::Const(v));
-            BoolExpr::Compare(Box::new(Compare { op: CmpOp::Eq, ty: bit, a, b }))
+            BoolExpr::Compare(Box::new(Compare { op: CmpOp::Eq, ty: IntType::BIT, a, b }))
         };
         let power = match r.gate() {
             Some(gate) => self.temp(BoolExpr::and(input, is(gate, 1))),
@@ -331,9 +330,10 @@ impl<'a> Lowering<'a> {
             names.extend(e.names_written().iter().map(|n| canonical(n)));
         }
         for r in self.readings.values() {
-            names.insert(canonical(&r.value));
-            names.extend(r.arrived.iter().map(|n| canonical(n)));
+            names.extend(r.names().map(|n| canonical(n)));
         }
+        // PERSIST's one-shot is the lowering's own integer, never an output to compare.
+        let hidden = self.readings.values().flat_map(|r| &r.once).map(|n| canonical(n)).collect();
         let skipped = program
             .rungs
             .iter()
@@ -360,7 +360,7 @@ impl<'a> Lowering<'a> {
             block_noun: "rung",
             language: "an LDmicro",
             started: None,
-            hidden: BTreeSet::new(),
+            hidden,
         }
     }
 
@@ -859,12 +859,11 @@ fn integers(
             continue;
         }
         ints.insert(canonical(&r.value), IntVar { ty: r.ty, input: true, init: 0 });
-        let bit = IntType { bits: 1, signed: false };
         if let Some(got) = &r.arrived {
-            ints.insert(canonical(got), IntVar { ty: bit, input: true, init: 0 });
+            ints.insert(canonical(got), IntVar { ty: IntType::BIT, input: true, init: 0 });
         }
         if let Some(once) = &r.once {
-            ints.insert(canonical(once), IntVar { ty: bit, input: false, init: 0 });
+            ints.insert(canonical(once), IntVar { ty: IntType::BIT, input: false, init: 0 });
         }
     }
     (ints, opaque)

@@ -66,6 +66,12 @@ pub struct Reading {
 }
 
 impl Reading {
+    /// The names the read adds to the program: its value, its arrival or ready flag,
+    /// and `PERSIST`'s hidden one-shot.
+    pub fn names(&self) -> impl Iterator<Item = &String> {
+        std::iter::once(&self.value).chain(&self.arrived).chain(&self.once)
+    }
+
     /// The 1-bit input the element's output is its input and-ed with: the arrival of
     /// `UART_RECV`, a status contact's flag; none for `READ_ADC` and `PERSIST`, which
     /// pass their input.
@@ -138,7 +144,7 @@ pub fn readings(program: &LdProgram) -> std::collections::BTreeMap<usize, Readin
                 && STATUS_CONTACTS.contains(&keyword.as_str())
             {
                 let value = fresh(format!("{keyword}_r{}", rung.number));
-                let ty = IntType { bits: 1, signed: false };
+                let ty = IntType::BIT;
                 out.insert(index, Reading { var: None, value, ty, arrived: None, once: None });
             } else if let ElementKind::Other { keyword, args } = &e.kind
                 && let [var] = e.names_written().as_slice()

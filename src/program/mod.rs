@@ -113,6 +113,9 @@ impl IntType {
     /// LDmicro's 16-bit signed integers (IEC `INT`).
     pub const I16: IntType = IntType { bits: 16, signed: true };
 
+    /// One unsigned bit (0 or 1): a peripheral's flag, a hidden one-shot.
+    pub const BIT: IntType = IntType { bits: 1, signed: false };
+
     /// The smallest value.
     pub fn min(self) -> i64 {
         if self.signed { -(1i64 << (self.bits - 1)) } else { 0 }
