@@ -31,13 +31,13 @@ fn directory() -> Option<&'static PathBuf> {
 
 /// The record of one solver instance; does nothing when tracing is off.
 #[derive(Default)]
-pub struct Trace {
+struct Trace {
     out: Option<BufWriter<File>>,
 }
 
 impl Trace {
     /// A record for a new solver instance used for `kind` (`bmc`, `split`, `refute`).
-    pub fn start(kind: &str) -> Trace {
+    fn start(kind: &str) -> Trace {
         static NEXT: AtomicUsize = AtomicUsize::new(0);
         let Some(dir) = directory() else { return Trace::default() };
         let n = NEXT.fetch_add(1, Ordering::Relaxed);
@@ -52,12 +52,12 @@ impl Trace {
     }
 
     /// Whether this instance is recorded.
-    pub fn on(&self) -> bool {
+    fn on(&self) -> bool {
         self.out.is_some()
     }
 
     /// Records a clause.
-    pub fn clause(&mut self, lits: &[Lit]) {
+    fn clause(&mut self, lits: &[Lit]) {
         if let Some(w) = &mut self.out {
             let ok = lits.iter().try_for_each(|l| write!(w, "{} ", l.to_dimacs()));
             if ok.and_then(|()| writeln!(w, "0")).is_err() {
@@ -67,7 +67,7 @@ impl Trace {
     }
 
     /// Records a solve under `assumptions`, its answer and the time varisat took.
-    pub fn solve(&mut self, assumptions: &[Lit], sat: Option<bool>, took: Duration) {
+    fn solve(&mut self, assumptions: &[Lit], sat: Option<bool>, took: Duration) {
         if let Some(w) = &mut self.out {
             let answer = match sat {
                 Some(true) => "sat",

@@ -133,18 +133,7 @@ pub struct Cnf {
     truth: Lit,
 }
 
-impl Default for Cnf {
-    fn default() -> Self {
-        Cnf::new()
-    }
-}
-
 impl Cnf {
-    /// An empty formula.
-    pub fn new() -> Cnf {
-        Cnf::named("unroll")
-    }
-
     /// An empty formula whose queries are recorded as `kind` ([`crate::sat_trace`]).
     pub fn named(kind: &str) -> Cnf {
         let mut solver = Traced::new(kind);

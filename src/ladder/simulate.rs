@@ -601,7 +601,8 @@ impl Simulator {
                 }
                 o
             }
-            // Loaded from EEPROM at power-up (see `new`); saving it changes nothing here.
+            // A PERSIST that names no variable (every other one is a reading above):
+            // saving to EEPROM changes nothing here.
             ElementKind::Other { keyword, .. } if keyword == "PERSIST" => i,
             ElementKind::Other { keyword, args } => {
                 self.unmodelled.insert(keyword.clone());
