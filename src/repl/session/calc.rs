@@ -17,13 +17,6 @@ use crate::syntax::{self, CalcStep, Claim, ClaimKind, Relation, RuleRef, ScriptP
 use crate::term::{Expr, same};
 use crate::theory;
 
-fn rel_of(r: Relation) -> Rel {
-    match r {
-        Relation::Equals => Rel::Eq,
-        Relation::Implies => Rel::Implies,
-    }
-}
-
 fn relation_of(r: Rel) -> Relation {
     match r {
         Rel::Eq => Relation::Equals,
@@ -194,7 +187,7 @@ impl Session {
             return format!("error: {e}\n");
         }
         let span = Span::new(file, 0..term_text.trim().len());
-        let Some(result) = self.justify(&from, rel_of(relation), &term, &rules) else {
+        let Some(result) = self.justify(&from, theory::relation(relation), &term, &rules) else {
             return CANCELLED.into();
         };
         match result {

@@ -181,15 +181,7 @@ impl<'a> Resolver<'a> {
                     None => doc.program = Some((path.clone(), *span)),
                 },
                 AstStatement::Claim { kind, name, goal, proof, span } => {
-                    if let Some(first) = statement_names.get(&name.0) {
-                        self.errors.push(SyntaxError::DuplicateName {
-                            span: name.1,
-                            name: name.0.clone(),
-                            first: *first,
-                        });
-                    } else {
-                        statement_names.insert(name.0.clone(), name.1);
-                    }
+                    self.name_once(&mut statement_names, name);
                     let mut out = Out::default();
                     let goal = self.goal(goal, Mode::Concrete, &mut out);
                     let proof = self.proof(proof);
@@ -211,14 +203,8 @@ impl<'a> Resolver<'a> {
                             name: name.0.clone(),
                             by: Declaration::Assume,
                         });
-                    } else if let Some(first) = statement_names.get(&name.0) {
-                        self.errors.push(SyntaxError::DuplicateName {
-                            span: name.1,
-                            name: name.0.clone(),
-                            first: *first,
-                        });
                     } else {
-                        statement_names.insert(name.0.clone(), name.1);
+                        self.name_once(&mut statement_names, name);
                     }
                     let mode = match kind {
                         NamedKind::Law => Mode::Law,
@@ -262,6 +248,19 @@ impl<'a> Resolver<'a> {
         doc.inputs = self.inputs.clone();
         doc.delays = self.delays.clone();
         doc
+    }
+
+    /// Records a statement's name, or reports it taken by an earlier statement.
+    fn name_once(&mut self, names: &mut HashMap<String, Span>, name: &(String, Span)) {
+        if let Some(first) = names.get(&name.0) {
+            self.errors.push(SyntaxError::DuplicateName {
+                span: name.1,
+                name: name.0.clone(),
+                first: *first,
+            });
+        } else {
+            names.insert(name.0.clone(), name.1);
+        }
     }
 
     fn proof(&mut self, proof: &AstProof) -> Option<ScriptProof> {
