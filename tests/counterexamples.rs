@@ -79,11 +79,13 @@ fn water_faulty_overlap_replays_on_the_scan_simulator() {
         reference: loaded.reference.as_ref(),
         compiled: &loaded.compiled,
         assumptions: &[],
+        shared: None,
     };
     let limits = Limits {
         deadline: Instant::now() + Duration::from_secs(20),
         max_steps: 200,
         max_scans: 100_000,
+        minimised: false,
     };
     let Verdict::Refuted(c) = counterexample::refute(&session, &goal, limits) else {
         panic!("P2 is not refuted");
@@ -514,6 +516,7 @@ fn a_constant_forced_locally_is_found_beyond_the_vacuity_cone() {
         reference: loaded.reference.as_ref(),
         compiled: &loaded.compiled,
         assumptions: &[],
+        shared: None,
     };
     let clash = ii_prove::term::name("RClash");
     assert!(session.model(&[&clash]).defs.len() > 2 * counterexample::VACUITY_CONE);
@@ -569,6 +572,7 @@ fn the_cached_vacuity_check_agrees_with_the_whole_cone_on_small_programs() {
                 reference: loaded.reference.as_ref(),
                 compiled: &loaded.compiled,
                 assumptions,
+                shared: None,
             };
             let cache = counterexample::VacuityCache::default();
             let exact = counterexample::vacuity(&session, &[&goal.lhs, &goal.rhs]);
