@@ -79,11 +79,13 @@ fn water_faulty_overlap_replays_on_the_scan_simulator() {
         reference: loaded.reference.as_ref(),
         compiled: &loaded.compiled,
         assumptions: &[],
+        shared: None,
     };
     let limits = Limits {
         deadline: Instant::now() + Duration::from_secs(20),
         max_steps: 200,
         max_scans: 100_000,
+        minimised: false,
     };
     let Verdict::Refuted(c) = counterexample::refute(&session, &goal, limits) else {
         panic!("P2 is not refuted");
@@ -514,6 +516,7 @@ fn a_constant_forced_locally_is_found_beyond_the_vacuity_cone() {
         reference: loaded.reference.as_ref(),
         compiled: &loaded.compiled,
         assumptions: &[],
+        shared: None,
     };
     let clash = ii_prove::term::name("RClash");
     assert!(session.model(&[&clash]).defs.len() > 2 * counterexample::VACUITY_CONE);
@@ -569,6 +572,7 @@ fn the_cached_vacuity_check_agrees_with_the_whole_cone_on_small_programs() {
                 reference: loaded.reference.as_ref(),
                 compiled: &loaded.compiled,
                 assumptions,
+                shared: None,
             };
             let cache = counterexample::VacuityCache::default();
             let exact = counterexample::vacuity(&session, &[&goal.lhs, &goal.rhs]);
@@ -583,4 +587,61 @@ fn the_cached_vacuity_check_agrees_with_the_whole_cone_on_small_programs() {
     }
     // Some constants are found, with and without assumptions.
     assert!(constants >= 3, "{constants}");
+}
+
+/// A run that refutes one property of a program is kept, and refutes another property
+/// it violates too (confirmed again: the trace replays on the simulator), but not one
+/// it does not violate nor one that holds.
+#[test]
+fn a_kept_run_refutes_the_other_properties_it_violates() {
+    let mut sources = Sources::new();
+    let program = std::env::temp_dir().join(format!("ii_prove_shared_{}.ld", std::process::id()));
+    // Yb follows Xa, Yc follows Yb, Yd follows Xe.
+    std::fs::write(
+        &program,
+        "LDmicro0.1\nCYCLE=10000\nPROGRAM\nRUNG\nCONTACTS Xa 0\nCOIL Yb 0 0 0\nEND\nRUNG\nCONTACTS Yb 0\nCOIL Yc 0 0 0\nEND\nRUNG\nCONTACTS Xe 0\nCOIL Yd 0 0 0\nEND\n",
+    )
+    .expect("writes");
+    let loaded = load_program(&mut sources, &program.display().to_string(), &Default::default())
+        .expect("loads");
+    let file = sources.add(
+        "chain.ii",
+        "property deep: Yc = 0*\nproperty shallow: Yb = 0*\nproperty apart: Yd = 0*\nproperty holds: Yc => Yb\n"
+            .to_string(),
+    );
+    let doc = syntax::parse_document(&sources, file, &loaded.compiled).expect("parses");
+    let goals: Vec<_> = doc.properties.iter().map(|p| report::obligation(&p.value)).collect();
+    let shared = counterexample::shared::Shared::default();
+    let session = counterexample::Program {
+        reference: loaded.reference.as_ref(),
+        compiled: &loaded.compiled,
+        assumptions: &[],
+        shared: Some(&shared),
+    };
+    let limits = Limits {
+        deadline: Instant::now() + Duration::from_secs(20),
+        max_steps: 200,
+        max_scans: 100_000,
+        minimised: false,
+    };
+    // Nothing kept yet.
+    assert!(counterexample::shared::refute_shared(&session, &goals[1], limits).is_none());
+    let Verdict::Refuted(_) = counterexample::refute(&session, &goals[0], limits) else {
+        panic!("`deep` is not refuted");
+    };
+    let c = counterexample::shared::refute_shared(&session, &goals[1], limits)
+        .expect("the run that refutes `deep` refutes `shallow`");
+    assert!(c.simulator_scan.is_some(), "confirmed on the simulator");
+    assert!(c.trace.values.get("Xa").is_some_and(|v| v.contains(&true)), "{:?}", c.trace);
+    let mut sim = loaded.reference.simulator();
+    let mut seen = false;
+    for k in 0..c.trace.scans {
+        let inputs: BTreeMap<String, bool> =
+            c.trace.values.iter().map(|(n, v)| (n.clone(), v[k])).collect();
+        sim.step(&inputs);
+        seen |= sim.bit("Yb");
+    }
+    assert!(seen, "the replay sets Yb");
+    assert!(counterexample::shared::refute_shared(&session, &goals[2], limits).is_none());
+    assert!(counterexample::shared::refute_shared(&session, &goals[3], limits).is_none());
 }

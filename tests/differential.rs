@@ -742,9 +742,13 @@ fn unroll_agrees(
     use ii_prove::counterexample::unroll::{Concrete, unroll};
     let heads: Vec<Expr> = compiled.hypotheses.iter().map(|h| h.lhs.clone()).collect();
     let refs: Vec<&Expr> = heads.iter().collect();
-    let model =
-        ii_prove::counterexample::Program { reference: program, compiled, assumptions: &[] }
-            .model(&refs);
+    let model = ii_prove::counterexample::Program {
+        reference: program,
+        compiled,
+        assumptions: &[],
+        shared: None,
+    }
+    .model(&refs);
     let cycle = BigRational::new(cycle_us.into(), 1_000_000u64.into());
     let steps_of =
         |d: &ii_prove::term::Delay| (d.seconds() / &cycle).floor().to_integer().to_usize();

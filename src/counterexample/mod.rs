@@ -41,6 +41,7 @@
 #![warn(missing_docs)]
 
 pub mod aiger;
+pub mod shared;
 pub mod unroll;
 
 use std::collections::{BTreeMap, BTreeSet, HashMap, VecDeque};
@@ -68,6 +69,9 @@ pub struct Limits {
     pub max_steps: usize,
     /// At most this many scans in a candidate.
     pub max_scans: usize,
+    /// Candidates are confirmed as they are, not minimised first (a run already
+    /// minimised for another property).
+    pub minimised: bool,
 }
 
 /// Input values scan by scan.
@@ -171,6 +175,9 @@ pub struct Program<'a> {
     pub compiled: &'a CompiledProgram,
     /// The `assume` statements.
     pub assumptions: &'a [Axiom],
+    /// Where the confirmed counterexamples of the run's properties are kept for the
+    /// others ([`shared::refute_shared`]); `None` keeps none.
+    pub shared: Option<&'a shared::Shared>,
 }
 
 fn names_of(e: &Expr, into: &mut BTreeSet<String>) {
@@ -351,7 +358,12 @@ pub fn refute(program: &Program, goal: &Obligation, limits: Limits) -> Verdict {
                     .insert(name, v.iter().flat_map(|b| std::iter::repeat_n(*b, grid)).collect());
             }
             match judge(program, &model, goal, trace, &cycle, limits) {
-                Ok(Judged::Both(c)) => return Verdict::Refuted(c),
+                Ok(Judged::Both(c)) => {
+                    if let Some(shared) = program.shared {
+                        shared.keep(program, goal, &c);
+                    }
+                    return Verdict::Refuted(c);
+                }
                 Ok(Judged::ExactOnly(c, why)) => {
                     if unconfirmed.is_none() {
                         unconfirmed = Some((c, why));
@@ -697,6 +709,10 @@ fn judge(
 ) -> Result<Judged, String> {
     let v = discrete_violation(model, goal, &trace).ok_or("no violation scan by scan")?;
     trace.truncate(v + 1);
+    if limits.minimised {
+        let simulated = simulate(program, model, goal, &trace);
+        return confirmed(program, model, goal, trace, v, simulated);
+    }
     // The simulator runs the whole program: the trace is minimised on the cone's
     // equations, and the simulator asked about the result. Only when it shows the
     // violation on the candidate but not on the minimised trace is the minimisation
@@ -716,6 +732,20 @@ fn judge(
         trace.truncate(v + 1);
         simulated = simulate(program, model, goal, &trace);
     }
+    let _ = cycle;
+    confirmed(program, model, goal, trace, v, simulated)
+}
+
+/// The two confirmations of a trace that violates the goal at scan `v` (0-based),
+/// given the scan simulator's run on it.
+fn confirmed(
+    program: &Program,
+    model: &Model,
+    goal: &Obligation,
+    trace: ScanTrace,
+    v: usize,
+    simulated: Result<(Option<usize>, Values), String>,
+) -> Result<Judged, String> {
     let run = run_scans(model, goal, &trace)?;
     let (assignment, lhs, rhs) = exact(model, goal, &trace, &run, v)?;
     if !hypotheses_hold(program, &assignment, &trace) {
@@ -728,7 +758,6 @@ fn judge(
         .filter(|(_, k)| k.is_input())
         .map(|(n, _)| n.clone())
         .collect();
-    let _ = cycle;
     let mut cex = Counterexample {
         time: trace.instant(v),
         scan: v + 1,

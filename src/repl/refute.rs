@@ -39,7 +39,12 @@ impl SearchKit {
         let program = match (&self.program, &self.reference) {
             (Some(compiled), Some(reference)) => {
                 let reference = reference.as_ref();
-                Some(counterexample::Program { reference, compiled, assumptions: &self.assumed })
+                Some(counterexample::Program {
+                    reference,
+                    compiled,
+                    assumptions: &self.assumed,
+                    shared: None,
+                })
             }
             _ => None,
         };

@@ -98,6 +98,7 @@ pub fn export_aiger(
         reference: loaded.reference.as_ref(),
         compiled,
         assumptions: &all,
+        shared: None,
     };
     let sides: Vec<&Expr> = properties.iter().flat_map(|p| [&p.lhs, &p.rhs]).collect();
     let model = Model { constraints: Vec::new(), ..session.model(&sides) };

@@ -451,8 +451,12 @@ pub fn run_equiv_with(
         state_pairs.retain(|(x, _)| !proved.contains(x));
         ctx = context(&lemmas)?;
     }
-    let session =
-        counterexample::Program { reference: &reference, compiled: &compiled, assumptions: &[] };
+    let session = counterexample::Program {
+        reference: &reference,
+        compiled: &compiled,
+        assumptions: &[],
+        shared: None,
+    };
     // Each output's statement stands where the first program writes it.
     let a_file = a.compiled.hypotheses.first().map_or(0, |h| h.span.file);
     let statements: Vec<crate::syntax::Statement<Goal>> = output_pairs
@@ -760,7 +764,12 @@ fn search_on_simulators(
             v.truncate(k + 1);
         }
         let trace = counterexample::ScanTrace { cycle: cycle.clone(), scans: k + 1, values };
-        let limits = counterexample::Limits { deadline, max_steps: 200, max_scans: 100_000 };
+        let limits = counterexample::Limits {
+            deadline,
+            max_steps: 200,
+            max_scans: 100_000,
+            minimised: false,
+        };
         if let counterexample::Verdict::Refuted(c) =
             counterexample::confirm(session, goal, trace, limits)
         {

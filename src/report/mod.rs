@@ -188,14 +188,26 @@ fn check_selected(
     doc: &Document,
     selection: &Selection,
     jobs: usize,
+    program: Option<&crate::ladder::CompiledProgram>,
     check: impl Fn(&crate::syntax::Statement<Goal>) -> PropertyReport + Sync,
     observer: &mut dyn Observer,
     properties: &mut Vec<PropertyReport>,
 ) {
     let selected: Vec<&crate::syntax::Statement<Goal>> =
         doc.properties.iter().filter(|s| selection.selects(&s.name)).collect();
-    in_order(
+    // About a program, the deepest properties first: their counterexamples, shared,
+    // refute shallower properties without a search of their own.
+    let order = match program {
+        Some(compiled) => {
+            let sides: Vec<[&Expr; 2]> =
+                selected.iter().map(|s| [&s.value.lhs, &s.value.rhs]).collect();
+            counterexample::shared::deepest_first(compiled, &sides)
+        }
+        None => (0..selected.len()).collect(),
+    };
+    in_order_by(
         &selected,
+        &order,
         jobs,
         |s| check(s),
         |event| match event {
@@ -229,13 +241,40 @@ fn in_order<T: Sync, R: Send>(
     items: &[T],
     jobs: usize,
     work: impl Fn(&T) -> R + Sync,
+    emit: impl FnMut(InOrder<R>),
+) {
+    let order: Vec<usize> = (0..items.len()).collect();
+    in_order_by(items, &order, jobs, work, emit);
+}
+
+/// [`in_order`], with the work started in the order of `order` (a permutation of the
+/// items' positions); the results are still handed to `emit` in the order of `items`.
+fn in_order_by<T: Sync, R: Send>(
+    items: &[T],
+    order: &[usize],
+    jobs: usize,
+    work: impl Fn(&T) -> R + Sync,
     mut emit: impl FnMut(InOrder<R>),
 ) {
     let jobs = jobs.clamp(1, items.len().max(1));
+    let mut waiting = std::collections::BTreeMap::new();
+    let mut due = 0;
+    let mut deliver = |i: usize, result: R, emit: &mut dyn FnMut(InOrder<R>)| {
+        waiting.insert(i, result);
+        while let Some(result) = waiting.remove(&due) {
+            emit(InOrder::Done(result));
+            due += 1;
+            if due < items.len() {
+                emit(InOrder::Next);
+            }
+        }
+    };
+    if !items.is_empty() {
+        emit(InOrder::Next);
+    }
     if jobs == 1 {
-        for item in items {
-            emit(InOrder::Next);
-            emit(InOrder::Done(work(item)));
+        for &i in order {
+            deliver(i, work(&items[i]), &mut emit);
         }
         return;
     }
@@ -247,29 +286,17 @@ fn in_order<T: Sync, R: Send>(
             let (next, work) = (&next, &work);
             scope.spawn(move || {
                 loop {
-                    let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                    let Some(item) = items.get(i) else { break };
-                    if send.send((i, work(item))).is_err() {
+                    let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                    let Some(&i) = order.get(k) else { break };
+                    if send.send((i, work(&items[i]))).is_err() {
                         break;
                     }
                 }
             });
         }
         drop(send);
-        let mut waiting = std::collections::BTreeMap::new();
-        let mut due = 0;
-        if !items.is_empty() {
-            emit(InOrder::Next);
-        }
         for (i, result) in receive {
-            waiting.insert(i, result);
-            while let Some(result) = waiting.remove(&due) {
-                emit(InOrder::Done(result));
-                due += 1;
-                if due < items.len() {
-                    emit(InOrder::Next);
-                }
-            }
+            deliver(i, result, &mut emit);
         }
     });
 }
@@ -443,7 +470,7 @@ pub fn run_free_with(
             });
             report
         };
-        check_selected(doc, &selection, opts.jobs, check, observer, &mut properties);
+        check_selected(doc, &selection, opts.jobs, None, check, observer, &mut properties);
     }
     Ok(finish(None, paths.to_vec(), warnings, properties))
 }
@@ -497,10 +524,13 @@ pub fn run_program_with(
         let mut ctx = Context::with_scans(theory.axioms(), hypotheses, Some(compiled.scan_cycle()))
             .map_err(|e| InputError { rendered: format!("error: {path}: {e}\n") })?;
         ctx.hints = compiled.bound_hints();
+        // The file's properties share their confirmed counterexamples.
+        let shared = counterexample::shared::Shared::default();
         let session = counterexample::Program {
             reference: loaded.reference.as_ref(),
             compiled,
             assumptions: &assumed,
+            shared: Some(&shared),
         };
         // Consistency: an `assume` that no run of the program satisfies makes every
         // property hold vacuously.
@@ -537,7 +567,15 @@ pub fn run_program_with(
             });
             report
         };
-        check_selected(doc, &selection, opts.jobs, check, observer, &mut properties);
+        check_selected(
+            doc,
+            &selection,
+            opts.jobs,
+            Some(compiled),
+            check,
+            observer,
+            &mut properties,
+        );
     }
     let mut report = finish(Some(program.to_string()), paths, warnings, properties);
     report.timers = Some(opts.timers.as_str());

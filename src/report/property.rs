@@ -46,6 +46,14 @@ pub fn attempt(
     program: Option<&counterexample::Program>,
 ) -> Attempt {
     let started = Instant::now();
+    // A run that refuted another property of the program may refute this one too.
+    if let Some(session) = program {
+        let deadline = started + FIRST_LOOK.min(opts.timeout);
+        let limits = Limits { deadline, max_steps: 200, max_scans: 100_000, minimised: false };
+        if let Some(c) = counterexample::shared::refute_shared(session, goal, limits) {
+            return Attempt::Refuted(program_counterexample(session, goal, &c, opts, rename));
+        }
+    }
     let style = trace::Style { notation: opts.notation(), rename };
     // `--timeout` bounds the whole property: the proof search gets most of it, the
     // counterexample search the rest.
@@ -273,7 +281,7 @@ fn search_counterexample(
     deadline: Instant,
 ) -> Search {
     if let Some(session) = program {
-        let limits = Limits { deadline, max_steps: 200, max_scans: 100_000 };
+        let limits = Limits { deadline, max_steps: 200, max_scans: 100_000, minimised: false };
         return match counterexample::refute(session, goal, limits) {
             Verdict::Refuted(c) => {
                 Search::Refuted(program_counterexample(session, goal, &c, opts, rename))

@@ -1,0 +1,344 @@
+//! Counterexamples shared between the properties of one run: a confirmed run that also
+//! violates another property refutes it without a proof attempt or a new search.
+//!
+//! A confirmed counterexample's inputs are run, scan by scan, through the equations
+//! that read (through any chain of equations) an input it sets; every other signal
+//! keeps its value in the program's run with every input at 0. A later
+//! property is evaluated on them; if it fails at some scan, the run's inputs, kept to
+//! those the property's own cone reads and cut after that scan, go through the same
+//! confirmation as any candidate ([`judge`]: minimised, every hypothesis of the cone
+//! checked exactly, the violation shown by the scan simulator). The store only
+//! proposes candidates: nothing in it is trusted.
+//!
+//! Which properties a run can refute depends on the order they are checked in: a
+//! property whose cone is deep (its signals computed from long chains of rungs) has
+//! counterexamples that set more of the program in motion, so [`deepest_first`] orders
+//! the properties.
+
+use std::collections::{BTreeMap, BTreeSet, HashMap, VecDeque};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex, OnceLock};
+
+use super::unroll::{Concrete, Model, unroll, violated};
+use super::{Counterexample, Judged, Limits, Program, ScanTrace, judge, names_of, scans_of};
+use crate::ladder::CompiledProgram;
+use crate::prover::Obligation;
+use crate::term::{Expr, Symbol, Term};
+
+/// The confirmed counterexamples of a run, shared by the threads that check its
+/// properties.
+#[derive(Default)]
+pub struct Shared {
+    /// The most recent runs kept, oldest first.
+    runs: Mutex<VecDeque<Arc<Kept>>>,
+    /// The program's run with every input at 0, the longest needed so far.
+    quiet: Mutex<Option<Arc<Bits>>>,
+    /// Per name, the equations (positions in scan order) that read it (built at the
+    /// first run kept).
+    readers: OnceLock<HashMap<Symbol, Vec<usize>>>,
+    /// Per signal, how deep it is computed ([`depths`], built at the first run kept).
+    depth: OnceLock<HashMap<Symbol, usize>>,
+    /// How many properties looked for a kept run that refutes them, how many runs were
+    /// kept, and how many properties a kept run refuted.
+    checks: AtomicUsize,
+    kept: AtomicUsize,
+    hits: AtomicUsize,
+}
+
+/// Per signal, its value at each scan (bit `k` for scan `k + 1`).
+struct Bits {
+    scans: usize,
+    values: HashMap<Symbol, u64>,
+}
+
+impl Bits {
+    fn of(signals: BTreeMap<String, Vec<bool>>, scans: usize) -> Bits {
+        let values = signals
+            .into_iter()
+            .map(|(n, v)| {
+                let bits = v.iter().enumerate().fold(0u64, |m, (k, b)| m | (u64::from(*b) << k));
+                (Symbol::from(n.as_str()), bits)
+            })
+            .collect();
+        Bits { scans, values }
+    }
+
+    fn at(&self, name: &Symbol, k: usize) -> Option<bool> {
+        self.values.get(name).map(|bits| bits >> k & 1 == 1)
+    }
+}
+
+/// A confirmed run: its inputs, and the signals that differ from the quiet run's
+/// (those that read, through any chain of equations, an input the run sets).
+struct Kept {
+    trace: ScanTrace,
+    moved: Bits,
+    quiet: Arc<Bits>,
+    /// The depth of the property it refuted.
+    depth: usize,
+    /// The check (by number) at which it was kept or last refuted a property.
+    used: AtomicUsize,
+}
+
+impl Kept {
+    fn value(&self, name: &str, k: usize) -> bool {
+        let symbol = Symbol::from(name);
+        self.moved
+            .at(&symbol, k)
+            .or_else(|| self.trace.values.get(name).and_then(|v| v.get(k)).copied())
+            .or_else(|| self.quiet.at(&symbol, k))
+            .unwrap_or(false)
+    }
+}
+
+/// At most this many runs are kept, the most recent.
+const MAX_RUNS: usize = 32;
+/// A kept run that refuted none of the last this many properties checked is dropped.
+const STALE: usize = 64;
+/// Runs kept before any has refuted a property; after them, one more per property
+/// refuted from a kept run.
+const FREE_KEEPS: usize = 8;
+/// Runs longer than this many scans are not kept (a bit mask per signal).
+const MAX_SCANS: usize = 64;
+
+impl Shared {
+    /// Keeps a confirmed counterexample of `goal` for the properties checked after it:
+    /// the equations that read what the run sets, run on its inputs (the others keep the
+    /// quiet run's values). Keeping costs a run of that part of the program, so a run is
+    /// kept only when its property is at least as deep as those of the runs kept (the
+    /// deepest set the most in motion), after the runs that refuted none of the last
+    /// [`STALE`] properties checked are dropped, and only while the kept runs pay for
+    /// themselves ([`FREE_KEEPS`] plus one per property they refuted).
+    pub fn keep(&self, program: &Program, goal: &Obligation, c: &Counterexample) {
+        let trace = &c.trace;
+        let paid = FREE_KEEPS + self.hits.load(Ordering::Relaxed);
+        if trace.scans > MAX_SCANS || self.kept.load(Ordering::Relaxed) >= paid {
+            return;
+        }
+        let depth = self.depth.get_or_init(|| depths(program.compiled));
+        let depth = [&goal.lhs, &goal.rhs].iter().map(|e| deepest(e, depth)).max().unwrap_or(0);
+        let now = self.checks.load(Ordering::Relaxed);
+        {
+            let Ok(mut runs) = self.runs.lock() else { return };
+            runs.retain(|r| now.saturating_sub(r.used.load(Ordering::Relaxed)) < STALE);
+            if runs.iter().any(|r| r.depth > depth) {
+                return;
+            }
+        }
+        self.kept.fetch_add(1, Ordering::Relaxed);
+        let Some(quiet) = self.quiet(program, trace) else { return };
+        let index = program.compiled.equation_index();
+        let readers = self.readers.get_or_init(|| {
+            let position: HashMap<usize, usize> =
+                index.equations.iter().enumerate().map(|(p, (_, h))| (*h, p)).collect();
+            index
+                .mentioning
+                .iter()
+                .map(|(n, hs)| (*n, hs.iter().filter_map(|h| position.get(h).copied()).collect()))
+                .collect()
+        });
+        // The equations that read, through any chain, an input the run sets.
+        let mut moved = BTreeSet::new();
+        let mut pending: Vec<Symbol> = trace
+            .values
+            .iter()
+            .filter(|(_, v)| v.contains(&true))
+            .map(|(n, _)| Symbol::from(n.as_str()))
+            .collect();
+        while let Some(n) = pending.pop() {
+            for &p in readers.get(&n).map_or(&[][..], Vec::as_slice) {
+                if moved.insert(p) {
+                    pending.push(Symbol::from(index.equations[p].0.as_str()));
+                }
+            }
+        }
+        let model = Model {
+            defs: moved
+                .into_iter()
+                .map(|p| {
+                    let (n, h) = &index.equations[p];
+                    (n.clone(), program.compiled.hypotheses[*h].rhs.clone())
+                })
+                .collect(),
+            constraints: Vec::new(),
+        };
+        let cycle = trace.cycle.clone();
+        let Ok(run) = unroll(
+            &mut Concrete,
+            &model,
+            &[],
+            trace.scans,
+            &|d| scans_of(d, &cycle),
+            &mut |_, name, k| match trace.values.get(name) {
+                Some(v) => v.get(k).copied().unwrap_or(false),
+                None => quiet.at(&Symbol::from(name), k).unwrap_or(false),
+            },
+        ) else {
+            return;
+        };
+        let kept = Kept {
+            trace: trace.clone(),
+            moved: Bits::of(run.signals, trace.scans),
+            quiet,
+            depth,
+            used: AtomicUsize::new(now),
+        };
+        if let Ok(mut runs) = self.runs.lock() {
+            if runs.len() == MAX_RUNS {
+                runs.pop_front();
+            }
+            runs.push_back(Arc::new(kept));
+        }
+    }
+
+    /// The program's run with every input at 0, at least as long as `trace`.
+    fn quiet(&self, program: &Program, trace: &ScanTrace) -> Option<Arc<Bits>> {
+        let mut quiet = self.quiet.lock().ok()?;
+        if let Some(q) = quiet.as_ref().filter(|q| q.scans >= trace.scans) {
+            return Some(q.clone());
+        }
+        let scans = trace.scans.max(quiet.as_ref().map_or(0, |q| 2 * q.scans)).min(MAX_SCANS);
+        let whole = Model {
+            defs: super::equations(program.compiled)
+                .into_iter()
+                .map(|(n, e)| (n, e.clone()))
+                .collect(),
+            constraints: Vec::new(),
+        };
+        let cycle = trace.cycle.clone();
+        let run =
+            unroll(&mut Concrete, &whole, &[], scans, &|d| scans_of(d, &cycle), &mut |_, _, _| {
+                false
+            })
+            .ok()?;
+        let q = Arc::new(Bits::of(run.signals, scans));
+        *quiet = Some(q.clone());
+        Some(q)
+    }
+}
+
+/// A counterexample of `goal` confirmed from a run kept in `program.shared`, if one of
+/// them violates it.
+pub fn refute_shared(
+    program: &Program,
+    goal: &Obligation,
+    limits: Limits,
+) -> Option<Box<Counterexample>> {
+    let shared = program.shared?;
+    let now = shared.checks.fetch_add(1, Ordering::Relaxed) + 1;
+    let runs: Vec<Arc<Kept>> = shared.runs.lock().ok()?.iter().rev().cloned().collect();
+    let cycle = program.cycle()?;
+    let mut cone = None;
+    for kept in runs {
+        let Some(v) = violated_at(goal, &kept) else { continue };
+        let model = cone.get_or_insert_with(|| program.model(&[&goal.lhs, &goal.rhs]));
+        // The names the property's cone leaves free: the inputs its run may set.
+        let defined: BTreeSet<&str> = model.defs.iter().map(|(n, _)| n.as_str()).collect();
+        let mut read = BTreeSet::new();
+        names_of(&goal.lhs, &mut read);
+        names_of(&goal.rhs, &mut read);
+        for e in model.defs.iter().map(|(_, e)| e) {
+            names_of(e, &mut read);
+        }
+        for (l, _, r) in &model.constraints {
+            names_of(l, &mut read);
+            names_of(r, &mut read);
+        }
+        let mut trace = kept.trace.clone();
+        trace.values.retain(|n, _| read.contains(n) && !defined.contains(n.as_str()));
+        trace.truncate(v + 1);
+        let limits = Limits { minimised: true, ..limits };
+        if let Ok(Judged::Both(found)) = judge(program, model, goal, trace, &cycle, limits) {
+            kept.used.store(now, Ordering::Relaxed);
+            shared.hits.fetch_add(1, Ordering::Relaxed);
+            return Some(found);
+        }
+    }
+    None
+}
+
+/// The first scan (0-based) at which the goal fails on a kept run.
+fn violated_at(goal: &Obligation, kept: &Kept) -> Option<usize> {
+    let trace = &kept.trace;
+    let cycle = trace.cycle.clone();
+    let bare = Model { defs: Vec::new(), constraints: Vec::new() };
+    let run = unroll(
+        &mut Concrete,
+        &bare,
+        &[&goal.lhs, &goal.rhs],
+        trace.scans,
+        &|d| scans_of(d, &cycle),
+        &mut |_, name, k| kept.value(name, k),
+    )
+    .ok()?;
+    let (l, r) = (run.extra.first()?, run.extra.get(1)?);
+    (0..trace.scans).find(|&k| violated(&mut Concrete, goal.rel, &l[k], &r[k]))
+}
+
+/// The order to check properties in: within each window of [`WINDOW`] properties (in
+/// file order), the deepest first. A property's depth is the longest chain of
+/// equations, in scan order, from an input to a signal it reads (a read of a signal
+/// computed later in the scan, the previous scan's value, adds nothing). The
+/// counterexamples of the deepest, shared, can refute the shallower ones. The window
+/// bounds how many results wait for an earlier one to be reported (they are reported
+/// in file order); properties of the same depth keep their order.
+pub fn deepest_first(compiled: &CompiledProgram, goals: &[[&Expr; 2]]) -> Vec<usize> {
+    let depth = depths(compiled);
+    let of: Vec<usize> = goals
+        .iter()
+        .map(|sides| sides.iter().map(|e| deepest(e, &depth)).max().unwrap_or(0))
+        .collect();
+    let mut order: Vec<usize> = (0..goals.len()).collect();
+    for window in order.chunks_mut(WINDOW) {
+        window.sort_by_key(|&i| std::cmp::Reverse(of[i]));
+    }
+    order
+}
+
+/// Per defined signal, the longest chain of equations, in scan order, from an input to
+/// it (inputs and signals read before they are computed count 0).
+fn depths(compiled: &CompiledProgram) -> HashMap<Symbol, usize> {
+    let index = compiled.equation_index();
+    let mut depth: HashMap<Symbol, usize> = HashMap::new();
+    for (name, h) in &index.equations {
+        let d = deepest(&compiled.hypotheses[*h].rhs, &depth) + 1;
+        let slot = depth.entry(Symbol::from(name.as_str())).or_insert(0);
+        *slot = (*slot).max(d);
+    }
+    depth
+}
+
+/// The depth of the deepest signal `e` reads.
+fn deepest(e: &Expr, depth: &HashMap<Symbol, usize>) -> usize {
+    e.as_ref()
+        .iter()
+        .filter_map(|node| match node {
+            Term::Name(n) => depth.get(n).copied(),
+            _ => None,
+        })
+        .max()
+        .unwrap_or(0)
+}
+
+/// How many properties [`deepest_first`] reorders at once.
+const WINDOW: usize = 256;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A chain of three rungs: `b` reads `a`, `c` reads `b`.
+    const CHAIN: &str = "LDmicro0.1\nCYCLE=10000\n\nIO LIST\n    Xa at 0\n    Yb at 0\n    Yc at 0\n    Yd at 0\nEND\n\nPROGRAM\nRUNG\n    CONTACTS Xa 0\n    COIL Yb 0 0 0\nEND\nRUNG\n    CONTACTS Yb 0\n    COIL Yc 0 0 0\nEND\nRUNG\n    CONTACTS Yc 0\n    CONTACTS Yd 0\n    COIL Yd 0 0 0\nEND\n";
+
+    #[test]
+    fn the_deepest_property_comes_first_and_ties_keep_their_order() {
+        let mut sources = crate::diag::Sources::new();
+        let file = sources.add("chain.ld", CHAIN.to_string());
+        let program = crate::ladder::read_ldmicro(&sources, file).expect("parses");
+        let compiled = crate::ladder::compile(&program).expect("compiles");
+        let name = |n: &str| crate::term::name(n);
+        let (a, b, c) = (name("Xa"), name("Yb"), name("Yc"));
+        let goals = [[&a, &a], [&c, &a], [&b, &a], [&b, &b]];
+        assert_eq!(deepest_first(&compiled, &goals), vec![1, 2, 3, 0]);
+    }
+}
