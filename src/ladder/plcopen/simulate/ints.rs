@@ -57,11 +57,17 @@ fn function(b: &IntBlock, args: Vec<(String, Val)>, get: impl Fn(&str) -> bool) 
     let vals: Vec<(String, i64, Option<CType>)> =
         args.into_iter().map(|(n, v)| v.map(|(x, t)| (n, x, t))).collect::<Option<_>>()?;
     if let IntBlock::Convert(from, to) = b {
-        let (Some(f), Some(t), [(_, x, _)]) = (CType::of(from), CType::of(to), vals.as_slice())
-        else {
-            return None;
+        // `__convert_type`: `(to) __move_to(op)`, the argument a value of `from` (a BOOL
+        // is 0 or 1); `__convert_num_to_bool`: `op == 0 ? 0 : 1`.
+        let x: i128 = match (from.as_str(), vals.as_slice()) {
+            ("BOOL", []) => get("IN").into(),
+            (from, [(_, x, _)]) => CType::of(from)?.store((*x).into()).into(),
+            _ => return None,
         };
-        return Some(Out::Int(f.store((*x).into()).into(), t));
+        if to == "BOOL" {
+            return Some(Out::Bool(x != 0));
+        }
+        return Some(Out::Int(x, CType::of(to)?));
     }
     let types: Vec<CType> = vals.iter().filter_map(|(_, _, t)| *t).collect();
     let &ct = types.first()?;
