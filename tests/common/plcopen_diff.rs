@@ -17,6 +17,9 @@ use ii_prove::term::Term;
 
 // ---------------------------------------------------------------- program generator
 
+#[path = "plcopen_conv.rs"]
+mod conv;
+
 const INPUTS: &[&str] = &["In0", "In1", "In2", "In3"];
 const BITS: &[&str] = &["B0", "B1", "B2", "Q0", "Q1"];
 /// Declared, never written: stays FALSE.
@@ -59,11 +62,8 @@ const INT_BLOCKS: &[&str] = &[
     "CONV",
     "AND",
     "DIVS",
+    "MUX",
 ];
-
-/// The types an integer goes through and back in a `CONV` draw (`INT_TO_X`, then
-/// `X_TO_INT` or `X_TO_BOOL`): narrower ones wrap, unsigned ones wrap negatives.
-const CONV_TYPES: &[&str] = &["SINT", "USINT", "BYTE", "UINT", "WORD", "DINT", "UDINT", "DWORD"];
 
 /// The user function block programs may instantiate: inputs `IN0`, `IN1`, outputs
 /// `OUT0`, `OUT1`, a local `L0`.
@@ -317,6 +317,10 @@ impl Gen {
                 "LIMIT" => vec!["MN", "IN", "MX"],
                 "ABS" | "MOVE" | "SINT_TO_INT" => vec!["IN"],
                 "SEL" => vec!["G", "IN0", "IN1"],
+                // K from the network's integers: an input's small values, negative ones
+                // and ones past the inputs among them.
+                "MUX" if self.rng.chance(40) => vec!["K", "IN0", "IN1", "IN2"],
+                "MUX" => vec!["K", "IN0", "IN1"],
                 _ if extensible && self.rng.chance(25) => vec!["IN1", "IN2", "IN3"],
                 _ => vec!["IN1", "IN2"],
             };
@@ -431,86 +435,6 @@ impl Gen {
         )
         .unwrap();
         self.y += 100;
-    }
-
-    /// A one-input block `ty` (`IN` from `src`, with the modifier `m`): its id.
-    fn unary(&mut self, ty: &str, src: (u64, Option<&'static str>), m: &str) -> u64 {
-        let id = self.nid();
-        let (p, o) = (self.pos(400), self.order(true));
-        writeln!(
-            self.body,
-            r#"<block localId="{id}" typeName="{ty}"{o}>{p}<inputVariables><variable formalParameter="IN"{m}>{}</variable></inputVariables><inOutVariables/><outputVariables><variable formalParameter="OUT"><connectionPointOut/></variable></outputVariables></block>"#,
-            Gen::conn(&[src])
-        )
-        .unwrap();
-        id
-    }
-
-    /// The draws of [`INT_BLOCKS`] between BOOL and integers and between integer types
-    /// (`false` for the others): `BOOL_TO_INT` of a Boolean (negated pins, comparisons,
-    /// ANDs), `INT_TO_BOOL`, an AND of Booleans, a round trip through another integer
-    /// type (`CONV`), a SINT division or remainder by a SINT (`DIVS`).
-    fn conversion(
-        &mut self,
-        ty: &str,
-        ints: &mut Vec<(u64, Option<&'static str>)>,
-        bools: &mut Vec<(u64, Option<&'static str>)>,
-    ) -> bool {
-        let negated = |g: &mut Gen| if g.rng.chance(40) { r#" negated="true""# } else { "" };
-        match ty {
-            "BOOL_TO_INT" => {
-                let (src, m) = (*self.rng.pick(bools), negated(self));
-                ints.push((self.unary(ty, src, m), Some("OUT")));
-            }
-            "INT_TO_BOOL" => {
-                let src = *self.rng.pick(ints);
-                bools.push((self.unary(ty, src, ""), Some("OUT")));
-            }
-            "AND" => {
-                let id = self.nid();
-                let (p, o) = (self.pos(200), self.order(true));
-                let mut ins = String::new();
-                for pin in ["IN1", "IN2"] {
-                    let (src, m) = (*self.rng.pick(bools), negated(self));
-                    let c = Gen::conn(&[src]);
-                    write!(ins, r#"<variable formalParameter="{pin}"{m}>{c}</variable>"#).unwrap();
-                }
-                writeln!(
-                    self.body,
-                    r#"<block localId="{id}" typeName="AND"{o}>{p}<inputVariables>{ins}</inputVariables><inOutVariables/><outputVariables><variable formalParameter="OUT"><connectionPointOut/></variable></outputVariables></block>"#
-                )
-                .unwrap();
-                bools.push((id, Some("OUT")));
-            }
-            "CONV" => {
-                let x = *self.rng.pick(CONV_TYPES);
-                let src = *self.rng.pick(ints);
-                let there = (self.unary(&format!("INT_TO_{x}"), src, ""), Some("OUT"));
-                if self.rng.chance(30) {
-                    bools.push((self.unary(&format!("{x}_TO_BOOL"), there, ""), Some("OUT")));
-                } else {
-                    ints.push((self.unary(&format!("{x}_TO_INT"), there, ""), Some("OUT")));
-                }
-            }
-            "DIVS" => {
-                let op = if self.rng.chance(50) { "DIV" } else { "MOD" };
-                let a = (self.in_var(SINT_VAR, true), None);
-                let src = *self.rng.pick(ints);
-                let d = (self.unary("INT_TO_SINT", src, ""), Some("OUT"));
-                let id = self.nid();
-                let (p, o) = (self.pos(200), self.order(true));
-                writeln!(
-                    self.body,
-                    r#"<block localId="{id}" typeName="{op}"{o}>{p}<inputVariables><variable formalParameter="IN1">{}</variable><variable formalParameter="IN2">{}</variable></inputVariables><inOutVariables/><outputVariables><variable formalParameter="OUT"><connectionPointOut/></variable></outputVariables></block>"#,
-                    Gen::conn(&[a]),
-                    Gen::conn(&[d])
-                )
-                .unwrap();
-                ints.push((self.unary("SINT_TO_INT", (id, Some("OUT")), ""), Some("OUT")));
-            }
-            _ => return false,
-        }
-        true
     }
 
     fn ld_rung(&mut self) {

@@ -38,6 +38,8 @@ pub enum IntBlock {
     Move,
     /// `SEL(G, IN0, IN1)` of integers.
     Sel,
+    /// `MUX(K, IN0, IN1, …)` of integers (`K` an integer of its own type).
+    Mux,
     /// `FROM_TO_TO` between two integer types (upper-case names).
     Convert(String, String),
     /// `CTU`, `CTD`, `CTUD` and their typed variants (the type name).
@@ -67,6 +69,7 @@ impl IntBlock {
             "ABS" => IntBlock::Abs,
             "MOVE" => IntBlock::Move,
             "SEL" => IntBlock::Sel,
+            "MUX" => IntBlock::Mux,
             t if matches!(t.split('_').next(), Some("CTU" | "CTD" | "CTUD")) => {
                 IntBlock::Counter(upper.clone())
             }
@@ -205,7 +208,7 @@ impl PlcProgram {
         let carries = |pin: &str| self.pin(k, pin).is_some_and(|p| self.carries_int(p, depth));
         match &b {
             IntBlock::Move if !carries("IN") => None,
-            IntBlock::Sel if !carries("IN0") && !carries("IN1") => None,
+            IntBlock::Sel | IntBlock::Mux if !carries("IN0") && !carries("IN1") => None,
             _ => Some(b),
         }
     }

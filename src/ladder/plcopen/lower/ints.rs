@@ -58,6 +58,46 @@ fn divisor_not_zero(keyword: &str, ints: &[(String, IntVal)], span: Span) -> Boo
     }
 }
 
+/// A computed argument of a function: its pin, value and type (`None`: a literal).
+type Arg<'a> = (&'a str, IntExpr, Option<IntType>);
+
+/// `MUX`'s `K` (a value of its type: a literal's is `DINT`) and its data inputs `IN0`,
+/// `IN1`, … in the order of their numbers, as matiec's `MUX__…` takes them.
+#[allow(clippy::type_complexity)]
+fn mux_args(vals: &[Arg]) -> Result<(IntExpr, IntType, Vec<(IntExpr, Option<IntType>)>), String> {
+    let (_, k, kt) = vals.iter().find(|(n, _, _)| *n == "K").ok_or("it has no input K")?;
+    let kt = kt.unwrap_or(IntType { bits: 32, signed: true });
+    let mut data = Vec::new();
+    for i in 0.. {
+        match vals.iter().find(|(n, _, _)| *n == format!("IN{i}")) {
+            Some((_, x, t)) => data.push((x.clone(), *t)),
+            None => break,
+        }
+    }
+    if data.len() + 1 != vals.len() {
+        return Err("its inputs are not K, IN0, IN1, …".into());
+    }
+    Ok((coerce(k.clone(), kt), kt, data))
+}
+
+/// Whether `MUX`'s `K` is below the number of its inputs, as matiec's `TEST_EN_COND(…, K
+/// >= param_count)` tests it (`K` in its own type against the `UINT` count: a negative
+/// `K` passes, and gives 0).
+fn k_in_range(keyword: &str, ints: &[(String, IntVal)], span: Span) -> BoolExpr {
+    let vals: Result<Vec<Arg>, String> =
+        ints.iter().map(|(n, v)| v.clone().map(|(e, t)| (n.as_str(), e, t))).collect();
+    match vals.and_then(|vals| mux_args(&vals).map(|(k, kt, data)| (k, kt, data.len()))) {
+        Ok((_, kt, n)) if n as i64 > kt.max() => BoolExpr::Const(true),
+        Ok((k, kt, n)) => {
+            BoolExpr::negate(library::compare(CmpOp::Ge, kt, k, IntExpr::Const(n as i64)))
+        }
+        Err(why) => {
+            let why = format!("the ENO of {keyword}, whose K is not computed: {why}");
+            fresh_because(keyword, why, span)
+        }
+    }
+}
+
 /// What a function gives: an integer of a type, or a BOOL.
 enum Value {
     Int(IntExpr, IntType),
@@ -69,12 +109,7 @@ enum Value {
 /// __move_to(op)`: the value converted as C converts it, sign- or zero-extended or
 /// wrapped; a BOOL is 0 or 1), `*_TO_BOOL` by `__convert_num_to_bool` (`op == 0 ? 0 :
 /// 1`). `input` is `IN` when it is a BOOL, `vals` the integer inputs.
-fn convert(
-    from: &str,
-    to: &str,
-    input: Option<BoolExpr>,
-    vals: &[(&str, IntExpr, Option<IntType>)],
-) -> Result<Value, String> {
+fn convert(from: &str, to: &str, input: Option<BoolExpr>, vals: &[Arg]) -> Result<Value, String> {
     let t = ConvType::of(to)?;
     match ConvType::of(from)? {
         ConvType::Bool => {
@@ -418,6 +453,7 @@ impl Lower<'_> {
         if let Some(eno) = p.hidden_name(k, "ENO").map(str::to_string) {
             let ok = match b {
                 IntBlock::Arith(Arith::Div) => divisor_not_zero(&upper, &ints, span),
+                IntBlock::Mux => k_in_range(&upper, &ints, span),
                 _ => BoolExpr::Const(true),
             };
             let value = enabled(ok);
@@ -436,13 +472,23 @@ impl Lower<'_> {
         bools: &BTreeMap<String, BoolExpr>,
         ints: &[(String, IntVal)],
     ) -> Result<Value, String> {
-        let mut vals: Vec<(&str, IntExpr, Option<IntType>)> = Vec::new();
+        let mut vals: Vec<Arg> = Vec::new();
         for (n, v) in ints {
             let (e, t) = v.clone().map_err(|why| format!("its input {n}: {why}"))?;
             vals.push((n, e, t));
         }
         if let IntBlock::Convert(from, to) = b {
             return convert(from, to, bools.get("IN").cloned(), &vals);
+        }
+        if *b == IntBlock::Mux {
+            let (k, kt, data) = mux_args(&vals)?;
+            let t = unify(data.iter().map(|(_, t)| t))?;
+            // `IN_i` for `K == i`, else the type's initial value 0.
+            let e = data.iter().enumerate().rev().fold(IntExpr::Const(0), |acc, (i, (x, _))| {
+                let at = library::compare(CmpOp::Eq, kt, k.clone(), IntExpr::Const(i as i64));
+                IntExpr::ite(at, coerce(x.clone(), t), acc)
+            });
+            return Ok(Value::Int(e, t));
         }
         let t = unify(vals.iter().map(|(_, _, t)| t))?;
         let args: Vec<IntExpr> = vals.iter().map(|(_, e, _)| coerce(e.clone(), t)).collect();
