@@ -225,7 +225,24 @@ impl Lower<'_> {
         }
         match self.ints.get(name) {
             Some(v) => Ok((IntExpr::var(name), Some(v.ty))),
-            None => Err(format!("{name} is not computed")),
+            None => Err(self.not_an_integer(name)),
+        }
+    }
+
+    /// Why the variable `name`, read where an integer is expected, is not computed: its
+    /// declared type when that is not an integer one (`REAL`, `STRING`, …).
+    fn not_an_integer(&self, name: &str) -> String {
+        let declared = self.p.vars.values().find(|v| v.name == name).map(|v| &v.ty);
+        match declared {
+            Some(crate::ladder::plcopen::Ty::Other(t) | crate::ladder::plcopen::Ty::Derived(t)) => {
+                // Beremiz's SVGHMI types are their base type (`HMI_REAL`).
+                let t = t.to_ascii_uppercase();
+                match ConvType::of(t.strip_prefix("HMI_").unwrap_or(&t)) {
+                    Err(why) => format!("{name} is not computed: {why}"),
+                    Ok(_) => format!("{name} is not computed"),
+                }
+            }
+            _ => format!("{name} is not computed"),
         }
     }
 
