@@ -100,50 +100,101 @@ pub fn mul(a: &[L], b: &[L], name: Namer) -> Bits {
 /// wrapped to the width of `a` (so `min / −1` is `min`), by restoring division of the
 /// magnitudes and the sign put back.
 pub fn div(a: &[L], k: i64, ty: IntType, name: Namer) -> Bits {
-    let (q, _, _) = divide(a, k, ty, name);
+    let (q, _, _) = divide(a, &Divisor::literal(k, a.len()), ty, name);
     q
 }
 
 /// `a % k` as C computes it (truncated division: the remainder takes the sign of `a`),
 /// for a value `a` of type `ty` and a literal `k ≠ 0`, in the width of `a`.
 pub fn rem(a: &[L], k: i64, ty: IntType, name: Namer) -> Bits {
-    let w = a.len();
-    let (_, r, negative) = divide(a, k, ty, name);
-    let r = resize(
-        r,
-        IntType { bits: (w + 2) as u32, signed: false },
-        IntType { bits: w as u32, signed: ty.signed },
-    );
+    let (_, r, negative) = divide(a, &Divisor::literal(k, a.len()), ty, name);
+    signed_rem(r, &negative, a.len(), name)
+}
+
+/// `a / b` for two values of type `ty`, truncated toward zero and wrapped (`min / −1` is
+/// `min`), and `0` when `b` is 0: a divider circuit (restoring division of the
+/// magnitudes, the sign put back), then the zero divisor masked.
+pub fn div_by(a: &[L], b: &[L], ty: IntType, name: Namer) -> Bits {
+    let d = Divisor::value(b, ty, name);
+    let (q, _, _) = divide(a, &d, ty, name);
+    unless_zero(q, b)
+}
+
+/// `a % b` for two values of type `ty` as C computes it (the remainder takes the sign of
+/// `a`), and `0` when `b` is 0.
+pub fn rem_by(a: &[L], b: &[L], ty: IntType, name: Namer) -> Bits {
+    let d = Divisor::value(b, ty, name);
+    let (_, r, negative) = divide(a, &d, ty, name);
+    unless_zero(signed_rem(r, &negative, a.len(), name), b)
+}
+
+/// `v`, or 0 where every bit of `b` is 0.
+fn unless_zero(v: Bits, b: &[L]) -> Bits {
+    let nonzero = simp(&L::Or(b.to_vec()));
+    v.iter().map(|x| simp(&x.clone().and(nonzero.clone()))).collect()
+}
+
+/// The remainder of magnitude `r` (in `w + 2` bits) in `w` bits, negated when the
+/// dividend is `negative`.
+fn signed_rem(r: Bits, negative: &L, w: usize, name: Namer) -> Bits {
+    let r: Bits = r[..w].to_vec();
     let minus_r = sub(&constant(0, w as u32), &r, name);
-    r.iter().zip(&minus_r).map(|(x, y)| mux(&negative, y, x)).collect()
+    r.iter().zip(&minus_r).map(|(x, y)| mux(negative, y, x)).collect()
+}
+
+/// A divisor of a dividend `w` bits wide: its magnitude in `w + 2` bits and whether it
+/// is negative.
+struct Divisor {
+    magnitude: Bits,
+    negative: L,
+}
+
+impl Divisor {
+    /// The literal `k`.
+    fn literal(k: i64, w: usize) -> Divisor {
+        let magnitude = constant(k.unsigned_abs() as i64, (w + 2) as u32);
+        Divisor { magnitude, negative: if k < 0 { L::One } else { L::Zero } }
+    }
+
+    /// The value `b` of type `ty` (`|min|` fits in `w + 2` bits).
+    fn value(b: &[L], ty: IntType, name: Namer) -> Divisor {
+        let (magnitude, negative) = magnitude(b, ty, b.len() + 2, name);
+        Divisor { magnitude, negative }
+    }
+}
+
+/// `|v|` for a value of type `ty`, in `width > ty.bits` bits, and whether `v` is negative.
+fn magnitude(v: &[L], ty: IntType, width: usize, name: Namer) -> (Bits, L) {
+    let negative = if ty.signed { v.last().cloned().unwrap_or(L::Zero) } else { L::Zero };
+    let ext = resize(v.to_vec(), ty, IntType { bits: width as u32, signed: ty.signed });
+    let minus = sub(&constant(0, width as u32), &ext, name);
+    let m = ext.iter().zip(&minus).map(|(x, y)| name(mux(&negative, y, x))).collect();
+    (m, negative)
 }
 
 /// The quotient (in the width of `a`), the remainder's magnitude (in `w + 2` bits) and
-/// whether `a` is negative, by restoring division of magnitudes.
-fn divide(a: &[L], k: i64, ty: IntType, name: Namer) -> (Bits, Bits, L) {
+/// whether `a` is negative, by restoring division of magnitudes (a divisor 0 gives a
+/// quotient of all ones, which the callers mask).
+fn divide(a: &[L], d: &Divisor, ty: IntType, name: Namer) -> (Bits, Bits, L) {
     let w = a.len();
-    // |a| in w + 1 bits (|min| fits there), the remainder in w + 2 (it stays below 2·|k|).
+    // |a| in w + 1 bits (|min| fits there), the remainder in w + 2 (it stays below 2·|d|).
     let (wide, rw) = (w + 1, w + 2);
-    let negative = if ty.signed { a.last().cloned().unwrap_or(L::Zero) } else { L::Zero };
-    let ext = resize(a.to_vec(), ty, IntType { bits: wide as u32, signed: ty.signed });
-    let minus = sub(&constant(0, wide as u32), &ext, name);
-    let magnitude: Bits = ext.iter().zip(&minus).map(|(x, y)| name(mux(&negative, y, x))).collect();
-    let d = constant(k.unsigned_abs() as i64, rw as u32);
+    let (magnitude, negative) = magnitude(a, ty, wide, name);
     let unsigned = IntType { bits: rw as u32, signed: false };
     let mut r = constant(0, rw as u32);
     let mut q = vec![L::Zero; wide];
     for i in (0..wide).rev() {
-        // r := 2·r + bit i of |a|; if r ≥ |k| then r := r − |k| and bit i of q is 1.
+        // r := 2·r + bit i of |a|; if r ≥ |d| then r := r − |d| and bit i of q is 1.
         let mut shifted = vec![magnitude[i].clone()];
         shifted.extend(r[..rw - 1].iter().cloned());
-        let fits = compare(CmpOp::Ge, unsigned, &shifted, &d, name);
+        let fits = compare(CmpOp::Ge, unsigned, &shifted, &d.magnitude, name);
         let fits = name(fits);
-        let less = sub(&shifted, &d, name);
+        let less = sub(&shifted, &d.magnitude, name);
         r = shifted.iter().zip(&less).map(|(x, y)| name(mux(&fits, y, x))).collect();
         q[i] = fits;
     }
     // The quotient is negative when exactly one side is.
-    let flip = if k < 0 { simp(&negative.clone().negate()) } else { negative.clone() };
+    let flip = name(xor(&negative, &d.negative));
     let minus_q = sub(&constant(0, wide as u32), &q, name);
     let q = q.iter().zip(&minus_q).take(w).map(|(x, y)| mux(&flip, y, x)).collect();
     (q, r, negative)
@@ -242,6 +293,145 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    /// A circuit's named terms, evaluated 64 input pairs at a time.
+    struct Circuit {
+        defs: Vec<L>,
+    }
+
+    impl Circuit {
+        fn namer(&mut self) -> impl FnMut(L) -> L + '_ {
+            |t: L| match t {
+                L::Zero | L::One | L::Var(_) => t,
+                t => {
+                    self.defs.push(t);
+                    L::var(&format!("t{}", self.defs.len() - 1))
+                }
+            }
+        }
+
+        /// The outputs' bits on lanes whose inputs `a{k}`/`b{k}` are the words given.
+        fn run(&self, a: &[u64], b: &[u64], outs: &[&Bits]) -> Vec<Vec<u64>> {
+            fn word(t: &L, a: &[u64], b: &[u64], defs: &[u64]) -> u64 {
+                match t {
+                    L::Zero => 0,
+                    L::One => !0,
+                    L::Var(n) => {
+                        let k: usize = n[1..].parse().unwrap();
+                        match &n[..1] {
+                            "a" => a[k],
+                            "b" => b[k],
+                            _ => defs[k],
+                        }
+                    }
+                    L::Not(x) => !word(x, a, b, defs),
+                    L::And(xs) => xs.iter().fold(!0, |acc, x| acc & word(x, a, b, defs)),
+                    L::Or(xs) => xs.iter().fold(0, |acc, x| acc | word(x, a, b, defs)),
+                    _ => panic!("not Boolean"),
+                }
+            }
+            let mut defs = Vec::with_capacity(self.defs.len());
+            for d in &self.defs {
+                let v = word(d, a, b, &defs);
+                defs.push(v);
+            }
+            outs.iter().map(|o| o.iter().map(|t| word(t, a, b, &defs)).collect()).collect()
+        }
+    }
+
+    /// `a / b` and `a % b` by variables of type `ty`, as circuits.
+    fn divider(ty: IntType) -> (Circuit, Bits, Bits) {
+        let mut c = Circuit { defs: Vec::new() };
+        let (a, b) = (vars("a", ty.bits), vars("b", ty.bits));
+        let q = div_by(&a, &b, ty, &mut c.namer());
+        let r = rem_by(&a, &b, ty, &mut c.namer());
+        (c, q, r)
+    }
+
+    /// matiec's `DIV`/`MOD` of two values of `ty` (read as `i64`): Rust's checked
+    /// division, 0 for a divisor 0, and the wrapped `min / −1`.
+    fn expected(ty: IntType, x: i64, y: i64) -> (i64, i64) {
+        macro_rules! checked {
+            ($t:ty) => {{
+                let (x, y) = (x as $t, y as $t);
+                let q = x.checked_div(y).unwrap_or(if y == 0 { 0 } else { x.wrapping_div(y) });
+                let r = x.checked_rem(y).unwrap_or(if y == 0 { 0 } else { x.wrapping_rem(y) });
+                (q as i64, r as i64)
+            }};
+        }
+        match (ty.bits, ty.signed) {
+            (8, true) => checked!(i8),
+            (8, false) => checked!(u8),
+            (16, true) => checked!(i16),
+            (16, false) => checked!(u16),
+            (32, true) => checked!(i32),
+            _ => checked!(u32),
+        }
+    }
+
+    /// Reads lane `l` of the output words as a value of `ty`.
+    fn lane(words: &[u64], l: usize, ty: IntType) -> i64 {
+        let bits: Vec<bool> = words.iter().map(|w| w >> l & 1 == 1).collect();
+        value_of(&bits, ty)
+    }
+
+    /// Division and remainder by a variable, on every pair of 8-bit values, signed and
+    /// unsigned, bit-exactly against Rust's `checked_div`/`checked_rem` (0 for a divisor 0).
+    #[test]
+    fn eight_bit_division_by_a_variable_is_exact() {
+        for signed in [false, true] {
+            let ty = IntType { bits: 8, signed };
+            let (c, q, r) = divider(ty);
+            for chunk in 0..(65536 / 64) {
+                let pair = |l: usize| (chunk * 64 + l) as i64;
+                let bit = |v: &dyn Fn(i64) -> i64, k: usize| {
+                    (0..64).fold(0u64, |acc, l| acc | (((v(pair(l)) >> k) & 1) as u64) << l)
+                };
+                let a: Vec<u64> = (0..8).map(|k| bit(&|p| p >> 8, k)).collect();
+                let b: Vec<u64> = (0..8).map(|k| bit(&|p| p & 255, k)).collect();
+                let out = c.run(&a, &b, &[&q, &r]);
+                for l in 0..64 {
+                    let (x, y) = (ty.wrap(pair(l) >> 8), ty.wrap(pair(l) & 255));
+                    let got = (lane(&out[0], l, ty), lane(&out[1], l, ty));
+                    assert_eq!(got, expected(ty, x, y), "{ty:?}: {x} / {y}");
+                }
+            }
+        }
+    }
+
+    /// The 16- and 32-bit dividers, unsigned then signed, built once.
+    static WIDE_DIVIDERS: std::sync::LazyLock<Vec<(Circuit, Bits, Bits)>> =
+        std::sync::LazyLock::new(|| {
+            [16, 32]
+                .into_iter()
+                .flat_map(|bits| [false, true].map(|signed| divider(IntType { bits, signed })))
+                .collect()
+        });
+
+    proptest::proptest! {
+        /// The same on random 16- and 32-bit values, divisors 0, ±1 and the smallest
+        /// value included.
+        #[test]
+        fn wide_division_by_a_variable_is_exact(
+            bits in proptest::sample::select(vec![16u32, 32]),
+            signed: bool,
+            x: i64,
+            y in proptest::prop_oneof![
+                proptest::prelude::any::<i64>(),
+                proptest::sample::select(vec![0i64, 1, -1, i64::MIN, 2, -2]),
+            ],
+        ) {
+            let ty = IntType { bits, signed };
+            let (x, y) = (ty.wrap(x), ty.wrap(if y == i64::MIN { ty.min() } else { y }));
+            let (c, q, r) = &WIDE_DIVIDERS[usize::from(bits == 32) * 2 + usize::from(signed)];
+            let word = |v: i64| -> Vec<u64> {
+                (0..bits).map(|k| if v >> k & 1 == 1 { !0 } else { 0 }).collect()
+            };
+            let out = c.run(&word(x), &word(y), &[q, r]);
+            let got = (lane(&out[0], 0, ty), lane(&out[1], 0, ty));
+            proptest::prop_assert_eq!(got, expected(ty, x, y), "{:?}: {} / {}", ty, x, y);
         }
     }
 

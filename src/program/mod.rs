@@ -171,6 +171,14 @@ pub enum IntExpr {
     /// `a % k` for a literal `k` that is not 0, as C computes it: the remainder of the
     /// division truncated toward zero, with the sign of `a`.
     Mod(Box<IntExpr>, i64),
+    /// `a / b` for a divisor that is not a literal, as matiec's `DIV` function computes
+    /// it (`lib/C/iec_std_functions.h`, `__div`): truncated toward zero, wrapped, and `0`
+    /// when `b` is 0 (`TEST_EN_COND(TYPENAME, op2 == 0)` returns the type's initial
+    /// value).
+    DivBy(Box<IntExpr>, Box<IntExpr>),
+    /// `a % b` for a divisor that is not a literal, as matiec's `MOD` function computes it
+    /// (`__mod`: `if (op2 == 0) return 0; return op1 % op2;`): the sign of `a`.
+    ModBy(Box<IntExpr>, Box<IntExpr>),
     /// `a` computed in the type given (every operation wraps to it), then converted into
     /// the type of the context (sign- or zero-extended, or wrapped): C's arithmetic in
     /// `int` for values narrower than 32 bits, and the `*_TO_*` conversions.
@@ -206,7 +214,11 @@ impl IntExpr {
         match self {
             IntExpr::Const(_) => {}
             IntExpr::Var(n) => int(n),
-            IntExpr::Add(a, b) | IntExpr::Sub(a, b) | IntExpr::Mul(a, b) => {
+            IntExpr::Add(a, b)
+            | IntExpr::Sub(a, b)
+            | IntExpr::Mul(a, b)
+            | IntExpr::DivBy(a, b)
+            | IntExpr::ModBy(a, b) => {
                 a.visit(int, boolean);
                 b.visit(int, boolean);
             }
@@ -517,7 +529,11 @@ pub fn walk_mut(e: &mut BoolExpr, f: &mut dyn FnMut(&mut BoolExpr)) {
 pub fn int_walk_mut(e: &mut IntExpr, f: &mut dyn FnMut(&mut BoolExpr)) {
     match e {
         IntExpr::Const(_) | IntExpr::Var(_) => {}
-        IntExpr::Add(a, b) | IntExpr::Sub(a, b) | IntExpr::Mul(a, b) => {
+        IntExpr::Add(a, b)
+        | IntExpr::Sub(a, b)
+        | IntExpr::Mul(a, b)
+        | IntExpr::DivBy(a, b)
+        | IntExpr::ModBy(a, b) => {
             int_walk_mut(a, f);
             int_walk_mut(b, f);
         }

@@ -244,6 +244,15 @@ impl Simulator {
                 let a = self.int_value(a, ty);
                 N { value: ty.wrap(a.value.wrapping_rem(*k)), known: a.known }
             }
+            // matiec's DIV and MOD give 0 for a divisor 0.
+            IntExpr::DivBy(a, b) => {
+                let (a, b) = (self.int_value(a, ty), self.int_value(b, ty));
+                both(a, b, |x, y| if y == 0 { 0 } else { x.wrapping_div(y) })
+            }
+            IntExpr::ModBy(a, b) => {
+                let (a, b) = (self.int_value(a, ty), self.int_value(b, ty));
+                both(a, b, |x, y| if y == 0 { 0 } else { x.wrapping_rem(y) })
+            }
             IntExpr::Cast(a, inner) => {
                 let a = self.int_value(a, *inner);
                 N { value: ty.wrap(a.value), known: a.known }

@@ -198,31 +198,47 @@ fn same_scan(
     use crate::ladder::SignalKind;
     let equations = |p: &crate::program::Program| {
         let compiled = crate::program::compile(p, options).ok()?;
-        // Compiler-made names carry their rung number: compare them by what they stand for.
-        let canonical = |name: &str| match compiled.signals.get(name) {
-            Some(SignalKind::Fresh { element, .. }) => format!("fresh[{element}]"),
-            Some(SignalKind::EdgeMemory { element, .. }) => format!("edge[{element}]"),
-            _ => name.to_string(),
-        };
-        let mut all: Vec<String> = compiled
-            .hypotheses
-            .iter()
-            .map(|h| {
-                let side = |e| crate::syntax::term_to_string(e, crate::syntax::Notation::Ascii);
-                let text = format!("{} {:?} {}", side(&h.lhs), h.rel, side(&h.rhs));
-                let mut out = String::new();
-                let mut word = String::new();
-                for c in text.chars().chain(std::iter::once(' ')) {
-                    if c.is_alphanumeric() || c == '_' {
-                        word.push(c);
-                    } else {
-                        out.push_str(&canonical(&std::mem::take(&mut word)));
-                        out.push(c);
-                    }
+        // Compiler-made names carry their rung number: compare them by what they stand
+        // for. An intermediate signal (a part of an integer value) stands for its
+        // definition, named by a hash of the definition's canonical text, which names the
+        // intermediates it reads the same way (defined before they are read).
+        use std::collections::BTreeMap;
+        let mut defined: BTreeMap<String, String> = BTreeMap::new();
+        let canonical =
+            |name: &str, defined: &BTreeMap<String, String>| match compiled.signals.get(name) {
+                Some(SignalKind::Fresh { element, .. }) => format!("fresh[{element}]"),
+                Some(SignalKind::EdgeMemory { element, .. }) => format!("edge[{element}]"),
+                Some(SignalKind::Intermediate { .. }) => {
+                    defined.get(name).cloned().unwrap_or_else(|| name.to_string())
                 }
-                out
-            })
-            .collect();
+                _ => name.to_string(),
+            };
+        let side = |e| crate::syntax::term_to_string(e, crate::syntax::Notation::Ascii);
+        let words = |text: &str, defined: &BTreeMap<String, String>| {
+            let mut out = String::new();
+            let mut word = String::new();
+            for c in text.chars().chain(std::iter::once(' ')) {
+                if c.is_alphanumeric() || c == '_' {
+                    word.push(c);
+                } else {
+                    out.push_str(&canonical(&std::mem::take(&mut word), defined));
+                    out.push(c);
+                }
+            }
+            out
+        };
+        let mut all: Vec<String> = Vec::new();
+        for h in &compiled.hypotheses {
+            let lhs = side(&h.lhs);
+            let rhs = words(&side(&h.rhs), &defined);
+            if matches!(compiled.signals.get(&lhs), Some(SignalKind::Intermediate { .. })) {
+                use std::hash::{Hash, Hasher};
+                let mut hasher = std::collections::hash_map::DefaultHasher::new();
+                rhs.hash(&mut hasher);
+                defined.insert(lhs.clone(), format!("int{:016x}", hasher.finish()));
+            }
+            all.push(format!("{} {:?} {rhs}", words(&lhs, &defined), h.rel));
+        }
         all.sort();
         Some(all)
     };

@@ -17,6 +17,9 @@ use ii_prove::term::Term;
 
 // ---------------------------------------------------------------- program generator
 
+#[path = "plcopen_conv.rs"]
+mod conv;
+
 const INPUTS: &[&str] = &["In0", "In1", "In2", "In3"];
 const BITS: &[&str] = &["B0", "B1", "B2", "Q0", "Q1"];
 /// Declared, never written: stays FALSE.
@@ -53,6 +56,13 @@ const INT_BLOCKS: &[&str] = &[
     "CTUD",
     "CTU",
     "SINT_TO_INT",
+    "BOOL_TO_INT",
+    "INT_TO_BOOL",
+    "CONV",
+    "CONV",
+    "AND",
+    "DIVS",
+    "MUX",
 ];
 
 /// The user function block programs may instantiate: inputs `IN0`, `IN1`, outputs
@@ -292,6 +302,9 @@ impl Gen {
         }
         for _ in 0..1 + self.rng.below(4) {
             let ty = *self.rng.pick(INT_BLOCKS);
+            if self.conversion(ty, &mut ints, &mut bools) {
+                continue;
+            }
             let counter = ty.starts_with("CT");
             let extensible = matches!(
                 ty,
@@ -304,6 +317,10 @@ impl Gen {
                 "LIMIT" => vec!["MN", "IN", "MX"],
                 "ABS" | "MOVE" | "SINT_TO_INT" => vec!["IN"],
                 "SEL" => vec!["G", "IN0", "IN1"],
+                // K from the network's integers: an input's small values, negative ones
+                // and ones past the inputs among them.
+                "MUX" if self.rng.chance(40) => vec!["K", "IN0", "IN1", "IN2"],
+                "MUX" => vec!["K", "IN0", "IN1"],
                 _ if extensible && self.rng.chance(25) => vec!["IN1", "IN2", "IN3"],
                 _ => vec!["IN1", "IN2"],
             };
@@ -324,8 +341,10 @@ impl Gen {
                             vec![*self.rng.pick(&bools)]
                         }
                     }
-                    "IN2" if matches!(ty, "DIV" | "MOD") => {
-                        let d = *self.rng.pick(&["0", "1", "2", "3", "-2", "7"]);
+                    // A literal divisor, or any integer of the network (0 included:
+                    // an input's small values, a BOOL_TO_INT's 0).
+                    "IN2" if matches!(ty, "DIV" | "MOD") && self.rng.chance(50) => {
+                        let d = *self.rng.pick(&["0", "1", "2", "3", "-2", "7", "-1"]);
                         vec![(self.in_var(d, true), None)]
                     }
                     "IN" if ty == "SINT_TO_INT" => vec![(self.in_var(SINT_VAR, true), None)],
@@ -391,15 +410,7 @@ impl Gen {
         for _ in 0..1 + self.rng.below(2) {
             let mut src = *self.rng.pick(&ints);
             let target = if self.rng.chance(20) {
-                let id = self.nid();
-                let p = self.pos(400);
-                writeln!(
-                    self.body,
-                    r#"<block localId="{id}" typeName="INT_TO_SINT">{p}<inputVariables><variable formalParameter="IN">{}</variable></inputVariables><inOutVariables/><outputVariables><variable formalParameter="OUT"><connectionPointOut/></variable></outputVariables></block>"#,
-                    Gen::conn(&[src])
-                )
-                .unwrap();
-                src = (id, Some("OUT"));
+                src = (self.unary("INT_TO_SINT", src, ""), Some("OUT"));
                 SINT_VAR
             } else {
                 *self.rng.pick(INT_VARS)

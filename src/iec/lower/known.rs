@@ -91,6 +91,8 @@ impl Lowering<'_> {
             IntExpr::Mul(a, b) => two(a, b, i64::wrapping_mul),
             IntExpr::Div(a, k) => Ok(ty.wrap(self.known_int(a, ty)?.wrapping_div(*k))),
             IntExpr::Mod(a, k) => Ok(ty.wrap(self.known_int(a, ty)?.wrapping_rem(*k))),
+            IntExpr::DivBy(a, b) => two(a, b, |x, y| if y == 0 { 0 } else { x.wrapping_div(y) }),
+            IntExpr::ModBy(a, b) => two(a, b, |x, y| if y == 0 { 0 } else { x.wrapping_rem(y) }),
             IntExpr::Cast(a, inner) => Ok(ty.wrap(self.known_int(a, *inner)?)),
             IntExpr::Ite(c, a, b) => match self.known_bool(c) {
                 Ok(true) => self.known_int(a, ty),

@@ -38,6 +38,8 @@ pub enum IntBlock {
     Move,
     /// `SEL(G, IN0, IN1)` of integers.
     Sel,
+    /// `MUX(K, IN0, IN1, …)` of integers (`K` an integer of its own type).
+    Mux,
     /// `FROM_TO_TO` between two integer types (upper-case names).
     Convert(String, String),
     /// `CTU`, `CTD`, `CTUD` and their typed variants (the type name).
@@ -67,6 +69,7 @@ impl IntBlock {
             "ABS" => IntBlock::Abs,
             "MOVE" => IntBlock::Move,
             "SEL" => IntBlock::Sel,
+            "MUX" => IntBlock::Mux,
             t if matches!(t.split('_').next(), Some("CTU" | "CTD" | "CTUD")) => {
                 IntBlock::Counter(upper.clone())
             }
@@ -82,13 +85,64 @@ impl IntBlock {
         matches!(self, IntBlock::Counter(_))
     }
 
-    /// Whether input `pin` is a BOOL (the others are integers).
+    /// Whether input `pin` is a BOOL (the others are integers): `BOOL_TO_*`'s `IN` among
+    /// them.
     pub fn bool_input(&self, pin: &str) -> bool {
         match self {
             IntBlock::Counter(_) => matches!(pin, "CU" | "CD" | "R" | "LD"),
             IntBlock::Sel => pin == "G",
+            IntBlock::Convert(from, _) => from == "BOOL" && pin == "IN",
             _ => false,
         }
+    }
+
+    /// Whether its `OUT` is a BOOL: a comparison's, a conversion `*_TO_BOOL`'s.
+    pub fn bool_out(&self) -> bool {
+        match self {
+            IntBlock::Compare(_) => true,
+            IntBlock::Convert(_, to) => to == "BOOL",
+            _ => false,
+        }
+    }
+}
+
+/// What a conversion `FROM_TO_TO` reads or gives, as its type name says.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ConvType {
+    /// `BOOL`: 0 or 1 as an integer, `<> 0` as a BOOL.
+    Bool,
+    /// An integer type matiec declares in at most 32 bits.
+    Int(crate::program::IntType),
+}
+
+impl ConvType {
+    /// The side of a conversion named `t` (upper case), or why ii-prove does not compute
+    /// it: the reason names what the type is.
+    pub fn of(t: &str) -> Result<ConvType, String> {
+        if t == "BOOL" {
+            return Ok(ConvType::Bool);
+        }
+        if let Some(ty) = crate::program::library::int_type(t) {
+            return Ok(ConvType::Int(ty));
+        }
+        Err(match t {
+            "LINT" | "ULINT" | "LWORD" => {
+                format!("{t} is 64 bits wide, which ii-prove does not compute")
+            }
+            "REAL" | "LREAL" => {
+                format!("{t} is a floating-point type, not an integer: ii-prove computes no {t}")
+            }
+            "STRING" | "WSTRING" => {
+                format!("{t} is a character string, not an integer: ii-prove computes no {t}")
+            }
+            "TIME" | "DATE" | "TOD" | "DT" | "TIME_OF_DAY" | "DATE_AND_TIME" => {
+                format!("{t} is a time or date, not an integer: ii-prove computes no {t}")
+            }
+            t if t.contains("BCD") => {
+                "it converts to or from BCD, which ii-prove does not compute".to_string()
+            }
+            _ => format!("{t} is not a type ii-prove computes"),
+        })
     }
 }
 
@@ -154,7 +208,7 @@ impl PlcProgram {
         let carries = |pin: &str| self.pin(k, pin).is_some_and(|p| self.carries_int(p, depth));
         match &b {
             IntBlock::Move if !carries("IN") => None,
-            IntBlock::Sel if !carries("IN0") && !carries("IN1") => None,
+            IntBlock::Sel | IntBlock::Mux if !carries("IN0") && !carries("IN1") => None,
             _ => Some(b),
         }
     }
@@ -179,7 +233,8 @@ impl PlcProgram {
             Some(Source::BlockOut(j, p)) => {
                 let (name, _) = self.output_pin(j, p);
                 match self.int_block_at(j, depth + 1) {
-                    Some(IntBlock::Compare(_)) | None => false,
+                    None => false,
+                    Some(b) if b.bool_out() => false,
                     Some(IntBlock::Counter(_)) => name == "CV",
                     Some(_) => name == "OUT",
                 }

@@ -531,14 +531,14 @@ impl<'p> Lower<'p> {
         }
         if let Some(b) = self.p.int_block(k) {
             let boolean = match &b {
-                super::IntBlock::Compare(_) => pin.eq_ignore_ascii_case("OUT"),
                 super::IntBlock::Counter(_) => {
                     ["Q", "QU", "QD"].iter().any(|q| pin.eq_ignore_ascii_case(q))
                 }
-                _ => false,
+                b => b.bool_out() && pin.eq_ignore_ascii_case("OUT"),
             };
-            // A comparison under a wired EN writes FALSE when it does not run (`lower/ints.rs`).
-            let written = runs || matches!(b, super::IntBlock::Compare(_));
+            // A function with a BOOL OUT (a comparison, `*_TO_BOOL`) under a wired EN
+            // writes FALSE when it does not run (`lower/ints.rs`).
+            let written = runs || b.bool_out();
             return match self.p.hidden_name(k, &pin.to_ascii_uppercase()) {
                 Some(n) if written && boolean => contact(n, false),
                 _ => opaque(type_name, instance.as_deref(), pin, span),

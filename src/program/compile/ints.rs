@@ -67,6 +67,15 @@ impl Compiler<'_> {
                 let a = self.int(a, ty, span);
                 bitvec::rem(&a, *k, ty, &mut |t: L| self.intermediate_over(t, MAX_DIV_TERM))
             }
+            IntExpr::DivBy(a, b) | IntExpr::ModBy(a, b) => {
+                let a = self.int(a, ty, span);
+                let b = self.int(b, ty, span);
+                let mut name = |t: L| self.intermediate_over(t, MAX_DIV_TERM);
+                match e {
+                    IntExpr::DivBy(..) => bitvec::div_by(&a, &b, ty, &mut name),
+                    _ => bitvec::rem_by(&a, &b, ty, &mut name),
+                }
+            }
             IntExpr::Cast(a, inner) => {
                 let a = self.int(a, *inner, span);
                 bitvec::resize(a, *inner, ty)
@@ -172,6 +181,8 @@ pub(super) fn constants(program: &Program) -> Vec<i64> {
             IntExpr::Add(a, b)
             | IntExpr::Sub(a, b)
             | IntExpr::Mul(a, b)
+            | IntExpr::DivBy(a, b)
+            | IntExpr::ModBy(a, b)
             | IntExpr::Ite(_, a, b) => {
                 walk(a, out);
                 walk(b, out);

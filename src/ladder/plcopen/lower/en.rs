@@ -44,10 +44,11 @@ impl Lower<'_> {
         Some(contact(eno, false))
     }
 
-    /// Whether block `k` is a DIV, whose ENO matiec clears for a divisor 0
-    /// (`TEST_EN_COND(TYPENAME, op2 == 0)`, `lib/C/iec_std_functions.h`).
+    /// Whether block `k` is a DIV or a MUX, whose ENO matiec clears for a divisor 0 or a
+    /// `K` past the inputs (`TEST_EN_COND(TYPENAME, op2 == 0)`, `TEST_EN_COND(…, K >=
+    /// param_count)`, `lib/C/iec_std_functions.h`).
     fn divides(&self, k: usize) -> bool {
-        matches!(self.p.int_block(k), Some(IntBlock::Arith(Arith::Div)))
+        matches!(self.p.int_block(k), Some(IntBlock::Arith(Arith::Div) | IntBlock::Mux))
     }
 
     /// The write of a coil or output variable: `(negated, storage, edge)` as drawn, under

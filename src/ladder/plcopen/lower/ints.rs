@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 use super::{Lower, fresh_because};
 use crate::diag::Span;
 use crate::iec::literal::int_literal;
-use crate::ladder::plcopen::ints::{Arith, IntBlock};
+use crate::ladder::plcopen::ints::{Arith, ConvType, IntBlock};
 use crate::ladder::plcopen::{Edge, ObjKind, PinIn, PlcProgram, Source};
 use crate::program::library::{self, Counter};
 use crate::program::{
@@ -54,6 +54,85 @@ fn divisor_not_zero(keyword: &str, ints: &[(String, IntVal)], span: Span) -> Boo
         Err(why) => {
             let why = format!("the ENO of {keyword}, whose divisor is not computed: {why}");
             fresh_because(keyword, why, span)
+        }
+    }
+}
+
+/// A computed argument of a function: its pin, value and type (`None`: a literal).
+type Arg<'a> = (&'a str, IntExpr, Option<IntType>);
+
+/// `MUX`'s `K` (a value of its type: a literal's is `DINT`) and its data inputs `IN0`,
+/// `IN1`, … in the order of their numbers, as matiec's `MUX__…` takes them.
+#[allow(clippy::type_complexity)]
+fn mux_args(vals: &[Arg]) -> Result<(IntExpr, IntType, Vec<(IntExpr, Option<IntType>)>), String> {
+    let (_, k, kt) = vals.iter().find(|(n, _, _)| *n == "K").ok_or("it has no input K")?;
+    let kt = kt.unwrap_or(IntType { bits: 32, signed: true });
+    let mut data = Vec::new();
+    for i in 0.. {
+        match vals.iter().find(|(n, _, _)| *n == format!("IN{i}")) {
+            Some((_, x, t)) => data.push((x.clone(), *t)),
+            None => break,
+        }
+    }
+    if data.len() + 1 != vals.len() {
+        return Err("its inputs are not K, IN0, IN1, …".into());
+    }
+    Ok((coerce(k.clone(), kt), kt, data))
+}
+
+/// Whether `MUX`'s `K` is below the number of its inputs, as matiec's `TEST_EN_COND(…, K
+/// >= param_count)` tests it (`K` in its own type against the `UINT` count: a negative
+/// `K` passes, and gives 0).
+fn k_in_range(keyword: &str, ints: &[(String, IntVal)], span: Span) -> BoolExpr {
+    let vals: Result<Vec<Arg>, String> =
+        ints.iter().map(|(n, v)| v.clone().map(|(e, t)| (n.as_str(), e, t))).collect();
+    match vals.and_then(|vals| mux_args(&vals).map(|(k, kt, data)| (k, kt, data.len()))) {
+        Ok((_, kt, n)) if n as i64 > kt.max() => BoolExpr::Const(true),
+        Ok((k, kt, n)) => {
+            BoolExpr::negate(library::compare(CmpOp::Ge, kt, k, IntExpr::Const(n as i64)))
+        }
+        Err(why) => {
+            let why = format!("the ENO of {keyword}, whose K is not computed: {why}");
+            fresh_because(keyword, why, span)
+        }
+    }
+}
+
+/// What a function gives: an integer of a type, or a BOOL.
+enum Value {
+    Int(IntExpr, IntType),
+    Bool(BoolExpr),
+}
+
+/// The conversion `FROM_TO_TO` of its input, as matiec's `lib/C/iec_std_functions.h`
+/// computes it: `BOOL_TO_*` and `*_TO_*` between integers by `__convert_type` (`(to)
+/// __move_to(op)`: the value converted as C converts it, sign- or zero-extended or
+/// wrapped; a BOOL is 0 or 1), `*_TO_BOOL` by `__convert_num_to_bool` (`op == 0 ? 0 :
+/// 1`). `input` is `IN` when it is a BOOL, `vals` the integer inputs.
+fn convert(from: &str, to: &str, input: Option<BoolExpr>, vals: &[Arg]) -> Result<Value, String> {
+    let t = ConvType::of(to)?;
+    match ConvType::of(from)? {
+        ConvType::Bool => {
+            let b = input.unwrap_or(BoolExpr::Const(false));
+            Ok(match t {
+                ConvType::Bool => Value::Bool(b),
+                ConvType::Int(t) => {
+                    Value::Int(IntExpr::ite(b, IntExpr::Const(1), IntExpr::Const(0)), t)
+                }
+            })
+        }
+        ConvType::Int(f) => {
+            let [(_, x, ty)] = vals else { return Err("it takes one input".into()) };
+            if ty.is_some_and(|ty| ty != f) {
+                return Err(format!("its input is not a {from}"));
+            }
+            let x = coerce(x.clone(), f);
+            Ok(match t {
+                ConvType::Bool => Value::Bool(library::compare(CmpOp::Ne, f, x, IntExpr::Const(0))),
+                // A value of `from`, then converted to `to` (sign- or zero-extended, or
+                // wrapped).
+                ConvType::Int(t) => Value::Int(IntExpr::Cast(Box::new(x), f), t),
+            })
         }
     }
 }
@@ -146,7 +225,24 @@ impl Lower<'_> {
         }
         match self.ints.get(name) {
             Some(v) => Ok((IntExpr::var(name), Some(v.ty))),
-            None => Err(format!("{name} is not computed")),
+            None => Err(self.not_an_integer(name)),
+        }
+    }
+
+    /// Why the variable `name`, read where an integer is expected, is not computed: its
+    /// declared type when that is not an integer one (`REAL`, `STRING`, …).
+    fn not_an_integer(&self, name: &str) -> String {
+        let declared = self.p.vars.values().find(|v| v.name == name).map(|v| &v.ty);
+        match declared {
+            Some(crate::ladder::plcopen::Ty::Other(t) | crate::ladder::plcopen::Ty::Derived(t)) => {
+                // Beremiz's SVGHMI types are their base type (`HMI_REAL`).
+                let t = t.to_ascii_uppercase();
+                match ConvType::of(t.strip_prefix("HMI_").unwrap_or(&t)) {
+                    Err(why) => format!("{name} is not computed: {why}"),
+                    Ok(_) => format!("{name} is not computed"),
+                }
+            }
+            _ => format!("{name} is not computed"),
         }
     }
 
@@ -349,30 +445,20 @@ impl Lower<'_> {
         let enabled = |v: BoolExpr| if runs { v } else { BoolExpr::and(en.clone(), v) };
         if let Some(out) = p.hidden_name(k, "OUT").map(str::to_string) {
             match self.int_function(b, &bools, &ints) {
-                Ok((Some(e), t)) => {
+                Ok(Value::Int(e, t)) => {
                     self.ints.insert(out.clone(), IntVar { ty: t, input: false, init: 0 });
                     let value =
                         if runs { e } else { IntExpr::ite(en.clone(), e, IntExpr::Const(0)) };
                     stmts.push(Stmt::SetInt { target: out, value, span });
                 }
-                Ok((None, t)) => {
-                    let vals: Vec<IntExpr> = ints
-                        .iter()
-                        .filter_map(|(_, v)| v.clone().ok())
-                        .map(|(e, _)| coerce(e, t))
-                        .collect();
-                    if let IntBlock::Compare(op) = b {
-                        let value = enabled(library::compare_chain(*op, t, &vals));
-                        stmts.push(Stmt::Write {
-                            target: out,
-                            kind: WriteKind::Assign,
-                            value,
-                            span,
-                        });
-                    }
+                Ok(Value::Bool(v)) => {
+                    let value = enabled(v);
+                    stmts.push(Stmt::Write { target: out, kind: WriteKind::Assign, value, span });
                 }
-                Err(why) if matches!(b, IntBlock::Compare(_)) => {
-                    let why = format!("the comparison {upper} is not computed: {why}");
+                Err(why) if b.bool_out() => {
+                    let what =
+                        if matches!(b, IntBlock::Compare(_)) { "comparison" } else { "conversion" };
+                    let why = format!("the {what} {upper} is not computed: {why}");
                     let value = enabled(fresh_because(&upper, why, span));
                     stmts.push(Stmt::Write { target: out, kind: WriteKind::Assign, value, span });
                 }
@@ -384,6 +470,7 @@ impl Lower<'_> {
         if let Some(eno) = p.hidden_name(k, "ENO").map(str::to_string) {
             let ok = match b {
                 IntBlock::Arith(Arith::Div) => divisor_not_zero(&upper, &ints, span),
+                IntBlock::Mux => k_in_range(&upper, &ints, span),
                 _ => BoolExpr::Const(true),
             };
             let value = enabled(ok);
@@ -394,29 +481,31 @@ impl Lower<'_> {
         }
     }
 
-    /// The value of a function block over integers (`None` for a comparison, whose
-    /// arguments are then compared in the type given), with its type.
+    /// The value of a function over integers (a comparison's and a conversion to BOOL's
+    /// a Boolean one), with its type.
     fn int_function(
         &self,
         b: &IntBlock,
         bools: &BTreeMap<String, BoolExpr>,
         ints: &[(String, IntVal)],
-    ) -> Result<(Option<IntExpr>, IntType), String> {
-        let mut vals: Vec<(&str, IntExpr, Option<IntType>)> = Vec::new();
+    ) -> Result<Value, String> {
+        let mut vals: Vec<Arg> = Vec::new();
         for (n, v) in ints {
             let (e, t) = v.clone().map_err(|why| format!("its input {n}: {why}"))?;
             vals.push((n, e, t));
         }
         if let IntBlock::Convert(from, to) = b {
-            let (Some(f), Some(t)) = (library::int_type(from), library::int_type(to)) else {
-                return Err(format!("the conversion {from}_TO_{to} is not computed"));
-            };
-            let [(_, x, ty)] = vals.as_slice() else { return Err("it takes one input".into()) };
-            if ty.is_some_and(|ty| ty != f) {
-                return Err(format!("its input is not a {from}"));
-            }
-            // A value of `from`, then converted to `to` (sign- or zero-extended, or wrapped).
-            return Ok((Some(IntExpr::Cast(Box::new(coerce(x.clone(), f)), f)), t));
+            return convert(from, to, bools.get("IN").cloned(), &vals);
+        }
+        if *b == IntBlock::Mux {
+            let (k, kt, data) = mux_args(&vals)?;
+            let t = unify(data.iter().map(|(_, t)| t))?;
+            // `IN_i` for `K == i`, else the type's initial value 0.
+            let e = data.iter().enumerate().rev().fold(IntExpr::Const(0), |acc, (i, (x, _))| {
+                let at = library::compare(CmpOp::Eq, kt, k.clone(), IntExpr::Const(i as i64));
+                IntExpr::ite(at, coerce(x.clone(), t), acc)
+            });
+            return Ok(Value::Int(e, t));
         }
         let t = unify(vals.iter().map(|(_, _, t)| t))?;
         let args: Vec<IntExpr> = vals.iter().map(|(_, e, _)| coerce(e.clone(), t)).collect();
@@ -427,7 +516,9 @@ impl Lower<'_> {
                 .ok_or_else(|| format!("it has no input {pin}"))
         };
         let e = match (b, args.as_slice()) {
-            (IntBlock::Compare(_), [_, _, ..]) => return Ok((None, t)),
+            (IntBlock::Compare(op), [_, _, ..]) => {
+                return Ok(Value::Bool(library::compare_chain(*op, t, &args)));
+            }
             (IntBlock::Arith(Arith::Add), [first, rest @ ..]) if !rest.is_empty() => {
                 rest.iter().cloned().fold(first.clone(), IntExpr::plus)
             }
@@ -436,12 +527,15 @@ impl Lower<'_> {
                 .cloned()
                 .fold(first.clone(), |a, b| IntExpr::Mul(Box::new(a), Box::new(b))),
             (IntBlock::Arith(Arith::Sub), [a, b]) => IntExpr::minus(a.clone(), b.clone()),
+            // matiec's DIV and MOD (`lib/C/iec_std_functions.h`, `__div`, `__mod`): C's
+            // division truncated toward zero, the remainder with the dividend's sign, 0 for
+            // a divisor 0 (`IntExpr::DivBy`).
             (IntBlock::Arith(op @ (Arith::Div | Arith::Mod)), [a, b]) => match b {
-                // matiec's DIV and MOD give 0 for a divisor 0.
                 IntExpr::Const(0) => IntExpr::Const(0),
                 IntExpr::Const(d) if *op == Arith::Div => IntExpr::Div(Box::new(a.clone()), *d),
                 IntExpr::Const(d) => IntExpr::Mod(Box::new(a.clone()), *d),
-                _ => return Err("it divides by a variable, which ii-prove does not compute".into()),
+                b if *op == Arith::Div => IntExpr::DivBy(Box::new(a.clone()), Box::new(b.clone())),
+                b => IntExpr::ModBy(Box::new(a.clone()), Box::new(b.clone())),
             },
             (IntBlock::Min, [_, _, ..]) => library::extreme(true, t, &args),
             (IntBlock::Max, [_, _, ..]) => library::extreme(false, t, &args),
@@ -456,7 +550,7 @@ impl Lower<'_> {
             }
             _ => return Err("its inputs are not the ones ii-prove computes".into()),
         };
-        Ok((Some(e), t))
+        Ok(Value::Int(e, t))
     }
 
     /// A counter call as matiec's `lib/counter.txt` runs it (see [`library::counter`]):

@@ -57,11 +57,31 @@ fn function(b: &IntBlock, args: Vec<(String, Val)>, get: impl Fn(&str) -> bool) 
     let vals: Vec<(String, i64, Option<CType>)> =
         args.into_iter().map(|(n, v)| v.map(|(x, t)| (n, x, t))).collect::<Option<_>>()?;
     if let IntBlock::Convert(from, to) = b {
-        let (Some(f), Some(t), [(_, x, _)]) = (CType::of(from), CType::of(to), vals.as_slice())
-        else {
-            return None;
+        // `__convert_type`: `(to) __move_to(op)`, the argument a value of `from` (a BOOL
+        // is 0 or 1); `__convert_num_to_bool`: `op == 0 ? 0 : 1`.
+        let x: i128 = match (from.as_str(), vals.as_slice()) {
+            ("BOOL", []) => get("IN").into(),
+            (from, [(_, x, _)]) => CType::of(from)?.store((*x).into()).into(),
+            _ => return None,
         };
-        return Some(Out::Int(f.store((*x).into()).into(), t));
+        if to == "BOOL" {
+            return Some(Out::Bool(x != 0));
+        }
+        return Some(Out::Int(x, CType::of(to)?));
+    }
+    if *b == IntBlock::Mux {
+        // `MUX__in2__in1__in2`: `TEST_EN_COND(in2, K >= param_count)` (0, see
+        // `int_exec` for ENO), then the argument whose place is K, else `tmp`'s initial 0.
+        let k = mux_k(&vals)?;
+        let data: Vec<&(String, i64, Option<CType>)> =
+            vals.iter().filter(|(n, _, _)| n != "K").collect();
+        let types: Vec<CType> = data.iter().filter_map(|(_, _, t)| *t).collect();
+        let &ct = types.first()?;
+        if types.iter().any(|t| *t != ct) {
+            return None;
+        }
+        let picked = data.iter().find(|(n, _, _)| *n == format!("IN{k}"));
+        return Some(Out::Int(picked.map_or(0, |(_, x, _)| ct.store((*x).into()).into()), ct));
     }
     let types: Vec<CType> = vals.iter().filter_map(|(_, _, t)| *t).collect();
     let &ct = types.first()?;
@@ -111,9 +131,15 @@ fn function(b: &IntBlock, args: Vec<(String, Val)>, get: impl Fn(&str) -> bool) 
                 named("IN0")
             }
         }
-        IntBlock::Convert(..) | IntBlock::Counter(_) => return None,
+        IntBlock::Convert(..) | IntBlock::Counter(_) | IntBlock::Mux => return None,
     };
     Some(Out::Int(result, ct))
+}
+
+/// `MUX`'s `K`, as a value of its own type (a literal's as written).
+fn mux_k(vals: &[(String, i64, Option<CType>)]) -> Option<i64> {
+    let (_, k, kt) = vals.iter().find(|(n, _, _)| n == "K")?;
+    Some(kt.map_or(*k, |t| t.store((*k).into())))
 }
 
 impl PlcSimulator {
@@ -245,7 +271,13 @@ impl PlcSimulator {
             .and_then(|(_, v)| *v)
             .map(|(x, t)| t.or(typed).map_or(x, |ct| ct.store(x.into())));
         let divides_by_zero = matches!(b, IntBlock::Arith(Arith::Div)) && divisor == Some(0);
-        self.set_hidden(k, "ENO", en && !divides_by_zero);
+        // MUX: `TEST_EN_COND(…, K >= param_count)`, the count of its data inputs.
+        let past = *b == IntBlock::Mux && {
+            let known: Option<Vec<(String, i64, Option<CType>)>> =
+                args.iter().map(|(n, v)| v.map(|(x, t)| (n.clone(), x, t))).collect();
+            known.and_then(|v| mux_k(&v)).is_some_and(|k| k >= args.len() as i64 - 1)
+        };
+        self.set_hidden(k, "ENO", en && !divides_by_zero && !past);
         let Some(out) = self.p.hidden_name(k, "OUT").map(str::to_string) else { return };
         match function(b, args, get) {
             Some(Out::Int(_, ct)) if !en => {
