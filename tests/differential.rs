@@ -90,6 +90,11 @@ impl Gen {
     fn operand(&mut self) -> String {
         if self.rng.chance(50) {
             self.rng.pick(INTS).to_string()
+        } else if self.rng.chance(15) {
+            // Literals at the edges of LDmicro's 1- to 3-byte integers.
+            self.rng
+                .pick(&["127", "-128", "200", "254", "300", "32767", "40000", "-70000"])
+                .to_string()
         } else {
             (self.rng.below(7) as i64 - 2).to_string()
         }
@@ -203,7 +208,11 @@ impl Gen {
     fn counter(&mut self) -> String {
         let kw = self.rng.pick(&["CTU", "CTD", "CTC", "CTR"]);
         let name = self.rng.pick(COUNTERS);
-        let max = self.rng.below(4) as i64 - 1;
+        let max = if self.rng.chance(10) {
+            126 + self.rng.below(3) as i64
+        } else {
+            self.rng.below(4) as i64 - 1
+        };
         let tail = match self.rng.below(3) {
             0 => String::new(),
             1 => format!(" {}", self.rng.below(3)),
@@ -392,6 +401,20 @@ fn random_program(seed: u64) -> (String, BTreeSet<String>) {
         } else {
             let _ = writeln!(text, "CYCLE={cycle}");
         }
+    }
+    if header == "LDmicro0.2" && g.rng.chance(50) {
+        // LDmicro ≥ 2016 sizes its integers: 1 to 4 bytes (3 computed on AVR only).
+        if g.rng.chance(30) {
+            text.push_str("MICRO=Atmel AVR ATmega328 28-PDIP\n");
+        }
+        text.push_str("VAR LIST\n");
+        for name in ["va", "vb", "Ca", "Cb", "Ta", "Tb", "Aa"] {
+            if g.rng.chance(60) {
+                let _ = writeln!(text, "    {} bytes {name}", g.rng.pick(&[1, 1, 1, 2, 3, 4]));
+            }
+        }
+        text.push_str("END\n");
+        g.used.insert("VAR LIST".into());
     }
     if header.is_empty() {
         g.used.insert("headerless".into());
@@ -894,6 +917,7 @@ const COVERAGE: &[&str] = &[
     "LDmicro0.2",
     "LDmicro",
     "headerless",
+    "VAR LIST",
 ];
 
 #[test]

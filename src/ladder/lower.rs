@@ -23,6 +23,7 @@
 //! on bits the outside world writes refuse the program with a located error.
 #![warn(missing_docs)]
 
+mod sizes;
 mod timers;
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -173,6 +174,23 @@ impl<'a> Lowering<'a> {
         }
     }
 
+    /// The type an operand is read in: a variable's own, a literal's in a new file as
+    /// many bytes as it needs (`sizes::literal_type`), in orig 16 bits.
+    fn ty(&self, op: &Operand) -> IntType {
+        match op {
+            Operand::Var(v) => self.ints.get(&canonical(v)).map_or(IntType::I16, |x| x.ty),
+            Operand::Literal(_) if self.program.version.is_orig() => IntType::I16,
+            Operand::Literal(v) => sizes::literal_type(*v),
+        }
+    }
+
+    /// The comparison `a op b` of two operands, in the larger of their types.
+    fn compare(&self, op: CmpOp, a: &Operand, b: &Operand) -> BoolExpr {
+        let ty = sizes::wider(self.ty(a), self.ty(b));
+        let (a, b) = (self.operand(a), self.operand(b));
+        BoolExpr::Compare(Box::new(Compare { op, ty, a, b }))
+    }
+
     /// `if power then x := value`.
     fn set_int(&mut self, e: &Element, x: &str, power: &BoolExpr, value: IntExpr) {
         let x = canonical(x);
@@ -185,10 +203,12 @@ impl<'a> Lowering<'a> {
         let ElementKind::Counter { kind, name, limit, init, edge } = &e.kind else { return input };
         let orig = self.program.version.is_orig();
         let c = || IntExpr::Var(canonical(name));
+        let count = Operand::Var(name.clone());
+        let c_ty = self.ty(&count);
+        let ty = sizes::wider(c_ty, self.ty(limit));
         let limit = self.operand(limit);
-        let cmp = |op, a: IntExpr, b: IntExpr| {
-            BoolExpr::Compare(Box::new(Compare { op, ty: IntType::I16, a, b }))
-        };
+        let cmp =
+            |op, a: IntExpr, b: IntExpr| BoolExpr::Compare(Box::new(Compare { op, ty, a, b }));
         let one = || IntExpr::Const(1);
         // What makes it count; the hidden bit keeps the power of the previous scan.
         let trigger = match edge {
@@ -225,7 +245,10 @@ impl<'a> Lowering<'a> {
             (CounterKind::Ctc | CounterKind::Ctr, _) => {
                 let up = *kind == CounterKind::Ctc;
                 let step = if up { IntExpr::plus(c(), one()) } else { IntExpr::minus(c(), one()) };
-                let past = cmp(if up { CmpOp::Gt } else { CmpOp::Lt }, step.clone(), limit);
+                // The count is incremented (wrapping to its size) before the comparison
+                // (`intcode.cpp`, `ELEM_CTC`: `INT_INCREMENT_VARIABLE`, then `INT_IF_GRT`).
+                let stored = IntExpr::Cast(Box::new(step.clone()), c_ty);
+                let past = cmp(if up { CmpOp::Gt } else { CmpOp::Lt }, stored, limit);
                 let past = self.temp(past);
                 // CTC wraps to 0 (orig) or init (new); CTR reloads init.
                 let reload = if up && orig { IntExpr::Const(0) } else { init };
@@ -533,11 +556,14 @@ impl<'a> Lowering<'a> {
                     CompareOp::Les => CmpOp::Lt,
                     CompareOp::Leq => CmpOp::Le,
                 };
-                // A literal that does not fit 16 bits (`0xffff`) goes through a temporary
-                // whose size LDmicro chooses (intcode.cpp `VarFromExpr`): 65535 in two
-                // bytes reads as -1, in three as 65535. Which one runs is not modelled.
+                // orig: a literal that does not fit 16 bits (`0xffff`) goes through a
+                // temporary whose size LDmicro chooses (intcode.cpp `VarFromExpr`): 65535
+                // in two bytes reads as -1, in three as 65535. Which one runs is not
+                // modelled. New compares both sides sign-extended to the larger size, a
+                // literal as wide as it needs (`NEW_CMP`, see `sizes`): exactly.
+                let orig = self.program.version.is_orig();
                 let wide = [a, b].iter().find_map(|o| match o {
-                    Operand::Literal(v) if !IntType::I16.contains(*v) => Some(*v),
+                    Operand::Literal(v) if orig && !IntType::I16.contains(*v) => Some(*v),
                     _ => None,
                 });
                 if let Some(v) = wide {
@@ -549,8 +575,7 @@ impl<'a> Lowering<'a> {
                     let f = self.fresh(format!("{}_r{number}", e.kind.keyword()), e, &why);
                     return self.temp(BoolExpr::and(input, f));
                 }
-                let (a, b) = (self.operand(a), self.operand(b));
-                let c = BoolExpr::Compare(Box::new(Compare { op, ty: IntType::I16, a, b }));
+                let c = self.compare(op, a, b);
                 self.temp(BoolExpr::and(input, c))
             }
             ElementKind::Move { dest, src } if self.exact(e) => {
@@ -778,10 +803,12 @@ fn integers(
                 }
             }
             ElementKind::Counter { name, limit, init: start, .. } => {
-                let literal =
-                    |o: &Operand| matches!(o, Operand::Literal(v) if !IntType::I16.contains(*v));
+                // orig's integers are 16-bit; new sizes a counter for its literals.
+                let fits = if orig { IntType::I16 } else { IntType { bits: 32, signed: true } };
+                let literal = |o: &Operand| matches!(o, Operand::Literal(v) if !fits.contains(*v));
                 if literal(limit) || (!orig && (start.var().is_some() || literal(start))) {
-                    let why = "its limit or start value is not a 16-bit literal".to_string();
+                    let why =
+                        format!("its limit or start value is not a {}-bit literal", fits.bits);
                     cause(name, why);
                 }
                 if !orig && let Operand::Literal(v) = start {
@@ -793,40 +820,36 @@ fn integers(
         used.extend(int_names(e));
     }
     init.extend(timers.init.iter().map(|(n, p)| (n.clone(), *p)));
-    // LDmicro ≥ 2016 stores an integer in 1 to 4 bytes: a counter in as many as its start
-    // value and limit need, any other integer as the VAR LIST says (2 by default). The
-    // values computed here are 2-byte ones: an integer of another size is exact only when
-    // counters and RES alone write it (its values then stay within its start value and
-    // limit, which its size holds).
+    // LDmicro ≥ 2016 stores an integer in 1 to 4 bytes, each a signed integer of its
+    // size (`sizes`); orig's are all 16-bit.
+    let mut types: BTreeMap<String, IntType> = BTreeMap::new();
     if !orig {
-        let mut bytes = program.var_bytes.clone();
-        bytes.extend(timers.bytes.iter().map(|(n, b)| (n.clone(), *b)));
-        let mut other_writers: BTreeSet<String> = BTreeSet::new();
-        for e in &live {
-            match &e.kind {
-                ElementKind::Counter {
-                    name,
-                    limit: Operand::Literal(l),
-                    init: Operand::Literal(i),
-                    ..
-                } => {
-                    bytes.insert(name.clone(), bytes_needed(*i).max(bytes_needed(*l)));
+        let bytes = sizes::sizes(program, &live, &timers.bytes);
+        for n in &used {
+            match bytes.get(n).map(|b| sizes::int_type(*b, program.micro.as_deref())) {
+                Some(Ok(ty)) => {
+                    types.insert(n.clone(), ty);
                 }
-                // A timer with a literal delay keeps its count within its period, which
-                // its size holds (`timers::Accumulators`).
-                ElementKind::Counter { .. }
-                | ElementKind::Res { .. }
-                | ElementKind::Timer { delay: TimerDelay::Micros(_), .. } => {}
-                _ => other_writers.extend(e.names_written()),
+                Some(Err(why)) => cause(n, why),
+                None => {}
             }
         }
-        for n in used.iter().filter(|n| other_writers.contains(*n)) {
-            if let Some(size) = bytes.get(n).copied().filter(|b| *b != 2) {
-                let why = format!(
-                    "LDmicro stores it in {size} byte{} and ii-prove computes 2-byte integers",
-                    if size == 1 { "" } else { "s" }
-                );
-                cause(n, why);
+        let ty = |o: &Operand| match o {
+            Operand::Literal(v) => sizes::literal_type(*v),
+            Operand::Var(n) => types.get(n).copied().unwrap_or(IntType::I16),
+        };
+        // A DIV computes in its destination's size on AVR (its operands cut to it
+        // first) but in C's `int` (then cut): the same only when neither is wider.
+        for e in &live {
+            if let ElementKind::Math { op: MathOp::Div, dest, a, b } = &e.kind {
+                let d = types.get(dest).copied().unwrap_or(IntType::I16);
+                if ty(a).bits > d.bits || ty(b).bits > d.bits {
+                    let why = "it is written by a DIV of operands wider than it, which \
+                               LDmicro's AVR code cuts to its size before dividing and its C \
+                               code after"
+                        .to_string();
+                    cause(dest, why);
+                }
             }
         }
     }
@@ -850,7 +873,8 @@ fn integers(
         .filter(|n| !opaque.contains_key(n))
         .map(|n| {
             let start = init.get(&n).copied().unwrap_or(0);
-            (canonical(&n), IntVar { ty: IntType::I16, input: false, init: start })
+            let ty = types.get(&n).copied().unwrap_or(IntType::I16);
+            (canonical(&n), IntVar { ty, input: false, init: start })
         })
         .collect();
     // The values peripheral reads give the integers computed exactly: free inputs.

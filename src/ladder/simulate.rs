@@ -20,7 +20,9 @@
 //! per its `intcode.cpp`; a variable delay is `P` scans; a zero cycle makes timers never expire),
 //! OSR, OSF, ODR, CTU/CTD/CTC (orig semantics for `LDmicro0.1`/headerless files,
 //! new semantics otherwise; CTR always new), RES, EQU…LEQ, MOVE and
-//! ADD/SUB/MUL/DIV with 16-bit two's-complement wrap, the peripheral reads READ_ADC,
+//! ADD/SUB/MUL/DIV with two's-complement wrap to the destination's size (orig: 16 bits;
+//! new: the `VAR LIST`'s 1 to 4 bytes, a counter's and a timer's as LDmicro sizes them,
+//! 2 by default; comparisons of the values as stored), the peripheral reads READ_ADC,
 //! UART_RECV, the UART's status contacts and PERSIST's load from EEPROM, whose values
 //! and flags are free integer inputs given in `step`'s input map ([`super::readings`]
 //! names them), and the peripheral writes that pass their input (SET_PWM, I2C, SPI,
@@ -81,6 +83,17 @@ fn wrap16(v: i64) -> i64 {
     i64::from(v as i16)
 }
 
+/// `v` as an integer of `bytes` bytes keeps it: its low bytes, sign-extended.
+fn wrap_bytes(v: i64, bytes: u32) -> i64 {
+    let shift = 64 - 8 * bytes.clamp(1, 4);
+    (v << shift) >> shift
+}
+
+/// The bytes of `byteNeeded(v)` (LDmicro's `compilercommon.cpp`).
+fn byte_needed(v: i64) -> u32 {
+    [1u32, 2, 3, 4].into_iter().find(|b| wrap_bytes(v, *b) == v).unwrap_or(4)
+}
+
 /// A running LDmicro program: every bit, integer and hidden edge memory.
 #[derive(Clone, Debug)]
 pub struct Simulator {
@@ -104,6 +117,8 @@ pub struct Simulator {
     control_flow: bool,
     /// The peripheral reads, by element index: what the outside world gives them.
     readings: BTreeMap<usize, super::Reading>,
+    /// new: the bytes LDmicro stores each integer in, when not 2 (ldmicro.md §5).
+    sizes: BTreeMap<String, u32>,
 }
 
 /// Elements that change which rungs run or stop the scan (ldmicro.md §4, last table).
@@ -131,6 +146,7 @@ impl Simulator {
             scans: 0,
             control_flow: false,
             readings: super::readings(program),
+            sizes: if orig { BTreeMap::new() } else { program.var_bytes.clone() },
         };
         // Only the rungs that run: a comment rung's timers and counters do not initialise
         // anything, and its control flow never executes.
@@ -147,7 +163,17 @@ impl Simulator {
                     let (p, _) = sim.period(delay, *adjust);
                     sim.ints.insert(name.clone(), p);
                 }
-                ElementKind::Counter { name, init, .. } if !orig => {
+                // new sizes a timer's count for its period (`CalcDelay`: `byteNeeded` of
+                // delay/cycle) and a counter for its literal start value and limit
+                // (`intcode.cpp`, the counters' `SetSizeOfVar`).
+                ElementKind::Timer { name, delay: TimerDelay::Micros(d), .. } if !orig => {
+                    let n = d.checked_div(sim.cycle_us).unwrap_or(0);
+                    sim.sizes.insert(name.clone(), byte_needed(i64::try_from(n).unwrap_or(0)));
+                }
+                ElementKind::Counter { name, init, limit, .. } if !orig => {
+                    if let (Operand::Literal(i), Operand::Literal(l)) = (init, limit) {
+                        sim.sizes.insert(name.clone(), byte_needed(*i).max(byte_needed(*l)));
+                    }
                     sim.counter_init.insert(name.clone(), init.clone());
                     if let Operand::Literal(v) = init {
                         sim.ints.insert(name.clone(), *v);
@@ -195,7 +221,7 @@ impl Simulator {
                 .collect();
             for (name, op) in inits {
                 let (v, s) = self.value(&op);
-                self.set_int(&name, v, s);
+                self.set_int(&name, self.wrap(&name, v), s);
             }
         }
         self.mcr = Pow { on: true, sure: true };
@@ -316,6 +342,12 @@ impl Simulator {
             }
         }
         self.mark(name, sure);
+    }
+
+    /// `v` as the integer `name` stores it: wrapped to its size (16 bits in orig and by
+    /// default), as the generated code keeps a variable's low bytes.
+    fn wrap(&self, name: &str, v: i64) -> i64 {
+        wrap_bytes(v, self.sizes.get(name).copied().unwrap_or(2))
     }
 
     fn value(&self, op: &Operand) -> (i64, bool) {
@@ -471,7 +503,7 @@ impl Simulator {
                     }
                     (CounterKind::Ctc, false) => {
                         if trig {
-                            let c = wrap16(c0.wrapping_add(1));
+                            let c = self.wrap(name, c0.wrapping_add(1));
                             if c > max { (init, true) } else { (c, false) }
                         } else {
                             (c0, false)
@@ -479,7 +511,7 @@ impl Simulator {
                     }
                     (CounterKind::Ctr, _) => {
                         if trig {
-                            let c = wrap16(c0.wrapping_sub(1));
+                            let c = self.wrap(name, c0.wrapping_sub(1));
                             if c < max { (init, true) } else { (c, false) }
                         } else {
                             (c0, false)
@@ -508,11 +540,13 @@ impl Simulator {
                 i
             }
             ElementKind::Compare { op, a, b } => {
-                // A literal beyond 16 bits goes through a temporary whose size LDmicro
-                // chooses (`VarFromExpr`): 0xffff may read as -1 or as 65535.
-                let wide = [a, b]
-                    .iter()
-                    .any(|o| matches!(o, Operand::Literal(v) if !(-32768..=32767).contains(v)));
+                // orig: a literal beyond 16 bits goes through a temporary whose size
+                // LDmicro chooses (`VarFromExpr`): 0xffff may read as -1 or as 65535.
+                // new compares the sign-extended values (`NEW_CMP`): exactly.
+                let wide = self.orig
+                    && [a, b]
+                        .iter()
+                        .any(|o| matches!(o, Operand::Literal(v) if !(-32768..=32767).contains(v)));
                 let (a, a_sure) = self.value(a);
                 let (b, b_sure) = self.value(b);
                 let v = match op {
@@ -527,7 +561,7 @@ impl Simulator {
             }
             ElementKind::Move { dest, src } => {
                 let (v, s) = self.value(src);
-                self.assign(dest, i, wrap16(v), s);
+                self.assign(dest, i, self.wrap(dest, v), s);
                 i
             }
             ElementKind::Math { op, dest, a, b } => {
@@ -540,7 +574,7 @@ impl Simulator {
                     MathOp::Div => (b != 0).then(|| a.wrapping_div(b)),
                 };
                 match r {
-                    Some(r) => self.assign(dest, i, wrap16(r), a_sure && b_sure),
+                    Some(r) => self.assign(dest, i, self.wrap(dest, r), a_sure && b_sure),
                     None => {
                         // Division by zero: undefined in LDmicro.
                         self.unmodelled.insert("DIV by zero".into());
@@ -564,7 +598,7 @@ impl Simulator {
                     let (from, to) = (format!("{name}{}", s - 1), format!("{name}{s}"));
                     let (v, v_sure) = (self.int(&from), self.is_known(&from));
                     if edge {
-                        self.set_int(&to, v, v_sure && edge_sure);
+                        self.set_int(&to, self.wrap(&to, v), v_sure && edge_sure);
                     } else if !edge_sure {
                         self.mark(&to, false);
                     }
@@ -593,7 +627,7 @@ impl Simulator {
                     _ => o,
                 };
                 if let Some(var) = &r.var {
-                    let v = self.int(&r.value);
+                    let v = self.wrap(var, self.int(&r.value));
                     self.assign(var, write, v, true);
                 }
                 if let Some(once) = &r.once {

@@ -18,8 +18,8 @@
 use std::collections::{BTreeMap, BTreeSet};
 
 use super::{Lowering, bytes_needed, int_names};
-use crate::ladder::ldmicro::{Element, ElementKind, LdProgram, TimerDelay, TimerKind};
-use crate::program::{BoolExpr, CmpOp, Compare, IntExpr, IntType, canonical};
+use crate::ladder::ldmicro::{Element, ElementKind, LdProgram, Operand, TimerDelay, TimerKind};
+use crate::program::{BoolExpr, CmpOp, IntExpr, canonical};
 
 /// The timers whose accumulator is an integer of the scan model: every RTO and RTL,
 /// every TON with a variable delay, and every TON/TOF whose accumulator another element
@@ -192,14 +192,13 @@ impl Lowering<'_> {
             return self.fresh(format!("{}_{name}", e.kind.keyword()), e, &why);
         }
         let p = match delay {
-            TimerDelay::Variable(v) => IntExpr::Var(canonical(v)),
+            TimerDelay::Variable(v) => Operand::Var(v.clone()),
             TimerDelay::Micros(_) => {
-                IntExpr::Const(self.program.timer_scans(delay, *adjust).unwrap_or(0))
+                Operand::Literal(self.program.timer_scans(delay, *adjust).unwrap_or(0))
             }
         };
         let t = || IntExpr::Var(acc.clone());
-        let lt =
-            BoolExpr::Compare(Box::new(Compare { op: CmpOp::Lt, ty: IntType::I16, a: t(), b: p }));
+        let lt = self.compare(CmpOp::Lt, &Operand::Var(name.clone()), &p);
         let lt = self.temp(lt);
         let step = IntExpr::plus(t(), IntExpr::Const(1));
         let not_input = || BoolExpr::negate(input.clone());
