@@ -178,6 +178,22 @@ impl Gen {
                     "NEG vb va",
                 ])
                 .to_string(),
+            // Bit operations: on every target, or on AVR only (SHR, SR0, ROL, ROR, BIN2BCD).
+            19 if self.rng.chance(50) => {
+                let op = self.rng.pick(&[
+                    "AND", "OR", "XOR", "SHL", "SHR", "SR0", "ROL", "ROR", "MOD", "NOT", "BIN2BCD",
+                ]);
+                let (dest, a) = (self.rng.pick(INTS), self.rng.pick(INTS));
+                let b = match self.rng.below(3) {
+                    0 => self.operand(),
+                    _ => self.rng.below(10).to_string(),
+                };
+                if matches!(*op, "NOT" | "BIN2BCD") {
+                    format!("{op} {dest} {a}")
+                } else {
+                    format!("{op} {dest} {a} {b}")
+                }
+            }
             16 => self
                 .rng
                 .pick(&[
@@ -404,7 +420,7 @@ fn random_program(seed: u64) -> (String, BTreeSet<String>) {
     }
     if header == "LDmicro0.2" && g.rng.chance(50) {
         // LDmicro ≥ 2016 sizes its integers: 1 to 4 bytes (3 computed on AVR only).
-        if g.rng.chance(30) {
+        if g.rng.chance(60) {
             text.push_str("MICRO=Atmel AVR ATmega328 28-PDIP\n");
         }
         text.push_str("VAR LIST\n");
@@ -886,6 +902,16 @@ const COVERAGE: &[&str] = &[
     "MUL",
     "DIV",
     "MOD",
+    "AND",
+    "OR",
+    "XOR",
+    "NOT",
+    "SHL",
+    "SHR",
+    "SR0",
+    "ROL",
+    "ROR",
+    "BIN2BCD",
     "SET_BIT",
     "IF_BIT_SET",
     "SHIFT_REGISTER",

@@ -23,6 +23,7 @@
 //! on bits the outside world writes refuse the program with a located error.
 #![warn(missing_docs)]
 
+mod bits;
 mod sizes;
 mod timers;
 
@@ -639,6 +640,13 @@ impl<'a> Lowering<'a> {
             {
                 self.read(e, input)
             }
+            ElementKind::Other { .. } if self.exact(e) && bits::BitElem::of(e).is_some() => {
+                if let Some(b) = bits::BitElem::of(e) {
+                    let d = self.ty(&Operand::Var(b.dest.clone()));
+                    self.set_int(e, &b.dest, &input, b.value(d));
+                }
+                input
+            }
             ElementKind::Other { args, .. } if self.exact(e) => {
                 // SHIFT_REGISTER (ldmicro.md §4): on the rising edge of the power,
                 // `name{k} := name{k-1}` for k = stages-1 down to 1; the power passes.
@@ -730,6 +738,7 @@ fn int_names(e: &Element) -> Vec<String> {
             v
         }
         ElementKind::Other { keyword, .. } if is_read(keyword) => e.names_written(),
+        ElementKind::Other { .. } if let Some(b) = bits::BitElem::of(e) => b.names(),
         ElementKind::Other { keyword, .. } if shift_stages(e).is_some() => {
             debug_assert_eq!(keyword, "SHIFT_REGISTER");
             e.names_written()
@@ -791,7 +800,9 @@ fn integers(
             }
             // What a peripheral or an operation ii-prove does not compute writes.
             ElementKind::Other { keyword, .. }
-                if shift_stages(e).is_none() && !(is_read(keyword) && known(keyword)) =>
+                if shift_stages(e).is_none()
+                    && bits::BitElem::of(e).is_none()
+                    && !(is_read(keyword) && known(keyword)) =>
             {
                 let why = if let (true, Err(why)) = (is_read(keyword), &adc) {
                     format!("it is written by {keyword}, and {why}")
@@ -834,10 +845,7 @@ fn integers(
                 None => {}
             }
         }
-        let ty = |o: &Operand| match o {
-            Operand::Literal(v) => sizes::literal_type(*v),
-            Operand::Var(n) => types.get(n).copied().unwrap_or(IntType::I16),
-        };
+        let ty = |o: &Operand| operand_type(&types, o);
         // A DIV computes in its destination's size on AVR (its operands cut to it
         // first) but in C's `int` (then cut): the same only when neither is wider.
         for e in &live {
@@ -851,6 +859,13 @@ fn integers(
                     cause(dest, why);
                 }
             }
+        }
+    }
+    // The bit operations ii-prove computes for these sizes and this target (`bits`).
+    for b in live.iter().filter_map(|e| bits::BitElem::of(e)) {
+        let ty = |o: &Operand| operand_type(&types, o);
+        if let Some(why) = b.why_not(&ty, program.micro.as_deref()) {
+            cause(&b.dest, why);
         }
     }
     // What is computed from an opaque integer is opaque.
@@ -891,6 +906,15 @@ fn integers(
         }
     }
     (ints, opaque)
+}
+
+/// The type of an operand given the integers' types (16 bits by default): a literal's
+/// as many bytes as it needs.
+fn operand_type(types: &BTreeMap<String, IntType>, o: &Operand) -> IntType {
+    match o {
+        Operand::Literal(v) => sizes::literal_type(*v),
+        Operand::Var(n) => types.get(n).copied().unwrap_or(IntType::I16),
+    }
 }
 
 /// The elements of the rungs that run (not comment rungs), in scan order.

@@ -119,6 +119,8 @@ pub struct Simulator {
     readings: BTreeMap<usize, super::Reading>,
     /// new: the bytes LDmicro stores each integer in, when not 2 (ldmicro.md §5).
     sizes: BTreeMap<String, u32>,
+    /// The target is an AVR (`MICRO=Atmel AVR …`), whose code the bit operations follow.
+    avr: bool,
 }
 
 /// Elements that change which rungs run or stop the scan (ldmicro.md §4, last table).
@@ -147,6 +149,7 @@ impl Simulator {
             control_flow: false,
             readings: super::readings(program),
             sizes: if orig { BTreeMap::new() } else { program.var_bytes.clone() },
+            avr: program.micro.as_deref().is_some_and(|m| m.starts_with("Atmel AVR")),
         };
         // Only the rungs that run: a comment rung's timers and counters do not initialise
         // anything, and its control flow never executes.
@@ -635,6 +638,12 @@ impl Simulator {
                 }
                 o
             }
+            ElementKind::Other { keyword, args } if self.bit_op(keyword, args).is_some() => {
+                if let Some((dest, v, s)) = self.bit_op(keyword, args) {
+                    self.assign(&dest, i, v, s);
+                }
+                i
+            }
             // A PERSIST that names no variable (every other one is a reading above):
             // saving to EEPROM changes nothing here.
             ElementKind::Other { keyword, .. } if keyword == "PERSIST" => i,
@@ -653,6 +662,69 @@ impl Simulator {
                 }
             }
         }
+    }
+
+    /// A bit operation `OP dest a [b]` as LDmicro's AVR code runs it (`avr.cpp`,
+    /// `INT_SET_VARIABLE_AND`…: in the destination's size, operands sign-extended or cut
+    /// to it; shifts and rotations `k` times for a literal `k` of 0 to 127): the
+    /// destination, the value written and whether it is exact. None where the targets
+    /// differ and the target is not an AVR (SHR, SR0, ROL, ROR, BIN2BCD), for BIN2BCD
+    /// off 1-byte operands (`bin2bcd8`), for MOD by 0, a variable or wider operands, and
+    /// for SWAP, OPPOSITE and BCD2BIN: those are not modelled.
+    fn bit_op(&self, keyword: &str, args: &[String]) -> Option<(String, i64, bool)> {
+        let dest = args.first()?.clone();
+        let size = |n: &str| match crate::ladder::ldmicro::operand(n) {
+            Operand::Literal(v) => byte_needed(v),
+            Operand::Var(n) => self.sizes.get(&n).copied().unwrap_or(2),
+        };
+        let d = size(&dest);
+        let bits = 8 * d;
+        let (a, a_sure) = self.value(&crate::ladder::ldmicro::operand(args.get(1)?));
+        let cut = wrap_bytes(a, d);
+        let unsigned = cut & ((1i64 << bits) - 1);
+        let literal = || match crate::ladder::ldmicro::operand(args.get(2)?) {
+            Operand::Literal(k) => Some(k),
+            Operand::Var(_) => None,
+        };
+        let count = || literal().filter(|k| (0..=127).contains(k));
+        let second = || Some(self.value(&crate::ladder::ldmicro::operand(args.get(2)?)));
+        let v: i64 = match (keyword, args.len()) {
+            ("AND" | "OR" | "XOR", 3) => {
+                let (b, b_sure) = second()?;
+                let r = match keyword {
+                    "AND" => a & b,
+                    "OR" => a | b,
+                    _ => a ^ b,
+                };
+                return Some((dest.clone(), wrap_bytes(r, d), a_sure && b_sure));
+            }
+            ("NOT", 2) => !a,
+            ("NEG", 2) => a.wrapping_neg(),
+            ("SHL", 3) => {
+                let k = count()?;
+                if k >= 64 { 0 } else { a << k }
+            }
+            ("MOD", 3) => {
+                let k = literal().filter(|k| *k != 0)?;
+                if size(&args[1]) > d || byte_needed(k) > d {
+                    return None;
+                }
+                cut.wrapping_rem(k)
+            }
+            ("SHR", 3) if self.avr => cut >> count()?.min(63),
+            ("SR0", 3) if self.avr => unsigned >> count()?.min(63),
+            ("ROL" | "ROR", 3) if self.avr => {
+                let k = count()? % i64::from(bits);
+                let r = if keyword == "ROL" { k } else { (i64::from(bits) - k) % i64::from(bits) };
+                (unsigned << r) | (unsigned >> (i64::from(bits) - r))
+            }
+            ("BIN2BCD", 2) if self.avr && d == 1 && size(&args[1]) == 1 => {
+                let u = a & 0xff;
+                (u / 10) * 16 + u % 10
+            }
+            _ => return None,
+        };
+        Some((dest, wrap_bytes(v, d), a_sure))
     }
 
     /// `if i { dest := v }`, tracking exactness.

@@ -92,6 +92,10 @@ impl Lowering<'_> {
             IntExpr::Div(a, k) => Ok(ty.wrap(self.known_int(a, ty)?.wrapping_div(*k))),
             IntExpr::Mod(a, k) => Ok(ty.wrap(self.known_int(a, ty)?.wrapping_rem(*k))),
             IntExpr::Cast(a, inner) => Ok(ty.wrap(self.known_int(a, *inner)?)),
+            IntExpr::Bitwise(op, a, b) => {
+                Ok(ty.wrap(op.apply(self.known_int(a, ty)?, self.known_int(b, ty)?)))
+            }
+            IntExpr::Shift(a, k) => Ok(ty.wrap(crate::program::shift(self.known_int(a, ty)?, *k))),
             IntExpr::Ite(c, a, b) => match self.known_bool(c) {
                 Ok(true) => self.known_int(a, ty),
                 Ok(false) => self.known_int(b, ty),
