@@ -129,6 +129,10 @@ struct Lowering<'a> {
     opaque: BTreeMap<String, String>,
     /// The peripheral reads, by element index (see [`super::readings`]).
     readings: BTreeMap<usize, super::Reading>,
+    /// THI, TLO and TCY's state bits (see [`super::timer_bits`]).
+    timer_bits: BTreeMap<(usize, u8), String>,
+    /// The hidden 1-bit integers the lowering made (THI, TLO and TCY's state bits).
+    hidden_bits: BTreeSet<String>,
 }
 
 impl<'a> Lowering<'a> {
@@ -149,7 +153,19 @@ impl<'a> Lowering<'a> {
             ints,
             opaque,
             readings,
+            timer_bits: super::timer_bits(program),
+            hidden_bits: BTreeSet::new(),
         }
+    }
+
+    /// The hidden 1-bit integer `k` of element `e` (see [`super::timer_bits`]), 0 at
+    /// power-up.
+    fn hidden_bit(&mut self, e: &Element, k: u8) -> String {
+        let index = self.index.get(&(e as *const Element)).copied().unwrap_or(usize::MAX);
+        let bit = canonical(self.timer_bits.get(&(index, k)).map_or("", String::as_str));
+        self.hidden_bits.insert(bit.clone());
+        self.ints.insert(bit.clone(), IntVar { ty: IntType::BIT, input: false, init: 0 });
+        bit
     }
 
     /// Whether every integer the element reads or writes is computed exactly.
@@ -356,8 +372,12 @@ impl<'a> Lowering<'a> {
         for r in self.readings.values() {
             names.extend(r.names().map(|n| canonical(n)));
         }
-        // PERSIST's one-shot is the lowering's own integer, never an output to compare.
-        let hidden = self.readings.values().flat_map(|r| &r.once).map(|n| canonical(n)).collect();
+        names.extend(self.hidden_bits.iter().cloned());
+        // PERSIST's one-shot and the timers' state bits are the lowering's own integers,
+        // never outputs to compare.
+        let mut hidden: BTreeSet<String> =
+            self.readings.values().flat_map(|r| &r.once).map(|n| canonical(n)).collect();
+        hidden.extend(self.hidden_bits.iter().cloned());
         let skipped = program
             .rungs
             .iter()

@@ -28,7 +28,10 @@
 //! names them), and the peripheral writes that pass their input (SET_PWM, I2C, SPI,
 //! segments, BUS: `ldmicro::PASS_THROUGH`).
 //!
-//! Everything else (THI, TLO, TCY, ODF, OSC, the other integer, peripheral and
+//! THI, TLO and TCY count their accumulator with their state bits as `intcode.cpp`
+//! does; bit operations run as LDmicro's AVR code runs them (see `bit_op`).
+//!
+//! Everything else (ODF, OSC, the other integer, peripheral and
 //! text elements, division by zero) is **not modelled**: the simulator keeps a
 //! best guess (the output follows the input; written values are left unchanged)
 //! and marks what it affects as *unknown*. Unknown-ness propagates: a contact on
@@ -121,6 +124,9 @@ pub struct Simulator {
     sizes: BTreeMap<String, u32>,
     /// The target is an AVR (`MICRO=Atmel AVR …`), whose code the bit operations follow.
     avr: bool,
+    /// THI, TLO and TCY's state bits (`$once_…` of `intcode.cpp`), integers 0 or 1 by
+    /// the names [`super::timer_bits`] gives them.
+    timer_bits: BTreeMap<(usize, u8), String>,
 }
 
 /// Elements that change which rungs run or stop the scan (ldmicro.md §4, last table).
@@ -150,6 +156,7 @@ impl Simulator {
             readings: super::readings(program),
             sizes: if orig { BTreeMap::new() } else { program.var_bytes.clone() },
             avr: program.micro.as_deref().is_some_and(|m| m.starts_with("Atmel AVR")),
+            timer_bits: super::timer_bits(program),
         };
         // Only the rungs that run: a comment rung's timers and counters do not initialise
         // anything, and its control flow never executes.
@@ -445,6 +452,13 @@ impl Simulator {
                 };
                 i
             }
+            ElementKind::Timer {
+                kind: kind @ (TimerKind::Thi | TimerKind::Tlo | TimerKind::Tcy),
+                name,
+                delay,
+                adjust,
+                ..
+            } => self.pulse_timer(*kind, name, delay, *adjust, i, k),
             ElementKind::Timer { kind, name, delay, adjust, .. } => {
                 self.timer(*kind, name, delay, *adjust, i)
             }
@@ -727,6 +741,89 @@ impl Simulator {
         Some((dest, wrap_bytes(v, d), a_sure))
     }
 
+    /// THI, TLO and TCY as `intcode.cpp` runs them (`ELEM_THI`, `ELEM_TLO`, `ELEM_TCY`
+    /// with `NEW_TON` undefined), `k` the element's index: its output.
+    fn pulse_timer(
+        &mut self,
+        kind: TimerKind,
+        name: &str,
+        delay: &TimerDelay,
+        adjust: i64,
+        i: Pow,
+        k: usize,
+    ) -> Pow {
+        let (p, p_sure) = self.period(delay, adjust);
+        let names = [0, 1].map(|b| self.timer_bits.get(&(k, b)).cloned().unwrap_or_default());
+        let bit = |n: &str| (self.int(n) == 1, self.is_known(n));
+        let ((mut s, s_sure), (mut h, h_sure)) = (bit(&names[0]), bit(&names[1]));
+        let mut t = self.int(name);
+        let sure = i.sure && p_sure && s_sure && h_sure && self.is_known(name);
+        let out = match kind {
+            TimerKind::Thi => {
+                if i.on {
+                    s = true;
+                }
+                if s {
+                    if t < p {
+                        t += 1;
+                        true
+                    } else {
+                        if !i.on {
+                            t = 0;
+                            s = false;
+                        }
+                        false
+                    }
+                } else {
+                    false
+                }
+            }
+            TimerKind::Tlo => {
+                if !i.on {
+                    if h {
+                        s = true;
+                    }
+                } else {
+                    h = true;
+                }
+                if s {
+                    if t < p {
+                        t += 1;
+                        false
+                    } else {
+                        if i.on {
+                            t = 0;
+                            s = false;
+                        }
+                        true
+                    }
+                } else {
+                    h || i.on
+                }
+            }
+            _ => {
+                if i.on {
+                    if t < p {
+                        t += 1;
+                    } else {
+                        t = 0;
+                        s = !s;
+                    }
+                    s
+                } else {
+                    t = 0;
+                    false
+                }
+            }
+        };
+        for (name, v) in names.iter().zip([s, h]).filter(|(n, _)| !n.is_empty()) {
+            self.set_int(name, i64::from(v), sure);
+        }
+        let t = self.wrap(name, t);
+        self.set_int(name, t, sure);
+        Pow { on: out, sure }
+    }
+
     /// `if i { dest := v }`, tracking exactness.
     fn assign(&mut self, dest: &str, i: Pow, v: i64, v_sure: bool) {
         if i.on {
@@ -780,9 +877,7 @@ impl Simulator {
                 }
             }
             TimerKind::Thi | TimerKind::Tlo | TimerKind::Tcy => {
-                self.unmodelled.insert(format!("{kind:?}").to_uppercase());
-                self.mark(name, false);
-                return i.unknown();
+                return self.pulse_timer(kind, name, delay, adjust, i, usize::MAX);
             }
         };
         let sure = sure && i.sure && p_sure;
