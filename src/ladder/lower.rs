@@ -9,11 +9,13 @@
 //! `¬mcr + i`; it is `1*` at the start of every scan). Bits are written only by coils
 //! (timers, counters, `RES`, `MOVE` and the integer elements write integers, a separate
 //! name space). A TON/TOF with a literal delay is a timer of the scan model; RTO, RTL,
-//! a TON with a variable delay and a TON/TOF whose accumulator another element writes
-//! or reads count their accumulator as an exact 16-bit integer, as LDmicro's code does
-//! ([`timers`]). What the scan model does not compute is an unconstrained value with
-//! the reason (counters and comparisons over integers not computed, the one-shots ODF
-//! and OSC, THI/TLO/TCY, text elements, UART_SEND and FORMATTED_STRING, whose outputs
+//! THI, TLO, TCY, a TON with a variable delay and a TON/TOF whose accumulator another
+//! element writes or reads count their accumulator as an exact integer, as LDmicro's
+//! code does ([`timers`]). Integers have LDmicro's sizes ([`sizes`]); the bit
+//! operations are computed where LDmicro's targets agree ([`bits`]). What the scan
+//! model does not compute is an unconstrained value with the reason (counters and
+//! comparisons over integers not computed, the one-shots ODF and OSC, text elements,
+//! UART_SEND and FORMATTED_STRING, whose outputs
 //! follow the UART's transmission); integer side effects (MOVE, math, RES) over integers
 //! not computed and the peripheral writes (SET_PWM, I2C, SPI, segment and bus elements)
 //! pass the power with a note. The peripheral reads (READ_ADC, UART_RECV, the UART's
@@ -121,7 +123,7 @@ struct Lowering<'a> {
     mcr: Temp,
     /// The current rung's number.
     number: usize,
-    /// The integers computed exactly (16-bit signed, LDmicro's arithmetic), with their
+    /// The integers computed exactly (signed, of LDmicro's sizes), with their
     /// power-up values; the others (a timer's count, what a peripheral or `DIV` writes,
     /// and what is computed from those) are not modelled.
     ints: BTreeMap<String, IntVar>,
@@ -778,10 +780,10 @@ fn shift_stages(e: &Element) -> Option<u32> {
 }
 
 /// The integers computed exactly: every integer the counters, comparisons, `MOVE`,
-/// `ADD`/`SUB`/`MUL`/`DIV` and `RES` of the rungs that run read or write, except those
+/// `ADD`/`SUB`/`MUL`/`DIV`, bit operations and `RES` of the rungs that run read or write, except those
 /// something else writes (a timer's count, a `DIV` by a variable or 0, a peripheral
 /// ii-prove does not read), those computed from such, and counters whose limit or start value is not
-/// a 16-bit literal or exact integer; those come back with why. Each is 16-bit signed; a counter of a new file starts at its `init`
+/// a literal or exact integer, or whose size or operation LDmicro's targets compute differently; those come back with why. Each is signed of its size (16 bits in orig); a counter of a new file starts at its `init`
 /// (the last counter of that name wins, as the runtime initialises them in order).
 fn integers(
     program: &LdProgram,

@@ -162,6 +162,24 @@ impl Simulator {
         // anything, and its control flow never executes.
         let live = program.rungs.iter().filter(|r| !skipped(r, orig));
         for e in live.flat_map(|r| r.elements()) {
+            // new sizes a timer's count for its period (`CalcDelay`: `byteNeeded` of
+            // delay/cycle) and a counter for its literal start value and limit
+            // (`intcode.cpp`, the counters' `SetSizeOfVar`).
+            match &e.kind {
+                ElementKind::Timer { name, delay: TimerDelay::Micros(d), .. } if !orig => {
+                    let n = d.checked_div(sim.cycle_us).unwrap_or(0);
+                    sim.sizes.insert(name.clone(), byte_needed(i64::try_from(n).unwrap_or(0)));
+                }
+                ElementKind::Counter {
+                    name,
+                    init: Operand::Literal(i),
+                    limit: Operand::Literal(l),
+                    ..
+                } if !orig => {
+                    sim.sizes.insert(name.clone(), byte_needed(*i).max(byte_needed(*l)));
+                }
+                _ => {}
+            }
             match &e.kind {
                 ElementKind::Other { keyword, .. } if CONTROL_FLOW.contains(&keyword.as_str()) => {
                     sim.control_flow = true;
@@ -173,17 +191,7 @@ impl Simulator {
                     let (p, _) = sim.period(delay, *adjust);
                     sim.ints.insert(name.clone(), p);
                 }
-                // new sizes a timer's count for its period (`CalcDelay`: `byteNeeded` of
-                // delay/cycle) and a counter for its literal start value and limit
-                // (`intcode.cpp`, the counters' `SetSizeOfVar`).
-                ElementKind::Timer { name, delay: TimerDelay::Micros(d), .. } if !orig => {
-                    let n = d.checked_div(sim.cycle_us).unwrap_or(0);
-                    sim.sizes.insert(name.clone(), byte_needed(i64::try_from(n).unwrap_or(0)));
-                }
-                ElementKind::Counter { name, init, limit, .. } if !orig => {
-                    if let (Operand::Literal(i), Operand::Literal(l)) = (init, limit) {
-                        sim.sizes.insert(name.clone(), byte_needed(*i).max(byte_needed(*l)));
-                    }
+                ElementKind::Counter { name, init, .. } if !orig => {
                     sim.counter_init.insert(name.clone(), init.clone());
                     if let Operand::Literal(v) = init {
                         sim.ints.insert(name.clone(), *v);
@@ -452,15 +460,8 @@ impl Simulator {
                 };
                 i
             }
-            ElementKind::Timer {
-                kind: kind @ (TimerKind::Thi | TimerKind::Tlo | TimerKind::Tcy),
-                name,
-                delay,
-                adjust,
-                ..
-            } => self.pulse_timer(*kind, name, delay, *adjust, i, k),
             ElementKind::Timer { kind, name, delay, adjust, .. } => {
-                self.timer(*kind, name, delay, *adjust, i)
+                self.timer(*kind, name, delay, *adjust, i, k)
             }
             ElementKind::Edge { kind } => match kind {
                 EdgeKind::Osr | EdgeKind::Osf | EdgeKind::Odr => {
@@ -747,12 +748,11 @@ impl Simulator {
         &mut self,
         kind: TimerKind,
         name: &str,
-        delay: &TimerDelay,
-        adjust: i64,
+        period: (i64, bool),
         i: Pow,
         k: usize,
     ) -> Pow {
-        let (p, p_sure) = self.period(delay, adjust);
+        let (p, p_sure) = period;
         let names = [0, 1].map(|b| self.timer_bits.get(&(k, b)).cloned().unwrap_or_default());
         let bit = |n: &str| (self.int(n) == 1, self.is_known(n));
         let ((mut s, s_sure), (mut h, h_sure)) = (bit(&names[0]), bit(&names[1]));
@@ -840,6 +840,7 @@ impl Simulator {
         delay: &TimerDelay,
         adjust: i64,
         i: Pow,
+        k: usize,
     ) -> Pow {
         let (p, p_sure) = self.period(delay, adjust);
         if kind == TimerKind::Tof && self.orig && self.antiglitch.insert(name.to_string()) {
@@ -877,7 +878,7 @@ impl Simulator {
                 }
             }
             TimerKind::Thi | TimerKind::Tlo | TimerKind::Tcy => {
-                return self.pulse_timer(kind, name, delay, adjust, i, usize::MAX);
+                return self.pulse_timer(kind, name, (p, p_sure), i, k);
             }
         };
         let sure = sure && i.sure && p_sure;

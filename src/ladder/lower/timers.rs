@@ -1,4 +1,4 @@
-//! LDmicro timers the algebra cannot express, as exact 16-bit accumulators of the scan model: RTO, RTL, a TON with a variable delay, and a TON/TOF whose accumulator another element writes or reads.
+//! LDmicro timers the algebra cannot express, as exact integer accumulators of the scan model: RTO, RTL, THI, TLO, TCY, a TON with a variable delay, and a TON/TOF whose accumulator another element writes or reads.
 //!
 //! The accumulator `T` counts scans exactly as LDmicro's generated code does
 //! (`intcode.cpp`, the same in orig 2.x and new; ldmicro.md §6.3), with `lt` the
@@ -13,7 +13,8 @@
 //! wins); orig loads it when its first TOF runs in the first scan (an "antiglitch" bit
 //! per name), which is the same unless an element before that TOF touches the
 //! accumulator or TOFs of that name count to different periods: such an accumulator is
-//! not computed. THI, TLO and TCY stay unconstrained.
+//! not computed. THI, TLO and TCY keep state bits besides the count ([`Lowering::pulse`],
+//! and the TCY arm of [`Lowering::int_timer`]).
 
 use std::collections::{BTreeMap, BTreeSet};
 
