@@ -1167,14 +1167,14 @@ mod tests {
     fn unmodelled_elements_make_their_results_unknown() {
         let p = program(
             "LDmicro0.2",
-            "RUNG 1\nCONTACTS Xa 0\nTHI Th 20000\nCOIL Yq 0 0 0\nEND\nRUNG 2\nCONTACTS Yq 0\nCOIL Yr 0 0 0\nEND\nRUNG 3\nCONTACTS Xa 0\nCOIL Ys 0 0 0\nEND\n",
+            "RUNG 1\nCONTACTS Xa 0\nODF\nCOIL Yq 0 0 0\nEND\nRUNG 2\nCONTACTS Yq 0\nCOIL Yr 0 0 0\nEND\nRUNG 3\nCONTACTS Xa 0\nCOIL Ys 0 0 0\nEND\n",
         );
         let mut sim = Simulator::new(&p);
         sim.step(&inputs(&[("Xa", true)]));
         assert!(!sim.is_known("Yq"));
         assert!(!sim.is_known("Yr"));
         assert!(sim.is_known("Ys"));
-        assert!(sim.unmodelled().contains("THI"));
+        assert!(sim.unmodelled().contains("ODF"));
     }
 
     #[test]
