@@ -63,7 +63,8 @@ impl Theory {
     }
 }
 
-fn relation(r: GoalRelation) -> Rel {
+/// A statement's relation as the kernel's.
+pub(crate) fn relation(r: GoalRelation) -> Rel {
     match r {
         GoalRelation::Equals => Rel::Eq,
         GoalRelation::Implies => Rel::Implies,

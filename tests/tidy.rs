@@ -51,6 +51,46 @@ fn the_kernel_is_small_and_imports_only_terms_the_certificate_format_and_its_ref
     }
 }
 
+/// Files over 900 lines are split where a second reason to change appears. The files
+/// listed are over it and due to be split (work under way in them now keeps them whole
+/// for the moment): each is capped at its length when the list was made plus 60 lines.
+/// The list only shrinks: a listed file back under the limit must leave it.
+#[test]
+fn no_source_file_is_over_900_lines_except_those_due_to_be_split() {
+    const LIMIT: usize = 900;
+    const DUE_TO_BE_SPLIT: &[(&str, usize)] = &[
+        ("src/counterexample/mod.rs", 1248 + 60),
+        ("src/ladder/ldmicro.rs", 1587 + 60),
+        ("src/ladder/lower.rs", 909 + 60),
+        ("src/ladder/plcopen/lower.rs", 907 + 60),
+        ("src/ladder/simulate.rs", 1023 + 60),
+        ("src/program/compile.rs", 1396 + 60),
+        ("src/prover/boolean.rs", 1093 + 60),
+    ];
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut over = Vec::new();
+    for path in common::files_with(&root.join("src"), "rs") {
+        let name = path.strip_prefix(root).unwrap().to_string_lossy().replace('\\', "/");
+        let lines = std::fs::read_to_string(&path).unwrap().lines().count();
+        let cap = DUE_TO_BE_SPLIT.iter().find(|(due, _)| *due == name).map_or(LIMIT, |d| d.1);
+        if lines > cap {
+            over.push(format!("{name}: {lines} lines, at most {cap}"));
+        }
+    }
+    assert!(
+        over.is_empty(),
+        "split these where a second reason to change appears: {}",
+        over.join("; ")
+    );
+    for (name, _) in DUE_TO_BE_SPLIT {
+        let lines = std::fs::read_to_string(root.join(name)).map_or(0, |t| t.lines().count());
+        assert!(
+            lines > LIMIT,
+            "{name} has {lines} lines: take it off the list of files due to be split"
+        );
+    }
+}
+
 #[test]
 fn only_the_kernel_builds_theorems() {
     for (path, text) in sources() {

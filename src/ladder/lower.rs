@@ -160,16 +160,6 @@ impl<'a> Lowering<'a> {
         }
     }
 
-    /// The hidden 1-bit integer `k` of element `e` (see [`super::timer_bits`]), 0 at
-    /// power-up.
-    fn hidden_bit(&mut self, e: &Element, k: u8) -> String {
-        let index = self.index.get(&(e as *const Element)).copied().unwrap_or(usize::MAX);
-        let bit = canonical(self.timer_bits.get(&(index, k)).map_or("", String::as_str));
-        self.hidden_bits.insert(bit.clone());
-        self.ints.insert(bit.clone(), IntVar { ty: IntType::BIT, input: false, init: 0 });
-        bit
-    }
-
     /// Whether every integer the element reads or writes is computed exactly.
     fn exact(&self, e: &Element) -> bool {
         let ints = int_names(e);
@@ -867,7 +857,7 @@ fn integers(
                 None => {}
             }
         }
-        let ty = |o: &Operand| operand_type(&types, o);
+        let ty = |o: &Operand| sizes::operand_type(&types, o);
         // A DIV computes in its destination's size on AVR (its operands cut to it
         // first) but in C's `int` (then cut): the same only when neither is wider.
         for e in &live {
@@ -885,7 +875,7 @@ fn integers(
     }
     // The bit operations ii-prove computes for these sizes and this target (`bits`).
     for b in live.iter().filter_map(|e| bits::BitElem::of(e)) {
-        let ty = |o: &Operand| operand_type(&types, o);
+        let ty = |o: &Operand| sizes::operand_type(&types, o);
         if let Some(why) = b.why_not(&ty, program.micro.as_deref()) {
             cause(&b.dest, why);
         }
@@ -928,15 +918,6 @@ fn integers(
         }
     }
     (ints, opaque)
-}
-
-/// The type of an operand given the integers' types (16 bits by default): a literal's
-/// as many bytes as it needs.
-fn operand_type(types: &BTreeMap<String, IntType>, o: &Operand) -> IntType {
-    match o {
-        Operand::Literal(v) => sizes::literal_type(*v),
-        Operand::Var(n) => types.get(n).copied().unwrap_or(IntType::I16),
-    }
 }
 
 /// The elements of the rungs that run (not comment rungs), in scan order.

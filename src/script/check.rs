@@ -23,8 +23,7 @@ use crate::ladder::CompiledProgram;
 use crate::prover::saturate::{self, Closed, Limits};
 use crate::prover::{self, Budget, Context, Obligation, Outcome, explain, normalize};
 use crate::syntax::{
-    Claim, Goal, Notation, Relation, RuleRef, ScriptProof, Statement, goal_to_string,
-    term_to_string,
+    Claim, Goal, Notation, RuleRef, ScriptProof, Statement, goal_to_string, term_to_string,
 };
 use crate::term::instantiate;
 use crate::term::{
@@ -201,13 +200,6 @@ pub fn at_path(e: &Expr, path: &[usize]) -> Option<Expr> {
         id = *e[id].children().get(i)?;
     }
     Some(subterm(e, id))
-}
-
-fn rel_of(r: Relation) -> Rel {
-    match r {
-        Relation::Equals => Rel::Eq,
-        Relation::Implies => Rel::Implies,
-    }
 }
 
 fn rel_symbol(rel: Rel, notation: Notation) -> &'static str {
@@ -801,7 +793,7 @@ impl Checker {
                 let mut proof: Option<Proof> = None;
                 let mut lemmas = BTreeSet::new();
                 for (i, step) in steps.iter().enumerate() {
-                    let step_rel = rel_of(step.relation);
+                    let step_rel = theory::relation(step.relation);
                     let only_eq = matches!(closing, Closing::Meet | Closing::Zero | Closing::Symm)
                         || rel == Rel::Eq;
                     if step_rel == Rel::Implies && only_eq {

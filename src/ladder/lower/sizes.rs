@@ -71,3 +71,12 @@ pub(super) fn literal_type(v: i64) -> IntType {
 pub(super) fn wider(a: IntType, b: IntType) -> IntType {
     IntType { bits: a.bits.max(b.bits), signed: true }
 }
+
+/// The type of an operand given the integers' types (16 bits by default): a literal's
+/// as many bytes as it needs.
+pub(super) fn operand_type(types: &BTreeMap<String, IntType>, o: &Operand) -> IntType {
+    match o {
+        Operand::Literal(v) => literal_type(*v),
+        Operand::Var(n) => types.get(n).copied().unwrap_or(IntType::I16),
+    }
+}

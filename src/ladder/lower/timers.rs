@@ -20,7 +20,7 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use super::{Lowering, bytes_needed, int_names};
 use crate::ladder::ldmicro::{Element, ElementKind, LdProgram, Operand, TimerDelay, TimerKind};
-use crate::program::{BoolExpr, CmpOp, Compare, IntExpr, IntType, canonical};
+use crate::program::{BoolExpr, CmpOp, Compare, IntExpr, IntType, IntVar, canonical};
 
 /// `b = 1` for a hidden 1-bit integer.
 fn is_set(b: &str) -> BoolExpr {
@@ -176,6 +176,16 @@ impl Accumulators {
 }
 
 impl Lowering<'_> {
+    /// The hidden 1-bit integer `k` of element `e` (see [`super::timer_bits`]), 0 at
+    /// power-up.
+    fn hidden_bit(&mut self, e: &Element, k: u8) -> String {
+        let index = self.index.get(&(e as *const Element)).copied().unwrap_or(usize::MAX);
+        let bit = canonical(self.timer_bits.get(&(index, k)).map_or("", String::as_str));
+        self.hidden_bits.insert(bit.clone());
+        self.ints.insert(bit.clone(), IntVar { ty: IntType::BIT, input: false, init: 0 });
+        bit
+    }
+
     /// A timer whose accumulator is an integer of the scan model (see
     /// [`integer_timers`]): its output.
     pub(super) fn int_timer(&mut self, e: &Element, input: BoolExpr) -> BoolExpr {
