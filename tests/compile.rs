@@ -329,7 +329,7 @@ fn master_relay_zones_are_exact() {
 #[test]
 fn unsupported_elements_are_fresh_and_reported() {
     let c = compile(&rungs(
-        "RUNG\nCONTACTS Xa 0\nOSR\nCOIL Yp 0 0 0\nEND\nRUNG\nCONTACTS Xa 0\nCTU Cpieces 5\nCOIL Yfull 0 0 0\nEND\nRUNG\nGRT Cpieces 3\nCOIL Ymany 0 0 0\nEND\nRUNG\nCONTACTS Xa 0\nTCY Tr 20000\nCOIL Yr 0 0 0\nEND\nRUNG\nCONTACTS Xa 0\nCOIL Yt 0 0 0 1\nEND\nRUNG\nCONTACTS Yt 0\nCOIL Yu 0 0 0\nEND\n",
+        "RUNG\nCONTACTS Xa 0\nOSR\nCOIL Yp 0 0 0\nEND\nRUNG\nCONTACTS Xa 0\nCTU Cpieces 5\nCOIL Yfull 0 0 0\nEND\nRUNG\nGRT Cpieces 3\nCOIL Ymany 0 0 0\nEND\nRUNG\nCONTACTS Xa 0\nOSC\nCOIL Yr 0 0 0\nEND\nRUNG\nCONTACTS Xa 0\nCOIL Yt 0 0 0 1\nEND\nRUNG\nCONTACTS Yt 0\nCOIL Yu 0 0 0\nEND\n",
     ));
     // A one-shot is an edge: its input now and not at the previous scan.
     assert_eq!(stmt(&c, "L01"), "Yp = Xa · ¬pre Xa");
@@ -341,7 +341,7 @@ fn unsupported_elements_are_fresh_and_reported() {
     };
     assert!(of("Yfull").contains("Cpieces_"), "{}", of("Yfull"));
     assert!(of("Ymany").contains("Cpieces_b"), "{}", of("Ymany"));
-    assert_eq!(stmt(&c, "L04"), "Yr = TCY_Tr");
+    assert_eq!(stmt(&c, "L04"), "Yr = OSC_r4");
     // A toggle flips its bit on a rising edge of its power.
     let toggle = stmt(&c, "L05");
     assert!(toggle.contains("pre Yt") && toggle.contains("pre Xa"), "{toggle}");
@@ -351,7 +351,7 @@ fn unsupported_elements_are_fresh_and_reported() {
     let rungs_warned: Vec<usize> = c.warnings.iter().map(|w| w.rung).collect();
     assert_eq!(rungs_warned, [4]);
     let text = program_to_ii(&c, Notation::Paper);
-    assert!(text.contains("// warning: rung 4 (L04): TCY:"), "{text}");
+    assert!(text.contains("// warning: rung 4 (L04): OSC:"), "{text}");
     // With the sources, a warning names its file, line and column.
     let mut s = Sources::new();
     let f = s.add(
@@ -456,6 +456,19 @@ fn every_unsupported_element_is_reported_with_its_rung() {
                         || matches!(b, Operand::Literal(v) if *v != 0 && (-32768..=32767).contains(v)) =>
                 {
                     [Some(dest.clone()), var(a), var(b)].into_iter().flatten().collect()
+                }
+                // A bit operation is exact when its operands are (`lower/bits.rs`).
+                ElementKind::Other { keyword, args }
+                    if [
+                        "AND", "OR", "XOR", "NOT", "NEG", "SHL", "SHR", "SR0", "ROL", "ROR", "MOD",
+                        "BIN2BCD",
+                    ]
+                    .contains(&keyword.as_str()) =>
+                {
+                    args.iter()
+                        .filter(|a| a.starts_with(|c: char| c.is_alphabetic() || c == '_'))
+                        .cloned()
+                        .collect()
                 }
                 ElementKind::Other { keyword, args }
                     if keyword == "SHIFT_REGISTER" && args.len() == 2 =>

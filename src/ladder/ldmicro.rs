@@ -837,7 +837,8 @@ fn parse_int(token: &str) -> Option<i64> {
     Some(if neg { value.checked_neg()? } else { value })
 }
 
-fn operand(token: &str) -> Operand {
+/// An argument as an operand: a literal (see `parse_int`) or a variable name.
+pub fn operand(token: &str) -> Operand {
     match parse_int(token) {
         Some(v) => Operand::Literal(v),
         None => Operand::Var(token.to_string()),

@@ -9,11 +9,13 @@
 //! `¬mcr + i`; it is `1*` at the start of every scan). Bits are written only by coils
 //! (timers, counters, `RES`, `MOVE` and the integer elements write integers, a separate
 //! name space). A TON/TOF with a literal delay is a timer of the scan model; RTO, RTL,
-//! a TON with a variable delay and a TON/TOF whose accumulator another element writes
-//! or reads count their accumulator as an exact 16-bit integer, as LDmicro's code does
-//! ([`timers`]). What the scan model does not compute is an unconstrained value with
-//! the reason (counters and comparisons over integers not computed, the one-shots ODF
-//! and OSC, THI/TLO/TCY, text elements, UART_SEND and FORMATTED_STRING, whose outputs
+//! THI, TLO, TCY, a TON with a variable delay and a TON/TOF whose accumulator another
+//! element writes or reads count their accumulator as an exact integer, as LDmicro's
+//! code does ([`timers`]). Integers have LDmicro's sizes ([`sizes`]); the bit
+//! operations are computed where LDmicro's targets agree ([`bits`]). What the scan
+//! model does not compute is an unconstrained value with the reason (counters and
+//! comparisons over integers not computed, the one-shots ODF and OSC, text elements,
+//! UART_SEND and FORMATTED_STRING, whose outputs
 //! follow the UART's transmission); integer side effects (MOVE, math, RES) over integers
 //! not computed and the peripheral writes (SET_PWM, I2C, SPI, segment and bus elements)
 //! pass the power with a note. The peripheral reads (READ_ADC, UART_RECV, the UART's
@@ -23,6 +25,8 @@
 //! on bits the outside world writes refuse the program with a located error.
 #![warn(missing_docs)]
 
+mod bits;
+mod sizes;
 mod timers;
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -119,7 +123,7 @@ struct Lowering<'a> {
     mcr: Temp,
     /// The current rung's number.
     number: usize,
-    /// The integers computed exactly (16-bit signed, LDmicro's arithmetic), with their
+    /// The integers computed exactly (signed, of LDmicro's sizes), with their
     /// power-up values; the others (a timer's count, what a peripheral or `DIV` writes,
     /// and what is computed from those) are not modelled.
     ints: BTreeMap<String, IntVar>,
@@ -127,6 +131,10 @@ struct Lowering<'a> {
     opaque: BTreeMap<String, String>,
     /// The peripheral reads, by element index (see [`super::readings`]).
     readings: BTreeMap<usize, super::Reading>,
+    /// THI, TLO and TCY's state bits (see [`super::timer_bits`]).
+    timer_bits: BTreeMap<(usize, u8), String>,
+    /// The hidden 1-bit integers the lowering made (THI, TLO and TCY's state bits).
+    hidden_bits: BTreeSet<String>,
 }
 
 impl<'a> Lowering<'a> {
@@ -147,6 +155,8 @@ impl<'a> Lowering<'a> {
             ints,
             opaque,
             readings,
+            timer_bits: super::timer_bits(program),
+            hidden_bits: BTreeSet::new(),
         }
     }
 
@@ -173,6 +183,23 @@ impl<'a> Lowering<'a> {
         }
     }
 
+    /// The type an operand is read in: a variable's own, a literal's in a new file as
+    /// many bytes as it needs (`sizes::literal_type`), in orig 16 bits.
+    fn ty(&self, op: &Operand) -> IntType {
+        match op {
+            Operand::Var(v) => self.ints.get(&canonical(v)).map_or(IntType::I16, |x| x.ty),
+            Operand::Literal(_) if self.program.version.is_orig() => IntType::I16,
+            Operand::Literal(v) => sizes::literal_type(*v),
+        }
+    }
+
+    /// The comparison `a op b` of two operands, in the larger of their types.
+    fn compare(&self, op: CmpOp, a: &Operand, b: &Operand) -> BoolExpr {
+        let ty = sizes::wider(self.ty(a), self.ty(b));
+        let (a, b) = (self.operand(a), self.operand(b));
+        BoolExpr::Compare(Box::new(Compare { op, ty, a, b }))
+    }
+
     /// `if power then x := value`.
     fn set_int(&mut self, e: &Element, x: &str, power: &BoolExpr, value: IntExpr) {
         let x = canonical(x);
@@ -185,10 +212,12 @@ impl<'a> Lowering<'a> {
         let ElementKind::Counter { kind, name, limit, init, edge } = &e.kind else { return input };
         let orig = self.program.version.is_orig();
         let c = || IntExpr::Var(canonical(name));
+        let count = Operand::Var(name.clone());
+        let c_ty = self.ty(&count);
+        let ty = sizes::wider(c_ty, self.ty(limit));
         let limit = self.operand(limit);
-        let cmp = |op, a: IntExpr, b: IntExpr| {
-            BoolExpr::Compare(Box::new(Compare { op, ty: IntType::I16, a, b }))
-        };
+        let cmp =
+            |op, a: IntExpr, b: IntExpr| BoolExpr::Compare(Box::new(Compare { op, ty, a, b }));
         let one = || IntExpr::Const(1);
         // What makes it count; the hidden bit keeps the power of the previous scan.
         let trigger = match edge {
@@ -225,7 +254,10 @@ impl<'a> Lowering<'a> {
             (CounterKind::Ctc | CounterKind::Ctr, _) => {
                 let up = *kind == CounterKind::Ctc;
                 let step = if up { IntExpr::plus(c(), one()) } else { IntExpr::minus(c(), one()) };
-                let past = cmp(if up { CmpOp::Gt } else { CmpOp::Lt }, step.clone(), limit);
+                // The count is incremented (wrapping to its size) before the comparison
+                // (`intcode.cpp`, `ELEM_CTC`: `INT_INCREMENT_VARIABLE`, then `INT_IF_GRT`).
+                let stored = IntExpr::Cast(Box::new(step.clone()), c_ty);
+                let past = cmp(if up { CmpOp::Gt } else { CmpOp::Lt }, stored, limit);
                 let past = self.temp(past);
                 // CTC wraps to 0 (orig) or init (new); CTR reloads init.
                 let reload = if up && orig { IntExpr::Const(0) } else { init };
@@ -332,8 +364,12 @@ impl<'a> Lowering<'a> {
         for r in self.readings.values() {
             names.extend(r.names().map(|n| canonical(n)));
         }
-        // PERSIST's one-shot is the lowering's own integer, never an output to compare.
-        let hidden = self.readings.values().flat_map(|r| &r.once).map(|n| canonical(n)).collect();
+        names.extend(self.hidden_bits.iter().cloned());
+        // PERSIST's one-shot and the timers' state bits are the lowering's own integers,
+        // never outputs to compare.
+        let mut hidden: BTreeSet<String> =
+            self.readings.values().flat_map(|r| &r.once).map(|n| canonical(n)).collect();
+        hidden.extend(self.hidden_bits.iter().cloned());
         let skipped = program
             .rungs
             .iter()
@@ -533,11 +569,14 @@ impl<'a> Lowering<'a> {
                     CompareOp::Les => CmpOp::Lt,
                     CompareOp::Leq => CmpOp::Le,
                 };
-                // A literal that does not fit 16 bits (`0xffff`) goes through a temporary
-                // whose size LDmicro chooses (intcode.cpp `VarFromExpr`): 65535 in two
-                // bytes reads as -1, in three as 65535. Which one runs is not modelled.
+                // orig: a literal that does not fit 16 bits (`0xffff`) goes through a
+                // temporary whose size LDmicro chooses (intcode.cpp `VarFromExpr`): 65535
+                // in two bytes reads as -1, in three as 65535. Which one runs is not
+                // modelled. New compares both sides sign-extended to the larger size, a
+                // literal as wide as it needs (`NEW_CMP`, see `sizes`): exactly.
+                let orig = self.program.version.is_orig();
                 let wide = [a, b].iter().find_map(|o| match o {
-                    Operand::Literal(v) if !IntType::I16.contains(*v) => Some(*v),
+                    Operand::Literal(v) if orig && !IntType::I16.contains(*v) => Some(*v),
                     _ => None,
                 });
                 if let Some(v) = wide {
@@ -549,8 +588,7 @@ impl<'a> Lowering<'a> {
                     let f = self.fresh(format!("{}_r{number}", e.kind.keyword()), e, &why);
                     return self.temp(BoolExpr::and(input, f));
                 }
-                let (a, b) = (self.operand(a), self.operand(b));
-                let c = BoolExpr::Compare(Box::new(Compare { op, ty: IntType::I16, a, b }));
+                let c = self.compare(op, a, b);
                 self.temp(BoolExpr::and(input, c))
             }
             ElementKind::Move { dest, src } if self.exact(e) => {
@@ -613,6 +651,13 @@ impl<'a> Lowering<'a> {
                 if is_read(keyword) && (self.exact(e) || e.names_written().is_empty()) =>
             {
                 self.read(e, input)
+            }
+            ElementKind::Other { .. } if self.exact(e) && bits::BitElem::of(e).is_some() => {
+                if let Some(b) = bits::BitElem::of(e) {
+                    let d = self.ty(&Operand::Var(b.dest.clone()));
+                    self.set_int(e, &b.dest, &input, b.value(d));
+                }
+                input
             }
             ElementKind::Other { args, .. } if self.exact(e) => {
                 // SHIFT_REGISTER (ldmicro.md §4): on the rising edge of the power,
@@ -705,6 +750,7 @@ fn int_names(e: &Element) -> Vec<String> {
             v
         }
         ElementKind::Other { keyword, .. } if is_read(keyword) => e.names_written(),
+        ElementKind::Other { .. } if let Some(b) = bits::BitElem::of(e) => b.names(),
         ElementKind::Other { keyword, .. } if shift_stages(e).is_some() => {
             debug_assert_eq!(keyword, "SHIFT_REGISTER");
             e.names_written()
@@ -724,10 +770,10 @@ fn shift_stages(e: &Element) -> Option<u32> {
 }
 
 /// The integers computed exactly: every integer the counters, comparisons, `MOVE`,
-/// `ADD`/`SUB`/`MUL`/`DIV` and `RES` of the rungs that run read or write, except those
+/// `ADD`/`SUB`/`MUL`/`DIV`, bit operations and `RES` of the rungs that run read or write, except those
 /// something else writes (a timer's count, a `DIV` by a variable or 0, a peripheral
 /// ii-prove does not read), those computed from such, and counters whose limit or start value is not
-/// a 16-bit literal or exact integer; those come back with why. Each is 16-bit signed; a counter of a new file starts at its `init`
+/// a literal or exact integer, or whose size or operation LDmicro's targets compute differently; those come back with why. Each is signed of its size (16 bits in orig); a counter of a new file starts at its `init`
 /// (the last counter of that name wins, as the runtime initialises them in order).
 fn integers(
     program: &LdProgram,
@@ -766,7 +812,9 @@ fn integers(
             }
             // What a peripheral or an operation ii-prove does not compute writes.
             ElementKind::Other { keyword, .. }
-                if shift_stages(e).is_none() && !(is_read(keyword) && known(keyword)) =>
+                if shift_stages(e).is_none()
+                    && bits::BitElem::of(e).is_none()
+                    && !(is_read(keyword) && known(keyword)) =>
             {
                 let why = if let (true, Err(why)) = (is_read(keyword), &adc) {
                     format!("it is written by {keyword}, and {why}")
@@ -778,10 +826,12 @@ fn integers(
                 }
             }
             ElementKind::Counter { name, limit, init: start, .. } => {
-                let literal =
-                    |o: &Operand| matches!(o, Operand::Literal(v) if !IntType::I16.contains(*v));
+                // orig's integers are 16-bit; new sizes a counter for its literals.
+                let fits = if orig { IntType::I16 } else { IntType { bits: 32, signed: true } };
+                let literal = |o: &Operand| matches!(o, Operand::Literal(v) if !fits.contains(*v));
                 if literal(limit) || (!orig && (start.var().is_some() || literal(start))) {
-                    let why = "its limit or start value is not a 16-bit literal".to_string();
+                    let why =
+                        format!("its limit or start value is not a {}-bit literal", fits.bits);
                     cause(name, why);
                 }
                 if !orig && let Operand::Literal(v) = start {
@@ -793,41 +843,41 @@ fn integers(
         used.extend(int_names(e));
     }
     init.extend(timers.init.iter().map(|(n, p)| (n.clone(), *p)));
-    // LDmicro ≥ 2016 stores an integer in 1 to 4 bytes: a counter in as many as its start
-    // value and limit need, any other integer as the VAR LIST says (2 by default). The
-    // values computed here are 2-byte ones: an integer of another size is exact only when
-    // counters and RES alone write it (its values then stay within its start value and
-    // limit, which its size holds).
+    // LDmicro ≥ 2016 stores an integer in 1 to 4 bytes, each a signed integer of its
+    // size (`sizes`); orig's are all 16-bit.
+    let mut types: BTreeMap<String, IntType> = BTreeMap::new();
     if !orig {
-        let mut bytes = program.var_bytes.clone();
-        bytes.extend(timers.bytes.iter().map(|(n, b)| (n.clone(), *b)));
-        let mut other_writers: BTreeSet<String> = BTreeSet::new();
-        for e in &live {
-            match &e.kind {
-                ElementKind::Counter {
-                    name,
-                    limit: Operand::Literal(l),
-                    init: Operand::Literal(i),
-                    ..
-                } => {
-                    bytes.insert(name.clone(), bytes_needed(*i).max(bytes_needed(*l)));
+        let bytes = sizes::sizes(program, &live, &timers.bytes);
+        for n in &used {
+            match bytes.get(n).map(|b| sizes::int_type(*b, program.micro.as_deref())) {
+                Some(Ok(ty)) => {
+                    types.insert(n.clone(), ty);
                 }
-                // A timer with a literal delay keeps its count within its period, which
-                // its size holds (`timers::Accumulators`).
-                ElementKind::Counter { .. }
-                | ElementKind::Res { .. }
-                | ElementKind::Timer { delay: TimerDelay::Micros(_), .. } => {}
-                _ => other_writers.extend(e.names_written()),
+                Some(Err(why)) => cause(n, why),
+                None => {}
             }
         }
-        for n in used.iter().filter(|n| other_writers.contains(*n)) {
-            if let Some(size) = bytes.get(n).copied().filter(|b| *b != 2) {
-                let why = format!(
-                    "LDmicro stores it in {size} byte{} and ii-prove computes 2-byte integers",
-                    if size == 1 { "" } else { "s" }
-                );
-                cause(n, why);
+        let ty = |o: &Operand| sizes::operand_type(&types, o);
+        // A DIV computes in its destination's size on AVR (its operands cut to it
+        // first) but in C's `int` (then cut): the same only when neither is wider.
+        for e in &live {
+            if let ElementKind::Math { op: MathOp::Div, dest, a, b } = &e.kind {
+                let d = types.get(dest).copied().unwrap_or(IntType::I16);
+                if ty(a).bits > d.bits || ty(b).bits > d.bits {
+                    let why = "it is written by a DIV of operands wider than it, which \
+                               LDmicro's AVR code cuts to its size before dividing and its C \
+                               code after"
+                        .to_string();
+                    cause(dest, why);
+                }
             }
+        }
+    }
+    // The bit operations ii-prove computes for these sizes and this target (`bits`).
+    for b in live.iter().filter_map(|e| bits::BitElem::of(e)) {
+        let ty = |o: &Operand| sizes::operand_type(&types, o);
+        if let Some(why) = b.why_not(&ty, program.micro.as_deref()) {
+            cause(&b.dest, why);
         }
     }
     // What is computed from an opaque integer is opaque.
@@ -850,7 +900,8 @@ fn integers(
         .filter(|n| !opaque.contains_key(n))
         .map(|n| {
             let start = init.get(&n).copied().unwrap_or(0);
-            (canonical(&n), IntVar { ty: IntType::I16, input: false, init: start })
+            let ty = types.get(&n).copied().unwrap_or(IntType::I16);
+            (canonical(&n), IntVar { ty, input: false, init: start })
         })
         .collect();
     // The values peripheral reads give the integers computed exactly: free inputs.

@@ -84,6 +84,53 @@ impl Reading {
     }
 }
 
+/// Every name of `program`: its bits and the names its elements read and write.
+fn program_names(program: &LdProgram) -> BTreeSet<String> {
+    let mut taken: BTreeSet<String> = program.signals().into_iter().collect();
+    for e in program.elements() {
+        taken.extend(e.names_read().into_iter().map(str::to_string));
+        taken.extend(e.names_written());
+    }
+    taken
+}
+
+/// The state bits of THI, TLO and TCY (`intcode.cpp`'s `$once_…` bits), by element
+/// index (`program.elements()` order) and bit — 0: THI's and TLO's pulse bit, TCY's
+/// phase; 1: TLO's "has been high" — hidden 1-bit integers, 0 at power-up, named
+/// `THI_name_rN_on`, `TLO_name_rN_on`, `TLO_name_rN_high`, `TCY_name_rN_phase`; a
+/// suffix `_2`, … keeps them apart from the program's names and the reads' ones.
+pub fn timer_bits(program: &LdProgram) -> std::collections::BTreeMap<(usize, u8), String> {
+    let mut taken = program_names(program);
+    taken.extend(readings(program).values().flat_map(|r| r.names().cloned().collect::<Vec<_>>()));
+    let mut out = std::collections::BTreeMap::new();
+    let mut index = 0;
+    for rung in &program.rungs {
+        for e in rung.elements() {
+            if let ElementKind::Timer { kind, name, .. } = &e.kind {
+                let bits: &[&str] = match kind {
+                    TimerKind::Thi => &["on"],
+                    TimerKind::Tlo => &["on", "high"],
+                    TimerKind::Tcy => &["phase"],
+                    _ => &[],
+                };
+                for (k, what) in bits.iter().enumerate() {
+                    let base = format!("{}_{name}_r{}_{what}", e.kind.keyword(), rung.number);
+                    let mut bit = base.clone();
+                    let mut n = 1;
+                    while taken.contains(&bit) {
+                        n += 1;
+                        bit = format!("{base}_{n}");
+                    }
+                    taken.insert(bit.clone());
+                    out.insert((index, k as u8), bit);
+                }
+            }
+            index += 1;
+        }
+    }
+    out
+}
+
 /// The UART's status contacts and their aliases (`loadsave.cpp`): `o = i · flag`, the
 /// flag read from the hardware (`intcode.cpp`, `ELEM_UART_RECV_AVAIL`,
 /// `ELEM_UART_SEND_READY`).
@@ -117,11 +164,7 @@ pub fn adc_bits(micro: Option<&str>) -> Result<u32, String> {
 /// `_3`, … keeps them apart from each other and from the program's names. A `READ_ADC`
 /// of a target whose ADC range is not known ([`adc_bits`]) is not among them.
 pub fn readings(program: &LdProgram) -> std::collections::BTreeMap<usize, Reading> {
-    let mut taken: BTreeSet<String> = program.signals().into_iter().collect();
-    for e in program.elements() {
-        taken.extend(e.names_read().into_iter().map(str::to_string));
-        taken.extend(e.names_written());
-    }
+    let mut taken = program_names(program);
     let mut fresh = |base: String| {
         let mut name = base.clone();
         let mut k = 1;

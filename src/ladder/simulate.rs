@@ -20,13 +20,18 @@
 //! per its `intcode.cpp`; a variable delay is `P` scans; a zero cycle makes timers never expire),
 //! OSR, OSF, ODR, CTU/CTD/CTC (orig semantics for `LDmicro0.1`/headerless files,
 //! new semantics otherwise; CTR always new), RES, EQU…LEQ, MOVE and
-//! ADD/SUB/MUL/DIV with 16-bit two's-complement wrap, the peripheral reads READ_ADC,
+//! ADD/SUB/MUL/DIV with two's-complement wrap to the destination's size (orig: 16 bits;
+//! new: the `VAR LIST`'s 1 to 4 bytes, a counter's and a timer's as LDmicro sizes them,
+//! 2 by default; comparisons of the values as stored), the peripheral reads READ_ADC,
 //! UART_RECV, the UART's status contacts and PERSIST's load from EEPROM, whose values
 //! and flags are free integer inputs given in `step`'s input map ([`super::readings`]
 //! names them), and the peripheral writes that pass their input (SET_PWM, I2C, SPI,
 //! segments, BUS: `ldmicro::PASS_THROUGH`).
 //!
-//! Everything else (THI, TLO, TCY, ODF, OSC, the other integer, peripheral and
+//! THI, TLO and TCY count their accumulator with their state bits as `intcode.cpp`
+//! does; bit operations run as LDmicro's AVR code runs them (see `bit_op`).
+//!
+//! Everything else (ODF, OSC, the other integer, peripheral and
 //! text elements, division by zero) is **not modelled**: the simulator keeps a
 //! best guess (the output follows the input; written values are left unchanged)
 //! and marks what it affects as *unknown*. Unknown-ness propagates: a contact on
@@ -39,6 +44,8 @@
 //! or out of subroutines). The simulator does not guess: from the first scan of a
 //! program that contains any of them, **no** value is exact ([`Simulator::is_known`]
 //! is false for every name). `LABEL` alone is a wire.
+
+mod newer;
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -81,6 +88,17 @@ fn wrap16(v: i64) -> i64 {
     i64::from(v as i16)
 }
 
+/// `v` as an integer of `bytes` bytes keeps it: its low bytes, sign-extended.
+fn wrap_bytes(v: i64, bytes: u32) -> i64 {
+    let shift = 64 - 8 * bytes.clamp(1, 4);
+    (v << shift) >> shift
+}
+
+/// The bytes of `byteNeeded(v)` (LDmicro's `compilercommon.cpp`).
+fn byte_needed(v: i64) -> u32 {
+    [1u32, 2, 3, 4].into_iter().find(|b| wrap_bytes(v, *b) == v).unwrap_or(4)
+}
+
 /// A running LDmicro program: every bit, integer and hidden edge memory.
 #[derive(Clone, Debug)]
 pub struct Simulator {
@@ -104,6 +122,13 @@ pub struct Simulator {
     control_flow: bool,
     /// The peripheral reads, by element index: what the outside world gives them.
     readings: BTreeMap<usize, super::Reading>,
+    /// new: the bytes LDmicro stores each integer in, when not 2 (ldmicro.md §5).
+    sizes: BTreeMap<String, u32>,
+    /// The target is an AVR (`MICRO=Atmel AVR …`), whose code the bit operations follow.
+    avr: bool,
+    /// THI, TLO and TCY's state bits (`$once_…` of `intcode.cpp`), integers 0 or 1 by
+    /// the names [`super::timer_bits`] gives them.
+    timer_bits: BTreeMap<(usize, u8), String>,
 }
 
 /// Elements that change which rungs run or stop the scan (ldmicro.md §4, last table).
@@ -131,11 +156,32 @@ impl Simulator {
             scans: 0,
             control_flow: false,
             readings: super::readings(program),
+            sizes: if orig { BTreeMap::new() } else { program.var_bytes.clone() },
+            avr: program.micro.as_deref().is_some_and(|m| m.starts_with("Atmel AVR")),
+            timer_bits: super::timer_bits(program),
         };
         // Only the rungs that run: a comment rung's timers and counters do not initialise
         // anything, and its control flow never executes.
         let live = program.rungs.iter().filter(|r| !skipped(r, orig));
         for e in live.flat_map(|r| r.elements()) {
+            // new sizes a timer's count for its period (`CalcDelay`: `byteNeeded` of
+            // delay/cycle) and a counter for its literal start value and limit
+            // (`intcode.cpp`, the counters' `SetSizeOfVar`).
+            match &e.kind {
+                ElementKind::Timer { name, delay: TimerDelay::Micros(d), .. } if !orig => {
+                    let n = d.checked_div(sim.cycle_us).unwrap_or(0);
+                    sim.sizes.insert(name.clone(), byte_needed(i64::try_from(n).unwrap_or(0)));
+                }
+                ElementKind::Counter {
+                    name,
+                    init: Operand::Literal(i),
+                    limit: Operand::Literal(l),
+                    ..
+                } if !orig => {
+                    sim.sizes.insert(name.clone(), byte_needed(*i).max(byte_needed(*l)));
+                }
+                _ => {}
+            }
             match &e.kind {
                 ElementKind::Other { keyword, .. } if CONTROL_FLOW.contains(&keyword.as_str()) => {
                     sim.control_flow = true;
@@ -195,7 +241,7 @@ impl Simulator {
                 .collect();
             for (name, op) in inits {
                 let (v, s) = self.value(&op);
-                self.set_int(&name, v, s);
+                self.set_int(&name, self.wrap(&name, v), s);
             }
         }
         self.mcr = Pow { on: true, sure: true };
@@ -318,6 +364,12 @@ impl Simulator {
         self.mark(name, sure);
     }
 
+    /// `v` as the integer `name` stores it: wrapped to its size (16 bits in orig and by
+    /// default), as the generated code keeps a variable's low bytes.
+    fn wrap(&self, name: &str, v: i64) -> i64 {
+        wrap_bytes(v, self.sizes.get(name).copied().unwrap_or(2))
+    }
+
     fn value(&self, op: &Operand) -> (i64, bool) {
         match op {
             Operand::Literal(v) => (*v, true),
@@ -411,7 +463,7 @@ impl Simulator {
                 i
             }
             ElementKind::Timer { kind, name, delay, adjust, .. } => {
-                self.timer(*kind, name, delay, *adjust, i)
+                self.timer(*kind, name, delay, *adjust, i, k)
             }
             ElementKind::Edge { kind } => match kind {
                 EdgeKind::Osr | EdgeKind::Osf | EdgeKind::Odr => {
@@ -471,7 +523,7 @@ impl Simulator {
                     }
                     (CounterKind::Ctc, false) => {
                         if trig {
-                            let c = wrap16(c0.wrapping_add(1));
+                            let c = self.wrap(name, c0.wrapping_add(1));
                             if c > max { (init, true) } else { (c, false) }
                         } else {
                             (c0, false)
@@ -479,7 +531,7 @@ impl Simulator {
                     }
                     (CounterKind::Ctr, _) => {
                         if trig {
-                            let c = wrap16(c0.wrapping_sub(1));
+                            let c = self.wrap(name, c0.wrapping_sub(1));
                             if c < max { (init, true) } else { (c, false) }
                         } else {
                             (c0, false)
@@ -508,11 +560,13 @@ impl Simulator {
                 i
             }
             ElementKind::Compare { op, a, b } => {
-                // A literal beyond 16 bits goes through a temporary whose size LDmicro
-                // chooses (`VarFromExpr`): 0xffff may read as -1 or as 65535.
-                let wide = [a, b]
-                    .iter()
-                    .any(|o| matches!(o, Operand::Literal(v) if !(-32768..=32767).contains(v)));
+                // orig: a literal beyond 16 bits goes through a temporary whose size
+                // LDmicro chooses (`VarFromExpr`): 0xffff may read as -1 or as 65535.
+                // new compares the sign-extended values (`NEW_CMP`): exactly.
+                let wide = self.orig
+                    && [a, b]
+                        .iter()
+                        .any(|o| matches!(o, Operand::Literal(v) if !(-32768..=32767).contains(v)));
                 let (a, a_sure) = self.value(a);
                 let (b, b_sure) = self.value(b);
                 let v = match op {
@@ -527,7 +581,7 @@ impl Simulator {
             }
             ElementKind::Move { dest, src } => {
                 let (v, s) = self.value(src);
-                self.assign(dest, i, wrap16(v), s);
+                self.assign(dest, i, self.wrap(dest, v), s);
                 i
             }
             ElementKind::Math { op, dest, a, b } => {
@@ -540,7 +594,7 @@ impl Simulator {
                     MathOp::Div => (b != 0).then(|| a.wrapping_div(b)),
                 };
                 match r {
-                    Some(r) => self.assign(dest, i, wrap16(r), a_sure && b_sure),
+                    Some(r) => self.assign(dest, i, self.wrap(dest, r), a_sure && b_sure),
                     None => {
                         // Division by zero: undefined in LDmicro.
                         self.unmodelled.insert("DIV by zero".into());
@@ -564,7 +618,7 @@ impl Simulator {
                     let (from, to) = (format!("{name}{}", s - 1), format!("{name}{s}"));
                     let (v, v_sure) = (self.int(&from), self.is_known(&from));
                     if edge {
-                        self.set_int(&to, v, v_sure && edge_sure);
+                        self.set_int(&to, self.wrap(&to, v), v_sure && edge_sure);
                     } else if !edge_sure {
                         self.mark(&to, false);
                     }
@@ -593,13 +647,19 @@ impl Simulator {
                     _ => o,
                 };
                 if let Some(var) = &r.var {
-                    let v = self.int(&r.value);
+                    let v = self.wrap(var, self.int(&r.value));
                     self.assign(var, write, v, true);
                 }
                 if let Some(once) = &r.once {
                     self.assign(once, write, 1, true);
                 }
                 o
+            }
+            ElementKind::Other { keyword, args } if self.bit_op(keyword, args).is_some() => {
+                if let Some((dest, v, s)) = self.bit_op(keyword, args) {
+                    self.assign(&dest, i, v, s);
+                }
+                i
             }
             // A PERSIST that names no variable (every other one is a reading above):
             // saving to EEPROM changes nothing here.
@@ -637,6 +697,7 @@ impl Simulator {
         delay: &TimerDelay,
         adjust: i64,
         i: Pow,
+        k: usize,
     ) -> Pow {
         let (p, p_sure) = self.period(delay, adjust);
         if kind == TimerKind::Tof && self.orig && self.antiglitch.insert(name.to_string()) {
@@ -674,9 +735,7 @@ impl Simulator {
                 }
             }
             TimerKind::Thi | TimerKind::Tlo | TimerKind::Tcy => {
-                self.unmodelled.insert(format!("{kind:?}").to_uppercase());
-                self.mark(name, false);
-                return i.unknown();
+                return self.pulse_timer(kind, name, (p, p_sure), i, k);
             }
         };
         let sure = sure && i.sure && p_sure;
@@ -965,14 +1024,14 @@ mod tests {
     fn unmodelled_elements_make_their_results_unknown() {
         let p = program(
             "LDmicro0.2",
-            "RUNG 1\nCONTACTS Xa 0\nTHI Th 20000\nCOIL Yq 0 0 0\nEND\nRUNG 2\nCONTACTS Yq 0\nCOIL Yr 0 0 0\nEND\nRUNG 3\nCONTACTS Xa 0\nCOIL Ys 0 0 0\nEND\n",
+            "RUNG 1\nCONTACTS Xa 0\nODF\nCOIL Yq 0 0 0\nEND\nRUNG 2\nCONTACTS Yq 0\nCOIL Yr 0 0 0\nEND\nRUNG 3\nCONTACTS Xa 0\nCOIL Ys 0 0 0\nEND\n",
         );
         let mut sim = Simulator::new(&p);
         sim.step(&inputs(&[("Xa", true)]));
         assert!(!sim.is_known("Yq"));
         assert!(!sim.is_known("Yr"));
         assert!(sim.is_known("Ys"));
-        assert!(sim.unmodelled().contains("THI"));
+        assert!(sim.unmodelled().contains("ODF"));
     }
 
     #[test]

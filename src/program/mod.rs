@@ -185,6 +185,42 @@ pub enum IntExpr {
     Cast(Box<IntExpr>, IntType),
     /// `if c then a else b`.
     Ite(Box<BoolExpr>, Box<IntExpr>, Box<IntExpr>),
+    /// `a & b`, `a | b` or `a ^ b`, bit by bit in the type.
+    Bitwise(BitOp, Box<IntExpr>, Box<IntExpr>),
+    /// `a` shifted by `k` bits within the type: left for `k > 0` (zeros in), right for
+    /// `k < 0` (copies of the sign bit in a signed type, zeros in an unsigned one).
+    Shift(Box<IntExpr>, i32),
+}
+
+/// A bitwise operation of two integers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BitOp {
+    /// `&`.
+    And,
+    /// `|`.
+    Or,
+    /// `^`.
+    Xor,
+}
+
+impl BitOp {
+    /// The operation on two values.
+    pub fn apply(self, a: i64, b: i64) -> i64 {
+        match self {
+            BitOp::And => a & b,
+            BitOp::Or => a | b,
+            BitOp::Xor => a ^ b,
+        }
+    }
+}
+
+/// `a` shifted by `k` bits as [`IntExpr::Shift`] says, before the wrap to the type
+/// (`a` a value of a type of at most 63 bits).
+pub fn shift(a: i64, k: i32) -> i64 {
+    match k {
+        0.. => a.checked_shl(k.unsigned_abs()).filter(|_| k < 64).unwrap_or(0),
+        _ => a >> k.unsigned_abs().min(63),
+    }
 }
 
 impl IntExpr {
@@ -218,11 +254,15 @@ impl IntExpr {
             | IntExpr::Sub(a, b)
             | IntExpr::Mul(a, b)
             | IntExpr::DivBy(a, b)
-            | IntExpr::ModBy(a, b) => {
+            | IntExpr::ModBy(a, b)
+            | IntExpr::Bitwise(_, a, b) => {
                 a.visit(int, boolean);
                 b.visit(int, boolean);
             }
-            IntExpr::Div(a, _) | IntExpr::Mod(a, _) | IntExpr::Cast(a, _) => a.visit(int, boolean),
+            IntExpr::Div(a, _)
+            | IntExpr::Mod(a, _)
+            | IntExpr::Cast(a, _)
+            | IntExpr::Shift(a, _) => a.visit(int, boolean),
             IntExpr::Ite(c, a, b) => {
                 walk(c, boolean);
                 a.visit(int, boolean);
@@ -533,11 +573,14 @@ pub fn int_walk_mut(e: &mut IntExpr, f: &mut dyn FnMut(&mut BoolExpr)) {
         | IntExpr::Sub(a, b)
         | IntExpr::Mul(a, b)
         | IntExpr::DivBy(a, b)
-        | IntExpr::ModBy(a, b) => {
+        | IntExpr::ModBy(a, b)
+        | IntExpr::Bitwise(_, a, b) => {
             int_walk_mut(a, f);
             int_walk_mut(b, f);
         }
-        IntExpr::Div(a, _) | IntExpr::Mod(a, _) | IntExpr::Cast(a, _) => int_walk_mut(a, f),
+        IntExpr::Div(a, _) | IntExpr::Mod(a, _) | IntExpr::Cast(a, _) | IntExpr::Shift(a, _) => {
+            int_walk_mut(a, f)
+        }
         IntExpr::Ite(c, a, b) => {
             walk_mut(c, f);
             int_walk_mut(a, f);

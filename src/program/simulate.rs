@@ -257,6 +257,14 @@ impl Simulator {
                 let a = self.int_value(a, *inner);
                 N { value: ty.wrap(a.value), known: a.known }
             }
+            IntExpr::Bitwise(op, a, b) => {
+                let (a, b) = (self.int_value(a, ty), self.int_value(b, ty));
+                N { value: ty.wrap(op.apply(a.value, b.value)), known: a.known && b.known }
+            }
+            IntExpr::Shift(a, k) => {
+                let a = self.int_value(a, ty);
+                N { value: ty.wrap(super::shift(a.value, *k)), known: a.known }
+            }
             IntExpr::Ite(c, a, b) => {
                 let c = self.eval(c);
                 let (a, b) = (self.int_value(a, ty), self.int_value(b, ty));

@@ -94,6 +94,10 @@ impl Lowering<'_> {
             IntExpr::DivBy(a, b) => two(a, b, |x, y| if y == 0 { 0 } else { x.wrapping_div(y) }),
             IntExpr::ModBy(a, b) => two(a, b, |x, y| if y == 0 { 0 } else { x.wrapping_rem(y) }),
             IntExpr::Cast(a, inner) => Ok(ty.wrap(self.known_int(a, *inner)?)),
+            IntExpr::Bitwise(op, a, b) => {
+                Ok(ty.wrap(op.apply(self.known_int(a, ty)?, self.known_int(b, ty)?)))
+            }
+            IntExpr::Shift(a, k) => Ok(ty.wrap(crate::program::shift(self.known_int(a, ty)?, *k))),
             IntExpr::Ite(c, a, b) => match self.known_bool(c) {
                 Ok(true) => self.known_int(a, ty),
                 Ok(false) => self.known_int(b, ty),

@@ -1,4 +1,4 @@
-//! LDmicro timers the algebra cannot express, as exact 16-bit accumulators of the scan model: RTO, RTL, a TON with a variable delay, and a TON/TOF whose accumulator another element writes or reads.
+//! LDmicro timers the algebra cannot express, as exact integer accumulators of the scan model: RTO, RTL, THI, TLO, TCY, a TON with a variable delay, and a TON/TOF whose accumulator another element writes or reads.
 //!
 //! The accumulator `T` counts scans exactly as LDmicro's generated code does
 //! (`intcode.cpp`, the same in orig 2.x and new; ldmicro.md §6.3), with `lt` the
@@ -13,13 +13,20 @@
 //! wins); orig loads it when its first TOF runs in the first scan (an "antiglitch" bit
 //! per name), which is the same unless an element before that TOF touches the
 //! accumulator or TOFs of that name count to different periods: such an accumulator is
-//! not computed. THI, TLO and TCY stay unconstrained.
+//! not computed. THI, TLO and TCY keep state bits besides the count ([`Lowering::pulse`],
+//! and the TCY arm of [`Lowering::int_timer`]).
 
 use std::collections::{BTreeMap, BTreeSet};
 
 use super::{Lowering, bytes_needed, int_names};
-use crate::ladder::ldmicro::{Element, ElementKind, LdProgram, TimerDelay, TimerKind};
-use crate::program::{BoolExpr, CmpOp, Compare, IntExpr, IntType, canonical};
+use crate::ladder::ldmicro::{Element, ElementKind, LdProgram, Operand, TimerDelay, TimerKind};
+use crate::program::{BoolExpr, CmpOp, Compare, IntExpr, IntType, IntVar, canonical};
+
+/// `b = 1` for a hidden 1-bit integer.
+fn is_set(b: &str) -> BoolExpr {
+    let (a, b) = (IntExpr::Var(b.to_string()), IntExpr::Const(1));
+    BoolExpr::Compare(Box::new(Compare { op: CmpOp::Eq, ty: IntType::BIT, a, b }))
+}
 
 /// The timers whose accumulator is an integer of the scan model: every RTO and RTL,
 /// every TON with a variable delay, and every TON/TOF whose accumulator another element
@@ -42,15 +49,11 @@ pub(super) fn integer_timers(live: &[&Element]) -> BTreeSet<String> {
     live.iter()
         .filter_map(|e| match &e.kind {
             ElementKind::Timer { kind, name, delay, .. } => {
-                let own = matches!(kind, TimerKind::Rto | TimerKind::Rtl)
+                let own = !matches!(kind, TimerKind::Ton | TimerKind::Tof)
                     || (*kind == TimerKind::Ton && matches!(delay, TimerDelay::Variable(_)));
                 let shared =
                     writers.get(name).copied().unwrap_or(0) > 1 || mentioned.contains(name);
-                let countable = matches!(
-                    kind,
-                    TimerKind::Ton | TimerKind::Tof | TimerKind::Rto | TimerKind::Rtl
-                );
-                (countable && (own || shared)).then(|| name.clone())
+                (own || shared).then(|| name.clone())
             }
             _ => None,
         })
@@ -92,19 +95,15 @@ impl Accumulators {
             };
             let keyword = e.kind.keyword();
             acc.names.insert(name.clone());
-            let unmodelled = matches!(kind, TimerKind::Thi | TimerKind::Tlo | TimerKind::Tcy);
-            if unmodelled || !modelled.contains(name) {
-                let why = if unmodelled {
-                    format!("it is the count of a {keyword} timer, which ii-prove does not model")
-                } else {
-                    "it is a timer's count".to_string()
-                };
-                cause(&mut acc.causes, name, why);
+            if !modelled.contains(name) {
+                cause(&mut acc.causes, name, "it is a timer's count".to_string());
                 touched.insert(name.clone());
                 continue;
             }
             match delay {
-                TimerDelay::Variable(v) if *kind != TimerKind::Ton => {
+                TimerDelay::Variable(v)
+                    if matches!(kind, TimerKind::Tof | TimerKind::Rto | TimerKind::Rtl) =>
+                {
                     let why = format!(
                         "it is the count of a {keyword} with the variable delay {v}, whose \
                          period LDmicro computes from a literal delay only"
@@ -177,14 +176,22 @@ impl Accumulators {
 }
 
 impl Lowering<'_> {
+    /// The hidden 1-bit integer `k` of element `e` (see [`super::timer_bits`]), 0 at
+    /// power-up.
+    fn hidden_bit(&mut self, e: &Element, k: u8) -> String {
+        let index = self.index.get(&(e as *const Element)).copied().unwrap_or(usize::MAX);
+        let bit = canonical(self.timer_bits.get(&(index, k)).map_or("", String::as_str));
+        self.hidden_bits.insert(bit.clone());
+        self.ints.insert(bit.clone(), IntVar { ty: IntType::BIT, input: false, init: 0 });
+        bit
+    }
+
     /// A timer whose accumulator is an integer of the scan model (see
     /// [`integer_timers`]): its output.
     pub(super) fn int_timer(&mut self, e: &Element, input: BoolExpr) -> BoolExpr {
         let ElementKind::Timer { kind, name, delay, adjust, .. } = &e.kind else { return input };
         let acc = canonical(name);
-        let countable =
-            matches!(kind, TimerKind::Ton | TimerKind::Tof | TimerKind::Rto | TimerKind::Rtl);
-        if !countable || !self.ints.contains_key(&acc) {
+        if !self.ints.contains_key(&acc) {
             let why = match self.opaque.get(name) {
                 Some(why) => format!("the accumulator {name} is not computed: {why}"),
                 None => format!("the accumulator {name} is not computed"),
@@ -192,14 +199,13 @@ impl Lowering<'_> {
             return self.fresh(format!("{}_{name}", e.kind.keyword()), e, &why);
         }
         let p = match delay {
-            TimerDelay::Variable(v) => IntExpr::Var(canonical(v)),
+            TimerDelay::Variable(v) => Operand::Var(v.clone()),
             TimerDelay::Micros(_) => {
-                IntExpr::Const(self.program.timer_scans(delay, *adjust).unwrap_or(0))
+                Operand::Literal(self.program.timer_scans(delay, *adjust).unwrap_or(0))
             }
         };
         let t = || IntExpr::Var(acc.clone());
-        let lt =
-            BoolExpr::Compare(Box::new(Compare { op: CmpOp::Lt, ty: IntType::I16, a: t(), b: p }));
+        let lt = self.compare(CmpOp::Lt, &Operand::Var(name.clone()), &p);
         let lt = self.temp(lt);
         let step = IntExpr::plus(t(), IntExpr::Const(1));
         let not_input = || BoolExpr::negate(input.clone());
@@ -223,7 +229,60 @@ impl Lowering<'_> {
                 self.set_int(e, name, &power, step);
                 self.temp(BoolExpr::negate(lt))
             }
-            TimerKind::Thi | TimerKind::Tlo | TimerKind::Tcy => input,
+            TimerKind::Thi | TimerKind::Tlo => self.pulse(e, *kind == TimerKind::Thi, input, lt),
+            TimerKind::Tcy => {
+                // `intcode.cpp`, `ELEM_TCY` (`NEW_TON` undefined): while `i`, count to
+                // `P`, then clear the count and flip the phase bit; the output is `i`
+                // and the phase; `¬i` clears the count and keeps the phase.
+                let phase = self.hidden_bit(e, 0);
+                let on = || is_set(&phase);
+                let counting = self.temp(BoolExpr::and(input.clone(), lt.clone()));
+                self.set_int(e, name, &counting, step);
+                let flip = self.temp(BoolExpr::and(input.clone(), BoolExpr::negate(lt)));
+                self.set_int(e, name, &flip, IntExpr::Const(0));
+                let flipped = IntExpr::minus(IntExpr::Const(1), IntExpr::Var(phase.clone()));
+                self.set_int(e, &phase, &flip, flipped);
+                self.set_int(e, name, &not_input(), IntExpr::Const(0));
+                self.temp(BoolExpr::and(input, on()))
+            }
+        }
+    }
+
+    /// THI (`high`) or TLO, `intcode.cpp` `ELEM_THI` / `ELEM_TLO`, with `lt` the
+    /// comparison `T < P` made as the element runs. THI: `i` sets the bit `s`; while
+    /// `s`, the output is 1 and the count grows until `P`; at `P` the output is 0, and
+    /// once `i` is low the count and `s` clear. TLO mirrors it on a falling edge: `s`
+    /// is set when `i` is low after it has been high once (the bit `h`), the output is
+    /// 0 while counting, then 1, the count and `s` clearing once `i` is high; with `s`
+    /// clear the output is `h`.
+    fn pulse(&mut self, e: &Element, high: bool, input: BoolExpr, lt: BoolExpr) -> BoolExpr {
+        let ElementKind::Timer { name, .. } = &e.kind else { return input };
+        let s = self.hidden_bit(e, 0);
+        let t = IntExpr::Var(canonical(name));
+        let not_input = || BoolExpr::negate(input.clone());
+        let (arm, h_now) = if high {
+            (input.clone(), None)
+        } else {
+            let h = self.hidden_bit(e, 1);
+            let arm = self.temp(BoolExpr::and(not_input(), is_set(&h)));
+            let h_now = self.temp(BoolExpr::Or(vec![is_set(&h), input.clone()]));
+            self.set_int(e, &h, &input, IntExpr::Const(1));
+            (arm, Some(h_now))
+        };
+        let s_now = self.temp(BoolExpr::Or(vec![is_set(&s), arm.clone()]));
+        self.set_int(e, &s, &arm, IntExpr::Const(1));
+        let lt = self.temp(BoolExpr::and(s_now.clone(), lt));
+        let done = self.temp(BoolExpr::and(s_now.clone(), BoolExpr::negate(lt.clone())));
+        self.set_int(e, name, &lt, IntExpr::plus(t, IntExpr::Const(1)));
+        let release = if high { not_input() } else { input.clone() };
+        let clear = self.temp(BoolExpr::and(done.clone(), release));
+        self.set_int(e, name, &clear, IntExpr::Const(0));
+        self.set_int(e, &s, &clear, IntExpr::Const(0));
+        match h_now {
+            None => lt,
+            Some(h) => {
+                self.temp(BoolExpr::Or(vec![done, BoolExpr::and(BoolExpr::negate(s_now), h)]))
+            }
         }
     }
 }

@@ -11,7 +11,7 @@
 
 use super::super::bitvec::{self, Bits};
 use super::super::logic::{L, simp};
-use super::super::{BoolExpr, Compare, IntExpr, IntType, IntVar, Program, Stmt, WriteKind};
+use super::super::{BitOp, BoolExpr, Compare, IntExpr, IntType, IntVar, Program, Stmt, WriteKind};
 use super::{CompileError, Compiler, Pending, SignalKind};
 use crate::diag::Span;
 
@@ -79,6 +79,26 @@ impl Compiler<'_> {
             IntExpr::Cast(a, inner) => {
                 let a = self.int(a, *inner, span);
                 bitvec::resize(a, *inner, ty)
+            }
+            IntExpr::Bitwise(op, a, b) => {
+                let (a, b) = (self.int(a, ty, span), self.int(b, ty, span));
+                let bit = |x: &L, y: &L| match op {
+                    BitOp::And => x.clone().and(y.clone()),
+                    BitOp::Or => x.clone().or(y.clone()),
+                    BitOp::Xor => bitvec::mux(x, &y.clone().negate(), y),
+                };
+                a.iter().zip(&b).map(|(x, y)| bit(x, y)).collect()
+            }
+            IntExpr::Shift(a, k) => {
+                let a = self.int(a, ty, span);
+                let n = k.unsigned_abs().min(w) as usize;
+                let w = w as usize;
+                if *k >= 0 {
+                    std::iter::repeat_n(L::Zero, n).chain(a[..w - n].iter().cloned()).collect()
+                } else {
+                    let fill = if ty.signed { a[w - 1].clone() } else { L::Zero };
+                    a[n..].iter().cloned().chain(std::iter::repeat_n(fill, n)).collect()
+                }
             }
             IntExpr::Ite(c, a, b) => {
                 // The condition is read by every bit: named unless it is a literal.
@@ -177,8 +197,9 @@ pub(super) fn constants(program: &Program) -> Vec<i64> {
                 out.insert(*k);
                 walk(a, out);
             }
-            IntExpr::Cast(a, _) => walk(a, out),
+            IntExpr::Cast(a, _) | IntExpr::Shift(a, _) => walk(a, out),
             IntExpr::Add(a, b)
+            | IntExpr::Bitwise(_, a, b)
             | IntExpr::Sub(a, b)
             | IntExpr::Mul(a, b)
             | IntExpr::DivBy(a, b)
