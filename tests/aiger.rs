@@ -517,7 +517,8 @@ fn abc() -> Option<&'static str> {
 
 /// ABC's verdict on the single property of `aig` with `command` (`pdr`, `int`) within
 /// `limit` seconds, and its wall time in ms: `proved`, `refuted`, `n/a` when the command
-/// does not take a model without latches (`int`), or `timeout`.
+/// does not take a model without latches (`int`), or `timeout`. (`int` does not take a
+/// model without inputs either: it stops on an assertion, so it is not asked.)
 fn abc_verdict(abc: &str, aig: &Path, command: &str, limit: u64) -> (String, u128) {
     let start = Instant::now();
     let out_path = aig.with_extension(format!("{command}.out"));
@@ -587,7 +588,11 @@ fn abc_agrees_with_ii_prove() {
                 continue;
             }
             let (pdr, pdr_ms) = abc_verdict(abc, &aig, "pdr", 60);
-            let (int, int_ms) = abc_verdict(abc, &aig, "int", 5);
+            // ABC's `int` stops on an assertion for a model without primary inputs.
+            let (int, int_ms) = match net.inputs.is_empty() {
+                true => ("n/a".to_string(), 0),
+                false => abc_verdict(abc, &aig, "int", 5),
+            };
             table.push_str(&format!(
                 "{program} {name}: ii-prove {verdict}, pdr {pdr} ({pdr_ms} ms), int {int} ({int_ms} ms)\n"
             ));
