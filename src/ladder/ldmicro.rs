@@ -297,6 +297,12 @@ impl Operand {
             Operand::Literal(_) => None,
         }
     }
+
+    /// A literal beyond 16 bits: orig LDmicro puts it in a temporary whose size it
+    /// chooses (intcode.cpp `VarFromExpr`), so a comparison or a DIV of it is not known.
+    pub fn beyond_16_bits(&self) -> bool {
+        matches!(self, Operand::Literal(v) if !(-32768..=32767).contains(v))
+    }
 }
 
 /// What a leaf element is, with its arguments decoded.

@@ -810,6 +810,11 @@ fn integers(
                 };
                 cause(dest, why);
             }
+            ElementKind::Math { op: MathOp::Div, dest, a, b }
+                if orig && (a.beyond_16_bits() || b.beyond_16_bits()) =>
+            {
+                cause(dest, "it is written by a DIV of a literal beyond 16 bits (orig)".into());
+            }
             // What a peripheral or an operation ii-prove does not compute writes.
             ElementKind::Other { keyword, .. }
                 if shift_stages(e).is_none()

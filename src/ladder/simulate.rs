@@ -563,10 +563,7 @@ impl Simulator {
                 // orig: a literal beyond 16 bits goes through a temporary whose size
                 // LDmicro chooses (`VarFromExpr`): 0xffff may read as -1 or as 65535.
                 // new compares the sign-extended values (`NEW_CMP`): exactly.
-                let wide = self.orig
-                    && [a, b]
-                        .iter()
-                        .any(|o| matches!(o, Operand::Literal(v) if !(-32768..=32767).contains(v)));
+                let wide = self.orig && (a.beyond_16_bits() || b.beyond_16_bits());
                 let (a, a_sure) = self.value(a);
                 let (b, b_sure) = self.value(b);
                 let v = match op {
@@ -585,6 +582,8 @@ impl Simulator {
                 i
             }
             ElementKind::Math { op, dest, a, b } => {
+                let wide =
+                    self.orig && *op == MathOp::Div && (a.beyond_16_bits() || b.beyond_16_bits());
                 let (a, a_sure) = self.value(a);
                 let (b, b_sure) = self.value(b);
                 let r = match op {
@@ -594,7 +593,7 @@ impl Simulator {
                     MathOp::Div => (b != 0).then(|| a.wrapping_div(b)),
                 };
                 match r {
-                    Some(r) => self.assign(dest, i, self.wrap(dest, r), a_sure && b_sure),
+                    Some(r) => self.assign(dest, i, self.wrap(dest, r), a_sure && b_sure && !wide),
                     None => {
                         // Division by zero: undefined in LDmicro.
                         self.unmodelled.insert("DIV by zero".into());
