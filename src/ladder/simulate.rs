@@ -45,7 +45,7 @@
 //! program that contains any of them, **no** value is exact ([`Simulator::is_known`]
 //! is false for every name). `LABEL` alone is a wire.
 
-mod newer;
+mod bits_and_pulses;
 
 use std::collections::{BTreeMap, BTreeSet};
 

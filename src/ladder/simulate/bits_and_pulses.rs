@@ -1,4 +1,4 @@
-//! The reference simulator's elements of LDmicro ≥ 2016 that count with sizes and state: the bit operations as LDmicro's AVR code runs them, and the pulse timers THI, TLO and TCY as its `intcode.cpp` does.
+//! The reference simulator's bit operations (as LDmicro's AVR code runs them, in the destination's size) and pulse timers THI, TLO and TCY (as its `intcode.cpp` does): the elements of LDmicro ≥ 2016 that count with sizes and state.
 
 use super::{Pow, Simulator, byte_needed, wrap_bytes};
 use crate::ladder::ldmicro::{Operand, TimerKind};
