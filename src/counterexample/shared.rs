@@ -6,9 +6,10 @@
 //! keeps its value in the program's run with every input at 0. A later
 //! property is evaluated on them; if it fails at some scan, the run's inputs, kept to
 //! those the property's own cone reads and cut after that scan, go through the same
-//! confirmation as any candidate ([`judge`]: minimised, every hypothesis of the cone
-//! checked exactly, the violation shown by the scan simulator). The store only
-//! proposes candidates: nothing in it is trusted.
+//! confirmation as any candidate ([`judge`]: every hypothesis of the cone checked
+//! exactly, the violation shown by the scan simulator), without a new minimisation
+//! (the run was minimised for the property it refuted). The store only proposes
+//! candidates: nothing in it is trusted.
 //!
 //! Which properties a run can refute depends on the order they are checked in: a
 //! property whose cone is deep (its signals computed from long chains of rungs) has
@@ -20,7 +21,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, OnceLock};
 
 use super::unroll::{Concrete, Model, unroll, violated};
-use super::{Counterexample, Judged, Limits, Program, ScanTrace, judge, names_of, scans_of};
+use super::{Counterexample, Judged, Limits, Program, ScanTrace, judge, scans_of};
 use crate::ladder::CompiledProgram;
 use crate::prover::Obligation;
 use crate::term::{Expr, Symbol, Term};
@@ -36,7 +37,8 @@ pub struct Shared {
     /// Per name, the equations (positions in scan order) that read it (built at the
     /// first run kept).
     readers: OnceLock<HashMap<Symbol, Vec<usize>>>,
-    /// Per signal, how deep it is computed ([`depths`], built at the first run kept).
+    /// Per signal, how deep it is computed ([`depths`], built once: for the order of
+    /// the properties and for each run kept).
     depth: OnceLock<HashMap<Symbol, usize>>,
     /// How many properties looked for a kept run that refutes them, how many runs were
     /// kept, and how many properties a kept run refuted.
@@ -115,8 +117,7 @@ impl Shared {
         if trace.scans > MAX_SCANS || self.kept.load(Ordering::Relaxed) >= paid {
             return;
         }
-        let depth = self.depth.get_or_init(|| depths(program.compiled));
-        let depth = [&goal.lhs, &goal.rhs].iter().map(|e| deepest(e, depth)).max().unwrap_or(0);
+        let depth = self.depth_of(program.compiled, [&goal.lhs, &goal.rhs]);
         let now = self.checks.load(Ordering::Relaxed);
         {
             let Ok(mut runs) = self.runs.lock() else { return };
@@ -152,16 +153,7 @@ impl Shared {
                 }
             }
         }
-        let model = Model {
-            defs: moved
-                .into_iter()
-                .map(|p| {
-                    let (n, h) = &index.equations[p];
-                    (n.clone(), program.compiled.hypotheses[*h].rhs.clone())
-                })
-                .collect(),
-            constraints: Vec::new(),
-        };
+        let model = equations_model(program.compiled, moved);
         let cycle = trace.cycle.clone();
         let Ok(run) = unroll(
             &mut Concrete,
@@ -198,13 +190,8 @@ impl Shared {
             return Some(q.clone());
         }
         let scans = trace.scans.max(quiet.as_ref().map_or(0, |q| 2 * q.scans)).min(MAX_SCANS);
-        let whole = Model {
-            defs: super::equations(program.compiled)
-                .into_iter()
-                .map(|(n, e)| (n, e.clone()))
-                .collect(),
-            constraints: Vec::new(),
-        };
+        let whole =
+            equations_model(program.compiled, 0..program.compiled.equation_index().equations.len());
         let cycle = trace.cycle.clone();
         let run =
             unroll(&mut Concrete, &whole, &[], scans, &|d| scans_of(d, &cycle), &mut |_, _, _| {
@@ -215,6 +202,45 @@ impl Shared {
         *quiet = Some(q.clone());
         Some(q)
     }
+
+    /// The order to check properties in: within each window of [`WINDOW`] properties (in
+    /// file order), the deepest first. A property's depth is the longest chain of
+    /// equations, in scan order, from an input to a signal it reads (a read of a
+    /// signal computed later in the scan, the previous scan's value, adds nothing). The
+    /// counterexamples of the deepest, kept, can refute the shallower ones. The window
+    /// bounds how many results wait for an earlier one to be reported (they are reported
+    /// in file order); properties of the same depth keep their order.
+    pub fn deepest_first(&self, compiled: &CompiledProgram, goals: &[[&Expr; 2]]) -> Vec<usize> {
+        let of: Vec<usize> = goals.iter().map(|sides| self.depth_of(compiled, *sides)).collect();
+        let mut order: Vec<usize> = (0..goals.len()).collect();
+        for window in order.chunks_mut(WINDOW) {
+            window.sort_by_key(|&i| std::cmp::Reverse(of[i]));
+        }
+        order
+    }
+
+    /// The depth of the deepest signal the two sides of a goal read.
+    fn depth_of(&self, compiled: &CompiledProgram, sides: [&Expr; 2]) -> usize {
+        let depth = self.depth.get_or_init(|| depths(compiled));
+        sides.iter().map(|e| deepest(e, depth)).max().unwrap_or(0)
+    }
+}
+
+/// The program's equations at `positions` (in scan order, `EquationIndex::equations`)
+/// as a model without constraints.
+fn equations_model(
+    compiled: &CompiledProgram,
+    positions: impl IntoIterator<Item = usize>,
+) -> Model {
+    let index = compiled.equation_index();
+    let defs = positions
+        .into_iter()
+        .map(|p| {
+            let (n, h) = &index.equations[p];
+            (n.clone(), compiled.hypotheses[*h].rhs.clone())
+        })
+        .collect();
+    Model { defs, constraints: Vec::new() }
 }
 
 /// A counterexample of `goal` confirmed from a run kept in `program.shared`, if one of
@@ -228,24 +254,17 @@ pub fn refute_shared(
     let now = shared.checks.fetch_add(1, Ordering::Relaxed) + 1;
     let runs: Vec<Arc<Kept>> = shared.runs.lock().ok()?.iter().rev().cloned().collect();
     let cycle = program.cycle()?;
+    // The property's cone, and the names it leaves free: the inputs its run may set.
     let mut cone = None;
     for kept in runs {
         let Some(v) = violated_at(goal, &kept) else { continue };
-        let model = cone.get_or_insert_with(|| program.model(&[&goal.lhs, &goal.rhs]));
-        // The names the property's cone leaves free: the inputs its run may set.
-        let defined: BTreeSet<&str> = model.defs.iter().map(|(n, _)| n.as_str()).collect();
-        let mut read = BTreeSet::new();
-        names_of(&goal.lhs, &mut read);
-        names_of(&goal.rhs, &mut read);
-        for e in model.defs.iter().map(|(_, e)| e) {
-            names_of(e, &mut read);
-        }
-        for (l, _, r) in &model.constraints {
-            names_of(l, &mut read);
-            names_of(r, &mut read);
-        }
+        let (model, free) = cone.get_or_insert_with(|| {
+            let model = program.model(&[&goal.lhs, &goal.rhs]);
+            let free = model.free_names([&goal.lhs, &goal.rhs].into_iter());
+            (model, free)
+        });
         let mut trace = kept.trace.clone();
-        trace.values.retain(|n, _| read.contains(n) && !defined.contains(n.as_str()));
+        trace.values.retain(|n, _| free.contains(n));
         trace.truncate(v + 1);
         let limits = Limits { minimised: true, ..limits };
         if let Ok(Judged::Both(found)) = judge(program, model, goal, trace, &cycle, limits) {
@@ -273,26 +292,6 @@ fn violated_at(goal: &Obligation, kept: &Kept) -> Option<usize> {
     .ok()?;
     let (l, r) = (run.extra.first()?, run.extra.get(1)?);
     (0..trace.scans).find(|&k| violated(&mut Concrete, goal.rel, &l[k], &r[k]))
-}
-
-/// The order to check properties in: within each window of [`WINDOW`] properties (in
-/// file order), the deepest first. A property's depth is the longest chain of
-/// equations, in scan order, from an input to a signal it reads (a read of a signal
-/// computed later in the scan, the previous scan's value, adds nothing). The
-/// counterexamples of the deepest, shared, can refute the shallower ones. The window
-/// bounds how many results wait for an earlier one to be reported (they are reported
-/// in file order); properties of the same depth keep their order.
-pub fn deepest_first(compiled: &CompiledProgram, goals: &[[&Expr; 2]]) -> Vec<usize> {
-    let depth = depths(compiled);
-    let of: Vec<usize> = goals
-        .iter()
-        .map(|sides| sides.iter().map(|e| deepest(e, &depth)).max().unwrap_or(0))
-        .collect();
-    let mut order: Vec<usize> = (0..goals.len()).collect();
-    for window in order.chunks_mut(WINDOW) {
-        window.sort_by_key(|&i| std::cmp::Reverse(of[i]));
-    }
-    order
 }
 
 /// Per defined signal, the longest chain of equations, in scan order, from an input to
@@ -339,6 +338,6 @@ mod tests {
         let name = |n: &str| crate::term::name(n);
         let (a, b, c) = (name("Xa"), name("Yb"), name("Yc"));
         let goals = [[&a, &a], [&c, &a], [&b, &a], [&b, &b]];
-        assert_eq!(deepest_first(&compiled, &goals), vec![1, 2, 3, 0]);
+        assert_eq!(Shared::default().deepest_first(&compiled, &goals), vec![1, 2, 3, 0]);
     }
 }

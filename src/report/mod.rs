@@ -188,7 +188,7 @@ fn check_selected(
     doc: &Document,
     selection: &Selection,
     jobs: usize,
-    program: Option<&crate::ladder::CompiledProgram>,
+    program: Option<&counterexample::Program>,
     check: impl Fn(&crate::syntax::Statement<Goal>) -> PropertyReport + Sync,
     observer: &mut dyn Observer,
     properties: &mut Vec<PropertyReport>,
@@ -197,11 +197,11 @@ fn check_selected(
         doc.properties.iter().filter(|s| selection.selects(&s.name)).collect();
     // About a program, the deepest properties first: their counterexamples, shared,
     // refute shallower properties without a search of their own.
-    let order = match program {
-        Some(compiled) => {
+    let order = match program.and_then(|p| p.shared.map(|shared| (p.compiled, shared))) {
+        Some((compiled, shared)) => {
             let sides: Vec<[&Expr; 2]> =
                 selected.iter().map(|s| [&s.value.lhs, &s.value.rhs]).collect();
-            counterexample::shared::deepest_first(compiled, &sides)
+            shared.deepest_first(compiled, &sides)
         }
         None => (0..selected.len()).collect(),
     };
@@ -571,7 +571,7 @@ pub fn run_program_with(
             doc,
             &selection,
             opts.jobs,
-            Some(compiled),
+            Some(&session),
             check,
             observer,
             &mut properties,
