@@ -100,8 +100,8 @@ fn program_names(program: &LdProgram) -> BTreeSet<String> {
 /// `THI_name_rN_on`, `TLO_name_rN_on`, `TLO_name_rN_high`, `TCY_name_rN_phase`; a
 /// suffix `_2`, … keeps them apart from the program's names and the reads' ones.
 pub fn timer_bits(program: &LdProgram) -> std::collections::BTreeMap<(usize, u8), String> {
-    let mut taken = program_names(program);
-    taken.extend(readings(program).values().flat_map(|r| r.names().cloned().collect::<Vec<_>>()));
+    // The names taken, gathered at the first timer that needs a bit (most programs have none).
+    let mut taken = None;
     let mut out = std::collections::BTreeMap::new();
     let mut index = 0;
     for rung in &program.rungs {
@@ -114,6 +114,11 @@ pub fn timer_bits(program: &LdProgram) -> std::collections::BTreeMap<(usize, u8)
                     _ => &[],
                 };
                 for (k, what) in bits.iter().enumerate() {
+                    let taken = taken.get_or_insert_with(|| {
+                        let mut taken = program_names(program);
+                        taken.extend(readings(program).values().flat_map(|r| r.names().cloned()));
+                        taken
+                    });
                     let base = format!("{}_{name}_r{}_{what}", e.kind.keyword(), rung.number);
                     let mut bit = base.clone();
                     let mut n = 1;
@@ -164,8 +169,10 @@ pub fn adc_bits(micro: Option<&str>) -> Result<u32, String> {
 /// `_3`, … keeps them apart from each other and from the program's names. A `READ_ADC`
 /// of a target whose ADC range is not known ([`adc_bits`]) is not among them.
 pub fn readings(program: &LdProgram) -> std::collections::BTreeMap<usize, Reading> {
-    let mut taken = program_names(program);
+    // The names taken, gathered at the first read (most programs have none).
+    let mut taken = None;
     let mut fresh = |base: String| {
+        let taken = taken.get_or_insert_with(|| program_names(program));
         let mut name = base.clone();
         let mut k = 1;
         while ["", "_got", "_ready", "_loaded"]

@@ -110,7 +110,7 @@ pub mod start;
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use super::logic::{L, Tables, factors, product, simp, sum, summands};
+use super::logic::{L, Tables, factors, product, simp, simp_and, simp_sum, sum, summands};
 use super::{Block, BoolExpr, EdgeKind, Memory, Preset, Program, Stmt, Temp, Timer, WriteKind};
 use crate::diag::{Report, Severity, Sources, Span};
 use crate::kernel::{Axiom, Rel};
@@ -867,11 +867,11 @@ impl<'a> Compiler<'a> {
             BoolExpr::And(a, b) => {
                 let a = self.eval(a);
                 let b = self.eval(b);
-                simp(&a.and(b))
+                simp_and(a, b)
             }
             BoolExpr::Or(xs) => {
                 let outs: Vec<L> = xs.iter().map(|x| self.eval(x)).collect();
-                simp(&sum(outs))
+                simp_sum(outs)
             }
             BoolExpr::Timer(_) | BoolExpr::Edge { .. } if self.depth > 0 => {
                 self.conditional_memory();

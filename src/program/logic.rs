@@ -10,8 +10,6 @@
 //! answer "unknown" and the compiler falls back to its always-sound choice.
 #![warn(missing_docs)]
 
-use std::collections::BTreeMap;
-
 use crate::term::{Builder, Delay, Expr, Id, Term, root};
 
 /// The most atoms a truth table is built for (2^16 rows, 1024 words).
@@ -194,19 +192,41 @@ impl L {
         }
     }
 
-    fn atoms(&self, out: &mut BTreeMap<L, usize>) {
+    /// Adds the atoms of `self` not yet in `out`, in first-occurrence order; false when
+    /// there would be more than [`MAX_ATOMS`].
+    fn atoms<'a>(&'a self, out: &mut Vec<&'a L>) -> bool {
         match self {
-            L::Zero | L::One => {}
+            L::Zero | L::One => true,
             L::Not(x) => x.atoms(out),
-            L::And(xs) | L::Or(xs) => xs.iter().for_each(|x| x.atoms(out)),
+            L::And(xs) | L::Or(xs) => xs.iter().all(|x| x.atoms(out)),
             atom => {
-                let n = out.len();
-                out.entry(atom.clone()).or_insert(n);
+                if !out.contains(&atom) {
+                    if out.len() == MAX_ATOMS {
+                        return false;
+                    }
+                    out.push(atom);
+                }
+                true
             }
         }
     }
 
-    fn table(&self, atoms: &BTreeMap<L, usize>, words: usize) -> Vec<u64> {
+    /// The truth table over `atoms` when it fits one word (at most 6 atoms).
+    fn word(&self, atoms: &[&L]) -> u64 {
+        match self {
+            L::Zero => 0,
+            L::One => !0,
+            L::Not(x) => !x.word(atoms),
+            L::And(xs) => xs.iter().fold(!0, |acc, x| acc & x.word(atoms)),
+            L::Or(xs) => xs.iter().fold(0, |acc, x| acc | x.word(atoms)),
+            atom => atom_word(atoms.iter().position(|a| *a == atom).unwrap_or(0), 0),
+        }
+    }
+
+    fn table(&self, atoms: &[&L], words: usize) -> Vec<u64> {
+        if words == 1 {
+            return vec![self.word(atoms)];
+        }
         match self {
             L::Zero => vec![0; words],
             L::One => vec![!0; words],
@@ -218,7 +238,7 @@ impl L {
                 acc.iter().zip(x.table(atoms, words)).map(|(a, b)| a | b).collect()
             }),
             atom => {
-                let i = atoms.get(atom).copied().unwrap_or(0);
+                let i = atoms.iter().position(|a| *a == atom).unwrap_or(0);
                 (0..words).map(|w| atom_word(i, w)).collect()
             }
         }
@@ -348,10 +368,9 @@ pub struct Tables {
 impl Tables {
     /// Tables for `terms`, or `None` if they have more than [`MAX_ATOMS`] atoms together.
     pub fn new(terms: &[&L]) -> Option<Tables> {
-        let mut atoms = BTreeMap::new();
+        let mut atoms = Vec::new();
         for t in terms {
-            t.atoms(&mut atoms);
-            if atoms.len() > MAX_ATOMS {
+            if !t.atoms(&mut atoms) {
                 return None;
             }
         }
@@ -424,10 +443,27 @@ pub fn simp(e: &L) -> L {
 }
 
 fn junction(xs: &[L], is_and: bool) -> L {
+    combine(xs.iter().map(simp), is_and)
+}
+
+/// `a · b` for operands that are already [`simp`]'s results: the same term as
+/// `simp(&a.and(b))`, without simplifying the operands again.
+pub fn simp_and(a: L, b: L) -> L {
+    combine([a, b].into_iter(), true)
+}
+
+/// The sum of operands that are already [`simp`]'s results: the same term as
+/// `simp(&sum(xs))`, without simplifying the operands again.
+pub fn simp_sum(xs: Vec<L>) -> L {
+    combine(xs.into_iter(), false)
+}
+
+/// A product (`is_and`) or a sum of simplified operands: flattened, without constants
+/// and duplicates, redundant operands absorbed, constant functions folded.
+fn combine(xs: impl Iterator<Item = L>, is_and: bool) -> L {
     let (unit, absorbing) = if is_and { (L::One, L::Zero) } else { (L::Zero, L::One) };
     let mut items: Vec<L> = Vec::new();
     for x in xs {
-        let x = simp(x);
         let parts = match x {
             L::And(ys) if is_and => ys,
             L::Or(ys) if !is_and => ys,
@@ -446,7 +482,6 @@ fn junction(xs: &[L], is_and: bool) -> L {
         let refs: Vec<&L> = items.iter().collect();
         if let Some(t) = Tables::new(&refs) {
             let n = items.len();
-            let mut whole = Vec::with_capacity(n);
             let mut keep = vec![true; n];
             // Drop, from the last to the first, an operand made redundant by another kept one.
             for j in (0..n).rev() {
@@ -457,21 +492,27 @@ fn junction(xs: &[L], is_and: bool) -> L {
                     keep[j] = false;
                 }
             }
-            for (k, item) in items.into_iter().enumerate() {
+            // The kept operands' function, from their tables.
+            let words = t.tables[0].len();
+            let mut folded = vec![if is_and { !0 } else { 0 }; words];
+            for (k, table) in t.tables.iter().enumerate() {
                 if keep[k] {
-                    whole.push(item);
+                    for (f, w) in folded.iter_mut().zip(table) {
+                        *f = if is_and { *f & w } else { *f | w };
+                    }
                 }
             }
-            items = whole;
-            let folded = if is_and { L::And(items.clone()) } else { L::Or(items.clone()) };
-            if let Some(t) = Tables::new(&[&folded]) {
-                if t.is_zero(0) {
-                    return L::Zero;
-                }
-                if t.is_one(0) {
-                    return L::One;
-                }
+            if folded.iter().all(|w| w & t.mask == 0) {
+                return L::Zero;
             }
+            if folded.iter().all(|w| !w & t.mask == 0) {
+                return L::One;
+            }
+            let mut k = 0;
+            items.retain(|_| {
+                k += 1;
+                keep[k - 1]
+            });
         }
     }
     match items.len() {
@@ -541,5 +582,37 @@ mod tests {
         let any = sum(names);
         assert_eq!(implies(&all, &any), Some(true));
         assert_eq!(implies(&any, &all), Some(false));
+    }
+
+    fn term() -> impl proptest::strategy::Strategy<Value = L> {
+        use proptest::prelude::*;
+        let leaf = prop_oneof![
+            Just(L::Zero),
+            Just(L::One),
+            (0..8usize).prop_map(|i| v(&format!("x{i}"))),
+            (0..3usize).prop_map(|i| L::Pre(Box::new(v(&format!("x{i}"))))),
+        ];
+        leaf.prop_recursive(4, 40, 4, |inner| {
+            prop_oneof![
+                inner.clone().prop_map(L::negate),
+                proptest::collection::vec(inner.clone(), 0..4).prop_map(L::And),
+                proptest::collection::vec(inner, 0..4).prop_map(L::Or),
+            ]
+        })
+    }
+
+    proptest::proptest! {
+        /// Combining simplified operands gives `simp`'s own term, and `simp` keeps the function.
+        #[test]
+        fn combining_simplified_operands_is_simp(a in term(), b in term(), c in term()) {
+            let (a, b, c) = (simp(&a), simp(&b), simp(&c));
+            let and = simp_and(a.clone(), b.clone());
+            proptest::prop_assert_eq!(&and, &simp(&a.clone().and(b.clone())));
+            let or = simp_sum(vec![a.clone(), b.clone(), c.clone()]);
+            proptest::prop_assert_eq!(&or, &simp(&sum(vec![a.clone(), b.clone(), c.clone()])));
+            proptest::prop_assert_eq!(equivalent(&and, &L::And(vec![a.clone(), b.clone()])), Some(true));
+            proptest::prop_assert_eq!(equivalent(&or, &L::Or(vec![a, b, c])), Some(true));
+            proptest::prop_assert_eq!(simp(&and), and);
+        }
     }
 }
