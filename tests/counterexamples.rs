@@ -592,6 +592,74 @@ fn the_cached_vacuity_check_agrees_with_the_whole_cone_on_small_programs() {
 /// A run that refutes one property of a program is kept, and refutes another property
 /// it violates too (confirmed again: the trace replays on the simulator), but not one
 /// it does not violate nor one that holds.
+/// A kept run also holds the inputs outside its property's cone at drawn values: the
+/// properties those inputs violate are refuted from it, each counterexample cut to the
+/// inputs its own violation needs and confirmed on the simulator.
+#[test]
+fn a_grown_run_refutes_properties_outside_the_cone_it_came_from() {
+    let mut sources = Sources::new();
+    let program = std::env::temp_dir().join(format!("ii_prove_grown_{}.ld", std::process::id()));
+    // Yb follows Xa; eight units apart: Yd_i follows Xe_i, Yf_i follows Xg_i or Xe_i.
+    let mut text =
+        String::from("LDmicro0.1\nCYCLE=10000\nPROGRAM\nRUNG\nCONTACTS Xa 0\nCOIL Yb 0 0 0\nEND\n");
+    let mut props = String::from("property deep: Yb = 0*\n");
+    for i in 0..8 {
+        text += &format!("RUNG\nCONTACTS Xe{i} 0\nCOIL Yd{i} 0 0 0\nEND\n");
+        text += &format!(
+            "RUNG\nPARALLEL\nCONTACTS Xg{i} 0\nCONTACTS Xe{i} 0\nEND\nCOIL Yf{i} 0 0 0\nEND\n"
+        );
+        props += &format!("property apart{i}: Yd{i} = 0*\nproperty holds{i}: Yd{i} => Yf{i}\n");
+    }
+    std::fs::write(&program, text).expect("writes");
+    let loaded = load_program(&mut sources, &program.display().to_string(), &Default::default())
+        .expect("loads");
+    let file = sources.add("units.ii", props);
+    let doc = syntax::parse_document(&sources, file, &loaded.compiled).expect("parses");
+    let goals: Vec<_> = doc.properties.iter().map(|p| report::obligation(&p.value)).collect();
+    let shared = counterexample::shared::Shared::default();
+    let session = counterexample::Program {
+        reference: loaded.reference.as_ref(),
+        compiled: &loaded.compiled,
+        assumptions: &[],
+        shared: Some(&shared),
+    };
+    let limits = Limits {
+        deadline: Instant::now() + Duration::from_secs(20),
+        max_steps: 200,
+        max_scans: 100_000,
+        minimised: false,
+    };
+    let Verdict::Refuted(_) = counterexample::refute(&session, &goals[0], limits) else {
+        panic!("`deep` is not refuted");
+    };
+    let mut refuted = 0;
+    for i in 0..8 {
+        let Some(c) = counterexample::shared::refute_shared(&session, &goals[1 + 2 * i], limits)
+        else {
+            continue;
+        };
+        refuted += 1;
+        assert!(c.simulator_scan.is_some(), "confirmed on the simulator");
+        let set: Vec<&String> =
+            c.trace.values.iter().filter(|(_, v)| v.contains(&true)).map(|(n, _)| n).collect();
+        assert_eq!(set, vec![&format!("Xe{i}")], "only the input the violation needs");
+        let mut sim = loaded.reference.simulator();
+        let mut seen = false;
+        for k in 0..c.trace.scans {
+            let inputs: BTreeMap<String, bool> =
+                c.trace.values.iter().map(|(n, v)| (n.clone(), v[k])).collect();
+            sim.step(&inputs);
+            seen |= sim.bit(&format!("Yd{i}"));
+        }
+        assert!(seen, "the replay sets Yd{i}");
+        assert!(
+            counterexample::shared::refute_shared(&session, &goals[2 + 2 * i], limits).is_none(),
+            "holds{i} holds"
+        );
+    }
+    assert!(refuted > 0, "no property outside the cone of `deep` is refuted from its grown run");
+}
+
 #[test]
 fn a_kept_run_refutes_the_other_properties_it_violates() {
     let mut sources = Sources::new();

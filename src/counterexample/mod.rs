@@ -95,6 +95,11 @@ impl ScanTrace {
         }
     }
 
+    /// The instants of every scan, [`ScanTrace::instant`] for `k` in `0..scans`.
+    pub fn instants(&self) -> Vec<Time> {
+        (0..self.scans).map(|k| self.instant(k)).collect()
+    }
+
     /// The horizon `scans · c`.
     pub fn horizon(&self) -> Time {
         &self.cycle * Time::from_integer(self.scans.into())
@@ -360,7 +365,7 @@ pub fn refute(program: &Program, goal: &Obligation, limits: Limits) -> Verdict {
             match judge(program, &model, goal, trace, &cycle, limits) {
                 Ok(Judged::Both(c)) => {
                     if let Some(shared) = program.shared {
-                        shared.keep(program, goal, &c);
+                        shared.keep(program, goal, &model, &c);
                     }
                     return Verdict::Refuted(c);
                 }
@@ -626,13 +631,11 @@ fn exact(
     for (name, values) in &run.signals {
         env.signals.insert(Symbol::from(name.as_str()), trace.signal(values)?);
     }
+    let instants = trace.instants();
     for (name, rhs) in &model.defs {
         let s = eval(rhs, &env).map_err(|e| e.to_string())?;
         let x = env.signals.get(&Symbol::from(name.as_str())).ok_or("a signal is missing")?;
-        if let Some(k) = (0..trace.scans).find(|k| {
-            let t = trace.instant(*k);
-            x.value_at(&t) != s.value_at(&t)
-        }) {
+        if let Some(k) = instants.iter().position(|t| x.value_at(t) != s.value_at(t)) {
             return Err(format!("the equation of `{name}` fails at scan {}", k + 1));
         }
     }
@@ -667,6 +670,7 @@ fn hypotheses_hold(program: &Program, env: &Assignment, trace: &ScanTrace) -> bo
     }
     candidates.sort_unstable();
     candidates.dedup();
+    let instants = trace.instants();
     candidates.into_iter().map(|i| &program.compiled.hypotheses[i]).all(|h| {
         let known = |e: &Expr| {
             e.as_ref().iter().all(|node| match node {
@@ -678,10 +682,7 @@ fn hypotheses_hold(program: &Program, env: &Assignment, trace: &ScanTrace) -> bo
             return true; // outside the cone
         }
         let (Ok(a), Ok(b)) = (eval(&h.lhs, env), eval(&h.rhs, env)) else { return false };
-        (0..trace.scans).all(|k| {
-            let (x, y) = (a.value_at(&trace.instant(k)), b.value_at(&trace.instant(k)));
-            !violated(&mut Concrete, h.rel, &x, &y)
-        })
+        instants.iter().all(|t| !violated(&mut Concrete, h.rel, &a.value_at(t), &b.value_at(t)))
     })
 }
 

@@ -11,6 +11,12 @@
 //! (the run was minimised for the property it refuted). The store only proposes
 //! candidates: nothing in it is trusted.
 //!
+//! Each confirmed run is also kept grown: the Boolean inputs its property's cone does
+//! not read, held at values drawn for them (they cannot change its violation). A
+//! property refuted from a grown run keeps, of the drawn inputs, only those its
+//! violation needs. Grown runs cost a run of most of the program, so they are kept
+//! only while they refute properties.
+//!
 //! Which properties a run can refute depends on the order they are checked in: a
 //! property whose cone is deep (its signals computed from long chains of rungs) has
 //! counterexamples that set more of the program in motion, so [`deepest_first`] orders
@@ -21,8 +27,10 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, OnceLock};
 
 use super::unroll::{Concrete, Model, unroll, violated};
-use super::{Counterexample, Judged, Limits, Program, ScanTrace, judge, scans_of};
-use crate::ladder::CompiledProgram;
+use super::{
+    Counterexample, Judged, Limits, Program, ScanTrace, discrete_violation, judge, scans_of,
+};
+use crate::ladder::{CompiledProgram, SignalKind};
 use crate::prover::Obligation;
 use crate::term::{Expr, Symbol, Term};
 
@@ -45,6 +53,9 @@ pub struct Shared {
     checks: AtomicUsize,
     kept: AtomicUsize,
     hits: AtomicUsize,
+    /// How many grown runs were kept, and how many properties they refuted.
+    grown_kept: AtomicUsize,
+    grown_hits: AtomicUsize,
 }
 
 /// Per signal, its value at each scan (bit `k` for scan `k + 1`).
@@ -78,6 +89,8 @@ struct Kept {
     quiet: Arc<Bits>,
     /// The depth of the property it refuted.
     depth: usize,
+    /// The inputs outside that property's cone it sets (held at 1 by [`drawn`]).
+    drawn: Vec<String>,
     /// The check (by number) at which it was kept or last refuted a property.
     used: AtomicUsize,
 }
@@ -100,6 +113,9 @@ const STALE: usize = 64;
 /// Runs kept before any has refuted a property; after them, one more per property
 /// refuted from a kept run.
 const FREE_KEEPS: usize = 8;
+/// Grown runs kept before any has refuted a property; after them, one more per
+/// property refuted from a grown run.
+const FREE_GROWN: usize = 2;
 /// Runs longer than this many scans are not kept (a bit mask per signal).
 const MAX_SCANS: usize = 64;
 
@@ -111,7 +127,7 @@ impl Shared {
     /// deepest set the most in motion), after the runs that refuted none of the last
     /// [`STALE`] properties checked are dropped, and only while the kept runs pay for
     /// themselves ([`FREE_KEEPS`] plus one per property they refuted).
-    pub fn keep(&self, program: &Program, goal: &Obligation, c: &Counterexample) {
+    pub fn keep(&self, program: &Program, goal: &Obligation, model: &Model, c: &Counterexample) {
         let trace = &c.trace;
         let paid = FREE_KEEPS + self.hits.load(Ordering::Relaxed);
         if trace.scans > MAX_SCANS || self.kept.load(Ordering::Relaxed) >= paid {
@@ -126,8 +142,39 @@ impl Shared {
                 return;
             }
         }
-        self.kept.fetch_add(1, Ordering::Relaxed);
-        let Some(quiet) = self.quiet(program, trace) else { return };
+        let salt = self.kept.fetch_add(1, Ordering::Relaxed) as u64;
+        // The run as found, and the run grown: every Boolean input the property's cone
+        // does not read held at a value drawn for it (it cannot change the violation,
+        // and sets in motion parts of the program the run left at rest; each run kept
+        // draws other values).
+        let free = model.free_names([&goal.lhs, &goal.rhs].into_iter());
+        let mut grown = trace.clone();
+        let mut set = Vec::new();
+        for (n, kind) in &program.compiled.signals {
+            if matches!(kind, SignalKind::Input) && !free.contains(n) && drawn(n, salt) {
+                grown.values.insert(n.clone(), vec![true; trace.scans]);
+                set.push(n.clone());
+            }
+        }
+        self.keep_run(program, trace.clone(), Vec::new(), depth, now);
+        // A grown run costs a run of most of the program: grown runs are kept only
+        // while they pay for themselves, as the others.
+        let grown_paid = FREE_GROWN + self.grown_hits.load(Ordering::Relaxed);
+        if !set.is_empty() && self.grown_kept.fetch_add(1, Ordering::Relaxed) < grown_paid {
+            self.keep_run(program, grown, set, depth, now);
+        }
+    }
+
+    /// Keeps one run: the equations that read what it sets run on its inputs.
+    fn keep_run(
+        &self,
+        program: &Program,
+        trace: ScanTrace,
+        drawn: Vec<String>,
+        depth: usize,
+        now: usize,
+    ) {
+        let Some(quiet) = self.quiet(program, &trace) else { return };
         let index = program.compiled.equation_index();
         let readers = self.readers.get_or_init(|| {
             let position: HashMap<usize, usize> =
@@ -168,11 +215,13 @@ impl Shared {
         ) else {
             return;
         };
+        let scans = trace.scans;
         let kept = Kept {
-            trace: trace.clone(),
-            moved: Bits::of(run.signals, trace.scans),
+            trace,
+            moved: Bits::of(run.signals, scans),
             quiet,
             depth,
+            drawn,
             used: AtomicUsize::new(now),
         };
         if let Ok(mut runs) = self.runs.lock() {
@@ -226,6 +275,16 @@ impl Shared {
     }
 }
 
+/// A value drawn for input `name` in the grown run number `salt`: a bit of a hash of
+/// both (FNV-1a, then a multiplicative mix), so that runs are the same from one
+/// session to the next.
+fn drawn(name: &str, salt: u64) -> bool {
+    let h = name.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+    });
+    (h ^ salt.wrapping_mul(0x9e37_79b9_7f4a_7c15)).wrapping_mul(0xff51_afd7_ed55_8ccd) >> 63 == 1
+}
+
 /// The program's equations at `positions` (in scan order, `EquationIndex::equations`)
 /// as a model without constraints.
 fn equations_model(
@@ -266,10 +325,21 @@ pub fn refute_shared(
         let mut trace = kept.trace.clone();
         trace.values.retain(|n, _| free.contains(n));
         trace.truncate(v + 1);
+        // Of the inputs drawn, only those the violation needs stay set.
+        for n in &kept.drawn {
+            if let Some(v) = trace.values.remove(n)
+                && discrete_violation(model, goal, &trace).is_none()
+            {
+                trace.values.insert(n.clone(), v);
+            }
+        }
         let limits = Limits { minimised: true, ..limits };
         if let Ok(Judged::Both(found)) = judge(program, model, goal, trace, &cycle, limits) {
             kept.used.store(now, Ordering::Relaxed);
             shared.hits.fetch_add(1, Ordering::Relaxed);
+            if !kept.drawn.is_empty() {
+                shared.grown_hits.fetch_add(1, Ordering::Relaxed);
+            }
             return Some(found);
         }
     }
