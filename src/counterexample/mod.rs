@@ -52,7 +52,7 @@ use num_integer::Integer;
 use num_traits::ToPrimitive;
 
 use crate::kernel::{Axiom, Rel};
-use crate::ladder::{CompiledProgram, HypothesisKind, Reference, SignalKind};
+use crate::ladder::{CompiledProgram, Hypothesis, HypothesisKind, Reference, SignalKind};
 use crate::prover::Obligation;
 use crate::semantics::falsify::violation;
 use crate::semantics::{Assignment, Signal, Time, eval, format_time};
@@ -660,7 +660,24 @@ fn exact(
 /// Every compiled hypothesis whose signals the run has holds at every scan of the trace
 /// (read at each scan's instant: the end of the horizon is the start of a scan the trace
 /// does not have).
-fn hypotheses_hold(program: &Program, env: &Assignment, trace: &ScanTrace) -> bool {
+/// The equations of `checked` (the model's, which [`exact`] has checked on the same
+/// instants) are not evaluated again.
+fn hypotheses_hold(
+    program: &Program,
+    checked: &Model,
+    env: &Assignment,
+    trace: &ScanTrace,
+) -> bool {
+    let mut done: HashMap<&str, Vec<&Expr>> = HashMap::new();
+    for (n, rhs) in &checked.defs {
+        done.entry(n.as_str()).or_default().push(rhs);
+    }
+    let is_done = |h: &Hypothesis| {
+        h.kind == HypothesisKind::Equation
+            && h.rel == Rel::Eq
+            && matches!(&h.lhs[root(&h.lhs)], Term::Name(n)
+                if done.get(n.as_str()).is_some_and(|es| es.iter().any(|e| **e == h.rhs)))
+    };
     // Only a hypothesis that mentions no name or a name of the run can have all its
     // names in the run: those are looked up, not the whole program's.
     let index = program.compiled.equation_index();
@@ -671,19 +688,21 @@ fn hypotheses_hold(program: &Program, env: &Assignment, trace: &ScanTrace) -> bo
     candidates.sort_unstable();
     candidates.dedup();
     let instants = trace.instants();
-    candidates.into_iter().map(|i| &program.compiled.hypotheses[i]).all(|h| {
-        let known = |e: &Expr| {
-            e.as_ref().iter().all(|node| match node {
-                Term::Name(n) => env.signals.contains_key(n),
-                _ => true,
-            })
-        };
-        if !known(&h.lhs) || !known(&h.rhs) {
-            return true; // outside the cone
-        }
-        let (Ok(a), Ok(b)) = (eval(&h.lhs, env), eval(&h.rhs, env)) else { return false };
-        instants.iter().all(|t| !violated(&mut Concrete, h.rel, &a.value_at(t), &b.value_at(t)))
-    })
+    candidates.into_iter().map(|i| &program.compiled.hypotheses[i]).filter(|h| !is_done(h)).all(
+        |h| {
+            let known = |e: &Expr| {
+                e.as_ref().iter().all(|node| match node {
+                    Term::Name(n) => env.signals.contains_key(n),
+                    _ => true,
+                })
+            };
+            if !known(&h.lhs) || !known(&h.rhs) {
+                return true; // outside the cone
+            }
+            let (Ok(a), Ok(b)) = (eval(&h.lhs, env), eval(&h.rhs, env)) else { return false };
+            instants.iter().all(|t| !violated(&mut Concrete, h.rel, &a.value_at(t), &b.value_at(t)))
+        },
+    )
 }
 
 enum Judged {
@@ -749,7 +768,7 @@ fn confirmed(
 ) -> Result<Judged, String> {
     let run = run_scans(model, goal, &trace)?;
     let (assignment, lhs, rhs) = exact(model, goal, &trace, &run, v)?;
-    if !hypotheses_hold(program, &assignment, &trace) {
+    if !hypotheses_hold(program, model, &assignment, &trace) {
         return Err("a compiled hypothesis fails on the exact signals".into());
     }
     let inputs = program
