@@ -14,8 +14,9 @@
 //! Each confirmed run is also kept grown: the Boolean inputs its property's cone does
 //! not read, held at values drawn for them (they cannot change its violation). A
 //! property refuted from a grown run keeps, of the drawn inputs, only those its
-//! violation needs. Grown runs cost a run of most of the program, so they are kept
-//! only while they refute properties.
+//! violation needs (a grown run that drew more than a few of its inputs is not tried:
+//! a search of its own costs less). Grown runs cost a run of most of the program, so
+//! they are kept only while they refute properties, at most [`MAX_GROWN`] of them.
 //!
 //! Which properties a run can refute depends on the order they are checked in: a
 //! property whose cone is deep (its signals computed from long chains of rungs) has
@@ -116,6 +117,10 @@ const FREE_KEEPS: usize = 8;
 /// Grown runs kept before any has refuted a property; after them, one more per
 /// property refuted from a grown run.
 const FREE_GROWN: usize = 2;
+/// At most this many grown runs are kept in a session.
+const MAX_GROWN: usize = 16;
+/// A grown run that drew more than this many of a property's inputs is not tried for it.
+const MAX_DRAWN: usize = 6;
 /// Runs longer than this many scans are not kept (a bit mask per signal).
 const MAX_SCANS: usize = 64;
 
@@ -159,7 +164,7 @@ impl Shared {
         self.keep_run(program, trace.clone(), Vec::new(), depth, now);
         // A grown run costs a run of most of the program: grown runs are kept only
         // while they pay for themselves, as the others.
-        let grown_paid = FREE_GROWN + self.grown_hits.load(Ordering::Relaxed);
+        let grown_paid = (FREE_GROWN + self.grown_hits.load(Ordering::Relaxed)).min(MAX_GROWN);
         if !set.is_empty() && self.grown_kept.fetch_add(1, Ordering::Relaxed) < grown_paid {
             self.keep_run(program, grown, set, depth, now);
         }
@@ -325,14 +330,14 @@ pub fn refute_shared(
         let mut trace = kept.trace.clone();
         trace.values.retain(|n, _| free.contains(n));
         trace.truncate(v + 1);
-        // Of the inputs drawn, only those the violation needs stay set.
-        for n in &kept.drawn {
-            if let Some(v) = trace.values.remove(n)
-                && discrete_violation(model, goal, &trace).is_none()
-            {
-                trace.values.insert(n.clone(), v);
-            }
+        // Of the inputs drawn, only those the violation needs stay set; a run that drew
+        // many of the property's inputs costs more than a search of its own.
+        let drawn: Vec<&String> =
+            kept.drawn.iter().filter(|n| trace.values.contains_key(*n)).collect();
+        if drawn.len() > MAX_DRAWN {
+            continue;
         }
+        keep_needed(&mut trace, &drawn, &|t| discrete_violation(model, goal, t).is_some());
         let limits = Limits { minimised: true, ..limits };
         if let Ok(Judged::Both(found)) = judge(program, model, goal, trace, &cycle, limits) {
             kept.used.store(now, Ordering::Relaxed);
@@ -344,6 +349,25 @@ pub fn refute_shared(
         }
     }
     None
+}
+
+/// Unsets the inputs of `names` that `still` holds without, a block at a time (all of
+/// them, else each half in turn).
+fn keep_needed(trace: &mut ScanTrace, names: &[&String], still: &dyn Fn(&ScanTrace) -> bool) {
+    if names.is_empty() {
+        return;
+    }
+    let saved: Vec<(String, Vec<bool>)> =
+        names.iter().filter_map(|n| trace.values.remove(*n).map(|v| ((*n).clone(), v))).collect();
+    if still(trace) {
+        return;
+    }
+    trace.values.extend(saved);
+    if names.len() > 1 {
+        let (a, b) = names.split_at(names.len() / 2);
+        keep_needed(trace, a, still);
+        keep_needed(trace, b, still);
+    }
 }
 
 /// The first scan (0-based) at which the goal fails on a kept run.
