@@ -492,7 +492,12 @@ impl Gen {
     fn fbd_network(&mut self) {
         let mut sources: Vec<(u64, Option<&'static str>)> = Vec::new();
         for _ in 0..2 + self.rng.below(3) {
-            let v = self.operand();
+            // Now and then an integer literal matiec types as BOOL (0 or 1).
+            let v = if self.rng.chance(8) {
+                self.rng.pick(&["0", "1", "2#1", "BOOL#0"]).to_string()
+            } else {
+                self.operand()
+            };
             let id = self.in_var(&v, true);
             sources.push((id, None));
         }

@@ -196,7 +196,10 @@ impl PlcSimulator {
                     self.p.hidden.values().find(|h| h.eq_ignore_ascii_case(&name)).cloned();
                 hidden.is_some_and(|h| self.bit(&h))
             }
-            Operand::Duration(_) | Operand::Other(_) => false,
+            // An integer literal of value 0 or 1 where a BOOL is expected is FALSE or TRUE
+            // (matiec's `fill_candidate_datatypes.cc` keeps BOOL among its types).
+            Operand::Other(t) => super::bool_of_int_literal(t) == Some(true),
+            Operand::Duration(_) => false,
         }
     }
 

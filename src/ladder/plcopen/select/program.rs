@@ -399,3 +399,22 @@ pub fn bool_literal(init: &str) -> Option<bool> {
         _ => None,
     }
 }
+
+/// The value of an integer literal matiec types as BOOL where a BOOL is expected (an
+/// input variable `0` or `1` wired into a contact, a coil or a Boolean pin): one
+/// without a sign and untyped or `BOOL#`, of value 0 or 1 in any base. From matiec's
+/// `stage3/fill_candidate_datatypes.cc`: an integer literal (`integer_c`,
+/// `binary_integer_c`, …) has BOOL among its candidate types, which
+/// `remove_incompatible_datatypes` drops when its value is above 1; a negative one
+/// (`neg_integer_c`) never has it.
+pub fn bool_of_int_literal(text: &str) -> Option<bool> {
+    let t = text.trim();
+    if t.starts_with(['-', '+']) {
+        return None;
+    }
+    match crate::iec::literal::int_literal(t)? {
+        (v @ 0..=1, None) => Some(v == 1),
+        (v @ 0..=1, Some(ty)) if ty == "BOOL" => Some(v == 1),
+        _ => None,
+    }
+}
