@@ -548,6 +548,9 @@ impl<'p> Lower<'p> {
                 _ => opaque(type_name, instance.as_deref(), pin, span),
             };
         }
+        if self.p.bool_mux(k) && pin.eq_ignore_ascii_case("OUT") {
+            return contact(self.p.hidden_name(k, "OUT").unwrap_or_default(), false);
+        }
         match Std::of(type_name) {
             Some(s) if (runs || !s.is_fb()) && s.output().eq_ignore_ascii_case(pin) => {
                 match self.p.hidden_name(k, s.output()) {
@@ -597,6 +600,10 @@ impl<'p> Lower<'p> {
                     vals.insert(n, v);
                 }
             }
+        }
+        if p.bool_mux(k) {
+            let out = self.bool_mux(k, &vals, span);
+            self.function_out(k, out, span);
         }
         let value =
             |_: &mut Self, name: &str| -> BoolExpr { vals.get(name).cloned().unwrap_or_else(zero) };

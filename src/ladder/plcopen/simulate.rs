@@ -326,7 +326,7 @@ impl PlcSimulator {
         if let Some(var) = self.p.sub_var(k, pin, true) {
             return self.bit(var);
         }
-        if self.p.int_block(k).is_some() {
+        if self.p.int_block(k).is_some() || self.p.bool_mux(k) {
             let boolean = ["OUT", "Q", "QU", "QD"].iter().any(|q| pin.eq_ignore_ascii_case(q));
             return boolean
                 && self.p.hidden_name(k, &pin.to_ascii_uppercase()).is_some_and(|h| self.bit(h));
@@ -431,6 +431,9 @@ impl PlcSimulator {
         let get = |n: &str| values.get(n).copied().unwrap_or(false);
         if let Some(b) = self.p.int_block(k) {
             self.int_exec(k, &b, en, &values);
+        } else if self.p.bool_mux(k) {
+            let v = self.bool_mux(k, &values);
+            self.set_hidden(k, "OUT", v);
         } else if let Some(s) = std.filter(|s| !en && !s.is_fb()) {
             // A function under EN = FALSE returns FALSE (matiec's `TEST_EN(BOOL)`).
             self.set_hidden(k, s.output(), false);

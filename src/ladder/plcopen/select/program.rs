@@ -322,6 +322,16 @@ impl PlcProgram {
         }
     }
 
+    /// Whether block `k` is a `MUX` of BOOL inputs drawn without `EN`/`ENO` (its data
+    /// inputs carry no integer), whose `OUT` is a hidden BOOL.
+    pub fn bool_mux(&self, k: usize) -> bool {
+        matches!(&self.obj(k).map(|o| &o.kind), Some(ObjKind::Block { type_name, .. })
+            if type_name.eq_ignore_ascii_case("MUX"))
+            && self.int_block(k).is_none()
+            && self.hidden_name(k, "ENO").is_none()
+            && self.hidden_name(k, "OUT").is_some()
+    }
+
     /// The interpreted standard block at `k`, if it is one.
     pub fn std_block(&self, k: usize) -> Option<Std> {
         match &self.obj(k)?.kind {
