@@ -74,7 +74,7 @@ const COIL_BITS: &[&str] =
 /// `Ta` is also an integer that `MOVE`, arithmetic and comparisons write and read.
 const TIMERS: &[&str] = &["Ta", "Tb", "Tc", "Ra", "Ya", "T1", "T1"];
 const COUNTERS: &[&str] = &["Ca", "Cb"];
-/// `Aa` is what `READ_ADC Aa` reads, `vb` what `UART_RECV vb` receives.
+/// `Aa` is what `READ_ADC Aa` reads, `vb` what `UART_RECV vb` and `I2C_RD` receive.
 const INTS: &[&str] = &["va", "vb", "Ca", "Ta", "Aa"];
 const CYCLES: &[u64] = &[10_000, 10_000, 1_000, 5_000, 20_000, 2_500, 100_000, 40_000, 3_333];
 
@@ -178,17 +178,19 @@ impl Gen {
                     "NEG vb va",
                 ])
                 .to_string(),
-            // Bit operations: on every target, or on AVR only (SHR, SR0, ROL, ROR, BIN2BCD).
+            // Bit operations: on every target, or on AVR only (SHR, SR0, ROL, ROR, BIN2BCD),
+            // on ARM and AVR (BCD2BIN, OPPOSITE), on ARM (SWAP).
             19 if self.rng.chance(50) => {
                 let op = self.rng.pick(&[
                     "AND", "OR", "XOR", "SHL", "SHR", "SR0", "ROL", "ROR", "MOD", "NOT", "BIN2BCD",
+                    "BCD2BIN", "OPPOSITE", "SWAP",
                 ]);
                 let (dest, a) = (self.rng.pick(INTS), self.rng.pick(INTS));
                 let b = match self.rng.below(3) {
                     0 => self.operand(),
                     _ => self.rng.below(10).to_string(),
                 };
-                if matches!(*op, "NOT" | "BIN2BCD") {
+                if matches!(*op, "NOT" | "BIN2BCD" | "BCD2BIN" | "OPPOSITE" | "SWAP") {
                     format!("{op} {dest} {a}")
                 } else {
                     format!("{op} {dest} {a} {b}")
@@ -203,6 +205,7 @@ impl Gen {
                     "UART_RECV vb",
                     "FORMATTED_STRING va 2 65 66",
                     "I2C_WR i2c va 0 0 0 0 0 0",
+                    "I2C_RD i2c - vb Master 0x68 0 MSB 100000",
                     "SPI_WR spi va 0 0 0 0 0 0",
                     "BUS vb va 7 6 5 4 3 2 1 0",
                     "7SEGMENTS vb va C",
@@ -420,8 +423,17 @@ fn random_program(seed: u64) -> (String, BTreeSet<String>) {
     }
     if header == "LDmicro0.2" && g.rng.chance(50) {
         // LDmicro ≥ 2016 sizes its integers: 1 to 4 bytes (3 computed on AVR only).
+        // The targets whose code differs: AVR, ARM (C only), PIC, ESP8266.
         if g.rng.chance(60) {
             text.push_str("MICRO=Atmel AVR ATmega328 28-PDIP\n");
+        } else if g.rng.chance(50) {
+            let micro = g.rng.pick(&[
+                "St ARM STM32F40X 144-LQFP",
+                "St ARM STM32F40X 144-LQFP",
+                "Microchip PIC16F877 40-PDIP",
+                "ESP8266",
+            ]);
+            let _ = writeln!(text, "MICRO={micro}");
         }
         text.push_str("VAR LIST\n");
         for name in ["va", "vb", "Ca", "Cb", "Ta", "Tb", "Aa"] {
@@ -916,6 +928,9 @@ const COVERAGE: &[&str] = &[
     "ROL",
     "ROR",
     "BIN2BCD",
+    "BCD2BIN",
+    "OPPOSITE",
+    "SWAP",
     "SET_BIT",
     "IF_BIT_SET",
     "SHIFT_REGISTER",
@@ -928,6 +943,7 @@ const COVERAGE: &[&str] = &[
     "UART_SEND_BUSY",
     "UART_UDRE",
     "I2C_WR",
+    "I2C_RD",
     "SPI_WR",
     "BUS",
     "7SEGMENTS",

@@ -556,6 +556,11 @@ fn other_writes(keyword: &str, args: &[String]) -> Vec<String> {
             _ => names(args),
         },
         "PERSIST" => names(&args[..args.len().min(1)]),
+        // `I2C_RD name send recv mode address registr first bitrate` (`loadsave.cpp`)
+        // writes `recv`; `I2C_WR` writes the bus's name only in the C code of targets
+        // without an I2C library (`ansic.cpp`: `name = I2C_SEND(…)`).
+        "I2C_RD" => names(args.get(2..3).unwrap_or(&[])),
+        "I2C_WR" => names(&args[..args.len().min(1)]),
         k if !other_writes_first(k) => Vec::new(),
         "UART_RECV" | "READ_ADC" | "RANDOM" | "SEED_RANDOM" | "LOOK_UP_TABLE"
         | "PIECEWISE_LINEAR" | "STRING" | "7SEGMENTS" | "9SEGMENTS" | "14SEGMENTS"

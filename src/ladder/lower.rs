@@ -19,13 +19,14 @@
 //! follow the UART's transmission); integer side effects (MOVE, math, RES) over integers
 //! not computed and the peripheral writes (SET_PWM, I2C, SPI, segment and bus elements)
 //! pass the power with a note. The peripheral reads (READ_ADC, UART_RECV, the UART's
-//! status contacts and PERSIST's load from EEPROM) are free integer inputs holding what
-//! the hardware gives (see [`super::readings`]). Elements that change which
+//! status contacts, I2C_RD and PERSIST's load from EEPROM) are free integer inputs
+//! holding what the hardware gives ([`reads`], [`super::readings`]). Elements that change which
 //! rungs run (`GOTO`, `GOSUB`, `SUBPROG`/`ENDSUB`, `RETURN`, `LOCK`, `SLEEP`) and coils
 //! on bits the outside world writes refuse the program with a located error.
 #![warn(missing_docs)]
 
 mod bits;
+mod reads;
 mod sizes;
 mod timers;
 
@@ -267,57 +268,6 @@ impl<'a> Lowering<'a> {
                 if up && orig { input } else { self.temp(BoolExpr::and(trigger, past)) }
             }
         }
-    }
-
-    /// A peripheral read (ldmicro.md §4): when the power is on, `READ_ADC` writes the
-    /// reading, a free integer input, and passes the power; `UART_RECV` writes the
-    /// received value only when a byte arrived (a free 1-bit input) and gives the power
-    /// and-ed with that arrival; a status contact gives the power and-ed with its flag.
-    fn read(&mut self, e: &Element, input: BoolExpr) -> BoolExpr {
-        let index = self.index.get(&(e as *const Element)).copied().unwrap_or(usize::MAX);
-        let Some(r) = self.readings.get(&index).cloned() else { return input };
-        let is = |name: &str, v: i64| {
-            let (a, b) = (IntExpr::Var(canonical(name)), IntExpr::Const(v));
-            BoolExpr::Compare(Box::new(Compare { op: CmpOp::Eq, ty: IntType::BIT, a, b }))
-        };
-        let power = match r.gate() {
-            Some(gate) => self.temp(BoolExpr::and(input, is(gate, 1))),
-            None => input,
-        };
-        let message = match (&r.var, &r.arrived) {
-            (Some(var), Some(ready)) if r.once.is_some() => format!(
-                "a peripheral read: {var} is loaded once from EEPROM, the free input {}, at \
-                 the first scan its input is on and {ready} = 1 (the EEPROM ready)",
-                r.value
-            ),
-            (None, _) => format!(
-                "a peripheral read: the UART's flag is the free input {}, the output is the \
-                 input and {} = 1",
-                r.value, r.value
-            ),
-            (Some(var), None) => format!("a peripheral read: {var} is the free input {}", r.value),
-            (Some(var), Some(got)) => format!(
-                "a peripheral read: {var} is the free input {}, written when {got} = 1 (a byte \
-                 arrived)",
-                r.value
-            ),
-        };
-        self.warn(e.span, e.kind.keyword(), &message);
-        // PERSIST loads the variable once, at the first scan its input is on and the
-        // EEPROM ready (intcode.cpp `ELEM_PERSIST`: its one-shot `isInit`).
-        let write = match (&r.once, &r.arrived) {
-            (Some(once), Some(ready)) => {
-                self.temp(BoolExpr::and(BoolExpr::and(power.clone(), is(once, 0)), is(ready, 1)))
-            }
-            _ => power.clone(),
-        };
-        if let Some(var) = &r.var {
-            self.set_int(e, var, &write, IntExpr::Var(canonical(&r.value)));
-        }
-        if let Some(once) = &r.once {
-            self.set_int(e, once, &write, IntExpr::Const(1));
-        }
-        power
     }
 
     fn run(&mut self) {
@@ -569,10 +519,11 @@ impl<'a> Lowering<'a> {
                     CompareOp::Les => CmpOp::Lt,
                     CompareOp::Leq => CmpOp::Le,
                 };
-                // orig: a literal that does not fit 16 bits (`0xffff`) goes through a
-                // temporary whose size LDmicro chooses (intcode.cpp `VarFromExpr`): 65535
-                // in two bytes reads as -1, in three as 65535. Which one runs is not
-                // modelled. New compares both sides sign-extended to the larger size, a
+                // A `LDmicro0.1` file's literal that does not fit 16 bits (`0xffff`):
+                // orig (2.2, intcode.cpp `CheckMakeNumber`) reads it with `atoi` (`0xffff`
+                // is 0) or refuses it out of range; new puts it in a temporary whose size
+                // it chooses (`VarFromExpr`): 65535 in two bytes reads as -1, in three as
+                // 65535. Which LDmicro runs the file is not known. New compares both sides sign-extended to the larger size, a
                 // literal as wide as it needs (`NEW_CMP`, see `sizes`): exactly.
                 let orig = self.program.version.is_orig();
                 let wide = [a, b].iter().find_map(|o| match o {
@@ -581,8 +532,10 @@ impl<'a> Lowering<'a> {
                 });
                 if let Some(v) = wide {
                     let why = format!(
-                        "the literal {v} does not fit 16 bits, and the size of the temporary \
-                         LDmicro stores it in (so whether it reads as {}) is not modelled",
+                        "the literal {v} does not fit 16 bits: orig LDmicro reads a hex \
+                         literal with atoi (0xffff as 0) and refuses a decimal one, new \
+                         LDmicro puts it in a temporary of a size it chooses (so it reads as \
+                         {} or {v}), and which LDmicro runs this LDmicro0.1 file is not known",
                         IntType::I16.wrap(v)
                     );
                     let f = self.fresh(format!("{}_r{number}", e.kind.keyword()), e, &why);
@@ -938,7 +891,7 @@ fn live(program: &LdProgram) -> Vec<&Element> {
 /// Whether `keyword` is a peripheral read, modelled as a free integer input when the
 /// values it gives are known (see [`super::readings`]).
 fn is_read(keyword: &str) -> bool {
-    matches!(keyword, "READ_ADC" | "UART_RECV" | "PERSIST")
+    matches!(keyword, "READ_ADC" | "UART_RECV" | "PERSIST" | "I2C_RD")
         || super::STATUS_CONTACTS.contains(&keyword)
 }
 

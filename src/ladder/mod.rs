@@ -44,8 +44,9 @@ pub fn compile_with(
 }
 
 /// A peripheral read of an LDmicro program (`READ_ADC var`, `UART_RECV var`, the
-/// UART's status contacts `UART_RECV_AVAIL`, `UART_SEND_READY`, and `PERSIST var`'s load
-/// from EEPROM): the free integer inputs the outside world gives it at each scan
+/// UART's status contacts `UART_RECV_AVAIL`, `UART_SEND_READY`, `I2C_RD`'s byte and
+/// `PERSIST var`'s load from EEPROM): the free integer inputs the outside world gives it
+/// at each scan
 /// (ldmicro.md §4, "peripheral reads").
 /// Both the lowering and the simulator take their values from these names.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -57,9 +58,16 @@ pub struct Reading {
     /// The values the hardware gives: the ADC's resolution (unsigned), one byte
     /// (unsigned), the variable's 16 bits for a read of several bytes, or one bit.
     pub ty: IntType,
-    /// The 1-bit unsigned input that lets the write happen: for `UART_RECV`, 1 when a
-    /// byte arrived; for `PERSIST`, 1 when the EEPROM is ready.
+    /// The 1-bit unsigned input that lets the write happen: for `UART_RECV` and
+    /// `I2C_RD` (no target, or an ARM one), 1 when a byte arrived; for `PERSIST`, 1 when
+    /// the EEPROM is ready.
     pub arrived: Option<String>,
+    /// Whether the element's output is its input and-ed with `arrived` (`UART_RECV`);
+    /// else it passes its input.
+    pub gated: bool,
+    /// What is written when `arrived` is 0 (an ARM target's `I2C_RD`: -1, no data);
+    /// None: nothing is written then.
+    pub fallback: Option<i64>,
     /// For `PERSIST`, the hidden 1-bit integer that becomes 1 once the variable is loaded
     /// from EEPROM (its one-shot `isInit`, 0 at power-up).
     pub once: Option<String>,
@@ -73,14 +81,21 @@ impl Reading {
     }
 
     /// The 1-bit input the element's output is its input and-ed with: the arrival of
-    /// `UART_RECV`, a status contact's flag; none for `READ_ADC` and `PERSIST`, which
-    /// pass their input.
+    /// `UART_RECV`, a status contact's flag; none for `READ_ADC`, `I2C_RD` and
+    /// `PERSIST`, which pass their input.
     pub fn gate(&self) -> Option<&str> {
-        match (&self.var, &self.once) {
-            (None, _) => Some(&self.value),
-            (Some(_), Some(_)) => None,
-            (Some(_), None) => self.arrived.as_deref(),
+        match &self.var {
+            None => Some(&self.value),
+            Some(_) if self.gated => self.arrived.as_deref(),
+            Some(_) => None,
         }
+    }
+
+    /// The 1-bit input that, with the element's input, makes the write happen (the
+    /// arrival of `UART_RECV` and of a byte of `I2C_RD` with no target; `PERSIST`'s
+    /// ready flag, whose one-shot also takes part); none when the input alone does.
+    pub fn write_gate(&self) -> Option<&str> {
+        if self.fallback.is_some() { None } else { self.arrived.as_deref() }
     }
 }
 
@@ -163,6 +178,32 @@ pub fn adc_bits(micro: Option<&str>) -> Result<u32, String> {
     }
 }
 
+/// What `I2C_RD` writes on LDmicro's target `micro`: the type of the byte read, whether
+/// a free 1-bit input tells that it arrived, and what is written when it did not. The C
+/// code `ansic.cpp` generates (`INT_I2C_READ`; `avr.cpp` and `pic16.cpp` have no I2C)
+/// writes `recv = I2C_Recv(addr, reg)` on AVR, PIC and ARM targets, and
+/// `recv = I2C_RECV(name, addr, reg)`, a function the user supplies, on the others:
+///
+/// * AVR (avr-gcc): `I2C_MasterGetReg` of `LIBRARIES_FOR/Avr/I2CLib.c` returns a
+///   `char`, signed in avr-gcc: -128 to 127;
+/// * PIC16/PIC18 (HI-TECH C): the same function of `LIBRARIES_FOR/Pic16`, `PIC18`
+///   returns a `char`, unsigned in HI-TECH C: 0 to 255;
+/// * ARM: `LibI2C_GetReg` of `LIBRARIES_FOR/Arm/*/Lib_i2c.c` returns the `uint8_t` read,
+///   or -1 when no byte came (`LibI2C_ReadLast`): a byte and an arrival flag, -1 without;
+/// * ESP8266, Controllino, PC: any value the destination can receive (32 bits, cut to it);
+/// * no target: LDmicro's simulator (`simulate.cpp`, `INT_I2C_READ`) writes a typed
+///   byte, 0 to 255, only when one is queued: a byte and an arrival flag.
+pub fn i2c_read(micro: Option<&str>) -> (IntType, bool, Option<i64>) {
+    let byte = IntType { bits: 8, signed: false };
+    match micro.map(str::trim) {
+        None => (byte, true, None),
+        Some(m) if m.starts_with("Atmel AVR") => (IntType { bits: 8, signed: true }, false, None),
+        Some(m) if m.starts_with("Microchip PIC") => (byte, false, None),
+        Some(m) if m.starts_with("St ARM") => (byte, true, Some(-1)),
+        Some(_) => (IntType { bits: 32, signed: true }, false, None),
+    }
+}
+
 /// The peripheral reads of `program` whose values are known, by element index
 /// (`program.elements()` order). The value of the read in rung `n` of `KEYWORD var` is
 /// named `KEYWORD_var_rn`, and its arrival flag `KEYWORD_var_rn_got`; a suffix `_2`,
@@ -186,6 +227,7 @@ pub fn readings(program: &LdProgram) -> std::collections::BTreeMap<usize, Readin
         name
     };
     let adc = adc_bits(program.micro.as_deref());
+    let i2c = i2c_read(program.micro.as_deref());
     let mut out = std::collections::BTreeMap::new();
     let mut index = 0;
     for rung in &program.rungs {
@@ -195,7 +237,9 @@ pub fn readings(program: &LdProgram) -> std::collections::BTreeMap<usize, Readin
             {
                 let value = fresh(format!("{keyword}_r{}", rung.number));
                 let ty = IntType::BIT;
-                out.insert(index, Reading { var: None, value, ty, arrived: None, once: None });
+                let (arrived, once, fallback) = (None, None, None);
+                let r = Reading { var: None, value, ty, arrived, gated: true, fallback, once };
+                out.insert(index, r);
             } else if let ElementKind::Other { keyword, args } = &e.kind
                 && let [var] = e.names_written().as_slice()
             {
@@ -208,6 +252,7 @@ pub fn readings(program: &LdProgram) -> std::collections::BTreeMap<usize, Readin
                     }),
                     // What EEPROM holds: any 16-bit value.
                     "PERSIST" => Some(IntType::I16),
+                    "I2C_RD" => Some(i2c.0),
                     _ => None,
                 };
                 if let Some(ty) = ty {
@@ -215,11 +260,14 @@ pub fn readings(program: &LdProgram) -> std::collections::BTreeMap<usize, Readin
                     let arrived = match keyword.as_str() {
                         "UART_RECV" => Some(format!("{value}_got")),
                         "PERSIST" => Some(format!("{value}_ready")),
+                        "I2C_RD" if i2c.1 => Some(format!("{value}_got")),
                         _ => None,
                     };
                     let once = (keyword == "PERSIST").then(|| format!("{value}_loaded"));
                     let var = Some(var.clone());
-                    out.insert(index, Reading { var, value, ty, arrived, once });
+                    let gated = keyword == "UART_RECV";
+                    let fallback = i2c.2.filter(|_| keyword == "I2C_RD");
+                    out.insert(index, Reading { var, value, ty, arrived, gated, fallback, once });
                 }
             }
             index += 1;

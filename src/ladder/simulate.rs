@@ -46,6 +46,7 @@
 //! is false for every name). `LABEL` alone is a wire.
 
 mod bits_and_pulses;
+mod reads;
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -126,6 +127,8 @@ pub struct Simulator {
     sizes: BTreeMap<String, u32>,
     /// The target is an AVR (`MICRO=Atmel AVR …`), whose code the bit operations follow.
     avr: bool,
+    /// Whether the target is an ARM (`MICRO=St ARM …`), which runs LDmicro's C code only.
+    arm: bool,
     /// THI, TLO and TCY's state bits (`$once_…` of `intcode.cpp`), integers 0 or 1 by
     /// the names [`super::timer_bits`] gives them.
     timer_bits: BTreeMap<(usize, u8), String>,
@@ -158,6 +161,7 @@ impl Simulator {
             readings: super::readings(program),
             sizes: if orig { BTreeMap::new() } else { program.var_bytes.clone() },
             avr: program.micro.as_deref().is_some_and(|m| m.starts_with("Atmel AVR")),
+            arm: program.micro.as_deref().is_some_and(|m| m.starts_with("St ARM")),
             timer_bits: super::timer_bits(program),
         };
         // Only the rungs that run: a comment rung's timers and counters do not initialise
@@ -624,35 +628,9 @@ impl Simulator {
                 }
                 i
             }
-            // ldmicro.md §4, peripheral reads: READ_ADC writes the reading and passes its
-            // input; UART_RECV writes the received value only when a byte arrived, and
-            // its output is its input and-ed with that arrival.
-            // A status contact (UART_RECV_AVAIL, UART_SEND_READY and its aliases) is its
-            // input and-ed with the UART's flag (intcode.cpp: `if (in) in = flag`).
             ElementKind::Other { .. } if self.readings.contains_key(&k) => {
                 let r = self.readings[&k].clone();
-                let o = match r.gate() {
-                    Some(gate) => i.and(self.int(gate) == 1, true),
-                    None => i,
-                };
-                // PERSIST (intcode.cpp `ELEM_PERSIST`): while its input is on and its
-                // one-shot `isInit` clear, the first scan the EEPROM is ready sets
-                // `isInit` and loads the variable from EEPROM; its output is its input.
-                let write = match (&r.once, &r.arrived) {
-                    (Some(once), Some(ready)) => {
-                        let first = self.int(once) == 0 && self.int(ready) == 1;
-                        o.and(first, true)
-                    }
-                    _ => o,
-                };
-                if let Some(var) = &r.var {
-                    let v = self.wrap(var, self.int(&r.value));
-                    self.assign(var, write, v, true);
-                }
-                if let Some(once) = &r.once {
-                    self.assign(once, write, 1, true);
-                }
-                o
+                self.read(&r, i)
             }
             ElementKind::Other { keyword, args } if self.bit_op(keyword, args).is_some() => {
                 if let Some((dest, v, s)) = self.bit_op(keyword, args) {

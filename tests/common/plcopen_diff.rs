@@ -325,8 +325,10 @@ impl Gen {
                 _ => vec!["IN1", "IN2"],
             };
             let mut ins = String::new();
+            // A MUX of BOOL inputs (K an integer), drawn without EN/ENO.
+            let bool_mux = ty == "MUX" && self.rng.chance(30);
             // EN wired to a random Boolean (Beremiz draws EN first, ENO first).
-            let en = self.rng.chance(30);
+            let en = !bool_mux && self.rng.chance(30);
             if en {
                 let src = *self.rng.pick(&bools);
                 write!(ins, r#"<variable formalParameter="EN">{}</variable>"#, Gen::conn(&[src]))
@@ -348,6 +350,7 @@ impl Gen {
                         vec![(self.in_var(d, true), None)]
                     }
                     "IN" if ty == "SINT_TO_INT" => vec![(self.in_var(SINT_VAR, true), None)],
+                    "IN0" | "IN1" | "IN2" if bool_mux => vec![*self.rng.pick(&bools)],
                     _ => vec![*self.rng.pick(&ints)],
                 };
                 let m = if matches!(pin, "CU" | "CD") && self.rng.chance(15) {
@@ -390,6 +393,7 @@ impl Gen {
             )
             .unwrap();
             match ty {
+                _ if bool_mux => bools.push((id, Some("OUT"))),
                 "GT" | "GE" | "EQ" | "NE" | "LT" | "LE" => bools.push((id, Some("OUT"))),
                 "CTUD" => {
                     bools.push((id, Some(if self.rng.chance(50) { "QU" } else { "QD" })));
@@ -492,7 +496,12 @@ impl Gen {
     fn fbd_network(&mut self) {
         let mut sources: Vec<(u64, Option<&'static str>)> = Vec::new();
         for _ in 0..2 + self.rng.below(3) {
-            let v = self.operand();
+            // Now and then an integer literal matiec types as BOOL (0 or 1).
+            let v = if self.rng.chance(8) {
+                self.rng.pick(&["0", "1", "2#1", "BOOL#0"]).to_string()
+            } else {
+                self.operand()
+            };
             let id = self.in_var(&v, true);
             sources.push((id, None));
         }

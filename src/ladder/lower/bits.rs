@@ -20,7 +20,22 @@
 //!   `(u / 10) · 16 + u % 10` — packed tens and units, where LDmicro's simulator puts a
 //!   digit per byte.
 //!
-//! SWAP, OPPOSITE and BCD2BIN (which the AVR code refuses) are not computed.
+//! SWAP, OPPOSITE and BCD2BIN `dest src` have no AVR or PIC code that agrees with
+//! LDmicro's C code (`avr.cpp` refuses BCD2BIN and OPPOSITE, swaps bytes or nibbles for
+//! SWAP; `pic16.cpp` swaps nibbles; LDmicro's simulator swaps bytes, reverses the bits
+//! for OPPOSITE and reads unpacked BCD). The C code (`ansic.cpp`: `dest = swap(src)`,
+//! `opposite`, `bcd2bin`) calls `LIBRARIES_FOR/Arm/*/Lib_usr.c` on ARM targets (`MICRO=St
+//! ARM …`, which have only the C code) and `LIBRARIES_FOR/Avr/UsrLib.c` on AVR, the
+//! same functions:
+//!
+//! * `uint8_t bcd2bin(uint8_t var)`: `10 * (var / 16) + (var % 16)`, the source's low
+//!   byte as packed BCD, the result a byte (0 to 165) — on ARM and AVR targets;
+//! * `int16_t opposite(int16_t var)`: `-var`, the source cut to 16 bits, the result
+//!   wrapped to 16 bits — on ARM and AVR targets;
+//! * `uint16_t swap(uint16_t var)`: bit `i` of the source's low 16 bits to bit `15 - i`
+//!   — on ARM targets (AVR's own code swaps bytes).
+//!
+//! Each result is then converted to the destination's size, as C's assignment does.
 
 use super::sizes;
 use crate::ladder::ldmicro::{Element, ElementKind, Operand, operand};
@@ -39,6 +54,9 @@ pub(super) enum Op {
     Rol,
     Ror,
     Bin2Bcd,
+    Bcd2Bin,
+    Opposite,
+    Swap,
 }
 
 /// `OP dest a [b]`.
@@ -67,6 +85,9 @@ impl BitElem {
             "ROL" => (Op::Rol, true),
             "ROR" => (Op::Ror, true),
             "BIN2BCD" => (Op::Bin2Bcd, false),
+            "BCD2BIN" => (Op::Bcd2Bin, false),
+            "OPPOSITE" => (Op::Opposite, false),
+            "SWAP" => (Op::Swap, false),
             _ => return None,
         };
         let (dest, a, b) = match (args.as_slice(), binary) {
@@ -100,6 +121,7 @@ impl BitElem {
         micro: Option<&str>,
     ) -> Option<String> {
         let avr = micro.is_some_and(|m| m.starts_with("Atmel AVR"));
+        let arm = micro.is_some_and(|m| m.starts_with("St ARM"));
         let d = ty(&Operand::Var(self.dest.clone()));
         let count = match &self.b {
             Some(Operand::Literal(k)) => Some(*k),
@@ -108,6 +130,20 @@ impl BitElem {
         let keyword = &self.keyword;
         match self.op {
             Op::Bitwise(_) | Op::Not | Op::Neg => None,
+            Op::Bcd2Bin | Op::Opposite if arm || avr => None,
+            Op::Swap if arm => None,
+            Op::Swap => Some(format!(
+                "it is written by SWAP, which LDmicro's targets compute differently (its C \
+                 library reverses the low 16 bits, its AVR, PIC and simulator code swap bytes \
+                 or nibbles), and the target {} is not ARM",
+                micro.unwrap_or("(none)")
+            )),
+            Op::Bcd2Bin | Op::Opposite => Some(format!(
+                "it is written by {keyword}, which LDmicro's targets compute differently (its C \
+                 library, which ARM and AVR targets run, its PIC code and its simulator \
+                 disagree), and the target {} is neither ARM nor AVR",
+                micro.unwrap_or("(none)")
+            )),
             Op::Mod => match count {
                 Some(k)
                     if k != 0
@@ -187,6 +223,33 @@ impl BitElem {
                     Box::new(IntExpr::Const(16)),
                 );
                 cast(IntExpr::plus(tens, IntExpr::Mod(Box::new(u()), 10)), IntType::I16)
+            }
+            Op::Bcd2Bin => {
+                // `uint8_t bcd2bin(uint8_t var)`, in a byte.
+                let byte = IntType { bits: 8, signed: false };
+                let u = || cast(a.clone(), byte);
+                let tens = IntExpr::Mul(
+                    Box::new(IntExpr::Div(Box::new(u()), 16)),
+                    Box::new(IntExpr::Const(10)),
+                );
+                cast(IntExpr::plus(tens, IntExpr::Mod(Box::new(u()), 16)), byte)
+            }
+            // `int16_t opposite(int16_t var)`.
+            Op::Opposite => {
+                cast(IntExpr::minus(IntExpr::Const(0), cast(a, IntType::I16)), IntType::I16)
+            }
+            Op::Swap => {
+                // `uint16_t swap(uint16_t var)`: bit i to bit 15 - i.
+                let u16 = IntType { bits: 16, signed: false };
+                let x = cast(a, u16);
+                let bit = |i: i32| {
+                    let one = Box::new(IntExpr::Const(1));
+                    shift(IntExpr::Bitwise(BitOp::And, Box::new(shift(x.clone(), -i)), one), 15 - i)
+                };
+                let rev = (1..16).fold(bit(0), |acc, i| {
+                    IntExpr::Bitwise(BitOp::Or, Box::new(acc), Box::new(bit(i)))
+                });
+                cast(rev, u16)
             }
         }
     }

@@ -321,6 +321,10 @@ impl<'p> Lower<'p> {
             Operand::Bool(n) => contact(n, false),
             Operand::Const(true) => one(),
             Operand::Const(false) => zero(),
+            // `0` and `1` where a BOOL is expected: FALSE and TRUE, as matiec types them.
+            Operand::Other(t) if super::bool_of_int_literal(t).is_some() => {
+                BoolExpr::Const(super::bool_of_int_literal(t) == Some(true))
+            }
             Operand::Member(inst, pin) => match self.member_writer(inst) {
                 Some(j) => {
                     let name = self.p.hidden_name(j, pin).unwrap_or_default().to_string();
@@ -544,8 +548,11 @@ impl<'p> Lower<'p> {
                 _ => opaque(type_name, instance.as_deref(), pin, span),
             };
         }
+        if self.p.bool_mux(k) && pin.eq_ignore_ascii_case("OUT") {
+            return contact(self.p.hidden_name(k, "OUT").unwrap_or_default(), false);
+        }
         match Std::of(type_name) {
-            Some(s) if runs && s.output().eq_ignore_ascii_case(pin) => {
+            Some(s) if (runs || !s.is_fb()) && s.output().eq_ignore_ascii_case(pin) => {
                 match self.p.hidden_name(k, s.output()) {
                     Some(n) => contact(n, false),
                     None => fresh(type_name, &format!("the output {pin} of {type_name}"), span),
@@ -567,7 +574,9 @@ impl<'p> Lower<'p> {
         let span = o.span;
         let outer = std::mem::replace(&mut self.no_pull, o.order > 0);
         let runs = self.en_const(k, 0);
-        let std = Std::of(type_name).filter(|_| runs);
+        // A function under a wired EN returns FALSE when EN is FALSE (matiec's
+        // `TEST_EN(BOOL)`): its output is EN and-ed with its value.
+        let std = Std::of(type_name).filter(|s| runs || !s.is_fb());
         // Inputs are computed first, `EN` then the others in document order, as the scan
         // simulator does; the block's own rungs come after every call they trigger.
         let en = p.en_pin(k).map(|pin| self.pin_value(k, pin));
@@ -592,8 +601,17 @@ impl<'p> Lower<'p> {
                 }
             }
         }
+        if p.bool_mux(k) {
+            let out = self.bool_mux(k, &vals, span);
+            self.function_out(k, out, span);
+        }
         let value =
             |_: &mut Self, name: &str| -> BoolExpr { vals.get(name).cloned().unwrap_or_else(zero) };
+        let gate = en.clone().filter(|_| !runs);
+        let gated = |out: BoolExpr| match &gate {
+            Some(en) => and(vec![en.clone(), out]),
+            None => out,
+        };
         let hidden = |pin: &str| p.hidden_name(k, pin).unwrap_or_default().to_string();
         match std {
             Some(s @ (Std::And | Std::Or | Std::Xor)) => {
@@ -610,19 +628,19 @@ impl<'p> Lower<'p> {
                         it.fold(first, xor)
                     }
                 };
-                self.function_out(k, out, span);
+                self.function_out(k, gated(out), span);
             }
             Some(s @ (Std::Not | Std::Move)) => {
                 let v = value(self, "IN");
                 let v = if s == Std::Not { not(v) } else { v };
-                self.function_out(k, v, span);
+                self.function_out(k, gated(v), span);
             }
             Some(Std::Sel) => {
                 let g = value(self, "G");
                 let a = value(self, "IN0");
                 let b = value(self, "IN1");
                 let out = or(vec![and(vec![not(g.clone()), a]), and(vec![g, b])]);
-                self.function_out(k, out, span);
+                self.function_out(k, gated(out), span);
             }
             Some(s @ (Std::Ton | Std::Tof)) => {
                 let input = value(self, "IN");

@@ -15,8 +15,8 @@ mod refusals;
 
 pub use check::hmi_base;
 pub use program::{
-    Operand, OrderRule, PlcProgram, Source, Std, bool_literal, is_known_library_block, is_true,
-    unconnected,
+    Operand, OrderRule, PlcProgram, Source, Std, bool_literal, bool_of_int_literal,
+    is_known_library_block, is_true, unconnected,
 };
 
 /// What the user asks for: which POU, which cycle.

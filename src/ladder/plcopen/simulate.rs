@@ -196,7 +196,10 @@ impl PlcSimulator {
                     self.p.hidden.values().find(|h| h.eq_ignore_ascii_case(&name)).cloned();
                 hidden.is_some_and(|h| self.bit(&h))
             }
-            Operand::Duration(_) | Operand::Other(_) => false,
+            // An integer literal of value 0 or 1 where a BOOL is expected is FALSE or TRUE
+            // (matiec's `fill_candidate_datatypes.cc` keeps BOOL among its types).
+            Operand::Other(t) => super::bool_of_int_literal(t) == Some(true),
+            Operand::Duration(_) => false,
         }
     }
 
@@ -323,7 +326,7 @@ impl PlcSimulator {
         if let Some(var) = self.p.sub_var(k, pin, true) {
             return self.bit(var);
         }
-        if self.p.int_block(k).is_some() {
+        if self.p.int_block(k).is_some() || self.p.bool_mux(k) {
             let boolean = ["OUT", "Q", "QU", "QD"].iter().any(|q| pin.eq_ignore_ascii_case(q));
             return boolean
                 && self.p.hidden_name(k, &pin.to_ascii_uppercase()).is_some_and(|h| self.bit(h));
@@ -428,6 +431,9 @@ impl PlcSimulator {
         let get = |n: &str| values.get(n).copied().unwrap_or(false);
         if let Some(b) = self.p.int_block(k) {
             self.int_exec(k, &b, en, &values);
+        } else if self.p.bool_mux(k) {
+            let v = self.bool_mux(k, &values);
+            self.set_hidden(k, "OUT", v);
         } else if let Some(s) = std.filter(|s| !en && !s.is_fb()) {
             // A function under EN = FALSE returns FALSE (matiec's `TEST_EN(BOOL)`).
             self.set_hidden(k, s.output(), false);

@@ -9,8 +9,11 @@ impl Simulator {
     /// to it; shifts and rotations `k` times for a literal `k` of 0 to 127): the
     /// destination, the value written and whether it is exact. None where the targets
     /// differ and the target is not an AVR (SHR, SR0, ROL, ROR, BIN2BCD), for BIN2BCD
-    /// off 1-byte operands (`bin2bcd8`), for MOD by 0, a variable or wider operands, and
-    /// for SWAP, OPPOSITE and BCD2BIN: those are not modelled.
+    /// off 1-byte operands (`bin2bcd8`), and for MOD by 0, a variable or wider operands.
+    /// SWAP, OPPOSITE and BCD2BIN as the C library of ARM and AVR targets computes them
+    /// (`LIBRARIES_FOR/Arm/*/Lib_usr.c`, `LIBRARIES_FOR/Avr/UsrLib.c`; the AVR code has
+    /// no BCD2BIN and OPPOSITE and swaps bytes for SWAP): BCD2BIN and OPPOSITE on ARM
+    /// and AVR, SWAP on ARM; None elsewhere, where the targets differ.
     pub(super) fn bit_op(&self, keyword: &str, args: &[String]) -> Option<(String, i64, bool)> {
         let dest = args.first()?.clone();
         let size = |n: &str| match crate::ladder::ldmicro::operand(n) {
@@ -57,6 +60,17 @@ impl Simulator {
                 let k = count()? % i64::from(bits);
                 let r = if keyword == "ROL" { k } else { (i64::from(bits) - k) % i64::from(bits) };
                 (unsigned << r) | (unsigned >> (i64::from(bits) - r))
+            }
+            // `uint8_t bcd2bin(uint8_t var) { return 10 * (var / 16) + (var % 16); }`
+            ("BCD2BIN", 2) if self.avr || self.arm => {
+                let u = a & 0xff;
+                (10 * (u / 16) + u % 16) & 0xff
+            }
+            // `int16_t opposite(int16_t var) { return (-var); }`
+            ("OPPOSITE", 2) if self.avr || self.arm => wrap_bytes(-wrap_bytes(a, 2), 2),
+            // `uint16_t swap(uint16_t var)`: `if (var & (1 << i)) res |= 1 << (15 - i)`.
+            ("SWAP", 2) if self.arm => {
+                (0..16).filter(|i| a & (1 << i) != 0).fold(0, |res, i| res | 1 << (15 - i))
             }
             ("BIN2BCD", 2) if self.avr && d == 1 && size(&args[1]) == 1 => {
                 let u = a & 0xff;

@@ -262,6 +262,38 @@ impl Lower<'_> {
         }
     }
 
+    /// `MUX(K, IN0, IN1, …)` of BOOL inputs `vals` (by pin), as matiec's `MUX__BOOL__…`
+    /// (`lib/C/iec_std_functions.h`) returns it: `IN{K}` for `0 ≤ K < n`; FALSE for `K ≥
+    /// n` (`TEST_EN_COND(BOOL, K >= param_count)`) and for a negative `K` (no `K == i`,
+    /// `__INIT_BOOL`). Unconstrained when `K` is not computed.
+    pub(super) fn bool_mux(
+        &mut self,
+        k: usize,
+        vals: &std::collections::BTreeMap<String, BoolExpr>,
+        span: Span,
+    ) -> BoolExpr {
+        let key = self.p.pin(k, "K").cloned();
+        let kv =
+            key.ok_or_else(|| "it has no input K".to_string()).and_then(|pin| self.int_pin(&pin));
+        let (kv, kt) = match kv {
+            Ok(v) => v,
+            Err(why) => {
+                return fresh_because("MUX", format!("the MUX's K is not computed: {why}"), span);
+            }
+        };
+        let kt = kt.unwrap_or(IntType { bits: 32, signed: true });
+        let key = coerce(kv, kt);
+        let mut terms = Vec::new();
+        for i in 0..vals.len() as i64 {
+            let Some(v) = vals.get(&format!("IN{i}")) else { break };
+            if i <= kt.max() {
+                let eq = library::compare(CmpOp::Eq, kt, key.clone(), IntExpr::Const(i));
+                terms.push(super::and(vec![eq, v.clone()]));
+            }
+        }
+        if terms.is_empty() { BoolExpr::Const(false) } else { super::or(terms) }
+    }
+
     /// The integer at a consumer pin.
     pub(super) fn int_pin(&mut self, pin: &PinIn) -> IntVal {
         if pin.negated || pin.edge != Edge::None {

@@ -322,6 +322,16 @@ impl PlcProgram {
         }
     }
 
+    /// Whether block `k` is a `MUX` of BOOL inputs drawn without `EN`/`ENO` (its data
+    /// inputs carry no integer), whose `OUT` is a hidden BOOL.
+    pub fn bool_mux(&self, k: usize) -> bool {
+        matches!(&self.obj(k).map(|o| &o.kind), Some(ObjKind::Block { type_name, .. })
+            if type_name.eq_ignore_ascii_case("MUX"))
+            && self.int_block(k).is_none()
+            && self.hidden_name(k, "ENO").is_none()
+            && self.hidden_name(k, "OUT").is_some()
+    }
+
     /// The interpreted standard block at `k`, if it is one.
     pub fn std_block(&self, k: usize) -> Option<Std> {
         match &self.obj(k)?.kind {
@@ -396,6 +406,25 @@ pub fn bool_literal(init: &str) -> Option<bool> {
     match init.trim().to_ascii_uppercase().as_str() {
         "TRUE" | "1" | "BOOL#TRUE" | "BOOL#1" => Some(true),
         "FALSE" | "0" | "BOOL#FALSE" | "BOOL#0" => Some(false),
+        _ => None,
+    }
+}
+
+/// The value of an integer literal matiec types as BOOL where a BOOL is expected (an
+/// input variable `0` or `1` wired into a contact, a coil or a Boolean pin): one
+/// without a sign and untyped or `BOOL#`, of value 0 or 1 in any base. From matiec's
+/// `stage3/fill_candidate_datatypes.cc`: an integer literal (`integer_c`,
+/// `binary_integer_c`, …) has BOOL among its candidate types, which
+/// `remove_incompatible_datatypes` drops when its value is above 1; a negative one
+/// (`neg_integer_c`) never has it.
+pub fn bool_of_int_literal(text: &str) -> Option<bool> {
+    let t = text.trim();
+    if t.starts_with(['-', '+']) {
+        return None;
+    }
+    match crate::iec::literal::int_literal(t)? {
+        (v @ 0..=1, None) => Some(v == 1),
+        (v @ 0..=1, Some(ty)) if ty == "BOOL" => Some(v == 1),
         _ => None,
     }
 }

@@ -190,6 +190,16 @@ impl PlcSimulator {
         self.ints.get(&v.name).map(|(x, t)| (*x, Some(*t)))
     }
 
+    /// `MUX(K, IN0, IN1, …)` of the BOOL inputs `values`: matiec's `MUX__BOOL__…`
+    /// (`lib/C/iec_std_functions.h`) returns `IN{K}` for `0 ≤ K < param_count`, FALSE
+    /// (`__INIT_BOOL`) when `K >= param_count` (`TEST_EN_COND`) or no `i` equals `K`.
+    pub(super) fn bool_mux(&mut self, k: usize, values: &BTreeMap<String, bool>) -> bool {
+        let Some(pin) = self.p.pin(k, "K").cloned() else { return false };
+        let Some((key, _)) = self.int_pin(&pin) else { return false };
+        let n = (0..).take_while(|i| values.contains_key(&format!("IN{i}"))).count() as i64;
+        (0..n).contains(&key) && values.get(&format!("IN{key}")).copied().unwrap_or(false)
+    }
+
     /// The integer at a consumer pin (its blocks called).
     pub(super) fn int_pin(&mut self, pin: &PinIn) -> Val {
         if let Some((text, _)) = &pin.expr {
