@@ -461,7 +461,7 @@ fn every_unsupported_element_is_reported_with_its_rung() {
                 ElementKind::Other { keyword, args }
                     if [
                         "AND", "OR", "XOR", "NOT", "NEG", "SHL", "SHR", "SR0", "ROL", "ROR", "MOD",
-                        "BIN2BCD",
+                        "BIN2BCD", "BCD2BIN", "OPPOSITE", "SWAP",
                     ]
                     .contains(&keyword.as_str()) =>
                 {
