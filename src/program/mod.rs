@@ -20,6 +20,7 @@ pub mod library;
 pub mod logic;
 pub mod names;
 pub mod product;
+pub mod rename;
 pub mod simulate;
 
 use std::collections::{BTreeMap, BTreeSet};

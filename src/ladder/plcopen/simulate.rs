@@ -21,6 +21,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use super::{Edge, ObjKind, Operand, PinIn, PlcProgram, Source, Std, Storage};
 
 mod ints;
+mod text;
 
 #[derive(Clone, Copy, Debug, Default)]
 struct Timer {
@@ -51,6 +52,8 @@ pub struct PlcSimulator {
     unknown: BTreeSet<String>,
     /// The simulators of inlined function block instances (they run on this one's bits).
     subs: BTreeMap<usize, PlcSimulator>,
+    /// The scan-model simulators of text block instances (`simulate/text.rs`).
+    texts: BTreeMap<usize, crate::program::simulate::Simulator>,
     /// Integer variables, block outputs and counts: value and C type.
     ints: BTreeMap<String, (i64, ints::CType)>,
 }
@@ -88,6 +91,7 @@ impl PlcSimulator {
         PlcSimulator {
             ints,
             subs,
+            texts: text::simulators(p),
             p: p.clone(),
             bits,
             timers: BTreeMap::new(),
@@ -524,6 +528,9 @@ impl PlcSimulator {
                     let clk = if s == Std::RTrig { get("CLK") } else { !get("CLK") };
                     self.memory.insert(key, clk);
                     self.set_hidden(k, "Q", clk && !m);
+                }
+                None if self.p.text_calls.contains_key(&k) => {
+                    self.text_call(k, &names, &values);
                 }
                 None => {
                     // An inlined user function block: inputs assigned, then its body runs

@@ -120,6 +120,7 @@ pub(super) fn check_pou(
         starts: BTreeMap::new(),
         started: None,
         subs: BTreeMap::new(),
+        text_calls: BTreeMap::new(),
         warnings: Vec::new(),
     };
     // Check every wire, block type and operand.
@@ -149,6 +150,8 @@ pub(super) fn check_pou(
         }
     }
     for (k, o) in objects.iter().enumerate() {
+        // Why a user block with a text body is kept opaque.
+        let mut opaque_why: Option<String> = None;
         let mut pins: Vec<&PinIn> = Vec::new();
         match &o.kind {
             ObjKind::Contact { var, edge, input, negated } => {
@@ -391,6 +394,49 @@ pub(super) fn check_pou(
                         program.latches.extend(child.latches.clone());
                         program.subs.insert(k, child);
                     }
+                    None if let Some(call) = super::super::text::call(
+                        project,
+                        type_name,
+                        instance.as_deref().and_then(|i| program.vars.get(&i.to_ascii_uppercase())),
+                        inputs,
+                        cycle_us,
+                    )
+                    .and_then(|c| c.map_err(|why| opaque_why = Some(why)).ok()) =>
+                    {
+                        let own: BTreeSet<String> = call
+                            .program
+                            .names
+                            .iter()
+                            .chain(call.program.integers.keys())
+                            .map(|n| n.to_ascii_uppercase())
+                            .collect();
+                        for n in own {
+                            if !taken.insert(n.clone()) {
+                                errors.push(PlcError::Unsupported {
+                                    span: o.span,
+                                    what: format!(
+                                        "the instance `{}` of `{type_name}`",
+                                        instance.as_deref().unwrap_or("")
+                                    ),
+                                    reason: format!(
+                                        "its variable `{n}` clashes with a name of the program \
+                                         (an instance called twice?)"
+                                    ),
+                                });
+                                break;
+                            }
+                        }
+                        if let Some(Ok(b)) =
+                            project.text_blocks.get(&type_name.to_ascii_uppercase())
+                        {
+                            for w in &b.warnings {
+                                if !warnings.contains(w) {
+                                    warnings.push(w.clone());
+                                }
+                            }
+                        }
+                        program.text_calls.insert(k, call);
+                    }
                     None => {
                         // An opaque block (a user POU, a vendor library block): it can
                         // change the program's variables only through in-out pins (the
@@ -413,8 +459,9 @@ pub(super) fn check_pou(
                             None => warnings.push(PlcError::Note {
                                 span: o.span,
                                 message: format!(
-                                    "the {what} `{type_name}` is not modelled: its Boolean outputs \
-                                     are unconstrained signals"
+                                    "the {what} `{type_name}` is not modelled{}: its Boolean \
+                                     outputs are unconstrained signals",
+                                    opaque_why.take().map_or(String::new(), |w| format!(" ({w})"))
                                 ),
                             }),
                         }
@@ -655,6 +702,9 @@ impl PlcProgram {
         self.inputs = self.inputs.iter().map(rename).collect();
         for sub in self.subs.values_mut() {
             sub.prefix_names(prefix);
+        }
+        for call in self.text_calls.values_mut() {
+            call.prefix(prefix);
         }
     }
 
