@@ -53,7 +53,7 @@ pub struct PlcSimulator {
     /// The simulators of inlined function block instances (they run on this one's bits).
     subs: BTreeMap<usize, PlcSimulator>,
     /// The scan-model simulators of text block instances (`simulate/text.rs`).
-    texts: BTreeMap<usize, crate::program::simulate::Simulator>,
+    texts: BTreeMap<usize, text::Instance>,
     /// Integer variables, block outputs and counts: value and C type.
     ints: BTreeMap<String, (i64, ints::CType)>,
 }
@@ -74,6 +74,10 @@ impl PlcSimulator {
         for n in p.hidden.values().chain(p.latches.values()).chain(&p.started) {
             bits.insert(n.clone(), false);
         }
+        let texts = text::simulators(p);
+        for (_, names) in texts.values() {
+            bits.extend(names.iter().map(|n| (n.clone(), false)));
+        }
         let subs: BTreeMap<usize, PlcSimulator> =
             p.subs.iter().map(|(k, child)| (*k, PlcSimulator::new(child))).collect();
         for sub in subs.values() {
@@ -91,7 +95,7 @@ impl PlcSimulator {
         PlcSimulator {
             ints,
             subs,
-            texts: text::simulators(p),
+            texts,
             p: p.clone(),
             bits,
             timers: BTreeMap::new(),

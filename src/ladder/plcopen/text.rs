@@ -194,6 +194,25 @@ fn text_block(
         |e: Vec<StError>| e.first().map_or_else(|| "its body is not read".into(), |e| e.message());
     let unit = unit_of(sources, project, fb, true).map_err(|e| first(vec![e]))?;
     let lowered = crate::iec::lower(sources, &unit, Some(&fb.name), Some(cycle)).map_err(first)?;
+    // Only its input variables are the standalone program's inputs: the call writes
+    // them; anything else the outside world wrote would read 0 inlined.
+    let program = &lowered.program;
+    let input_var = |x: &str| {
+        fb.vars.iter().any(|v| v.class == VarClass::Input && v.name.eq_ignore_ascii_case(x))
+    };
+    let int_inputs = program.integers.iter().filter(|(_, v)| v.input);
+    let bits: Vec<String> =
+        int_inputs.flat_map(|(x, v)| (0..v.ty.bits).map(|k| Program::int_bit(x, k))).collect();
+    let outside = match &program.inputs {
+        crate::program::Inputs::Declared(set) => {
+            set.iter().find(|n| !input_var(n) && !bits.contains(n)).cloned()
+        }
+        crate::program::Inputs::ByPrefix => Some("its inputs".into()),
+    };
+    let int_outside = program.integers.iter().find(|(x, v)| v.input && !input_var(x));
+    if let Some(x) = outside.or(int_outside.map(|(x, _)| x.clone())) {
+        return Err(format!("`{x}` is written by the outside world, not by the call"));
+    }
     let warnings = lowered
         .warnings
         .iter()

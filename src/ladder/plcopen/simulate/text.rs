@@ -8,9 +8,17 @@ use crate::ladder::plcopen::PinIn;
 use crate::program::simulate::Simulator;
 use crate::program::{Program, TimerModel};
 
+/// A text block instance's simulator and the bits its program names.
+pub(super) type Instance = (Simulator, Vec<String>);
+
 /// The simulators of a body's text block instances, by block object.
-pub(super) fn simulators(p: &crate::ladder::plcopen::PlcProgram) -> BTreeMap<usize, Simulator> {
-    p.text_calls.iter().map(|(k, c)| (*k, Simulator::new(&c.program, TimerModel::Plc))).collect()
+pub(super) fn simulators(p: &crate::ladder::plcopen::PlcProgram) -> BTreeMap<usize, Instance> {
+    let instance = |c: &crate::ladder::plcopen::TextCall| {
+        let mut bits = crate::program::bits(&c.program.blocks);
+        bits.extend(c.program.signals.iter().cloned());
+        (Simulator::new(&c.program, TimerModel::Plc), bits.into_iter().collect())
+    };
+    p.text_calls.iter().map(|(k, c)| (*k, instance(c))).collect()
 }
 
 impl PlcSimulator {
@@ -46,10 +54,10 @@ impl PlcSimulator {
                 }
             }
         }
-        let Some(sim) = self.texts.get_mut(&k) else { return };
+        let Some((sim, bits)) = self.texts.get_mut(&k) else { return };
         sim.step(&given);
         let call = &self.p.text_calls[&k];
-        for n in &call.program.signals {
+        for n in bits.iter() {
             self.bits.insert(n.clone(), sim.bit(n));
             if !sim.is_known(n) {
                 self.unknown.insert(n.clone());
