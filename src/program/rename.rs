@@ -98,42 +98,10 @@ impl Renaming<'_> {
     }
 
     fn int(&mut self, e: &IntExpr) -> IntExpr {
-        let two = |r: &mut Self, a: &IntExpr, b: &IntExpr| (Box::new(r.int(a)), Box::new(r.int(b)));
-        match e {
-            IntExpr::Const(_) => e.clone(),
-            IntExpr::Var(n) => IntExpr::Var((self.name)(n)),
-            IntExpr::Add(a, b) => {
-                let (a, b) = two(self, a, b);
-                IntExpr::Add(a, b)
-            }
-            IntExpr::Sub(a, b) => {
-                let (a, b) = two(self, a, b);
-                IntExpr::Sub(a, b)
-            }
-            IntExpr::Mul(a, b) => {
-                let (a, b) = two(self, a, b);
-                IntExpr::Mul(a, b)
-            }
-            IntExpr::DivBy(a, b) => {
-                let (a, b) = two(self, a, b);
-                IntExpr::DivBy(a, b)
-            }
-            IntExpr::ModBy(a, b) => {
-                let (a, b) = two(self, a, b);
-                IntExpr::ModBy(a, b)
-            }
-            IntExpr::Bitwise(op, a, b) => {
-                let (a, b) = two(self, a, b);
-                IntExpr::Bitwise(*op, a, b)
-            }
-            IntExpr::Div(a, k) => IntExpr::Div(Box::new(self.int(a)), *k),
-            IntExpr::Mod(a, k) => IntExpr::Mod(Box::new(self.int(a)), *k),
-            IntExpr::Cast(a, t) => IntExpr::Cast(Box::new(self.int(a)), *t),
-            IntExpr::Shift(a, k) => IntExpr::Shift(Box::new(self.int(a)), *k),
-            IntExpr::Ite(c, a, b) => {
-                IntExpr::Ite(Box::new(self.expr(c)), Box::new(self.int(a)), Box::new(self.int(b)))
-            }
-        }
+        let mut e = e.clone();
+        let name = self.name;
+        super::int_visit_mut(&mut e, &mut |n| *n = name(n), &mut |c| *c = self.expr(c));
+        e
     }
 }
 

@@ -378,16 +378,7 @@ pub(super) fn check_pou(
                     {
                         for n in child.names() {
                             if !taken.insert(n.to_ascii_uppercase()) {
-                                errors.push(PlcError::Unsupported {
-                                    span: o.span,
-                                    what: format!(
-                                        "the instance `{}` of `{type_name}`",
-                                        instance.as_deref().unwrap_or("")
-                                    ),
-                                    reason: format!(
-                                        "its variable `{n}` clashes with a name of the program"
-                                    ),
-                                });
+                                errors.push(clash(o.span, type_name, instance.as_deref(), &n));
                             }
                         }
                         program.inputs.extend(child.inputs.iter().cloned());
@@ -403,26 +394,16 @@ pub(super) fn check_pou(
                     )
                     .and_then(|c| c.map_err(|why| opaque_why = Some(why)).ok()) =>
                     {
-                        let own: BTreeSet<String> = call
+                        let own: BTreeMap<String, &String> = call
                             .program
                             .names
                             .iter()
                             .chain(call.program.integers.keys())
-                            .map(|n| n.to_ascii_uppercase())
+                            .map(|n| (n.to_ascii_uppercase(), n))
                             .collect();
-                        for n in own {
-                            if !taken.insert(n.clone()) {
-                                errors.push(PlcError::Unsupported {
-                                    span: o.span,
-                                    what: format!(
-                                        "the instance `{}` of `{type_name}`",
-                                        instance.as_deref().unwrap_or("")
-                                    ),
-                                    reason: format!(
-                                        "its variable `{n}` clashes with a name of the program \
-                                         (an instance called twice?)"
-                                    ),
-                                });
+                        for (upper, n) in own {
+                            if !taken.insert(upper) {
+                                errors.push(clash(o.span, type_name, instance.as_deref(), n));
                                 break;
                             }
                         }
@@ -668,6 +649,16 @@ fn inline(
     }
     child.prefix_names(&format!("{}_", inst.name));
     Some(Ok(child))
+}
+
+/// A variable of an instance whose name is already one of the program's (an instance
+/// called twice, or a name the prefix makes again).
+fn clash(span: Span, type_name: &str, instance: Option<&str>, name: &str) -> PlcError {
+    PlcError::Unsupported {
+        span,
+        what: format!("the instance `{}` of `{type_name}`", instance.unwrap_or("")),
+        reason: format!("its variable `{name}` clashes with a name of the program"),
+    }
 }
 
 impl PlcProgram {
