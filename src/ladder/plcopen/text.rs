@@ -97,7 +97,8 @@ fn unit_of(
     let mut pous = vec![as_pou(pou, ast::PouKind::Program, body)];
     if callees {
         for p in project.pous.iter().filter(|p| p.kind == PouKind::FunctionBlock) {
-            if p.name.eq_ignore_ascii_case(&pou.name) {
+            // A callee with a pragma is left out: its calls are then not read.
+            if p.name.eq_ignore_ascii_case(&pou.name) || has_pragma(p) {
                 continue;
             }
             if let Some(Ok(b)) = parse_body(sources, project, p) {
@@ -159,20 +160,26 @@ pub fn prepare_text_blocks(sources: &mut Sources, project: &mut Project, sel: &S
     let cycle = task_cycle(sel, task).unwrap_or(super::DEFAULT_CYCLE_US);
     let mut blocks = BTreeMap::new();
     for fb in project.pous.iter().filter(|p| p.kind == PouKind::FunctionBlock) {
-        let Some(body) = fb.body.as_ref().filter(|b| matches!(b.lang, Lang::St | Lang::Il)) else {
+        if !fb.body.as_ref().is_some_and(|b| matches!(b.lang, Lang::St | Lang::Il)) {
             continue;
-        };
-        let lowered = text_block(sources, project, fb, body, cycle);
+        }
+        let lowered = text_block(sources, project, fb, cycle);
         blocks.insert(fb.name.to_ascii_uppercase(), lowered);
     }
     project.text_blocks = blocks;
 }
 
+/// Whether the POU's text body has a pragma `{…}` (or a `{` in a comment or string):
+/// matiec copies a pragma's text into the C it generates, code ii-prove cannot see.
+fn has_pragma(pou: &Pou) -> bool {
+    pou.body.as_ref().and_then(|b| b.text.as_ref()).is_some_and(|(_, text)| text.contains('{'))
+}
+
+/// `fb`, whose body is text, as a [`TextBlock`], or why it stays opaque.
 fn text_block(
     sources: &mut Sources,
     project: &Project,
     fb: &Pou,
-    body: &super::Body,
     cycle: u64,
 ) -> Result<TextBlock, String> {
     if !fb.errors.is_empty() {
@@ -186,8 +193,7 @@ fn text_block(
                     with the caller's yet"
             .into());
     }
-    // matiec copies a pragma's text into the generated C: code the tool cannot see.
-    if body.text.as_ref().is_some_and(|(_, text)| text.contains('{')) {
+    if has_pragma(fb) {
         return Err("its body has a pragma `{…}`, C code that ii-prove cannot see".into());
     }
     let first =
