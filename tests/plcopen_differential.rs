@@ -60,6 +60,10 @@ fn examples_and_corpus_agree_with_the_simulator() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut files = common::files_with(&root.join("examples"), "xml");
     files.extend(common::files_with(&root.join("tests/data/plcopen/corpus"), "xml"));
+    // The verdict folders' PLCopen programs (graphical bodies calling blocks in ST).
+    for dir in ["tests/data/proves_programs", "tests/data/refutes_programs"] {
+        files.extend(common::files_with(&root.join(dir), "xml"));
+    }
     for (k, f) in files.iter().enumerate() {
         let Ok(text) = std::fs::read_to_string(f) else { continue };
         // Text bodies are the IEC text front end's (tests/st.rs, tests/il.rs).

@@ -20,6 +20,7 @@ pub mod library;
 pub mod logic;
 pub mod names;
 pub mod product;
+pub mod rename;
 pub mod simulate;
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -567,24 +568,36 @@ pub fn walk_mut(e: &mut BoolExpr, f: &mut dyn FnMut(&mut BoolExpr)) {
 
 /// [`walk_mut`] on every Boolean expression inside an integer expression.
 pub fn int_walk_mut(e: &mut IntExpr, f: &mut dyn FnMut(&mut BoolExpr)) {
+    int_visit_mut(e, &mut |_| {}, &mut |c| walk_mut(c, f));
+}
+
+/// Calls `var` on the name of every integer variable `e` reads and `boolean` on every
+/// Boolean expression directly inside it (a choice's condition), operands first, each
+/// changed in place.
+pub fn int_visit_mut(
+    e: &mut IntExpr,
+    var: &mut dyn FnMut(&mut String),
+    boolean: &mut dyn FnMut(&mut BoolExpr),
+) {
     match e {
-        IntExpr::Const(_) | IntExpr::Var(_) => {}
+        IntExpr::Const(_) => {}
+        IntExpr::Var(n) => var(n),
         IntExpr::Add(a, b)
         | IntExpr::Sub(a, b)
         | IntExpr::Mul(a, b)
         | IntExpr::DivBy(a, b)
         | IntExpr::ModBy(a, b)
         | IntExpr::Bitwise(_, a, b) => {
-            int_walk_mut(a, f);
-            int_walk_mut(b, f);
+            int_visit_mut(a, var, boolean);
+            int_visit_mut(b, var, boolean);
         }
         IntExpr::Div(a, _) | IntExpr::Mod(a, _) | IntExpr::Cast(a, _) | IntExpr::Shift(a, _) => {
-            int_walk_mut(a, f)
+            int_visit_mut(a, var, boolean)
         }
         IntExpr::Ite(c, a, b) => {
-            walk_mut(c, f);
-            int_walk_mut(a, f);
-            int_walk_mut(b, f);
+            boolean(c);
+            int_visit_mut(a, var, boolean);
+            int_visit_mut(b, var, boolean);
         }
     }
 }

@@ -148,7 +148,8 @@ pub fn load_program_with(
             })
             .collect();
         (reference, lowered.program, notes)
-    } else if let Some(project) = project {
+    } else if let Some(mut project) = project {
+        plcopen::prepare_text_blocks(sources, &mut project, selection);
         let plc = plcopen::select(&project, selection).map_err(plc_diagnostics)?;
         let lowered = plcopen::lower(&plc).map_err(plc_diagnostics)?;
         if selection.order.is_none()

@@ -9,7 +9,8 @@ use std::fmt::Write as _;
 
 use ii_prove::diag::Sources;
 use ii_prove::ladder::plcopen::{
-    Lowered, PlcError, PlcProgram, PlcSimulator, Selection, lower, read_plcopen, select,
+    Lowered, PlcError, PlcProgram, PlcSimulator, Selection, lower, prepare_text_blocks,
+    read_plcopen, select,
 };
 use ii_prove::ladder::{CompiledProgram, SignalKind};
 use ii_prove::program::{BoolExpr, compile, walk};
@@ -764,6 +765,10 @@ pub fn prepare(
     let mut sources = Sources::new();
     let file = sources.add("random.xml", xml);
     let loaded = read_plcopen(&sources, file)
+        .map(|mut p| {
+            prepare_text_blocks(&mut sources, &mut p, sel);
+            p
+        })
         .and_then(|p| select(&p, sel))
         .and_then(|p| lower(&p).map(|l| (p, l)));
     let (plc, lowered) = match loaded {

@@ -18,6 +18,10 @@ pub struct Project {
     pub globals: Vec<Var>,
     /// The root element.
     pub span: Span,
+    /// The user function blocks with a text body, lowered for the graphical bodies that
+    /// call them (by upper-case name; the reason when one cannot be run exactly): filled
+    /// by [`prepare_text_blocks`], empty until then.
+    pub text_blocks: std::collections::BTreeMap<String, Result<TextBlock, String>>,
 }
 
 /// A task and the program instances it runs.

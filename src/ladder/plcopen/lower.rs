@@ -23,6 +23,7 @@ use crate::program::{
 
 mod en;
 mod ints;
+mod text;
 
 /// A lowered program: the scan model and the warnings of reading and lowering.
 pub struct Lowered {
@@ -737,6 +738,7 @@ impl<'p> Lower<'p> {
                 let q = self.trig_of(k, "M", edge, clk);
                 self.coil(q, &hidden("Q"), WriteKind::Assign, span);
             }
+            None if runs && p.text_calls.contains_key(&k) => self.text_call(k, inputs, &vals, span),
             // An inlined user function block: its inputs are assigned, then its body runs.
             None if runs && p.subs.contains_key(&k) => {
                 for pin in inputs {
@@ -846,6 +848,7 @@ pub fn lower(p: &PlcProgram) -> Result<Lowered, Vec<PlcError>> {
         let mut l = Lower::new(p);
         l.opaque = opaque.clone();
         l.declare_ints(p);
+        l.declare_text_ints(p);
         lower_pass(&mut l);
         if l.new_opaque.is_empty() || !l.errors.is_empty() {
             return finish(p, l);

@@ -24,7 +24,7 @@ pub use lower::{EdgeKey, Lowered, lower};
 pub use read::*;
 pub use select::*;
 pub use simulate::PlcSimulator;
-pub use text::st_program;
+pub use text::{TextBlock, TextCall, prepare_text_blocks, st_program};
 
 /// Which PLCopen version the root element's namespace names.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -481,7 +481,7 @@ pub fn read_plcopen(sources: &Sources, file: FileId) -> Result<Project, Vec<PlcE
         }
     }
     if r.errors.is_empty() {
-        Ok(Project { file, version, pous, tasks, globals, span })
+        Ok(Project { file, version, pous, tasks, globals, span, text_blocks: Default::default() })
     } else {
         Err(r.errors)
     }

@@ -21,6 +21,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use super::{Edge, ObjKind, Operand, PinIn, PlcProgram, Source, Std, Storage};
 
 mod ints;
+mod text;
 
 #[derive(Clone, Copy, Debug, Default)]
 struct Timer {
@@ -51,6 +52,8 @@ pub struct PlcSimulator {
     unknown: BTreeSet<String>,
     /// The simulators of inlined function block instances (they run on this one's bits).
     subs: BTreeMap<usize, PlcSimulator>,
+    /// The scan-model simulators of text block instances (`simulate/text.rs`).
+    texts: BTreeMap<usize, text::Instance>,
     /// Integer variables, block outputs and counts: value and C type.
     ints: BTreeMap<String, (i64, ints::CType)>,
 }
@@ -71,6 +74,10 @@ impl PlcSimulator {
         for n in p.hidden.values().chain(p.latches.values()).chain(&p.started) {
             bits.insert(n.clone(), false);
         }
+        let texts = text::simulators(p);
+        for (_, names) in texts.values() {
+            bits.extend(names.iter().map(|n| (n.clone(), false)));
+        }
         let subs: BTreeMap<usize, PlcSimulator> =
             p.subs.iter().map(|(k, child)| (*k, PlcSimulator::new(child))).collect();
         for sub in subs.values() {
@@ -88,6 +95,7 @@ impl PlcSimulator {
         PlcSimulator {
             ints,
             subs,
+            texts,
             p: p.clone(),
             bits,
             timers: BTreeMap::new(),
@@ -530,6 +538,9 @@ impl PlcSimulator {
                     let clk = if s == Std::RTrig { get("CLK") } else { !get("CLK") };
                     self.memory.insert(key, clk);
                     self.set_hidden(k, "Q", clk && !m);
+                }
+                None if self.p.text_calls.contains_key(&k) => {
+                    self.text_call(k, &names, &values);
                 }
                 None => {
                     // An inlined user function block: inputs assigned, then its body runs

@@ -1,8 +1,24 @@
-//! PLCopen programs whose body is text: the POU's declarations from the XML and its `<ST>` or `<IL>` body, lowered by the IEC text front end into the scan model.
+//! PLCopen POUs whose body is text: the POU's declarations from the XML and its `<ST>` or `<IL>` body, lowered by the IEC text front end into the scan model — the chosen program, and the user function blocks a graphical body calls.
 
-use super::{Lang, Project, Selection, Ty, VarClass, parse_duration};
-use crate::diag::{Diagnostic, Sources};
+use std::collections::BTreeMap;
+
+use super::{Lang, PlcError, Pou, PouKind, Project, Selection, Ty, VarClass, parse_duration};
+use crate::diag::{Diagnostic, Report, Sources};
+use crate::iec::StError;
 use crate::iec::ast::{self, Expr, ExprKind, Ident};
+use crate::program::Program;
+
+/// A user function block whose body is Structured Text or Instruction List, lowered by
+/// the IEC text front end as a standalone program: its input variables are the
+/// program's inputs, its outputs and locals its variables. A graphical body's call of an
+/// instance runs it with every name prefixed by the instance's (`select`, `lower`).
+#[derive(Clone, Debug)]
+pub struct TextBlock {
+    /// The body as a program of its own.
+    pub program: Program,
+    /// What the IEC front end said of it (elements not modelled exactly), as notes.
+    pub warnings: Vec<PlcError>,
+}
 
 /// The chosen program, when its body is Structured Text or Instruction List: lowered by
 /// the IEC text front end (`None` for an LD or FBD body, which the graphical path reads).
@@ -12,11 +28,34 @@ pub fn st_program(
     sel: &Selection,
 ) -> Option<Result<crate::iec::Lowered, Vec<Diagnostic>>> {
     let (pou, task) = super::select::pick(project, sel).ok()?;
-    let body = pou.body.as_ref().filter(|b| matches!(b.lang, Lang::St | Lang::Il))?;
-    let il = body.lang == Lang::Il;
+    pou.body.as_ref().filter(|b| matches!(b.lang, Lang::St | Lang::Il))?;
     if let Err(e) = super::select::event_task(pou, task) {
         return Some(Err(e.into_iter().map(Diagnostic::from).collect()));
     }
+    let fail = |errors: Vec<StError>| errors.into_iter().map(Diagnostic::from).collect::<Vec<_>>();
+    let unit = match unit_of(sources, project, pou, false) {
+        Ok(u) => u,
+        Err(e) => return Some(Err(fail(vec![e]))),
+    };
+    Some(crate::iec::lower(sources, &unit, Some(&pou.name), task_cycle(sel, task)).map_err(fail))
+}
+
+/// The cycle `--cycle` or the task's interval gives, if any.
+fn task_cycle(sel: &Selection, task: Option<&super::Task>) -> Option<u64> {
+    let interval = task.and_then(|t| t.interval.as_ref()).and_then(|(text, _)| {
+        parse_duration(text).or_else(|| parse_duration(&format!("T#{}", text.trim())))
+    });
+    sel.cycle_us.or(interval)
+}
+
+/// The parsed text body of `pou` (`None` when it has no ST or IL body).
+fn parse_body(
+    sources: &mut Sources,
+    project: &Project,
+    pou: &Pou,
+) -> Option<Result<ast::Body, StError>> {
+    let body = pou.body.as_ref().filter(|b| matches!(b.lang, Lang::St | Lang::Il))?;
+    let il = body.lang == Lang::Il;
     let parse = |file: usize, text: &str, range: std::ops::Range<usize>| {
         if il {
             crate::iec::parser::parse_il_body(file, text, range).map(ast::Body::Il)
@@ -24,11 +63,8 @@ pub fn st_program(
             crate::iec::parser::parse_body(file, text, range).map(ast::Body::St)
         }
     };
-    let fail = |errors: Vec<crate::iec::StError>| {
-        errors.into_iter().map(Diagnostic::from).collect::<Vec<_>>()
-    };
     let (raw, decoded) = body.text.clone().unwrap_or((None, String::new()));
-    let stmts = match raw {
+    Some(match raw {
         Some(range) => parse(project.file, sources.text(project.file), range),
         None => {
             // Entities in the text: the decoded body is read as a source of its own.
@@ -37,12 +73,50 @@ pub fn st_program(
             let file = sources.add(name, decoded.clone());
             parse(file, &decoded, 0..decoded.len())
         }
+    })
+}
+
+/// The IEC unit of `pou` as a PROGRAM (its declarations from the XML, its parsed body)
+/// with the project's globals, and with `callees` the project's other function blocks
+/// with a text body that parses, for its calls.
+fn unit_of(
+    sources: &mut Sources,
+    project: &Project,
+    pou: &Pou,
+    callees: bool,
+) -> Result<ast::Unit, StError> {
+    let body = parse_body(sources, project, pou).unwrap_or(Ok(ast::Body::St(Vec::new())))?;
+    let as_pou = |p: &Pou, kind: ast::PouKind, body: ast::Body| ast::Pou {
+        kind,
+        name: Ident { name: p.name.clone(), span: p.span },
+        vars: p.vars.iter().map(|v| decl(v, class(v.class))).collect(),
+        result: None,
+        body,
+        span: p.span,
     };
-    let body = match stmts {
-        Ok(b) => b,
-        Err(e) => return Some(Err(fail(vec![e]))),
-    };
-    let decl = |v: &super::Var, class: ast::VarClass| ast::VarDecl {
+    let mut pous = vec![as_pou(pou, ast::PouKind::Program, body)];
+    if callees {
+        for p in project.pous.iter().filter(|p| p.kind == PouKind::FunctionBlock) {
+            // A callee with a pragma is left out: its calls are then not read.
+            if p.name.eq_ignore_ascii_case(&pou.name) || has_pragma(p) {
+                continue;
+            }
+            if let Some(Ok(b)) = parse_body(sources, project, p) {
+                pous.push(as_pou(p, ast::PouKind::FunctionBlock, b));
+            }
+        }
+    }
+    let globals = project.globals.iter().map(|v| decl(v, ast::VarClass::Global)).collect();
+    let name = Ident { name: pou.name.clone(), span: pou.span };
+    Ok(ast::Unit {
+        pous,
+        configs: vec![ast::Config { name, tasks: Vec::new(), instances: Vec::new(), globals }],
+    })
+}
+
+/// A variable of the XML as the IEC front end's declaration.
+fn decl(v: &super::Var, class: ast::VarClass) -> ast::VarDecl {
+    ast::VarDecl {
         name: Ident { name: v.name.clone(), span: v.span },
         class,
         ty: Ident {
@@ -62,8 +136,11 @@ pub fn st_program(
         retain: v.retain,
         constant: false,
         location: v.address.clone(),
-    };
-    let class = |c: VarClass| match c {
+    }
+}
+
+fn class(c: VarClass) -> ast::VarClass {
+    match c {
         VarClass::Input => ast::VarClass::Input,
         VarClass::Output => ast::VarClass::Output,
         VarClass::InOut => ast::VarClass::InOut,
@@ -71,24 +148,171 @@ pub fn st_program(
         VarClass::External => ast::VarClass::External,
         VarClass::Global => ast::VarClass::Global,
         VarClass::Local | VarClass::Access => ast::VarClass::Local,
+    }
+}
+
+/// Lowers every user function block of the project whose body is text into
+/// [`Project::text_blocks`] at the cycle the selection gives, for the graphical body
+/// that calls them; a block that cannot be run exactly is kept with the reason, and its
+/// instances stay opaque.
+pub fn prepare_text_blocks(sources: &mut Sources, project: &mut Project, sel: &Selection) {
+    let task = super::select::pick(project, sel).ok().and_then(|(_, t)| t);
+    let cycle = task_cycle(sel, task).unwrap_or(super::DEFAULT_CYCLE_US);
+    let mut blocks = BTreeMap::new();
+    for fb in project.pous.iter().filter(|p| p.kind == PouKind::FunctionBlock) {
+        if !fb.body.as_ref().is_some_and(|b| matches!(b.lang, Lang::St | Lang::Il)) {
+            continue;
+        }
+        let lowered = text_block(sources, project, fb, cycle);
+        blocks.insert(fb.name.to_ascii_uppercase(), lowered);
+    }
+    project.text_blocks = blocks;
+}
+
+/// Whether the POU's text body has a pragma `{…}` (or a `{` in a comment or string):
+/// matiec copies a pragma's text into the C it generates, code ii-prove cannot see.
+fn has_pragma(pou: &Pou) -> bool {
+    pou.body.as_ref().and_then(|b| b.text.as_ref()).is_some_and(|(_, text)| text.contains('{'))
+}
+
+/// `fb`, whose body is text, as a [`TextBlock`], or why it stays opaque.
+fn text_block(
+    sources: &mut Sources,
+    project: &Project,
+    fb: &Pou,
+    cycle: u64,
+) -> Result<TextBlock, String> {
+    if !fb.errors.is_empty() {
+        return Err("its declarations are malformed".into());
+    }
+    if fb.vars.iter().any(|v| v.class == VarClass::InOut) {
+        return Err("it has in-out variables, which its body may write through".into());
+    }
+    if fb.vars.iter().any(|v| matches!(v.class, VarClass::External | VarClass::Global)) {
+        return Err("it reads or writes global variables, which ii-prove does not share \
+                    with the caller's yet"
+            .into());
+    }
+    if has_pragma(fb) {
+        return Err("its body has a pragma `{…}`, C code that ii-prove cannot see".into());
+    }
+    let first =
+        |e: Vec<StError>| e.first().map_or_else(|| "its body is not read".into(), |e| e.message());
+    let unit = unit_of(sources, project, fb, true).map_err(|e| first(vec![e]))?;
+    let lowered = crate::iec::lower(sources, &unit, Some(&fb.name), Some(cycle)).map_err(first)?;
+    // Only its input variables are the standalone program's inputs: the call writes
+    // them; anything else the outside world wrote would read 0 inlined.
+    let program = &lowered.program;
+    let input_var = |x: &str| {
+        fb.vars.iter().any(|v| v.class == VarClass::Input && v.name.eq_ignore_ascii_case(x))
     };
-    let vars = pou.vars.iter().map(|v| decl(v, class(v.class))).collect();
-    let globals = project.globals.iter().map(|v| decl(v, ast::VarClass::Global)).collect();
-    let name = Ident { name: pou.name.clone(), span: pou.span };
-    let unit = ast::Unit {
-        pous: vec![ast::Pou {
-            kind: ast::PouKind::Program,
-            name: name.clone(),
-            vars,
-            result: None,
-            body,
-            span: pou.span,
-        }],
-        configs: vec![ast::Config { name, tasks: Vec::new(), instances: Vec::new(), globals }],
+    let int_inputs = program.integers.iter().filter(|(_, v)| v.input);
+    let bits: Vec<String> =
+        int_inputs.flat_map(|(x, v)| (0..v.ty.bits).map(|k| Program::int_bit(x, k))).collect();
+    let outside = match &program.inputs {
+        crate::program::Inputs::Declared(set) => {
+            set.iter().find(|n| !input_var(n) && !bits.contains(n)).cloned()
+        }
+        crate::program::Inputs::ByPrefix => Some("its inputs".into()),
     };
-    let interval = task.and_then(|t| t.interval.as_ref()).and_then(|(text, _)| {
-        parse_duration(text).or_else(|| parse_duration(&format!("T#{}", text.trim())))
-    });
-    let cycle = sel.cycle_us.or(interval);
-    Some(crate::iec::lower(sources, &unit, Some(&pou.name), cycle).map_err(fail))
+    let int_outside = program.integers.iter().find(|(x, v)| v.input && !input_var(x));
+    if let Some(x) = outside.or(int_outside.map(|(x, _)| x.clone())) {
+        return Err(format!("`{x}` is written by the outside world, not by the call"));
+    }
+    let warnings = lowered
+        .warnings
+        .iter()
+        .filter_map(|w| Some(PlcError::Note { span: w.span()?, message: w.message() }))
+        .collect();
+    Ok(TextBlock { program: lowered.program, warnings })
+}
+
+/// One instance of a [`TextBlock`] called from a graphical body: its program with every
+/// name prefixed by the instance's (`Inst_`), and which of its variables each pin is.
+#[derive(Clone, Debug)]
+pub struct TextCall {
+    /// The block's program for this instance.
+    pub program: Program,
+    /// Per input pin wired on the call (upper case): the instance's variable and whether
+    /// it is an integer (else a BOOL).
+    pub inputs: BTreeMap<String, (String, bool)>,
+    /// Per BOOL output pin (upper case): the instance's variable.
+    pub outputs: BTreeMap<String, String>,
+}
+
+/// The call of the user function block `type_name` with a text body by the block
+/// `inputs` of `instance` (a declared instance of that type, `inst`): `None` for a type
+/// without a text body, the reason when it is kept opaque.
+pub fn call(
+    project: &Project,
+    type_name: &str,
+    inst: Option<&super::Var>,
+    inputs: &[super::PinIn],
+    cycle_us: u64,
+) -> Option<Result<TextCall, String>> {
+    let block = project.text_blocks.get(&type_name.to_ascii_uppercase())?;
+    let fb = project.pous.iter().find(|p| p.name.eq_ignore_ascii_case(type_name))?;
+    Some(block.clone().and_then(|b| {
+        let inst =
+            inst.filter(|v| matches!(&v.ty, Ty::Derived(t) if t.eq_ignore_ascii_case(type_name)));
+        let Some(inst) = inst else {
+            return Err("it is not called through a declared instance of its type".into());
+        };
+        if b.program.cycle_us != cycle_us {
+            return Err("it was lowered at another scan cycle".into());
+        }
+        let wired = |name: &str| {
+            inputs.iter().any(|p| {
+                p.name.eq_ignore_ascii_case(name) && (!p.conns.is_empty() || p.expr.is_some())
+            })
+        };
+        // The program's spelling of a declared variable.
+        let spelled = |name: &str| {
+            let all = b.program.names.iter().chain(b.program.integers.keys());
+            all.into_iter().find(|n| n.eq_ignore_ascii_case(name)).cloned()
+        };
+        let prefix = format!("{}_", inst.name);
+        let mut call = TextCall {
+            program: b.program.prefixed(&prefix),
+            inputs: BTreeMap::new(),
+            outputs: BTreeMap::new(),
+        };
+        for v in &fb.vars {
+            let upper = v.name.to_ascii_uppercase();
+            let name = spelled(&v.name).unwrap_or_else(|| v.name.clone());
+            let int = b.program.integers.contains_key(&name);
+            let named = format!("{prefix}{name}");
+            match v.class {
+                // An input a call does not pass keeps its initial value, which the
+                // standalone program (whose inputs are free) does not have.
+                VarClass::Input if !wired(&v.name) && v.init.is_some() => {
+                    return Err(format!(
+                        "its input `{}` has an initial value and no wire on this call",
+                        v.name
+                    ));
+                }
+                VarClass::Input if wired(&v.name) && (int || v.ty == Ty::Bool) => {
+                    call.inputs.insert(upper, (named, int));
+                }
+                VarClass::Output if v.ty == Ty::Bool => {
+                    call.outputs.insert(upper, named);
+                }
+                _ => {}
+            }
+        }
+        Ok(call)
+    }))
+}
+
+impl TextCall {
+    /// Every name prefixed by `prefix` (the instance sits in an inlined body).
+    pub fn prefix(&mut self, prefix: &str) {
+        self.program = self.program.prefixed(prefix);
+        for (var, _) in self.inputs.values_mut() {
+            *var = format!("{prefix}{var}");
+        }
+        for var in self.outputs.values_mut() {
+            *var = format!("{prefix}{var}");
+        }
+    }
 }

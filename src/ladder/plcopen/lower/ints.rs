@@ -17,7 +17,7 @@ use crate::program::{
 pub(super) type IntVal = Result<(IntExpr, Option<IntType>), String>;
 
 /// `e` as a value of `t` (a literal wrapped into it, as the C cast `(INT)70000` does).
-fn coerce(e: IntExpr, t: IntType) -> IntExpr {
+pub(super) fn coerce(e: IntExpr, t: IntType) -> IntExpr {
     match e {
         IntExpr::Const(v) => IntExpr::Const(t.wrap(v)),
         e => e,

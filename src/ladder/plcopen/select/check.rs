@@ -120,6 +120,7 @@ pub(super) fn check_pou(
         starts: BTreeMap::new(),
         started: None,
         subs: BTreeMap::new(),
+        text_calls: BTreeMap::new(),
         warnings: Vec::new(),
     };
     // Check every wire, block type and operand.
@@ -149,6 +150,8 @@ pub(super) fn check_pou(
         }
     }
     for (k, o) in objects.iter().enumerate() {
+        // Why a user block with a text body is kept opaque.
+        let mut opaque_why: Option<String> = None;
         let mut pins: Vec<&PinIn> = Vec::new();
         match &o.kind {
             ObjKind::Contact { var, edge, input, negated } => {
@@ -375,21 +378,45 @@ pub(super) fn check_pou(
                     {
                         for n in child.names() {
                             if !taken.insert(n.to_ascii_uppercase()) {
-                                errors.push(PlcError::Unsupported {
-                                    span: o.span,
-                                    what: format!(
-                                        "the instance `{}` of `{type_name}`",
-                                        instance.as_deref().unwrap_or("")
-                                    ),
-                                    reason: format!(
-                                        "its variable `{n}` clashes with a name of the program"
-                                    ),
-                                });
+                                errors.push(clash(o.span, type_name, instance.as_deref(), &n));
                             }
                         }
                         program.inputs.extend(child.inputs.iter().cloned());
                         program.latches.extend(child.latches.clone());
                         program.subs.insert(k, child);
+                    }
+                    None if let Some(call) = super::super::text::call(
+                        project,
+                        type_name,
+                        instance.as_deref().and_then(|i| program.vars.get(&i.to_ascii_uppercase())),
+                        inputs,
+                        cycle_us,
+                    )
+                    .and_then(|c| c.map_err(|why| opaque_why = Some(why)).ok()) =>
+                    {
+                        let own: BTreeMap<String, &String> = call
+                            .program
+                            .names
+                            .iter()
+                            .chain(call.program.integers.keys())
+                            .map(|n| (n.to_ascii_uppercase(), n))
+                            .collect();
+                        for (upper, n) in own {
+                            if !taken.insert(upper) {
+                                errors.push(clash(o.span, type_name, instance.as_deref(), n));
+                                break;
+                            }
+                        }
+                        if let Some(Ok(b)) =
+                            project.text_blocks.get(&type_name.to_ascii_uppercase())
+                        {
+                            for w in &b.warnings {
+                                if !warnings.contains(w) {
+                                    warnings.push(w.clone());
+                                }
+                            }
+                        }
+                        program.text_calls.insert(k, call);
                     }
                     None => {
                         // An opaque block (a user POU, a vendor library block): it can
@@ -413,8 +440,9 @@ pub(super) fn check_pou(
                             None => warnings.push(PlcError::Note {
                                 span: o.span,
                                 message: format!(
-                                    "the {what} `{type_name}` is not modelled: its Boolean outputs \
-                                     are unconstrained signals"
+                                    "the {what} `{type_name}` is not modelled{}: its Boolean \
+                                     outputs are unconstrained signals",
+                                    opaque_why.take().map_or(String::new(), |w| format!(" ({w})"))
                                 ),
                             }),
                         }
@@ -623,6 +651,16 @@ fn inline(
     Some(Ok(child))
 }
 
+/// A variable of an instance whose name is already one of the program's (an instance
+/// called twice, or a name the prefix makes again).
+fn clash(span: Span, type_name: &str, instance: Option<&str>, name: &str) -> PlcError {
+    PlcError::Unsupported {
+        span,
+        what: format!("the instance `{}` of `{type_name}`", instance.unwrap_or("")),
+        reason: format!("its variable `{name}` clashes with a name of the program"),
+    }
+}
+
 impl PlcProgram {
     /// Prefixes every name this body owns (not the globals it refers to), recursively.
     fn prefix_names(&mut self, prefix: &str) {
@@ -655,6 +693,9 @@ impl PlcProgram {
         self.inputs = self.inputs.iter().map(rename).collect();
         for sub in self.subs.values_mut() {
             sub.prefix_names(prefix);
+        }
+        for call in self.text_calls.values_mut() {
+            call.prefix(prefix);
         }
     }
 

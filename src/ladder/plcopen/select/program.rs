@@ -228,6 +228,8 @@ pub struct PlcProgram {
     /// User function blocks inlined per instance: block index → the instance's body,
     /// its names prefixed with the instance's (`Pump0_Running`).
     pub subs: BTreeMap<usize, PlcProgram>,
+    /// The calls of user function blocks whose body is text, by block object.
+    pub text_calls: BTreeMap<usize, crate::ladder::plcopen::text::TextCall>,
     /// Warnings.
     pub warnings: Vec<PlcError>,
 }
@@ -369,6 +371,13 @@ impl PlcProgram {
     /// The variable of an inlined block's interface (`IN1` of the instance at `k`), if
     /// it is a BOOL of that class.
     pub fn sub_var(&self, k: usize, pin: &str, output: bool) -> Option<&str> {
+        if let Some(t) = self.text_calls.get(&k) {
+            let upper = pin.to_ascii_uppercase();
+            return match output {
+                true => t.outputs.get(&upper).map(String::as_str),
+                false => t.inputs.get(&upper).filter(|(_, int)| !int).map(|(n, _)| n.as_str()),
+            };
+        }
         let v = self.subs.get(&k)?.vars.get(&pin.to_ascii_uppercase())?;
         let class_ok =
             if output { v.class == VarClass::Output } else { v.class == VarClass::Input };
@@ -378,6 +387,10 @@ impl PlcProgram {
     /// The integer input variable of an inlined block's interface (`IN1` of the
     /// instance at `k`), if it is one.
     pub fn sub_int_input(&self, k: usize, pin: &str) -> Option<&str> {
+        if let Some(t) = self.text_calls.get(&k) {
+            let input = t.inputs.get(&pin.to_ascii_uppercase());
+            return input.filter(|(_, int)| *int).map(|(n, _)| n.as_str());
+        }
         let sub = self.subs.get(&k)?;
         let v = sub.vars.get(&pin.to_ascii_uppercase())?;
         (v.class == VarClass::Input && sub.int_var_type(&v.name).is_some())

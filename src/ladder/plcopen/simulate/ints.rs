@@ -30,6 +30,11 @@ impl CType {
         Some(CType { bits, signed })
     }
 
+    /// The C type of a scan-model integer type.
+    pub(super) fn of_int(t: crate::program::IntType) -> CType {
+        CType { bits: t.bits, signed: t.signed }
+    }
+
     /// `v` stored into a variable of this type (C's conversion: modulo 2^bits).
     pub(super) fn store(self, v: i128) -> i64 {
         let m = v.rem_euclid(1i128 << self.bits);
@@ -153,6 +158,11 @@ impl PlcSimulator {
         }
         for sub in p.subs.values() {
             PlcSimulator::init_ints(sub, ints);
+        }
+        for call in p.text_calls.values() {
+            for (n, v) in &call.program.integers {
+                ints.insert(n.clone(), (v.init, CType::of_int(v.ty)));
+            }
         }
     }
 

@@ -1,0 +1,75 @@
+//! The call of a user function block whose body is text: its wired inputs written to the instance's variables, then the blocks of its program (lowered by the IEC text front end, every name prefixed by the instance's) at the call's place in the scan.
+
+use std::collections::BTreeMap;
+
+use super::{BoolExpr, Lower, PinIn, PlcProgram, Span, Stmt, WriteKind};
+use crate::program::IntVar;
+use crate::program::rename::Renaming;
+
+impl Lower<'_> {
+    /// The integers of the text blocks' instances: written by their calls, so none is an
+    /// input of the program (a wired input the caller cannot compute is made one at the
+    /// call).
+    pub(super) fn declare_text_ints(&mut self, p: &PlcProgram) {
+        for call in p.text_calls.values() {
+            for (x, v) in &call.program.integers {
+                self.ints.insert(x.clone(), IntVar { input: false, ..*v });
+            }
+        }
+        for sub in p.subs.values() {
+            self.declare_text_ints(sub);
+        }
+    }
+
+    /// The call of the text block at `k`: `vals` the Boolean values of its pins.
+    pub(super) fn text_call(
+        &mut self,
+        k: usize,
+        inputs: &[PinIn],
+        vals: &BTreeMap<String, BoolExpr>,
+        span: Span,
+    ) {
+        let p = self.p;
+        let Some(call) = p.text_calls.get(&k) else { return };
+        for pin in inputs {
+            let n = pin.name.to_ascii_uppercase();
+            let Some((var, int)) = call.inputs.get(&n) else { continue };
+            if !int {
+                if let Some(v) = vals.get(&n) {
+                    self.coil(v.clone(), var, WriteKind::Assign, span);
+                }
+                continue;
+            }
+            let Some(target) = self.ints.get(var).copied() else { continue };
+            match self.int_pin(pin) {
+                Ok((e, ty)) if ty.is_none_or(|t| t == target.ty) => {
+                    let value = super::ints::coerce(e, target.ty);
+                    self.push_block(vec![Stmt::SetInt { target: var.clone(), value, span }], span);
+                }
+                Ok(_) | Err(_) => {
+                    // The block still runs on the value it is given: any value of its type.
+                    self.ints.insert(var.clone(), IntVar { input: true, init: 0, ..target });
+                    let message = format!(
+                        "the integer wired to `{}` is not computed exactly here: the block's \
+                         input `{var}` is a free input of its type",
+                        pin.name
+                    );
+                    let warn = Stmt::Warn { span: pin.span, element: pin.name.clone(), message };
+                    self.push_block(vec![warn], span);
+                }
+            }
+        }
+        // The block's one-shots are this program's, after those met so far.
+        let base = self.edges.len();
+        let used = call.program.edges_used();
+        self.edges.extend((0..used).map(|i| (self.path.clone(), k, format!("TEXT{i}"))));
+        let mut edge = |i: usize| base + i;
+        let same = |n: &str| n.to_string();
+        let blocks = Renaming { name: &same, temps: self.next_temp, edge: &mut edge }
+            .blocks(&call.program.blocks);
+        self.next_temp += call.program.temps_used();
+        for b in blocks {
+            self.push_block(b.stmts, b.span);
+        }
+    }
+}
