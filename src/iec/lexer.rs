@@ -1,4 +1,4 @@
-//! The Structured Text lexer: IEC 61131-3 tokens with their byte spans (keywords case-insensitive, comments `(* … *)` (not nesting, as matiec reads them) and `//`, pragmas `{ … }` skipped, `//#ASSERT` and `(*#ASSERT … *)` kept as property tokens).
+//! The Structured Text lexer: IEC 61131-3 tokens with their byte spans (keywords case-insensitive, comments `(* … *)` (not nesting, as matiec reads them) and `//`, pragmas `{ … }` refused (matiec runs their text as C), `//#ASSERT` and `(*#ASSERT … *)` kept as property tokens).
 
 use super::StError;
 use crate::diag::Span;
@@ -112,15 +112,15 @@ pub fn lex(file: usize, text: &str, range: std::ops::Range<usize>) -> Result<Vec
             continue;
         }
         if c == b'{' {
-            let Some(n) = rest.find('}') else {
-                return Err(StError::new(
-                    span(i, i + 1),
-                    "unterminated pragma",
-                    "this `{` is never closed by `}`",
-                ));
-            };
-            i += n + 1;
-            continue;
+            // matiec copies a pragma's text into the C it generates (`generate_c_base.cc`,
+            // `pragma_c`), or leaves code out (`{disable code generation}`): what the
+            // program does then is not in its text.
+            let end = rest.find('}').map_or(i + 1, |n| i + n + 1);
+            return Err(StError::new(
+                span(i, end),
+                "a pragma, which ii-prove does not model",
+                "matiec copies a pragma's text into the C code it generates (or, for `{disable code generation}`, leaves code out), so the program does what ii-prove cannot read; remove the pragma or check this program with another tool",
+            ));
         }
         if c.is_ascii_alphabetic() || c == b'_' {
             let n = rest
