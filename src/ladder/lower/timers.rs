@@ -87,6 +87,8 @@ impl Accumulators {
         // orig: the names whose first TOF has been met, and every name touched so far.
         let mut tof_seen: BTreeSet<String> = BTreeSet::new();
         let mut touched: BTreeSet<String> = BTreeSet::new();
+        // The names a timer with a variable delay counts in.
+        let mut variable: BTreeSet<String> = BTreeSet::new();
         for e in live {
             let ElementKind::Timer { kind, name, delay, adjust, .. } = &e.kind else {
                 touched.extend(int_names(e));
@@ -110,7 +112,9 @@ impl Accumulators {
                     );
                     cause(&mut acc.causes, name, why);
                 }
-                TimerDelay::Variable(_) => {}
+                TimerDelay::Variable(_) => {
+                    variable.insert(name.clone());
+                }
                 TimerDelay::Micros(_) if program.cycle_us == 0 => {
                     cause(&mut acc.causes, name, "the PLC cycle is 0".into());
                 }
@@ -161,6 +165,15 @@ impl Accumulators {
             touched.insert(name.clone());
         }
         for (name, set) in sizes {
+            if variable.contains(&name) {
+                // The size comes from the literal delays only, and the variable delay may
+                // pass what it holds.
+                let why = "a timer with a variable delay counts in it, in the size another \
+                           timer's literal delay gives it"
+                    .to_string();
+                cause(&mut acc.causes, &name, why);
+                continue;
+            }
             match set.iter().next() {
                 Some(size) if set.len() == 1 => {
                     acc.bytes.insert(name, *size);
