@@ -16,7 +16,7 @@
 //! property refuted from a grown run keeps, of the drawn inputs, only those its
 //! violation needs (a grown run that drew more than a few of its inputs is not tried:
 //! a search of its own costs less). Grown runs cost a run of most of the program, so
-//! they are kept only while they refute properties, at most [`MAX_GROWN`] of them.
+//! they are kept only while they refute several properties each, at most [`MAX_GROWN`].
 //!
 //! Which properties a run can refute depends on the order they are checked in: a
 //! property whose cone is deep (its signals computed from long chains of rungs) has
@@ -115,10 +115,13 @@ const STALE: usize = 64;
 /// refuted from a kept run.
 const FREE_KEEPS: usize = 8;
 /// Grown runs kept before any has refuted a property; after them, one more per
-/// property refuted from a grown run.
+/// [`GROWN_HITS`] properties refuted from grown runs.
 const FREE_GROWN: usize = 2;
+/// One more grown run is kept per this many properties refuted from grown runs (a grown
+/// run costs a run of most of the program: it must refute several to pay for itself).
+const GROWN_HITS: usize = 4;
 /// At most this many grown runs are kept in a session.
-const MAX_GROWN: usize = 16;
+const MAX_GROWN: usize = 64;
 /// A grown run that drew more than this many of a property's inputs is not tried for it.
 const MAX_DRAWN: usize = 6;
 /// Runs longer than this many scans are not kept (a bit mask per signal).
@@ -164,7 +167,8 @@ impl Shared {
         self.keep_run(program, trace.clone(), Vec::new(), depth, now);
         // A grown run costs a run of most of the program: grown runs are kept only
         // while they pay for themselves, as the others.
-        let grown_paid = (FREE_GROWN + self.grown_hits.load(Ordering::Relaxed)).min(MAX_GROWN);
+        let grown_paid =
+            (FREE_GROWN + self.grown_hits.load(Ordering::Relaxed) / GROWN_HITS).min(MAX_GROWN);
         if !set.is_empty() && self.grown_kept.fetch_add(1, Ordering::Relaxed) < grown_paid {
             self.keep_run(program, grown, set, depth, now);
         }
