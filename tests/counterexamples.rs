@@ -592,13 +592,81 @@ fn the_cached_vacuity_check_agrees_with_the_whole_cone_on_small_programs() {
 /// A run that refutes one property of a program is kept, and refutes another property
 /// it violates too (confirmed again: the trace replays on the simulator), but not one
 /// it does not violate nor one that holds.
+/// An LDmicro program and its properties, for the tests of shared counterexamples: the
+/// loaded program and the properties' goals.
+fn program_and_goals(
+    sources: &mut Sources,
+    stem: &str,
+    ld: &str,
+    props: &str,
+) -> (report::LoadedProgram, Vec<ii_prove::prover::Obligation>) {
+    let program = std::env::temp_dir().join(format!("ii_prove_{stem}_{}.ld", std::process::id()));
+    std::fs::write(&program, ld).expect("writes");
+    let loaded =
+        load_program(sources, &program.display().to_string(), &Default::default()).expect("loads");
+    let file = sources.add(format!("{stem}.ii"), props.to_string());
+    let doc = syntax::parse_document(sources, file, &loaded.compiled).expect("parses");
+    let goals = doc.properties.iter().map(|p| report::obligation(&p.value)).collect();
+    (loaded, goals)
+}
+
+/// A session of `loaded` whose counterexamples are kept in `shared`.
+fn shared_session<'a>(
+    loaded: &'a report::LoadedProgram,
+    shared: &'a counterexample::shared::Shared,
+) -> counterexample::Program<'a> {
+    counterexample::Program {
+        reference: loaded.reference.as_ref(),
+        compiled: &loaded.compiled,
+        assumptions: &[],
+        shared: Some(shared),
+    }
+}
+
+/// Refutes `deep`, the property whose run the others are refuted from.
+fn refute_deep(
+    session: &counterexample::Program,
+    goal: &ii_prove::prover::Obligation,
+    limits: Limits,
+) {
+    let Verdict::Refuted(_) = counterexample::refute(session, goal, limits) else {
+        panic!("`deep` is not refuted");
+    };
+}
+
+/// The limits of the searches in the tests of shared counterexamples.
+fn shared_limits() -> Limits {
+    Limits {
+        deadline: Instant::now() + Duration::from_secs(20),
+        max_steps: 200,
+        max_scans: 100_000,
+        minimised: false,
+    }
+}
+
+/// Whether the program's own simulator, run on the counterexample's inputs, sets `bit`.
+fn replay_sets(
+    loaded: &report::LoadedProgram,
+    c: &counterexample::Counterexample,
+    bit: &str,
+) -> bool {
+    let mut sim = loaded.reference.simulator();
+    let mut seen = false;
+    for k in 0..c.trace.scans {
+        let inputs: BTreeMap<String, bool> =
+            c.trace.values.iter().map(|(n, v)| (n.clone(), v[k])).collect();
+        sim.step(&inputs);
+        seen |= sim.bit(bit);
+    }
+    seen
+}
+
 /// A kept run also holds the inputs outside its property's cone at drawn values: the
 /// properties those inputs violate are refuted from it, each counterexample cut to the
 /// inputs its own violation needs and confirmed on the simulator.
 #[test]
 fn a_grown_run_refutes_properties_outside_the_cone_it_came_from() {
     let mut sources = Sources::new();
-    let program = std::env::temp_dir().join(format!("ii_prove_grown_{}.ld", std::process::id()));
     // Yb follows Xa; eight units apart: Yd_i follows Xe_i, Yf_i follows Xg_i or Xe_i.
     let mut text =
         String::from("LDmicro0.1\nCYCLE=10000\nPROGRAM\nRUNG\nCONTACTS Xa 0\nCOIL Yb 0 0 0\nEND\n");
@@ -610,28 +678,11 @@ fn a_grown_run_refutes_properties_outside_the_cone_it_came_from() {
         );
         props += &format!("property apart{i}: Yd{i} = 0*\nproperty holds{i}: Yd{i} => Yf{i}\n");
     }
-    std::fs::write(&program, text).expect("writes");
-    let loaded = load_program(&mut sources, &program.display().to_string(), &Default::default())
-        .expect("loads");
-    let file = sources.add("units.ii", props);
-    let doc = syntax::parse_document(&sources, file, &loaded.compiled).expect("parses");
-    let goals: Vec<_> = doc.properties.iter().map(|p| report::obligation(&p.value)).collect();
+    let (loaded, goals) = program_and_goals(&mut sources, "grown", &text, &props);
     let shared = counterexample::shared::Shared::default();
-    let session = counterexample::Program {
-        reference: loaded.reference.as_ref(),
-        compiled: &loaded.compiled,
-        assumptions: &[],
-        shared: Some(&shared),
-    };
-    let limits = Limits {
-        deadline: Instant::now() + Duration::from_secs(20),
-        max_steps: 200,
-        max_scans: 100_000,
-        minimised: false,
-    };
-    let Verdict::Refuted(_) = counterexample::refute(&session, &goals[0], limits) else {
-        panic!("`deep` is not refuted");
-    };
+    let session = shared_session(&loaded, &shared);
+    let limits = shared_limits();
+    refute_deep(&session, &goals[0], limits);
     let mut refuted = 0;
     for i in 0..8 {
         let Some(c) = counterexample::shared::refute_shared(&session, &goals[1 + 2 * i], limits)
@@ -643,15 +694,7 @@ fn a_grown_run_refutes_properties_outside_the_cone_it_came_from() {
         let set: Vec<&String> =
             c.trace.values.iter().filter(|(_, v)| v.contains(&true)).map(|(n, _)| n).collect();
         assert_eq!(set, vec![&format!("Xe{i}")], "only the input the violation needs");
-        let mut sim = loaded.reference.simulator();
-        let mut seen = false;
-        for k in 0..c.trace.scans {
-            let inputs: BTreeMap<String, bool> =
-                c.trace.values.iter().map(|(n, v)| (n.clone(), v[k])).collect();
-            sim.step(&inputs);
-            seen |= sim.bit(&format!("Yd{i}"));
-        }
-        assert!(seen, "the replay sets Yd{i}");
+        assert!(replay_sets(&loaded, &c, &format!("Yd{i}")), "the replay sets Yd{i}");
         assert!(
             counterexample::shared::refute_shared(&session, &goals[2 + 2 * i], limits).is_none(),
             "holds{i} holds"
@@ -663,53 +706,24 @@ fn a_grown_run_refutes_properties_outside_the_cone_it_came_from() {
 #[test]
 fn a_kept_run_refutes_the_other_properties_it_violates() {
     let mut sources = Sources::new();
-    let program = std::env::temp_dir().join(format!("ii_prove_shared_{}.ld", std::process::id()));
     // Yb follows Xa, Yc follows Yb, Yd follows Xe.
-    std::fs::write(
-        &program,
+    let (loaded, goals) = program_and_goals(
+        &mut sources,
+        "shared",
         "LDmicro0.1\nCYCLE=10000\nPROGRAM\nRUNG\nCONTACTS Xa 0\nCOIL Yb 0 0 0\nEND\nRUNG\nCONTACTS Yb 0\nCOIL Yc 0 0 0\nEND\nRUNG\nCONTACTS Xe 0\nCOIL Yd 0 0 0\nEND\n",
-    )
-    .expect("writes");
-    let loaded = load_program(&mut sources, &program.display().to_string(), &Default::default())
-        .expect("loads");
-    let file = sources.add(
-        "chain.ii",
-        "property deep: Yc = 0*\nproperty shallow: Yb = 0*\nproperty apart: Yd = 0*\nproperty holds: Yc => Yb\n"
-            .to_string(),
+        "property deep: Yc = 0*\nproperty shallow: Yb = 0*\nproperty apart: Yd = 0*\nproperty holds: Yc => Yb\n",
     );
-    let doc = syntax::parse_document(&sources, file, &loaded.compiled).expect("parses");
-    let goals: Vec<_> = doc.properties.iter().map(|p| report::obligation(&p.value)).collect();
     let shared = counterexample::shared::Shared::default();
-    let session = counterexample::Program {
-        reference: loaded.reference.as_ref(),
-        compiled: &loaded.compiled,
-        assumptions: &[],
-        shared: Some(&shared),
-    };
-    let limits = Limits {
-        deadline: Instant::now() + Duration::from_secs(20),
-        max_steps: 200,
-        max_scans: 100_000,
-        minimised: false,
-    };
+    let session = shared_session(&loaded, &shared);
+    let limits = shared_limits();
     // Nothing kept yet.
     assert!(counterexample::shared::refute_shared(&session, &goals[1], limits).is_none());
-    let Verdict::Refuted(_) = counterexample::refute(&session, &goals[0], limits) else {
-        panic!("`deep` is not refuted");
-    };
+    refute_deep(&session, &goals[0], limits);
     let c = counterexample::shared::refute_shared(&session, &goals[1], limits)
         .expect("the run that refutes `deep` refutes `shallow`");
     assert!(c.simulator_scan.is_some(), "confirmed on the simulator");
     assert!(c.trace.values.get("Xa").is_some_and(|v| v.contains(&true)), "{:?}", c.trace);
-    let mut sim = loaded.reference.simulator();
-    let mut seen = false;
-    for k in 0..c.trace.scans {
-        let inputs: BTreeMap<String, bool> =
-            c.trace.values.iter().map(|(n, v)| (n.clone(), v[k])).collect();
-        sim.step(&inputs);
-        seen |= sim.bit("Yb");
-    }
-    assert!(seen, "the replay sets Yb");
-    assert!(counterexample::shared::refute_shared(&session, &goals[2], limits).is_none());
+    assert!(replay_sets(&loaded, &c, "Yb"), "the replay sets Yb");
+    // `holds` holds: no run kept refutes it.
     assert!(counterexample::shared::refute_shared(&session, &goals[3], limits).is_none());
 }
