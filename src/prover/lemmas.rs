@@ -64,6 +64,8 @@ struct Forced {
 const NEAR: usize = 4;
 /// At most this many literals are followed from one seed.
 const MAX_FORCED: usize = 200_000;
+/// A forced literal whose signal more hypotheses than this mention is not followed.
+const MAX_FANOUT: usize = 256;
 /// A lemma's proof is a handful of cases.
 const LEMMA_CASES: usize = 64;
 /// Time for one lemma's case proof.
@@ -138,7 +140,14 @@ fn propagate(ctx: &Context, atom: &Expr, value: bool) -> Closure {
     let mut forced: Vec<Forced> = Vec::new();
     let mut queue = VecDeque::from([seed]);
     'propagation: while let Some(a) = queue.pop_front() {
-        for h in ctx.index.mentioning(&atoms.terms[a]) {
+        let readers = ctx.index.mentioning(&atoms.terms[a]);
+        // A literal forced on a signal most of the program reads (a hub) is kept, but
+        // what it forces through every reader is not followed: each seed that reaches it
+        // would pay for the whole program, and its own closure has it.
+        if a != seed && readers.len() > MAX_FANOUT {
+            continue;
+        }
+        for h in readers {
             // Viewed afresh at each visit: a seed may reach the whole program, and
             // keeping every view would hold a copy of it.
             let hyp = &ctx.hypotheses()[h];
