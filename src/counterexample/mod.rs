@@ -193,17 +193,27 @@ fn names_of(e: &Expr, into: &mut BTreeSet<String>) {
     }
 }
 
-/// The program's equations `X = term` in scan order (what a scan computes).
-pub fn equations(compiled: &CompiledProgram) -> Vec<(String, &Expr)> {
-    compiled
-        .hypotheses
-        .iter()
-        .filter(|h| h.kind == HypothesisKind::Equation && h.rel == Rel::Eq)
-        .filter_map(|h| match &h.lhs[root(&h.lhs)] {
-            Term::Name(n) => Some((n.as_str().to_string(), &h.rhs)),
-            _ => None,
+/// The program's equations at `positions` (in scan order, `EquationIndex::equations`)
+/// as a model without constraints.
+pub fn equations_model(
+    compiled: &CompiledProgram,
+    positions: impl IntoIterator<Item = usize>,
+) -> Model {
+    let index = compiled.equation_index();
+    let defs = positions
+        .into_iter()
+        .map(|p| {
+            let (n, h) = &index.equations[p];
+            (n.clone(), compiled.hypotheses[*h].rhs.clone())
         })
-        .collect()
+        .collect();
+    Model { defs, constraints: Vec::new() }
+}
+
+/// Every equation `X = term` of the program in scan order (what a scan computes), as a
+/// model without constraints.
+pub fn program_model(compiled: &CompiledProgram) -> Model {
+    equations_model(compiled, 0..compiled.equation_index().equations.len())
 }
 
 impl Program<'_> {

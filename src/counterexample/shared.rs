@@ -29,7 +29,8 @@ use std::sync::{Arc, Mutex, OnceLock};
 
 use super::unroll::{Concrete, Model, unroll, violated};
 use super::{
-    Counterexample, Judged, Limits, Program, ScanTrace, discrete_violation, judge, scans_of,
+    Counterexample, Judged, Limits, Program, ScanTrace, discrete_violation, equations_model, judge,
+    program_model, scans_of,
 };
 use crate::ladder::{CompiledProgram, SignalKind};
 use crate::prover::Obligation;
@@ -248,8 +249,7 @@ impl Shared {
             return Some(q.clone());
         }
         let scans = trace.scans.max(quiet.as_ref().map_or(0, |q| 2 * q.scans)).min(MAX_SCANS);
-        let whole =
-            equations_model(program.compiled, 0..program.compiled.equation_index().equations.len());
+        let whole = program_model(program.compiled);
         let cycle = trace.cycle.clone();
         let run =
             unroll(&mut Concrete, &whole, &[], scans, &|d| scans_of(d, &cycle), &mut |_, _, _| {
@@ -292,23 +292,6 @@ fn drawn(name: &str, salt: u64) -> bool {
         (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
     });
     (h ^ salt.wrapping_mul(0x9e37_79b9_7f4a_7c15)).wrapping_mul(0xff51_afd7_ed55_8ccd) >> 63 == 1
-}
-
-/// The program's equations at `positions` (in scan order, `EquationIndex::equations`)
-/// as a model without constraints.
-fn equations_model(
-    compiled: &CompiledProgram,
-    positions: impl IntoIterator<Item = usize>,
-) -> Model {
-    let index = compiled.equation_index();
-    let defs = positions
-        .into_iter()
-        .map(|p| {
-            let (n, h) = &index.equations[p];
-            (n.clone(), compiled.hypotheses[*h].rhs.clone())
-        })
-        .collect();
-    Model { defs, constraints: Vec::new() }
 }
 
 /// A counterexample of `goal` confirmed from a run kept in `program.shared`, if one of

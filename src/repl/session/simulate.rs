@@ -158,7 +158,7 @@ impl Session {
         given: &[GivenSignal],
         env: &Assignment,
     ) -> Result<String, String> {
-        use crate::counterexample::{ScanTrace, equations, scans_of, unroll};
+        use crate::counterexample::{ScanTrace, program_model, scans_of, unroll};
         let mut inputs = self.inputs.clone();
         inputs.extend(given.iter().map(|g| g.0.clone()));
         let mut terms = Vec::new();
@@ -181,8 +181,7 @@ impl Session {
             count.clone().try_into().ok().filter(|n| *n <= 200_000).ok_or_else(|| {
                 format!("{count} scans of the cycle is too long to simulate; give a shorter `for`")
             })?;
-        let defs = equations(compiled).into_iter().map(|(n, e)| (n, e.clone())).collect();
-        let model = unroll::Model { defs, constraints: Vec::new() };
+        let model = program_model(compiled);
         let trace = ScanTrace { cycle: cycle.clone(), scans, values: Default::default() };
         let mut zeros: BTreeSet<String> = BTreeSet::new();
         let mut free = |_: &mut unroll::Concrete, name: &str, k: usize| match env
