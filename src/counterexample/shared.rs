@@ -152,10 +152,17 @@ impl Shared {
             }
         }
         let salt = self.kept.fetch_add(1, Ordering::Relaxed) as u64;
-        // The run as found, and the run grown: every Boolean input the property's cone
-        // does not read held at a value drawn for it (it cannot change the violation,
-        // and sets in motion parts of the program the run left at rest; each run kept
-        // draws other values).
+        self.keep_run(program, trace.clone(), Vec::new(), depth, now);
+        // The run grown: every Boolean input the property's cone does not read held at a
+        // value drawn for it (it cannot change the violation, and sets in motion parts
+        // of the program the run left at rest; each run kept draws other values). A
+        // grown run costs a run of most of the program: grown runs are kept only while
+        // they pay for themselves, as the others.
+        let grown_paid =
+            (FREE_GROWN + self.grown_hits.load(Ordering::Relaxed) / GROWN_HITS).min(MAX_GROWN);
+        if self.grown_kept.load(Ordering::Relaxed) >= grown_paid {
+            return;
+        }
         let free = model.free_names([&goal.lhs, &goal.rhs].into_iter());
         let mut grown = trace.clone();
         let mut set = Vec::new();
@@ -165,11 +172,6 @@ impl Shared {
                 set.push(n.clone());
             }
         }
-        self.keep_run(program, trace.clone(), Vec::new(), depth, now);
-        // A grown run costs a run of most of the program: grown runs are kept only
-        // while they pay for themselves, as the others.
-        let grown_paid =
-            (FREE_GROWN + self.grown_hits.load(Ordering::Relaxed) / GROWN_HITS).min(MAX_GROWN);
         if !set.is_empty() && self.grown_kept.fetch_add(1, Ordering::Relaxed) < grown_paid {
             self.keep_run(program, grown, set, depth, now);
         }
