@@ -59,7 +59,6 @@ fn the_kernel_is_small_and_imports_only_terms_the_certificate_format_and_its_ref
 fn no_source_file_is_over_900_lines_except_those_due_to_be_split() {
     const LIMIT: usize = 900;
     const DUE_TO_BE_SPLIT: &[(&str, usize)] = &[
-        ("src/counterexample/mod.rs", 1248 + 60),
         ("src/ladder/ldmicro.rs", 1587 + 60),
         ("src/ladder/lower.rs", 909 + 60),
         ("src/ladder/plcopen/lower.rs", 907 + 60),

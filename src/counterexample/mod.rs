@@ -41,6 +41,7 @@
 #![warn(missing_docs)]
 
 pub mod aiger;
+mod confirm;
 pub mod shared;
 pub mod unroll;
 
@@ -52,13 +53,12 @@ use num_integer::Integer;
 use num_traits::ToPrimitive;
 
 use crate::kernel::{Axiom, Rel};
-use crate::ladder::{CompiledProgram, Hypothesis, HypothesisKind, Reference, SignalKind};
+use crate::ladder::{CompiledProgram, Reference};
 use crate::prover::Obligation;
-use crate::semantics::falsify::violation;
-use crate::semantics::{Assignment, Signal, Time, eval, format_time};
-use crate::term::{Delay, Expr, Symbol, Term, root};
-use crate::theory::sample_relation;
-use unroll::{Bits, Cnf, Concrete, Model, unroll, violated};
+use crate::semantics::{Assignment, Signal, Time, format_time};
+use crate::term::{Delay, Expr, Term};
+use confirm::{Judged, discrete_violation, judge};
+use unroll::{Bits, Cnf, Model, unroll, violated};
 
 /// Limits of one search.
 #[derive(Clone, Copy, Debug)]
@@ -146,8 +146,6 @@ pub struct Counterexample {
     pub rhs: bool,
     /// The first scan (1-based) where the scan simulator violates the property.
     pub simulator_scan: Option<usize>,
-    /// Names of the inputs (not unconstrained element outputs).
-    pub inputs: BTreeSet<String>,
 }
 
 /// The end of a search.
@@ -372,7 +370,7 @@ pub fn refute(program: &Program, goal: &Obligation, limits: Limits) -> Verdict {
                     .values
                     .insert(name, v.iter().flat_map(|b| std::iter::repeat_n(*b, grid)).collect());
             }
-            match judge(program, &model, goal, trace, &cycle, limits) {
+            match judge(program, &model, goal, trace, limits) {
                 Ok(Judged::Both(c)) => {
                     if let Some(shared) = program.shared {
                         shared.keep(program, goal, &model, &c);
@@ -405,14 +403,14 @@ pub fn refute(program: &Program, goal: &Obligation, limits: Limits) -> Verdict {
 /// change anywhere): the same two checks as [`refute`]'s candidates, after the trace is
 /// cut at its first violation and minimised.
 pub fn confirm(program: &Program, goal: &Obligation, trace: ScanTrace, limits: Limits) -> Verdict {
-    let Some(cycle) = program.cycle() else {
+    if program.cycle().is_none() {
         return Verdict::NotFound {
             why: "the program has a zero cycle time".into(),
             complete: true,
         };
-    };
+    }
     let model = program.model(&[&goal.lhs, &goal.rhs]);
-    match judge(program, &model, goal, trace, &cycle, limits) {
+    match judge(program, &model, goal, trace, limits) {
         Ok(Judged::Both(c)) => Verdict::Refuted(c),
         Ok(Judged::ExactOnly(c, why)) => Verdict::Unconfirmed { candidate: c, why },
         Err(why) => Verdict::NotFound { why, complete: false },
@@ -465,414 +463,6 @@ impl<'m> Bmc<'m> {
                 .iter()
                 .map(|(n, ls)| (n.clone(), ls.iter().map(|l| model_lits.contains(l)).collect()))
                 .collect(),
-        )
-    }
-}
-
-/// Per signal name, one value a scan.
-type Values = BTreeMap<String, Vec<bool>>;
-
-/// The scan-by-scan run of the equations: every signal, the goal's sides, constraints.
-struct Run {
-    signals: BTreeMap<String, Vec<bool>>,
-    lhs: Vec<bool>,
-    rhs: Vec<bool>,
-    constraints_hold: bool,
-}
-
-fn run_scans(model: &Model, goal: &Obligation, trace: &ScanTrace) -> Result<Run, String> {
-    let cycle = trace.cycle.clone();
-    let u = unroll(
-        &mut Concrete,
-        model,
-        &[&goal.lhs, &goal.rhs],
-        trace.scans,
-        &|d| scans_of(d, &cycle),
-        &mut |_, name, k| trace.values.get(name).and_then(|v| v.get(k)).copied().unwrap_or(false),
-    )?;
-    let constraints_hold = model
-        .constraints
-        .iter()
-        .zip(&u.constraints)
-        .all(|(c, (l, r))| l.iter().zip(r).all(|(a, b)| !violated(&mut Concrete, c.1, a, b)));
-    let mut it = u.extra.into_iter();
-    let lhs = it.next().unwrap_or_default();
-    let rhs = it.next().unwrap_or_default();
-    Ok(Run { signals: u.signals, lhs, rhs, constraints_hold })
-}
-
-fn first_violation(goal: &Obligation, run: &Run) -> Option<usize> {
-    (0..run.lhs.len()).find(|&k| violated(&mut Concrete, goal.rel, &run.lhs[k], &run.rhs[k]))
-}
-
-/// The scan simulator's run on the trace: the first violating scan (0-based), and per
-/// scan the value of every defined signal of the model.
-fn simulate(
-    program: &Program,
-    model: &Model,
-    goal: &Obligation,
-    trace: &ScanTrace,
-) -> Result<(Option<usize>, Values), String> {
-    // The program's inputs (an integer input by its bits), and free names of the `.ii`
-    // files the program does not know.
-    let mut inputs: Vec<&String> =
-        program.compiled.signals.iter().filter(|(_, k)| k.is_input()).map(|(n, _)| n).collect();
-    inputs.extend(trace.values.keys().filter(|n| !program.compiled.signals.contains_key(*n)));
-    let mut read = BTreeSet::new();
-    names_of(&goal.lhs, &mut read);
-    names_of(&goal.rhs, &mut read);
-    for (l, _, r) in &model.constraints {
-        names_of(l, &mut read);
-        names_of(r, &mut read);
-    }
-    let mut watched: BTreeSet<String> = model.defs.iter().map(|(n, _)| n.clone()).collect();
-    for n in &read {
-        match program.compiled.signals.get(n) {
-            Some(k) if k.is_unconstrained() => {
-                return Err(format!(
-                    "the property reads `{n}`, which the simulator does not compute"
-                ));
-            }
-            _ => {
-                watched.insert(n.clone());
-            }
-        }
-    }
-    // The simulator may run only the rungs that can write what is watched.
-    let mut sim = program.reference.simulator_for(&watched);
-    let mut seen: BTreeMap<String, Vec<bool>> = BTreeMap::new();
-    // Every input at every scan (0 where the trace has none), the map built once; an
-    // input held at 0 that the run never reads (outside its part of the program) is
-    // left out, so that a scan costs what the part costs.
-    inputs.retain(|n| trace.values.contains_key(*n) || watched.contains(*n) || sim.reads(n));
-    let mut step: BTreeMap<String, bool> = inputs.iter().map(|n| ((*n).clone(), false)).collect();
-    for k in 0..trace.scans {
-        for (n, v) in &trace.values {
-            if let Some(x) = step.get_mut(n) {
-                *x = v.get(k).copied().unwrap_or(false);
-            }
-        }
-        sim.step(&step);
-        for n in &watched {
-            // Compiler-made names (atoms, intermediate values) stand for what they read.
-            let depends = match program.compiled.signals.get(n) {
-                Some(SignalKind::IntBit { of, .. }) => Some(of),
-                Some(SignalKind::Atom | SignalKind::Intermediate { .. }) => None,
-                _ => Some(n),
-            };
-            if depends.is_some_and(|d| !sim.is_known(d)) {
-                return Err(format!("the simulator does not model what `{n}` depends on"));
-            }
-            // A one-shot's hidden memory is the simulator's memory of that element, never
-            // a bit of the same name (the PLC has none).
-            let value = match program.compiled.signals.get(n) {
-                Some(SignalKind::EdgeMemory { index, .. }) => {
-                    sim.edge_memory(*index).ok_or_else(|| {
-                        format!("the simulator does not show the memory `{n}` of its one-shot")
-                    })?
-                }
-                // A bit of an integer: of its value xor its start value.
-                Some(SignalKind::IntBit { of, bit, start, .. }) => {
-                    let v = sim
-                        .int(of)
-                        .ok_or_else(|| format!("the simulator does not show the integer `{of}`"))?;
-                    (v >> bit & 1 == 1) != *start
-                }
-                // Named parts of a computation: what they stand for is checked where read.
-                Some(SignalKind::Atom) => {
-                    let int = |x: &str| sim.int(x);
-                    program.compiled.atom_value(n, &int).ok_or_else(|| {
-                        format!("the simulator does not show the integers of `{n}`")
-                    })?
-                }
-                Some(SignalKind::Intermediate { .. }) => continue,
-                _ => sim.bit(n),
-            };
-            seen.entry(n.clone()).or_default().push(value);
-        }
-    }
-    // The property (and the assumptions) on the simulator's values.
-    let cycle = trace.cycle.clone();
-    let u = unroll(
-        &mut Concrete,
-        &Model { defs: Vec::new(), constraints: model.constraints.clone() },
-        &[&goal.lhs, &goal.rhs],
-        trace.scans,
-        &|d| scans_of(d, &cycle),
-        &mut |_, name, k| {
-            if let Some(v) = seen.get(name) {
-                return v.get(k).copied().unwrap_or(false);
-            }
-            trace.values.get(name).and_then(|v| v.get(k)).copied().unwrap_or(false)
-        },
-    )?;
-    let mut first = None;
-    for k in 0..trace.scans {
-        let assumptions_hold = model
-            .constraints
-            .iter()
-            .zip(&u.constraints)
-            .all(|(c, (l, r))| !violated(&mut Concrete, c.1, &l[k], &r[k]));
-        if !assumptions_hold {
-            break;
-        }
-        if violated(&mut Concrete, goal.rel, &u.extra[0][k], &u.extra[1][k]) {
-            first = Some(k);
-            break;
-        }
-    }
-    Ok((first, seen))
-}
-
-/// Exact confirmation: every hypothesis of the cone holds on the whole horizon (with
-/// `pre f` as `f` one cycle earlier), the goal fails at scan `v`.
-fn exact(
-    model: &Model,
-    goal: &Obligation,
-    trace: &ScanTrace,
-    run: &Run,
-    v: usize,
-) -> Result<(Assignment, bool, bool), String> {
-    let mut env = Assignment::new(trace.horizon());
-    env.cycle = Some(trace.cycle.clone());
-    // Every signal as the run computed it, scan by scan; then each equation must hold
-    // exactly at every scan (a read one scan back, `pre`, makes the order of the
-    // equations no guide).
-    for (name, values) in &run.signals {
-        env.signals.insert(Symbol::from(name.as_str()), trace.signal(values)?);
-    }
-    let instants = trace.instants();
-    for (name, rhs) in &model.defs {
-        let s = eval(rhs, &env).map_err(|e| e.to_string())?;
-        let x = env.signals.get(&Symbol::from(name.as_str())).ok_or("a signal is missing")?;
-        if let Some(k) = instants.iter().position(|t| x.value_at(t) != s.value_at(t)) {
-            return Err(format!("the equation of `{name}` fails at scan {}", k + 1));
-        }
-    }
-    for (l, rel, r) in &model.constraints {
-        let (a, b) =
-            (eval(l, &env).map_err(|e| e.to_string())?, eval(r, &env).map_err(|e| e.to_string())?);
-        if let Some(t) = violation(&a, sample_relation(*rel), &b) {
-            return Err(format!("an assumption fails at t = {}", format_time(&t)));
-        }
-    }
-    let l = eval(&goal.lhs, &env).map_err(|e| e.to_string())?;
-    let r = eval(&goal.rhs, &env).map_err(|e| e.to_string())?;
-    let t = trace.instant(v);
-    let (a, b) = (l.value_at(&t), r.value_at(&t));
-    if !violated(&mut Concrete, goal.rel, &a, &b) {
-        return Err("the exact evaluation does not show the violation".into());
-    }
-    Ok((env, a, b))
-}
-
-/// Checks a compiled hypothesis set on the exact signals (every equation and bound).
-/// Every compiled hypothesis whose signals the run has holds at every scan of the trace
-/// (read at each scan's instant: the end of the horizon is the start of a scan the trace
-/// does not have).
-/// The equations of `checked` (the model's, which [`exact`] has checked on the same
-/// instants) are not evaluated again.
-fn hypotheses_hold(
-    program: &Program,
-    checked: &Model,
-    env: &Assignment,
-    trace: &ScanTrace,
-) -> bool {
-    let mut done: HashMap<&str, Vec<&Expr>> = HashMap::new();
-    for (n, rhs) in &checked.defs {
-        done.entry(n.as_str()).or_default().push(rhs);
-    }
-    let is_done = |h: &Hypothesis| {
-        h.kind == HypothesisKind::Equation
-            && h.rel == Rel::Eq
-            && matches!(&h.lhs[root(&h.lhs)], Term::Name(n)
-                if done.get(n.as_str()).is_some_and(|es| es.iter().any(|e| **e == h.rhs)))
-    };
-    // Only a hypothesis that mentions no name or a name of the run can have all its
-    // names in the run: those are looked up, not the whole program's.
-    let index = program.compiled.equation_index();
-    let mut candidates: Vec<usize> = index.nameless.clone();
-    for n in env.signals.keys() {
-        candidates.extend(index.mentioning.get(n).map_or(&[][..], Vec::as_slice));
-    }
-    candidates.sort_unstable();
-    candidates.dedup();
-    let instants = trace.instants();
-    candidates.into_iter().map(|i| &program.compiled.hypotheses[i]).filter(|h| !is_done(h)).all(
-        |h| {
-            let known = |e: &Expr| {
-                e.as_ref().iter().all(|node| match node {
-                    Term::Name(n) => env.signals.contains_key(n),
-                    _ => true,
-                })
-            };
-            if !known(&h.lhs) || !known(&h.rhs) {
-                return true; // outside the cone
-            }
-            let (Ok(a), Ok(b)) = (eval(&h.lhs, env), eval(&h.rhs, env)) else { return false };
-            instants.iter().all(|t| !violated(&mut Concrete, h.rel, &a.value_at(t), &b.value_at(t)))
-        },
-    )
-}
-
-enum Judged {
-    Both(Box<Counterexample>),
-    ExactOnly(Box<Counterexample>, String),
-}
-
-/// Checks (discretely) that a trace still violates the goal; the first violating scan.
-fn discrete_violation(model: &Model, goal: &Obligation, trace: &ScanTrace) -> Option<usize> {
-    let run = run_scans(model, goal, trace).ok()?;
-    if !run.constraints_hold {
-        return None;
-    }
-    first_violation(goal, &run)
-}
-
-fn judge(
-    program: &Program,
-    model: &Model,
-    goal: &Obligation,
-    mut trace: ScanTrace,
-    cycle: &Time,
-    limits: Limits,
-) -> Result<Judged, String> {
-    let v = discrete_violation(model, goal, &trace).ok_or("no violation scan by scan")?;
-    trace.truncate(v + 1);
-    if limits.minimised {
-        let simulated = simulate(program, model, goal, &trace);
-        return confirmed(program, model, goal, trace, v, simulated);
-    }
-    // The simulator runs the whole program: the trace is minimised on the cone's
-    // equations, and the simulator asked about the result. Only when it shows the
-    // violation on the candidate but not on the minimised trace is the minimisation
-    // redone with the simulator asked at each step (as it keeps both).
-    let sim_ok = |t: &ScanTrace| matches!(simulate(program, model, goal, t), Ok((Some(_), _)));
-    let original = trace.clone();
-    let discrete = |t: &ScanTrace| discrete_violation(model, goal, t).is_some();
-    minimise(&mut trace, &discrete, limits);
-    let mut v = discrete_violation(model, goal, &trace).ok_or("lost the violation")?;
-    trace.truncate(v + 1);
-    let mut simulated = simulate(program, model, goal, &trace);
-    if !matches!(simulated, Ok((Some(_), _))) && sim_ok(&original) {
-        trace = original;
-        let keep = |t: &ScanTrace| discrete(t) && sim_ok(t);
-        minimise(&mut trace, &keep, limits);
-        v = discrete_violation(model, goal, &trace).ok_or("lost the violation")?;
-        trace.truncate(v + 1);
-        simulated = simulate(program, model, goal, &trace);
-    }
-    let _ = cycle;
-    confirmed(program, model, goal, trace, v, simulated)
-}
-
-/// The two confirmations of a trace that violates the goal at scan `v` (0-based),
-/// given the scan simulator's run on it.
-fn confirmed(
-    program: &Program,
-    model: &Model,
-    goal: &Obligation,
-    trace: ScanTrace,
-    v: usize,
-    simulated: Result<(Option<usize>, Values), String>,
-) -> Result<Judged, String> {
-    let run = run_scans(model, goal, &trace)?;
-    let (assignment, lhs, rhs) = exact(model, goal, &trace, &run, v)?;
-    if !hypotheses_hold(program, model, &assignment, &trace) {
-        return Err("a compiled hypothesis fails on the exact signals".into());
-    }
-    let inputs = program
-        .compiled
-        .signals
-        .iter()
-        .filter(|(_, k)| k.is_input())
-        .map(|(n, _)| n.clone())
-        .collect();
-    let mut cex = Counterexample {
-        time: trace.instant(v),
-        scan: v + 1,
-        lhs,
-        rhs,
-        simulator_scan: None,
-        assignment,
-        inputs,
-        trace,
-    };
-    match simulated {
-        Ok((Some(s), _)) => {
-            cex.simulator_scan = Some(s + 1);
-            Ok(Judged::Both(Box::new(cex)))
-        }
-        Ok((None, seen)) => {
-            let why = responsible(program, &run, &seen, &cex.trace);
-            Ok(Judged::ExactOnly(Box::new(cex), why))
-        }
-        Err(e) => {
-            Ok(Judged::ExactOnly(Box::new(cex), format!("the scan simulator cannot check it: {e}")))
-        }
-    }
-}
-
-/// The first signal (scan, then program order) on which the equations and the PLC part,
-/// and the rung that computes it.
-fn responsible(
-    program: &Program,
-    run: &Run,
-    seen: &BTreeMap<String, Vec<bool>>,
-    trace: &ScanTrace,
-) -> String {
-    for k in 0..trace.scans {
-        for h in &program.compiled.hypotheses {
-            let Term::Name(n) = &h.lhs[root(&h.lhs)] else { continue };
-            if h.kind != HypothesisKind::Equation {
-                continue;
-            }
-            let (Some(a), Some(b)) = (run.signals.get(n.as_str()), seen.get(n.as_str())) else {
-                continue;
-            };
-            if a.get(k) != b.get(k) {
-                let mut names = BTreeSet::new();
-                names_of(&h.rhs, &mut names);
-                let loose: Vec<String> = names
-                    .iter()
-                    .filter(|m| {
-                        program.compiled.signals.get(*m).is_some_and(|s| s.is_unconstrained())
-                    })
-                    .cloned()
-                    .collect();
-                let reads = if loose.is_empty() {
-                    String::new()
-                } else {
-                    format!("; its equation reads the unconstrained {}", loose.join(", "))
-                };
-                return format!(
-                    "the scan simulator does not reproduce it: at scan {} `{n}` is {} by the equations but {} in the PLC — rung {} ({}) is responsible{reads}",
-                    k + 1,
-                    a.get(k).copied().unwrap_or(false) as u8,
-                    b.get(k).copied().unwrap_or(false) as u8,
-                    h.rung,
-                    h.name
-                );
-            }
-        }
-    }
-    let fresh: Vec<String> = program
-        .compiled
-        .signals
-        .iter()
-        .filter_map(|(n, k)| match k {
-            SignalKind::Fresh { rung, element } if trace.values.contains_key(n) => {
-                Some(format!("`{n}` ({element}, rung {rung})"))
-            }
-            _ => None,
-        })
-        .collect();
-    if fresh.is_empty() {
-        "the scan simulator does not reproduce it (timer quantisation: the PLC's timers count scans)".into()
-    } else {
-        format!(
-            "the scan simulator does not reproduce it: it depends on the unconstrained {}",
-            fresh.join(", ")
         )
     }
 }

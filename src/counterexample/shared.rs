@@ -58,6 +58,8 @@ pub struct Shared {
     /// How many grown runs were kept, and how many properties they refuted.
     grown_kept: AtomicUsize,
     grown_hits: AtomicUsize,
+    /// The exact checks passed on the runs judged so far.
+    pub(super) exact: super::confirm::ExactMemo,
 }
 
 /// Per signal, its value at each scan (bit `k` for scan `k + 1`).
@@ -306,7 +308,8 @@ pub fn refute_shared(
     let shared = program.shared?;
     let now = shared.checks.fetch_add(1, Ordering::Relaxed) + 1;
     let runs: Vec<Arc<Kept>> = shared.runs.lock().ok()?.iter().rev().cloned().collect();
-    let cycle = program.cycle()?;
+    // A zero cycle has no scans to share.
+    program.cycle()?;
     // The property's cone, and the names it leaves free: the inputs its run may set.
     let mut cone = None;
     for kept in runs {
@@ -328,7 +331,7 @@ pub fn refute_shared(
         }
         keep_needed(&mut trace, &drawn, &|t| discrete_violation(model, goal, t).is_some());
         let limits = Limits { minimised: true, ..limits };
-        if let Ok(Judged::Both(found)) = judge(program, model, goal, trace, &cycle, limits) {
+        if let Ok(Judged::Both(found)) = judge(program, model, goal, trace, limits) {
             kept.used.store(now, Ordering::Relaxed);
             shared.hits.fetch_add(1, Ordering::Relaxed);
             if !kept.drawn.is_empty() {

@@ -415,6 +415,9 @@ impl ScanSimulator for Simulator {
     fn reads(&self, input: &str) -> bool {
         Simulator::reads(self, input)
     }
+    fn read_names(&self) -> Option<Vec<&str>> {
+        Some(Simulator::read_names(self))
+    }
     fn edge_memory(&self, index: usize) -> Option<bool> {
         Simulator::edge_memory(self, index)
     }

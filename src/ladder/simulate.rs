@@ -292,6 +292,11 @@ impl Simulator {
         self.bits.contains_key(input) || self.unknown.contains(input)
     }
 
+    /// Every name [`reads`](Self::reads) holds of.
+    pub fn read_names(&self) -> Vec<&str> {
+        self.bits.keys().chain(&self.unknown).map(String::as_str).collect()
+    }
+
     /// Before the first scan: every bit, hidden edge memory and integer of `state`
     /// instead of its power-up value. `false` (nothing changed) after the first scan or
     /// when an edge memory's index is not an element's.

@@ -392,6 +392,11 @@ pub trait ScanSimulator {
         let _ = input;
         true
     }
+    /// Every name [`reads`](Self::reads) holds of, when that is not every input (a
+    /// simulator of part of a program); `None`, the default, for every input.
+    fn read_names(&self) -> Option<Vec<&str>> {
+        None
+    }
     /// The hidden memory of the one-shot with this index (the front end's order, the
     /// scan model's [`Memory::index`](super::Memory::index)) after the last scan; `None`
     /// when the simulator cannot tell which of its memories that is.
