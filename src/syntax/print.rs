@@ -243,6 +243,11 @@ fn delay_doc(expr: &Expr, notation: Notation) -> Doc {
 
 /// Writes a signal term.
 pub fn term_to_string(expr: &Expr, notation: Notation) -> String {
+    // A lone name, the most printed term (every signal of a counterexample), needs no
+    // layout.
+    if let [Term::Name(n)] = expr.as_ref() {
+        return name_to_string(n.as_str());
+    }
     render(term_doc(expr, notation))
 }
 
