@@ -92,7 +92,7 @@ impl CompiledProgram {
         let (b, tb) = side(b)?;
         let ty = match (ta, tb) {
             (Some(x), Some(y)) if x == y => x,
-            (Some(_), Some(_)) => IntType { bits: 63, signed: true },
+            (Some(_), Some(_)) => IntType { bits: 63, signed: true, real: false },
             (Some(t), None) | (None, Some(t)) => t,
             (None, None) => {
                 return Err((

@@ -15,7 +15,7 @@ pub fn int_type(name: &str) -> Option<IntType> {
         "UDINT" | "DWORD" => (32, false),
         _ => return None,
     };
-    Some(IntType { bits, signed })
+    Some(IntType { bits, signed, real: false })
 }
 
 /// The IEC name of an integer type.

@@ -20,6 +20,7 @@ pub mod library;
 pub mod logic;
 pub mod names;
 pub mod product;
+pub mod real;
 pub mod rename;
 pub mod simulate;
 
@@ -101,21 +102,29 @@ impl IntVar {
     }
 }
 
-/// A two's-complement integer type: its width and signedness.
+/// A two's-complement integer type: its width and signedness; or IEC `REAL` (IEEE 754
+/// binary32), whose values are stored as their 32-bit patterns ([`IntType::REAL`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct IntType {
     /// Width in bits (1 to 63).
     pub bits: u32,
     /// Signed (two's complement) or unsigned.
     pub signed: bool,
+    /// Whether the value is a `REAL`: the 32-bit pattern of an IEEE 754 binary32 number
+    /// (`bits` 32, `signed` false), compared and converted as floating-point numbers,
+    /// never computed with integer arithmetic.
+    pub real: bool,
 }
 
 impl IntType {
     /// LDmicro's 16-bit signed integers (IEC `INT`).
-    pub const I16: IntType = IntType { bits: 16, signed: true };
+    pub const I16: IntType = IntType { bits: 16, signed: true, real: false };
+
+    /// IEC `REAL`: IEEE 754 binary32, stored as its bit pattern (`2.5` is `0x4020_0000`).
+    pub const REAL: IntType = IntType { bits: 32, signed: false, real: true };
 
     /// One unsigned bit (0 or 1): a peripheral's flag, a hidden one-shot.
-    pub const BIT: IntType = IntType { bits: 1, signed: false };
+    pub const BIT: IntType = IntType { bits: 1, signed: false, real: false };
 
     /// The smallest value.
     pub fn min(self) -> i64 {
@@ -143,8 +152,22 @@ impl IntType {
         r as i64
     }
 
+    /// Whether `a op b` for two values of the type (compared as floating-point numbers
+    /// for a `REAL`).
+    pub fn holds(self, op: CmpOp, a: i64, b: i64) -> bool {
+        if self.real { real::holds(op, a, b) } else { op.holds(a, b) }
+    }
+
+    /// A value of the type as people read it (`2.5` for a `REAL`).
+    pub fn show(self, v: i64) -> String {
+        if self.real { real::show(v) } else { v.to_string() }
+    }
+
     /// `INT`-style name for messages: `a 16-bit signed integer`.
     pub fn describe(self) -> String {
+        if self.real {
+            return "a REAL".into();
+        }
         format!("a {}-bit {} integer", self.bits, if self.signed { "signed" } else { "unsigned" })
     }
 }
@@ -711,16 +734,16 @@ mod tests {
 
     #[test]
     fn the_widest_types_wrap_without_overflow() {
-        let wide = IntType { bits: 63, signed: true };
+        let wide = IntType { bits: 63, signed: true, real: false };
         assert_eq!(wide.max(), (1i64 << 62) - 1);
         assert_eq!(wide.wrap(65535), 65535);
         assert_eq!(wide.wrap(-1), -1);
         assert_eq!(wide.wrap(1i64 << 62), -(1i64 << 62));
-        let unsigned = IntType { bits: 63, signed: false };
+        let unsigned = IntType { bits: 63, signed: false, real: false };
         assert_eq!(unsigned.max(), i64::MAX);
         assert_eq!(unsigned.wrap(-1), i64::MAX);
         assert_eq!(IntType::I16.wrap(65535), -1);
         assert_eq!(IntType::I16.wrap(32768), -32768);
-        assert_eq!(IntType { bits: 1, signed: false }.wrap(3), 1);
+        assert_eq!(IntType { bits: 1, signed: false, real: false }.wrap(3), 1);
     }
 }

@@ -333,7 +333,7 @@ impl Simulator {
             BoolExpr::Fresh(_) => V { value: false, known: false },
             BoolExpr::Compare(c) => {
                 let (a, b) = (self.int_value(&c.a, c.ty), self.int_value(&c.b, c.ty));
-                V { value: c.op.holds(a.value, b.value), known: a.known && b.known }
+                V { value: c.ty.holds(c.op, a.value, b.value), known: a.known && b.known }
             }
         }
     }

@@ -70,7 +70,7 @@ impl Lowering<'_> {
             BoolExpr::Fresh(f) => Err(format!("a value that is not computed ({})", f.why)),
             BoolExpr::Compare(c) => {
                 let (a, b) = (self.known_int(&c.a, c.ty)?, self.known_int(&c.b, c.ty)?);
-                Ok(c.op.holds(a, b))
+                Ok(c.ty.holds(c.op, a, b))
             }
         }
     }

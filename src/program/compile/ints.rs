@@ -37,13 +37,36 @@ impl Compiler<'_> {
         None
     }
 
+    /// A `REAL` where the scan model has only integer arithmetic, or an integer where a
+    /// `REAL` is expected: an error at `span` (a front end converts with its own
+    /// operations), and 0.
+    fn not_real(&mut self, ty: IntType, span: Span) -> Bits {
+        if !self.errors.iter().any(|e| e.span == span) {
+            self.errors.push(CompileError {
+                span,
+                keyword: "REAL".into(),
+                reason: "a REAL is computed only by comparisons, choices and copies, \
+                         never by integer arithmetic or casts"
+                    .into(),
+            });
+        }
+        bitvec::constant(0, ty.bits)
+    }
+
     /// The value of `e` in type `ty` at this point of the scan.
     pub(super) fn int(&mut self, e: &IntExpr, ty: IntType, span: Span) -> Bits {
         let w = ty.bits;
+        let real_op = !matches!(e, IntExpr::Const(_) | IntExpr::Var(_) | IntExpr::Ite(..));
+        if ty.real && real_op {
+            return self.not_real(ty, span);
+        }
         match e {
             IntExpr::Const(v) => bitvec::constant(ty.wrap(*v), w),
             IntExpr::Var(x) => {
                 let Some(var) = self.int_var(x, span) else { return bitvec::constant(0, w) };
+                if var.ty.real != ty.real {
+                    return self.not_real(ty, span);
+                }
                 let stored = var.value(x, &mut |b| self.read(b));
                 bitvec::resize(stored, var.ty, ty)
             }
@@ -76,6 +99,7 @@ impl Compiler<'_> {
                     _ => bitvec::rem_by(&a, &b, ty, &mut name),
                 }
             }
+            IntExpr::Cast(_, inner) if inner.real => self.not_real(ty, span),
             IntExpr::Cast(a, inner) => {
                 let a = self.int(a, *inner, span);
                 bitvec::resize(a, *inner, ty)
@@ -121,7 +145,11 @@ impl Compiler<'_> {
         let a = self.int(&c.a, c.ty, span);
         let b = self.int(&c.b, c.ty, span);
         let mut name = |t: L| self.intermediate(t);
-        let t = bitvec::compare(c.op, c.ty, &a, &b, &mut name);
+        let t = if c.ty.real {
+            bitvec::compare_real(c.op, &a, &b, &mut name)
+        } else {
+            bitvec::compare(c.op, c.ty, &a, &b, &mut name)
+        };
         simp(&t)
     }
 

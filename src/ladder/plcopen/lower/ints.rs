@@ -66,7 +66,7 @@ type Arg<'a> = (&'a str, IntExpr, Option<IntType>);
 #[allow(clippy::type_complexity)]
 fn mux_args(vals: &[Arg]) -> Result<(IntExpr, IntType, Vec<(IntExpr, Option<IntType>)>), String> {
     let (_, k, kt) = vals.iter().find(|(n, _, _)| *n == "K").ok_or("it has no input K")?;
-    let kt = kt.unwrap_or(IntType { bits: 32, signed: true });
+    let kt = kt.unwrap_or(IntType { bits: 32, signed: true, real: false });
     let mut data = Vec::new();
     for i in 0.. {
         match vals.iter().find(|(n, _, _)| *n == format!("IN{i}")) {
@@ -281,7 +281,7 @@ impl Lower<'_> {
                 return fresh_because("MUX", format!("the MUX's K is not computed: {why}"), span);
             }
         };
-        let kt = kt.unwrap_or(IntType { bits: 32, signed: true });
+        let kt = kt.unwrap_or(IntType { bits: 32, signed: true, real: false });
         let key = coerce(kv, kt);
         let mut terms = Vec::new();
         for i in 0..vals.len() as i64 {

@@ -1,0 +1,117 @@
+//! `REAL` (IEEE 754 binary32) comparisons as Boolean terms of the numbers' 32 bits (least significant first: 23 bits of fraction, 8 of exponent, the sign), as C compares floats: a NaN is unordered (every comparison false but `<>`), `-0 = +0`.
+
+use super::super::logic::{L, simp};
+use super::super::{CmpOp, IntType};
+use super::{Namer, compare};
+
+/// Whether a number is a NaN: its exponent all ones and its fraction not 0.
+fn is_nan(v: &[L]) -> L {
+    let exponent_ones = L::And(v[23..31].to_vec());
+    let fraction = L::Or(v[..23].to_vec());
+    simp(&exponent_ones.and(fraction))
+}
+
+/// `a op b` for two `REAL` values (32 bits each).
+///
+/// Apart from NaNs, the order of binary32 numbers is the order of their magnitudes
+/// (the low 31 bits, as an unsigned integer) for two positive numbers, reversed for two
+/// negative ones, and a negative number is below a positive one unless both are zeros.
+pub fn compare_real(op: CmpOp, a: &[L], b: &[L], name: Namer) -> L {
+    let magnitude = IntType { bits: 31, signed: false, real: false };
+    let (ma, mb) = (&a[..31], &b[..31]);
+    let (sa, sb) = (a[31].clone(), b[31].clone());
+    let lt = compare(CmpOp::Lt, magnitude, ma, mb, name);
+    let lt = name(lt);
+    let gt = compare(CmpOp::Lt, magnitude, mb, ma, name);
+    let gt = name(gt);
+    let zeros = simp(&L::And(ma.iter().chain(mb).map(|x| x.clone().negate()).collect()));
+    let ordered = name(simp(&is_nan(a).or(is_nan(b)).negate()));
+    let (pa, pb) = (sa.clone().negate(), sb.clone().negate());
+    let same_sign = pa.clone().and(pb.clone()).or(sa.clone().and(sb.clone()));
+    let same_magnitude = lt.clone().negate().and(gt.clone().negate());
+    let eq = ordered.clone().and(zeros.clone().or(same_sign.and(same_magnitude)));
+    let below = |sx: &L, px: &L, sy: &L, py: &L, lt: &L, gt: &L| {
+        let signs = sx.clone().and(py.clone());
+        let positive = px.clone().and(py.clone()).and(lt.clone());
+        let negative = sx.clone().and(sy.clone()).and(gt.clone());
+        ordered.clone().and(zeros.clone().negate()).and(L::Or(vec![signs, positive, negative]))
+    };
+    let less = || below(&sa, &pa, &sb, &pb, &lt, &gt);
+    let greater = || below(&sb, &pb, &sa, &pa, &gt, &lt);
+    simp(&match op {
+        CmpOp::Eq => eq,
+        CmpOp::Ne => eq.negate(),
+        CmpOp::Lt => less(),
+        CmpOp::Gt => greater(),
+        CmpOp::Le => less().or(eq),
+        CmpOp::Ge => greater().or(eq),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::constant;
+    use super::*;
+    use crate::program::real;
+    use proptest::prelude::*;
+
+    fn eval(t: &L) -> bool {
+        match t {
+            L::Zero => false,
+            L::One => true,
+            L::Not(x) => !eval(x),
+            L::And(xs) => xs.iter().all(eval),
+            L::Or(xs) => xs.iter().any(eval),
+            _ => panic!("not a constant term: {t:?}"),
+        }
+    }
+
+    const OPS: [CmpOp; 6] = [CmpOp::Eq, CmpOp::Ne, CmpOp::Lt, CmpOp::Le, CmpOp::Gt, CmpOp::Ge];
+
+    /// The circuit on the constant bits of `x` and `y`, against `f32`'s comparisons.
+    fn agrees(x: u32, y: u32) -> Result<(), TestCaseError> {
+        let (a, b) = (constant(i64::from(x), 32), constant(i64::from(y), 32));
+        for op in OPS {
+            let got = eval(&compare_real(op, &a, &b, &mut |t| t));
+            let want = real::holds(op, i64::from(x), i64::from(y));
+            prop_assert_eq!(got, want, "{:?} {:?} {:?}", f32::from_bits(x), op, f32::from_bits(y));
+        }
+        Ok(())
+    }
+
+    /// The hard values: zeros, the smallest and largest subnormals and normals,
+    /// infinities, NaNs (quiet, signalling, negative), `2^24 + 1` and its neighbours.
+    fn hard() -> Vec<u32> {
+        let mut v = vec![0, 1, 0x007f_ffff, 0x0080_0000, 0x7f7f_ffff, 0x7f80_0000, 0x7fc0_0000];
+        v.extend([0x7f80_0001, 0x7fff_ffff, 16_777_217f32.to_bits(), 16_777_216f32.to_bits()]);
+        v.extend([1.0f32.to_bits(), 2.5f32.to_bits(), 0.1f32.to_bits()]);
+        let negatives: Vec<u32> = v.iter().map(|x| x | 0x8000_0000).collect();
+        v.extend(negatives);
+        v
+    }
+
+    #[test]
+    fn hard_values_compare_as_f32() {
+        for &x in &hard() {
+            for &y in &hard() {
+                agrees(x, y).unwrap();
+            }
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(2000))]
+        #[test]
+        fn random_values_compare_as_f32(x in any::<u32>(), y in any::<u32>(), near in 0u32..4) {
+            agrees(x, y)?;
+            // Neighbours: equal magnitudes, opposite signs, adjacent patterns.
+            agrees(x, x ^ 0x8000_0000)?;
+            agrees(x, x.wrapping_add(near))?;
+        }
+
+        #[test]
+        fn numbers_compare_as_f32(x in any::<f32>(), y in any::<i16>()) {
+            agrees(x.to_bits(), f32::from(y).to_bits())?;
+        }
+    }
+}
