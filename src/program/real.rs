@@ -59,9 +59,9 @@ pub fn literal(text: &str) -> Option<i64> {
     Some(of_f32((sign * double) as f32))
 }
 
-/// A stored `REAL` value as people read it (`2.5`, `-0`, `inf`, `NaN`).
+/// A stored `REAL` value as people read it (`2.5`, `100.0`, `-0.0`, `inf`, `NaN`).
 pub fn show(v: i64) -> String {
-    format!("{}", to_f32(v))
+    format!("{:?}", to_f32(v))
 }
 
 #[cfg(test)]
@@ -90,5 +90,6 @@ mod tests {
         assert!(!holds(CmpOp::Le, nan, zero));
         assert!(holds(CmpOp::Lt, of_f32(-1.0), of_f32(0.5)));
         assert_eq!(show(of_f32(2.5)), "2.5");
+        assert_eq!(show(of_f32(100.0)), "100.0");
     }
 }

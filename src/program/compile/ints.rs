@@ -45,8 +45,8 @@ impl Compiler<'_> {
             self.errors.push(CompileError {
                 span,
                 keyword: "REAL".into(),
-                reason: "a REAL is computed only by comparisons, choices and copies, \
-                         never by integer arithmetic or casts"
+                reason: "a REAL is computed only by comparisons, choices, copies and \
+                         operations on its bits, never by integer arithmetic or casts"
                     .into(),
             });
         }
@@ -56,7 +56,10 @@ impl Compiler<'_> {
     /// The value of `e` in type `ty` at this point of the scan.
     pub(super) fn int(&mut self, e: &IntExpr, ty: IntType, span: Span) -> Bits {
         let w = ty.bits;
-        let real_op = !matches!(e, IntExpr::Const(_) | IntExpr::Var(_) | IntExpr::Ite(..));
+        let real_op = !matches!(
+            e,
+            IntExpr::Const(_) | IntExpr::Var(_) | IntExpr::Ite(..) | IntExpr::Bitwise(..)
+        );
         if ty.real && real_op {
             return self.not_real(ty, span);
         }

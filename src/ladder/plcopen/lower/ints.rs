@@ -16,18 +16,29 @@ use crate::program::{
 /// why it is not computed.
 pub(super) type IntVal = Result<(IntExpr, Option<IntType>), String>;
 
-/// `e` as a value of `t` (a literal wrapped into it, as the C cast `(INT)70000` does).
+/// `e` as a value of `t` (a literal wrapped into it, as the C cast `(INT)70000` does; a
+/// `REAL` literal is already one).
 pub(super) fn coerce(e: IntExpr, t: IntType) -> IntExpr {
     match e {
-        IntExpr::Const(v) => IntExpr::Const(t.wrap(v)),
+        IntExpr::Const(v) if !t.real => IntExpr::Const(t.wrap(v)),
         e => e,
     }
 }
 
-/// The one type of a block's integer arguments (literals take it).
+/// Why an integer literal where a `REAL` is expected is not computed.
+const INT_LITERAL_AS_REAL: &str =
+    "an integer literal where a REAL is expected, which matiec's type check does not accept";
+
+/// The one type of a block's integer arguments (integer literals take it; none where it
+/// is `REAL`).
 fn unify<'a>(args: impl IntoIterator<Item = &'a Option<IntType>>) -> Result<IntType, String> {
     let mut t: Option<IntType> = None;
-    for ty in args.into_iter().flatten() {
+    let mut untyped = false;
+    for ty in args {
+        let Some(ty) = ty else {
+            untyped = true;
+            continue;
+        };
         match t {
             Some(a) if a != *ty => {
                 return Err(format!(
@@ -38,6 +49,9 @@ fn unify<'a>(args: impl IntoIterator<Item = &'a Option<IntType>>) -> Result<IntT
             }
             _ => t = Some(*ty),
         }
+    }
+    if untyped && t.is_some_and(|t| t.real) {
+        return Err(INT_LITERAL_AS_REAL.into());
     }
     t.ok_or_else(|| {
         "its inputs are literals only, whose type the generated code leaves open".into()
@@ -67,6 +81,9 @@ type Arg<'a> = (&'a str, IntExpr, Option<IntType>);
 fn mux_args(vals: &[Arg]) -> Result<(IntExpr, IntType, Vec<(IntExpr, Option<IntType>)>), String> {
     let (_, k, kt) = vals.iter().find(|(n, _, _)| *n == "K").ok_or("it has no input K")?;
     let kt = kt.unwrap_or(IntType { bits: 32, signed: true, real: false });
+    if kt.real {
+        return Err("its K is a REAL".into());
+    }
     let mut data = Vec::new();
     for i in 0.. {
         match vals.iter().find(|(n, _, _)| *n == format!("IN{i}")) {
@@ -147,7 +164,7 @@ impl Lower<'_> {
             if self.opaque.contains_key(&v.name) {
                 continue;
             }
-            let why = match library::int_type(&ty) {
+            let why = match library::number_type(&ty) {
                 None => Some(format!("{ty} is 64 bits wide, which ii-prove does not compute")),
                 // Written from outside at the start of every scan (an input, or latched).
                 Some(_)
@@ -159,12 +176,13 @@ impl Lower<'_> {
                 }
                 Some(_) => None,
             };
-            let Some(t) = library::int_type(&ty).filter(|_| why.is_none()) else {
+            let Some(t) = library::number_type(&ty).filter(|_| why.is_none()) else {
                 self.make_opaque(&v.name, why.unwrap_or_default());
                 continue;
             };
             let init = match v.init.as_deref() {
                 None => Some(0),
+                Some(text) if t.real => crate::program::real::literal(text),
                 Some(text) => int_literal(text)
                     .filter(|(_, lt)| lt.as_deref().is_none_or(|lt| lt == ty))
                     .map(|(k, _)| t.wrap(k.clamp(i64::MIN.into(), i64::MAX.into()) as i64)),
@@ -248,6 +266,9 @@ impl Lower<'_> {
 
     /// The integer an operand text gives: a literal or an integer variable.
     fn int_operand(&self, text: &str) -> IntVal {
+        if let Some(bits) = crate::program::real::literal(text) {
+            return Ok((IntExpr::Const(bits), Some(IntType::REAL)));
+        }
         if let Some((v, ty)) = int_literal(text) {
             let v = v.clamp(i64::MIN.into(), i64::MAX.into()) as i64;
             return match ty.map(|t| library::int_type(&t)) {
@@ -282,6 +303,9 @@ impl Lower<'_> {
             }
         };
         let kt = kt.unwrap_or(IntType { bits: 32, signed: true, real: false });
+        if kt.real {
+            return fresh_because("MUX", "the MUX's K is a REAL".into(), span);
+        }
         let key = coerce(kv, kt);
         let mut terms = Vec::new();
         for i in 0..vals.len() as i64 {
@@ -405,6 +429,7 @@ impl Lower<'_> {
                     library::type_name(var.ty),
                     library::type_name(t)
                 )),
+                None if var.ty.real => Err(INT_LITERAL_AS_REAL.into()),
                 _ => Ok(coerce(e, var.ty)),
             }
         });
@@ -540,6 +565,9 @@ impl Lower<'_> {
             return Ok(Value::Int(e, t));
         }
         let t = unify(vals.iter().map(|(_, _, t)| t))?;
+        if t.real && matches!(b, IntBlock::Arith(_)) {
+            return Err("ii-prove computes no arithmetic of REALs".into());
+        }
         let args: Vec<IntExpr> = vals.iter().map(|(_, e, _)| coerce(e.clone(), t)).collect();
         let named = |pin: &str| -> Result<IntExpr, String> {
             vals.iter()
