@@ -214,6 +214,10 @@ pub enum IntExpr {
     /// `a` shifted by `k` bits within the type: left for `k > 0` (zeros in), right for
     /// `k < 0` (copies of the sign bit in a signed type, zeros in an unsigned one).
     Shift(Box<IntExpr>, i32),
+    /// `a`, an integer computed in the type given, converted to a `REAL` (the context's
+    /// type) as C converts an integer to `float`: the nearest number, ties to even
+    /// (matiec's `*_TO_REAL`).
+    ToReal(Box<IntExpr>, IntType),
 }
 
 /// A bitwise operation of two integers.
@@ -286,6 +290,7 @@ impl IntExpr {
             IntExpr::Div(a, _)
             | IntExpr::Mod(a, _)
             | IntExpr::Cast(a, _)
+            | IntExpr::ToReal(a, _)
             | IntExpr::Shift(a, _) => a.visit(int, boolean),
             IntExpr::Ite(c, a, b) => {
                 walk(c, boolean);
@@ -614,9 +619,11 @@ pub fn int_visit_mut(
             int_visit_mut(a, var, boolean);
             int_visit_mut(b, var, boolean);
         }
-        IntExpr::Div(a, _) | IntExpr::Mod(a, _) | IntExpr::Cast(a, _) | IntExpr::Shift(a, _) => {
-            int_visit_mut(a, var, boolean)
-        }
+        IntExpr::Div(a, _)
+        | IntExpr::Mod(a, _)
+        | IntExpr::Cast(a, _)
+        | IntExpr::ToReal(a, _)
+        | IntExpr::Shift(a, _) => int_visit_mut(a, var, boolean),
         IntExpr::Ite(c, a, b) => {
             boolean(c);
             int_visit_mut(a, var, boolean);

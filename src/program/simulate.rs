@@ -257,6 +257,11 @@ impl Simulator {
                 let a = self.int_value(a, *inner);
                 N { value: ty.wrap(a.value), known: a.known }
             }
+            // Rust's `as f32` rounds to the nearest float, ties to even, as C does.
+            IntExpr::ToReal(a, inner) => {
+                let a = self.int_value(a, *inner);
+                N { value: super::real::of_f32(a.value as f32), known: a.known }
+            }
             IntExpr::Bitwise(op, a, b) => {
                 let (a, b) = (self.int_value(a, ty), self.int_value(b, ty));
                 N { value: ty.wrap(op.apply(a.value, b.value)), known: a.known && b.known }

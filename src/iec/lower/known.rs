@@ -94,6 +94,9 @@ impl Lowering<'_> {
             IntExpr::DivBy(a, b) => two(a, b, |x, y| if y == 0 { 0 } else { x.wrapping_div(y) }),
             IntExpr::ModBy(a, b) => two(a, b, |x, y| if y == 0 { 0 } else { x.wrapping_rem(y) }),
             IntExpr::Cast(a, inner) => Ok(ty.wrap(self.known_int(a, *inner)?)),
+            IntExpr::ToReal(a, inner) => {
+                Ok(crate::program::real::of_f32(self.known_int(a, *inner)? as f32))
+            }
             IntExpr::Bitwise(op, a, b) => {
                 Ok(ty.wrap(op.apply(self.known_int(a, ty)?, self.known_int(b, ty)?)))
             }

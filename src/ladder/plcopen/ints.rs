@@ -111,7 +111,8 @@ impl IntBlock {
 pub enum ConvType {
     /// `BOOL`: 0 or 1 as an integer, `<> 0` as a BOOL.
     Bool,
-    /// An integer type matiec declares in at most 32 bits.
+    /// An integer type matiec declares in at most 32 bits, or `REAL`
+    /// ([`IntType::REAL`](crate::program::IntType::REAL)).
     Int(crate::program::IntType),
 }
 
@@ -122,16 +123,17 @@ impl ConvType {
         if t == "BOOL" {
             return Ok(ConvType::Bool);
         }
-        if let Some(ty) = crate::program::library::int_type(t) {
+        if let Some(ty) = crate::program::library::number_type(t) {
             return Ok(ConvType::Int(ty));
         }
         Err(match t {
             "LINT" | "ULINT" | "LWORD" => {
                 format!("{t} is 64 bits wide, which ii-prove does not compute")
             }
-            "REAL" | "LREAL" => {
-                format!("{t} is a floating-point type, not an integer: ii-prove computes no {t}")
-            }
+            "LREAL" => format!(
+                "{t} is a 64-bit floating-point type, wider than the 63 bits of ii-prove's \
+                 numbers: ii-prove computes no {t}"
+            ),
             "STRING" | "WSTRING" => {
                 format!("{t} is a character string, not an integer: ii-prove computes no {t}")
             }

@@ -2,7 +2,7 @@
 
 use super::super::logic::{L, simp};
 use super::super::{CmpOp, IntType};
-use super::{Namer, compare};
+use super::{Bits, Namer, add, compare, constant, mux, resize, sub};
 
 /// Whether a number is a NaN: its exponent all ones and its fraction not 0.
 fn is_nan(v: &[L]) -> L {
@@ -46,6 +46,47 @@ pub fn compare_real(op: CmpOp, a: &[L], b: &[L], name: Namer) -> L {
         CmpOp::Le => less().or(eq),
         CmpOp::Ge => greater().or(eq),
     })
+}
+
+/// `a`, an integer of type `ty` (at most 32 bits), as the nearest `REAL` (ties to
+/// even), as C converts an integer to `float`.
+///
+/// The magnitude (in 32 bits: `-(-2^31)` is `2^31` there) is normalised so that its
+/// leading 1 is bit 31, counting the shift; the 23 bits below the leading 1 are the
+/// fraction, the next bit decides the rounding with the bits below it (sticky) and the
+/// fraction's last bit (ties to even); the rounding is added to the exponent and
+/// fraction together, so that a fraction carried over raises the exponent.
+pub fn int_to_real(a: &[L], ty: IntType, name: Namer) -> Bits {
+    let word = IntType { bits: 32, signed: ty.signed, real: false };
+    let x = resize(a.to_vec(), ty, word);
+    let sign = if ty.signed { name(x[31].clone()) } else { L::Zero };
+    let negated = sub(&constant(0, 32), &x, name);
+    let mut m: Bits = x.iter().zip(&negated).map(|(p, n)| name(mux(&sign, n, p))).collect();
+    let zero = name(simp(&L::Or(m.clone()).negate()));
+    // Leading zeros, 16 then 8, 4, 2, 1 at a time: bit k of the count.
+    let mut count = vec![L::Zero; 8];
+    for k in (0..5).rev() {
+        let step = 1usize << k;
+        let top_zero = name(simp(&L::Or(m[32 - step..].to_vec()).negate()));
+        let shifted: Bits =
+            std::iter::repeat_n(L::Zero, step).chain(m[..32 - step].iter().cloned()).collect();
+        m = m.iter().zip(&shifted).map(|(p, s)| name(mux(&top_zero, s, p))).collect();
+        count[k] = top_zero;
+    }
+    // The leading 1 at bit 31 - count: exponent 127 + 31 - count.
+    let exponent = sub(&constant(158, 8), &count, name);
+    let fraction = &m[8..31];
+    let guard = &m[7];
+    let sticky = L::Or(m[..7].to_vec());
+    let round = name(simp(&guard.clone().and(sticky.or(fraction[0].clone()))));
+    let unrounded: Bits = fraction.iter().chain(&exponent).cloned().collect();
+    let rounded = add(&unrounded, &constant(0, 31), round, name);
+    let not_zero = zero.negate();
+    rounded
+        .iter()
+        .chain(std::iter::once(&sign))
+        .map(|b| simp(&b.clone().and(not_zero.clone())))
+        .collect()
 }
 
 #[cfg(test)]
@@ -99,8 +140,50 @@ mod tests {
         }
     }
 
+    /// The conversion on the constant bits of `v` (a value of `ty`), against Rust's `as
+    /// f32` (round to nearest, ties to even).
+    fn converts(v: i64, ty: IntType) -> Result<(), TestCaseError> {
+        let bits = constant(v, ty.bits);
+        let got = int_to_real(&bits, ty, &mut |t| t);
+        let got = got.iter().enumerate().fold(0u32, |acc, (k, b)| acc | (u32::from(eval(b)) << k));
+        prop_assert_eq!(f32::from_bits(got).to_bits(), (v as f32).to_bits(), "{} in {:?}", v, ty);
+        Ok(())
+    }
+
+    const TYPES: [(u32, bool); 6] = [(8, true), (8, false), (16, true), (16, false), (32, true), (32, false)];
+
+    #[test]
+    fn hard_integers_convert_as_c() {
+        let near = |k: i64| [k - 1, k, k + 1];
+        let mut vs = vec![0, 1, -1, 127, -128, 255, 32767, -32768, 65535];
+        for p in [24, 25, 26, 30, 31, 32] {
+            vs.extend(near(1 << p));
+            vs.extend(near(-(1 << p)));
+            vs.extend(near((1 << p) + (1 << (p - 24))));
+            vs.extend(near((1 << p) + 3 * (1 << (p - 24))));
+        }
+        vs.extend([i64::from(i32::MAX), i64::from(i32::MIN), i64::from(u32::MAX)]);
+        for (bits, signed) in TYPES {
+            let ty = IntType { bits, signed, real: false };
+            for &v in &vs {
+                if ty.contains(v) {
+                    converts(v, ty).unwrap();
+                }
+            }
+        }
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(2000))]
+        #[test]
+        fn random_integers_convert_as_c(v in any::<i64>(), t in 0usize..6, low in 0u32..32) {
+            let (bits, signed) = TYPES[t];
+            let ty = IntType { bits, signed, real: false };
+            converts(ty.wrap(v), ty)?;
+            // Values of few significant bits, where ties are frequent.
+            converts(ty.wrap(v >> low << low), ty)?;
+        }
+
         #[test]
         fn random_values_compare_as_f32(x in any::<u32>(), y in any::<u32>(), near in 0u32..4) {
             agrees(x, y)?;

@@ -58,7 +58,11 @@ impl Compiler<'_> {
         let w = ty.bits;
         let real_op = !matches!(
             e,
-            IntExpr::Const(_) | IntExpr::Var(_) | IntExpr::Ite(..) | IntExpr::Bitwise(..)
+            IntExpr::Const(_)
+                | IntExpr::Var(_)
+                | IntExpr::Ite(..)
+                | IntExpr::Bitwise(..)
+                | IntExpr::ToReal(..)
         );
         if ty.real && real_op {
             return self.not_real(ty, span);
@@ -103,6 +107,12 @@ impl Compiler<'_> {
                 }
             }
             IntExpr::Cast(_, inner) if inner.real => self.not_real(ty, span),
+            IntExpr::ToReal(_, inner) if inner.real || !ty.real => self.not_real(ty, span),
+            IntExpr::ToReal(a, inner) => {
+                let a = self.int(a, *inner, span);
+                let mut name = |t: L| self.intermediate(t);
+                bitvec::int_to_real(&a, *inner, &mut name)
+            }
             IntExpr::Cast(a, inner) => {
                 let a = self.int(a, *inner, span);
                 bitvec::resize(a, *inner, ty)
@@ -228,7 +238,7 @@ pub(super) fn constants(program: &Program) -> Vec<i64> {
                 out.insert(*k);
                 walk(a, out);
             }
-            IntExpr::Cast(a, _) | IntExpr::Shift(a, _) => walk(a, out),
+            IntExpr::Cast(a, _) | IntExpr::Shift(a, _) | IntExpr::ToReal(a, _) => walk(a, out),
             IntExpr::Add(a, b)
             | IntExpr::Bitwise(_, a, b)
             | IntExpr::Sub(a, b)

@@ -25,6 +25,11 @@ pub(super) fn coerce(e: IntExpr, t: IntType) -> IntExpr {
     }
 }
 
+/// Why a conversion of a `REAL` to an integer is not computed.
+const REAL_TO_INT: &str = "matiec's REAL_TO_* rounds through a 64-bit LINT (`__real_to_sint`, \
+     `__real_to_uint`), and C leaves the conversion of a NaN, an infinity or a number out of \
+     the LINT range undefined: ii-prove does not compute it";
+
 /// Why an integer literal where a `REAL` is expected is not computed.
 const INT_LITERAL_AS_REAL: &str =
     "an integer literal where a REAL is expected, which matiec's type check does not accept";
@@ -134,7 +139,8 @@ fn convert(from: &str, to: &str, input: Option<BoolExpr>, vals: &[Arg]) -> Resul
             Ok(match t {
                 ConvType::Bool => Value::Bool(b),
                 ConvType::Int(t) => {
-                    Value::Int(IntExpr::ite(b, IntExpr::Const(1), IntExpr::Const(0)), t)
+                    let one = if t.real { crate::program::real::of_f32(1.0) } else { 1 };
+                    Value::Int(IntExpr::ite(b, IntExpr::Const(one), IntExpr::Const(0)), t)
                 }
             })
         }
@@ -143,9 +149,16 @@ fn convert(from: &str, to: &str, input: Option<BoolExpr>, vals: &[Arg]) -> Resul
             if ty.is_some_and(|ty| ty != f) {
                 return Err(format!("its input is not a {from}"));
             }
+            if ty.is_none() && f.real {
+                return Err(INT_LITERAL_AS_REAL.into());
+            }
             let x = coerce(x.clone(), f);
             Ok(match t {
                 ConvType::Bool => Value::Bool(library::compare(CmpOp::Ne, f, x, IntExpr::Const(0))),
+                ConvType::Int(t) if f.real && t.real => Value::Int(x, t),
+                // `(REAL)` of an integer: the nearest float, ties to even.
+                ConvType::Int(t) if t.real => Value::Int(IntExpr::ToReal(Box::new(x), f), t),
+                ConvType::Int(_) if f.real => return Err(REAL_TO_INT.into()),
                 // A value of `from`, then converted to `to` (sign- or zero-extended, or
                 // wrapped).
                 ConvType::Int(t) => Value::Int(IntExpr::Cast(Box::new(x), f), t),

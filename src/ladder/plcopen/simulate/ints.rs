@@ -133,13 +133,28 @@ fn function(b: &IntBlock, args: Vec<(String, Val)>, get: impl Fn(&str) -> bool) 
         // is 0 or 1); `__convert_num_to_bool`: `op == 0 ? 0 : 1`.
         let x: i128 = match (from.as_str(), vals.as_slice()) {
             ("BOOL", []) => get("IN").into(),
-            (from, [(_, x, _)]) => CType::of(from)?.store((*x).into()).into(),
+            // A `float` argument is a `REAL` (C takes no integer literal for it).
+            (from, [(_, x, t)]) => match CType::of(from)? {
+                ct if ct.float && t.is_none_or(|t| t == ct) => {
+                    let x = float((*x).into());
+                    return match to.as_str() {
+                        "BOOL" => Some(Out::Bool(x != 0.0)),
+                        "REAL" => Some(Out::Int(pattern(x), FLOAT)),
+                        // `__real_to_sint`/`__real_to_uint`: not computed.
+                        _ => None,
+                    };
+                }
+                ct if ct.float => return None,
+                ct => ct.store((*x).into()).into(),
+            },
             _ => return None,
         };
         if to == "BOOL" {
             return Some(Out::Bool(x != 0));
         }
-        return Some(Out::Int(x, CType::of(to)?));
+        let ct = CType::of(to)?;
+        // `(REAL)` of an integer: `as f32` rounds to nearest, ties to even, as C does.
+        return Some(if ct.float { Out::Int(pattern(x as f32), ct) } else { Out::Int(x, ct) });
     }
     if *b == IntBlock::Mux {
         // `MUX__in2__in1__in2`: `TEST_EN_COND(in2, K >= param_count)` (0, see
