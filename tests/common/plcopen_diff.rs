@@ -20,6 +20,8 @@ use ii_prove::term::Term;
 
 #[path = "plcopen_conv.rs"]
 mod conv;
+#[path = "plcopen_real.rs"]
+mod real;
 
 const INPUTS: &[&str] = &["In0", "In1", "In2", "In3"];
 const BITS: &[&str] = &["B0", "B1", "B2", "Q0", "Q1"];
@@ -571,6 +573,7 @@ fn random_body(
     bits: &'static [&'static str],
     ghost: &'static str,
     user_fb: bool,
+    reals: Option<Rng>,
 ) -> (String, &'static str, String, Rng) {
     let mut g = Gen {
         rng,
@@ -595,6 +598,14 @@ fn random_body(
         } else {
             g.ld_rung()
         }
+    }
+    // REAL networks, drawn apart so that the other draws stay as they were.
+    if let Some(mut r) = reals.filter(|_| fbd && g.ints) {
+        std::mem::swap(&mut g.rng, &mut r);
+        for _ in 0..g.rng.below(3) {
+            g.real_network();
+        }
+        std::mem::swap(&mut g.rng, &mut r);
     }
     let mut decls = String::new();
     for (inst, ty) in &g.instances {
@@ -632,7 +643,7 @@ pub fn random_program(seed: u64) -> String {
     let user_fb = rng.chance(30);
     let mut fb_pou = String::new();
     if user_fb {
-        let (body, lang, decls, r) = random_body(rng, FB_INPUTS, FB_BITS, "G1", false);
+        let (body, lang, decls, r) = random_body(rng, FB_INPUTS, FB_BITS, "G1", false, None);
         rng = r;
         fb_pou = format!(
             r#"<pou name="{USER_FB}" pouType="functionBlock"><interface><inputVars>{}</inputVars><outputVars>{}</outputVars><localVars>{}
@@ -644,7 +655,8 @@ pub fn random_program(seed: u64) -> String {
             bools(&["L0", "G1"])
         );
     }
-    let (body, lang, decls, mut rng) = random_body(rng, INPUTS, BITS, GHOST, user_fb);
+    let reals = Some(Rng::new(seed ^ 0x5EA1));
+    let (body, lang, decls, mut rng) = random_body(rng, INPUTS, BITS, GHOST, user_fb, reals);
     // Beremiz SVGHMI variables (the HMI writes them before any scan): the first bit an
     // HMI_BOOL, the first integer an HMI_INT (both written by the program too, so latched),
     // the integer input an HMI_INT; drawn apart so that the other draws stay as they were.
@@ -693,6 +705,14 @@ pub fn random_program(seed: u64) -> String {
         writeln!(vars, "{}", typed(INT_INPUT, "HMI_INT")).unwrap();
     } else {
         writeln!(inputs, r#"<variable name="{INT_INPUT}"><type><INT/></type></variable>"#).unwrap();
+    }
+    let [r0, r1] = real::REAL_VARS;
+    writeln!(vars, r#"<variable name="{r1}"><type><REAL/></type><initialValue><simpleValue value="1.5"/></initialValue></variable>"#).unwrap();
+    if located {
+        writeln!(vars, r#"<variable name="{r0}" address="%ID1"><type><REAL/></type></variable>"#)
+            .unwrap();
+    } else {
+        writeln!(inputs, r#"<variable name="{r0}"><type><REAL/></type></variable>"#).unwrap();
     }
     vars.push_str(&decls);
     let retained = if retained.is_empty() {
@@ -852,8 +872,10 @@ pub fn prepare(
 pub fn input_schedule(plc: &PlcProgram, seed: u64, scans: usize) -> Vec<BTreeMap<String, bool>> {
     let mut driven: Vec<String> = Vec::new();
     let mut words: Vec<(String, u32)> = Vec::new();
+    let mut reals: Vec<String> = Vec::new();
     for n in &plc.inputs {
-        match plc.input_int_type(n).and_then(|t| ii_prove::program::library::int_type(&t)) {
+        match plc.input_int_type(n).and_then(|t| ii_prove::program::library::number_type(&t)) {
+            Some(t) if t.real => reals.push(n.clone()),
             Some(t) => words.push((n.clone(), t.bits)),
             None => driven.push(n.clone()),
         }
@@ -881,6 +903,22 @@ pub fn input_schedule(plc: &PlcProgram, seed: u64, scans: usize) -> Vec<BTreeMap
                 };
                 for k in 0..*bits {
                     current.insert(format!("{n}_b{k}"), v >> k & 1 == 1);
+                }
+            }
+        }
+        for n in &reals {
+            // The hard values mostly (zeros, the literals, NaN, infinities, subnormals),
+            // sometimes any pattern.
+            if rng.chance(30) {
+                let hard = [0.0, -0.0, 2.5, -0.5, 1000.0, 80.5, 16_777_216.0, 1.5, f32::NAN];
+                let more = [f32::INFINITY, f32::NEG_INFINITY, 1e-40, -3.0, 7.0];
+                let x: u32 = match rng.below(4) {
+                    0 => rng.below(1 << 32) as u32,
+                    1 => more[rng.below(more.len() as u64) as usize].to_bits(),
+                    _ => hard[rng.below(hard.len() as u64) as usize].to_bits(),
+                };
+                for k in 0..32 {
+                    current.insert(format!("{n}_b{k}"), x >> k & 1 == 1);
                 }
             }
         }
