@@ -218,6 +218,10 @@ pub enum IntExpr {
     /// type) as C converts an integer to `float`: the nearest number, ties to even
     /// (matiec's `*_TO_REAL`).
     ToReal(Box<IntExpr>, IntType),
+    /// `a / b` of two `REAL`s as C computes it (IEEE 754, the nearest number, ties to
+    /// even), and `+0.0` when `b` is `±0.0`: matiec's `DIV` returns `__INIT_REAL` then
+    /// (`TEST_EN_COND(REAL, op2 == 0)`).
+    RealDiv(Box<IntExpr>, Box<IntExpr>),
 }
 
 /// A bitwise operation of two integers.
@@ -283,6 +287,7 @@ impl IntExpr {
             | IntExpr::Mul(a, b)
             | IntExpr::DivBy(a, b)
             | IntExpr::ModBy(a, b)
+            | IntExpr::RealDiv(a, b)
             | IntExpr::Bitwise(_, a, b) => {
                 a.visit(int, boolean);
                 b.visit(int, boolean);
@@ -615,6 +620,7 @@ pub fn int_visit_mut(
         | IntExpr::Mul(a, b)
         | IntExpr::DivBy(a, b)
         | IntExpr::ModBy(a, b)
+        | IntExpr::RealDiv(a, b)
         | IntExpr::Bitwise(_, a, b) => {
             int_visit_mut(a, var, boolean);
             int_visit_mut(b, var, boolean);

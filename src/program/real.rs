@@ -26,6 +26,12 @@ pub fn holds(op: CmpOp, a: i64, b: i64) -> bool {
     }
 }
 
+/// `a / b` of two stored `REAL` values, `+0.0` for `b = ±0.0` (matiec's `DIV`).
+pub fn div(a: i64, b: i64) -> i64 {
+    let (x, y) = (to_f32(a), to_f32(b));
+    of_f32(if y == 0.0 { 0.0 } else { x / y })
+}
+
 /// The stored value of an IEC real literal (`2.5`, `-0.5`, `1.0E3`, `1_000.0e-2`,
 /// `REAL#2.5`): matiec prints the literal's digits into the C code, where the C compiler
 /// reads them as a `double` (correctly rounded) and converts that to `float` (round to

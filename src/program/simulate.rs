@@ -257,6 +257,10 @@ impl Simulator {
                 let a = self.int_value(a, *inner);
                 N { value: ty.wrap(a.value), known: a.known }
             }
+            IntExpr::RealDiv(a, b) => {
+                let (a, b) = (self.int_value(a, ty), self.int_value(b, ty));
+                both(a, b, super::real::div)
+            }
             // Rust's `as f32` rounds to the nearest float, ties to even, as C does.
             IntExpr::ToReal(a, inner) => {
                 let a = self.int_value(a, *inner);

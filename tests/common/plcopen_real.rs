@@ -1,4 +1,4 @@
-//! The random PLCopen generator's `REAL` networks: REAL variables and literals (zeros of both signs, a value past 2^24), integers and BOOLs converted to REAL, comparisons (extensible), MIN/MAX/LIMIT/ABS/MOVE/SEL/MUX of REALs, REAL_TO_BOOL, some under a wired EN.
+//! The random PLCopen generator's `REAL` networks: REAL variables and literals (zeros of both signs, a value past 2^24), integers and BOOLs converted to REAL, comparisons (extensible), DIV (by ±0.0 too), MIN/MAX/LIMIT/ABS/MOVE/SEL/MUX of REALs, REAL_TO_BOOL, some under a wired EN.
 
 use std::fmt::Write as _;
 
@@ -16,7 +16,7 @@ const REAL_OPERANDS: &[&str] =
 const REAL_BLOCKS: &[&str] = &[
     "GT", "GE", "EQ", "NE", "LT", "LE", "MIN", "MAX", "LIMIT", "ABS", "MOVE", "SEL", "MUX",
     "INT_TO_REAL", "SINT_TO_REAL", "UDINT_TO_REAL", "BOOL_TO_REAL", "REAL_TO_BOOL",
-    "REAL_TO_REAL",
+    "REAL_TO_REAL", "DIV", "DIV",
 ];
 
 impl Gen {
@@ -84,6 +84,17 @@ impl Gen {
                 "LIMIT" => {
                     let pins: Vec<(&str, Src, &str)> =
                         ["MN", "IN", "MX"].iter().map(|p| (*p, real(self, &reals), "")).collect();
+                    (self.real_block(ty, &pins, en), true)
+                }
+                "DIV" => {
+                    // A divisor ±0.0 sometimes (matiec's DIV gives 0.0, ENO FALSE).
+                    let d = if self.rng.chance(25) {
+                        let zero = *self.rng.pick(&["0.0", "-0.0"]);
+                        (self.in_var(zero, true), None)
+                    } else {
+                        real(self, &reals)
+                    };
+                    let pins = [("IN1", real(self, &reals), ""), ("IN2", d, "")];
                     (self.real_block(ty, &pins, en), true)
                 }
                 "SEL" => {

@@ -48,6 +48,126 @@ pub fn compare_real(op: CmpOp, a: &[L], b: &[L], name: Namer) -> L {
     })
 }
 
+/// Shifts `m` left until its top bit is 1 (unless it is 0), 16 then 8, 4, 2, 1 places at
+/// a time (`m` at most 32 bits wide): the number of places, in `width` bits.
+fn normalize(m: &mut Bits, width: u32, name: Namer) -> Bits {
+    let w = m.len();
+    let mut count = vec![L::Zero; width as usize];
+    for k in (0..5).rev() {
+        let step = 1usize << k;
+        let top_zero = name(simp(&L::Or(m[w - step..].to_vec()).negate()));
+        let shifted: Bits =
+            std::iter::repeat_n(L::Zero, step).chain(m[..w - step].iter().cloned()).collect();
+        *m = m.iter().zip(&shifted).map(|(p, s)| name(mux(&top_zero, s, p))).collect();
+        count[k] = top_zero;
+    }
+    count
+}
+
+/// `x` with every bit of `pattern` where `c` holds (per bit: `c ? pattern : x`).
+fn choose(c: &L, pattern: &[L], x: &[L], name: Namer) -> Bits {
+    pattern.iter().zip(x).map(|(p, q)| name(mux(c, p, q))).collect()
+}
+
+/// Whether all of `v` is 0.
+fn all_zero(v: &[L]) -> L {
+    simp(&L::Or(v.to_vec()).negate())
+}
+
+/// `a / b` for two `REAL`s as C computes it on x86-64 (`divss`: the nearest number,
+/// ties to even, subnormal results kept), and `+0.0` when `b` is `±0.0`, where matiec's
+/// `DIV` returns `__INIT_REAL` (`TEST_EN_COND(REAL, op2 == 0)`). A NaN result is the
+/// first NaN operand made quiet, else (`∞/∞`) the default NaN `0xFFC00000`.
+///
+/// Each operand is unpacked to a 24-bit significand with its leading 1 at bit 23 (a
+/// subnormal one normalised, its exponent lowered) and an exponent in 12-bit two's
+/// complement; the significands are divided by restoring division into 27 quotient
+/// bits and a remainder; the quotient is normalised to its leading 1 at bit 26, shifted
+/// right (collecting the bits shifted out) where the result is subnormal, and rounded
+/// on the guard bit, the bits below it and the last bit kept.
+pub fn div_real(a: &[L], b: &[L], name: Namer) -> Bits {
+    let wide = IntType { bits: 12, signed: true, real: false };
+    let k = |v: i64| constant(v, 12);
+    // (significand, exponent, is zero, is infinite, is NaN) of a finite or special one.
+    let unpack = |v: &[L], name: Namer| {
+        let (fraction, exponent) = (&v[..23], &v[23..31]);
+        let subnormal = all_zero(exponent);
+        let ones = simp(&L::And(exponent.to_vec()));
+        let no_fraction = all_zero(fraction);
+        let zero = name(simp(&subnormal.clone().and(no_fraction.clone())));
+        let inf = name(simp(&ones.clone().and(no_fraction.clone())));
+        let nan = name(simp(&ones.and(no_fraction.negate())));
+        let mut m: Bits = fraction.to_vec();
+        m.push(subnormal.clone().negate());
+        let count = normalize(&mut m, 12, name);
+        let e: Bits = exponent.iter().cloned().chain(std::iter::repeat_n(L::Zero, 4)).collect();
+        let e = choose(&subnormal, &k(1), &e, name);
+        (m, sub(&e, &count, name), zero, inf, nan)
+    };
+    let (ma, ea, zero_a, inf_a, nan_a) = unpack(a, name);
+    let (mb, eb, zero_b, inf_b, nan_b) = unpack(b, name);
+    let sign = super::xor(&a[31], &b[31]);
+    // Restoring division: 27 quotient bits, most significant first.
+    let divisor: Bits = mb.iter().cloned().chain([L::Zero, L::Zero]).collect();
+    let mut r: Bits = ma.iter().cloned().chain([L::Zero, L::Zero]).collect();
+    let mut q = vec![L::Zero; 27];
+    for bit in (0..27).rev() {
+        let diff = sub(&r, &divisor, name);
+        let fits = name(diff[25].clone().negate());
+        r = choose(&fits, &diff, &r, name);
+        q[bit] = fits;
+        if bit > 0 {
+            r = std::iter::once(L::Zero).chain(r[..25].iter().cloned()).collect();
+        }
+    }
+    let rest = name(simp(&L::Or(r)));
+    // The leading 1 at bit 26 (a quotient below 1 is shifted up once).
+    let top = q[26].clone();
+    let shifted: Bits = std::iter::once(L::Zero).chain(q[..26].iter().cloned()).collect();
+    let mut s = choose(&top, &q, &shifted, name);
+    let below_one = choose(&top, &k(127), &k(126), name);
+    let e = add(&sub(&ea, &eb, name), &below_one, L::Zero, name);
+    let overflow = compare(CmpOp::Ge, wide, &e, &k(255), name);
+    let overflow = name(overflow);
+    // Subnormal: shifted right by 1 - e places (all of it from 32 on).
+    let t = sub(&k(1), &e, name);
+    let tiny = compare(CmpOp::Ge, wide, &t, &k(1), name);
+    let tiny = name(tiny);
+    let far = compare(CmpOp::Ge, wide, &t, &k(32), name);
+    let all_out = name(tiny.clone().and(far));
+    let mut sticky = rest;
+    for (j, amount) in t.iter().take(5).enumerate() {
+        let step = 1usize << j;
+        let on = name(simp(&tiny.clone().and(amount.clone())));
+        sticky = name(simp(&sticky.or(on.clone().and(L::Or(s[..step].to_vec())))));
+        let down: Bits = s[step..].iter().cloned().chain(std::iter::repeat_n(L::Zero, step)).collect();
+        s = choose(&on, &down, &s, name);
+    }
+    sticky = name(simp(&sticky.or(all_out.clone().and(L::Or(s.clone())))));
+    s = choose(&all_out, &constant(0, 27), &s, name);
+    let exponent = choose(&tiny, &constant(0, 8), &e[..8], name);
+    let fraction = &s[3..26];
+    let sticky = simp(&sticky.or(s[1].clone()).or(s[0].clone()));
+    let round = name(simp(&s[2].clone().and(sticky.or(fraction[0].clone()))));
+    let unrounded: Bits = fraction.iter().chain(&exponent).cloned().collect();
+    let mut result = add(&unrounded, &constant(0, 31), round, name);
+    result = choose(&overflow, &constant(0x7F80_0000, 31), &result, name);
+    // The special cases, the last one chosen first.
+    let signed = |v: i64, sign: &L| -> Bits { constant(v, 31).into_iter().chain([sign.clone()]).collect() };
+    let mut out: Bits = result.into_iter().chain([sign.clone()]).collect();
+    let to_zero = name(simp(&zero_a.or(inf_b.clone())));
+    out = choose(&to_zero, &signed(0, &sign), &out, name);
+    out = choose(&inf_a, &signed(0x7F80_0000, &sign), &out, name);
+    let both_inf = simp(&inf_a.and(inf_b));
+    out = choose(&both_inf, &constant(0xFFC0_0000, 32), &out, name);
+    let quiet = |v: &[L]| -> Bits {
+        v.iter().enumerate().map(|(i, x)| if i == 22 { L::One } else { x.clone() }).collect()
+    };
+    out = choose(&nan_b, &quiet(b), &out, name);
+    out = choose(&nan_a, &quiet(a), &out, name);
+    choose(&zero_b, &constant(0, 32), &out, name)
+}
+
 /// `a`, an integer of type `ty` (at most 32 bits), as the nearest `REAL` (ties to
 /// even), as C converts an integer to `float`.
 ///
@@ -63,16 +183,7 @@ pub fn int_to_real(a: &[L], ty: IntType, name: Namer) -> Bits {
     let negated = sub(&constant(0, 32), &x, name);
     let mut m: Bits = x.iter().zip(&negated).map(|(p, n)| name(mux(&sign, n, p))).collect();
     let zero = name(simp(&L::Or(m.clone()).negate()));
-    // Leading zeros, 16 then 8, 4, 2, 1 at a time: bit k of the count.
-    let mut count = vec![L::Zero; 8];
-    for k in (0..5).rev() {
-        let step = 1usize << k;
-        let top_zero = name(simp(&L::Or(m[32 - step..].to_vec()).negate()));
-        let shifted: Bits =
-            std::iter::repeat_n(L::Zero, step).chain(m[..32 - step].iter().cloned()).collect();
-        m = m.iter().zip(&shifted).map(|(p, s)| name(mux(&top_zero, s, p))).collect();
-        count[k] = top_zero;
-    }
+    let count = normalize(&mut m, 8, name);
     // The leading 1 at bit 31 - count: exponent 127 + 31 - count.
     let exponent = sub(&constant(158, 8), &count, name);
     let fraction = &m[8..31];
@@ -173,8 +284,43 @@ mod tests {
         }
     }
 
+    /// The division on the constant bits of `x` and `y`, against `f32`'s (0 for a divisor
+    /// ±0, as matiec's `DIV`).
+    fn divides(x: u32, y: u32) -> Result<(), TestCaseError> {
+        let (a, b) = (constant(i64::from(x), 32), constant(i64::from(y), 32));
+        let got = div_real(&a, &b, &mut |t| t);
+        let got = got.iter().enumerate().fold(0u32, |acc, (k, b)| acc | (u32::from(eval(b)) << k));
+        let (p, q) = (f32::from_bits(x), f32::from_bits(y));
+        let want = if q == 0.0 { 0 } else { (p / q).to_bits() };
+        prop_assert_eq!(got, want, "{:?} / {:?}: {:08x}, not {:08x}", p, q, got, want);
+        Ok(())
+    }
+
+    #[test]
+    fn hard_values_divide_as_f32() {
+        let mut vs = hard();
+        vs.extend([3.0f32, 7.0, 0.75, 1e-40, 1e38, 1.1754942e-38, 2.9e-39, 6e-45].map(f32::to_bits));
+        vs.extend([0x7fc0_1234, 0xffbf_0001, 0x3f80_0001, 0x3fff_ffff]);
+        for &x in &vs {
+            for &y in &vs {
+                divides(x, y).unwrap();
+            }
+        }
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(2000))]
+        #[test]
+        fn random_values_divide_as_f32(x in any::<u32>(), y in any::<u32>(), ex in 0u32..255, ey in 0u32..255) {
+            divides(x, y)?;
+            // Exponents near each other and near the ends: results that are subnormal,
+            // overflow, or round.
+            let near = |v: u32, e: u32| v & 0x807f_ffff | (e << 23);
+            divides(near(x, ex), near(y, ex.saturating_sub(ey % 30)))?;
+            divides(near(x, ex % 40), near(y, 200 + ey % 55))?;
+            divides(near(x, 200 + ex % 55), near(y, ey % 60))?;
+        }
+
         #[test]
         fn random_integers_convert_as_c(v in any::<i64>(), t in 0usize..6, low in 0u32..32) {
             let (bits, signed) = TYPES[t];

@@ -63,6 +63,7 @@ impl Compiler<'_> {
                 | IntExpr::Ite(..)
                 | IntExpr::Bitwise(..)
                 | IntExpr::ToReal(..)
+                | IntExpr::RealDiv(..)
         );
         if ty.real && real_op {
             return self.not_real(ty, span);
@@ -108,6 +109,12 @@ impl Compiler<'_> {
             }
             IntExpr::Cast(_, inner) if inner.real => self.not_real(ty, span),
             IntExpr::ToReal(_, inner) if inner.real || !ty.real => self.not_real(ty, span),
+            IntExpr::RealDiv(..) if !ty.real => self.not_real(ty, span),
+            IntExpr::RealDiv(a, b) => {
+                let (a, b) = (self.int(a, ty, span), self.int(b, ty, span));
+                // Each step of the division reads the remainder's bits several times.
+                bitvec::div_real(&a, &b, &mut |t: L| self.intermediate_over(t, MAX_DIV_TERM))
+            }
             IntExpr::ToReal(a, inner) => {
                 let a = self.int(a, *inner, span);
                 let mut name = |t: L| self.intermediate(t);
@@ -245,6 +252,7 @@ pub(super) fn constants(program: &Program) -> Vec<i64> {
             | IntExpr::Mul(a, b)
             | IntExpr::DivBy(a, b)
             | IntExpr::ModBy(a, b)
+            | IntExpr::RealDiv(a, b)
             | IntExpr::Ite(_, a, b) => {
                 walk(a, out);
                 walk(b, out);

@@ -578,8 +578,8 @@ impl Lower<'_> {
             return Ok(Value::Int(e, t));
         }
         let t = unify(vals.iter().map(|(_, _, t)| t))?;
-        if t.real && matches!(b, IntBlock::Arith(_)) {
-            return Err("ii-prove computes no arithmetic of REALs".into());
+        if t.real && matches!(b, IntBlock::Arith(op) if *op != Arith::Div) {
+            return Err("ii-prove computes no ADD, SUB, MUL or MOD of REALs".into());
         }
         let args: Vec<IntExpr> = vals.iter().map(|(_, e, _)| coerce(e.clone(), t)).collect();
         let named = |pin: &str| -> Result<IntExpr, String> {
@@ -603,6 +603,10 @@ impl Lower<'_> {
             // matiec's DIV and MOD (`lib/C/iec_std_functions.h`, `__div`, `__mod`): C's
             // division truncated toward zero, the remainder with the dividend's sign, 0 for
             // a divisor 0 (`IntExpr::DivBy`).
+            // IEEE division, `+0.0` for a divisor `±0.0` (`IntExpr::RealDiv`).
+            (IntBlock::Arith(Arith::Div), [a, b]) if t.real => {
+                IntExpr::RealDiv(Box::new(a.clone()), Box::new(b.clone()))
+            }
             (IntBlock::Arith(op @ (Arith::Div | Arith::Mod)), [a, b]) => match b {
                 IntExpr::Const(0) => IntExpr::Const(0),
                 IntExpr::Const(d) if *op == Arith::Div => IntExpr::Div(Box::new(a.clone()), *d),

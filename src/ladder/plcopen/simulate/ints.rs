@@ -69,6 +69,12 @@ fn float_function(b: &IntBlock, vals: &[(String, i64, Option<CType>)], get: impl
             if x < 0.0 { -x } else { x }
         }
         IntBlock::Move => named("IN")?,
+        // `DIV_REAL`: `TEST_EN_COND(REAL, op2 == 0)` returns 0, else `op1 / op2`.
+        IntBlock::Arith(Arith::Div) => match xs.as_slice() {
+            [_, y] if *y == 0.0 => 0.0,
+            [x, y] => x / y,
+            _ => return None,
+        },
         IntBlock::Sel => {
             if get("G") {
                 named("IN1")?
