@@ -197,7 +197,9 @@ pub fn i2c_read(micro: Option<&str>) -> (IntType, bool, Option<i64>) {
     let byte = IntType { bits: 8, signed: false, real: false };
     match micro.map(str::trim) {
         None => (byte, true, None),
-        Some(m) if m.starts_with("Atmel AVR") => (IntType { bits: 8, signed: true, real: false }, false, None),
+        Some(m) if m.starts_with("Atmel AVR") => {
+            (IntType { bits: 8, signed: true, real: false }, false, None)
+        }
         Some(m) if m.starts_with("Microchip PIC") => (byte, false, None),
         Some(m) if m.starts_with("St ARM") => (byte, true, Some(-1)),
         Some(_) => (IntType { bits: 32, signed: true, real: false }, false, None),
@@ -244,7 +246,9 @@ pub fn readings(program: &LdProgram) -> std::collections::BTreeMap<usize, Readin
                 && let [var] = e.names_written().as_slice()
             {
                 let ty = match keyword.as_str() {
-                    "READ_ADC" => adc.as_ref().ok().map(|&bits| IntType { bits, signed: false, real: false }),
+                    "READ_ADC" => {
+                        adc.as_ref().ok().map(|&bits| IntType { bits, signed: false, real: false })
+                    }
                     // `UART_RECV var [bytes wait]`: one byte unless more are asked for.
                     "UART_RECV" => Some(match args.get(1).and_then(|b| b.parse::<u32>().ok()) {
                         Some(n) if n > 1 => IntType::I16,

@@ -170,7 +170,8 @@ impl Divisor {
 /// `|v|` for a value of type `ty`, in `width > ty.bits` bits, and whether `v` is negative.
 fn magnitude(v: &[L], ty: IntType, width: usize, name: Namer) -> (Bits, L) {
     let negative = if ty.signed { v.last().cloned().unwrap_or(L::Zero) } else { L::Zero };
-    let ext = resize(v.to_vec(), ty, IntType { bits: width as u32, signed: ty.signed, real: false });
+    let ext =
+        resize(v.to_vec(), ty, IntType { bits: width as u32, signed: ty.signed, real: false });
     let minus = sub(&constant(0, width as u32), &ext, name);
     let m = ext.iter().zip(&minus).map(|(x, y)| name(mux(&negative, y, x))).collect();
     (m, negative)
@@ -410,7 +411,9 @@ mod tests {
         std::sync::LazyLock::new(|| {
             [16, 32]
                 .into_iter()
-                .flat_map(|bits| [false, true].map(|signed| divider(IntType { bits, signed, real: false })))
+                .flat_map(|bits| {
+                    [false, true].map(|signed| divider(IntType { bits, signed, real: false }))
+                })
                 .collect()
         });
 

@@ -55,9 +55,8 @@ pub fn literal(text: &str) -> Option<i64> {
     };
     let (int, frac) = mantissa.split_once('.')?;
     let all_digits = |s: &str| !s.is_empty() && s.bytes().all(|c| c.is_ascii_digit());
-    let exponent_ok = exponent.as_deref().is_none_or(|e| {
-        all_digits(e.strip_prefix(['+', '-']).unwrap_or(e))
-    });
+    let exponent_ok =
+        exponent.as_deref().is_none_or(|e| all_digits(e.strip_prefix(['+', '-']).unwrap_or(e)));
     if !all_digits(int) || !all_digits(frac) || !exponent_ok {
         return None;
     }

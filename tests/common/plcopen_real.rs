@@ -14,9 +14,27 @@ const REAL_OPERANDS: &[&str] =
     &["R0", "R0", "R1", "2.5", "-0.5", "0.0", "-0.0", "1.0E3", "REAL#80.5", "16_777_217.0"];
 
 const REAL_BLOCKS: &[&str] = &[
-    "GT", "GE", "EQ", "NE", "LT", "LE", "MIN", "MAX", "LIMIT", "ABS", "MOVE", "SEL", "MUX",
-    "INT_TO_REAL", "SINT_TO_REAL", "UDINT_TO_REAL", "BOOL_TO_REAL", "REAL_TO_BOOL",
-    "REAL_TO_REAL", "DIV", "DIV",
+    "GT",
+    "GE",
+    "EQ",
+    "NE",
+    "LT",
+    "LE",
+    "MIN",
+    "MAX",
+    "LIMIT",
+    "ABS",
+    "MOVE",
+    "SEL",
+    "MUX",
+    "INT_TO_REAL",
+    "SINT_TO_REAL",
+    "UDINT_TO_REAL",
+    "BOOL_TO_REAL",
+    "REAL_TO_BOOL",
+    "REAL_TO_REAL",
+    "DIV",
+    "DIV",
 ];
 
 impl Gen {
@@ -65,10 +83,14 @@ impl Gen {
             let (id, gives_real) = match ty {
                 "INT_TO_REAL" | "SINT_TO_REAL" | "UDINT_TO_REAL" => {
                     let n = *self.rng.pick(&["N0", "N1", "N2"]);
-                    let mut src = (self.in_var(if ty == "SINT_TO_REAL" { SINT_VAR } else { n }, true), None);
+                    let mut src =
+                        (self.in_var(if ty == "SINT_TO_REAL" { SINT_VAR } else { n }, true), None);
                     if ty == "UDINT_TO_REAL" {
                         // A negative INT is a UDINT past 2^24: rounded.
-                        src = (self.real_block("INT_TO_UDINT", &[("IN", src, "")], None), Some("OUT"));
+                        src = (
+                            self.real_block("INT_TO_UDINT", &[("IN", src, "")], None),
+                            Some("OUT"),
+                        );
                     }
                     (self.real_block(ty, &[("IN", src, "")], en), true)
                 }
@@ -99,13 +121,21 @@ impl Gen {
                 }
                 "SEL" => {
                     let g = *self.rng.pick(&bools);
-                    let pins = [("G", g, ""), ("IN0", real(self, &reals), ""), ("IN1", real(self, &reals), "")];
+                    let pins = [
+                        ("G", g, ""),
+                        ("IN0", real(self, &reals), ""),
+                        ("IN1", real(self, &reals), ""),
+                    ];
                     (self.real_block(ty, &pins, en), true)
                 }
                 "MUX" => {
                     let k = *self.rng.pick(&["0", "1", "2", "-1", "N0"]);
                     let k = (self.in_var(k, true), None);
-                    let pins = [("K", k, ""), ("IN0", real(self, &reals), ""), ("IN1", real(self, &reals), "")];
+                    let pins = [
+                        ("K", k, ""),
+                        ("IN0", real(self, &reals), ""),
+                        ("IN1", real(self, &reals), ""),
+                    ];
                     (self.real_block(ty, &pins, en), true)
                 }
                 _ => {
@@ -125,7 +155,10 @@ impl Gen {
                 bools.push((id, Some("ENO")));
             }
         }
-        let targets = [(*self.rng.pick(&reals), REAL_VARS[1]), (*self.rng.pick(&bools), *self.rng.pick(self.bits))];
+        let targets = [
+            (*self.rng.pick(&reals), REAL_VARS[1]),
+            (*self.rng.pick(&bools), *self.rng.pick(self.bits)),
+        ];
         for (src, target) in targets {
             let id = self.nid();
             let (p, o) = (self.pos(500), self.order(true));

@@ -140,7 +140,8 @@ pub fn div_real(a: &[L], b: &[L], name: Namer) -> Bits {
         let step = 1usize << j;
         let on = name(simp(&tiny.clone().and(amount.clone())));
         sticky = name(simp(&sticky.or(on.clone().and(L::Or(s[..step].to_vec())))));
-        let down: Bits = s[step..].iter().cloned().chain(std::iter::repeat_n(L::Zero, step)).collect();
+        let down: Bits =
+            s[step..].iter().cloned().chain(std::iter::repeat_n(L::Zero, step)).collect();
         s = choose(&on, &down, &s, name);
     }
     sticky = name(simp(&sticky.or(all_out.clone().and(L::Or(s.clone())))));
@@ -153,7 +154,8 @@ pub fn div_real(a: &[L], b: &[L], name: Namer) -> Bits {
     let mut result = add(&unrounded, &constant(0, 31), round, name);
     result = choose(&overflow, &constant(0x7F80_0000, 31), &result, name);
     // The special cases, the last one chosen first.
-    let signed = |v: i64, sign: &L| -> Bits { constant(v, 31).into_iter().chain([sign.clone()]).collect() };
+    let signed =
+        |v: i64, sign: &L| -> Bits { constant(v, 31).into_iter().chain([sign.clone()]).collect() };
     let mut out: Bits = result.into_iter().chain([sign.clone()]).collect();
     let to_zero = name(simp(&zero_a.or(inf_b.clone())));
     out = choose(&to_zero, &signed(0, &sign), &out, name);
@@ -261,7 +263,8 @@ mod tests {
         Ok(())
     }
 
-    const TYPES: [(u32, bool); 6] = [(8, true), (8, false), (16, true), (16, false), (32, true), (32, false)];
+    const TYPES: [(u32, bool); 6] =
+        [(8, true), (8, false), (16, true), (16, false), (32, true), (32, false)];
 
     #[test]
     fn hard_integers_convert_as_c() {
@@ -299,7 +302,9 @@ mod tests {
     #[test]
     fn hard_values_divide_as_f32() {
         let mut vs = hard();
-        vs.extend([3.0f32, 7.0, 0.75, 1e-40, 1e38, 1.1754942e-38, 2.9e-39, 6e-45].map(f32::to_bits));
+        vs.extend(
+            [3.0f32, 7.0, 0.75, 1e-40, 1e38, 1.1754942e-38, 2.9e-39, 6e-45].map(f32::to_bits),
+        );
         vs.extend([0x7fc0_1234, 0xffbf_0001, 0x3f80_0001, 0x3fff_ffff]);
         for &x in &vs {
             for &y in &vs {

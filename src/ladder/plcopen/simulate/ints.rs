@@ -43,7 +43,11 @@ fn float_literal(text: &str) -> Option<i64> {
 }
 
 /// A function of `REAL`s (`vals` their patterns), as C computes it on `float`s.
-fn float_function(b: &IntBlock, vals: &[(String, i64, Option<CType>)], get: impl Fn(&str) -> bool) -> Option<Out> {
+fn float_function(
+    b: &IntBlock,
+    vals: &[(String, i64, Option<CType>)],
+    get: impl Fn(&str) -> bool,
+) -> Option<Out> {
     let xs: Vec<f32> = vals.iter().map(|(_, x, _)| float((*x).into())).collect();
     let named = |pin: &str| vals.iter().position(|(n, _, _)| n == pin).map(|j| xs[j]);
     let x = match b {
@@ -391,11 +395,12 @@ impl PlcSimulator {
         }
         let typed = args.iter().find_map(|(_, v)| v.and_then(|(_, t)| t));
         // `op2 == 0`: for a `REAL`, `-0.0` too.
-        let divisor_zero = args.get(1).and_then(|(_, v)| *v).is_some_and(|(x, t)| match t.or(typed) {
-            Some(ct) if ct.float => float(x.into()) == 0.0,
-            Some(ct) => ct.store(x.into()) == 0,
-            None => x == 0,
-        });
+        let divisor_zero =
+            args.get(1).and_then(|(_, v)| *v).is_some_and(|(x, t)| match t.or(typed) {
+                Some(ct) if ct.float => float(x.into()) == 0.0,
+                Some(ct) => ct.store(x.into()) == 0,
+                None => x == 0,
+            });
         let divides_by_zero = matches!(b, IntBlock::Arith(Arith::Div)) && divisor_zero;
         // MUX: `TEST_EN_COND(…, K >= param_count)`, the count of its data inputs.
         let past = *b == IntBlock::Mux && {
