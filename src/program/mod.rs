@@ -218,10 +218,29 @@ pub enum IntExpr {
     /// type) as C converts an integer to `float`: the nearest number, ties to even
     /// (matiec's `*_TO_REAL`).
     ToReal(Box<IntExpr>, IntType),
-    /// `a / b` of two `REAL`s as C computes it (IEEE 754, the nearest number, ties to
-    /// even), and `+0.0` when `b` is `±0.0`: matiec's `DIV` returns `__INIT_REAL` then
+    /// `a * b` or `a / b` of two `REAL`s as C computes it (IEEE 754, the nearest number,
+    /// ties to even; [`RealOp`]).
+    Real(RealOp, Box<IntExpr>, Box<IntExpr>),
+}
+
+/// An operation of two `REAL`s.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RealOp {
+    /// `a * b` (of two NaNs, `a` made quiet: [`bitvec::mul_real`]).
+    Mul,
+    /// `a / b`, and `+0.0` when `b` is `±0.0`: matiec's `DIV` returns `__INIT_REAL` then
     /// (`TEST_EN_COND(REAL, op2 == 0)`).
-    RealDiv(Box<IntExpr>, Box<IntExpr>),
+    Div,
+}
+
+impl RealOp {
+    /// The operation on two stored `REAL` values, computed with `f32`.
+    pub fn apply(self, a: i64, b: i64) -> i64 {
+        match self {
+            RealOp::Mul => real::mul(a, b),
+            RealOp::Div => real::div(a, b),
+        }
+    }
 }
 
 /// A bitwise operation of two integers.
@@ -287,7 +306,7 @@ impl IntExpr {
             | IntExpr::Mul(a, b)
             | IntExpr::DivBy(a, b)
             | IntExpr::ModBy(a, b)
-            | IntExpr::RealDiv(a, b)
+            | IntExpr::Real(_, a, b)
             | IntExpr::Bitwise(_, a, b) => {
                 a.visit(int, boolean);
                 b.visit(int, boolean);
@@ -620,7 +639,7 @@ pub fn int_visit_mut(
         | IntExpr::Mul(a, b)
         | IntExpr::DivBy(a, b)
         | IntExpr::ModBy(a, b)
-        | IntExpr::RealDiv(a, b)
+        | IntExpr::Real(_, a, b)
         | IntExpr::Bitwise(_, a, b) => {
             int_visit_mut(a, var, boolean);
             int_visit_mut(b, var, boolean);

@@ -15,21 +15,20 @@ pub fn of_f32(x: f32) -> i64 {
 /// Whether `a op b` for two stored `REAL` values, as C compares floats: IEEE 754 order,
 /// `-0.0 = +0.0`, and a NaN compares false with everything (true for `<>`).
 pub fn holds(op: CmpOp, a: i64, b: i64) -> bool {
-    let (x, y) = (to_f32(a), to_f32(b));
-    match op {
-        CmpOp::Eq => x == y,
-        CmpOp::Ne => x != y,
-        CmpOp::Lt => x < y,
-        CmpOp::Le => x <= y,
-        CmpOp::Gt => x > y,
-        CmpOp::Ge => x >= y,
-    }
+    op.compares(to_f32(a), to_f32(b))
 }
 
 /// `a / b` of two stored `REAL` values, `+0.0` for `b = ±0.0` (matiec's `DIV`).
 pub fn div(a: i64, b: i64) -> i64 {
     let (x, y) = (to_f32(a), to_f32(b));
     of_f32(if y == 0.0 { 0.0 } else { x / y })
+}
+
+/// `a * b` of two stored `REAL` values; of two NaNs, `a` made quiet (see
+/// [`crate::program::bitvec::mul_real`]).
+pub fn mul(a: i64, b: i64) -> i64 {
+    let (x, y) = (to_f32(a), to_f32(b));
+    if x.is_nan() && y.is_nan() { a | 0x0040_0000 } else { of_f32(x * y) }
 }
 
 /// The stored value of an IEC real literal (`2.5`, `-0.5`, `1.0E3`, `1_000.0e-2`,

@@ -257,9 +257,9 @@ impl Simulator {
                 let a = self.int_value(a, *inner);
                 N { value: ty.wrap(a.value), known: a.known }
             }
-            IntExpr::RealDiv(a, b) => {
+            IntExpr::Real(op, a, b) => {
                 let (a, b) = (self.int_value(a, ty), self.int_value(b, ty));
-                both(a, b, super::real::div)
+                N { value: op.apply(a.value, b.value), known: a.known && b.known }
             }
             // Rust's `as f32` rounds to the nearest float, ties to even, as C does.
             IntExpr::ToReal(a, inner) => {

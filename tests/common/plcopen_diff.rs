@@ -290,19 +290,30 @@ impl Gen {
         (id, ty)
     }
 
-    /// An FBD network over integers: integer operands, arithmetic, comparisons and
-    /// counters, integer and Boolean outputs.
-    fn int_network(&mut self) {
-        let mut ints: Vec<(u64, Option<&'static str>)> = Vec::new();
-        let mut bools: Vec<(u64, Option<&'static str>)> = Vec::new();
+    /// The operands of a network: two or three drawn from `numbers`, one or two Boolean
+    /// ones, as variable objects.
+    #[allow(clippy::type_complexity)]
+    fn network_operands(
+        &mut self,
+        numbers: &[&str],
+    ) -> (Vec<(u64, Option<&'static str>)>, Vec<(u64, Option<&'static str>)>) {
+        let mut nums = Vec::new();
+        let mut bools = Vec::new();
         for _ in 0..2 + self.rng.below(2) {
-            let v = *self.rng.pick(INT_OPERANDS);
-            ints.push((self.in_var(v, true), None));
+            let v = *self.rng.pick(numbers);
+            nums.push((self.in_var(v, true), None));
         }
         for _ in 0..1 + self.rng.below(2) {
             let v = self.operand();
             bools.push((self.in_var(&v, true), None));
         }
+        (nums, bools)
+    }
+
+    /// An FBD network over integers: integer operands, arithmetic, comparisons and
+    /// counters, integer and Boolean outputs.
+    fn int_network(&mut self) {
+        let (mut ints, mut bools) = self.network_operands(INT_OPERANDS);
         for _ in 0..1 + self.rng.below(4) {
             let ty = *self.rng.pick(INT_BLOCKS);
             if self.conversion(ty, &mut ints, &mut bools) {
@@ -422,26 +433,24 @@ impl Gen {
             } else {
                 *self.rng.pick(INT_VARS)
             };
-            let id = self.nid();
-            let (p, o) = (self.pos(500), self.order(true));
-            writeln!(
-                self.body,
-                r#"<outVariable localId="{id}"{o}>{p}{}<expression>{target}</expression></outVariable>"#,
-                Gen::conn(&[src])
-            )
-            .unwrap();
+            self.out_var(src, target);
         }
         let src = *self.rng.pick(&bools);
-        let id = self.nid();
         let v = *self.rng.pick(self.bits);
+        self.out_var(src, v);
+        self.y += 100;
+    }
+
+    /// An output variable `target` fed from `src`.
+    fn out_var(&mut self, src: (u64, Option<&'static str>), target: &str) {
+        let id = self.nid();
         let (p, o) = (self.pos(500), self.order(true));
         writeln!(
             self.body,
-            r#"<outVariable localId="{id}"{o}>{p}{}<expression>{v}</expression></outVariable>"#,
+            r#"<outVariable localId="{id}"{o}>{p}{}<expression>{target}</expression></outVariable>"#,
             Gen::conn(&[src])
         )
         .unwrap();
-        self.y += 100;
     }
 
     fn ld_rung(&mut self) {

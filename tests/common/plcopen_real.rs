@@ -1,4 +1,4 @@
-//! The random PLCopen generator's `REAL` networks: REAL variables and literals (zeros of both signs, a value past 2^24), integers and BOOLs converted to REAL, comparisons (extensible), DIV (by ±0.0 too), MIN/MAX/LIMIT/ABS/MOVE/SEL/MUX of REALs, REAL_TO_BOOL, some under a wired EN.
+//! The random PLCopen generator's `REAL` networks: REAL variables and literals (zeros of both signs, a value past 2^24), integers and BOOLs converted to REAL, comparisons (extensible), MUL (extensible), DIV (by ±0.0 too), MIN/MAX/LIMIT/ABS/MOVE/SEL/MUX of REALs, REAL_TO_BOOL, some under a wired EN.
 
 use std::fmt::Write as _;
 
@@ -13,28 +13,11 @@ type Src = (u64, Option<&'static str>);
 const REAL_OPERANDS: &[&str] =
     &["R0", "R0", "R1", "2.5", "-0.5", "0.0", "-0.0", "1.0E3", "REAL#80.5", "16_777_217.0"];
 
+#[rustfmt::skip]
 const REAL_BLOCKS: &[&str] = &[
-    "GT",
-    "GE",
-    "EQ",
-    "NE",
-    "LT",
-    "LE",
-    "MIN",
-    "MAX",
-    "LIMIT",
-    "ABS",
-    "MOVE",
-    "SEL",
-    "MUX",
-    "INT_TO_REAL",
-    "SINT_TO_REAL",
-    "UDINT_TO_REAL",
-    "BOOL_TO_REAL",
-    "REAL_TO_BOOL",
-    "REAL_TO_REAL",
-    "DIV",
-    "DIV",
+    "GT", "GE", "EQ", "NE", "LT", "LE", "MIN", "MAX", "LIMIT", "ABS", "MOVE", "SEL", "MUX",
+    "INT_TO_REAL", "SINT_TO_REAL", "UDINT_TO_REAL", "BOOL_TO_REAL", "REAL_TO_BOOL",
+    "REAL_TO_REAL", "DIV", "DIV", "MUL", "MUL",
 ];
 
 impl Gen {
@@ -66,16 +49,7 @@ impl Gen {
     /// An FBD network over REALs: REAL operands and conversions into REAL, blocks over
     /// them, a REAL result into `R1` and a Boolean one into a bit.
     pub(super) fn real_network(&mut self) {
-        let mut reals: Vec<Src> = Vec::new();
-        let mut bools: Vec<Src> = Vec::new();
-        for _ in 0..2 + self.rng.below(2) {
-            let v = *self.rng.pick(REAL_OPERANDS);
-            reals.push((self.in_var(v, true), None));
-        }
-        for _ in 0..1 + self.rng.below(2) {
-            let v = self.operand();
-            bools.push((self.in_var(&v, true), None));
-        }
+        let (mut reals, mut bools) = self.network_operands(REAL_OPERANDS);
         for _ in 0..1 + self.rng.below(4) {
             let ty = *self.rng.pick(REAL_BLOCKS);
             let real = |g: &mut Gen, reals: &[Src]| *g.rng.pick(reals);
@@ -143,7 +117,7 @@ impl Gen {
                         if self.rng.chance(25) { &["IN1", "IN2", "IN3"] } else { &["IN1", "IN2"] };
                     let pins: Vec<(&str, Src, &str)> =
                         names.iter().map(|p| (*p, real(self, &reals), "")).collect();
-                    (self.real_block(ty, &pins, en), matches!(ty, "MIN" | "MAX"))
+                    (self.real_block(ty, &pins, en), matches!(ty, "MIN" | "MAX" | "MUL"))
                 }
             };
             if gives_real {
@@ -160,14 +134,7 @@ impl Gen {
             (*self.rng.pick(&bools), *self.rng.pick(self.bits)),
         ];
         for (src, target) in targets {
-            let id = self.nid();
-            let (p, o) = (self.pos(500), self.order(true));
-            writeln!(
-                self.body,
-                r#"<outVariable localId="{id}"{o}>{p}{}<expression>{target}</expression></outVariable>"#,
-                Gen::conn(&[src])
-            )
-            .unwrap();
+            self.out_var(src, target);
         }
         self.y += 100;
     }

@@ -94,7 +94,7 @@ impl Lowering<'_> {
             IntExpr::DivBy(a, b) => two(a, b, |x, y| if y == 0 { 0 } else { x.wrapping_div(y) }),
             IntExpr::ModBy(a, b) => two(a, b, |x, y| if y == 0 { 0 } else { x.wrapping_rem(y) }),
             IntExpr::Cast(a, inner) => Ok(ty.wrap(self.known_int(a, *inner)?)),
-            IntExpr::RealDiv(a, b) => two(a, b, crate::program::real::div),
+            IntExpr::Real(op, a, b) => Ok(op.apply(self.known_int(a, ty)?, self.known_int(b, ty)?)),
             IntExpr::ToReal(a, inner) => {
                 Ok(crate::program::real::of_f32(self.known_int(a, *inner)? as f32))
             }

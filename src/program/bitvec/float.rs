@@ -74,68 +74,55 @@ fn all_zero(v: &[L]) -> L {
     simp(&L::Or(v.to_vec()).negate())
 }
 
-/// `a / b` for two `REAL`s as C computes it on x86-64 (`divss`: the nearest number,
-/// ties to even, subnormal results kept), and `+0.0` when `b` is `±0.0`, where matiec's
-/// `DIV` returns `__INIT_REAL` (`TEST_EN_COND(REAL, op2 == 0)`). A NaN result is the
-/// first NaN operand made quiet, else (`∞/∞`) the default NaN `0xFFC00000`.
-///
-/// Each operand is unpacked to a 24-bit significand with its leading 1 at bit 23 (a
-/// subnormal one normalised, its exponent lowered) and an exponent in 12-bit two's
-/// complement; the significands are divided by restoring division into 27 quotient
-/// bits and a remainder; the quotient is normalised to its leading 1 at bit 26, shifted
-/// right (collecting the bits shifted out) where the result is subnormal, and rounded
-/// on the guard bit, the bits below it and the last bit kept.
-pub fn div_real(a: &[L], b: &[L], name: Namer) -> Bits {
-    let wide = IntType { bits: 12, signed: true, real: false };
-    let k = |v: i64| constant(v, 12);
-    // (significand, exponent, is zero, is infinite, is NaN) of a finite or special one.
-    let unpack = |v: &[L], name: Namer| {
-        let (fraction, exponent) = (&v[..23], &v[23..31]);
-        let subnormal = all_zero(exponent);
-        let ones = simp(&L::And(exponent.to_vec()));
-        let no_fraction = all_zero(fraction);
-        let zero = name(simp(&subnormal.clone().and(no_fraction.clone())));
-        let inf = name(simp(&ones.clone().and(no_fraction.clone())));
-        let nan = name(simp(&ones.and(no_fraction.negate())));
-        let mut m: Bits = fraction.to_vec();
-        m.push(subnormal.clone().negate());
-        let count = normalize(&mut m, 12, name);
-        let e: Bits = exponent.iter().cloned().chain(std::iter::repeat_n(L::Zero, 4)).collect();
-        let e = choose(&subnormal, &k(1), &e, name);
-        (m, sub(&e, &count, name), zero, inf, nan)
-    };
-    let (ma, ea, zero_a, inf_a, nan_a) = unpack(a, name);
-    let (mb, eb, zero_b, inf_b, nan_b) = unpack(b, name);
-    let sign = super::xor(&a[31], &b[31]);
-    // Restoring division: 27 quotient bits, most significant first.
-    let divisor: Bits = mb.iter().cloned().chain([L::Zero, L::Zero]).collect();
-    let mut r: Bits = ma.iter().cloned().chain([L::Zero, L::Zero]).collect();
-    let mut q = vec![L::Zero; 27];
-    for bit in (0..27).rev() {
-        let diff = sub(&r, &divisor, name);
-        let fits = name(diff[25].clone().negate());
-        r = choose(&fits, &diff, &r, name);
-        q[bit] = fits;
-        if bit > 0 {
-            r = std::iter::once(L::Zero).chain(r[..25].iter().cloned()).collect();
-        }
-    }
-    let rest = name(simp(&L::Or(r)));
-    // The leading 1 at bit 26 (a quotient below 1 is shifted up once).
-    let top = q[26].clone();
-    let shifted: Bits = std::iter::once(L::Zero).chain(q[..26].iter().cloned()).collect();
-    let mut s = choose(&top, &q, &shifted, name);
-    let below_one = choose(&top, &k(127), &k(126), name);
-    let e = add(&sub(&ea, &eb, name), &below_one, L::Zero, name);
-    let overflow = compare(CmpOp::Ge, wide, &e, &k(255), name);
+/// The exponents of [`unpack`] and [`round_pack`]: 12-bit two's complement.
+const WIDE: IntType = IntType { bits: 12, signed: true, real: false };
+
+/// `v` in [`WIDE`] bits.
+fn wide(v: i64) -> Bits {
+    constant(v, 12)
+}
+
+/// A `REAL` operand taken apart.
+struct Unpacked {
+    /// The significand, its leading 1 at bit 23 (a subnormal one shifted up).
+    m: Bits,
+    /// The biased exponent of that leading 1 (below 1 for a subnormal number).
+    e: Bits,
+    zero: L,
+    inf: L,
+    nan: L,
+}
+
+fn unpack(v: &[L], name: Namer) -> Unpacked {
+    let (fraction, exponent) = (&v[..23], &v[23..31]);
+    let subnormal = all_zero(exponent);
+    let ones = simp(&L::And(exponent.to_vec()));
+    let no_fraction = all_zero(fraction);
+    let zero = name(simp(&subnormal.clone().and(no_fraction.clone())));
+    let inf = name(simp(&ones.clone().and(no_fraction.clone())));
+    let nan = name(simp(&ones.and(no_fraction.negate())));
+    let mut m: Bits = fraction.to_vec();
+    m.push(subnormal.clone().negate());
+    let count = normalize(&mut m, 12, name);
+    let e: Bits = exponent.iter().cloned().chain(std::iter::repeat_n(L::Zero, 4)).collect();
+    let e = choose(&subnormal, &wide(1), &e, name);
+    Unpacked { m, e: sub(&e, &count, name), zero, inf, nan }
+}
+
+/// The finite result `1.s × 2^(e - 127)` (`s` 27 bits, its leading 1 at bit 26; `sticky`:
+/// whether anything below them is not 0) rounded to a `REAL`'s 31 bits without the
+/// sign: shifted right where it is subnormal (`e ≤ 0`, the bits shifted out joining
+/// `sticky`), rounded on the guard bit, the bits below it and the last bit kept (ties
+/// to even), `∞` where it overflows.
+fn round_pack(e: &[L], mut s: Bits, mut sticky: L, name: Namer) -> Bits {
+    let overflow = compare(CmpOp::Ge, WIDE, e, &wide(255), name);
     let overflow = name(overflow);
     // Subnormal: shifted right by 1 - e places (all of it from 32 on).
-    let t = sub(&k(1), &e, name);
-    let tiny = compare(CmpOp::Ge, wide, &t, &k(1), name);
+    let t = sub(&wide(1), e, name);
+    let tiny = compare(CmpOp::Ge, WIDE, &t, &wide(1), name);
     let tiny = name(tiny);
-    let far = compare(CmpOp::Ge, wide, &t, &k(32), name);
+    let far = compare(CmpOp::Ge, WIDE, &t, &wide(32), name);
     let all_out = name(tiny.clone().and(far));
-    let mut sticky = rest;
     for (j, amount) in t.iter().take(5).enumerate() {
         let step = 1usize << j;
         let on = name(simp(&tiny.clone().and(amount.clone())));
@@ -151,23 +138,106 @@ pub fn div_real(a: &[L], b: &[L], name: Namer) -> Bits {
     let sticky = simp(&sticky.or(s[1].clone()).or(s[0].clone()));
     let round = name(simp(&s[2].clone().and(sticky.or(fraction[0].clone()))));
     let unrounded: Bits = fraction.iter().chain(&exponent).cloned().collect();
-    let mut result = add(&unrounded, &constant(0, 31), round, name);
-    result = choose(&overflow, &constant(0x7F80_0000, 31), &result, name);
-    // The special cases, the last one chosen first.
-    let signed =
-        |v: i64, sign: &L| -> Bits { constant(v, 31).into_iter().chain([sign.clone()]).collect() };
-    let mut out: Bits = result.into_iter().chain([sign.clone()]).collect();
-    let to_zero = name(simp(&zero_a.or(inf_b.clone())));
-    out = choose(&to_zero, &signed(0, &sign), &out, name);
-    out = choose(&inf_a, &signed(0x7F80_0000, &sign), &out, name);
-    let both_inf = simp(&inf_a.and(inf_b));
-    out = choose(&both_inf, &constant(0xFFC0_0000, 32), &out, name);
-    let quiet = |v: &[L]| -> Bits {
-        v.iter().enumerate().map(|(i, x)| if i == 22 { L::One } else { x.clone() }).collect()
-    };
-    out = choose(&nan_b, &quiet(b), &out, name);
-    out = choose(&nan_a, &quiet(a), &out, name);
-    choose(&zero_b, &constant(0, 32), &out, name)
+    let result = add(&unrounded, &constant(0, 31), round, name);
+    choose(&overflow, &constant(0x7F80_0000, 31), &result, name)
+}
+
+/// `v` made a quiet NaN (its fraction's top bit set), as x86 returns a NaN operand.
+fn quiet(v: &[L]) -> Bits {
+    v.iter().enumerate().map(|(i, x)| if i == 22 { L::One } else { x.clone() }).collect()
+}
+
+/// The result `±v` (31 bits, then the sign).
+fn signed(v: i64, sign: &L) -> Bits {
+    constant(v, 31).into_iter().chain([sign.clone()]).collect()
+}
+
+/// `finite` (31 bits) with its sign, unless a special case decides: `zero` gives `±0`,
+/// `inf` gives `±∞`, `invalid` the default NaN `0xFFC00000`, a NaN operand itself made
+/// quiet (`a`'s first), as x86's `mulss`/`divss` do.
+#[allow(clippy::too_many_arguments)]
+fn special(
+    finite: Bits,
+    sign: &L,
+    (zero, inf, invalid): (L, L, L),
+    (a, nan_a): (&[L], &L),
+    (b, nan_b): (&[L], &L),
+    name: Namer,
+) -> Bits {
+    let mut out: Bits = finite.into_iter().chain([sign.clone()]).collect();
+    out = choose(&zero, &signed(0, sign), &out, name);
+    out = choose(&inf, &signed(0x7F80_0000, sign), &out, name);
+    out = choose(&invalid, &constant(0xFFC0_0000, 32), &out, name);
+    out = choose(nan_b, &quiet(b), &out, name);
+    choose(nan_a, &quiet(a), &out, name)
+}
+
+/// `a / b` for two `REAL`s as C computes it on x86-64 (`divss`: the nearest number,
+/// ties to even, subnormal results kept), and `+0.0` when `b` is `±0.0`, where matiec's
+/// `DIV` returns `__INIT_REAL` (`TEST_EN_COND(REAL, op2 == 0)`). A NaN result is the
+/// first NaN operand made quiet, else (`∞/∞`) the default NaN `0xFFC00000`.
+///
+/// The significands ([`unpack`]) are divided by restoring division into 27 quotient
+/// bits and a remainder; the quotient, its leading 1 brought to bit 26, is rounded by
+/// [`round_pack`].
+pub fn div_real(a: &[L], b: &[L], name: Namer) -> Bits {
+    let (x, y) = (unpack(a, name), unpack(b, name));
+    let sign = super::xor(&a[31], &b[31]);
+    // Restoring division: 27 quotient bits, most significant first.
+    let divisor: Bits = y.m.iter().cloned().chain([L::Zero, L::Zero]).collect();
+    let mut r: Bits = x.m.iter().cloned().chain([L::Zero, L::Zero]).collect();
+    let mut q = vec![L::Zero; 27];
+    for bit in (0..27).rev() {
+        let diff = sub(&r, &divisor, name);
+        let fits = name(diff[25].clone().negate());
+        r = choose(&fits, &diff, &r, name);
+        q[bit] = fits;
+        if bit > 0 {
+            r = std::iter::once(L::Zero).chain(r[..25].iter().cloned()).collect();
+        }
+    }
+    let rest = name(simp(&L::Or(r)));
+    // The leading 1 at bit 26 (a quotient below 1 is shifted up once).
+    let top = q[26].clone();
+    let shifted: Bits = std::iter::once(L::Zero).chain(q[..26].iter().cloned()).collect();
+    let s = choose(&top, &q, &shifted, name);
+    let below_one = choose(&top, &wide(127), &wide(126), name);
+    let e = add(&sub(&x.e, &y.e, name), &below_one, L::Zero, name);
+    let finite = round_pack(&e, s, rest, name);
+    let to_zero = name(simp(&x.zero.or(y.inf.clone())));
+    let invalid = simp(&x.inf.clone().and(y.inf));
+    let out = special(finite, &sign, (to_zero, x.inf, invalid), (a, &x.nan), (b, &y.nan), name);
+    choose(&y.zero, &constant(0, 32), &out, name)
+}
+
+/// `a * b` for two `REAL`s as C computes it on x86-64 (`mulss`: the nearest number,
+/// ties to even, subnormal results kept; a NaN result is the first NaN operand made
+/// quiet, else (`0 × ∞`) the default NaN `0xFFC00000`). Of two NaN operands the C
+/// compiler may put either first (the product commutes): which NaN results is then
+/// taken to be `a`'s, a choice no comparison, conversion to BOOL or other operation on
+/// it can tell apart.
+///
+/// The 48-bit product of the significands ([`unpack`]), its leading 1 brought to bit 47,
+/// keeps its top 27 bits, the rest joining the sticky bit of [`round_pack`].
+pub fn mul_real(a: &[L], b: &[L], name: Namer) -> Bits {
+    let (x, y) = (unpack(a, name), unpack(b, name));
+    let sign = super::xor(&a[31], &b[31]);
+    let widen =
+        |m: &[L]| -> Bits { m.iter().cloned().chain(std::iter::repeat_n(L::Zero, 24)).collect() };
+    let p = super::mul(&widen(&x.m), &widen(&y.m), name);
+    let top = p[47].clone();
+    let shifted: Bits = std::iter::once(L::Zero).chain(p[..47].iter().cloned()).collect();
+    let p = choose(&top, &p, &shifted, name);
+    let sticky = name(simp(&L::Or(p[..21].to_vec())));
+    let s = p[21..].to_vec();
+    // 1.s × 2^(ea - 127) × 1.t × 2^(eb - 127), the product's leading 1 at 2^1 or 2^0.
+    let offset = choose(&top, &wide(-126), &wide(-127), name);
+    let e = add(&add(&x.e, &y.e, L::Zero, name), &offset, L::Zero, name);
+    let finite = round_pack(&e, s, sticky, name);
+    let zero = simp(&x.zero.clone().or(y.zero.clone()));
+    let inf = simp(&x.inf.clone().or(y.inf.clone()));
+    let invalid = name(simp(&zero.clone().and(inf.clone())));
+    special(finite, &sign, (name(zero), name(inf), invalid), (a, &x.nan), (b, &y.nan), name)
 }
 
 /// `a`, an integer of type `ty` (at most 32 bits), as the nearest `REAL` (ties to
@@ -299,6 +369,38 @@ mod tests {
         Ok(())
     }
 
+    /// The product on the constant bits of `x` and `y`, against `f32`'s.
+    fn multiplies(x: u32, y: u32) -> Result<(), TestCaseError> {
+        let (a, b) = (constant(i64::from(x), 32), constant(i64::from(y), 32));
+        let got = mul_real(&a, &b, &mut |t| t);
+        let got = got.iter().enumerate().fold(0u32, |acc, (k, b)| acc | (u32::from(eval(b)) << k));
+        let (p, q) = (f32::from_bits(x), f32::from_bits(y));
+        // Of two NaNs, the first made quiet: the payload of the C compiler's first
+        // operand, which no comparison tells apart (Rust may swap the operands).
+        let want = if p.is_nan() && q.is_nan() { x | 0x0040_0000 } else { (p * q).to_bits() };
+        prop_assert_eq!(got, want, "{:?} * {:?}: {:08x}, not {:08x}", p, q, got, want);
+        Ok(())
+    }
+
+    #[test]
+    fn hard_values_multiply_as_f32() {
+        for &x in &hard_operands() {
+            for &y in &hard_operands() {
+                multiplies(x, y).unwrap();
+            }
+        }
+    }
+
+    /// [`hard`], and values whose quotients and products round, overflow or underflow.
+    fn hard_operands() -> Vec<u32> {
+        let mut vs = hard();
+        vs.extend(
+            [3.0f32, 7.0, 0.75, 1e-40, 1e38, 1.1754942e-38, 2.9e-39, 6e-45].map(f32::to_bits),
+        );
+        vs.extend([0x7fc0_1234, 0xffbf_0001, 0x3f80_0001, 0x3fff_ffff, 0x1f80_0001, 0x2000_0000]);
+        vs
+    }
+
     #[test]
     fn hard_values_divide_as_f32() {
         let mut vs = hard();
@@ -324,6 +426,17 @@ mod tests {
             divides(near(x, ex), near(y, ex.saturating_sub(ey % 30)))?;
             divides(near(x, ex % 40), near(y, 200 + ey % 55))?;
             divides(near(x, 200 + ex % 55), near(y, ey % 60))?;
+        }
+
+        #[test]
+        fn random_values_multiply_as_f32(x in any::<u32>(), y in any::<u32>(), ex in 0u32..255, ey in 0u32..255) {
+            multiplies(x, y)?;
+            // Exponents whose sum is near the ends: products that are subnormal, overflow,
+            // or round.
+            let near = |v: u32, e: u32| v & 0x807f_ffff | (e << 23);
+            multiplies(near(x, ex), near(y, (254u32 + 127).saturating_sub(ex + ey % 30).min(254)))?;
+            multiplies(near(x, ex % 80), near(y, (127u32 + ey % 40).saturating_sub(ex % 80 + 20)))?;
+            multiplies(near(x, 120 + ex % 20), near(y, ey))?;
         }
 
         #[test]

@@ -11,7 +11,9 @@
 
 use super::super::bitvec::{self, Bits};
 use super::super::logic::{L, simp};
-use super::super::{BitOp, BoolExpr, Compare, IntExpr, IntType, IntVar, Program, Stmt, WriteKind};
+use super::super::{
+    BitOp, BoolExpr, Compare, IntExpr, IntType, IntVar, Program, RealOp, Stmt, WriteKind,
+};
 use super::{CompileError, Compiler, Pending, SignalKind};
 use crate::diag::Span;
 
@@ -63,7 +65,7 @@ impl Compiler<'_> {
                 | IntExpr::Ite(..)
                 | IntExpr::Bitwise(..)
                 | IntExpr::ToReal(..)
-                | IntExpr::RealDiv(..)
+                | IntExpr::Real(..)
         );
         if ty.real && real_op {
             return self.not_real(ty, span);
@@ -109,11 +111,15 @@ impl Compiler<'_> {
             }
             IntExpr::Cast(_, inner) if inner.real => self.not_real(ty, span),
             IntExpr::ToReal(_, inner) if inner.real || !ty.real => self.not_real(ty, span),
-            IntExpr::RealDiv(..) if !ty.real => self.not_real(ty, span),
-            IntExpr::RealDiv(a, b) => {
+            IntExpr::Real(..) if !ty.real => self.not_real(ty, span),
+            IntExpr::Real(op, a, b) => {
                 let (a, b) = (self.int(a, ty, span), self.int(b, ty, span));
                 // Each step of the division reads the remainder's bits several times.
-                bitvec::div_real(&a, &b, &mut |t: L| self.intermediate_over(t, MAX_DIV_TERM))
+                let mut name = |t: L| self.intermediate_over(t, MAX_DIV_TERM);
+                match op {
+                    RealOp::Mul => bitvec::mul_real(&a, &b, &mut name),
+                    RealOp::Div => bitvec::div_real(&a, &b, &mut name),
+                }
             }
             IntExpr::ToReal(a, inner) => {
                 let a = self.int(a, *inner, span);
@@ -252,7 +258,7 @@ pub(super) fn constants(program: &Program) -> Vec<i64> {
             | IntExpr::Mul(a, b)
             | IntExpr::DivBy(a, b)
             | IntExpr::ModBy(a, b)
-            | IntExpr::RealDiv(a, b)
+            | IntExpr::Real(_, a, b)
             | IntExpr::Ite(_, a, b) => {
                 walk(a, out);
                 walk(b, out);

@@ -9,7 +9,7 @@ use crate::ladder::plcopen::ints::{Arith, ConvType, IntBlock};
 use crate::ladder::plcopen::{Edge, ObjKind, PinIn, PlcProgram, Source};
 use crate::program::library::{self, Counter};
 use crate::program::{
-    Block, BoolExpr, CmpOp, EdgeKind, IntExpr, IntType, IntVar, Memory, Stmt, WriteKind,
+    Block, BoolExpr, CmpOp, EdgeKind, IntExpr, IntType, IntVar, Memory, RealOp, Stmt, WriteKind,
 };
 
 /// An integer value on a wire and its type (`None`: a literal, typed by its reader), or
@@ -578,8 +578,8 @@ impl Lower<'_> {
             return Ok(Value::Int(e, t));
         }
         let t = unify(vals.iter().map(|(_, _, t)| t))?;
-        if t.real && matches!(b, IntBlock::Arith(op) if *op != Arith::Div) {
-            return Err("ii-prove computes no ADD, SUB, MUL or MOD of REALs".into());
+        if t.real && matches!(b, IntBlock::Arith(Arith::Add | Arith::Sub | Arith::Mod)) {
+            return Err("ii-prove computes no ADD, SUB or MOD of REALs".into());
         }
         let args: Vec<IntExpr> = vals.iter().map(|(_, e, _)| coerce(e.clone(), t)).collect();
         let named = |pin: &str| -> Result<IntExpr, String> {
@@ -592,6 +592,17 @@ impl Lower<'_> {
             (IntBlock::Compare(op), [_, _, ..]) => {
                 return Ok(Value::Bool(library::compare_chain(*op, t, &args)));
             }
+            // IEEE division, `+0.0` for a divisor `±0.0`; products folded as
+            // `__arith_expand` does (each `op1 * tmp` exact in `double`, then rounded to
+            // `float` once): `IntExpr::Real`.
+            (IntBlock::Arith(Arith::Div), [a, b]) if t.real => {
+                IntExpr::Real(RealOp::Div, Box::new(a.clone()), Box::new(b.clone()))
+            }
+            (IntBlock::Arith(Arith::Mul), [first, rest @ ..]) if t.real && !rest.is_empty() => {
+                rest.iter().fold(first.clone(), |a, b| {
+                    IntExpr::Real(RealOp::Mul, Box::new(a), Box::new(b.clone()))
+                })
+            }
             (IntBlock::Arith(Arith::Add), [first, rest @ ..]) if !rest.is_empty() => {
                 rest.iter().cloned().fold(first.clone(), IntExpr::plus)
             }
@@ -603,10 +614,6 @@ impl Lower<'_> {
             // matiec's DIV and MOD (`lib/C/iec_std_functions.h`, `__div`, `__mod`): C's
             // division truncated toward zero, the remainder with the dividend's sign, 0 for
             // a divisor 0 (`IntExpr::DivBy`).
-            // IEEE division, `+0.0` for a divisor `±0.0` (`IntExpr::RealDiv`).
-            (IntBlock::Arith(Arith::Div), [a, b]) if t.real => {
-                IntExpr::RealDiv(Box::new(a.clone()), Box::new(b.clone()))
-            }
             (IntBlock::Arith(op @ (Arith::Div | Arith::Mod)), [a, b]) => match b {
                 IntExpr::Const(0) => IntExpr::Const(0),
                 IntExpr::Const(d) if *op == Arith::Div => IntExpr::Div(Box::new(a.clone()), *d),

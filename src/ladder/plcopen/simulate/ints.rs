@@ -6,7 +6,6 @@ use super::PlcSimulator;
 use crate::iec::literal::int_literal;
 use crate::ladder::plcopen::ints::{Arith, IntBlock};
 use crate::ladder::plcopen::{ObjKind, PinIn, PlcProgram, Source};
-use crate::program::CmpOp;
 
 /// An integer type as C declares it: width and signedness; or `float` (IEC `REAL`), whose
 /// values are kept as their 32-bit patterns.
@@ -52,14 +51,7 @@ fn float_function(
     let named = |pin: &str| vals.iter().position(|(n, _, _)| n == pin).map(|j| xs[j]);
     let x = match b {
         IntBlock::Compare(op) => {
-            return Some(Out::Bool(xs.windows(2).all(|w| match op {
-                CmpOp::Gt => w[0] > w[1],
-                CmpOp::Ge => w[0] >= w[1],
-                CmpOp::Eq => w[0] == w[1],
-                CmpOp::Ne => w[0] != w[1],
-                CmpOp::Lt => w[0] < w[1],
-                CmpOp::Le => w[0] <= w[1],
-            })));
+            return Some(Out::Bool(xs.windows(2).all(|w| op.compares(w[0], w[1]))));
         }
         // `__extrem_`: `op1 = op1 > tmp ? tmp : op1` (MAX: `op1 < tmp`).
         IntBlock::Min => xs.iter().copied().reduce(|a, x| if a > x { x } else { a })?,
@@ -73,6 +65,12 @@ fn float_function(
             if x < 0.0 { -x } else { x }
         }
         IntBlock::Move => named("IN")?,
+        // `__arith_expand`: `op1 = op1 * tmp` (in `double`, exact, then one rounding to
+        // `float`); of two NaNs, the first made quiet, whichever the C compiler puts
+        // first being one no comparison tells apart.
+        IntBlock::Arith(Arith::Mul) => xs.iter().copied().reduce(|x, y| {
+            if x.is_nan() && y.is_nan() { f32::from_bits(x.to_bits() | 0x0040_0000) } else { x * y }
+        })?,
         // `DIV_REAL`: `TEST_EN_COND(REAL, op2 == 0)` returns 0, else `op1 / op2`.
         IntBlock::Arith(Arith::Div) => match xs.as_slice() {
             [_, y] if *y == 0.0 => 0.0,
@@ -193,14 +191,7 @@ fn function(b: &IntBlock, args: Vec<(String, Val)>, get: impl Fn(&str) -> bool) 
     let named = |pin: &str| vals.iter().position(|(n, _, _)| n == pin).map(|j| xs[j]).unwrap_or(0);
     let result: i128 = match b {
         IntBlock::Compare(op) => {
-            return Some(Out::Bool(xs.windows(2).all(|w| match op {
-                CmpOp::Gt => w[0] > w[1],
-                CmpOp::Ge => w[0] >= w[1],
-                CmpOp::Eq => w[0] == w[1],
-                CmpOp::Ne => w[0] != w[1],
-                CmpOp::Lt => w[0] < w[1],
-                CmpOp::Le => w[0] <= w[1],
-            })));
+            return Some(Out::Bool(xs.windows(2).all(|w| op.compares(w[0], w[1]))));
         }
         IntBlock::Arith(Arith::Add) => xs.iter().fold(0, |a, x| i128::from(ct.store(a + x))),
         IntBlock::Arith(Arith::Mul) => xs.iter().fold(1, |a, x| i128::from(ct.store(a * x))),
