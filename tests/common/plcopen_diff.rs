@@ -916,20 +916,7 @@ pub fn input_schedule(plc: &PlcProgram, seed: u64, scans: usize) -> Vec<BTreeMap
             }
         }
         for n in &reals {
-            // The hard values mostly (zeros, the literals, NaN, infinities, subnormals),
-            // sometimes any pattern.
-            if rng.chance(30) {
-                let hard = [0.0, -0.0, 2.5, -0.5, 1000.0, 80.5, 16_777_216.0, 1.5, f32::NAN];
-                let more = [f32::INFINITY, f32::NEG_INFINITY, 1e-40, -3.0, 7.0];
-                let x: u32 = match rng.below(4) {
-                    0 => rng.below(1 << 32) as u32,
-                    1 => more[rng.below(more.len() as u64) as usize].to_bits(),
-                    _ => hard[rng.below(hard.len() as u64) as usize].to_bits(),
-                };
-                for k in 0..32 {
-                    current.insert(format!("{n}_b{k}"), x >> k & 1 == 1);
-                }
-            }
+            real::drive(&mut rng, n, &mut current);
         }
         out.push(current.clone());
     }

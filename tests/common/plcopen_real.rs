@@ -2,6 +2,9 @@
 
 use std::fmt::Write as _;
 
+use std::collections::BTreeMap;
+
+use super::Rng;
 use super::{Gen, SINT_VAR};
 
 /// A REAL input, and a REAL the program writes (starting at 1.5).
@@ -19,6 +22,25 @@ const REAL_BLOCKS: &[&str] = &[
     "INT_TO_REAL", "SINT_TO_REAL", "UDINT_TO_REAL", "BOOL_TO_REAL", "REAL_TO_BOOL",
     "REAL_TO_REAL", "DIV", "DIV", "MUL", "MUL",
 ];
+
+/// Sometimes a new value of the REAL input `n` (its bits `{n}_b{k}` in `current`): the
+/// hard values mostly (zeros, the literals, NaN, infinities, a subnormal), sometimes any
+/// pattern.
+pub(super) fn drive(rng: &mut Rng, n: &str, current: &mut BTreeMap<String, bool>) {
+    if !rng.chance(30) {
+        return;
+    }
+    let hard = [0.0, -0.0, 2.5, -0.5, 1000.0, 80.5, 16_777_216.0, 1.5, f32::NAN];
+    let more = [f32::INFINITY, f32::NEG_INFINITY, 1e-40, -3.0, 7.0];
+    let x: u32 = match rng.below(4) {
+        0 => rng.below(1 << 32) as u32,
+        1 => more[rng.below(more.len() as u64) as usize].to_bits(),
+        _ => hard[rng.below(hard.len() as u64) as usize].to_bits(),
+    };
+    for k in 0..32 {
+        current.insert(format!("{n}_b{k}"), x >> k & 1 == 1);
+    }
+}
 
 impl Gen {
     /// A block `ty` with these input pins (name, source, modifier), `EN` wired when

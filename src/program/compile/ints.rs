@@ -239,7 +239,7 @@ impl Compiler<'_> {
 }
 
 /// The integer constants of a program: start values, and the literals of its integer
-/// writes and comparisons (divisors included), in increasing order.
+/// writes and comparisons (divisors included), in increasing order; none of a `REAL`.
 pub(super) fn constants(program: &Program) -> Vec<i64> {
     fn walk(e: &IntExpr, out: &mut std::collections::BTreeSet<i64>) {
         match e {
@@ -266,17 +266,22 @@ pub(super) fn constants(program: &Program) -> Vec<i64> {
         }
     }
     let mut out: std::collections::BTreeSet<i64> =
-        program.integers.values().map(|v| v.init).collect();
+        program.integers.values().filter(|v| !v.ty.real).map(|v| v.init).collect();
     for (_, s) in program.stmts() {
         let (mut sets, mut cmps) = (Vec::new(), Vec::new());
         s.visit(
+            // A `REAL`'s literals are bit patterns, no count an integer reaches.
             &mut |s| {
-                if let Stmt::SetInt { value, .. } = s {
+                if let Stmt::SetInt { value, target, .. } = s
+                    && program.integers.get(target).is_none_or(|v| !v.ty.real)
+                {
                     sets.push(value.clone());
                 }
             },
             &mut |e| {
-                if let BoolExpr::Compare(c) = e {
+                if let BoolExpr::Compare(c) = e
+                    && !c.ty.real
+                {
                     cmps.push(c.a.clone());
                     cmps.push(c.b.clone());
                 }
