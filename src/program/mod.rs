@@ -218,14 +218,18 @@ pub enum IntExpr {
     /// type) as C converts an integer to `float`: the nearest number, ties to even
     /// (matiec's `*_TO_REAL`).
     ToReal(Box<IntExpr>, IntType),
-    /// `a * b` or `a / b` of two `REAL`s as C computes it (IEEE 754, the nearest number,
-    /// ties to even; [`RealOp`]).
+    /// `a + b`, `a - b`, `a * b` or `a / b` of two `REAL`s as C computes it (IEEE 754,
+    /// the nearest number, ties to even; [`RealOp`]).
     Real(RealOp, Box<IntExpr>, Box<IntExpr>),
 }
 
 /// An operation of two `REAL`s.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RealOp {
+    /// `a + b` (of two NaNs, `a` made quiet: [`bitvec::add_real`]).
+    Add,
+    /// `a - b`.
+    Sub,
     /// `a * b` (of two NaNs, `a` made quiet: [`bitvec::mul_real`]).
     Mul,
     /// `a / b`, and `+0.0` when `b` is `±0.0`: matiec's `DIV` returns `__INIT_REAL` then
@@ -237,6 +241,8 @@ impl RealOp {
     /// The operation on two stored `REAL` values, computed with `f32`.
     pub fn apply(self, a: i64, b: i64) -> i64 {
         match self {
+            RealOp::Add => real::add(a, b),
+            RealOp::Sub => real::sub(a, b),
             RealOp::Mul => real::mul(a, b),
             RealOp::Div => real::div(a, b),
         }

@@ -18,17 +18,39 @@ pub fn holds(op: CmpOp, a: i64, b: i64) -> bool {
     op.compares(to_f32(a), to_f32(b))
 }
 
-/// `a / b` of two stored `REAL` values, `+0.0` for `b = ±0.0` (matiec's `DIV`).
-pub fn div(a: i64, b: i64) -> i64 {
+/// `op(x, y)` of two stored `REAL` values, computed with `f32`, its NaN as x86's SSE
+/// instructions give it (`addss`, `subss`, `mulss`, `divss`): the first NaN operand made
+/// quiet, else the default NaN `0xFFC00000` (Rust, like LLVM, leaves a NaN's bits
+/// open). Of two NaNs the C compiler may put either first in a sum or product, which no
+/// comparison tells apart: `a`'s is taken.
+fn sse(a: i64, b: i64, op: fn(f32, f32) -> f32) -> i64 {
     let (x, y) = (to_f32(a), to_f32(b));
-    of_f32(if y == 0.0 { 0.0 } else { x / y })
+    match op(x, y) {
+        _ if x.is_nan() => a | 0x0040_0000,
+        _ if y.is_nan() => b | 0x0040_0000,
+        r if r.is_nan() => 0xFFC0_0000,
+        r => of_f32(r),
+    }
 }
 
-/// `a * b` of two stored `REAL` values; of two NaNs, `a` made quiet (see
-/// [`crate::program::bitvec::mul_real`]).
+/// `a + b` of two stored `REAL` values.
+pub fn add(a: i64, b: i64) -> i64 {
+    sse(a, b, |x, y| x + y)
+}
+
+/// `a - b` of two stored `REAL` values.
+pub fn sub(a: i64, b: i64) -> i64 {
+    sse(a, b, |x, y| x - y)
+}
+
+/// `a * b` of two stored `REAL` values.
 pub fn mul(a: i64, b: i64) -> i64 {
-    let (x, y) = (to_f32(a), to_f32(b));
-    if x.is_nan() && y.is_nan() { a | 0x0040_0000 } else { of_f32(x * y) }
+    sse(a, b, |x, y| x * y)
+}
+
+/// `a / b` of two stored `REAL` values, `+0.0` for `b = ±0.0` (matiec's `DIV`).
+pub fn div(a: i64, b: i64) -> i64 {
+    if to_f32(b) == 0.0 { 0 } else { sse(a, b, |x, y| x / y) }
 }
 
 /// The stored value of an IEC real literal (`2.5`, `-0.5`, `1.0E3`, `1_000.0e-2`,

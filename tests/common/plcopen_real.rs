@@ -1,4 +1,4 @@
-//! The random PLCopen generator's `REAL` networks: REAL variables and literals (zeros of both signs, a value past 2^24), integers and BOOLs converted to REAL, comparisons (extensible), MUL (extensible), DIV (by ±0.0 too), MIN/MAX/LIMIT/ABS/MOVE/SEL/MUX of REALs, REAL_TO_BOOL, some under a wired EN.
+//! The random PLCopen generator's `REAL` networks: REAL variables and literals (zeros of both signs, a value past 2^24), integers and BOOLs converted to REAL, comparisons (extensible), ADD and MUL (extensible), SUB, DIV (by ±0.0 too), MIN/MAX/LIMIT/ABS/MOVE/SEL/MUX of REALs, REAL_TO_BOOL, some under a wired EN.
 
 use std::fmt::Write as _;
 
@@ -20,7 +20,7 @@ const REAL_OPERANDS: &[&str] =
 const REAL_BLOCKS: &[&str] = &[
     "GT", "GE", "EQ", "NE", "LT", "LE", "MIN", "MAX", "LIMIT", "ABS", "MOVE", "SEL", "MUX",
     "INT_TO_REAL", "SINT_TO_REAL", "UDINT_TO_REAL", "BOOL_TO_REAL", "REAL_TO_BOOL",
-    "REAL_TO_REAL", "DIV", "DIV", "MUL", "MUL",
+    "REAL_TO_REAL", "DIV", "DIV", "MUL", "MUL", "ADD", "ADD", "SUB", "SUB",
 ];
 
 /// Sometimes a new value of the REAL input `n` (its bits `{n}_b{k}` in `current`): the
@@ -104,7 +104,7 @@ impl Gen {
                         ["MN", "IN", "MX"].iter().map(|p| (*p, real(self, &reals), "")).collect();
                     (self.real_block(ty, &pins, en), true)
                 }
-                "DIV" => {
+                "DIV" | "SUB" => {
                     // A divisor ±0.0 sometimes (matiec's DIV gives 0.0, ENO FALSE).
                     let d = if self.rng.chance(25) {
                         let zero = *self.rng.pick(&["0.0", "-0.0"]);
@@ -139,7 +139,7 @@ impl Gen {
                         if self.rng.chance(25) { &["IN1", "IN2", "IN3"] } else { &["IN1", "IN2"] };
                     let pins: Vec<(&str, Src, &str)> =
                         names.iter().map(|p| (*p, real(self, &reals), "")).collect();
-                    (self.real_block(ty, &pins, en), matches!(ty, "MIN" | "MAX" | "MUL"))
+                    (self.real_block(ty, &pins, en), matches!(ty, "MIN" | "MAX" | "MUL" | "ADD"))
                 }
             };
             if gives_real {

@@ -240,6 +240,88 @@ pub fn mul_real(a: &[L], b: &[L], name: Namer) -> Bits {
     special(finite, &sign, (name(zero), name(inf), invalid), (a, &x.nan), (b, &y.nan), name)
 }
 
+/// `a + b` for two `REAL`s as C computes it on x86-64 (`addss`: the nearest number,
+/// ties to even, subnormal results kept; an exact zero sum is `+0.0` unless both are
+/// `-0.0`; a NaN result is the first NaN operand made quiet, else (`∞ - ∞`) the default
+/// NaN `0xFFC00000`). Of two NaN operands the C compiler may put either first: which
+/// NaN results is taken to be `a`'s, as for [`mul_real`]. `subtract` gives `a - b`
+/// (`b`'s sign flipped, a NaN `b` kept as it is, as `subss` does).
+///
+/// The operand of the larger magnitude first; the other's significand, with three bits
+/// more (guard, round and a sticky bit collecting what is shifted out), shifted right
+/// by the difference of the exponents; added or subtracted; a carry shifted back, a
+/// cancellation normalised; then rounded by [`round_pack`].
+pub fn add_real(a: &[L], b: &[L], subtract: bool, name: Namer) -> Bits {
+    let sb = if subtract { b[31].clone().negate() } else { b[31].clone() };
+    let b_signed: Bits = b[..31].iter().cloned().chain([sb]).collect();
+    let magnitude = IntType { bits: 31, signed: false, real: false };
+    let swap = compare(CmpOp::Lt, magnitude, &a[..31], &b[..31], name);
+    let swap = name(swap);
+    let (big, small) = (choose(&swap, &b_signed, a, name), choose(&swap, a, &b_signed, name));
+    // Unpacked without normalising: `m × 2^(e - 150)`, `e` at least 1.
+    let parts = |v: &[L], name: Namer| -> (Bits, Bits) {
+        let subnormal = all_zero(&v[23..31]);
+        let m: Bits = [L::Zero, L::Zero, L::Zero]
+            .into_iter()
+            .chain(v[..23].iter().cloned())
+            .chain([subnormal.clone().negate()])
+            .collect();
+        let e: Bits = v[23..31].iter().cloned().chain(std::iter::repeat_n(L::Zero, 4)).collect();
+        (m, choose(&subnormal, &wide(1), &e, name))
+    };
+    let (mx, ex) = parts(&big, name);
+    let (mut my, ey) = parts(&small, name);
+    let d = sub(&ex, &ey, name);
+    // Shifted right by d (0 to 253), what leaves kept as a sticky bit 0.
+    let far = compare(CmpOp::Ge, WIDE, &d, &wide(32), name);
+    let far = name(far);
+    let mut sticky = L::Zero;
+    for (j, amount) in d.iter().take(5).enumerate() {
+        let step = 1usize << j;
+        sticky = name(simp(&sticky.or(amount.clone().and(L::Or(my[..step].to_vec())))));
+        let down: Bits =
+            my[step..].iter().cloned().chain(std::iter::repeat_n(L::Zero, step)).collect();
+        my = choose(amount, &down, &my, name);
+    }
+    sticky = name(simp(&sticky.or(far.clone().and(L::Or(my.clone())))));
+    my = choose(&far, &constant(0, 27), &my, name);
+    my[0] = simp(&my[0].clone().or(sticky));
+    let same = name(simp(&super::xor(&big[31], &small[31]).negate()));
+    let (mx28, my28): (Bits, Bits) = (
+        mx.iter().cloned().chain([L::Zero]).collect(),
+        my.iter().cloned().chain([L::Zero]).collect(),
+    );
+    let sum = add(&mx28, &my28, L::Zero, name);
+    let difference = sub(&mx28, &my28, name);
+    let total = choose(&same, &sum, &difference, name);
+    // A carry: shifted right once (its last bit kept as sticky), the exponent one up.
+    let carry = total[27].clone();
+    let mut down: Bits = total[1..].to_vec();
+    down[0] = simp(&down[0].clone().or(total[0].clone()));
+    let mut s = choose(&carry, &down, &total[..27], name);
+    let e = add(&ex, &constant(0, 12), carry, name);
+    let cancelled = all_zero(&s);
+    let count = normalize(&mut s, 12, name);
+    let e = sub(&e, &count, name);
+    let finite = round_pack(&e, s, L::Zero, name);
+    let (x, y) = (unpack(a, name), unpack(b, name));
+    let inf = simp(&x.inf.clone().or(y.inf.clone()));
+    // An exact zero: -0.0 only for two negative zeros (same signs).
+    let exact_zero = name(simp(&cancelled.and(inf.clone().negate())));
+    let zero_sign = simp(&same.clone().and(big[31].clone()));
+    let sign = choose(&exact_zero, &[zero_sign], &[big[31].clone()], name).remove(0);
+    let opposite_inf = simp(&x.inf.and(y.inf).and(same.negate()));
+    // `±∞` takes the sign of the infinite operand, which the larger magnitude is.
+    special(
+        finite,
+        &sign,
+        (exact_zero, name(inf), name(opposite_inf)),
+        (a, &x.nan),
+        (b, &y.nan),
+        name,
+    )
+}
+
 /// `a`, an integer of type `ty` (at most 32 bits), as the nearest `REAL` (ties to
 /// even), as C converts an integer to `float`.
 ///
@@ -364,7 +446,7 @@ mod tests {
         let got = div_real(&a, &b, &mut |t| t);
         let got = got.iter().enumerate().fold(0u32, |acc, (k, b)| acc | (u32::from(eval(b)) << k));
         let (p, q) = (f32::from_bits(x), f32::from_bits(y));
-        let want = if q == 0.0 { 0 } else { (p / q).to_bits() };
+        let want = real::div(i64::from(x), i64::from(y)) as u32;
         prop_assert_eq!(got, want, "{:?} / {:?}: {:08x}, not {:08x}", p, q, got, want);
         Ok(())
     }
@@ -375,11 +457,46 @@ mod tests {
         let got = mul_real(&a, &b, &mut |t| t);
         let got = got.iter().enumerate().fold(0u32, |acc, (k, b)| acc | (u32::from(eval(b)) << k));
         let (p, q) = (f32::from_bits(x), f32::from_bits(y));
-        // Of two NaNs, the first made quiet: the payload of the C compiler's first
-        // operand, which no comparison tells apart (Rust may swap the operands).
-        let want = if p.is_nan() && q.is_nan() { x | 0x0040_0000 } else { (p * q).to_bits() };
+        let want = real::mul(i64::from(x), i64::from(y)) as u32;
         prop_assert_eq!(got, want, "{:?} * {:?}: {:08x}, not {:08x}", p, q, got, want);
         Ok(())
+    }
+
+    /// The sum or difference on the constant bits of `x` and `y`, against `f32`'s.
+    fn adds(x: u32, y: u32, subtract: bool) -> Result<(), TestCaseError> {
+        let (a, b) = (constant(i64::from(x), 32), constant(i64::from(y), 32));
+        let got = add_real(&a, &b, subtract, &mut |t| t);
+        let got = got.iter().enumerate().fold(0u32, |acc, (k, b)| acc | (u32::from(eval(b)) << k));
+        let (p, q) = (f32::from_bits(x), f32::from_bits(y));
+        let op = if subtract { real::sub } else { real::add };
+        let want = op(i64::from(x), i64::from(y)) as u32;
+        prop_assert_eq!(got, want, "{:?} {} {:?}: {:08x}, not {:08x}", p, subtract, q, got, want);
+        Ok(())
+    }
+
+    #[test]
+    fn hard_values_add_as_f32() {
+        for &x in &hard_operands() {
+            for &y in &hard_operands() {
+                adds(x, y, false).unwrap();
+                adds(x, y, true).unwrap();
+            }
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(3000))]
+        #[test]
+        fn random_values_add_as_f32(x in any::<u32>(), y in any::<u32>(), ey in 0u32..40, low in 0u32..24) {
+            adds(x, y, false)?;
+            adds(x, y, true)?;
+            // Exponents near each other (cancellation, carries, ties) and far apart.
+            let near = (x & 0x807f_ffff) | ((((x >> 23) & 0xff) + ey).min(254) << 23);
+            adds(x, near, false)?;
+            adds(x, near, true)?;
+            adds(x, (x ^ 0x8000_0000) >> low << low, false)?;
+            adds(x, x.wrapping_add(low), true)?;
+        }
     }
 
     #[test]

@@ -117,6 +117,8 @@ impl Compiler<'_> {
                 // Each step of the division reads the remainder's bits several times.
                 let mut name = |t: L| self.intermediate_over(t, MAX_DIV_TERM);
                 match op {
+                    RealOp::Add => bitvec::add_real(&a, &b, false, &mut name),
+                    RealOp::Sub => bitvec::add_real(&a, &b, true, &mut name),
                     RealOp::Mul => bitvec::mul_real(&a, &b, &mut name),
                     RealOp::Div => bitvec::div_real(&a, &b, &mut name),
                 }

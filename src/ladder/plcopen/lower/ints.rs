@@ -578,8 +578,8 @@ impl Lower<'_> {
             return Ok(Value::Int(e, t));
         }
         let t = unify(vals.iter().map(|(_, _, t)| t))?;
-        if t.real && matches!(b, IntBlock::Arith(Arith::Add | Arith::Sub | Arith::Mod)) {
-            return Err("ii-prove computes no ADD, SUB or MOD of REALs".into());
+        if t.real && matches!(b, IntBlock::Arith(Arith::Mod)) {
+            return Err("MOD takes integers, not REALs".into());
         }
         let args: Vec<IntExpr> = vals.iter().map(|(_, e, _)| coerce(e.clone(), t)).collect();
         let named = |pin: &str| -> Result<IntExpr, String> {
@@ -592,16 +592,22 @@ impl Lower<'_> {
             (IntBlock::Compare(op), [_, _, ..]) => {
                 return Ok(Value::Bool(library::compare_chain(*op, t, &args)));
             }
-            // IEEE division, `+0.0` for a divisor `±0.0`; products folded as
-            // `__arith_expand` does (each `op1 * tmp` exact in `double`, then rounded to
-            // `float` once): `IntExpr::Real`.
+            // IEEE division, `+0.0` for a divisor `±0.0`; sums and products folded as
+            // `__arith_expand` does (each `op1 + tmp` in `double`, then rounded to
+            // `float`: the same as one rounding, `double` having more than twice
+            // `float`'s precision): `IntExpr::Real`.
             (IntBlock::Arith(Arith::Div), [a, b]) if t.real => {
                 IntExpr::Real(RealOp::Div, Box::new(a.clone()), Box::new(b.clone()))
             }
-            (IntBlock::Arith(Arith::Mul), [first, rest @ ..]) if t.real && !rest.is_empty() => {
-                rest.iter().fold(first.clone(), |a, b| {
-                    IntExpr::Real(RealOp::Mul, Box::new(a), Box::new(b.clone()))
-                })
+            (IntBlock::Arith(Arith::Sub), [a, b]) if t.real => {
+                IntExpr::Real(RealOp::Sub, Box::new(a.clone()), Box::new(b.clone()))
+            }
+            (IntBlock::Arith(op @ (Arith::Add | Arith::Mul)), [first, rest @ ..])
+                if t.real && !rest.is_empty() =>
+            {
+                let op = if *op == Arith::Add { RealOp::Add } else { RealOp::Mul };
+                rest.iter()
+                    .fold(first.clone(), |a, b| IntExpr::Real(op, Box::new(a), Box::new(b.clone())))
             }
             (IntBlock::Arith(Arith::Add), [first, rest @ ..]) if !rest.is_empty() => {
                 rest.iter().cloned().fold(first.clone(), IntExpr::plus)

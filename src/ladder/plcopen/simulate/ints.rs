@@ -65,18 +65,21 @@ fn float_function(
             if x < 0.0 { -x } else { x }
         }
         IntBlock::Move => named("IN")?,
-        // `__arith_expand`: `op1 = op1 * tmp` (in `double`, exact, then one rounding to
-        // `float`); of two NaNs, the first made quiet, whichever the C compiler puts
-        // first being one no comparison tells apart.
-        IntBlock::Arith(Arith::Mul) => xs.iter().copied().reduce(|x, y| {
-            if x.is_nan() && y.is_nan() { f32::from_bits(x.to_bits() | 0x0040_0000) } else { x * y }
-        })?,
-        // `DIV_REAL`: `TEST_EN_COND(REAL, op2 == 0)` returns 0, else `op1 / op2`.
-        IntBlock::Arith(Arith::Div) => match xs.as_slice() {
-            [_, y] if *y == 0.0 => 0.0,
-            [x, y] => x / y,
-            _ => return None,
-        },
+        // `__arith_expand`: `op1 = op1 + tmp` (in `double`, then rounded to `float`: the
+        // same as one rounding); `SUB`: `op1 - op2`; `DIV_REAL`: `TEST_EN_COND(REAL, op2
+        // == 0)` returns 0, else `op1 / op2`; NaNs as x86 gives them (`real`).
+        IntBlock::Arith(op) => {
+            use crate::program::real;
+            let f = match op {
+                Arith::Add => real::add,
+                Arith::Mul => real::mul,
+                Arith::Sub if xs.len() == 2 => real::sub,
+                Arith::Div if xs.len() == 2 => real::div,
+                _ => return None,
+            };
+            let bits = |x: f32| i64::from(x.to_bits());
+            xs.iter().copied().reduce(|x, y| real::to_f32(f(bits(x), bits(y))))?
+        }
         IntBlock::Sel => {
             if get("G") {
                 named("IN1")?
