@@ -439,39 +439,37 @@ mod tests {
         }
     }
 
-    /// The division on the constant bits of `x` and `y`, against `f32`'s (0 for a divisor
-    /// ±0, as matiec's `DIV`).
+    /// An operation's circuit on the constant bits of `x` and `y`, against its `f32`
+    /// reference (`program/real.rs`).
+    fn computes(
+        x: u32,
+        y: u32,
+        circuit: &dyn Fn(&[L], &[L], Namer) -> Bits,
+        reference: fn(i64, i64) -> i64,
+    ) -> Result<(), TestCaseError> {
+        let (a, b) = (constant(i64::from(x), 32), constant(i64::from(y), 32));
+        let got = circuit(&a, &b, &mut |t| t);
+        let got = got.iter().enumerate().fold(0u32, |acc, (k, b)| acc | (u32::from(eval(b)) << k));
+        let want = reference(i64::from(x), i64::from(y)) as u32;
+        let (p, q) = (f32::from_bits(x), f32::from_bits(y));
+        prop_assert_eq!(got, want, "{:?}, {:?}: {:08x}, not {:08x}", p, q, got, want);
+        Ok(())
+    }
+
+    /// The division (0 for a divisor ±0, as matiec's `DIV`).
     fn divides(x: u32, y: u32) -> Result<(), TestCaseError> {
-        let (a, b) = (constant(i64::from(x), 32), constant(i64::from(y), 32));
-        let got = div_real(&a, &b, &mut |t| t);
-        let got = got.iter().enumerate().fold(0u32, |acc, (k, b)| acc | (u32::from(eval(b)) << k));
-        let (p, q) = (f32::from_bits(x), f32::from_bits(y));
-        let want = real::div(i64::from(x), i64::from(y)) as u32;
-        prop_assert_eq!(got, want, "{:?} / {:?}: {:08x}, not {:08x}", p, q, got, want);
-        Ok(())
+        computes(x, y, &|a, b, n| div_real(a, b, n), real::div)
     }
 
-    /// The product on the constant bits of `x` and `y`, against `f32`'s.
+    /// The product.
     fn multiplies(x: u32, y: u32) -> Result<(), TestCaseError> {
-        let (a, b) = (constant(i64::from(x), 32), constant(i64::from(y), 32));
-        let got = mul_real(&a, &b, &mut |t| t);
-        let got = got.iter().enumerate().fold(0u32, |acc, (k, b)| acc | (u32::from(eval(b)) << k));
-        let (p, q) = (f32::from_bits(x), f32::from_bits(y));
-        let want = real::mul(i64::from(x), i64::from(y)) as u32;
-        prop_assert_eq!(got, want, "{:?} * {:?}: {:08x}, not {:08x}", p, q, got, want);
-        Ok(())
+        computes(x, y, &|a, b, n| mul_real(a, b, n), real::mul)
     }
 
-    /// The sum or difference on the constant bits of `x` and `y`, against `f32`'s.
+    /// The sum, or the difference.
     fn adds(x: u32, y: u32, subtract: bool) -> Result<(), TestCaseError> {
-        let (a, b) = (constant(i64::from(x), 32), constant(i64::from(y), 32));
-        let got = add_real(&a, &b, subtract, &mut |t| t);
-        let got = got.iter().enumerate().fold(0u32, |acc, (k, b)| acc | (u32::from(eval(b)) << k));
-        let (p, q) = (f32::from_bits(x), f32::from_bits(y));
-        let op = if subtract { real::sub } else { real::add };
-        let want = op(i64::from(x), i64::from(y)) as u32;
-        prop_assert_eq!(got, want, "{:?} {} {:?}: {:08x}, not {:08x}", p, subtract, q, got, want);
-        Ok(())
+        let reference = if subtract { real::sub } else { real::add };
+        computes(x, y, &|a, b, n| add_real(a, b, subtract, n), reference)
     }
 
     #[test]
