@@ -439,12 +439,15 @@ mod tests {
         }
     }
 
+    /// A circuit of two `REAL`s.
+    type Circuit<'a> = &'a dyn Fn(&[L], &[L], Namer) -> Bits;
+
     /// An operation's circuit on the constant bits of `x` and `y`, against its `f32`
     /// reference (`program/real.rs`).
     fn computes(
         x: u32,
         y: u32,
-        circuit: &dyn Fn(&[L], &[L], Namer) -> Bits,
+        circuit: Circuit,
         reference: fn(i64, i64) -> i64,
     ) -> Result<(), TestCaseError> {
         let (a, b) = (constant(i64::from(x), 32), constant(i64::from(y), 32));
