@@ -90,9 +90,15 @@ impl CompiledProgram {
         };
         let (a, ta) = side(a)?;
         let (b, tb) = side(b)?;
+        if [ta, tb].iter().flatten().any(|t| t.real) {
+            return Err((
+                "a property compares integers only, and this one is a REAL".into(),
+                Some("compare the REAL in the program (GT, LT, …) and name its BOOL result".into()),
+            ));
+        }
         let ty = match (ta, tb) {
             (Some(x), Some(y)) if x == y => x,
-            (Some(_), Some(_)) => IntType { bits: 63, signed: true },
+            (Some(_), Some(_)) => IntType { bits: 63, signed: true, real: false },
             (Some(t), None) | (None, Some(t)) => t,
             (None, None) => {
                 return Err((
@@ -167,7 +173,7 @@ impl CompiledProgram {
             IntOperand::Int(k) => Some(*k),
             IntOperand::Var(x) => int(x),
         };
-        Some(atom.op.holds(value(&atom.a)?, value(&atom.b)?))
+        Some(atom.ty.holds(atom.op, value(&atom.a)?, value(&atom.b)?))
     }
 
     /// Candidate invariants for the invariant search over scans (untrusted: it keeps only

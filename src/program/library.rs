@@ -15,11 +15,20 @@ pub fn int_type(name: &str) -> Option<IntType> {
         "UDINT" | "DWORD" => (32, false),
         _ => return None,
     };
-    Some(IntType { bits, signed })
+    Some(IntType { bits, signed, real: false })
 }
 
-/// The IEC name of an integer type.
+/// The IEC type `name` (upper-case) the scan model computes: an integer type of
+/// [`int_type`], or `REAL` ([`IntType::REAL`]).
+pub fn number_type(name: &str) -> Option<IntType> {
+    if name == "REAL" { Some(IntType::REAL) } else { int_type(name) }
+}
+
+/// The IEC name of an integer type (or `REAL`).
 pub fn type_name(t: IntType) -> &'static str {
+    if t.real {
+        return "REAL";
+    }
     match (t.bits, t.signed) {
         (8, true) => "SINT",
         (16, true) => "INT",
@@ -51,12 +60,14 @@ pub fn compare_chain(op: CmpOp, t: IntType, args: &[IntExpr]) -> BoolExpr {
     pairs.fold(first, BoolExpr::and)
 }
 
-/// `MIN(…)` (`min`) or `MAX(…)` of values of `t`, as matiec's `__extrem_` folds them.
+/// `MIN(…)` (`min`) or `MAX(…)` of values of `t`, as matiec's `__extrem_` folds them:
+/// `op1 = op1 > tmp ? tmp : op1` (`MAX`: `op1 < tmp`), which keeps the first of equal
+/// values (`MAX(-0.0, 0.0)` is `-0.0`) and a NaN met first.
 pub fn extreme(min: bool, t: IntType, args: &[IntExpr]) -> IntExpr {
-    let op = if min { CmpOp::Lt } else { CmpOp::Gt };
+    let op = if min { CmpOp::Gt } else { CmpOp::Lt };
     let mut it = args.iter().cloned();
     let first = it.next().unwrap_or(IntExpr::Const(0));
-    it.fold(first, |acc, x| IntExpr::ite(compare(op, t, acc.clone(), x.clone()), acc, x))
+    it.fold(first, |acc, x| IntExpr::ite(compare(op, t, acc.clone(), x.clone()), x, acc))
 }
 
 /// `LIMIT(mn, x, mx)` as matiec computes it: `x > mn ? x < mx ? x : mx : mn` (so `mn`
@@ -67,8 +78,18 @@ pub fn limit(t: IntType, mn: IntExpr, x: IntExpr, mx: IntExpr) -> IntExpr {
 }
 
 /// `ABS(x)` in the type `t`: `x < 0 ? 0 - x : x` (wrapped: `ABS` of the smallest value is
-/// itself).
+/// itself). For a `REAL`, C's `-op` flips the sign bit (`-0.0` and a NaN are kept: `x <
+/// 0` is false for them).
 pub fn abs(t: IntType, x: IntExpr) -> IntExpr {
+    if t.real {
+        let negated = IntExpr::Bitwise(
+            super::BitOp::Xor,
+            Box::new(x.clone()),
+            Box::new(IntExpr::Const(1 << 31)),
+        );
+        let negative = compare(CmpOp::Lt, t, x.clone(), IntExpr::Const(0));
+        return IntExpr::ite(negative, negated, x);
+    }
     IntExpr::ite(
         compare(CmpOp::Lt, t, x.clone(), IntExpr::Const(0)),
         IntExpr::minus(IntExpr::Const(0), x.clone()),

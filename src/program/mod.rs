@@ -20,6 +20,7 @@ pub mod library;
 pub mod logic;
 pub mod names;
 pub mod product;
+pub mod real;
 pub mod rename;
 pub mod simulate;
 
@@ -101,21 +102,29 @@ impl IntVar {
     }
 }
 
-/// A two's-complement integer type: its width and signedness.
+/// A two's-complement integer type: its width and signedness; or IEC `REAL` (IEEE 754
+/// binary32), whose values are stored as their 32-bit patterns ([`IntType::REAL`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct IntType {
     /// Width in bits (1 to 63).
     pub bits: u32,
     /// Signed (two's complement) or unsigned.
     pub signed: bool,
+    /// Whether the value is a `REAL`: the 32-bit pattern of an IEEE 754 binary32 number
+    /// (`bits` 32, `signed` false), compared and converted as floating-point numbers,
+    /// never computed with integer arithmetic.
+    pub real: bool,
 }
 
 impl IntType {
     /// LDmicro's 16-bit signed integers (IEC `INT`).
-    pub const I16: IntType = IntType { bits: 16, signed: true };
+    pub const I16: IntType = IntType { bits: 16, signed: true, real: false };
+
+    /// IEC `REAL`: IEEE 754 binary32, stored as its bit pattern (`2.5` is `0x4020_0000`).
+    pub const REAL: IntType = IntType { bits: 32, signed: false, real: true };
 
     /// One unsigned bit (0 or 1): a peripheral's flag, a hidden one-shot.
-    pub const BIT: IntType = IntType { bits: 1, signed: false };
+    pub const BIT: IntType = IntType { bits: 1, signed: false, real: false };
 
     /// The smallest value.
     pub fn min(self) -> i64 {
@@ -143,8 +152,22 @@ impl IntType {
         r as i64
     }
 
+    /// Whether `a op b` for two values of the type (compared as floating-point numbers
+    /// for a `REAL`).
+    pub fn holds(self, op: CmpOp, a: i64, b: i64) -> bool {
+        if self.real { real::holds(op, a, b) } else { op.holds(a, b) }
+    }
+
+    /// A value of the type as people read it (`2.5` for a `REAL`).
+    pub fn show(self, v: i64) -> String {
+        if self.real { real::show(v) } else { v.to_string() }
+    }
+
     /// `INT`-style name for messages: `a 16-bit signed integer`.
     pub fn describe(self) -> String {
+        if self.real {
+            return "a REAL".into();
+        }
         format!("a {}-bit {} integer", self.bits, if self.signed { "signed" } else { "unsigned" })
     }
 }
@@ -191,6 +214,39 @@ pub enum IntExpr {
     /// `a` shifted by `k` bits within the type: left for `k > 0` (zeros in), right for
     /// `k < 0` (copies of the sign bit in a signed type, zeros in an unsigned one).
     Shift(Box<IntExpr>, i32),
+    /// `a`, an integer computed in the type given, converted to a `REAL` (the context's
+    /// type) as C converts an integer to `float`: the nearest number, ties to even
+    /// (matiec's `*_TO_REAL`).
+    ToReal(Box<IntExpr>, IntType),
+    /// `a + b`, `a - b`, `a * b` or `a / b` of two `REAL`s as C computes it (IEEE 754,
+    /// the nearest number, ties to even; [`RealOp`]).
+    Real(RealOp, Box<IntExpr>, Box<IntExpr>),
+}
+
+/// An operation of two `REAL`s.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RealOp {
+    /// `a + b` (of two NaNs, `a` made quiet: [`bitvec::add_real`]).
+    Add,
+    /// `a - b`.
+    Sub,
+    /// `a * b` (of two NaNs, `a` made quiet: [`bitvec::mul_real`]).
+    Mul,
+    /// `a / b`, and `+0.0` when `b` is `±0.0`: matiec's `DIV` returns `__INIT_REAL` then
+    /// (`TEST_EN_COND(REAL, op2 == 0)`).
+    Div,
+}
+
+impl RealOp {
+    /// The operation on two stored `REAL` values, computed with `f32`.
+    pub fn apply(self, a: i64, b: i64) -> i64 {
+        match self {
+            RealOp::Add => real::add(a, b),
+            RealOp::Sub => real::sub(a, b),
+            RealOp::Mul => real::mul(a, b),
+            RealOp::Div => real::div(a, b),
+        }
+    }
 }
 
 /// A bitwise operation of two integers.
@@ -256,6 +312,7 @@ impl IntExpr {
             | IntExpr::Mul(a, b)
             | IntExpr::DivBy(a, b)
             | IntExpr::ModBy(a, b)
+            | IntExpr::Real(_, a, b)
             | IntExpr::Bitwise(_, a, b) => {
                 a.visit(int, boolean);
                 b.visit(int, boolean);
@@ -263,6 +320,7 @@ impl IntExpr {
             IntExpr::Div(a, _)
             | IntExpr::Mod(a, _)
             | IntExpr::Cast(a, _)
+            | IntExpr::ToReal(a, _)
             | IntExpr::Shift(a, _) => a.visit(int, boolean),
             IntExpr::Ite(c, a, b) => {
                 walk(c, boolean);
@@ -587,13 +645,16 @@ pub fn int_visit_mut(
         | IntExpr::Mul(a, b)
         | IntExpr::DivBy(a, b)
         | IntExpr::ModBy(a, b)
+        | IntExpr::Real(_, a, b)
         | IntExpr::Bitwise(_, a, b) => {
             int_visit_mut(a, var, boolean);
             int_visit_mut(b, var, boolean);
         }
-        IntExpr::Div(a, _) | IntExpr::Mod(a, _) | IntExpr::Cast(a, _) | IntExpr::Shift(a, _) => {
-            int_visit_mut(a, var, boolean)
-        }
+        IntExpr::Div(a, _)
+        | IntExpr::Mod(a, _)
+        | IntExpr::Cast(a, _)
+        | IntExpr::ToReal(a, _)
+        | IntExpr::Shift(a, _) => int_visit_mut(a, var, boolean),
         IntExpr::Ite(c, a, b) => {
             boolean(c);
             int_visit_mut(a, var, boolean);
@@ -711,16 +772,16 @@ mod tests {
 
     #[test]
     fn the_widest_types_wrap_without_overflow() {
-        let wide = IntType { bits: 63, signed: true };
+        let wide = IntType { bits: 63, signed: true, real: false };
         assert_eq!(wide.max(), (1i64 << 62) - 1);
         assert_eq!(wide.wrap(65535), 65535);
         assert_eq!(wide.wrap(-1), -1);
         assert_eq!(wide.wrap(1i64 << 62), -(1i64 << 62));
-        let unsigned = IntType { bits: 63, signed: false };
+        let unsigned = IntType { bits: 63, signed: false, real: false };
         assert_eq!(unsigned.max(), i64::MAX);
         assert_eq!(unsigned.wrap(-1), i64::MAX);
         assert_eq!(IntType::I16.wrap(65535), -1);
         assert_eq!(IntType::I16.wrap(32768), -32768);
-        assert_eq!(IntType { bits: 1, signed: false }.wrap(3), 1);
+        assert_eq!(IntType { bits: 1, signed: false, real: false }.wrap(3), 1);
     }
 }

@@ -257,6 +257,15 @@ impl Simulator {
                 let a = self.int_value(a, *inner);
                 N { value: ty.wrap(a.value), known: a.known }
             }
+            IntExpr::Real(op, a, b) => {
+                let (a, b) = (self.int_value(a, ty), self.int_value(b, ty));
+                N { value: op.apply(a.value, b.value), known: a.known && b.known }
+            }
+            // Rust's `as f32` rounds to the nearest float, ties to even, as C does.
+            IntExpr::ToReal(a, inner) => {
+                let a = self.int_value(a, *inner);
+                N { value: super::real::of_f32(a.value as f32), known: a.known }
+            }
             IntExpr::Bitwise(op, a, b) => {
                 let (a, b) = (self.int_value(a, ty), self.int_value(b, ty));
                 N { value: ty.wrap(op.apply(a.value, b.value)), known: a.known && b.known }
@@ -333,7 +342,7 @@ impl Simulator {
             BoolExpr::Fresh(_) => V { value: false, known: false },
             BoolExpr::Compare(c) => {
                 let (a, b) = (self.int_value(&c.a, c.ty), self.int_value(&c.b, c.ty));
-                V { value: c.op.holds(a.value, b.value), known: a.known && b.known }
+                V { value: c.ty.holds(c.op, a.value, b.value), known: a.known && b.known }
             }
         }
     }

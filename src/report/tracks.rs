@@ -87,11 +87,11 @@ pub fn draw(
     glyphs: waveform::Glyphs,
 ) -> Vec<String> {
     let readers: Vec<_> =
-        tracks.iter().map(|t| move |time: &Time| Some(t.value_at(time))).collect();
+        tracks.iter().map(|t| move |time: &Time| Some(t.ty.show(t.value_at(time)))).collect();
     let values: Vec<waveform::Track> = tracks
         .iter()
         .zip(&readers)
-        .map(|(t, f)| (t.name.clone(), f as &dyn Fn(&Time) -> Option<i64>))
+        .map(|(t, f)| (t.name.clone(), f as &dyn Fn(&Time) -> Option<String>))
         .collect();
     waveform::draw_with_values(signals, &values, mark, glyphs)
 }

@@ -34,7 +34,7 @@ pub fn draw(signals: &[(String, Signal)], mark: Option<&Time>, glyphs: Glyphs) -
 }
 
 /// The value of an integer at an instant.
-pub type Track<'a> = (String, &'a dyn Fn(&Time) -> Option<i64>);
+pub type Track<'a> = (String, &'a dyn Fn(&Time) -> Option<String>);
 
 /// [`draw`], with a row per integer under the signals: its value written where it
 /// changes (`Cparts  0    1         2 …`).
@@ -124,9 +124,9 @@ fn draw_full(
             if *is_point || v == last {
                 continue;
             }
-            last = v;
+            last = v.clone();
             // Written where it changes, over the columns after it if it is long.
-            let text = v.map_or_else(|| "?".to_string(), |v| v.to_string());
+            let text = v.unwrap_or_else(|| "?".to_string());
             for (k, c) in text.chars().enumerate() {
                 if start + k < row.len() {
                     row[start + k] = c;

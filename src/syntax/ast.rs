@@ -101,6 +101,12 @@ impl CmpOp {
 
     /// Whether `a op b`.
     pub fn holds(self, a: i64, b: i64) -> bool {
+        self.compares(a, b)
+    }
+
+    /// Whether `a op b` in a partial order (for floats: IEEE's, where a NaN is
+    /// unordered: every comparison with it false but `<>`).
+    pub fn compares<T: PartialOrd>(self, a: T, b: T) -> bool {
         match self {
             CmpOp::Eq => a == b,
             CmpOp::Ne => a != b,

@@ -20,6 +20,8 @@ use ii_prove::term::Term;
 
 #[path = "plcopen_conv.rs"]
 mod conv;
+#[path = "plcopen_real.rs"]
+mod real;
 
 const INPUTS: &[&str] = &["In0", "In1", "In2", "In3"];
 const BITS: &[&str] = &["B0", "B1", "B2", "Q0", "Q1"];
@@ -288,19 +290,30 @@ impl Gen {
         (id, ty)
     }
 
-    /// An FBD network over integers: integer operands, arithmetic, comparisons and
-    /// counters, integer and Boolean outputs.
-    fn int_network(&mut self) {
-        let mut ints: Vec<(u64, Option<&'static str>)> = Vec::new();
-        let mut bools: Vec<(u64, Option<&'static str>)> = Vec::new();
+    /// The operands of a network: two or three drawn from `numbers`, one or two Boolean
+    /// ones, as variable objects.
+    #[allow(clippy::type_complexity)]
+    fn network_operands(
+        &mut self,
+        numbers: &[&str],
+    ) -> (Vec<(u64, Option<&'static str>)>, Vec<(u64, Option<&'static str>)>) {
+        let mut nums = Vec::new();
+        let mut bools = Vec::new();
         for _ in 0..2 + self.rng.below(2) {
-            let v = *self.rng.pick(INT_OPERANDS);
-            ints.push((self.in_var(v, true), None));
+            let v = *self.rng.pick(numbers);
+            nums.push((self.in_var(v, true), None));
         }
         for _ in 0..1 + self.rng.below(2) {
             let v = self.operand();
             bools.push((self.in_var(&v, true), None));
         }
+        (nums, bools)
+    }
+
+    /// An FBD network over integers: integer operands, arithmetic, comparisons and
+    /// counters, integer and Boolean outputs.
+    fn int_network(&mut self) {
+        let (mut ints, mut bools) = self.network_operands(INT_OPERANDS);
         for _ in 0..1 + self.rng.below(4) {
             let ty = *self.rng.pick(INT_BLOCKS);
             if self.conversion(ty, &mut ints, &mut bools) {
@@ -420,26 +433,24 @@ impl Gen {
             } else {
                 *self.rng.pick(INT_VARS)
             };
-            let id = self.nid();
-            let (p, o) = (self.pos(500), self.order(true));
-            writeln!(
-                self.body,
-                r#"<outVariable localId="{id}"{o}>{p}{}<expression>{target}</expression></outVariable>"#,
-                Gen::conn(&[src])
-            )
-            .unwrap();
+            self.out_var(src, target);
         }
         let src = *self.rng.pick(&bools);
-        let id = self.nid();
         let v = *self.rng.pick(self.bits);
+        self.out_var(src, v);
+        self.y += 100;
+    }
+
+    /// An output variable `target` fed from `src`.
+    fn out_var(&mut self, src: (u64, Option<&'static str>), target: &str) {
+        let id = self.nid();
         let (p, o) = (self.pos(500), self.order(true));
         writeln!(
             self.body,
-            r#"<outVariable localId="{id}"{o}>{p}{}<expression>{v}</expression></outVariable>"#,
+            r#"<outVariable localId="{id}"{o}>{p}{}<expression>{target}</expression></outVariable>"#,
             Gen::conn(&[src])
         )
         .unwrap();
-        self.y += 100;
     }
 
     fn ld_rung(&mut self) {
@@ -571,6 +582,7 @@ fn random_body(
     bits: &'static [&'static str],
     ghost: &'static str,
     user_fb: bool,
+    reals: Option<Rng>,
 ) -> (String, &'static str, String, Rng) {
     let mut g = Gen {
         rng,
@@ -595,6 +607,14 @@ fn random_body(
         } else {
             g.ld_rung()
         }
+    }
+    // REAL networks, drawn apart so that the other draws stay as they were.
+    if let Some(mut r) = reals.filter(|_| fbd && g.ints) {
+        std::mem::swap(&mut g.rng, &mut r);
+        for _ in 0..g.rng.below(3) {
+            g.real_network();
+        }
+        std::mem::swap(&mut g.rng, &mut r);
     }
     let mut decls = String::new();
     for (inst, ty) in &g.instances {
@@ -632,7 +652,7 @@ pub fn random_program(seed: u64) -> String {
     let user_fb = rng.chance(30);
     let mut fb_pou = String::new();
     if user_fb {
-        let (body, lang, decls, r) = random_body(rng, FB_INPUTS, FB_BITS, "G1", false);
+        let (body, lang, decls, r) = random_body(rng, FB_INPUTS, FB_BITS, "G1", false, None);
         rng = r;
         fb_pou = format!(
             r#"<pou name="{USER_FB}" pouType="functionBlock"><interface><inputVars>{}</inputVars><outputVars>{}</outputVars><localVars>{}
@@ -644,7 +664,8 @@ pub fn random_program(seed: u64) -> String {
             bools(&["L0", "G1"])
         );
     }
-    let (body, lang, decls, mut rng) = random_body(rng, INPUTS, BITS, GHOST, user_fb);
+    let reals = Some(Rng::new(seed ^ 0x5EA1));
+    let (body, lang, decls, mut rng) = random_body(rng, INPUTS, BITS, GHOST, user_fb, reals);
     // Beremiz SVGHMI variables (the HMI writes them before any scan): the first bit an
     // HMI_BOOL, the first integer an HMI_INT (both written by the program too, so latched),
     // the integer input an HMI_INT; drawn apart so that the other draws stay as they were.
@@ -693,6 +714,14 @@ pub fn random_program(seed: u64) -> String {
         writeln!(vars, "{}", typed(INT_INPUT, "HMI_INT")).unwrap();
     } else {
         writeln!(inputs, r#"<variable name="{INT_INPUT}"><type><INT/></type></variable>"#).unwrap();
+    }
+    let [r0, r1] = real::REAL_VARS;
+    writeln!(vars, r#"<variable name="{r1}"><type><REAL/></type><initialValue><simpleValue value="1.5"/></initialValue></variable>"#).unwrap();
+    if located {
+        writeln!(vars, r#"<variable name="{r0}" address="%ID1"><type><REAL/></type></variable>"#)
+            .unwrap();
+    } else {
+        writeln!(inputs, r#"<variable name="{r0}"><type><REAL/></type></variable>"#).unwrap();
     }
     vars.push_str(&decls);
     let retained = if retained.is_empty() {
@@ -852,8 +881,10 @@ pub fn prepare(
 pub fn input_schedule(plc: &PlcProgram, seed: u64, scans: usize) -> Vec<BTreeMap<String, bool>> {
     let mut driven: Vec<String> = Vec::new();
     let mut words: Vec<(String, u32)> = Vec::new();
+    let mut reals: Vec<String> = Vec::new();
     for n in &plc.inputs {
-        match plc.input_int_type(n).and_then(|t| ii_prove::program::library::int_type(&t)) {
+        match plc.input_int_type(n).and_then(|t| ii_prove::program::library::number_type(&t)) {
+            Some(t) if t.real => reals.push(n.clone()),
             Some(t) => words.push((n.clone(), t.bits)),
             None => driven.push(n.clone()),
         }
@@ -883,6 +914,9 @@ pub fn input_schedule(plc: &PlcProgram, seed: u64, scans: usize) -> Vec<BTreeMap
                     current.insert(format!("{n}_b{k}"), v >> k & 1 == 1);
                 }
             }
+        }
+        for n in &reals {
+            real::drive(&mut rng, n, &mut current);
         }
         out.push(current.clone());
     }

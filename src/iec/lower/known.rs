@@ -70,7 +70,7 @@ impl Lowering<'_> {
             BoolExpr::Fresh(f) => Err(format!("a value that is not computed ({})", f.why)),
             BoolExpr::Compare(c) => {
                 let (a, b) = (self.known_int(&c.a, c.ty)?, self.known_int(&c.b, c.ty)?);
-                Ok(c.op.holds(a, b))
+                Ok(c.ty.holds(c.op, a, b))
             }
         }
     }
@@ -94,6 +94,10 @@ impl Lowering<'_> {
             IntExpr::DivBy(a, b) => two(a, b, |x, y| if y == 0 { 0 } else { x.wrapping_div(y) }),
             IntExpr::ModBy(a, b) => two(a, b, |x, y| if y == 0 { 0 } else { x.wrapping_rem(y) }),
             IntExpr::Cast(a, inner) => Ok(ty.wrap(self.known_int(a, *inner)?)),
+            IntExpr::Real(op, a, b) => Ok(op.apply(self.known_int(a, ty)?, self.known_int(b, ty)?)),
+            IntExpr::ToReal(a, inner) => {
+                Ok(crate::program::real::of_f32(self.known_int(a, *inner)? as f32))
+            }
             IntExpr::Bitwise(op, a, b) => {
                 Ok(ty.wrap(op.apply(self.known_int(a, ty)?, self.known_int(b, ty)?)))
             }

@@ -111,7 +111,8 @@ impl IntBlock {
 pub enum ConvType {
     /// `BOOL`: 0 or 1 as an integer, `<> 0` as a BOOL.
     Bool,
-    /// An integer type matiec declares in at most 32 bits.
+    /// An integer type matiec declares in at most 32 bits, or `REAL`
+    /// ([`IntType::REAL`](crate::program::IntType::REAL)).
     Int(crate::program::IntType),
 }
 
@@ -122,16 +123,17 @@ impl ConvType {
         if t == "BOOL" {
             return Ok(ConvType::Bool);
         }
-        if let Some(ty) = crate::program::library::int_type(t) {
+        if let Some(ty) = crate::program::library::number_type(t) {
             return Ok(ConvType::Int(ty));
         }
         Err(match t {
             "LINT" | "ULINT" | "LWORD" => {
                 format!("{t} is 64 bits wide, which ii-prove does not compute")
             }
-            "REAL" | "LREAL" => {
-                format!("{t} is a floating-point type, not an integer: ii-prove computes no {t}")
-            }
+            "LREAL" => format!(
+                "{t} is a 64-bit floating-point type, wider than the 63 bits of ii-prove's \
+                 numbers: ii-prove computes no {t}"
+            ),
             "STRING" | "WSTRING" => {
                 format!("{t} is a character string, not an integer: ii-prove computes no {t}")
             }
@@ -171,16 +173,22 @@ pub fn is_int_type_name(t: &str) -> bool {
     )
 }
 
+/// Whether an IEC type name (upper case) is an integer type or `REAL`.
+fn is_number_type_name(t: &str) -> bool {
+    is_int_type_name(t) || t == "REAL"
+}
+
 impl PlcProgram {
     /// The declared variable named `name` (its declared name, or in an inlined body
-    /// its prefixed one), if it is of an integer type: the type's name (upper case).
+    /// its prefixed one), if it is of an integer type or `REAL` (a number the scan model
+    /// stores in the bits of an integer): the type's name (upper case).
     pub fn int_var_type(&self, name: &str) -> Option<String> {
         let v = self
             .vars
             .get(&name.to_ascii_uppercase())
             .or_else(|| self.vars.values().find(|v| v.name == name))?;
         match &v.ty {
-            Ty::Other(t) if is_int_type_name(&t.to_ascii_uppercase()) => {
+            Ty::Other(t) if is_number_type_name(&t.to_ascii_uppercase()) => {
                 Some(t.to_ascii_uppercase())
             }
             _ => None,
@@ -196,9 +204,11 @@ impl PlcProgram {
         })
     }
 
-    /// Whether the operand text names an integer: a literal or an integer variable.
+    /// Whether the operand text names an integer (or a `REAL`): a literal or a
+    /// variable.
     pub fn int_text(&self, text: &str) -> bool {
         int_literal(text).is_some_and(|(_, t)| t.is_none_or(|t| is_int_type_name(&t)))
+            || crate::program::real::literal(text).is_some()
             || self.int_var_type(text.trim()).is_some()
     }
 

@@ -11,7 +11,9 @@
 
 use super::super::bitvec::{self, Bits};
 use super::super::logic::{L, simp};
-use super::super::{BitOp, BoolExpr, Compare, IntExpr, IntType, IntVar, Program, Stmt, WriteKind};
+use super::super::{
+    BitOp, BoolExpr, Compare, IntExpr, IntType, IntVar, Program, RealOp, Stmt, WriteKind,
+};
 use super::{CompileError, Compiler, Pending, SignalKind};
 use crate::diag::Span;
 
@@ -37,13 +39,44 @@ impl Compiler<'_> {
         None
     }
 
+    /// A `REAL` where the scan model has only integer arithmetic, or an integer where a
+    /// `REAL` is expected: an error at `span` (a front end converts with its own
+    /// operations), and 0.
+    fn not_real(&mut self, ty: IntType, span: Span) -> Bits {
+        if !self.errors.iter().any(|e| e.span == span) {
+            self.errors.push(CompileError {
+                span,
+                keyword: "REAL".into(),
+                reason: "a REAL is computed only by comparisons, choices, copies and \
+                         operations on its bits, never by integer arithmetic or casts"
+                    .into(),
+            });
+        }
+        bitvec::constant(0, ty.bits)
+    }
+
     /// The value of `e` in type `ty` at this point of the scan.
     pub(super) fn int(&mut self, e: &IntExpr, ty: IntType, span: Span) -> Bits {
         let w = ty.bits;
+        let real_op = !matches!(
+            e,
+            IntExpr::Const(_)
+                | IntExpr::Var(_)
+                | IntExpr::Ite(..)
+                | IntExpr::Bitwise(..)
+                | IntExpr::ToReal(..)
+                | IntExpr::Real(..)
+        );
+        if ty.real && real_op {
+            return self.not_real(ty, span);
+        }
         match e {
             IntExpr::Const(v) => bitvec::constant(ty.wrap(*v), w),
             IntExpr::Var(x) => {
                 let Some(var) = self.int_var(x, span) else { return bitvec::constant(0, w) };
+                if var.ty.real != ty.real {
+                    return self.not_real(ty, span);
+                }
                 let stored = var.value(x, &mut |b| self.read(b));
                 bitvec::resize(stored, var.ty, ty)
             }
@@ -75,6 +108,25 @@ impl Compiler<'_> {
                     IntExpr::DivBy(..) => bitvec::div_by(&a, &b, ty, &mut name),
                     _ => bitvec::rem_by(&a, &b, ty, &mut name),
                 }
+            }
+            IntExpr::Cast(_, inner) if inner.real => self.not_real(ty, span),
+            IntExpr::ToReal(_, inner) if inner.real || !ty.real => self.not_real(ty, span),
+            IntExpr::Real(..) if !ty.real => self.not_real(ty, span),
+            IntExpr::Real(op, a, b) => {
+                let (a, b) = (self.int(a, ty, span), self.int(b, ty, span));
+                // Each step of the division reads the remainder's bits several times.
+                let mut name = |t: L| self.intermediate_over(t, MAX_DIV_TERM);
+                match op {
+                    RealOp::Add => bitvec::add_real(&a, &b, false, &mut name),
+                    RealOp::Sub => bitvec::add_real(&a, &b, true, &mut name),
+                    RealOp::Mul => bitvec::mul_real(&a, &b, &mut name),
+                    RealOp::Div => bitvec::div_real(&a, &b, &mut name),
+                }
+            }
+            IntExpr::ToReal(a, inner) => {
+                let a = self.int(a, *inner, span);
+                let mut name = |t: L| self.intermediate(t);
+                bitvec::int_to_real(&a, *inner, &mut name)
             }
             IntExpr::Cast(a, inner) => {
                 let a = self.int(a, *inner, span);
@@ -121,7 +173,11 @@ impl Compiler<'_> {
         let a = self.int(&c.a, c.ty, span);
         let b = self.int(&c.b, c.ty, span);
         let mut name = |t: L| self.intermediate(t);
-        let t = bitvec::compare(c.op, c.ty, &a, &b, &mut name);
+        let t = if c.ty.real {
+            bitvec::compare_real(c.op, &a, &b, &mut name)
+        } else {
+            bitvec::compare(c.op, c.ty, &a, &b, &mut name)
+        };
         simp(&t)
     }
 
@@ -185,7 +241,7 @@ impl Compiler<'_> {
 }
 
 /// The integer constants of a program: start values, and the literals of its integer
-/// writes and comparisons (divisors included), in increasing order.
+/// writes and comparisons (divisors included), in increasing order; none of a `REAL`.
 pub(super) fn constants(program: &Program) -> Vec<i64> {
     fn walk(e: &IntExpr, out: &mut std::collections::BTreeSet<i64>) {
         match e {
@@ -197,13 +253,14 @@ pub(super) fn constants(program: &Program) -> Vec<i64> {
                 out.insert(*k);
                 walk(a, out);
             }
-            IntExpr::Cast(a, _) | IntExpr::Shift(a, _) => walk(a, out),
+            IntExpr::Cast(a, _) | IntExpr::Shift(a, _) | IntExpr::ToReal(a, _) => walk(a, out),
             IntExpr::Add(a, b)
             | IntExpr::Bitwise(_, a, b)
             | IntExpr::Sub(a, b)
             | IntExpr::Mul(a, b)
             | IntExpr::DivBy(a, b)
             | IntExpr::ModBy(a, b)
+            | IntExpr::Real(_, a, b)
             | IntExpr::Ite(_, a, b) => {
                 walk(a, out);
                 walk(b, out);
@@ -211,17 +268,22 @@ pub(super) fn constants(program: &Program) -> Vec<i64> {
         }
     }
     let mut out: std::collections::BTreeSet<i64> =
-        program.integers.values().map(|v| v.init).collect();
+        program.integers.values().filter(|v| !v.ty.real).map(|v| v.init).collect();
     for (_, s) in program.stmts() {
         let (mut sets, mut cmps) = (Vec::new(), Vec::new());
         s.visit(
+            // A `REAL`'s literals are bit patterns, no count an integer reaches.
             &mut |s| {
-                if let Stmt::SetInt { value, .. } = s {
+                if let Stmt::SetInt { value, target, .. } = s
+                    && program.integers.get(target).is_none_or(|v| !v.ty.real)
+                {
                     sets.push(value.clone());
                 }
             },
             &mut |e| {
-                if let BoolExpr::Compare(c) = e {
+                if let BoolExpr::Compare(c) = e
+                    && !c.ty.real
+                {
                     cmps.push(c.a.clone());
                     cmps.push(c.b.clone());
                 }

@@ -9,25 +9,41 @@ use crate::ladder::plcopen::ints::{Arith, ConvType, IntBlock};
 use crate::ladder::plcopen::{Edge, ObjKind, PinIn, PlcProgram, Source};
 use crate::program::library::{self, Counter};
 use crate::program::{
-    Block, BoolExpr, CmpOp, EdgeKind, IntExpr, IntType, IntVar, Memory, Stmt, WriteKind,
+    Block, BoolExpr, CmpOp, EdgeKind, IntExpr, IntType, IntVar, Memory, RealOp, Stmt, WriteKind,
 };
 
 /// An integer value on a wire and its type (`None`: a literal, typed by its reader), or
 /// why it is not computed.
 pub(super) type IntVal = Result<(IntExpr, Option<IntType>), String>;
 
-/// `e` as a value of `t` (a literal wrapped into it, as the C cast `(INT)70000` does).
+/// `e` as a value of `t` (a literal wrapped into it, as the C cast `(INT)70000` does; a
+/// `REAL` literal is already one).
 pub(super) fn coerce(e: IntExpr, t: IntType) -> IntExpr {
     match e {
-        IntExpr::Const(v) => IntExpr::Const(t.wrap(v)),
+        IntExpr::Const(v) if !t.real => IntExpr::Const(t.wrap(v)),
         e => e,
     }
 }
 
-/// The one type of a block's integer arguments (literals take it).
+/// Why a conversion of a `REAL` to an integer is not computed.
+const REAL_TO_INT: &str = "matiec's REAL_TO_* rounds through a 64-bit LINT (`__real_to_sint`, \
+     `__real_to_uint`), and C leaves the conversion of a NaN, an infinity or a number out of \
+     the LINT range undefined: ii-prove does not compute it";
+
+/// Why an integer literal where a `REAL` is expected is not computed.
+const INT_LITERAL_AS_REAL: &str =
+    "an integer literal where a REAL is expected, which matiec's type check does not accept";
+
+/// The one type of a block's integer arguments (integer literals take it; none where it
+/// is `REAL`).
 fn unify<'a>(args: impl IntoIterator<Item = &'a Option<IntType>>) -> Result<IntType, String> {
     let mut t: Option<IntType> = None;
-    for ty in args.into_iter().flatten() {
+    let mut untyped = false;
+    for ty in args {
+        let Some(ty) = ty else {
+            untyped = true;
+            continue;
+        };
         match t {
             Some(a) if a != *ty => {
                 return Err(format!(
@@ -38,6 +54,9 @@ fn unify<'a>(args: impl IntoIterator<Item = &'a Option<IntType>>) -> Result<IntT
             }
             _ => t = Some(*ty),
         }
+    }
+    if untyped && t.is_some_and(|t| t.real) {
+        return Err(INT_LITERAL_AS_REAL.into());
     }
     t.ok_or_else(|| {
         "its inputs are literals only, whose type the generated code leaves open".into()
@@ -66,7 +85,10 @@ type Arg<'a> = (&'a str, IntExpr, Option<IntType>);
 #[allow(clippy::type_complexity)]
 fn mux_args(vals: &[Arg]) -> Result<(IntExpr, IntType, Vec<(IntExpr, Option<IntType>)>), String> {
     let (_, k, kt) = vals.iter().find(|(n, _, _)| *n == "K").ok_or("it has no input K")?;
-    let kt = kt.unwrap_or(IntType { bits: 32, signed: true });
+    let kt = kt.unwrap_or(IntType { bits: 32, signed: true, real: false });
+    if kt.real {
+        return Err("its K is a REAL".into());
+    }
     let mut data = Vec::new();
     for i in 0.. {
         match vals.iter().find(|(n, _, _)| *n == format!("IN{i}")) {
@@ -117,7 +139,8 @@ fn convert(from: &str, to: &str, input: Option<BoolExpr>, vals: &[Arg]) -> Resul
             Ok(match t {
                 ConvType::Bool => Value::Bool(b),
                 ConvType::Int(t) => {
-                    Value::Int(IntExpr::ite(b, IntExpr::Const(1), IntExpr::Const(0)), t)
+                    let one = if t.real { crate::program::real::of_f32(1.0) } else { 1 };
+                    Value::Int(IntExpr::ite(b, IntExpr::Const(one), IntExpr::Const(0)), t)
                 }
             })
         }
@@ -126,9 +149,16 @@ fn convert(from: &str, to: &str, input: Option<BoolExpr>, vals: &[Arg]) -> Resul
             if ty.is_some_and(|ty| ty != f) {
                 return Err(format!("its input is not a {from}"));
             }
+            if ty.is_none() && f.real {
+                return Err(INT_LITERAL_AS_REAL.into());
+            }
             let x = coerce(x.clone(), f);
             Ok(match t {
                 ConvType::Bool => Value::Bool(library::compare(CmpOp::Ne, f, x, IntExpr::Const(0))),
+                ConvType::Int(t) if f.real && t.real => Value::Int(x, t),
+                // `(REAL)` of an integer: the nearest float, ties to even.
+                ConvType::Int(t) if t.real => Value::Int(IntExpr::ToReal(Box::new(x), f), t),
+                ConvType::Int(_) if f.real => return Err(REAL_TO_INT.into()),
                 // A value of `from`, then converted to `to` (sign- or zero-extended, or
                 // wrapped).
                 ConvType::Int(t) => Value::Int(IntExpr::Cast(Box::new(x), f), t),
@@ -147,7 +177,7 @@ impl Lower<'_> {
             if self.opaque.contains_key(&v.name) {
                 continue;
             }
-            let why = match library::int_type(&ty) {
+            let why = match library::number_type(&ty) {
                 None => Some(format!("{ty} is 64 bits wide, which ii-prove does not compute")),
                 // Written from outside at the start of every scan (an input, or latched).
                 Some(_)
@@ -159,12 +189,13 @@ impl Lower<'_> {
                 }
                 Some(_) => None,
             };
-            let Some(t) = library::int_type(&ty).filter(|_| why.is_none()) else {
+            let Some(t) = library::number_type(&ty).filter(|_| why.is_none()) else {
                 self.make_opaque(&v.name, why.unwrap_or_default());
                 continue;
             };
             let init = match v.init.as_deref() {
                 None => Some(0),
+                Some(text) if t.real => crate::program::real::literal(text),
                 Some(text) => int_literal(text)
                     .filter(|(_, lt)| lt.as_deref().is_none_or(|lt| lt == ty))
                     .map(|(k, _)| t.wrap(k.clamp(i64::MIN.into(), i64::MAX.into()) as i64)),
@@ -248,6 +279,9 @@ impl Lower<'_> {
 
     /// The integer an operand text gives: a literal or an integer variable.
     fn int_operand(&self, text: &str) -> IntVal {
+        if let Some(bits) = crate::program::real::literal(text) {
+            return Ok((IntExpr::Const(bits), Some(IntType::REAL)));
+        }
         if let Some((v, ty)) = int_literal(text) {
             let v = v.clamp(i64::MIN.into(), i64::MAX.into()) as i64;
             return match ty.map(|t| library::int_type(&t)) {
@@ -281,7 +315,10 @@ impl Lower<'_> {
                 return fresh_because("MUX", format!("the MUX's K is not computed: {why}"), span);
             }
         };
-        let kt = kt.unwrap_or(IntType { bits: 32, signed: true });
+        let kt = kt.unwrap_or(IntType { bits: 32, signed: true, real: false });
+        if kt.real {
+            return fresh_because("MUX", "the MUX's K is a REAL".into(), span);
+        }
         let key = coerce(kv, kt);
         let mut terms = Vec::new();
         for i in 0..vals.len() as i64 {
@@ -405,6 +442,7 @@ impl Lower<'_> {
                     library::type_name(var.ty),
                     library::type_name(t)
                 )),
+                None if var.ty.real => Err(INT_LITERAL_AS_REAL.into()),
                 _ => Ok(coerce(e, var.ty)),
             }
         });
@@ -540,6 +578,9 @@ impl Lower<'_> {
             return Ok(Value::Int(e, t));
         }
         let t = unify(vals.iter().map(|(_, _, t)| t))?;
+        if t.real && matches!(b, IntBlock::Arith(Arith::Mod)) {
+            return Err("MOD takes integers, not REALs".into());
+        }
         let args: Vec<IntExpr> = vals.iter().map(|(_, e, _)| coerce(e.clone(), t)).collect();
         let named = |pin: &str| -> Result<IntExpr, String> {
             vals.iter()
@@ -550,6 +591,23 @@ impl Lower<'_> {
         let e = match (b, args.as_slice()) {
             (IntBlock::Compare(op), [_, _, ..]) => {
                 return Ok(Value::Bool(library::compare_chain(*op, t, &args)));
+            }
+            // IEEE division, `+0.0` for a divisor `±0.0`; sums and products folded as
+            // `__arith_expand` does (each `op1 + tmp` in `double`, then rounded to
+            // `float`: the same as one rounding, `double` having more than twice
+            // `float`'s precision): `IntExpr::Real`.
+            (IntBlock::Arith(Arith::Div), [a, b]) if t.real => {
+                IntExpr::Real(RealOp::Div, Box::new(a.clone()), Box::new(b.clone()))
+            }
+            (IntBlock::Arith(Arith::Sub), [a, b]) if t.real => {
+                IntExpr::Real(RealOp::Sub, Box::new(a.clone()), Box::new(b.clone()))
+            }
+            (IntBlock::Arith(op @ (Arith::Add | Arith::Mul)), [first, rest @ ..])
+                if t.real && !rest.is_empty() =>
+            {
+                let op = if *op == Arith::Add { RealOp::Add } else { RealOp::Mul };
+                rest.iter()
+                    .fold(first.clone(), |a, b| IntExpr::Real(op, Box::new(a), Box::new(b.clone())))
             }
             (IntBlock::Arith(Arith::Add), [first, rest @ ..]) if !rest.is_empty() => {
                 rest.iter().cloned().fold(first.clone(), IntExpr::plus)

@@ -580,14 +580,14 @@ pub(super) fn check_pou(
 
 /// The base type of one of Beremiz's SVGHMI types (`svghmi/pous.xml`: `HMI_INT` is a
 /// derived type of `INT`, `HMI_BOOL` and `HMI_NODE` of `BOOL`, …), which the project
-/// file names without declaring. `HMI_REAL` and `HMI_STRING` stay opaque, as `REAL`
-/// and `STRING` variables are.
+/// file names without declaring (`HMI_REAL` of `REAL`). `HMI_STRING` stays opaque, as
+/// `STRING` variables are.
 pub fn hmi_base(type_name: &str) -> Option<Ty> {
     let upper = type_name.to_ascii_uppercase();
     let base = upper.strip_prefix("HMI_")?;
     Some(match base {
         "BOOL" | "NODE" => Ty::Bool,
-        "SINT" | "INT" | "DINT" | "LINT" | "USINT" | "UINT" | "UDINT" | "ULINT" => {
+        "SINT" | "INT" | "DINT" | "LINT" | "USINT" | "UINT" | "UDINT" | "ULINT" | "REAL" => {
             Ty::Other(base.to_string())
         }
         _ => return None,

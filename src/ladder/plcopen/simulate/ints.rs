@@ -6,13 +6,90 @@ use super::PlcSimulator;
 use crate::iec::literal::int_literal;
 use crate::ladder::plcopen::ints::{Arith, IntBlock};
 use crate::ladder::plcopen::{ObjKind, PinIn, PlcProgram, Source};
-use crate::program::CmpOp;
 
-/// An integer type as C declares it: width and signedness.
+/// An integer type as C declares it: width and signedness; or `float` (IEC `REAL`), whose
+/// values are kept as their 32-bit patterns.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) struct CType {
     bits: u32,
     signed: bool,
+    float: bool,
+}
+
+/// `REAL`, C's `float`.
+const FLOAT: CType = CType { bits: 32, signed: false, float: true };
+
+/// The number a kept `float` pattern stands for.
+fn float(v: i128) -> f32 {
+    f32::from_bits(v as u32)
+}
+
+/// The kept pattern of a `float`.
+fn pattern(x: f32) -> i128 {
+    i128::from(x.to_bits())
+}
+
+/// A `REAL` literal (`2.5`, `REAL#-1.0E3`) as C reads the digits matiec prints: a
+/// `double`, then stored into a `float`.
+fn float_literal(text: &str) -> Option<i64> {
+    let t = text.trim();
+    let t = t.strip_prefix("REAL#").or_else(|| t.strip_prefix("real#")).unwrap_or(t);
+    if !t.contains('.') || t.contains('#') {
+        return None;
+    }
+    let x: f64 = t.replace('_', "").parse().ok()?;
+    Some(i64::from((x as f32).to_bits()))
+}
+
+/// A function of `REAL`s (`vals` their patterns), as C computes it on `float`s.
+fn float_function(
+    b: &IntBlock,
+    vals: &[(String, i64, Option<CType>)],
+    get: impl Fn(&str) -> bool,
+) -> Option<Out> {
+    let xs: Vec<f32> = vals.iter().map(|(_, x, _)| float((*x).into())).collect();
+    let named = |pin: &str| vals.iter().position(|(n, _, _)| n == pin).map(|j| xs[j]);
+    let x = match b {
+        IntBlock::Compare(op) => {
+            return Some(Out::Bool(xs.windows(2).all(|w| op.compares(w[0], w[1]))));
+        }
+        // `__extrem_`: `op1 = op1 > tmp ? tmp : op1` (MAX: `op1 < tmp`).
+        IntBlock::Min => xs.iter().copied().reduce(|a, x| if a > x { x } else { a })?,
+        IntBlock::Max => xs.iter().copied().reduce(|a, x| if a < x { x } else { a })?,
+        IntBlock::Limit => {
+            let (mn, x, mx) = (named("MN")?, named("IN")?, named("MX")?);
+            if x > mn { if x < mx { x } else { mx } } else { mn }
+        }
+        IntBlock::Abs => {
+            let x = named("IN")?;
+            if x < 0.0 { -x } else { x }
+        }
+        IntBlock::Move => named("IN")?,
+        // `__arith_expand`: `op1 = op1 + tmp` (in `double`, then rounded to `float`: the
+        // same as one rounding); `SUB`: `op1 - op2`; `DIV_REAL`: `TEST_EN_COND(REAL, op2
+        // == 0)` returns 0, else `op1 / op2`; NaNs as x86 gives them (`real`).
+        IntBlock::Arith(op) => {
+            use crate::program::real;
+            let f = match op {
+                Arith::Add => real::add,
+                Arith::Mul => real::mul,
+                Arith::Sub if xs.len() == 2 => real::sub,
+                Arith::Div if xs.len() == 2 => real::div,
+                _ => return None,
+            };
+            let bits = |x: f32| i64::from(x.to_bits());
+            xs.iter().copied().reduce(|x, y| real::to_f32(f(bits(x), bits(y))))?
+        }
+        IntBlock::Sel => {
+            if get("G") {
+                named("IN1")?
+            } else {
+                named("IN0")?
+            }
+        }
+        _ => return None,
+    };
+    Some(Out::Int(pattern(x), FLOAT))
 }
 
 impl CType {
@@ -25,14 +102,15 @@ impl CType {
             "UINT" | "WORD" => (16, false),
             "DINT" => (32, true),
             "UDINT" | "DWORD" => (32, false),
+            "REAL" => return Some(FLOAT),
             _ => return None,
         };
-        Some(CType { bits, signed })
+        Some(CType { bits, signed, float: false })
     }
 
     /// The C type of a scan-model integer type.
     pub(super) fn of_int(t: crate::program::IntType) -> CType {
-        CType { bits: t.bits, signed: t.signed }
+        CType { bits: t.bits, signed: t.signed, float: t.real }
     }
 
     /// `v` stored into a variable of this type (C's conversion: modulo 2^bits).
@@ -66,13 +144,28 @@ fn function(b: &IntBlock, args: Vec<(String, Val)>, get: impl Fn(&str) -> bool) 
         // is 0 or 1); `__convert_num_to_bool`: `op == 0 ? 0 : 1`.
         let x: i128 = match (from.as_str(), vals.as_slice()) {
             ("BOOL", []) => get("IN").into(),
-            (from, [(_, x, _)]) => CType::of(from)?.store((*x).into()).into(),
+            // A `float` argument is a `REAL` (C takes no integer literal for it).
+            (from, [(_, x, t)]) => match CType::of(from)? {
+                ct if ct.float && t.is_none_or(|t| t == ct) => {
+                    let x = float((*x).into());
+                    return match to.as_str() {
+                        "BOOL" => Some(Out::Bool(x != 0.0)),
+                        "REAL" => Some(Out::Int(pattern(x), FLOAT)),
+                        // `__real_to_sint`/`__real_to_uint`: not computed.
+                        _ => None,
+                    };
+                }
+                ct if ct.float => return None,
+                ct => ct.store((*x).into()).into(),
+            },
             _ => return None,
         };
         if to == "BOOL" {
             return Some(Out::Bool(x != 0));
         }
-        return Some(Out::Int(x, CType::of(to)?));
+        let ct = CType::of(to)?;
+        // `(REAL)` of an integer: `as f32` rounds to nearest, ties to even, as C does.
+        return Some(if ct.float { Out::Int(pattern(x as f32), ct) } else { Out::Int(x, ct) });
     }
     if *b == IntBlock::Mux {
         // `MUX__in2__in1__in2`: `TEST_EN_COND(in2, K >= param_count)` (0, see
@@ -93,18 +186,15 @@ fn function(b: &IntBlock, args: Vec<(String, Val)>, get: impl Fn(&str) -> bool) 
     if types.iter().any(|t| *t != ct) {
         return None;
     }
+    if ct.float {
+        // Every argument a `REAL` (C does not take an integer literal for one here).
+        return if types.len() == vals.len() { float_function(b, &vals, get) } else { None };
+    }
     let xs: Vec<i128> = vals.iter().map(|(_, x, _)| i128::from(ct.store((*x).into()))).collect();
     let named = |pin: &str| vals.iter().position(|(n, _, _)| n == pin).map(|j| xs[j]).unwrap_or(0);
     let result: i128 = match b {
         IntBlock::Compare(op) => {
-            return Some(Out::Bool(xs.windows(2).all(|w| match op {
-                CmpOp::Gt => w[0] > w[1],
-                CmpOp::Ge => w[0] >= w[1],
-                CmpOp::Eq => w[0] == w[1],
-                CmpOp::Ne => w[0] != w[1],
-                CmpOp::Lt => w[0] < w[1],
-                CmpOp::Le => w[0] <= w[1],
-            })));
+            return Some(Out::Bool(xs.windows(2).all(|w| op.compares(w[0], w[1]))));
         }
         IntBlock::Arith(Arith::Add) => xs.iter().fold(0, |a, x| i128::from(ct.store(a + x))),
         IntBlock::Arith(Arith::Mul) => xs.iter().fold(1, |a, x| i128::from(ct.store(a * x))),
@@ -152,8 +242,12 @@ impl PlcSimulator {
     pub(super) fn init_ints(p: &PlcProgram, ints: &mut BTreeMap<String, (i64, CType)>) {
         for v in p.vars.values() {
             let super::super::Ty::Other(t) = &v.ty else { continue };
-            let Some(ct) = CType::of(t) else { continue };
-            let init = v.init.as_deref().and_then(int_literal).map_or(0, |(k, _)| ct.store(k));
+            let t = t.to_ascii_uppercase();
+            let Some(ct) = CType::of(t.strip_prefix("HMI_").unwrap_or(&t)) else { continue };
+            let init = match v.init.as_deref() {
+                Some(text) if ct.float => float_literal(text).unwrap_or(0),
+                init => init.and_then(int_literal).map_or(0, |(k, _)| ct.store(k)),
+            };
             ints.insert(v.name.clone(), (init, ct));
         }
         for sub in p.subs.values() {
@@ -190,6 +284,9 @@ impl PlcSimulator {
     }
 
     fn int_text(&self, text: &str) -> Val {
+        if let Some(x) = float_literal(text) {
+            return Some((x, Some(FLOAT)));
+        }
         if let Some((v, ty)) = int_literal(text) {
             return match ty {
                 None => Some((v.clamp(i64::MIN.into(), i64::MAX.into()) as i64, None)),
@@ -244,7 +341,12 @@ impl PlcSimulator {
     /// `target := ` the integer at `input` (an output or in-out variable).
     pub(super) fn int_assign(&mut self, target: &str, input: &PinIn) {
         let v = self.int_pin(input);
-        if let (Some((x, _)), Some((_, ct))) = (v, self.ints.get(target).copied()) {
+        if let (Some((x, t)), Some((_, ct))) = (v, self.ints.get(target).copied()) {
+            // C converts between integers and `float` by value, which no `REAL` write
+            // here does (the lowering keeps such a variable opaque).
+            if t.map_or(ct.float, |t| t.float != ct.float) {
+                return;
+            }
             self.ints.insert(target.to_string(), (ct.store(x.into()), ct));
         }
     }
@@ -286,11 +388,14 @@ impl PlcSimulator {
             return;
         }
         let typed = args.iter().find_map(|(_, v)| v.and_then(|(_, t)| t));
-        let divisor = args
-            .get(1)
-            .and_then(|(_, v)| *v)
-            .map(|(x, t)| t.or(typed).map_or(x, |ct| ct.store(x.into())));
-        let divides_by_zero = matches!(b, IntBlock::Arith(Arith::Div)) && divisor == Some(0);
+        // `op2 == 0`: for a `REAL`, `-0.0` too.
+        let divisor_zero =
+            args.get(1).and_then(|(_, v)| *v).is_some_and(|(x, t)| match t.or(typed) {
+                Some(ct) if ct.float => float(x.into()) == 0.0,
+                Some(ct) => ct.store(x.into()) == 0,
+                None => x == 0,
+            });
+        let divides_by_zero = matches!(b, IntBlock::Arith(Arith::Div)) && divisor_zero;
         // MUX: `TEST_EN_COND(…, K >= param_count)`, the count of its data inputs.
         let past = *b == IntBlock::Mux && {
             let known: Option<Vec<(String, i64, Option<CType>)>> =

@@ -1,0 +1,582 @@
+//! `REAL` (IEEE 754 binary32) comparisons as Boolean terms of the numbers' 32 bits (least significant first: 23 bits of fraction, 8 of exponent, the sign), as C compares floats: a NaN is unordered (every comparison false but `<>`), `-0 = +0`.
+
+use super::super::logic::{L, simp};
+use super::super::{CmpOp, IntType};
+use super::{Bits, Namer, add, compare, constant, mux, resize, sub};
+
+/// Whether a number is a NaN: its exponent all ones and its fraction not 0.
+fn is_nan(v: &[L]) -> L {
+    let exponent_ones = L::And(v[23..31].to_vec());
+    let fraction = L::Or(v[..23].to_vec());
+    simp(&exponent_ones.and(fraction))
+}
+
+/// `a op b` for two `REAL` values (32 bits each).
+///
+/// Apart from NaNs, the order of binary32 numbers is the order of their magnitudes
+/// (the low 31 bits, as an unsigned integer) for two positive numbers, reversed for two
+/// negative ones, and a negative number is below a positive one unless both are zeros.
+pub fn compare_real(op: CmpOp, a: &[L], b: &[L], name: Namer) -> L {
+    let magnitude = IntType { bits: 31, signed: false, real: false };
+    let (ma, mb) = (&a[..31], &b[..31]);
+    let (sa, sb) = (a[31].clone(), b[31].clone());
+    let lt = compare(CmpOp::Lt, magnitude, ma, mb, name);
+    let lt = name(lt);
+    let gt = compare(CmpOp::Lt, magnitude, mb, ma, name);
+    let gt = name(gt);
+    let zeros = simp(&L::And(ma.iter().chain(mb).map(|x| x.clone().negate()).collect()));
+    let ordered = name(simp(&is_nan(a).or(is_nan(b)).negate()));
+    let (pa, pb) = (sa.clone().negate(), sb.clone().negate());
+    let same_sign = pa.clone().and(pb.clone()).or(sa.clone().and(sb.clone()));
+    let same_magnitude = lt.clone().negate().and(gt.clone().negate());
+    let eq = ordered.clone().and(zeros.clone().or(same_sign.and(same_magnitude)));
+    let below = |sx: &L, px: &L, sy: &L, py: &L, lt: &L, gt: &L| {
+        let signs = sx.clone().and(py.clone());
+        let positive = px.clone().and(py.clone()).and(lt.clone());
+        let negative = sx.clone().and(sy.clone()).and(gt.clone());
+        ordered.clone().and(zeros.clone().negate()).and(L::Or(vec![signs, positive, negative]))
+    };
+    let less = || below(&sa, &pa, &sb, &pb, &lt, &gt);
+    let greater = || below(&sb, &pb, &sa, &pa, &gt, &lt);
+    simp(&match op {
+        CmpOp::Eq => eq,
+        CmpOp::Ne => eq.negate(),
+        CmpOp::Lt => less(),
+        CmpOp::Gt => greater(),
+        CmpOp::Le => less().or(eq),
+        CmpOp::Ge => greater().or(eq),
+    })
+}
+
+/// Shifts `m` left until its top bit is 1 (unless it is 0), 16 then 8, 4, 2, 1 places at
+/// a time (`m` at most 32 bits wide): the number of places, in `width` bits.
+fn normalize(m: &mut Bits, width: u32, name: Namer) -> Bits {
+    let w = m.len();
+    let mut count = vec![L::Zero; width as usize];
+    for k in (0..5).rev() {
+        let step = 1usize << k;
+        let top_zero = name(simp(&L::Or(m[w - step..].to_vec()).negate()));
+        let shifted: Bits =
+            std::iter::repeat_n(L::Zero, step).chain(m[..w - step].iter().cloned()).collect();
+        *m = m.iter().zip(&shifted).map(|(p, s)| name(mux(&top_zero, s, p))).collect();
+        count[k] = top_zero;
+    }
+    count
+}
+
+/// `x` with every bit of `pattern` where `c` holds (per bit: `c ? pattern : x`).
+fn choose(c: &L, pattern: &[L], x: &[L], name: Namer) -> Bits {
+    pattern.iter().zip(x).map(|(p, q)| name(mux(c, p, q))).collect()
+}
+
+/// Whether all of `v` is 0.
+fn all_zero(v: &[L]) -> L {
+    simp(&L::Or(v.to_vec()).negate())
+}
+
+/// The exponents of [`unpack`] and [`round_pack`]: 12-bit two's complement.
+const WIDE: IntType = IntType { bits: 12, signed: true, real: false };
+
+/// `v` in [`WIDE`] bits.
+fn wide(v: i64) -> Bits {
+    constant(v, 12)
+}
+
+/// A `REAL` operand taken apart.
+struct Unpacked {
+    /// The significand, its leading 1 at bit 23 (a subnormal one shifted up).
+    m: Bits,
+    /// The biased exponent of that leading 1 (below 1 for a subnormal number).
+    e: Bits,
+    zero: L,
+    inf: L,
+    nan: L,
+}
+
+fn unpack(v: &[L], name: Namer) -> Unpacked {
+    let (fraction, exponent) = (&v[..23], &v[23..31]);
+    let subnormal = all_zero(exponent);
+    let ones = simp(&L::And(exponent.to_vec()));
+    let no_fraction = all_zero(fraction);
+    let zero = name(simp(&subnormal.clone().and(no_fraction.clone())));
+    let inf = name(simp(&ones.clone().and(no_fraction.clone())));
+    let nan = name(simp(&ones.and(no_fraction.negate())));
+    let mut m: Bits = fraction.to_vec();
+    m.push(subnormal.clone().negate());
+    let count = normalize(&mut m, 12, name);
+    let e: Bits = exponent.iter().cloned().chain(std::iter::repeat_n(L::Zero, 4)).collect();
+    let e = choose(&subnormal, &wide(1), &e, name);
+    Unpacked { m, e: sub(&e, &count, name), zero, inf, nan }
+}
+
+/// The finite result `1.s × 2^(e - 127)` (`s` 27 bits, its leading 1 at bit 26; `sticky`:
+/// whether anything below them is not 0) rounded to a `REAL`'s 31 bits without the
+/// sign: shifted right where it is subnormal (`e ≤ 0`, the bits shifted out joining
+/// `sticky`), rounded on the guard bit, the bits below it and the last bit kept (ties
+/// to even), `∞` where it overflows.
+fn round_pack(e: &[L], mut s: Bits, mut sticky: L, name: Namer) -> Bits {
+    let overflow = compare(CmpOp::Ge, WIDE, e, &wide(255), name);
+    let overflow = name(overflow);
+    // Subnormal: shifted right by 1 - e places (all of it from 32 on).
+    let t = sub(&wide(1), e, name);
+    let tiny = compare(CmpOp::Ge, WIDE, &t, &wide(1), name);
+    let tiny = name(tiny);
+    let far = compare(CmpOp::Ge, WIDE, &t, &wide(32), name);
+    let all_out = name(tiny.clone().and(far));
+    for (j, amount) in t.iter().take(5).enumerate() {
+        let step = 1usize << j;
+        let on = name(simp(&tiny.clone().and(amount.clone())));
+        sticky = name(simp(&sticky.or(on.clone().and(L::Or(s[..step].to_vec())))));
+        let down: Bits =
+            s[step..].iter().cloned().chain(std::iter::repeat_n(L::Zero, step)).collect();
+        s = choose(&on, &down, &s, name);
+    }
+    sticky = name(simp(&sticky.or(all_out.clone().and(L::Or(s.clone())))));
+    s = choose(&all_out, &constant(0, 27), &s, name);
+    let exponent = choose(&tiny, &constant(0, 8), &e[..8], name);
+    let fraction = &s[3..26];
+    let sticky = simp(&sticky.or(s[1].clone()).or(s[0].clone()));
+    let round = name(simp(&s[2].clone().and(sticky.or(fraction[0].clone()))));
+    let unrounded: Bits = fraction.iter().chain(&exponent).cloned().collect();
+    let result = add(&unrounded, &constant(0, 31), round, name);
+    choose(&overflow, &constant(0x7F80_0000, 31), &result, name)
+}
+
+/// `v` made a quiet NaN (its fraction's top bit set), as x86 returns a NaN operand.
+fn quiet(v: &[L]) -> Bits {
+    v.iter().enumerate().map(|(i, x)| if i == 22 { L::One } else { x.clone() }).collect()
+}
+
+/// The result `±v` (31 bits, then the sign).
+fn signed(v: i64, sign: &L) -> Bits {
+    constant(v, 31).into_iter().chain([sign.clone()]).collect()
+}
+
+/// `finite` (31 bits) with its sign, unless a special case decides: `zero` gives `±0`,
+/// `inf` gives `±∞`, `invalid` the default NaN `0xFFC00000`, a NaN operand itself made
+/// quiet (`a`'s first), as x86's `mulss`/`divss` do.
+#[allow(clippy::too_many_arguments)]
+fn special(
+    finite: Bits,
+    sign: &L,
+    (zero, inf, invalid): (L, L, L),
+    (a, nan_a): (&[L], &L),
+    (b, nan_b): (&[L], &L),
+    name: Namer,
+) -> Bits {
+    let mut out: Bits = finite.into_iter().chain([sign.clone()]).collect();
+    out = choose(&zero, &signed(0, sign), &out, name);
+    out = choose(&inf, &signed(0x7F80_0000, sign), &out, name);
+    out = choose(&invalid, &constant(0xFFC0_0000, 32), &out, name);
+    out = choose(nan_b, &quiet(b), &out, name);
+    choose(nan_a, &quiet(a), &out, name)
+}
+
+/// `a / b` for two `REAL`s as C computes it on x86-64 (`divss`: the nearest number,
+/// ties to even, subnormal results kept), and `+0.0` when `b` is `±0.0`, where matiec's
+/// `DIV` returns `__INIT_REAL` (`TEST_EN_COND(REAL, op2 == 0)`). A NaN result is the
+/// first NaN operand made quiet, else (`∞/∞`) the default NaN `0xFFC00000`.
+///
+/// The significands ([`unpack`]) are divided by restoring division into 27 quotient
+/// bits and a remainder; the quotient, its leading 1 brought to bit 26, is rounded by
+/// [`round_pack`].
+pub fn div_real(a: &[L], b: &[L], name: Namer) -> Bits {
+    let (x, y) = (unpack(a, name), unpack(b, name));
+    let sign = super::xor(&a[31], &b[31]);
+    // Restoring division: 27 quotient bits, most significant first.
+    let divisor: Bits = y.m.iter().cloned().chain([L::Zero, L::Zero]).collect();
+    let mut r: Bits = x.m.iter().cloned().chain([L::Zero, L::Zero]).collect();
+    let mut q = vec![L::Zero; 27];
+    for bit in (0..27).rev() {
+        let diff = sub(&r, &divisor, name);
+        let fits = name(diff[25].clone().negate());
+        r = choose(&fits, &diff, &r, name);
+        q[bit] = fits;
+        if bit > 0 {
+            r = std::iter::once(L::Zero).chain(r[..25].iter().cloned()).collect();
+        }
+    }
+    let rest = name(simp(&L::Or(r)));
+    // The leading 1 at bit 26 (a quotient below 1 is shifted up once).
+    let top = q[26].clone();
+    let shifted: Bits = std::iter::once(L::Zero).chain(q[..26].iter().cloned()).collect();
+    let s = choose(&top, &q, &shifted, name);
+    let below_one = choose(&top, &wide(127), &wide(126), name);
+    let e = add(&sub(&x.e, &y.e, name), &below_one, L::Zero, name);
+    let finite = round_pack(&e, s, rest, name);
+    let to_zero = name(simp(&x.zero.or(y.inf.clone())));
+    let invalid = simp(&x.inf.clone().and(y.inf));
+    let out = special(finite, &sign, (to_zero, x.inf, invalid), (a, &x.nan), (b, &y.nan), name);
+    choose(&y.zero, &constant(0, 32), &out, name)
+}
+
+/// `a * b` for two `REAL`s as C computes it on x86-64 (`mulss`: the nearest number,
+/// ties to even, subnormal results kept; a NaN result is the first NaN operand made
+/// quiet, else (`0 × ∞`) the default NaN `0xFFC00000`). Of two NaN operands the C
+/// compiler may put either first (the product commutes): which NaN results is then
+/// taken to be `a`'s, a choice no comparison, conversion to BOOL or other operation on
+/// it can tell apart.
+///
+/// The 48-bit product of the significands ([`unpack`]), its leading 1 brought to bit 47,
+/// keeps its top 27 bits, the rest joining the sticky bit of [`round_pack`].
+pub fn mul_real(a: &[L], b: &[L], name: Namer) -> Bits {
+    let (x, y) = (unpack(a, name), unpack(b, name));
+    let sign = super::xor(&a[31], &b[31]);
+    let widen =
+        |m: &[L]| -> Bits { m.iter().cloned().chain(std::iter::repeat_n(L::Zero, 24)).collect() };
+    let p = super::mul(&widen(&x.m), &widen(&y.m), name);
+    let top = p[47].clone();
+    let shifted: Bits = std::iter::once(L::Zero).chain(p[..47].iter().cloned()).collect();
+    let p = choose(&top, &p, &shifted, name);
+    let sticky = name(simp(&L::Or(p[..21].to_vec())));
+    let s = p[21..].to_vec();
+    // 1.s × 2^(ea - 127) × 1.t × 2^(eb - 127), the product's leading 1 at 2^1 or 2^0.
+    let offset = choose(&top, &wide(-126), &wide(-127), name);
+    let e = add(&add(&x.e, &y.e, L::Zero, name), &offset, L::Zero, name);
+    let finite = round_pack(&e, s, sticky, name);
+    let zero = simp(&x.zero.clone().or(y.zero.clone()));
+    let inf = simp(&x.inf.clone().or(y.inf.clone()));
+    let invalid = name(simp(&zero.clone().and(inf.clone())));
+    special(finite, &sign, (name(zero), name(inf), invalid), (a, &x.nan), (b, &y.nan), name)
+}
+
+/// `a + b` for two `REAL`s as C computes it on x86-64 (`addss`: the nearest number,
+/// ties to even, subnormal results kept; an exact zero sum is `+0.0` unless both are
+/// `-0.0`; a NaN result is the first NaN operand made quiet, else (`∞ - ∞`) the default
+/// NaN `0xFFC00000`). Of two NaN operands the C compiler may put either first: which
+/// NaN results is taken to be `a`'s, as for [`mul_real`]. `subtract` gives `a - b`
+/// (`b`'s sign flipped, a NaN `b` kept as it is, as `subss` does).
+///
+/// The operand of the larger magnitude first; the other's significand, with three bits
+/// more (guard, round and a sticky bit collecting what is shifted out), shifted right
+/// by the difference of the exponents; added or subtracted; a carry shifted back, a
+/// cancellation normalised; then rounded by [`round_pack`].
+pub fn add_real(a: &[L], b: &[L], subtract: bool, name: Namer) -> Bits {
+    let sb = if subtract { b[31].clone().negate() } else { b[31].clone() };
+    let b_signed: Bits = b[..31].iter().cloned().chain([sb]).collect();
+    let magnitude = IntType { bits: 31, signed: false, real: false };
+    let swap = compare(CmpOp::Lt, magnitude, &a[..31], &b[..31], name);
+    let swap = name(swap);
+    let (big, small) = (choose(&swap, &b_signed, a, name), choose(&swap, a, &b_signed, name));
+    // Unpacked without normalising: `m × 2^(e - 150)`, `e` at least 1.
+    let parts = |v: &[L], name: Namer| -> (Bits, Bits) {
+        let subnormal = all_zero(&v[23..31]);
+        let m: Bits = [L::Zero, L::Zero, L::Zero]
+            .into_iter()
+            .chain(v[..23].iter().cloned())
+            .chain([subnormal.clone().negate()])
+            .collect();
+        let e: Bits = v[23..31].iter().cloned().chain(std::iter::repeat_n(L::Zero, 4)).collect();
+        (m, choose(&subnormal, &wide(1), &e, name))
+    };
+    let (mx, ex) = parts(&big, name);
+    let (mut my, ey) = parts(&small, name);
+    let d = sub(&ex, &ey, name);
+    // Shifted right by d (0 to 253), what leaves kept as a sticky bit 0.
+    let far = compare(CmpOp::Ge, WIDE, &d, &wide(32), name);
+    let far = name(far);
+    let mut sticky = L::Zero;
+    for (j, amount) in d.iter().take(5).enumerate() {
+        let step = 1usize << j;
+        sticky = name(simp(&sticky.or(amount.clone().and(L::Or(my[..step].to_vec())))));
+        let down: Bits =
+            my[step..].iter().cloned().chain(std::iter::repeat_n(L::Zero, step)).collect();
+        my = choose(amount, &down, &my, name);
+    }
+    sticky = name(simp(&sticky.or(far.clone().and(L::Or(my.clone())))));
+    my = choose(&far, &constant(0, 27), &my, name);
+    my[0] = simp(&my[0].clone().or(sticky));
+    let same = name(simp(&super::xor(&big[31], &small[31]).negate()));
+    let (mx28, my28): (Bits, Bits) = (
+        mx.iter().cloned().chain([L::Zero]).collect(),
+        my.iter().cloned().chain([L::Zero]).collect(),
+    );
+    let sum = add(&mx28, &my28, L::Zero, name);
+    let difference = sub(&mx28, &my28, name);
+    let total = choose(&same, &sum, &difference, name);
+    // A carry: shifted right once (its last bit kept as sticky), the exponent one up.
+    let carry = total[27].clone();
+    let mut down: Bits = total[1..].to_vec();
+    down[0] = simp(&down[0].clone().or(total[0].clone()));
+    let mut s = choose(&carry, &down, &total[..27], name);
+    let e = add(&ex, &constant(0, 12), carry, name);
+    let cancelled = all_zero(&s);
+    let count = normalize(&mut s, 12, name);
+    let e = sub(&e, &count, name);
+    let finite = round_pack(&e, s, L::Zero, name);
+    let (x, y) = (unpack(a, name), unpack(b, name));
+    let inf = simp(&x.inf.clone().or(y.inf.clone()));
+    // An exact zero: -0.0 only for two negative zeros (same signs).
+    let exact_zero = name(simp(&cancelled.and(inf.clone().negate())));
+    let zero_sign = simp(&same.clone().and(big[31].clone()));
+    let sign = choose(&exact_zero, &[zero_sign], &[big[31].clone()], name).remove(0);
+    let opposite_inf = simp(&x.inf.and(y.inf).and(same.negate()));
+    // `±∞` takes the sign of the infinite operand, which the larger magnitude is.
+    special(
+        finite,
+        &sign,
+        (exact_zero, name(inf), name(opposite_inf)),
+        (a, &x.nan),
+        (b, &y.nan),
+        name,
+    )
+}
+
+/// `a`, an integer of type `ty` (at most 32 bits), as the nearest `REAL` (ties to
+/// even), as C converts an integer to `float`.
+///
+/// The magnitude (in 32 bits: `-(-2^31)` is `2^31` there) is normalised so that its
+/// leading 1 is bit 31, counting the shift; the 23 bits below the leading 1 are the
+/// fraction, the next bit decides the rounding with the bits below it (sticky) and the
+/// fraction's last bit (ties to even); the rounding is added to the exponent and
+/// fraction together, so that a fraction carried over raises the exponent.
+pub fn int_to_real(a: &[L], ty: IntType, name: Namer) -> Bits {
+    let word = IntType { bits: 32, signed: ty.signed, real: false };
+    let x = resize(a.to_vec(), ty, word);
+    let sign = if ty.signed { name(x[31].clone()) } else { L::Zero };
+    let negated = sub(&constant(0, 32), &x, name);
+    let mut m: Bits = x.iter().zip(&negated).map(|(p, n)| name(mux(&sign, n, p))).collect();
+    let zero = name(simp(&L::Or(m.clone()).negate()));
+    let count = normalize(&mut m, 8, name);
+    // The leading 1 at bit 31 - count: exponent 127 + 31 - count.
+    let exponent = sub(&constant(158, 8), &count, name);
+    let fraction = &m[8..31];
+    let guard = &m[7];
+    let sticky = L::Or(m[..7].to_vec());
+    let round = name(simp(&guard.clone().and(sticky.or(fraction[0].clone()))));
+    let unrounded: Bits = fraction.iter().chain(&exponent).cloned().collect();
+    let rounded = add(&unrounded, &constant(0, 31), round, name);
+    let not_zero = zero.negate();
+    rounded
+        .iter()
+        .chain(std::iter::once(&sign))
+        .map(|b| simp(&b.clone().and(not_zero.clone())))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::constant;
+    use super::*;
+    use crate::program::real;
+    use proptest::prelude::*;
+
+    fn eval(t: &L) -> bool {
+        match t {
+            L::Zero => false,
+            L::One => true,
+            L::Not(x) => !eval(x),
+            L::And(xs) => xs.iter().all(eval),
+            L::Or(xs) => xs.iter().any(eval),
+            _ => panic!("not a constant term: {t:?}"),
+        }
+    }
+
+    const OPS: [CmpOp; 6] = [CmpOp::Eq, CmpOp::Ne, CmpOp::Lt, CmpOp::Le, CmpOp::Gt, CmpOp::Ge];
+
+    /// The circuit on the constant bits of `x` and `y`, against `f32`'s comparisons.
+    fn agrees(x: u32, y: u32) -> Result<(), TestCaseError> {
+        let (a, b) = (constant(i64::from(x), 32), constant(i64::from(y), 32));
+        for op in OPS {
+            let got = eval(&compare_real(op, &a, &b, &mut |t| t));
+            let want = real::holds(op, i64::from(x), i64::from(y));
+            prop_assert_eq!(got, want, "{:?} {:?} {:?}", f32::from_bits(x), op, f32::from_bits(y));
+        }
+        Ok(())
+    }
+
+    /// The hard values: zeros, the smallest and largest subnormals and normals,
+    /// infinities, NaNs (quiet, signalling, negative), `2^24 + 1` and its neighbours.
+    fn hard() -> Vec<u32> {
+        let mut v = vec![0, 1, 0x007f_ffff, 0x0080_0000, 0x7f7f_ffff, 0x7f80_0000, 0x7fc0_0000];
+        v.extend([0x7f80_0001, 0x7fff_ffff, 16_777_217f32.to_bits(), 16_777_216f32.to_bits()]);
+        v.extend([1.0f32.to_bits(), 2.5f32.to_bits(), 0.1f32.to_bits()]);
+        let negatives: Vec<u32> = v.iter().map(|x| x | 0x8000_0000).collect();
+        v.extend(negatives);
+        v
+    }
+
+    #[test]
+    fn hard_values_compare_as_f32() {
+        for &x in &hard() {
+            for &y in &hard() {
+                agrees(x, y).unwrap();
+            }
+        }
+    }
+
+    /// The conversion on the constant bits of `v` (a value of `ty`), against Rust's `as
+    /// f32` (round to nearest, ties to even).
+    fn converts(v: i64, ty: IntType) -> Result<(), TestCaseError> {
+        let bits = constant(v, ty.bits);
+        let got = int_to_real(&bits, ty, &mut |t| t);
+        let got = got.iter().enumerate().fold(0u32, |acc, (k, b)| acc | (u32::from(eval(b)) << k));
+        prop_assert_eq!(f32::from_bits(got).to_bits(), (v as f32).to_bits(), "{} in {:?}", v, ty);
+        Ok(())
+    }
+
+    const TYPES: [(u32, bool); 6] =
+        [(8, true), (8, false), (16, true), (16, false), (32, true), (32, false)];
+
+    #[test]
+    fn hard_integers_convert_as_c() {
+        let near = |k: i64| [k - 1, k, k + 1];
+        let mut vs = vec![0, 1, -1, 127, -128, 255, 32767, -32768, 65535];
+        for p in [24, 25, 26, 30, 31, 32] {
+            vs.extend(near(1 << p));
+            vs.extend(near(-(1 << p)));
+            vs.extend(near((1 << p) + (1 << (p - 24))));
+            vs.extend(near((1 << p) + 3 * (1 << (p - 24))));
+        }
+        vs.extend([i64::from(i32::MAX), i64::from(i32::MIN), i64::from(u32::MAX)]);
+        for (bits, signed) in TYPES {
+            let ty = IntType { bits, signed, real: false };
+            for &v in &vs {
+                if ty.contains(v) {
+                    converts(v, ty).unwrap();
+                }
+            }
+        }
+    }
+
+    /// A circuit of two `REAL`s.
+    type Circuit<'a> = &'a dyn Fn(&[L], &[L], Namer) -> Bits;
+
+    /// An operation's circuit on the constant bits of `x` and `y`, against its `f32`
+    /// reference (`program/real.rs`).
+    fn computes(
+        x: u32,
+        y: u32,
+        circuit: Circuit,
+        reference: fn(i64, i64) -> i64,
+    ) -> Result<(), TestCaseError> {
+        let (a, b) = (constant(i64::from(x), 32), constant(i64::from(y), 32));
+        let got = circuit(&a, &b, &mut |t| t);
+        let got = got.iter().enumerate().fold(0u32, |acc, (k, b)| acc | (u32::from(eval(b)) << k));
+        let want = reference(i64::from(x), i64::from(y)) as u32;
+        let (p, q) = (f32::from_bits(x), f32::from_bits(y));
+        prop_assert_eq!(got, want, "{:?}, {:?}: {:08x}, not {:08x}", p, q, got, want);
+        Ok(())
+    }
+
+    /// The division (0 for a divisor ±0, as matiec's `DIV`).
+    fn divides(x: u32, y: u32) -> Result<(), TestCaseError> {
+        computes(x, y, &|a, b, n| div_real(a, b, n), real::div)
+    }
+
+    /// The product.
+    fn multiplies(x: u32, y: u32) -> Result<(), TestCaseError> {
+        computes(x, y, &|a, b, n| mul_real(a, b, n), real::mul)
+    }
+
+    /// The sum, or the difference.
+    fn adds(x: u32, y: u32, subtract: bool) -> Result<(), TestCaseError> {
+        let reference = if subtract { real::sub } else { real::add };
+        computes(x, y, &|a, b, n| add_real(a, b, subtract, n), reference)
+    }
+
+    #[test]
+    fn hard_values_add_as_f32() {
+        for &x in &hard_operands() {
+            for &y in &hard_operands() {
+                adds(x, y, false).unwrap();
+                adds(x, y, true).unwrap();
+            }
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(3000))]
+        #[test]
+        fn random_values_add_as_f32(x in any::<u32>(), y in any::<u32>(), ey in 0u32..40, low in 0u32..24) {
+            adds(x, y, false)?;
+            adds(x, y, true)?;
+            // Exponents near each other (cancellation, carries, ties) and far apart.
+            let near = (x & 0x807f_ffff) | ((((x >> 23) & 0xff) + ey).min(254) << 23);
+            adds(x, near, false)?;
+            adds(x, near, true)?;
+            adds(x, (x ^ 0x8000_0000) >> low << low, false)?;
+            adds(x, x.wrapping_add(low), true)?;
+        }
+    }
+
+    #[test]
+    fn hard_values_multiply_as_f32() {
+        for &x in &hard_operands() {
+            for &y in &hard_operands() {
+                multiplies(x, y).unwrap();
+            }
+        }
+    }
+
+    /// [`hard`], and values whose quotients and products round, overflow or underflow.
+    fn hard_operands() -> Vec<u32> {
+        let mut vs = hard();
+        vs.extend(
+            [3.0f32, 7.0, 0.75, 1e-40, 1e38, 1.1754942e-38, 2.9e-39, 6e-45].map(f32::to_bits),
+        );
+        vs.extend([0x7fc0_1234, 0xffbf_0001, 0x3f80_0001, 0x3fff_ffff, 0x1f80_0001, 0x2000_0000]);
+        vs
+    }
+
+    #[test]
+    fn hard_values_divide_as_f32() {
+        let mut vs = hard();
+        vs.extend(
+            [3.0f32, 7.0, 0.75, 1e-40, 1e38, 1.1754942e-38, 2.9e-39, 6e-45].map(f32::to_bits),
+        );
+        vs.extend([0x7fc0_1234, 0xffbf_0001, 0x3f80_0001, 0x3fff_ffff]);
+        for &x in &vs {
+            for &y in &vs {
+                divides(x, y).unwrap();
+            }
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(2000))]
+        #[test]
+        fn random_values_divide_as_f32(x in any::<u32>(), y in any::<u32>(), ex in 0u32..255, ey in 0u32..255) {
+            divides(x, y)?;
+            // Exponents near each other and near the ends: results that are subnormal,
+            // overflow, or round.
+            let near = |v: u32, e: u32| v & 0x807f_ffff | (e << 23);
+            divides(near(x, ex), near(y, ex.saturating_sub(ey % 30)))?;
+            divides(near(x, ex % 40), near(y, 200 + ey % 55))?;
+            divides(near(x, 200 + ex % 55), near(y, ey % 60))?;
+        }
+
+        #[test]
+        fn random_values_multiply_as_f32(x in any::<u32>(), y in any::<u32>(), ex in 0u32..255, ey in 0u32..255) {
+            multiplies(x, y)?;
+            // Exponents whose sum is near the ends: products that are subnormal, overflow,
+            // or round.
+            let near = |v: u32, e: u32| v & 0x807f_ffff | (e << 23);
+            multiplies(near(x, ex), near(y, (254u32 + 127).saturating_sub(ex + ey % 30).min(254)))?;
+            multiplies(near(x, ex % 80), near(y, (127u32 + ey % 40).saturating_sub(ex % 80 + 20)))?;
+            multiplies(near(x, 120 + ex % 20), near(y, ey))?;
+        }
+
+        #[test]
+        fn random_integers_convert_as_c(v in any::<i64>(), t in 0usize..6, low in 0u32..32) {
+            let (bits, signed) = TYPES[t];
+            let ty = IntType { bits, signed, real: false };
+            converts(ty.wrap(v), ty)?;
+            // Values of few significant bits, where ties are frequent.
+            converts(ty.wrap(v >> low << low), ty)?;
+        }
+
+        #[test]
+        fn random_values_compare_as_f32(x in any::<u32>(), y in any::<u32>(), near in 0u32..4) {
+            agrees(x, y)?;
+            // Neighbours: equal magnitudes, opposite signs, adjacent patterns.
+            agrees(x, x ^ 0x8000_0000)?;
+            agrees(x, x.wrapping_add(near))?;
+        }
+
+        #[test]
+        fn numbers_compare_as_f32(x in any::<f32>(), y in any::<i16>()) {
+            agrees(x.to_bits(), f32::from(y).to_bits())?;
+        }
+    }
+}
