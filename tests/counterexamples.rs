@@ -109,6 +109,59 @@ fn water_faulty_overlap_replays_on_the_scan_simulator() {
     assert!(swap[scan - 1] && swap[..scan - 1].iter().any(|v| !v));
 }
 
+/// The exact checks a session remembers (`counterexample::confirm::ExactMemo`) change
+/// no confirmation: each property of a faulty plant refuted in a session that has
+/// already confirmed it gives the same counterexample as alone.
+#[test]
+fn remembered_exact_checks_give_the_same_counterexamples() {
+    for (program, properties) in [
+        ("examples/water_faulty.ld", "examples/water.ii"),
+        ("examples/parts_faulty.ld", "examples/parts.ii"),
+    ] {
+        let mut sources = Sources::new();
+        let loaded =
+            load_program(&mut sources, &path(program), &Default::default()).expect("loads");
+        let text = std::fs::read_to_string(path(properties)).expect("reads");
+        let file = sources.add(properties, text);
+        let doc = syntax::parse_document(&sources, file, &loaded.compiled).expect("parses");
+        let shared = counterexample::shared::Shared::default();
+        let run = |shared| {
+            let session = counterexample::Program {
+                reference: loaded.reference.as_ref(),
+                compiled: &loaded.compiled,
+                assumptions: &[],
+                shared,
+            };
+            let limits = Limits {
+                deadline: Instant::now() + Duration::from_secs(20),
+                max_steps: 200,
+                max_scans: 100_000,
+                minimised: false,
+            };
+            let refuted = |p: &syntax::Statement<_>| match counterexample::refute(
+                &session,
+                &report::obligation(&p.value),
+                limits,
+            ) {
+                Verdict::Refuted(c) => Some((
+                    c.trace.values.clone(),
+                    (c.scan, c.simulator_scan),
+                    (c.lhs, c.rhs),
+                    c.assignment.signals.len(),
+                )),
+                _ => None,
+            };
+            doc.properties.iter().map(refuted).collect::<Vec<_>>()
+        };
+        let alone = run(None);
+        assert!(alone.iter().any(Option::is_some), "{program} has a refutation");
+        let first = run(Some(&shared));
+        let again = run(Some(&shared));
+        assert_eq!(alone, first, "{program}");
+        assert_eq!(alone, again, "{program}");
+    }
+}
+
 /// A VCD file read back: timescale, variable names by identifier, value changes (a
 /// bit's `0`/`1`, or a vector's value read as an unsigned word).
 type Vcd = (String, BTreeMap<String, String>, Vec<(u64, String, u64)>);
