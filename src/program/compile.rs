@@ -363,8 +363,6 @@ pub struct CompiledProgram {
     pub(super) short_names: std::sync::OnceLock<BTreeMap<String, Vec<String>>>,
     /// The short names a property, script or REPL line has used: those print short.
     pub(super) spelled_short: super::names::Spellings,
-    /// The display names computed so far.
-    pub(super) display_names: super::names::DisplayNames,
     /// The equations' index ([`CompiledProgram::equation_index`]), built on first use.
     pub(super) equation_index: std::sync::OnceLock<EquationIndex>,
     /// The integer variables, compiled into bits ([`SignalKind::IntBit`]).
@@ -1222,7 +1220,6 @@ impl<'a> Compiler<'a> {
             block_noun: self.program.block_noun,
             short_names: std::sync::OnceLock::new(),
             spelled_short: Default::default(),
-            display_names: Default::default(),
             equation_index: std::sync::OnceLock::new(),
             integers: self.program.integers.clone(),
             atoms: Default::default(),

@@ -43,22 +43,6 @@ impl Spellings {
     fn contains(&self, name: &str) -> bool {
         self.0.lock().is_ok_and(|set| set.contains(name))
     }
-
-    fn len(&self) -> usize {
-        self.0.lock().map_or(0, |set| set.len())
-    }
-}
-
-/// The display names already computed ([`CompiledProgram::rename_for_display`]), with the
-/// number of spellings they were computed under: a new spelling may shorten a name, and
-/// empties the cache. A copy of the program starts empty.
-#[derive(Debug, Default)]
-pub struct DisplayNames(std::sync::Mutex<(usize, std::collections::HashMap<Symbol, Symbol>)>);
-
-impl Clone for DisplayNames {
-    fn clone(&self) -> Self {
-        DisplayNames::default()
-    }
 }
 
 impl CompiledProgram {
@@ -100,26 +84,6 @@ impl CompiledProgram {
         }
     }
 
-    /// [`display_name`](Self::display_name) of a signal, remembered.
-    fn display_symbol(&self, n: Symbol) -> Symbol {
-        let spellings = self.spelled_short.len();
-        if let Ok(mut cache) = self.display_names.0.lock() {
-            if cache.0 != spellings {
-                *cache = (spellings, Default::default());
-            }
-            if let Some(s) = cache.1.get(&n) {
-                return *s;
-            }
-        }
-        let s = Symbol::from(self.display_name(n.as_str()));
-        if let Ok(mut cache) = self.display_names.0.lock()
-            && cache.0 == spellings
-        {
-            cache.1.insert(n, s);
-        }
-        s
-    }
-
     /// `expr` with every signal name replaced by its [`display_name`](Self::display_name).
     pub fn rename_for_display(&self, expr: &Expr) -> Expr {
         let nodes: Vec<Term> = expr
@@ -127,7 +91,7 @@ impl CompiledProgram {
             .iter()
             .map(|node| match node {
                 Term::Name(n) if self.signals.contains_key(n.as_str()) => {
-                    Term::Name(self.display_symbol(*n))
+                    Term::Name(Symbol::from(self.display_name(n.as_str())))
                 }
                 other => other.clone(),
             })
