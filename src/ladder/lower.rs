@@ -785,11 +785,7 @@ fn integers(
             }
             ElementKind::Counter { name, limit, init: start, .. } => {
                 // orig's integers are 16-bit; new sizes a counter for its literals.
-                let fits = if orig {
-                    IntType::I16
-                } else {
-                    IntType { bits: 32, signed: true, real: false }
-                };
+                let fits = if orig { IntType::I16 } else { IntType::int(32, true) };
                 let literal = |o: &Operand| matches!(o, Operand::Literal(v) if !fits.contains(*v));
                 if literal(limit) || (!orig && (start.var().is_some() || literal(start))) {
                     let why =

@@ -194,15 +194,13 @@ pub fn adc_bits(micro: Option<&str>) -> Result<u32, String> {
 /// * no target: LDmicro's simulator (`simulate.cpp`, `INT_I2C_READ`) writes a typed
 ///   byte, 0 to 255, only when one is queued: a byte and an arrival flag.
 pub fn i2c_read(micro: Option<&str>) -> (IntType, bool, Option<i64>) {
-    let byte = IntType { bits: 8, signed: false, real: false };
+    let byte = IntType::int(8, false);
     match micro.map(str::trim) {
         None => (byte, true, None),
-        Some(m) if m.starts_with("Atmel AVR") => {
-            (IntType { bits: 8, signed: true, real: false }, false, None)
-        }
+        Some(m) if m.starts_with("Atmel AVR") => (IntType::int(8, true), false, None),
         Some(m) if m.starts_with("Microchip PIC") => (byte, false, None),
         Some(m) if m.starts_with("St ARM") => (byte, true, Some(-1)),
-        Some(_) => (IntType { bits: 32, signed: true, real: false }, false, None),
+        Some(_) => (IntType::int(32, true), false, None),
     }
 }
 
@@ -246,13 +244,11 @@ pub fn readings(program: &LdProgram) -> std::collections::BTreeMap<usize, Readin
                 && let [var] = e.names_written().as_slice()
             {
                 let ty = match keyword.as_str() {
-                    "READ_ADC" => {
-                        adc.as_ref().ok().map(|&bits| IntType { bits, signed: false, real: false })
-                    }
+                    "READ_ADC" => adc.as_ref().ok().map(|&bits| IntType::int(bits, false)),
                     // `UART_RECV var [bytes wait]`: one byte unless more are asked for.
                     "UART_RECV" => Some(match args.get(1).and_then(|b| b.parse::<u32>().ok()) {
                         Some(n) if n > 1 => IntType::I16,
-                        _ => IntType { bits: 8, signed: false, real: false },
+                        _ => IntType::int(8, false),
                     }),
                     // What EEPROM holds: any 16-bit value.
                     "PERSIST" => Some(IntType::I16),

@@ -98,7 +98,7 @@ impl CompiledProgram {
         }
         let ty = match (ta, tb) {
             (Some(x), Some(y)) if x == y => x,
-            (Some(_), Some(_)) => IntType { bits: 63, signed: true, real: false },
+            (Some(_), Some(_)) => IntType::int(63, true),
             (Some(t), None) | (None, Some(t)) => t,
             (None, None) => {
                 return Err((

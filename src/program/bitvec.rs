@@ -170,8 +170,7 @@ impl Divisor {
 /// `|v|` for a value of type `ty`, in `width > ty.bits` bits, and whether `v` is negative.
 fn magnitude(v: &[L], ty: IntType, width: usize, name: Namer) -> (Bits, L) {
     let negative = if ty.signed { v.last().cloned().unwrap_or(L::Zero) } else { L::Zero };
-    let ext =
-        resize(v.to_vec(), ty, IntType { bits: width as u32, signed: ty.signed, real: false });
+    let ext = resize(v.to_vec(), ty, IntType::int(width as u32, ty.signed));
     let minus = sub(&constant(0, width as u32), &ext, name);
     let m = ext.iter().zip(&minus).map(|(x, y)| name(mux(&negative, y, x))).collect();
     (m, negative)
@@ -185,7 +184,7 @@ fn divide(a: &[L], d: &Divisor, ty: IntType, name: Namer) -> (Bits, Bits, L) {
     // |a| in w + 1 bits (|min| fits there), the remainder in w + 2 (it stays below 2·|d|).
     let (wide, rw) = (w + 1, w + 2);
     let (magnitude, negative) = magnitude(a, ty, wide, name);
-    let unsigned = IntType { bits: rw as u32, signed: false, real: false };
+    let unsigned = IntType::int(rw as u32, false);
     let mut r = constant(0, rw as u32);
     let mut q = vec![L::Zero; wide];
     for i in (0..wide).rev() {
@@ -265,7 +264,7 @@ mod tests {
     fn four_bit_arithmetic_is_exact() {
         let w = 4;
         for signed in [false, true] {
-            let ty = IntType { bits: w, signed, real: false };
+            let ty = IntType::int(w, signed);
             let (a, b) = (vars("a", w), vars("b", w));
             let mut keep = |t: L| t;
             let sum = add(&a, &b, L::Zero, &mut keep);
@@ -387,7 +386,7 @@ mod tests {
     #[test]
     fn eight_bit_division_by_a_variable_is_exact() {
         for signed in [false, true] {
-            let ty = IntType { bits: 8, signed, real: false };
+            let ty = IntType::int(8, signed);
             let (c, q, r) = divider(ty);
             for chunk in 0..(65536 / 64) {
                 let pair = |l: usize| (chunk * 64 + l) as i64;
@@ -411,9 +410,7 @@ mod tests {
         std::sync::LazyLock::new(|| {
             [16, 32]
                 .into_iter()
-                .flat_map(|bits| {
-                    [false, true].map(|signed| divider(IntType { bits, signed, real: false }))
-                })
+                .flat_map(|bits| [false, true].map(|signed| divider(IntType::int(bits, signed))))
                 .collect()
         });
 
@@ -430,7 +427,7 @@ mod tests {
                 proptest::sample::select(vec![0i64, 1, -1, i64::MIN, 2, -2]),
             ],
         ) {
-            let ty = IntType { bits, signed, real: false };
+            let ty = IntType::int(bits, signed);
             let (x, y) = (ty.wrap(x), ty.wrap(if y == i64::MIN { ty.min() } else { y }));
             let (c, q, r) = &WIDE_DIVIDERS[usize::from(bits == 32) * 2 + usize::from(signed)];
             let word = |v: i64| -> Vec<u64> {

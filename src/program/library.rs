@@ -15,7 +15,7 @@ pub fn int_type(name: &str) -> Option<IntType> {
         "UDINT" | "DWORD" => (32, false),
         _ => return None,
     };
-    Some(IntType { bits, signed, real: false })
+    Some(IntType::int(bits, signed))
 }
 
 /// The IEC type `name` (upper-case) the scan model computes: an integer type of

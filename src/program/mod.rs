@@ -117,14 +117,19 @@ pub struct IntType {
 }
 
 impl IntType {
+    /// A two's-complement integer type of `bits` bits.
+    pub const fn int(bits: u32, signed: bool) -> IntType {
+        IntType { bits, signed, real: false }
+    }
+
     /// LDmicro's 16-bit signed integers (IEC `INT`).
-    pub const I16: IntType = IntType { bits: 16, signed: true, real: false };
+    pub const I16: IntType = IntType::int(16, true);
 
     /// IEC `REAL`: IEEE 754 binary32, stored as its bit pattern (`2.5` is `0x4020_0000`).
     pub const REAL: IntType = IntType { bits: 32, signed: false, real: true };
 
     /// One unsigned bit (0 or 1): a peripheral's flag, a hidden one-shot.
-    pub const BIT: IntType = IntType { bits: 1, signed: false, real: false };
+    pub const BIT: IntType = IntType::int(1, false);
 
     /// The smallest value.
     pub fn min(self) -> i64 {
@@ -772,16 +777,16 @@ mod tests {
 
     #[test]
     fn the_widest_types_wrap_without_overflow() {
-        let wide = IntType { bits: 63, signed: true, real: false };
+        let wide = IntType::int(63, true);
         assert_eq!(wide.max(), (1i64 << 62) - 1);
         assert_eq!(wide.wrap(65535), 65535);
         assert_eq!(wide.wrap(-1), -1);
         assert_eq!(wide.wrap(1i64 << 62), -(1i64 << 62));
-        let unsigned = IntType { bits: 63, signed: false, real: false };
+        let unsigned = IntType::int(63, false);
         assert_eq!(unsigned.max(), i64::MAX);
         assert_eq!(unsigned.wrap(-1), i64::MAX);
         assert_eq!(IntType::I16.wrap(65535), -1);
         assert_eq!(IntType::I16.wrap(32768), -32768);
-        assert_eq!(IntType { bits: 1, signed: false, real: false }.wrap(3), 1);
+        assert_eq!(IntType::int(1, false).wrap(3), 1);
     }
 }

@@ -7,7 +7,7 @@ use crate::iec::ast::{self, Arg, BinOp, ExprKind, UnOp};
 use crate::program::{BoolExpr, CmpOp, Compare, Fresh, IntExpr, IntType, IntVar, Stmt, library};
 
 /// C's `int`: what matiec's generated code computes a value narrower than 32 bits in.
-const C_INT: IntType = IntType { bits: 32, signed: true, real: false };
+const C_INT: IntType = IntType::int(32, true);
 
 pub(super) use crate::program::library::{counter_type, int_type, type_name};
 

@@ -194,7 +194,7 @@ impl BitElem {
             Some(Operand::Literal(k)) => i32::try_from(*k).unwrap_or(0),
             _ => 0,
         };
-        let unsigned = IntType { bits: d.bits, signed: false, real: false };
+        let unsigned = IntType::int(d.bits, false);
         let cast = |e: IntExpr, t: IntType| IntExpr::Cast(Box::new(e), t);
         let shift = |e: IntExpr, k: i32| IntExpr::Shift(Box::new(e), k);
         let w = d.bits as i32;
@@ -217,7 +217,7 @@ impl BitElem {
             }
             Op::Bin2Bcd => {
                 // In 16 bits, the source an unsigned byte.
-                let u = || cast(a.clone(), IntType { bits: 8, signed: false, real: false });
+                let u = || cast(a.clone(), IntType::int(8, false));
                 let tens = IntExpr::Mul(
                     Box::new(IntExpr::Div(Box::new(u()), 10)),
                     Box::new(IntExpr::Const(16)),
@@ -226,7 +226,7 @@ impl BitElem {
             }
             Op::Bcd2Bin => {
                 // `uint8_t bcd2bin(uint8_t var)`, in a byte.
-                let byte = IntType { bits: 8, signed: false, real: false };
+                let byte = IntType::int(8, false);
                 let u = || cast(a.clone(), byte);
                 let tens = IntExpr::Mul(
                     Box::new(IntExpr::Div(Box::new(u()), 16)),
@@ -240,7 +240,7 @@ impl BitElem {
             }
             Op::Swap => {
                 // `uint16_t swap(uint16_t var)`: bit i to bit 15 - i.
-                let u16 = IntType { bits: 16, signed: false, real: false };
+                let u16 = IntType::int(16, false);
                 let x = cast(a, u16);
                 let bit = |i: i32| {
                     let one = Box::new(IntExpr::Const(1));

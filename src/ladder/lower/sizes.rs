@@ -50,8 +50,8 @@ pub(super) fn int_type(bytes: u32, micro: Option<&str>) -> Result<IntType, Strin
     let avr_or_pic =
         micro.is_some_and(|m| m.starts_with("Atmel AVR") || m.starts_with("Microchip PIC"));
     match bytes {
-        1 | 2 | 4 => Ok(IntType { bits: 8 * bytes, signed: true, real: false }),
-        3 if avr_or_pic => Ok(IntType { bits: 24, signed: true, real: false }),
+        1 | 2 | 4 => Ok(IntType::int(8 * bytes, true)),
+        3 if avr_or_pic => Ok(IntType::int(24, true)),
         3 => Err(format!(
             "LDmicro stores it in 3 bytes, which its AVR and PIC code computes in 24 bits and \
              its C code in 32, and the target {} is neither AVR nor PIC",
@@ -64,12 +64,12 @@ pub(super) fn int_type(bytes: u32, micro: Option<&str>) -> Result<IntType, Strin
 /// The type of a literal in a comparison of a new file: as many bytes as `byteNeeded`
 /// gives it (`SizeOfVar` of a number).
 pub(super) fn literal_type(v: i64) -> IntType {
-    IntType { bits: 8 * bytes_needed(v), signed: true, real: false }
+    IntType::int(8 * bytes_needed(v), true)
 }
 
 /// The larger of two signed types: the one a comparison sign-extends both sides to.
 pub(super) fn wider(a: IntType, b: IntType) -> IntType {
-    IntType { bits: a.bits.max(b.bits), signed: true, real: false }
+    IntType::int(a.bits.max(b.bits), true)
 }
 
 /// The type of an operand given the integers' types (16 bits by default): a literal's

@@ -17,7 +17,7 @@ fn is_nan(v: &[L]) -> L {
 /// (the low 31 bits, as an unsigned integer) for two positive numbers, reversed for two
 /// negative ones, and a negative number is below a positive one unless both are zeros.
 pub fn compare_real(op: CmpOp, a: &[L], b: &[L], name: Namer) -> L {
-    let magnitude = IntType { bits: 31, signed: false, real: false };
+    let magnitude = IntType::int(31, false);
     let (ma, mb) = (&a[..31], &b[..31]);
     let (sa, sb) = (a[31].clone(), b[31].clone());
     let lt = compare(CmpOp::Lt, magnitude, ma, mb, name);
@@ -75,7 +75,7 @@ fn all_zero(v: &[L]) -> L {
 }
 
 /// The exponents of [`unpack`] and [`round_pack`]: 12-bit two's complement.
-const WIDE: IntType = IntType { bits: 12, signed: true, real: false };
+const WIDE: IntType = IntType::int(12, true);
 
 /// `v` in [`WIDE`] bits.
 fn wide(v: i64) -> Bits {
@@ -254,7 +254,7 @@ pub fn mul_real(a: &[L], b: &[L], name: Namer) -> Bits {
 pub fn add_real(a: &[L], b: &[L], subtract: bool, name: Namer) -> Bits {
     let sb = if subtract { b[31].clone().negate() } else { b[31].clone() };
     let b_signed: Bits = b[..31].iter().cloned().chain([sb]).collect();
-    let magnitude = IntType { bits: 31, signed: false, real: false };
+    let magnitude = IntType::int(31, false);
     let swap = compare(CmpOp::Lt, magnitude, &a[..31], &b[..31], name);
     let swap = name(swap);
     let (big, small) = (choose(&swap, &b_signed, a, name), choose(&swap, a, &b_signed, name));
@@ -331,7 +331,7 @@ pub fn add_real(a: &[L], b: &[L], subtract: bool, name: Namer) -> Bits {
 /// fraction's last bit (ties to even); the rounding is added to the exponent and
 /// fraction together, so that a fraction carried over raises the exponent.
 pub fn int_to_real(a: &[L], ty: IntType, name: Namer) -> Bits {
-    let word = IntType { bits: 32, signed: ty.signed, real: false };
+    let word = IntType::int(32, ty.signed);
     let x = resize(a.to_vec(), ty, word);
     let sign = if ty.signed { name(x[31].clone()) } else { L::Zero };
     let negated = sub(&constant(0, 32), &x, name);
@@ -430,7 +430,7 @@ mod tests {
         }
         vs.extend([i64::from(i32::MAX), i64::from(i32::MIN), i64::from(u32::MAX)]);
         for (bits, signed) in TYPES {
-            let ty = IntType { bits, signed, real: false };
+            let ty = IntType::int(bits, signed);
             for &v in &vs {
                 if ty.contains(v) {
                     converts(v, ty).unwrap();
@@ -560,7 +560,7 @@ mod tests {
         #[test]
         fn random_integers_convert_as_c(v in any::<i64>(), t in 0usize..6, low in 0u32..32) {
             let (bits, signed) = TYPES[t];
-            let ty = IntType { bits, signed, real: false };
+            let ty = IntType::int(bits, signed);
             converts(ty.wrap(v), ty)?;
             // Values of few significant bits, where ties are frequent.
             converts(ty.wrap(v >> low << low), ty)?;

@@ -85,7 +85,7 @@ type Arg<'a> = (&'a str, IntExpr, Option<IntType>);
 #[allow(clippy::type_complexity)]
 fn mux_args(vals: &[Arg]) -> Result<(IntExpr, IntType, Vec<(IntExpr, Option<IntType>)>), String> {
     let (_, k, kt) = vals.iter().find(|(n, _, _)| *n == "K").ok_or("it has no input K")?;
-    let kt = kt.unwrap_or(IntType { bits: 32, signed: true, real: false });
+    let kt = kt.unwrap_or(IntType::int(32, true));
     if kt.real {
         return Err("its K is a REAL".into());
     }
@@ -315,7 +315,7 @@ impl Lower<'_> {
                 return fresh_because("MUX", format!("the MUX's K is not computed: {why}"), span);
             }
         };
-        let kt = kt.unwrap_or(IntType { bits: 32, signed: true, real: false });
+        let kt = kt.unwrap_or(IntType::int(32, true));
         if kt.real {
             return fresh_because("MUX", "the MUX's K is a REAL".into(), span);
         }
