@@ -162,6 +162,51 @@ fn remembered_exact_checks_give_the_same_counterexamples() {
     }
 }
 
+/// Two units whose properties have one form: the run that refutes unit 2's, kept by
+/// the session, does not violate unit 1's (it leaves unit 1's input at 0, which unit 2
+/// reads, so that no grown run sets it either), and is repaired
+/// near unit 1's property into a confirmed counterexample that sets unit 1's input
+/// only. A false property of another form, and a true one of the same form, get
+/// nothing from the store.
+#[test]
+fn a_kept_run_is_repaired_for_a_property_of_the_same_form() {
+    const UNITS: &str = "LDmicro0.1\nCYCLE=10000\n\nIO LIST\n    Xa1 at 0\n    Xa2 at 0\n    Yb1 at 0\n    Yb2 at 0\n    Yc at 0\nEND\n\nPROGRAM\nRUNG\n    CONTACTS Xa1 0\n    COIL Yb1 0 0 0\nEND\nRUNG\n    CONTACTS Xa2 0\n    CONTACTS Xa1 1\n    COIL Yb2 0 0 0\nEND\nRUNG\n    CONTACTS Xa1 0\n    CONTACTS Xa1 1\n    COIL Yc 0 0 0\nEND\n";
+    const PROPERTIES: &str = "property unit2: Yb2 => 0*\nproperty unit1: Yb1 => 0*\nproperty other: Yb1 . Xa1 => 0*\nproperty never: Yc => 0*\n";
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let ld = dir.path().join("units.ld");
+    std::fs::write(&ld, UNITS).expect("writes");
+    let mut sources = Sources::new();
+    let loaded =
+        load_program(&mut sources, &ld.display().to_string(), &Default::default()).expect("loads");
+    let file = sources.add("units.ii", PROPERTIES.to_string());
+    let doc = syntax::parse_document(&sources, file, &loaded.compiled).expect("parses");
+    let goals: Vec<_> = doc.properties.iter().map(|p| report::obligation(&p.value)).collect();
+    let shared = counterexample::shared::Shared::default();
+    let session = counterexample::Program {
+        reference: loaded.reference.as_ref(),
+        compiled: &loaded.compiled,
+        assumptions: &[],
+        shared: Some(&shared),
+    };
+    let limits = Limits {
+        deadline: Instant::now() + Duration::from_secs(20),
+        max_steps: 200,
+        max_scans: 100_000,
+        minimised: false,
+    };
+    let Verdict::Refuted(first) = counterexample::refute(&session, &goals[0], limits) else {
+        panic!("unit 2's property is refuted by a search of its own");
+    };
+    assert_eq!(first.trace.values.get("Xa2").map(|v| v.contains(&true)), Some(true));
+    let shared_refutation = |goal| counterexample::shared::refute_shared(&session, goal, limits);
+    let repaired = shared_refutation(&goals[1]).expect("unit 1's property: the repaired run");
+    assert_eq!(repaired.simulator_scan, Some(repaired.scan), "confirmed by the simulator too");
+    assert_eq!(repaired.trace.values.get("Xa1").map(|v| v.contains(&true)), Some(true));
+    assert!(!repaired.trace.values.contains_key("Xa2"), "unit 2's input is outside the cone");
+    assert!(shared_refutation(&goals[2]).is_none(), "another form is not repaired");
+    assert!(shared_refutation(&goals[3]).is_none(), "a true property is never refuted");
+}
+
 /// A VCD file read back: timescale, variable names by identifier, value changes (a
 /// bit's `0`/`1`, or a vector's value read as an unsigned word).
 type Vcd = (String, BTreeMap<String, String>, Vec<(u64, String, u64)>);

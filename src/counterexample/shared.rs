@@ -18,6 +18,13 @@
 //! a search of its own costs less). Grown runs cost a run of most of the program, so
 //! they are kept only while they refute several properties each, at most [`MAX_GROWN`].
 //!
+//! A property that no kept run violates may still belong to a family of the same form
+//! (one per unit of a plant) whose member the most recent run refuted: that run is
+//! repaired near the property ([`Near`]). A solver chooses the inputs of the property's
+//! cone cut after [`REPAIR_CAP`] equations, every other name the cut reads held at its
+//! value in the run, so that the property fails; the result is judged on the whole cone
+//! like any candidate (an equation outside the cut may read a changed input).
+//!
 //! Which properties a run can refute depends on the order they are checked in: a
 //! property whose cone is deep (its signals computed from long chains of rungs) has
 //! counterexamples that set more of the program in motion, so [`deepest_first`] orders
@@ -27,7 +34,7 @@ use std::collections::{BTreeMap, BTreeSet, HashMap, VecDeque};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, OnceLock};
 
-use super::unroll::{Concrete, Model, unroll, violated};
+use super::unroll::{Bits as _, Cnf, Concrete, Model, unroll, violated};
 use super::{
     Counterexample, Judged, Limits, Program, ScanTrace, discrete_violation, equations_model, judge,
     program_model, scans_of,
@@ -93,6 +100,8 @@ struct Kept {
     quiet: Arc<Bits>,
     /// The depth of the property it refuted.
     depth: usize,
+    /// The form of the property it refuted ([`form`]).
+    form: u64,
     /// The inputs outside that property's cone it sets (held at 1 by [`drawn`]).
     drawn: Vec<String>,
     /// The check (by number) at which it was kept or last refuted a property.
@@ -154,7 +163,8 @@ impl Shared {
             }
         }
         let salt = self.kept.fetch_add(1, Ordering::Relaxed) as u64;
-        self.keep_run(program, trace.clone(), Vec::new(), depth, now);
+        let form = form(goal);
+        self.keep_run(program, trace.clone(), Vec::new(), (depth, form), now);
         // The run grown: every Boolean input the property's cone does not read held at a
         // value drawn for it (it cannot change the violation, and sets in motion parts
         // of the program the run left at rest; each run kept draws other values). A
@@ -175,7 +185,7 @@ impl Shared {
             }
         }
         if !set.is_empty() && self.grown_kept.fetch_add(1, Ordering::Relaxed) < grown_paid {
-            self.keep_run(program, grown, set, depth, now);
+            self.keep_run(program, grown, set, (depth, form), now);
         }
     }
 
@@ -185,7 +195,7 @@ impl Shared {
         program: &Program,
         trace: ScanTrace,
         drawn: Vec<String>,
-        depth: usize,
+        (depth, form): (usize, u64),
         now: usize,
     ) {
         let Some(quiet) = self.quiet(program, &trace) else { return };
@@ -235,6 +245,7 @@ impl Shared {
             moved: Bits::of(run.signals, scans),
             quiet,
             depth,
+            form,
             drawn,
             used: AtomicUsize::new(now),
         };
@@ -312,13 +323,14 @@ pub fn refute_shared(
     program.cycle()?;
     // The property's cone, and the names it leaves free: the inputs its run may set.
     let mut cone = None;
-    for kept in runs {
-        let Some(v) = violated_at(goal, &kept) else { continue };
-        let (model, free) = cone.get_or_insert_with(|| {
-            let model = program.model(&[&goal.lhs, &goal.rhs]);
-            let free = model.free_names([&goal.lhs, &goal.rhs].into_iter());
-            (model, free)
-        });
+    let cone_of = || {
+        let model = program.model(&[&goal.lhs, &goal.rhs]);
+        let free = model.free_names([&goal.lhs, &goal.rhs].into_iter());
+        (model, free)
+    };
+    for kept in &runs {
+        let Some(v) = violated_at(goal, kept) else { continue };
+        let (model, free) = cone.get_or_insert_with(cone_of);
         let mut trace = kept.trace.clone();
         trace.values.retain(|n, _| free.contains(n));
         trace.truncate(v + 1);
@@ -340,7 +352,159 @@ pub fn refute_shared(
             return Some(found);
         }
     }
+    // No kept run violates it: the most recent that refuted a property of the same form
+    // (a family of properties, one per unit of a plant), with the inputs near this one
+    // chosen anew. Only a candidate, judged as any other.
+    let form = form(goal);
+    for kept in runs.iter().filter(|k| k.form == form).take(REPAIRS) {
+        let (model, free) = cone.get_or_insert_with(cone_of);
+        let near = Near { model: program.cone(&[&goal.lhs, &goal.rhs], REPAIR_CAP), kept, free };
+        let Some((mut trace, changed)) = near.repaired(goal) else { continue };
+        let still = |t: &ScanTrace| near.violation(goal, t).is_some();
+        let Some(v) = near.violation(goal, &trace) else { continue };
+        trace.truncate(v + 1);
+        let changed: Vec<&String> =
+            changed.iter().filter(|n| trace.values.contains_key(*n)).collect();
+        keep_needed(&mut trace, &changed, &still);
+        steady(&mut trace, &changed, &still);
+        let limits = Limits { minimised: true, ..limits };
+        if let Ok(Judged::Both(found)) = judge(program, model, goal, trace, limits) {
+            kept.used.store(now, Ordering::Relaxed);
+            shared.hits.fetch_add(1, Ordering::Relaxed);
+            return Some(found);
+        }
+    }
     None
+}
+
+/// How many kept runs (the most recent first) are repaired for a property none of them
+/// violates.
+const REPAIRS: usize = 1;
+/// How many equations of a property's cone a repair solves over (taken breadth first
+/// from the property's signals).
+const REPAIR_CAP: usize = 64;
+
+/// The form of a property: its relation and the shape of its two sides, names left out
+/// (`L1_pump_u7 ⇒ 5s/L1_up_u7` and `L1_pump_u8 ⇒ 5s/L1_up_u8` have one form).
+fn form(goal: &Obligation) -> u64 {
+    use std::hash::{Hash, Hasher};
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    goal.rel.hash(&mut h);
+    for side in [&goal.lhs, &goal.rhs] {
+        side.as_ref().len().hash(&mut h);
+        for node in side.as_ref() {
+            match node {
+                Term::Name(_) => 0u8.hash(&mut h),
+                other => other.hash(&mut h),
+            }
+        }
+    }
+    h.finish()
+}
+
+/// A kept run seen from a property's cone cut after [`REPAIR_CAP`] equations: every name
+/// the cut leaves free is at its value in the run, except the free names of the
+/// property's whole cone (`free`: its inputs), which a trace sets.
+struct Near<'a> {
+    model: Model,
+    kept: &'a Kept,
+    free: &'a BTreeSet<String>,
+}
+
+impl Near<'_> {
+    /// The kept run with the inputs of the cut chosen anew by a solver, so that `goal`
+    /// fails at some scan of the run while every assumption holds: the trace of the
+    /// run's inputs of the whole cone with those chosen, and the names whose values
+    /// changed. Equations outside the cut may read a changed input: only the judge's
+    /// run of the whole cone shows whether the goal still fails.
+    fn repaired(&self, goal: &Obligation) -> Option<(ScanTrace, Vec<String>)> {
+        let trace = &self.kept.trace;
+        let cycle = trace.cycle.clone();
+        let mut cnf = Cnf::named("repair");
+        let mut chosen: BTreeMap<String, Vec<varisat::Lit>> = BTreeMap::new();
+        let u = unroll(
+            &mut cnf,
+            &self.model,
+            &[&goal.lhs, &goal.rhs],
+            trace.scans,
+            &|d| scans_of(d, &cycle),
+            &mut |b, name, k| {
+                if self.free.contains(name) {
+                    let l = b.fresh();
+                    chosen.entry(name.to_string()).or_default().push(l);
+                    l
+                } else {
+                    b.konst(self.kept.value(name, k))
+                }
+            },
+        )
+        .ok()?;
+        for (c, (l, r)) in self.model.constraints.iter().zip(&u.constraints) {
+            for (a, b) in l.iter().zip(r) {
+                let v = violated(&mut cnf, c.1, a, b);
+                cnf.require(!v);
+            }
+        }
+        let (l, r) = (u.extra.first()?, u.extra.get(1)?);
+        let fails: Vec<varisat::Lit> =
+            l.iter().zip(r).map(|(a, b)| violated(&mut cnf, goal.rel, a, b)).collect();
+        let some = cnf.or_all(&fails);
+        let model = cnf.solve(&[some])?;
+        let mut out = trace.clone();
+        out.values.retain(|n, _| self.free.contains(n));
+        let mut changed = Vec::new();
+        for (n, lits) in chosen {
+            let values: Vec<bool> = lits.iter().map(|l| model.contains(l)).collect();
+            let before = |k: usize| trace.values.get(&n).and_then(|v| v.get(k)).copied();
+            if values.iter().enumerate().any(|(k, b)| before(k).unwrap_or(false) != *b) {
+                out.values.insert(n.clone(), values);
+                changed.push(n);
+            }
+        }
+        Some((out, changed))
+    }
+
+    /// The first scan at which `goal` fails on the cut with the inputs of `trace`.
+    fn violation(&self, goal: &Obligation, trace: &ScanTrace) -> Option<usize> {
+        let cycle = trace.cycle.clone();
+        let run = unroll(
+            &mut Concrete,
+            &self.model,
+            &[&goal.lhs, &goal.rhs],
+            trace.scans,
+            &|d| scans_of(d, &cycle),
+            &mut |_, name, k| match self.free.contains(name) {
+                true => trace.values.get(name).and_then(|v| v.get(k)).copied().unwrap_or(false),
+                false => self.kept.value(name, k),
+            },
+        )
+        .ok()?;
+        let holds = self.model.constraints.iter().zip(&run.constraints);
+        let (l, r) = (run.extra.first()?, run.extra.get(1)?);
+        (0..trace.scans)
+            .take_while(|&k| {
+                holds.clone().all(|(c, (a, b))| !violated(&mut Concrete, c.1, &a[k], &b[k]))
+            })
+            .find(|&k| violated(&mut Concrete, goal.rel, &l[k], &r[k]))
+    }
+}
+
+/// Holds each input of `names` that changes in the trace at 1 from the first scan, where
+/// `still` holds so (a solver's choice changes more than it needs; 0 throughout is
+/// [`keep_needed`]'s try).
+fn steady(trace: &mut ScanTrace, names: &[&String], still: &dyn Fn(&ScanTrace) -> bool) {
+    for n in names {
+        let Some(values) = trace.values.get(*n) else { continue };
+        if values.iter().all(|b| *b) {
+            continue;
+        }
+        let saved = trace.values.insert((*n).clone(), vec![true; values.len()]);
+        if !still(trace)
+            && let Some(v) = saved
+        {
+            trace.values.insert((*n).clone(), v);
+        }
+    }
 }
 
 /// Unsets the inputs of `names` that `still` holds without, a block at a time (all of
