@@ -10,6 +10,7 @@
 //! `PROGRAM`. It never panics.
 
 use std::collections::{BTreeMap, BTreeSet};
+use std::sync::Arc;
 
 use crate::diag::{FileId, Sources, Span, did_you_mean};
 
@@ -78,8 +79,9 @@ pub struct LdProgram {
     pub micro: Option<String>,
     /// The `IO LIST` entries in file order (optional metadata: the rungs define the signals).
     pub io_list: Vec<IoEntry>,
-    /// The rungs in scan order.
-    pub rungs: Vec<Rung>,
+    /// The rungs in scan order (shared: a slice of the program and its simulators hold
+    /// the same rungs).
+    pub rungs: Vec<Arc<Rung>>,
     /// Warnings (lines skipped before `PROGRAM`, `PLACEHOLDER`s, …); never errors.
     pub warnings: Vec<LadderError>,
     /// The bits the outside world writes, for front ends that declare them (PLCopen
@@ -1041,7 +1043,7 @@ impl<'a> Parser<'a> {
         (cycle.unwrap_or(10000), micro, io, saw_header)
     }
 
-    fn rungs(&mut self) -> Result<Vec<Rung>, Fatal> {
+    fn rungs(&mut self) -> Result<Vec<Arc<Rung>>, Fatal> {
         let file = self.file;
         let mut rungs = Vec::new();
         while let Some(line) = self.peek() {
@@ -1059,12 +1061,12 @@ impl<'a> Parser<'a> {
             let opened_at = line.span(file);
             let items = self.series(1, "RUNG", opened_at)?;
             let end = self.lines[self.pos - 1].span(file);
-            rungs.push(Rung {
+            rungs.push(Arc::new(Rung {
                 number: rungs.len() + 1,
                 label,
                 span: opened_at.to(end),
                 body: Circuit::Series(items),
-            });
+            }));
         }
         Ok(rungs)
     }

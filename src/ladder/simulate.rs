@@ -49,6 +49,7 @@ mod bits_and_pulses;
 mod reads;
 
 use std::collections::{BTreeMap, BTreeSet};
+use std::sync::Arc;
 
 use super::ldmicro::{
     Circuit, CoilKind, CompareOp, CounterEdge, CounterKind, EdgeKind, Element, ElementKind,
@@ -103,7 +104,7 @@ fn byte_needed(v: i64) -> u32 {
 /// A running LDmicro program: every bit, integer and hidden edge memory.
 #[derive(Clone, Debug)]
 pub struct Simulator {
-    rungs: Vec<Rung>,
+    rungs: Vec<Arc<Rung>>,
     orig: bool,
     comment_rungs: Vec<bool>,
     cycle_us: u64,
