@@ -542,6 +542,7 @@ fn prove(run: Run, common: Common) -> ExitCode {
             || head.json
             || matches!(head.format, Format::Json | Format::Html)
             || tail.html.is_some(),
+        run_signals: head.json || matches!(head.format, Format::Json),
     };
     let format = if head.json { Format::Json } else { head.format };
     let outputs = report::export::Outputs {

@@ -72,6 +72,11 @@ pub struct Options {
     /// Render each proof's printed lines and atomic steps into the report (the JSON
     /// output and `--trace` show them; without, a trace keeps its method and length).
     pub proof_text: bool,
+    /// Put every signal of a program counterexample's run, with its exact pieces, into
+    /// the report (the JSON output shows them; the text, the diagram files and the
+    /// HTML page need only the signals the diagram shows, which a deep cone makes far
+    /// fewer).
+    pub run_signals: bool,
 }
 
 impl Default for Options {
@@ -87,6 +92,7 @@ impl Default for Options {
             jobs: 1,
             plcopen: Default::default(),
             proof_text: true,
+            run_signals: true,
         }
     }
 }

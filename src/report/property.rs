@@ -382,6 +382,7 @@ pub(super) fn program_counterexample(
         signals: env
             .signals
             .iter()
+            .filter(|_| opts.run_signals)
             .map(|(name, s)| SignalReport {
                 name: named(name.as_str()),
                 breakpoints: s.breakpoints().iter().map(format_time).collect(),
