@@ -79,7 +79,6 @@ fn simulate(
     }
     // The simulator may run only the rungs that can write what is watched.
     let mut sim = program.reference.simulator_for(&watched);
-    let mut seen: BTreeMap<String, Vec<bool>> = BTreeMap::new();
     // Every input at every scan (0 where the trace has none), the map built once; an
     // input held at 0 that the run never reads (outside its part of the program) is
     // left out, so that a scan costs what the part costs.
@@ -109,6 +108,10 @@ fn simulate(
         .map(|n| (n.to_string(), false))
         .collect();
     drop(read);
+    // Each watched name's kind, looked up once rather than at every scan.
+    let kinds: Vec<(&String, Option<&SignalKind>)> =
+        watched.iter().map(|n| (n, program.compiled.signals.get(n))).collect();
+    let mut values: Vec<Vec<bool>> = vec![Vec::with_capacity(trace.scans); kinds.len()];
     for k in 0..trace.scans {
         for (n, v) in &trace.values {
             if let Some(x) = step.get_mut(n) {
@@ -116,19 +119,19 @@ fn simulate(
             }
         }
         sim.step(&step);
-        for n in &watched {
+        for ((n, kind), seen) in kinds.iter().zip(values.iter_mut()) {
             // Compiler-made names (atoms, intermediate values) stand for what they read.
-            let depends = match program.compiled.signals.get(n) {
+            let depends = match kind {
                 Some(SignalKind::IntBit { of, .. }) => Some(of),
                 Some(SignalKind::Atom | SignalKind::Intermediate { .. }) => None,
-                _ => Some(n),
+                _ => Some(*n),
             };
             if depends.is_some_and(|d| !sim.is_known(d)) {
                 return Err(format!("the simulator does not model what `{n}` depends on"));
             }
             // A one-shot's hidden memory is the simulator's memory of that element, never
             // a bit of the same name (the PLC has none).
-            let value = match program.compiled.signals.get(n) {
+            let value = match kind {
                 Some(SignalKind::EdgeMemory { index, .. }) => {
                     sim.edge_memory(*index).ok_or_else(|| {
                         format!("the simulator does not show the memory `{n}` of its one-shot")
@@ -151,9 +154,15 @@ fn simulate(
                 Some(SignalKind::Intermediate { .. }) => continue,
                 _ => sim.bit(n),
             };
-            seen.entry(n.clone()).or_default().push(value);
+            seen.push(value);
         }
     }
+    let seen: BTreeMap<String, Vec<bool>> = kinds
+        .into_iter()
+        .zip(values)
+        .filter(|((_, kind), _)| !matches!(kind, Some(SignalKind::Intermediate { .. })))
+        .map(|((n, _), v)| (n.clone(), v))
+        .collect();
     // The property (and the assumptions) on the simulator's values.
     let cycle = trace.cycle.clone();
     let u = unroll(
