@@ -39,6 +39,24 @@ pub fn type_name(t: IntType) -> &'static str {
     }
 }
 
+/// matiec's `REAL_TO_*` of the `REAL` `x` to an integer type (`unsigned`: an unsigned or
+/// bit-string one, `__real_to_uint`/`__real_to_bit`; else `__real_to_sint`): the rounded
+/// value ([`IntExpr::FromReal`]) where C defines it, else the free integer input `free`
+/// (any value of the type): C leaves the conversion of a NaN or `±∞` to a signed type, of
+/// `+∞` to an unsigned one, and of a number outside `[-2^63, 2^63)` to `LINT` undefined.
+pub fn real_to_int(x: IntExpr, unsigned: bool, free: &str) -> IntExpr {
+    let (low, end) = super::real::LINT_RANGE;
+    let below_end =
+        BoolExpr::negate(compare(CmpOp::Ge, IntType::REAL, x.clone(), IntExpr::Const(end)));
+    let defined = if unsigned {
+        below_end
+    } else {
+        let above_low = compare(CmpOp::Ge, IntType::REAL, x.clone(), IntExpr::Const(low));
+        BoolExpr::and(above_low, below_end)
+    };
+    IntExpr::ite(defined, IntExpr::FromReal(Box::new(x), unsigned), IntExpr::var(free))
+}
+
 /// The type of the count of a counter type (`CTU`, `CTD_DINT`, …); `None` for the
 /// 64-bit ones.
 pub fn counter_type(ty: &str) -> Option<IntType> {

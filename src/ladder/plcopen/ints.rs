@@ -154,6 +154,12 @@ impl ConvType {
     }
 }
 
+/// The free integer input that stands for the result of a `REAL_TO_*` block whose `OUT`
+/// is the hidden variable `out` where C leaves the conversion undefined.
+pub fn undefined_input(out: &str) -> String {
+    format!("{out}_UNDEFINED")
+}
+
 /// Whether an IEC type name (upper case) is an integer type, 64-bit ones included.
 pub fn is_int_type_name(t: &str) -> bool {
     matches!(
@@ -210,6 +216,20 @@ impl PlcProgram {
         int_literal(text).is_some_and(|(_, t)| t.is_none_or(|t| is_int_type_name(&t)))
             || crate::program::real::literal(text).is_some()
             || self.int_var_type(text.trim()).is_some()
+    }
+
+    /// The free integer inputs of this body's `REAL_TO_*` blocks ([`undefined_input`]),
+    /// with their types' names: each block's result where C leaves it undefined.
+    pub fn undefined_inputs(&self) -> Vec<(String, String)> {
+        (0..self.objects().len())
+            .filter_map(|k| match self.int_block(k)? {
+                IntBlock::Convert(from, to) if from == "REAL" && ConvType::of(&to).is_ok() => {
+                    Some((undefined_input(self.hidden_name(k, "OUT")?), to))
+                }
+                _ => None,
+            })
+            .filter(|(_, to)| !matches!(to.as_str(), "BOOL" | "REAL"))
+            .collect()
     }
 
     /// The integer block at `k`, if it is one: its kind by type name, `MOVE` and `SEL`

@@ -25,11 +25,6 @@ pub(super) fn coerce(e: IntExpr, t: IntType) -> IntExpr {
     }
 }
 
-/// Why a conversion of a `REAL` to an integer is not computed.
-const REAL_TO_INT: &str = "matiec's REAL_TO_* rounds through a 64-bit LINT (`__real_to_sint`, \
-     `__real_to_uint`), and C leaves the conversion of a NaN, an infinity or a number out of \
-     the LINT range undefined: ii-prove does not compute it";
-
 /// Why an integer literal where a `REAL` is expected is not computed.
 const INT_LITERAL_AS_REAL: &str =
     "an integer literal where a REAL is expected, which matiec's type check does not accept";
@@ -158,7 +153,11 @@ fn convert(from: &str, to: &str, input: Option<BoolExpr>, vals: &[Arg]) -> Resul
                 ConvType::Int(t) if f.real && t.real => Value::Int(x, t),
                 // `(REAL)` of an integer: the nearest float, ties to even.
                 ConvType::Int(t) if t.real => Value::Int(IntExpr::ToReal(Box::new(x), f), t),
-                ConvType::Int(_) if f.real => return Err(REAL_TO_INT.into()),
+                // `__real_to_sint`, `__real_to_uint`, `__real_to_bit`: rounded through
+                // `LINT`, a free value where C leaves it undefined (`int_call`).
+                ConvType::Int(t) if f.real => {
+                    Value::Int(IntExpr::FromReal(Box::new(x), !t.signed), t)
+                }
                 // A value of `from`, then converted to `to` (sign- or zero-extended, or
                 // wrapped).
                 ConvType::Int(t) => Value::Int(IntExpr::Cast(Box::new(x), f), t),
@@ -516,6 +515,12 @@ impl Lower<'_> {
         if let Some(out) = p.hidden_name(k, "OUT").map(str::to_string) {
             match self.int_function(b, &bools, &ints) {
                 Ok(Value::Int(e, t)) => {
+                    let e = match e {
+                        IntExpr::FromReal(x, unsigned) => {
+                            self.undefined_result(&out, &upper, *x, unsigned, t, &mut stmts, span)
+                        }
+                        e => e,
+                    };
                     self.ints.insert(out.clone(), IntVar { ty: t, input: false, init: 0 });
                     let value =
                         if runs { e } else { IntExpr::ite(en.clone(), e, IntExpr::Const(0)) };
@@ -549,6 +554,36 @@ impl Lower<'_> {
         if stmts.iter().any(|s| !matches!(s, Stmt::Let { .. })) {
             self.push_block(stmts, span);
         }
+    }
+
+    /// `REAL_TO_*` of `x` into `t` for the block whose `OUT` is `out`: the rounded value
+    /// where C defines it, else a free input of `t` ([`library::real_to_int`]), said at
+    /// the block.
+    #[allow(clippy::too_many_arguments)]
+    fn undefined_result(
+        &mut self,
+        out: &str,
+        keyword: &str,
+        x: IntExpr,
+        unsigned: bool,
+        t: IntType,
+        stmts: &mut Vec<Stmt>,
+        span: Span,
+    ) -> IntExpr {
+        let free = crate::ladder::plcopen::ints::undefined_input(out);
+        self.ints.insert(free.clone(), IntVar { ty: t, input: true, init: 0 });
+        let cases = if unsigned {
+            "+inf or at least 2^63"
+        } else {
+            "a NaN, ±inf or outside [-2^63, 2^63)"
+        };
+        let message = format!(
+            "where its input is {cases}, which C leaves undefined, its OUT is the free input \
+             {free}: any {}",
+            library::type_name(t)
+        );
+        stmts.push(Stmt::Warn { span, element: keyword.to_string(), message });
+        library::real_to_int(x, unsigned, &free)
     }
 
     /// The value of a function over integers (a comparison's and a conversion to BOOL's

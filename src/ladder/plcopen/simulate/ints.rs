@@ -129,8 +129,32 @@ type Val = Option<(i64, Option<CType>)>;
 enum Out {
     /// A number, before it is stored into the result's type.
     Int(i128, CType),
+    /// A number of the type that C leaves undefined (`REAL_TO_*` of a NaN, …).
+    Undefined(CType),
     /// A comparison's result.
     Bool(bool),
+}
+
+/// matiec's `__real_to_sint` and (`unsigned`) `__real_to_uint` / `__real_to_bit` of `x`,
+/// as `lib/C/iec_std_lib.h` writes them: `x` promoted to `double`; `__preal_to_sint`: `IN
+/// >= 0 ? __real_round(IN + 0.5) : __real_round(IN - 0.5)` (`__preal_to_uint`: `: 0`);
+/// `__real_round(IN)`: `fmod(IN, 1) == 0 ? ((LINT)IN / 2) * 2 : (LINT)IN`. `None` where
+/// the cast `(LINT)IN` is undefined in C (C11 6.3.1.4: a NaN, or an integral part that
+/// LINT cannot hold).
+fn real_to_lint(x: f32, unsigned: bool) -> Option<i64> {
+    let v = f64::from(x);
+    let lint = |v: f64| {
+        let t = v.trunc();
+        (t >= -(2f64.powi(63)) && t < 2f64.powi(63)).then_some(v as i64)
+    };
+    let round = |v: f64| {
+        if v % 1.0 == 0.0 { lint(v).map(|n| n / 2 * 2) } else { lint(v) }
+    };
+    match v >= 0.0 {
+        true => round(v + 0.5),
+        false if unsigned => Some(0),
+        false => round(v - 0.5),
+    }
 }
 
 /// The value of the integer function `b` over its arguments, as matiec's C computes it
@@ -151,8 +175,13 @@ fn function(b: &IntBlock, args: Vec<(String, Val)>, get: impl Fn(&str) -> bool) 
                     return match to.as_str() {
                         "BOOL" => Some(Out::Bool(x != 0.0)),
                         "REAL" => Some(Out::Int(pattern(x), FLOAT)),
-                        // `__real_to_sint`/`__real_to_uint`: not computed.
-                        _ => None,
+                        to => {
+                            let target = CType::of(to)?;
+                            Some(match real_to_lint(x, !target.signed) {
+                                Some(v) => Out::Int(v.into(), target),
+                                None => Out::Undefined(target),
+                            })
+                        }
                     };
                 }
                 ct if ct.float => return None,
@@ -250,6 +279,10 @@ impl PlcSimulator {
             };
             ints.insert(v.name.clone(), (init, ct));
         }
+        // The free inputs of `REAL_TO_*` blocks (C's undefined results).
+        for (n, t) in p.undefined_inputs() {
+            ints.extend(CType::of(&t).map(|ct| (n, (0, ct))));
+        }
         for sub in p.subs.values() {
             PlcSimulator::init_ints(sub, ints);
         }
@@ -262,7 +295,9 @@ impl PlcSimulator {
 
     /// An integer input takes the value its bits give (`{name}_b{k}`), when given.
     pub(super) fn read_int_inputs(&mut self, inputs: &BTreeMap<String, bool>) {
-        let names: Vec<String> = self.ints.keys().filter(|n| self.p.is_input(n)).cloned().collect();
+        let free: Vec<&String> = self.undefined.iter().map(|(n, _)| n).collect();
+        let names: Vec<String> =
+            self.ints.keys().filter(|n| self.p.is_input(n) || free.contains(n)).cloned().collect();
         for n in names {
             let (_, ct) = self.ints[&n];
             let bits: Vec<Option<&bool>> =
@@ -410,6 +445,12 @@ impl PlcSimulator {
             }
             Some(Out::Int(v, ct)) => {
                 self.ints.insert(out, (ct.store(v), ct));
+            }
+            // C's undefined result: the run's value of the block's free input.
+            Some(Out::Undefined(ct)) => {
+                let free = crate::ladder::plcopen::ints::undefined_input(&out);
+                let v = if en { self.ints.get(&free).map_or(0, |(v, _)| *v) } else { 0 };
+                self.ints.insert(out, (v, ct));
             }
             Some(Out::Bool(holds)) => {
                 self.bits.insert(out, en && holds);
