@@ -66,6 +66,7 @@ const INT_BLOCKS: &[&str] = &[
     "AND",
     "DIVS",
     "MUX",
+    "BCD",
 ];
 
 /// The user function block programs may instantiate: inputs `IN0`, `IN1`, outputs

@@ -154,6 +154,20 @@ impl ConvType {
     }
 }
 
+/// A conversion between an unsigned integer type and BCD, by its name's two sides: the
+/// integer type's name, whether it converts to BCD, and the bit string's name where the
+/// name gives it (`BCD_TO_UINT` and `UINT_TO_BCD` in Beremiz's library; matiec's typed
+/// `WORD_BCD_TO_UINT` and `UINT_TO_BCD_WORD`). `None` for another conversion.
+pub fn bcd_conversion<'a>(from: &'a str, to: &'a str) -> Option<(&'a str, bool, Option<&'a str>)> {
+    match (from.strip_suffix("BCD"), to.strip_prefix("BCD")) {
+        (_, Some("")) => Some((from, true, None)),
+        (_, Some(bits)) => Some((from, true, Some(bits.strip_prefix('_')?))),
+        (Some(""), None) => Some((to, false, None)),
+        (Some(bits), None) => Some((to, false, Some(bits.strip_suffix('_')?))),
+        (None, None) => None,
+    }
+}
+
 /// The free integer input that stands for the result of a `REAL_TO_*` block whose `OUT`
 /// is the hidden variable `out` where C leaves the conversion undefined.
 pub fn undefined_input(out: &str) -> String {

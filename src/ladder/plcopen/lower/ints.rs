@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 use super::{Lower, fresh_because};
 use crate::diag::Span;
 use crate::iec::literal::int_literal;
-use crate::ladder::plcopen::ints::{Arith, ConvType, IntBlock};
+use crate::ladder::plcopen::ints::{Arith, ConvType, IntBlock, bcd_conversion};
 use crate::ladder::plcopen::{Edge, ObjKind, PinIn, PlcProgram, Source};
 use crate::program::library::{self, Counter};
 use crate::program::{
@@ -72,6 +72,29 @@ fn divisor_not_zero(keyword: &str, ints: &[(String, IntVal)], span: Span) -> Boo
     }
 }
 
+/// Whether the input of `BCD_TO_*` is BCD, as matiec's `TEST_EN_COND(…, __test_bcd(op))`
+/// tests it (`ENO` FALSE otherwise); TRUE for another conversion.
+fn bcd_valid(
+    keyword: &str,
+    from: &str,
+    to: &str,
+    ints: &[(String, IntVal)],
+    span: Span,
+) -> BoolExpr {
+    let Some((uint, false, bits)) = bcd_conversion(from, to) else {
+        return BoolExpr::Const(true);
+    };
+    let vals: Result<Vec<Arg>, String> =
+        ints.iter().map(|(n, v)| v.clone().map(|(e, t)| (n.as_str(), e, t))).collect();
+    match vals.and_then(|vals| bcd_types(uint, false, bits, &vals)) {
+        Ok((x, f, _)) => library::is_bcd(&x, f),
+        Err(why) => {
+            let why = format!("the ENO of {keyword}, whose input is not computed: {why}");
+            fresh_because(keyword, why, span)
+        }
+    }
+}
+
 /// A computed argument of a function: its pin, value and type (`None`: a literal).
 type Arg<'a> = (&'a str, IntExpr, Option<IntType>);
 
@@ -121,12 +144,49 @@ enum Value {
     Bool(BoolExpr),
 }
 
+/// A BCD conversion's input, its type and the type of its result (see
+/// [`bcd_conversion`]): the unsigned integer `uint`, and a bit string of any width (`bits`,
+/// or where the name gives none, of `uint`'s width, as Beremiz's library pairs them: `UINT`
+/// with `WORD`); a literal input takes the type of its side.
+fn bcd_types(
+    uint: &str,
+    to_bcd: bool,
+    bits: Option<&str>,
+    vals: &[Arg],
+) -> Result<(IntExpr, IntType, IntType), String> {
+    let unsigned = |name: &str, kinds: [&str; 3]| match library::int_type(name) {
+        Some(t) if kinds.contains(&name) => Ok(t),
+        _ if matches!(name, "ULINT" | "LWORD") => {
+            Err(format!("{name} is 64 bits wide, which ii-prove does not compute"))
+        }
+        _ => Err(format!("{name} is not a type matiec converts to or from BCD")),
+    };
+    let u = unsigned(uint, ["USINT", "UINT", "UDINT"])?;
+    let b = match bits {
+        Some(bits) => unsigned(bits, ["BYTE", "WORD", "DWORD"])?,
+        None => u,
+    };
+    let [(_, x, ty)] = vals else { return Err("it takes one input".into()) };
+    let (input, output) = if to_bcd { (u, b) } else { (ty.unwrap_or(b), u) };
+    if ty.is_some_and(|ty| ty != input) || input.signed || input.real {
+        return Err(format!("its input is not {}", library::type_name(input)));
+    }
+    Ok((coerce(x.clone(), input), input, output))
+}
+
 /// The conversion `FROM_TO_TO` of its input, as matiec's `lib/C/iec_std_functions.h`
 /// computes it: `BOOL_TO_*` and `*_TO_*` between integers by `__convert_type` (`(to)
 /// __move_to(op)`: the value converted as C converts it, sign- or zero-extended or
 /// wrapped; a BOOL is 0 or 1), `*_TO_BOOL` by `__convert_num_to_bool` (`op == 0 ? 0 :
 /// 1`). `input` is `IN` when it is a BOOL, `vals` the integer inputs.
 fn convert(from: &str, to: &str, input: Option<BoolExpr>, vals: &[Arg]) -> Result<Value, String> {
+    if let Some((uint, to_bcd, bits)) = bcd_conversion(from, to) {
+        let (x, f, o) = bcd_types(uint, to_bcd, bits, vals)?;
+        return Ok(Value::Int(
+            if to_bcd { library::uint_to_bcd(&x, f, o) } else { library::bcd_to_uint(&x, f) },
+            o,
+        ));
+    }
     let t = ConvType::of(to)?;
     match ConvType::of(from)? {
         ConvType::Bool => {
@@ -546,6 +606,7 @@ impl Lower<'_> {
             let ok = match b {
                 IntBlock::Arith(Arith::Div) => divisor_not_zero(&upper, &ints, span),
                 IntBlock::Mux => k_in_range(&upper, &ints, span),
+                IntBlock::Convert(from, to) => bcd_valid(&upper, from, to, &ints, span),
                 _ => BoolExpr::Const(true),
             };
             let value = enabled(ok);

@@ -135,6 +135,65 @@ enum Out {
     Bool(bool),
 }
 
+/// A BCD conversion's sides (`BCD_TO_UINT`, `UINT_TO_BCD`, `WORD_BCD_TO_UINT`,
+/// `UINT_TO_BCD_WORD`): whether it converts to BCD, the unsigned integer type, the bit
+/// string type (where the name gives none, Beremiz's pair of the integer type's width).
+fn bcd_sides(from: &str, to: &str) -> Option<(bool, CType, CType)> {
+    let (uint, to_bcd, bits) = crate::ladder::plcopen::ints::bcd_conversion(from, to)?;
+    let u = CType::of(uint).filter(|_| matches!(uint, "USINT" | "UINT" | "UDINT"))?;
+    let b = match bits {
+        Some(b) => CType::of(b).filter(|_| matches!(b, "BYTE" | "WORD" | "DWORD"))?,
+        None => u,
+    };
+    Some((to_bcd, u, b))
+}
+
+/// The input of `BCD_TO_*`: a value of an unsigned bit string type (a literal's that of
+/// the block's own bit string type), as the `LWORD` `__bcd_to_uint` and `__test_bcd` take.
+fn bcd_input(x: i64, t: Option<CType>, bits: CType) -> Option<u64> {
+    let t = t.unwrap_or(bits);
+    (!t.signed && !t.float).then(|| t.store(i128::from(x)) as u64)
+}
+
+/// `__test_bcd` (`lib/C/iec_std_lib.h`): whether a digit of `op` is above 9.
+fn test_bcd(mut op: u64) -> bool {
+    while op != 0 {
+        if op & 0xf > 9 {
+            return true;
+        }
+        op >>= 4;
+    }
+    false
+}
+
+/// `__bcd_to_uint`: the 4-bit digits of `op` times the powers of ten.
+fn bcd_to_uint(mut op: u64) -> u64 {
+    let mut res = op & 0xf;
+    let mut factor = 10u64;
+    loop {
+        op >>= 4;
+        if op == 0 {
+            return res;
+        }
+        res = res.wrapping_add((op & 0xf).wrapping_mul(factor));
+        factor = factor.wrapping_mul(10);
+    }
+}
+
+/// `__uint_to_bcd`: the decimal digits of `op` as 4-bit digits.
+fn uint_to_bcd(mut op: u64) -> u64 {
+    let mut res = op % 10;
+    let mut shift = 4u32;
+    loop {
+        op /= 10;
+        if op == 0 {
+            return res;
+        }
+        res |= (op % 10).checked_shl(shift).unwrap_or(0);
+        shift += 4;
+    }
+}
+
 /// matiec's `__real_to_sint` and (`unsigned`) `__real_to_uint` / `__real_to_bit` of `x`,
 /// as `lib/C/iec_std_lib.h` writes them: `x` promoted to `double`; `__preal_to_sint`: `IN
 /// >= 0 ? __real_round(IN + 0.5) : __real_round(IN - 0.5)` (`__preal_to_uint`: `: 0`);
@@ -163,6 +222,20 @@ fn function(b: &IntBlock, args: Vec<(String, Val)>, get: impl Fn(&str) -> bool) 
     // Every argument a value of the block's one type (a literal takes it).
     let vals: Vec<(String, i64, Option<CType>)> =
         args.into_iter().map(|(n, v)| v.map(|(x, t)| (n, x, t))).collect::<Option<_>>()?;
+    if let IntBlock::Convert(from, to) = b
+        && let Some((to_bcd, u, bits)) = bcd_sides(from, to)
+    {
+        let [(_, x, t)] = vals.as_slice() else { return None };
+        return if to_bcd {
+            // `(to) __uint_to_bcd(op)`, `op` a value of the unsigned integer type.
+            let op = u.store(i128::from(*x));
+            t.is_none_or(|t| t == u).then(|| Out::Int(uint_to_bcd(op as u64).into(), bits))
+        } else {
+            // `TEST_EN_COND(to, __test_bcd(op))`: 0; else `(to) __bcd_to_uint(op)`.
+            let op = bcd_input(*x, *t, bits)?;
+            Some(Out::Int(if test_bcd(op) { 0 } else { bcd_to_uint(op).into() }, u))
+        };
+    }
     if let IntBlock::Convert(from, to) = b {
         // `__convert_type`: `(to) __move_to(op)`, the argument a value of `from` (a BOOL
         // is 0 or 1); `__convert_num_to_bool`: `op == 0 ? 0 : 1`.
@@ -431,13 +504,22 @@ impl PlcSimulator {
                 None => x == 0,
             });
         let divides_by_zero = matches!(b, IntBlock::Arith(Arith::Div)) && divisor_zero;
+        // `BCD_TO_*`: `TEST_EN_COND(…, __test_bcd(op))`.
+        let not_bcd = match (b, args.as_slice()) {
+            (IntBlock::Convert(from, to), [(_, Some((x, t)))]) => {
+                bcd_sides(from, to).is_some_and(|(to_bcd, _, bits)| {
+                    !to_bcd && bcd_input(*x, *t, bits).is_some_and(test_bcd)
+                })
+            }
+            _ => false,
+        };
         // MUX: `TEST_EN_COND(…, K >= param_count)`, the count of its data inputs.
         let past = *b == IntBlock::Mux && {
             let known: Option<Vec<(String, i64, Option<CType>)>> =
                 args.iter().map(|(n, v)| v.map(|(x, t)| (n.clone(), x, t))).collect();
             known.and_then(|v| mux_k(&v)).is_some_and(|k| k >= args.len() as i64 - 1)
         };
-        self.set_hidden(k, "ENO", en && !divides_by_zero && !past);
+        self.set_hidden(k, "ENO", en && !divides_by_zero && !past && !not_bcd);
         let Some(out) = self.p.hidden_name(k, "OUT").map(str::to_string) else { return };
         match function(b, args, get) {
             Some(Out::Int(_, ct)) if !en => {
