@@ -295,6 +295,16 @@ impl PlcProgram {
 }
 
 impl PlcProgram {
+    /// The declared type (upper case) of the variable `name` (its declared name, or in an
+    /// inlined body its prefixed one), if it is declared here or in an inlined body.
+    pub fn declared_type(&self, name: &str) -> Option<String> {
+        match self.vars.values().find(|v| v.name == name).map(|v| &v.ty) {
+            Some(Ty::Other(t) | Ty::Derived(t)) => Some(t.to_ascii_uppercase()),
+            Some(Ty::Bool) => Some("BOOL".into()),
+            None => self.subs.values().find_map(|sub| sub.declared_type(name)),
+        }
+    }
+
     /// Where the variable or hidden variable `name` comes from: its declaration, or the
     /// block it is an output of (in this body or an inlined one), else the POU.
     pub fn span_of_name(&self, name: &str) -> crate::diag::Span {
