@@ -66,7 +66,8 @@ pub const LINT_RANGE: (i64, i64) = (0xDF00_0000, 0x5F00_0000);
 /// `±∞` to a signed type, `+∞` to an unsigned one, a number outside `[-2^63, 2^63)`.
 pub fn to_int(v: i64, unsigned: bool) -> Option<i64> {
     let x = to_f32(v);
-    if unsigned && !(x >= 0.0) {
+    // `IN >= 0` fails for a negative number and for a NaN.
+    if unsigned && (x < 0.0 || x.is_nan()) {
         return Some(0);
     }
     let (low, end) = LINT_RANGE;
@@ -134,10 +135,11 @@ mod tests {
     /// part outside the type).
     fn matiec(v: i64, unsigned: bool) -> Option<i64> {
         let x = f64::from(to_f32(v));
-        if unsigned && !(x >= 0.0) {
-            return Some(0);
-        }
-        let y = if x >= 0.0 { x + 0.5 } else { x - 0.5 };
+        let y = match x >= 0.0 {
+            true => x + 0.5,
+            false if unsigned => return Some(0),
+            false => x - 0.5,
+        };
         let t = y.trunc();
         if t.is_nan() || t < -(2f64.powi(63)) || t >= 2f64.powi(63) {
             return None;

@@ -195,8 +195,8 @@ fn uint_to_bcd(mut op: u64) -> u64 {
 }
 
 /// matiec's `__real_to_sint` and (`unsigned`) `__real_to_uint` / `__real_to_bit` of `x`,
-/// as `lib/C/iec_std_lib.h` writes them: `x` promoted to `double`; `__preal_to_sint`: `IN
-/// >= 0 ? __real_round(IN + 0.5) : __real_round(IN - 0.5)` (`__preal_to_uint`: `: 0`);
+/// as `lib/C/iec_std_lib.h` writes them: `x` promoted to `double`; `__preal_to_sint`:
+/// `IN >= 0 ? __real_round(IN + 0.5) : __real_round(IN - 0.5)` (`__preal_to_uint`: `: 0`);
 /// `__real_round(IN)`: `fmod(IN, 1) == 0 ? ((LINT)IN / 2) * 2 : (LINT)IN`. `None` where
 /// the cast `(LINT)IN` is undefined in C (C11 6.3.1.4: a NaN, or an integral part that
 /// LINT cannot hold).
