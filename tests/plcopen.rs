@@ -500,3 +500,18 @@ fn warnings_name_the_type_of_what_is_not_computed() {
     assert!(err.contains("the block output _TMP_REAL_TO_LINT19_OUT is not computed"), "{err}");
     assert!(!err.contains("the integer"), "{err}");
 }
+
+#[test]
+fn a_value_from_a_block_not_computed_names_the_block() {
+    let dir = root().join("tests/data/plcopen/corpus/beremiz__beremiz");
+    let out =
+        ii_prove(&["show", dir.join("tests__projects__svghmi_xy__plc.xml").to_str().unwrap()]);
+    let all = text(&out.stdout) + &text(&out.stderr);
+    assert!(
+        all.contains("the REAL trendval0 is not computed (COS is computed by C's math library"),
+        "{all}"
+    );
+    let out = ii_prove(&["show", dir.join("tests__projects__BACnet__plc.xml").to_str().unwrap()]);
+    let all = text(&out.stdout) + &text(&out.stderr);
+    assert!(all.contains("the output OUT of TempSimulation (Simulator) is not computed"), "{all}");
+}

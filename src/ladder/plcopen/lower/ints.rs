@@ -449,7 +449,29 @@ impl Lower<'_> {
         }
         match self.p.hidden_name(j, pin).map(str::to_string) {
             Some(name) => self.int_read(&name),
-            None => Err(format!("the output {pin} of this block is not computed")),
+            None => Err(self.output_not_computed(j, pin)),
+        }
+    }
+
+    /// Why the output `pin` of block `j` carries no integer: the block named, and for
+    /// the numerical functions of one `REAL` (`SIN`, `SQRT`, …) that C's math library
+    /// computes them.
+    fn output_not_computed(&self, j: usize, pin: &str) -> String {
+        let Some(ObjKind::Block { type_name, instance, .. }) = self.p.obj(j).map(|o| &o.kind)
+        else {
+            return format!("the output {pin} of this block is not computed");
+        };
+        let upper = type_name.to_ascii_uppercase();
+        const MATH: [&str; 12] = [
+            "SQRT", "LN", "LOG", "EXP", "EXPT", "SIN", "COS", "TAN", "ASIN", "ACOS", "ATAN",
+            "ATAN2",
+        ];
+        match instance {
+            _ if MATH.contains(&upper.as_str()) => {
+                format!("{upper} is computed by C's math library, which ii-prove does not model")
+            }
+            Some(i) => format!("the output {pin} of {i} ({type_name}) is not computed"),
+            None => format!("the output {pin} of the function {type_name} is not computed"),
         }
     }
 
