@@ -403,7 +403,7 @@ pub fn run_equiv_with(
     let reference = ProductReference::new(
         reference_of(&a),
         reference_of(&b),
-        b.compiled.signals.keys().cloned(),
+        b.compiled.signals.keys().chain(b.compiled.integers.keys()).cloned(),
         &renaming,
     );
     let cycle = Some(compiled.scan_cycle());
