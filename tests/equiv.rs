@@ -806,3 +806,21 @@ fn random_ld_to_st_ports_are_proved_and_ported_mutants_never_are() {
         "fewer than 90 % of the ported outputs proved: {fig:?}"
     );
 }
+
+/// Where C leaves `REAL_TO_INT`'s result undefined (a NaN, an infinity, a number past the
+/// 64-bit range) each program's result is its own free value, never shared as an input:
+/// a program compared with itself differs there. (Its integer outputs' counterexamples are
+/// confirmed on both programs' simulators, the second's integers known by their primed
+/// names.)
+#[test]
+fn undefined_results_are_not_shared_between_the_programs() {
+    let f = "tests/data/refutes_programs/dial_bcd_round_faulty.xml";
+    let out = ii_prove(&["equiv", f, f, "--outputs", "Level,Rounded", "--timeout", "2s"]);
+    let stdout = text(&out.stdout);
+    let line = |name: &str| stdout.lines().find(|l| l.starts_with(name)).unwrap_or("").to_string();
+    assert!(line("Level_b0 ").contains("proved"), "{stdout}");
+    // Refuted with the two undefined results apart, confirmed by both simulators.
+    assert!(line("Rounded_b0 ").contains("refuted"), "{stdout}");
+    assert!(stdout.contains("_TMP_REAL_TO_INT13_OUT_UNDEFINED_b0"), "{stdout}");
+    assert!(!stdout.contains("_UNDEFINED` is read only"), "{stdout}");
+}

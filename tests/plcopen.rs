@@ -477,3 +477,41 @@ fn an_edge_contact_on_two_paths_is_refused_at_the_contact() {
     assert!(stderr.contains("an edge contact on more than one path"), "{stderr}");
     assert!(stderr.contains("edge_contact_two_paths.xml:17:9"), "{stderr}");
 }
+
+#[test]
+fn warnings_name_the_type_of_what_is_not_computed() {
+    // Rounded declared REAL but written by REAL_TO_INT; REAL_TO_LINT's output is 64 bits.
+    let dial =
+        std::fs::read_to_string(root().join("tests/data/proves_programs/dial_bcd_round.xml"))
+            .unwrap()
+            .replace(
+                r#"<variable name="Rounded"><type><INT/></type>"#,
+                r#"<variable name="Rounded"><type><REAL/></type>"#,
+            )
+            .replace(r#"typeName="REAL_TO_USINT""#, r#"typeName="REAL_TO_LINT""#);
+    let path = temp("dial_types.xml", &dial);
+    let out = ii_prove(&["show", path.to_str().unwrap()]);
+    let err = text(&out.stdout) + &text(&out.stderr);
+    assert!(
+        err.contains("the REAL Rounded is not computed (it is a REAL written with a INT)"),
+        "{err}"
+    );
+    assert!(err.contains("the USINT Level is not computed"), "{err}");
+    assert!(err.contains("the block output _TMP_REAL_TO_LINT19_OUT is not computed"), "{err}");
+    assert!(!err.contains("the integer"), "{err}");
+}
+
+#[test]
+fn a_value_from_a_block_not_computed_names_the_block() {
+    let dir = root().join("tests/data/plcopen/corpus/beremiz__beremiz");
+    let out =
+        ii_prove(&["show", dir.join("tests__projects__svghmi_xy__plc.xml").to_str().unwrap()]);
+    let all = text(&out.stdout) + &text(&out.stderr);
+    assert!(
+        all.contains("the REAL trendval0 is not computed (COS is computed by C's math library"),
+        "{all}"
+    );
+    let out = ii_prove(&["show", dir.join("tests__projects__BACnet__plc.xml").to_str().unwrap()]);
+    let all = text(&out.stdout) + &text(&out.stderr);
+    assert!(all.contains("the output OUT of TempSimulation (Simulator) is not computed"), "{all}");
+}

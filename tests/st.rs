@@ -199,3 +199,17 @@ fn the_box_counter_in_st_is_proved_and_its_faulty_preset_refuted() {
     assert!(stdout.contains("by the scan simulator"), "{stdout}");
     assert!(stdout.contains("Count_CV") && stdout.contains(" 10"), "the count is drawn: {stdout}");
 }
+
+#[test]
+fn a_variable_not_computed_is_named_with_its_type() {
+    let st = "PROGRAM p\nVAR\n  n : DINT;\n  l : LINT;\n  b : BOOL;\nEND_VAR\nn := LINT_TO_DINT(l);\n\
+              b := n > 1;\nEND_PROGRAM\nCONFIGURATION c RESOURCE res ON PLC TASK t(INTERVAL := \
+              T#10ms, PRIORITY := 0); PROGRAM inst WITH t : p; END_RESOURCE END_CONFIGURATION\n";
+    let dir = std::env::temp_dir().join(format!("ii-prove-st-types-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("types.st");
+    std::fs::write(&path, st).unwrap();
+    let out = ii_prove(&["show", path.to_str().unwrap()]);
+    let all = text(&out.stdout) + &text(&out.stderr);
+    assert!(all.contains("the DINT n is not computed (the conversion LINT_TO_DINT"), "{all}");
+}

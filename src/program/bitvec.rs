@@ -8,7 +8,7 @@
 
 mod float;
 
-pub use float::{add_real, compare_real, div_real, int_to_real, mul_real};
+pub use float::{add_real, compare_real, div_real, int_to_real, mul_real, real_to_int};
 
 use super::CmpOp;
 use super::IntType;
@@ -146,24 +146,28 @@ fn signed_rem(r: Bits, negative: &L, w: usize, name: Namer) -> Bits {
     r.iter().zip(&minus_r).map(|(x, y)| mux(negative, y, x)).collect()
 }
 
-/// A divisor of a dividend `w` bits wide: its magnitude in `w + 2` bits and whether it
-/// is negative.
+/// A divisor of a dividend `w` bits wide: its magnitude in `w + 2` bits, whether it is
+/// negative, and the width the remainder's steps need: `w + 2`, or for a literal one bit
+/// more than its magnitude (the remainder stays below `|d|`, twice it plus a bit below
+/// `2·|d|`).
 struct Divisor {
     magnitude: Bits,
     negative: L,
+    steps: usize,
 }
 
 impl Divisor {
     /// The literal `k`.
     fn literal(k: i64, w: usize) -> Divisor {
         let magnitude = constant(k.unsigned_abs() as i64, (w + 2) as u32);
-        Divisor { magnitude, negative: if k < 0 { L::One } else { L::Zero } }
+        let steps = (65 - k.unsigned_abs().leading_zeros() as usize).min(w + 2);
+        Divisor { magnitude, negative: if k < 0 { L::One } else { L::Zero }, steps }
     }
 
     /// The value `b` of type `ty` (`|min|` fits in `w + 2` bits).
     fn value(b: &[L], ty: IntType, name: Namer) -> Divisor {
         let (magnitude, negative) = magnitude(b, ty, b.len() + 2, name);
-        Divisor { magnitude, negative }
+        Divisor { magnitude, negative, steps: b.len() + 2 }
     }
 }
 
@@ -181,19 +185,21 @@ fn magnitude(v: &[L], ty: IntType, width: usize, name: Namer) -> (Bits, L) {
 /// quotient of all ones, which the callers mask).
 fn divide(a: &[L], d: &Divisor, ty: IntType, name: Namer) -> (Bits, Bits, L) {
     let w = a.len();
-    // |a| in w + 1 bits (|min| fits there), the remainder in w + 2 (it stays below 2·|d|).
-    let (wide, rw) = (w + 1, w + 2);
+    // |a| in w + 1 bits (|min| fits there), the remainder in `d.steps` bits (it stays
+    // below 2·|d|), then given in w + 2.
+    let (wide, rw) = (w + 1, d.steps);
     let (magnitude, negative) = magnitude(a, ty, wide, name);
     let unsigned = IntType::int(rw as u32, false);
+    let divisor = &d.magnitude[..rw];
     let mut r = constant(0, rw as u32);
     let mut q = vec![L::Zero; wide];
     for i in (0..wide).rev() {
         // r := 2·r + bit i of |a|; if r ≥ |d| then r := r − |d| and bit i of q is 1.
         let mut shifted = vec![magnitude[i].clone()];
         shifted.extend(r[..rw - 1].iter().cloned());
-        let fits = compare(CmpOp::Ge, unsigned, &shifted, &d.magnitude, name);
+        let fits = compare(CmpOp::Ge, unsigned, &shifted, divisor, name);
         let fits = name(fits);
-        let less = sub(&shifted, &d.magnitude, name);
+        let less = sub(&shifted, divisor, name);
         r = shifted.iter().zip(&less).map(|(x, y)| name(mux(&fits, y, x))).collect();
         q[i] = fits;
     }
@@ -201,6 +207,7 @@ fn divide(a: &[L], d: &Divisor, ty: IntType, name: Namer) -> (Bits, Bits, L) {
     let flip = name(xor(&negative, &d.negative));
     let minus_q = sub(&constant(0, wide as u32), &q, name);
     let q = q.iter().zip(&minus_q).take(w).map(|(x, y)| mux(&flip, y, x)).collect();
+    r.resize(w + 2, L::Zero);
     (q, r, negative)
 }
 
@@ -436,6 +443,32 @@ mod tests {
             let out = c.run(&word(x), &word(y), &[q, r]);
             let got = (lane(&out[0], 0, ty), lane(&out[1], 0, ty));
             proptest::prop_assert_eq!(got, expected(ty, x, y), "{:?}: {} / {}", ty, x, y);
+        }
+    }
+
+    proptest::proptest! {
+        /// Division and remainder by a literal (its remainder in one bit more than the
+        /// literal) on random 16- and 32-bit values, literals of every size.
+        #[test]
+        fn wide_division_by_a_literal_is_exact(
+            bits in proptest::sample::select(vec![16u32, 32]),
+            signed: bool,
+            x: i64,
+            k: i64,
+            shift in 0u32..40,
+        ) {
+            let ty = IntType::int(bits, signed);
+            let (x, k) = (ty.wrap(x), ty.wrap(k >> shift));
+            if k != 0 {
+                let mut c = Circuit { defs: Vec::new() };
+                let a = vars("a", bits);
+                let q = div(&a, k, ty, &mut c.namer());
+                let r = rem(&a, k, ty, &mut c.namer());
+                let word: Vec<u64> = (0..bits).map(|j| if x >> j & 1 == 1 { !0 } else { 0 }).collect();
+                let out = c.run(&word, &[], &[&q, &r]);
+                let got = (lane(&out[0], 0, ty), lane(&out[1], 0, ty));
+                proptest::prop_assert_eq!(got, expected(ty, x, k), "{:?}: {} / {}", ty, x, k);
+            }
         }
     }
 

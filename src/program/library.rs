@@ -1,6 +1,6 @@
 //! The IEC standard library's elements as matiec's C runs them, built over the scan model for every front end that has them (Structured Text, PLCopen LD/FBD): the integer types, comparisons (extensible), MIN/MAX/LIMIT/ABS, the counters CTU/CTD/CTUD and the pulse timer TP.
 
-use super::{BoolExpr, CmpOp, Compare, IntExpr, IntType, Preset, Stmt, Timer, WriteKind};
+use super::{BitOp, BoolExpr, CmpOp, Compare, IntExpr, IntType, Preset, Stmt, Timer, WriteKind};
 use crate::diag::Span;
 
 /// The IEC integer type `name` (upper-case) as matiec declares it in C; `None` for the
@@ -37,6 +37,75 @@ pub fn type_name(t: IntType) -> &'static str {
         (16, false) => "UINT",
         _ => "UDINT",
     }
+}
+
+/// matiec's `REAL_TO_*` of the `REAL` `x` to an integer type (`unsigned`: an unsigned or
+/// bit-string one, `__real_to_uint`/`__real_to_bit`; else `__real_to_sint`): the rounded
+/// value ([`IntExpr::FromReal`]) where C defines it, else the free integer input `free`
+/// (any value of the type): C leaves the conversion of a NaN or `±∞` to a signed type, of
+/// `+∞` to an unsigned one, and of a number outside `[-2^63, 2^63)` to `LINT` undefined.
+pub fn real_to_int(x: IntExpr, unsigned: bool, free: &str) -> IntExpr {
+    let (low, end) = super::real::LINT_RANGE;
+    let below_end =
+        BoolExpr::negate(compare(CmpOp::Ge, IntType::REAL, x.clone(), IntExpr::Const(end)));
+    let defined = if unsigned {
+        below_end
+    } else {
+        let above_low = compare(CmpOp::Ge, IntType::REAL, x.clone(), IntExpr::Const(low));
+        BoolExpr::and(above_low, below_end)
+    };
+    IntExpr::ite(defined, IntExpr::FromReal(Box::new(x), unsigned), IntExpr::var(free))
+}
+
+/// The `k`-th 4-bit digit of `x` (a value of an unsigned type).
+fn nibble(x: &IntExpr, k: u32) -> IntExpr {
+    let shifted = IntExpr::Shift(Box::new(x.clone()), -4 * k as i32);
+    IntExpr::Bitwise(BitOp::And, Box::new(shifted), Box::new(IntExpr::Const(15)))
+}
+
+/// matiec's `__test_bcd` of `x`, a bit string of the unsigned type `t`
+/// (`lib/C/iec_std_lib.h`: a digit above 9 makes it not BCD), negated: whether every 4-bit
+/// digit of `x` is at most 9. `BCD_TO_*` is `TEST_EN_COND(…, __test_bcd(op))`: where it
+/// fails, `OUT` is 0 and `ENO` FALSE.
+pub fn is_bcd(x: &IntExpr, t: IntType) -> BoolExpr {
+    (0..t.bits.div_ceil(4))
+        .map(|k| compare(CmpOp::Le, t, nibble(x, k), IntExpr::Const(9)))
+        .reduce(BoolExpr::and)
+        .unwrap_or(BoolExpr::Const(true))
+}
+
+/// matiec's `BCD_TO_*` of `x`, a bit string of the unsigned type `from`, into the type of
+/// the context: `(to) __bcd_to_uint(op)`, the sum of its 4-bit digits times the powers of
+/// ten (computed in `from`, where it fits: 99 in 8 bits, 9999 in 16, 99999999 in 32), 0
+/// where [`is_bcd`] fails.
+pub fn bcd_to_uint(x: &IntExpr, from: IntType) -> IntExpr {
+    let sum = (0..from.bits.div_ceil(4))
+        .map(|k| {
+            let digit = nibble(x, k);
+            IntExpr::Mul(Box::new(digit), Box::new(IntExpr::Const(10i64.pow(k))))
+        })
+        .reduce(IntExpr::plus)
+        .unwrap_or(IntExpr::Const(0));
+    let value = IntExpr::Cast(Box::new(sum), from);
+    IntExpr::ite(is_bcd(x, from), value, IntExpr::Const(0))
+}
+
+/// matiec's `*_TO_BCD` of `x`, a value of the unsigned type `t`, into a bit string of
+/// the unsigned type `out` (the context's): `(to) __uint_to_bcd(op)`, the decimal digits
+/// of `x` as 4-bit digits, those past `out`'s width dropped by the cast
+/// (`UINT_TO_BCD(12345)` is `16#2345`). Computed in the wider of the two types.
+pub fn uint_to_bcd(x: &IntExpr, t: IntType, out: IntType) -> IntExpr {
+    let wide = if t.bits > out.bits { t } else { out };
+    let x = IntExpr::Cast(Box::new(x.clone()), t);
+    let digits = (0..out.bits / 4)
+        .map(|k| {
+            let quotient = IntExpr::Div(Box::new(x.clone()), 10i64.pow(k));
+            let digit = IntExpr::Mod(Box::new(quotient), 10);
+            IntExpr::Shift(Box::new(digit), 4 * k as i32)
+        })
+        .reduce(|a, b| IntExpr::Bitwise(BitOp::Or, Box::new(a), Box::new(b)))
+        .unwrap_or(IntExpr::Const(0));
+    IntExpr::Cast(Box::new(digits), wide)
 }
 
 /// The type of the count of a counter type (`CTU`, `CTD_DINT`, …); `None` for the

@@ -223,6 +223,13 @@ pub enum IntExpr {
     /// type) as C converts an integer to `float`: the nearest number, ties to even
     /// (matiec's `*_TO_REAL`).
     ToReal(Box<IntExpr>, IntType),
+    /// `a`, a `REAL`, converted to an integer (the context's type) as matiec's
+    /// `REAL_TO_*` converts it ([`real::to_int`]: rounded to the nearest integer, ties to
+    /// even, through a 64-bit `LINT`, then wrapped to the type; `true`: to an unsigned or
+    /// bit-string type, where a negative number or a NaN gives 0). Where C leaves the
+    /// conversion undefined the value here is 0: a front end gives the program a free
+    /// value there ([`library::real_to_int`]).
+    FromReal(Box<IntExpr>, bool),
     /// `a + b`, `a - b`, `a * b` or `a / b` of two `REAL`s as C computes it (IEEE 754,
     /// the nearest number, ties to even; [`RealOp`]).
     Real(RealOp, Box<IntExpr>, Box<IntExpr>),
@@ -326,6 +333,7 @@ impl IntExpr {
             | IntExpr::Mod(a, _)
             | IntExpr::Cast(a, _)
             | IntExpr::ToReal(a, _)
+            | IntExpr::FromReal(a, _)
             | IntExpr::Shift(a, _) => a.visit(int, boolean),
             IntExpr::Ite(c, a, b) => {
                 walk(c, boolean);
@@ -659,6 +667,7 @@ pub fn int_visit_mut(
         | IntExpr::Mod(a, _)
         | IntExpr::Cast(a, _)
         | IntExpr::ToReal(a, _)
+        | IntExpr::FromReal(a, _)
         | IntExpr::Shift(a, _) => int_visit_mut(a, var, boolean),
         IntExpr::Ite(c, a, b) => {
             boolean(c);

@@ -53,6 +53,28 @@ pub fn div(a: i64, b: i64) -> i64 {
     if to_f32(b) == 0.0 { 0 } else { sse(a, b, |x, y| x / y) }
 }
 
+/// `-2^63` and `2^63` as stored `REAL`s: the ends of the 64-bit `LINT` range through
+/// which matiec's `REAL_TO_*` converts.
+pub const LINT_RANGE: (i64, i64) = (0xDF00_0000, 0x5F00_0000);
+
+/// The integer matiec's `REAL_TO_*` gives for the stored `REAL` `v`, before it is
+/// wrapped to the target type (`lib/C/iec_std_lib.h`: `__real_to_sint` for a signed
+/// target; `__real_to_uint` and `__real_to_bit`, `unsigned`, for an unsigned or
+/// bit-string one, where `IN >= 0` fails for a negative number or a NaN, which give 0):
+/// the number rounded to the nearest integer, ties to even (`__real_round` of `IN ± 0.5`),
+/// as a 64-bit `LINT`. `None` where C leaves the conversion to `LINT` undefined: a NaN or
+/// `±∞` to a signed type, `+∞` to an unsigned one, a number outside `[-2^63, 2^63)`.
+pub fn to_int(v: i64, unsigned: bool) -> Option<i64> {
+    let x = to_f32(v);
+    // `IN >= 0` fails for a negative number and for a NaN.
+    if unsigned && (x < 0.0 || x.is_nan()) {
+        return Some(0);
+    }
+    let (low, end) = LINT_RANGE;
+    let in_range = holds(CmpOp::Ge, v, low) && holds(CmpOp::Lt, v, end);
+    in_range.then(|| x.round_ties_even() as i64)
+}
+
 /// The stored value of an IEC real literal (`2.5`, `-0.5`, `1.0E3`, `1_000.0e-2`,
 /// `REAL#2.5`): matiec prints the literal's digits into the C code, where the C compiler
 /// reads them as a `double` (correctly rounded) and converts that to `float` (round to
@@ -105,6 +127,51 @@ mod tests {
         for no in ["3", "1E3", ".5", "5.", "LREAL#1.0", "1.0E", "x.5", "16#FF"] {
             assert_eq!(literal(no), None, "{no}");
         }
+    }
+
+    /// matiec's `__preal_to_sint` / `__preal_to_uint` as its C reads (the `REAL`
+    /// promoted to `double`, `IN ± 0.5`, `fmod(…, 1) == 0 ? ((LINT)… / 2) * 2 : (LINT)…`),
+    /// `None` where the cast to `LINT` is undefined (C11 6.3.1.4: a NaN, or an integral
+    /// part outside the type).
+    fn matiec(v: i64, unsigned: bool) -> Option<i64> {
+        let x = f64::from(to_f32(v));
+        let y = match x >= 0.0 {
+            true => x + 0.5,
+            false if unsigned => return Some(0),
+            false => x - 0.5,
+        };
+        let t = y.trunc();
+        if t.is_nan() || t < -(2f64.powi(63)) || t >= 2f64.powi(63) {
+            return None;
+        }
+        Some(if y % 1.0 == 0.0 { (y as i64) / 2 * 2 } else { y as i64 })
+    }
+
+    #[test]
+    fn conversions_to_integers_round_as_matiec() {
+        let mut vs: Vec<u32> = [0.0f32, 0.5, 1.5, 2.5, 3.5, 0.49999997, 1.0, 8_388_608.5]
+            .iter()
+            .flat_map(|x| [x.to_bits(), (-x).to_bits()])
+            .collect();
+        vs.extend([1, 0x007f_ffff, 0x7f80_0000, 0xff80_0000, 0x7fc0_0000, 0xffc0_0001]);
+        vs.extend([0x5eff_ffff, 0x5f00_0000, 0xdf00_0000, 0xdf00_0001, 0x4f00_0000, 0xcf00_0000]);
+        let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
+        for _ in 0..20_000 {
+            state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+            vs.push((state >> 32) as u32);
+        }
+        for v in vs {
+            for unsigned in [false, true] {
+                let v = i64::from(v);
+                assert_eq!(to_int(v, unsigned), matiec(v, unsigned), "{} {unsigned}", show(v));
+            }
+        }
+        assert_eq!(to_int(of_f32(2.5), false), Some(2));
+        assert_eq!(to_int(of_f32(-2.5), false), Some(-2));
+        assert_eq!(to_int(of_f32(-2.5), true), Some(0));
+        assert_eq!(to_int(of_f32(f32::NAN), true), Some(0));
+        assert_eq!(to_int(of_f32(f32::NAN), false), None);
+        assert_eq!(to_int(of_f32(f32::INFINITY), true), None);
     }
 
     #[test]

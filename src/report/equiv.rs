@@ -224,7 +224,7 @@ pub fn run_equiv_with(
     let mut output_pairs = Vec::new();
     let (a_in, b_in) = (inputs(&a.compiled), inputs(&b.compiled));
     let (a_out, b_out) = (outputs(&a), outputs(&b));
-    let (a_int_in, b_int_in) = (int_inputs(&a.compiled), int_inputs(&b.compiled));
+    let (a_int_in, b_int_in) = (int_inputs(&a), int_inputs(&b));
     let (a_int_out, b_int_out) = (written_ints(&a), written_ints(&b));
     let mut int_in_pairs = Vec::new();
     let mut int_out_pairs = Vec::new();
@@ -403,7 +403,7 @@ pub fn run_equiv_with(
     let reference = ProductReference::new(
         reference_of(&a),
         reference_of(&b),
-        b.compiled.signals.keys().cloned(),
+        b.compiled.signals.keys().chain(b.compiled.integers.keys()).cloned(),
         &renaming,
     );
     let cycle = Some(compiled.scan_cycle());
@@ -559,9 +559,15 @@ fn reference_of(p: &LoadedProgram) -> std::sync::Arc<dyn crate::ladder::Referenc
     }
 }
 
-/// The integers the outside world writes.
-fn int_inputs(c: &CompiledProgram) -> BTreeSet<String> {
-    c.integers.iter().filter(|(_, v)| v.input).map(|(n, _)| n.clone()).collect()
+/// The integers the outside world writes; not the free values a front end gives where
+/// the runtime's result is undefined (a PLCopen `REAL_TO_INT` of a NaN), which each
+/// program chooses for itself.
+fn int_inputs(p: &LoadedProgram) -> BTreeSet<String> {
+    let undefined = |n: &String| {
+        p.scan.hidden.contains(n) && crate::ladder::plcopen::ints::is_undefined_input(n)
+    };
+    let inputs = p.compiled.integers.iter().filter(|(n, v)| v.input && !undefined(n));
+    inputs.map(|(n, _)| n.clone()).collect()
 }
 
 /// A located error when the integers `x` of `a` and `y` of `b` are not of one type: at

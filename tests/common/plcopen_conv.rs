@@ -1,4 +1,4 @@
-//! The random PLCopen generator's draws between BOOL and integers and between integer types: `BOOL_TO_INT` of negated pins and Boolean blocks, `INT_TO_BOOL`, round trips through other integer types, SINT division by a SINT.
+//! The random PLCopen generator's draws between BOOL and integers and between integer types: `BOOL_TO_INT` of negated pins and Boolean blocks, `INT_TO_BOOL`, round trips through other integer types, SINT division by a SINT, conversions from and to BCD.
 
 use std::fmt::Write as _;
 
@@ -84,8 +84,47 @@ impl Gen {
                 .unwrap();
                 ints.push((self.unary("SINT_TO_INT", (id, Some("OUT")), ""), Some("OUT")));
             }
+            "BCD" => self.bcd(ints, bools),
             _ => return false,
         }
         true
+    }
+
+    /// A conversion from or to BCD of an integer of the network, converted to a type
+    /// Beremiz pairs with BCD and back to INT: `BCD_TO_UINT` of a `WORD` (digits above 9
+    /// among its values: `OUT` 0 and `ENO` FALSE), `UINT_TO_BCD` (digits past the width
+    /// dropped), of each width, `EN` wired sometimes.
+    fn bcd(
+        &mut self,
+        ints: &mut Vec<(u64, Option<&'static str>)>,
+        bools: &mut Vec<(u64, Option<&'static str>)>,
+    ) {
+        let (uint, bits) =
+            *self.rng.pick(&[("USINT", "BYTE"), ("UINT", "WORD"), ("UDINT", "DWORD")]);
+        let to_bcd = self.rng.chance(50);
+        let (from, to, back) = if to_bcd {
+            (uint, format!("{uint}_TO_BCD"), bits)
+        } else {
+            (bits, format!("BCD_TO_{uint}"), uint)
+        };
+        let src = *self.rng.pick(ints);
+        let x = (self.unary(&format!("INT_TO_{from}"), src, ""), Some("OUT"));
+        let en = self.rng.chance(30).then(|| *self.rng.pick(bools));
+        let id = self.nid();
+        let (p, o) = (self.pos(300), self.order(true));
+        let (mut ins, mut outs) = (String::new(), String::new());
+        if let Some(src) = en {
+            write!(ins, r#"<variable formalParameter="EN">{}</variable>"#, Gen::conn(&[src]))
+                .unwrap();
+            outs.push_str(r#"<variable formalParameter="ENO"><connectionPointOut/></variable>"#);
+            bools.push((id, Some("ENO")));
+        }
+        write!(ins, r#"<variable formalParameter="IN">{}</variable>"#, Gen::conn(&[x])).unwrap();
+        writeln!(
+            self.body,
+            r#"<block localId="{id}" typeName="{to}"{o}>{p}<inputVariables>{ins}</inputVariables><inOutVariables/><outputVariables>{outs}<variable formalParameter="OUT"><connectionPointOut/></variable></outputVariables></block>"#
+        )
+        .unwrap();
+        ints.push((self.unary(&format!("{back}_TO_INT"), (id, Some("OUT")), ""), Some("OUT")));
     }
 }

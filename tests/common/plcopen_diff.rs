@@ -66,6 +66,7 @@ const INT_BLOCKS: &[&str] = &[
     "AND",
     "DIVS",
     "MUX",
+    "BCD",
 ];
 
 /// The user function block programs may instantiate: inputs `IN0`, `IN1`, outputs
@@ -888,6 +889,12 @@ pub fn input_schedule(plc: &PlcProgram, seed: u64, scans: usize) -> Vec<BTreeMap
             Some(t) => words.push((n.clone(), t.bits)),
             None => driven.push(n.clone()),
         }
+    }
+    // The free inputs of `REAL_TO_*` blocks: C's undefined results, any value.
+    let mut free = plc.undefined_inputs();
+    free.extend(plc.subs.values().flat_map(|s| s.undefined_inputs()));
+    for (n, t) in free {
+        words.extend(ii_prove::program::library::int_type(&t).map(|t| (n, t.bits)));
     }
     let mut rng = Rng::new(seed ^ 0x51A7);
     let mut current: BTreeMap<String, bool> = driven.iter().map(|n| (n.clone(), false)).collect();

@@ -1,4 +1,4 @@
-//! The random PLCopen generator's `REAL` networks: REAL variables and literals (zeros of both signs, a value past 2^24), integers and BOOLs converted to REAL, comparisons (extensible), ADD and MUL (extensible), SUB, DIV (by ±0.0 too), MIN/MAX/LIMIT/ABS/MOVE/SEL/MUX of REALs, REAL_TO_BOOL, some under a wired EN.
+//! The random PLCopen generator's `REAL` networks: REAL variables and literals (zeros of both signs, a value past 2^24), integers and BOOLs converted to REAL, comparisons (extensible), ADD and MUL (extensible), SUB, DIV (by ±0.0 too), MIN/MAX/LIMIT/ABS/MOVE/SEL/MUX of REALs, REAL_TO_BOOL, REAL_TO_* of the integer types and back, some under a wired EN.
 
 use std::fmt::Write as _;
 
@@ -13,14 +13,29 @@ pub(super) const REAL_VARS: [&str; 2] = ["R0", "R1"];
 /// A wire's source: a block's id and output pin, or a variable object's id.
 type Src = (u64, Option<&'static str>);
 
-const REAL_OPERANDS: &[&str] =
-    &["R0", "R0", "R1", "2.5", "-0.5", "0.0", "-0.0", "1.0E3", "REAL#80.5", "16_777_217.0"];
+const REAL_OPERANDS: &[&str] = &[
+    "R0",
+    "R0",
+    "R1",
+    "2.5",
+    "-0.5",
+    "0.0",
+    "-0.0",
+    "1.0E3",
+    "REAL#80.5",
+    "16_777_217.0",
+    "-2.5",
+    "3.0E9",
+    "-1.0E19",
+];
 
 #[rustfmt::skip]
 const REAL_BLOCKS: &[&str] = &[
     "GT", "GE", "EQ", "NE", "LT", "LE", "MIN", "MAX", "LIMIT", "ABS", "MOVE", "SEL", "MUX",
     "INT_TO_REAL", "SINT_TO_REAL", "UDINT_TO_REAL", "BOOL_TO_REAL", "REAL_TO_BOOL",
-    "REAL_TO_REAL", "DIV", "DIV", "MUL", "MUL", "ADD", "ADD", "SUB", "SUB",
+    "REAL_TO_REAL", "DIV", "DIV", "MUL", "MUL", "ADD", "ADD", "SUB", "SUB", "REAL_TO_INT",
+    "REAL_TO_SINT", "REAL_TO_DINT", "REAL_TO_USINT", "REAL_TO_UINT", "REAL_TO_UDINT",
+    "REAL_TO_BYTE", "REAL_TO_WORD", "REAL_TO_DWORD",
 ];
 
 /// Sometimes a new value of the REAL input `n` (its bits `{n}_b{k}` in `current`): the
@@ -31,7 +46,7 @@ pub(super) fn drive(rng: &mut Rng, n: &str, current: &mut BTreeMap<String, bool>
         return;
     }
     let hard = [0.0, -0.0, 2.5, -0.5, 1000.0, 80.5, 16_777_216.0, 1.5, f32::NAN];
-    let more = [f32::INFINITY, f32::NEG_INFINITY, 1e-40, -3.0, 7.0];
+    let more = [f32::INFINITY, f32::NEG_INFINITY, 1e-40, -3.0, 7.0, 0.5, -2.5, 3e9, 1e19, -1e19];
     let x: u32 = match rng.below(4) {
         0 => rng.below(1 << 32) as u32,
         1 => more[rng.below(more.len() as u64) as usize].to_bits(),
@@ -98,6 +113,14 @@ impl Gen {
                 "REAL_TO_BOOL" | "REAL_TO_REAL" | "ABS" | "MOVE" => {
                     let src = real(self, &reals);
                     (self.real_block(ty, &[("IN", src, "")], en), ty != "REAL_TO_BOOL")
+                }
+                // To an integer and back: `REAL_TO_*` (rounded, ties to even; a free
+                // value where C leaves it undefined), then `*_TO_REAL`.
+                t if t.starts_with("REAL_TO_") => {
+                    let src = real(self, &reals);
+                    let to = (self.real_block(t, &[("IN", src, "")], en), Some("OUT"));
+                    let back = format!("{}_TO_REAL", &t["REAL_TO_".len()..]);
+                    (self.real_block(&back, &[("IN", to, "")], en), true)
                 }
                 "LIMIT" => {
                     let pins: Vec<(&str, Src, &str)> =

@@ -540,9 +540,12 @@ impl Lowering<'_> {
     /// A warning for each opaque integer, where it was found not computed.
     pub(super) fn warn_opaque(&mut self) {
         for (x, (why, at)) in &self.opaque {
+            // Its declared type (`the REAL Level`), else an integer (a counter's count).
+            let ty = self.syms.values().find(|s| s.name == *x).and_then(|s| s.ty.value_type());
+            let what = ty.as_deref().unwrap_or("integer");
             self.warnings.push(StError::warning(
                 *at,
-                format!("the integer {x} is not computed ({why}): what reads it is unconstrained"),
+                format!("the {what} {x} is not computed ({why}): what reads it is unconstrained"),
             ));
         }
     }

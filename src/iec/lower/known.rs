@@ -95,6 +95,10 @@ impl Lowering<'_> {
             IntExpr::ModBy(a, b) => two(a, b, |x, y| if y == 0 { 0 } else { x.wrapping_rem(y) }),
             IntExpr::Cast(a, inner) => Ok(ty.wrap(self.known_int(a, *inner)?)),
             IntExpr::Real(op, a, b) => Ok(op.apply(self.known_int(a, ty)?, self.known_int(b, ty)?)),
+            IntExpr::FromReal(a, unsigned) => {
+                let a = self.known_int(a, crate::program::IntType::REAL)?;
+                Ok(ty.wrap(crate::program::real::to_int(a, *unsigned).unwrap_or(0)))
+            }
             IntExpr::ToReal(a, inner) => {
                 Ok(crate::program::real::of_f32(self.known_int(a, *inner)? as f32))
             }

@@ -154,6 +154,32 @@ impl ConvType {
     }
 }
 
+/// A conversion between an unsigned integer type and BCD, by its name's two sides: the
+/// integer type's name, whether it converts to BCD, and the bit string's name where the
+/// name gives it (`BCD_TO_UINT` and `UINT_TO_BCD` in Beremiz's library; matiec's typed
+/// `WORD_BCD_TO_UINT` and `UINT_TO_BCD_WORD`). `None` for another conversion.
+pub fn bcd_conversion<'a>(from: &'a str, to: &'a str) -> Option<(&'a str, bool, Option<&'a str>)> {
+    match (from.strip_suffix("BCD"), to.strip_prefix("BCD")) {
+        (_, Some("")) => Some((from, true, None)),
+        (_, Some(bits)) => Some((from, true, Some(bits.strip_prefix('_')?))),
+        (Some(""), None) => Some((to, false, None)),
+        (Some(bits), None) => Some((to, false, Some(bits.strip_suffix('_')?))),
+        (None, None) => None,
+    }
+}
+
+/// The free integer input that stands for the result of a `REAL_TO_*` block whose `OUT`
+/// is the hidden variable `out` where C leaves the conversion undefined.
+pub fn undefined_input(out: &str) -> String {
+    format!("{out}_UNDEFINED")
+}
+
+/// Whether `name` is spelled as an [`undefined_input`] (a hidden name: a declared
+/// variable may be spelled so too).
+pub fn is_undefined_input(name: &str) -> bool {
+    name.ends_with("_OUT_UNDEFINED")
+}
+
 /// Whether an IEC type name (upper case) is an integer type, 64-bit ones included.
 pub fn is_int_type_name(t: &str) -> bool {
     matches!(
@@ -212,6 +238,20 @@ impl PlcProgram {
             || self.int_var_type(text.trim()).is_some()
     }
 
+    /// The free integer inputs of this body's `REAL_TO_*` blocks ([`undefined_input`]),
+    /// with their types' names: each block's result where C leaves it undefined.
+    pub fn undefined_inputs(&self) -> Vec<(String, String)> {
+        (0..self.objects().len())
+            .filter_map(|k| match self.int_block(k)? {
+                IntBlock::Convert(from, to) if from == "REAL" && ConvType::of(&to).is_ok() => {
+                    Some((undefined_input(self.hidden_name(k, "OUT")?), to))
+                }
+                _ => None,
+            })
+            .filter(|(_, to)| !matches!(to.as_str(), "BOOL" | "REAL"))
+            .collect()
+    }
+
     /// The integer block at `k`, if it is one: its kind by type name, `MOVE` and `SEL`
     /// only when their data inputs carry integers.
     pub fn int_block(&self, k: usize) -> Option<IntBlock> {
@@ -261,6 +301,16 @@ impl PlcProgram {
 }
 
 impl PlcProgram {
+    /// The declared type (upper case) of the variable `name` (its declared name, or in an
+    /// inlined body its prefixed one), if it is declared here or in an inlined body.
+    pub fn declared_type(&self, name: &str) -> Option<String> {
+        match self.vars.values().find(|v| v.name == name).map(|v| &v.ty) {
+            Some(Ty::Other(t) | Ty::Derived(t)) => Some(t.to_ascii_uppercase()),
+            Some(Ty::Bool) => Some("BOOL".into()),
+            None => self.subs.values().find_map(|sub| sub.declared_type(name)),
+        }
+    }
+
     /// Where the variable or hidden variable `name` comes from: its declaration, or the
     /// block it is an output of (in this body or an inlined one), else the POU.
     pub fn span_of_name(&self, name: &str) -> crate::diag::Span {

@@ -917,11 +917,14 @@ fn finish(p: &PlcProgram, mut l: Lower<'_>) -> Result<Lowered, Vec<PlcError>> {
     let mut warnings = p.warnings.clone();
     warnings.append(&mut l.warnings);
     for (x, why) in &l.opaque {
+        // Its declared type (`the REAL Temp`), else a block's output.
+        let what = match p.declared_type(x) {
+            Some(t) => format!("the {t} {x}"),
+            None => format!("the block output {x}"),
+        };
         warnings.push(PlcError::Note {
             span: p.span_of_name(x),
-            message: format!(
-                "the integer {x} is not computed ({why}): what reads it is unconstrained"
-            ),
+            message: format!("{what} is not computed ({why}): what reads it is unconstrained"),
         });
     }
     Ok(Lowered { program, warnings, edges: l.edges })

@@ -56,6 +56,16 @@ pub struct PlcSimulator {
     texts: BTreeMap<usize, text::Instance>,
     /// Integer variables, block outputs and counts: value and C type.
     ints: BTreeMap<String, (i64, ints::CType)>,
+    /// The free inputs of `REAL_TO_*` blocks, this body's and its inlined ones': the
+    /// run's value where C leaves a block's result undefined.
+    undefined: Vec<(String, String)>,
+}
+
+/// The free inputs of the `REAL_TO_*` blocks of `p` and of its inlined bodies.
+fn undefined_inputs(p: &PlcProgram) -> Vec<(String, String)> {
+    let mut out = p.undefined_inputs();
+    out.extend(p.subs.values().flat_map(undefined_inputs));
+    out
 }
 
 impl PlcSimulator {
@@ -107,6 +117,7 @@ impl PlcSimulator {
             visiting: BTreeSet::new(),
             scans: 0,
             unknown: BTreeSet::new(),
+            undefined: undefined_inputs(p),
         }
     }
 

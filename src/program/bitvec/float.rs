@@ -354,6 +354,47 @@ pub fn int_to_real(a: &[L], ty: IntType, name: Namer) -> Bits {
         .collect()
 }
 
+/// `a`, a `REAL`, as matiec's `REAL_TO_*` converts it ([`IntExpr::FromReal`]
+/// (crate::program::IntExpr::FromReal)): rounded to the nearest integer, ties to even,
+/// in `w` bits (the integer wrapped to them); with `unsigned` 0 for a negative number.
+/// Where C leaves the conversion undefined (a NaN or `±∞`, `|a| ≥ 2^63`) the result is 0,
+/// as it is for `-2^63` (0 modulo `2^w`).
+///
+/// A number of biased exponent `e ≥ 126` (`|a| ≥ 0.5`) is its significand `1.f` (24
+/// bits) shifted left by `e - 126` in a fixed-point number of `24 + w` bits, 24 of them
+/// below the point (the bits shifted past the top only add multiples of `2^w`); the
+/// integer part is rounded on the first bit below the point, the bits below it and its
+/// own last bit (ties to even). Smaller numbers, subnormal ones among them, round to 0.
+pub fn real_to_int(a: &[L], unsigned: bool, w: u32, name: Namer) -> Bits {
+    let w = w as usize;
+    let width = 24 + w;
+    let e: Bits = a[23..31].iter().cloned().chain(std::iter::repeat_n(L::Zero, 4)).collect();
+    let shift = sub(&e, &wide(126), name);
+    let half = compare(CmpOp::Ge, WIDE, &shift, &wide(0), name);
+    let far = compare(CmpOp::Ge, WIDE, &shift, &wide(64), name);
+    let rounds = name(simp(&half.and(far.negate())));
+    let mut f: Bits = a[..23].to_vec();
+    f.push(L::One);
+    f.extend(std::iter::repeat_n(L::Zero, w));
+    for (j, on) in shift.iter().take(6).enumerate() {
+        let step = 1usize << j;
+        let up: Bits = std::iter::repeat_n(L::Zero, step.min(width))
+            .chain(f[..width.saturating_sub(step)].iter().cloned())
+            .collect();
+        f = choose(on, &up, &f, name);
+    }
+    let sticky = L::Or(f[..23].to_vec());
+    let round = name(simp(&f[23].clone().and(sticky.or(f[24].clone()))));
+    let magnitude = add(&f[24..], &constant(0, w as u32), round, name);
+    let magnitude: Bits = magnitude.iter().map(|b| simp(&b.clone().and(rounds.clone()))).collect();
+    let sign = a[31].clone();
+    if unsigned {
+        return magnitude.iter().map(|b| simp(&b.clone().and(sign.clone().negate()))).collect();
+    }
+    let negated = sub(&constant(0, w as u32), &magnitude, name);
+    choose(&sign, &negated, &magnitude, name)
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::constant;
@@ -435,6 +476,37 @@ mod tests {
                 if ty.contains(v) {
                     converts(v, ty).unwrap();
                 }
+            }
+        }
+    }
+
+    /// The conversion to an integer of `w` bits on the constant bits of `x`, against
+    /// [`real::to_int`] wrapped to `w` bits (0 where C leaves it undefined).
+    fn rounds(x: u32, unsigned: bool, w: u32) -> Result<(), TestCaseError> {
+        let got = real_to_int(&constant(i64::from(x), 32), unsigned, w, &mut |t| t);
+        let got = got.iter().enumerate().fold(0i64, |acc, (k, b)| acc | (i64::from(eval(b)) << k));
+        let ty = IntType::int(w, false);
+        let want = ty.wrap(real::to_int(i64::from(x), unsigned).unwrap_or(0));
+        prop_assert_eq!(got, want, "{:?} {} in {} bits", f32::from_bits(x), unsigned, w);
+        Ok(())
+    }
+
+    /// The widths of the types `REAL_TO_*` converts to, and the scan model's widest.
+    const WIDTHS: [u32; 4] = [8, 16, 32, 63];
+
+    #[test]
+    fn hard_values_convert_to_integers_as_matiec() {
+        let mut vs = hard_operands();
+        let near = [0.5f32, 1.5, 2.5, -0.5, -2.5, 8_388_607.5, 8_388_608.5, 4_194_304.5];
+        vs.extend(near.iter().flat_map(|x| [x.to_bits(), x.to_bits() + 1, x.to_bits() - 1]));
+        for p in [23, 24, 31, 32, 52, 53, 62, 63, 64] {
+            let x = 2f32.powi(p).to_bits();
+            vs.extend([x - 1, x, x + 1, x | 0x8000_0000, (x - 1) | 0x8000_0000]);
+        }
+        for &x in &vs {
+            for w in WIDTHS {
+                rounds(x, false, w).unwrap();
+                rounds(x, true, w).unwrap();
             }
         }
     }
@@ -564,6 +636,16 @@ mod tests {
             converts(ty.wrap(v), ty)?;
             // Values of few significant bits, where ties are frequent.
             converts(ty.wrap(v >> low << low), ty)?;
+        }
+
+        #[test]
+        fn random_values_convert_to_integers_as_matiec(x in any::<u32>(), e in 110u32..200, w in 0usize..4) {
+            rounds(x, false, WIDTHS[w])?;
+            rounds(x, true, WIDTHS[w])?;
+            // Exponents where the number rounds: halves, ties, the LINT range's end.
+            let near = x & 0x807f_ffff | (e << 23);
+            rounds(near, false, WIDTHS[w])?;
+            rounds(near, true, WIDTHS[w])?;
         }
 
         #[test]

@@ -123,6 +123,11 @@ impl Compiler<'_> {
                     RealOp::Div => bitvec::div_real(&a, &b, &mut name),
                 }
             }
+            IntExpr::FromReal(a, unsigned) => {
+                let a = self.int(a, IntType::REAL, span);
+                let mut name = |t: L| self.intermediate(t);
+                bitvec::real_to_int(&a, *unsigned, w, &mut name)
+            }
             IntExpr::ToReal(a, inner) => {
                 let a = self.int(a, *inner, span);
                 let mut name = |t: L| self.intermediate(t);
@@ -253,7 +258,10 @@ pub(super) fn constants(program: &Program) -> Vec<i64> {
                 out.insert(*k);
                 walk(a, out);
             }
-            IntExpr::Cast(a, _) | IntExpr::Shift(a, _) | IntExpr::ToReal(a, _) => walk(a, out),
+            IntExpr::Cast(a, _)
+            | IntExpr::Shift(a, _)
+            | IntExpr::ToReal(a, _)
+            | IntExpr::FromReal(a, _) => walk(a, out),
             IntExpr::Add(a, b)
             | IntExpr::Bitwise(_, a, b)
             | IntExpr::Sub(a, b)

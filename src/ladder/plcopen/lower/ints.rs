@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 use super::{Lower, fresh_because};
 use crate::diag::Span;
 use crate::iec::literal::int_literal;
-use crate::ladder::plcopen::ints::{Arith, ConvType, IntBlock};
+use crate::ladder::plcopen::ints::{Arith, ConvType, IntBlock, bcd_conversion};
 use crate::ladder::plcopen::{Edge, ObjKind, PinIn, PlcProgram, Source};
 use crate::program::library::{self, Counter};
 use crate::program::{
@@ -24,11 +24,6 @@ pub(super) fn coerce(e: IntExpr, t: IntType) -> IntExpr {
         e => e,
     }
 }
-
-/// Why a conversion of a `REAL` to an integer is not computed.
-const REAL_TO_INT: &str = "matiec's REAL_TO_* rounds through a 64-bit LINT (`__real_to_sint`, \
-     `__real_to_uint`), and C leaves the conversion of a NaN, an infinity or a number out of \
-     the LINT range undefined: ii-prove does not compute it";
 
 /// Why an integer literal where a `REAL` is expected is not computed.
 const INT_LITERAL_AS_REAL: &str =
@@ -72,6 +67,29 @@ fn divisor_not_zero(keyword: &str, ints: &[(String, IntVal)], span: Span) -> Boo
         Ok((d, t)) => library::compare_chain(CmpOp::Ne, t, &[coerce(d, t), IntExpr::Const(0)]),
         Err(why) => {
             let why = format!("the ENO of {keyword}, whose divisor is not computed: {why}");
+            fresh_because(keyword, why, span)
+        }
+    }
+}
+
+/// Whether the input of `BCD_TO_*` is BCD, as matiec's `TEST_EN_COND(…, __test_bcd(op))`
+/// tests it (`ENO` FALSE otherwise); TRUE for another conversion.
+fn bcd_valid(
+    keyword: &str,
+    from: &str,
+    to: &str,
+    ints: &[(String, IntVal)],
+    span: Span,
+) -> BoolExpr {
+    let Some((uint, false, bits)) = bcd_conversion(from, to) else {
+        return BoolExpr::Const(true);
+    };
+    let vals: Result<Vec<Arg>, String> =
+        ints.iter().map(|(n, v)| v.clone().map(|(e, t)| (n.as_str(), e, t))).collect();
+    match vals.and_then(|vals| bcd_types(uint, false, bits, &vals)) {
+        Ok((x, f, _)) => library::is_bcd(&x, f),
+        Err(why) => {
+            let why = format!("the ENO of {keyword}, whose input is not computed: {why}");
             fresh_because(keyword, why, span)
         }
     }
@@ -126,12 +144,49 @@ enum Value {
     Bool(BoolExpr),
 }
 
+/// A BCD conversion's input, its type and the type of its result (see
+/// [`bcd_conversion`]): the unsigned integer `uint`, and a bit string of any width (`bits`,
+/// or where the name gives none, of `uint`'s width, as Beremiz's library pairs them: `UINT`
+/// with `WORD`); a literal input takes the type of its side.
+fn bcd_types(
+    uint: &str,
+    to_bcd: bool,
+    bits: Option<&str>,
+    vals: &[Arg],
+) -> Result<(IntExpr, IntType, IntType), String> {
+    let unsigned = |name: &str, kinds: [&str; 3]| match library::int_type(name) {
+        Some(t) if kinds.contains(&name) => Ok(t),
+        _ if matches!(name, "ULINT" | "LWORD") => {
+            Err(format!("{name} is 64 bits wide, which ii-prove does not compute"))
+        }
+        _ => Err(format!("{name} is not a type matiec converts to or from BCD")),
+    };
+    let u = unsigned(uint, ["USINT", "UINT", "UDINT"])?;
+    let b = match bits {
+        Some(bits) => unsigned(bits, ["BYTE", "WORD", "DWORD"])?,
+        None => u,
+    };
+    let [(_, x, ty)] = vals else { return Err("it takes one input".into()) };
+    let (input, output) = if to_bcd { (u, b) } else { (ty.unwrap_or(b), u) };
+    if ty.is_some_and(|ty| ty != input) || input.signed || input.real {
+        return Err(format!("its input is not {}", library::type_name(input)));
+    }
+    Ok((coerce(x.clone(), input), input, output))
+}
+
 /// The conversion `FROM_TO_TO` of its input, as matiec's `lib/C/iec_std_functions.h`
 /// computes it: `BOOL_TO_*` and `*_TO_*` between integers by `__convert_type` (`(to)
 /// __move_to(op)`: the value converted as C converts it, sign- or zero-extended or
 /// wrapped; a BOOL is 0 or 1), `*_TO_BOOL` by `__convert_num_to_bool` (`op == 0 ? 0 :
 /// 1`). `input` is `IN` when it is a BOOL, `vals` the integer inputs.
 fn convert(from: &str, to: &str, input: Option<BoolExpr>, vals: &[Arg]) -> Result<Value, String> {
+    if let Some((uint, to_bcd, bits)) = bcd_conversion(from, to) {
+        let (x, f, o) = bcd_types(uint, to_bcd, bits, vals)?;
+        return Ok(Value::Int(
+            if to_bcd { library::uint_to_bcd(&x, f, o) } else { library::bcd_to_uint(&x, f) },
+            o,
+        ));
+    }
     let t = ConvType::of(to)?;
     match ConvType::of(from)? {
         ConvType::Bool => {
@@ -158,7 +213,11 @@ fn convert(from: &str, to: &str, input: Option<BoolExpr>, vals: &[Arg]) -> Resul
                 ConvType::Int(t) if f.real && t.real => Value::Int(x, t),
                 // `(REAL)` of an integer: the nearest float, ties to even.
                 ConvType::Int(t) if t.real => Value::Int(IntExpr::ToReal(Box::new(x), f), t),
-                ConvType::Int(_) if f.real => return Err(REAL_TO_INT.into()),
+                // `__real_to_sint`, `__real_to_uint`, `__real_to_bit`: rounded through
+                // `LINT`, a free value where C leaves it undefined (`int_call`).
+                ConvType::Int(t) if f.real => {
+                    Value::Int(IntExpr::FromReal(Box::new(x), !t.signed), t)
+                }
                 // A value of `from`, then converted to `to` (sign- or zero-extended, or
                 // wrapped).
                 ConvType::Int(t) => Value::Int(IntExpr::Cast(Box::new(x), f), t),
@@ -390,7 +449,29 @@ impl Lower<'_> {
         }
         match self.p.hidden_name(j, pin).map(str::to_string) {
             Some(name) => self.int_read(&name),
-            None => Err(format!("the output {pin} of this block is not computed")),
+            None => Err(self.output_not_computed(j, pin)),
+        }
+    }
+
+    /// Why the output `pin` of block `j` carries no integer: the block named, and for
+    /// the numerical functions of one `REAL` (`SIN`, `SQRT`, …) that C's math library
+    /// computes them.
+    fn output_not_computed(&self, j: usize, pin: &str) -> String {
+        let Some(ObjKind::Block { type_name, instance, .. }) = self.p.obj(j).map(|o| &o.kind)
+        else {
+            return format!("the output {pin} of this block is not computed");
+        };
+        let upper = type_name.to_ascii_uppercase();
+        const MATH: [&str; 12] = [
+            "SQRT", "LN", "LOG", "EXP", "EXPT", "SIN", "COS", "TAN", "ASIN", "ACOS", "ATAN",
+            "ATAN2",
+        ];
+        match instance {
+            _ if MATH.contains(&upper.as_str()) => {
+                format!("{upper} is computed by C's math library, which ii-prove does not model")
+            }
+            Some(i) => format!("the output {pin} of {i} ({type_name}) is not computed"),
+            None => format!("the output {pin} of the function {type_name} is not computed"),
         }
     }
 
@@ -516,6 +597,12 @@ impl Lower<'_> {
         if let Some(out) = p.hidden_name(k, "OUT").map(str::to_string) {
             match self.int_function(b, &bools, &ints) {
                 Ok(Value::Int(e, t)) => {
+                    let e = match e {
+                        IntExpr::FromReal(x, unsigned) => {
+                            self.undefined_result(&out, &upper, *x, unsigned, t, &mut stmts, span)
+                        }
+                        e => e,
+                    };
                     self.ints.insert(out.clone(), IntVar { ty: t, input: false, init: 0 });
                     let value =
                         if runs { e } else { IntExpr::ite(en.clone(), e, IntExpr::Const(0)) };
@@ -541,6 +628,7 @@ impl Lower<'_> {
             let ok = match b {
                 IntBlock::Arith(Arith::Div) => divisor_not_zero(&upper, &ints, span),
                 IntBlock::Mux => k_in_range(&upper, &ints, span),
+                IntBlock::Convert(from, to) => bcd_valid(&upper, from, to, &ints, span),
                 _ => BoolExpr::Const(true),
             };
             let value = enabled(ok);
@@ -549,6 +637,36 @@ impl Lower<'_> {
         if stmts.iter().any(|s| !matches!(s, Stmt::Let { .. })) {
             self.push_block(stmts, span);
         }
+    }
+
+    /// `REAL_TO_*` of `x` into `t` for the block whose `OUT` is `out`: the rounded value
+    /// where C defines it, else a free input of `t` ([`library::real_to_int`]), said at
+    /// the block.
+    #[allow(clippy::too_many_arguments)]
+    fn undefined_result(
+        &mut self,
+        out: &str,
+        keyword: &str,
+        x: IntExpr,
+        unsigned: bool,
+        t: IntType,
+        stmts: &mut Vec<Stmt>,
+        span: Span,
+    ) -> IntExpr {
+        let free = crate::ladder::plcopen::ints::undefined_input(out);
+        self.ints.insert(free.clone(), IntVar { ty: t, input: true, init: 0 });
+        let cases = if unsigned {
+            "+inf or at least 2^63"
+        } else {
+            "a NaN, ±inf or outside [-2^63, 2^63)"
+        };
+        let message = format!(
+            "where its input is {cases}, which C leaves undefined, its OUT is the free input \
+             {free}: any {}",
+            library::type_name(t)
+        );
+        stmts.push(Stmt::Warn { span, element: keyword.to_string(), message });
+        library::real_to_int(x, unsigned, &free)
     }
 
     /// The value of a function over integers (a comparison's and a conversion to BOOL's

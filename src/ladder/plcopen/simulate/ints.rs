@@ -129,8 +129,91 @@ type Val = Option<(i64, Option<CType>)>;
 enum Out {
     /// A number, before it is stored into the result's type.
     Int(i128, CType),
+    /// A number of the type that C leaves undefined (`REAL_TO_*` of a NaN, …).
+    Undefined(CType),
     /// A comparison's result.
     Bool(bool),
+}
+
+/// A BCD conversion's sides (`BCD_TO_UINT`, `UINT_TO_BCD`, `WORD_BCD_TO_UINT`,
+/// `UINT_TO_BCD_WORD`): whether it converts to BCD, the unsigned integer type, the bit
+/// string type (where the name gives none, Beremiz's pair of the integer type's width).
+fn bcd_sides(from: &str, to: &str) -> Option<(bool, CType, CType)> {
+    let (uint, to_bcd, bits) = crate::ladder::plcopen::ints::bcd_conversion(from, to)?;
+    let u = CType::of(uint).filter(|_| matches!(uint, "USINT" | "UINT" | "UDINT"))?;
+    let b = match bits {
+        Some(b) => CType::of(b).filter(|_| matches!(b, "BYTE" | "WORD" | "DWORD"))?,
+        None => u,
+    };
+    Some((to_bcd, u, b))
+}
+
+/// The input of `BCD_TO_*`: a value of an unsigned bit string type (a literal's that of
+/// the block's own bit string type), as the `LWORD` `__bcd_to_uint` and `__test_bcd` take.
+fn bcd_input(x: i64, t: Option<CType>, bits: CType) -> Option<u64> {
+    let t = t.unwrap_or(bits);
+    (!t.signed && !t.float).then(|| t.store(i128::from(x)) as u64)
+}
+
+/// `__test_bcd` (`lib/C/iec_std_lib.h`): whether a digit of `op` is above 9.
+fn test_bcd(mut op: u64) -> bool {
+    while op != 0 {
+        if op & 0xf > 9 {
+            return true;
+        }
+        op >>= 4;
+    }
+    false
+}
+
+/// `__bcd_to_uint`: the 4-bit digits of `op` times the powers of ten.
+fn bcd_to_uint(mut op: u64) -> u64 {
+    let mut res = op & 0xf;
+    let mut factor = 10u64;
+    loop {
+        op >>= 4;
+        if op == 0 {
+            return res;
+        }
+        res = res.wrapping_add((op & 0xf).wrapping_mul(factor));
+        factor = factor.wrapping_mul(10);
+    }
+}
+
+/// `__uint_to_bcd`: the decimal digits of `op` as 4-bit digits.
+fn uint_to_bcd(mut op: u64) -> u64 {
+    let mut res = op % 10;
+    let mut shift = 4u32;
+    loop {
+        op /= 10;
+        if op == 0 {
+            return res;
+        }
+        res |= (op % 10).checked_shl(shift).unwrap_or(0);
+        shift += 4;
+    }
+}
+
+/// matiec's `__real_to_sint` and (`unsigned`) `__real_to_uint` / `__real_to_bit` of `x`,
+/// as `lib/C/iec_std_lib.h` writes them: `x` promoted to `double`; `__preal_to_sint`:
+/// `IN >= 0 ? __real_round(IN + 0.5) : __real_round(IN - 0.5)` (`__preal_to_uint`: `: 0`);
+/// `__real_round(IN)`: `fmod(IN, 1) == 0 ? ((LINT)IN / 2) * 2 : (LINT)IN`. `None` where
+/// the cast `(LINT)IN` is undefined in C (C11 6.3.1.4: a NaN, or an integral part that
+/// LINT cannot hold).
+fn real_to_lint(x: f32, unsigned: bool) -> Option<i64> {
+    let v = f64::from(x);
+    let lint = |v: f64| {
+        let t = v.trunc();
+        (t >= -(2f64.powi(63)) && t < 2f64.powi(63)).then_some(v as i64)
+    };
+    let round = |v: f64| {
+        if v % 1.0 == 0.0 { lint(v).map(|n| n / 2 * 2) } else { lint(v) }
+    };
+    match v >= 0.0 {
+        true => round(v + 0.5),
+        false if unsigned => Some(0),
+        false => round(v - 0.5),
+    }
 }
 
 /// The value of the integer function `b` over its arguments, as matiec's C computes it
@@ -139,6 +222,20 @@ fn function(b: &IntBlock, args: Vec<(String, Val)>, get: impl Fn(&str) -> bool) 
     // Every argument a value of the block's one type (a literal takes it).
     let vals: Vec<(String, i64, Option<CType>)> =
         args.into_iter().map(|(n, v)| v.map(|(x, t)| (n, x, t))).collect::<Option<_>>()?;
+    if let IntBlock::Convert(from, to) = b
+        && let Some((to_bcd, u, bits)) = bcd_sides(from, to)
+    {
+        let [(_, x, t)] = vals.as_slice() else { return None };
+        return if to_bcd {
+            // `(to) __uint_to_bcd(op)`, `op` a value of the unsigned integer type.
+            let op = u.store(i128::from(*x));
+            t.is_none_or(|t| t == u).then(|| Out::Int(uint_to_bcd(op as u64).into(), bits))
+        } else {
+            // `TEST_EN_COND(to, __test_bcd(op))`: 0; else `(to) __bcd_to_uint(op)`.
+            let op = bcd_input(*x, *t, bits)?;
+            Some(Out::Int(if test_bcd(op) { 0 } else { bcd_to_uint(op).into() }, u))
+        };
+    }
     if let IntBlock::Convert(from, to) = b {
         // `__convert_type`: `(to) __move_to(op)`, the argument a value of `from` (a BOOL
         // is 0 or 1); `__convert_num_to_bool`: `op == 0 ? 0 : 1`.
@@ -151,8 +248,13 @@ fn function(b: &IntBlock, args: Vec<(String, Val)>, get: impl Fn(&str) -> bool) 
                     return match to.as_str() {
                         "BOOL" => Some(Out::Bool(x != 0.0)),
                         "REAL" => Some(Out::Int(pattern(x), FLOAT)),
-                        // `__real_to_sint`/`__real_to_uint`: not computed.
-                        _ => None,
+                        to => {
+                            let target = CType::of(to)?;
+                            Some(match real_to_lint(x, !target.signed) {
+                                Some(v) => Out::Int(v.into(), target),
+                                None => Out::Undefined(target),
+                            })
+                        }
                     };
                 }
                 ct if ct.float => return None,
@@ -250,6 +352,10 @@ impl PlcSimulator {
             };
             ints.insert(v.name.clone(), (init, ct));
         }
+        // The free inputs of `REAL_TO_*` blocks (C's undefined results).
+        for (n, t) in p.undefined_inputs() {
+            ints.extend(CType::of(&t).map(|ct| (n, (0, ct))));
+        }
         for sub in p.subs.values() {
             PlcSimulator::init_ints(sub, ints);
         }
@@ -262,7 +368,9 @@ impl PlcSimulator {
 
     /// An integer input takes the value its bits give (`{name}_b{k}`), when given.
     pub(super) fn read_int_inputs(&mut self, inputs: &BTreeMap<String, bool>) {
-        let names: Vec<String> = self.ints.keys().filter(|n| self.p.is_input(n)).cloned().collect();
+        let free: Vec<&String> = self.undefined.iter().map(|(n, _)| n).collect();
+        let names: Vec<String> =
+            self.ints.keys().filter(|n| self.p.is_input(n) || free.contains(n)).cloned().collect();
         for n in names {
             let (_, ct) = self.ints[&n];
             let bits: Vec<Option<&bool>> =
@@ -396,13 +504,22 @@ impl PlcSimulator {
                 None => x == 0,
             });
         let divides_by_zero = matches!(b, IntBlock::Arith(Arith::Div)) && divisor_zero;
+        // `BCD_TO_*`: `TEST_EN_COND(…, __test_bcd(op))`.
+        let not_bcd = match (b, args.as_slice()) {
+            (IntBlock::Convert(from, to), [(_, Some((x, t)))]) => {
+                bcd_sides(from, to).is_some_and(|(to_bcd, _, bits)| {
+                    !to_bcd && bcd_input(*x, *t, bits).is_some_and(test_bcd)
+                })
+            }
+            _ => false,
+        };
         // MUX: `TEST_EN_COND(…, K >= param_count)`, the count of its data inputs.
         let past = *b == IntBlock::Mux && {
             let known: Option<Vec<(String, i64, Option<CType>)>> =
                 args.iter().map(|(n, v)| v.map(|(x, t)| (n.clone(), x, t))).collect();
             known.and_then(|v| mux_k(&v)).is_some_and(|k| k >= args.len() as i64 - 1)
         };
-        self.set_hidden(k, "ENO", en && !divides_by_zero && !past);
+        self.set_hidden(k, "ENO", en && !divides_by_zero && !past && !not_bcd);
         let Some(out) = self.p.hidden_name(k, "OUT").map(str::to_string) else { return };
         match function(b, args, get) {
             Some(Out::Int(_, ct)) if !en => {
@@ -410,6 +527,12 @@ impl PlcSimulator {
             }
             Some(Out::Int(v, ct)) => {
                 self.ints.insert(out, (ct.store(v), ct));
+            }
+            // C's undefined result: the run's value of the block's free input.
+            Some(Out::Undefined(ct)) => {
+                let free = crate::ladder::plcopen::ints::undefined_input(&out);
+                let v = if en { self.ints.get(&free).map_or(0, |(v, _)| *v) } else { 0 };
+                self.ints.insert(out, (v, ct));
             }
             Some(Out::Bool(holds)) => {
                 self.bits.insert(out, en && holds);
