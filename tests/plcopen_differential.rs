@@ -25,19 +25,32 @@ fn programs() -> u64 {
 
 #[test]
 fn random_programs_agree_with_the_simulator() {
-    let mut fig = Figures::default();
     let seeds: Vec<u64> = match std::env::var("II_PLC_DIFF_SEED").ok().and_then(|v| v.parse().ok())
     {
         Some(s) => vec![s],
         None => (0..programs()).collect(),
     };
-    for seed in seeds {
-        let xml = random_program(seed);
-        check(&xml, seed, &mut fig, true);
-        if fig.failures.len() >= 3 {
-            break;
+    // The seeds shared out between the machine's cores, each thread stopping at its
+    // third failure.
+    let threads = std::thread::available_parallelism().map_or(2, |n| n.get()).clamp(1, 8);
+    let total = std::sync::Mutex::new(Figures::default());
+    std::thread::scope(|s| {
+        for t in 0..threads {
+            let (total, seeds) = (&total, &seeds);
+            s.spawn(move || {
+                let mut fig = Figures::default();
+                for &seed in seeds.iter().skip(t).step_by(threads) {
+                    let xml = random_program(seed);
+                    check(&xml, seed, &mut fig, true);
+                    if fig.failures.len() >= 3 {
+                        break;
+                    }
+                }
+                total.lock().expect("figures").add(fig);
+            });
         }
-    }
+    });
+    let fig = total.into_inner().expect("figures");
     eprintln!(
         "plcopen differential: {} programs ({} refused), {} scans, {} hypotheses checked ({} of integer bits) ({} skipped), {} timer hypotheses fired",
         fig.programs,

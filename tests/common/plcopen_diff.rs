@@ -769,6 +769,20 @@ pub struct Figures {
     pub failures: Vec<String>,
 }
 
+impl Figures {
+    /// Adds another run's figures (and failures) to these.
+    pub fn add(&mut self, other: Figures) {
+        self.programs += other.programs;
+        self.refused += other.refused;
+        self.scans += other.scans;
+        self.checked += other.checked;
+        self.skipped += other.skipped;
+        self.timer_fired += other.timer_fired;
+        self.int_checked += other.int_checked;
+        self.failures.extend(other.failures);
+    }
+}
+
 /// A program loaded, lowered and compiled, its hypotheses ready to evaluate.
 pub struct Prepared {
     pub plc: PlcProgram,
