@@ -178,22 +178,7 @@ fn simulate(
             trace.values.get(name).and_then(|v| v.get(k)).copied().unwrap_or(false)
         },
     )?;
-    let mut first = None;
-    for k in 0..trace.scans {
-        let assumptions_hold = model
-            .constraints
-            .iter()
-            .zip(&u.constraints)
-            .all(|(c, (l, r))| !violated(&mut Concrete, c.1, &l[k], &r[k]));
-        if !assumptions_hold {
-            break;
-        }
-        if violated(&mut Concrete, goal.rel, &u.extra[0][k], &u.extra[1][k]) {
-            first = Some(k);
-            break;
-        }
-    }
-    Ok((first, seen))
+    Ok((u.first_violation(model, goal.rel), seen))
 }
 
 /// Exact confirmation: every hypothesis of the cone holds on the whole horizon (with

@@ -479,13 +479,7 @@ impl Near<'_> {
             },
         )
         .ok()?;
-        let holds = self.model.constraints.iter().zip(&run.constraints);
-        let (l, r) = (run.extra.first()?, run.extra.get(1)?);
-        (0..trace.scans)
-            .take_while(|&k| {
-                holds.clone().all(|(c, (a, b))| !violated(&mut Concrete, c.1, &a[k], &b[k]))
-            })
-            .find(|&k| violated(&mut Concrete, goal.rel, &l[k], &r[k]))
+        run.first_violation(&self.model, goal.rel)
     }
 }
 
@@ -540,8 +534,7 @@ fn violated_at(goal: &Obligation, kept: &Kept) -> Option<usize> {
         &mut |_, name, k| kept.value(name, k),
     )
     .ok()?;
-    let (l, r) = (run.extra.first()?, run.extra.get(1)?);
-    (0..trace.scans).find(|&k| violated(&mut Concrete, goal.rel, &l[k], &r[k]))
+    run.first_violation(&bare, goal.rel)
 }
 
 /// Per defined signal, the longest chain of equations, in scan order, from an input to

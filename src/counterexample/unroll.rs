@@ -267,6 +267,24 @@ pub struct Unrolled<V> {
     pub extra: Vec<Vec<V>>,
 }
 
+impl Unrolled<bool> {
+    /// The first step (0-based) at which the first two extra terms stand in violation
+    /// of `rel`, every constraint of `model` having held at each step up to it.
+    pub fn first_violation(&self, model: &Model, rel: Rel) -> Option<usize> {
+        let (l, r) = (self.extra.first()?, self.extra.get(1)?);
+        let holds = |k: usize| {
+            model
+                .constraints
+                .iter()
+                .zip(&self.constraints)
+                .all(|(c, (a, b))| !violated(&mut Concrete, c.1, &a[k], &b[k]))
+        };
+        (0..l.len().min(r.len()))
+            .take_while(|&k| holds(k))
+            .find(|&k| violated(&mut Concrete, rel, &l[k], &r[k]))
+    }
+}
+
 /// Unrolls `model` over `steps` steps. `steps_of(d)` is a timer's delay in steps;
 /// `free(bits, name, k)` gives a free name's value at step `k` (0-based).
 pub fn unroll<B: Bits>(

@@ -63,6 +63,18 @@ pub struct SignalReport {
     pub points: Vec<bool>,
 }
 
+impl SignalReport {
+    /// Signal `s`, reported as `name`.
+    pub fn of(name: String, s: &crate::semantics::Signal) -> SignalReport {
+        SignalReport {
+            name,
+            breakpoints: s.breakpoints().iter().map(crate::semantics::format_time).collect(),
+            intervals: s.open_values().to_vec(),
+            points: s.point_values().to_vec(),
+        }
+    }
+}
+
 /// A counterexample in the JSON output.
 #[derive(Clone, Debug, Serialize)]
 pub struct CounterexampleReport {

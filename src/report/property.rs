@@ -379,17 +379,14 @@ pub(super) fn program_counterexample(
         time: format_time(&c.time),
         lhs: c.lhs,
         rhs: c.rhs,
-        signals: env
-            .signals
-            .iter()
-            .filter(|_| opts.run_signals)
-            .map(|(name, s)| SignalReport {
-                name: named(name.as_str()),
-                breakpoints: s.breakpoints().iter().map(format_time).collect(),
-                intervals: s.open_values().to_vec(),
-                points: s.point_values().to_vec(),
-            })
-            .collect(),
+        signals: match opts.run_signals {
+            true => env
+                .signals
+                .iter()
+                .map(|(name, s)| SignalReport::of(named(name.as_str()), s))
+                .collect(),
+            false => Vec::new(),
+        },
         diagram: super::tracks::draw(&shown, &tracked, Some(&c.time), glyphs),
         integers: tracked
             .iter()
@@ -492,12 +489,7 @@ fn counterexample(
         signals: env
             .signals
             .iter()
-            .map(|(name, s)| SignalReport {
-                name: name.to_string(),
-                breakpoints: s.breakpoints().iter().map(format_time).collect(),
-                intervals: s.open_values().to_vec(),
-                points: s.point_values().to_vec(),
-            })
+            .map(|(name, s)| SignalReport::of(name.to_string(), s))
             .collect(),
         diagram: waveform::draw(&shown, Some(&witness.time), glyphs),
         integers: Vec::new(),

@@ -7,7 +7,7 @@ use super::{CounterexampleReport, IntegerReport, SignalReport, trace, waveform};
 use crate::program::CompiledProgram;
 use crate::prover::induction::{Stalled, Stop};
 use crate::prover::{Candidate, REASON_LINE, clip};
-use crate::semantics::{Assignment, Signal, Time, format_time};
+use crate::semantics::{Assignment, Signal, Time};
 use crate::term::{Expr, Symbol};
 
 /// At most this many signals in a possible counterexample's diagram.
@@ -150,12 +150,7 @@ pub fn step_candidate(
         rhs: false,
         signals: shown
             .iter()
-            .map(|(name, s)| SignalReport {
-                name: name.clone(),
-                breakpoints: s.breakpoints().iter().map(format_time).collect(),
-                intervals: s.open_values().to_vec(),
-                points: s.point_values().to_vec(),
-            })
+            .map(|(name, s)| SignalReport::of(name.clone(), s))
             .collect(),
         diagram,
         integers: tracked
