@@ -1400,7 +1400,7 @@ fn the_scan_model_runs_as_ldmicro_does() {
                     break 'scans;
                 }
             }
-            for (n, v) in reference.bits() {
+            for (n, v) in &reference.bits() {
                 if !model.is_known(n) || !reference.is_known(n) {
                     unknown += 1;
                     continue;

@@ -7,6 +7,7 @@ pub mod ldmicro;
 pub mod lower;
 pub mod plcopen;
 pub mod simulate;
+mod slice;
 
 pub use crate::program::simulate::{Reference, ScanSimulator};
 pub use crate::program::{
@@ -19,8 +20,12 @@ pub use ldmicro::{
     read_ldmicro,
 };
 pub use simulate::{Simulator, run};
+pub use slice::SliceIndex;
 
-use std::collections::{BTreeSet, HashMap, HashSet};
+use std::collections::{BTreeMap, BTreeSet};
+use std::sync::Arc;
+
+use crate::program::simulate::Recording;
 
 use crate::diag::{Report, Severity, Span};
 use crate::program::IntType;
@@ -293,106 +298,20 @@ impl crate::program::simulate::Reference for LdProgram {
             None => Box::new(Simulator::new(self)),
         }
     }
-}
 
-impl LdProgram {
-    /// The rungs that can change `names`, in scan order: those that write a name of
-    /// `names` (a coil, a timer's count), then those that write a name a rung taken
-    /// reads (its contacts, coils and timers), and so on. Only for programs whose rungs
-    /// hold nothing but contacts, coils, timers, `SHORT`, `OPEN`, comments and
-    /// placeholders, whose effects are the writes of their coils and timers; `None`
-    /// for any other program (a master relay, a one-shot's memory by position,
-    /// counters and integers: then the whole program runs).
-    pub fn slice(&self, names: &BTreeSet<String>) -> Option<LdProgram> {
-        let tables = self.slicing.0.get_or_init(|| self.slice_tables()).as_ref()?;
-        let (reads, writers) = (&tables.reads, &tables.writers);
-        let mut keep = HashSet::new();
-        let mut seen: HashSet<&str> = names.iter().map(String::as_str).collect();
-        let mut pending: Vec<&str> = seen.iter().copied().collect();
-        while let Some(n) = pending.pop() {
-            for &i in writers.get(n).map_or(&[][..], Vec::as_slice) {
-                if keep.insert(i) {
-                    for m in &reads[i] {
-                        if seen.insert(m.as_str()) {
-                            pending.push(m.as_str());
-                        }
-                    }
-                }
-            }
-        }
-        Some(LdProgram {
-            version: self.version.clone(),
-            cycle_us: self.cycle_us,
-            micro: self.micro.clone(),
-            io_list: Vec::new(),
-            rungs: {
-                let mut kept: Vec<usize> = keep.into_iter().collect();
-                kept.sort_unstable();
-                kept.into_iter().map(|i| self.rungs[i].clone()).collect()
-            },
-            warnings: Vec::new(),
-            inputs: self.inputs.clone(),
-            var_bytes: self.var_bytes.clone(),
-            slicing: SliceIndex::default(),
-        })
+    fn record(&self, inputs: &[BTreeMap<String, bool>]) -> Option<Recording> {
+        Some(Arc::new(LdProgram::record(self, inputs)?))
     }
 
-    /// The names each rung reads and the rungs that write each name; `None` for a
-    /// program [`slice`](Self::slice) does not apply to.
-    fn slice_tables(&self) -> Option<SliceTables> {
-        let mut reads = Vec::with_capacity(self.rungs.len());
-        let mut writers: HashMap<String, Vec<usize>> = HashMap::new();
-        for (i, rung) in self.rungs.iter().enumerate() {
-            let mut r = Vec::new();
-            for e in rung.elements() {
-                match &e.kind {
-                    ElementKind::Contacts { name, .. } => r.push(name.clone()),
-                    ElementKind::Coil { name, .. } | ElementKind::Timer { name, .. } => {
-                        r.push(name.clone());
-                        writers.entry(name.clone()).or_default().push(i);
-                    }
-                    ElementKind::Short
-                    | ElementKind::Open
-                    | ElementKind::Comment(_)
-                    | ElementKind::Placeholder => {}
-                    _ => return None,
-                }
-            }
-            reads.push(r);
-        }
-        Some(SliceTables { reads, writers })
-    }
-}
-
-/// The tables [`LdProgram::slice`] walks, built once per program on first use. They
-/// are derived from the rungs, so two programs are equal whatever their tables hold,
-/// and a clone (which may be changed) starts without them.
-#[derive(Default)]
-pub struct SliceIndex(std::sync::OnceLock<Option<SliceTables>>);
-
-/// What each rung reads and which rungs write each name.
-struct SliceTables {
-    reads: Vec<Vec<String>>,
-    writers: HashMap<String, Vec<usize>>,
-}
-
-impl Clone for SliceIndex {
-    fn clone(&self) -> Self {
-        SliceIndex::default()
-    }
-}
-
-impl PartialEq for SliceIndex {
-    fn eq(&self, _: &Self) -> bool {
-        true
-    }
-}
-
-impl Eq for SliceIndex {}
-
-impl std::fmt::Debug for SliceIndex {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str("SliceIndex")
+    fn simulator_near(
+        &self,
+        names: &BTreeSet<String>,
+        base: &Recording,
+        changed: &BTreeSet<String>,
+        scans: usize,
+    ) -> Option<Box<dyn ScanSimulator>> {
+        let record = base.clone().downcast::<simulate::RunRecord>().ok()?;
+        Some(Box::new(self.slice_near(names, &record, changed, scans)?))
     }
 }
 

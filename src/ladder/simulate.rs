@@ -47,9 +47,12 @@
 
 mod bits_and_pulses;
 mod reads;
+mod replay;
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::sync::Arc;
+
+pub use replay::RunRecord;
 
 use super::ldmicro::{
     Circuit, CoilKind, CompareOp, CounterEdge, CounterKind, EdgeKind, Element, ElementKind,
@@ -108,7 +111,7 @@ pub struct Simulator {
     orig: bool,
     comment_rungs: Vec<bool>,
     cycle_us: u64,
-    bits: BTreeMap<String, bool>,
+    bits: HashMap<String, bool>,
     ints: BTreeMap<String, i64>,
     /// Per element (in execution order): edge memory and whether it is exact.
     hidden: Vec<(bool, bool)>,
@@ -133,6 +136,9 @@ pub struct Simulator {
     /// THI, TLO and TCY's state bits (`$once_…` of `intcode.cpp`), integers 0 or 1 by
     /// the names [`super::timer_bits`] gives them.
     timer_bits: BTreeMap<(usize, u8), String>,
+    /// The rungs run from a recorded run rather than executed
+    /// ([`LdProgram::slice_near`](super::LdProgram::slice_near)).
+    replay: Option<replay::Replay>,
 }
 
 /// Elements that change which rungs run or stop the scan (ldmicro.md §4, last table).
@@ -164,6 +170,7 @@ impl Simulator {
             avr: program.micro.as_deref().is_some_and(|m| m.starts_with("Atmel AVR")),
             arm: program.micro.as_deref().is_some_and(|m| m.starts_with("St ARM")),
             timer_bits: super::timer_bits(program),
+            replay: None,
         };
         // Only the rungs that run: a comment rung's timers and counters do not initialise
         // anything, and its control flow never executes.
@@ -214,6 +221,11 @@ impl Simulator {
     /// are written before the first rung and are constant during the scan unless
     /// the program itself writes them. Names not given keep their previous value.
     pub fn step(&mut self, inputs: &BTreeMap<String, bool>) {
+        self.scan(inputs, &mut |_, _| {});
+    }
+
+    /// [`step`](Self::step), `after` called after each rung with its index.
+    fn scan(&mut self, inputs: &BTreeMap<String, bool>, after: &mut dyn FnMut(&Simulator, usize)) {
         for (name, value) in inputs {
             match self.bits.get_mut(name) {
                 Some(b) => *b = *value,
@@ -252,13 +264,18 @@ impl Simulator {
         self.mcr = Pow { on: true, sure: true };
         let rungs = std::mem::take(&mut self.rungs);
         let mut idx = 0;
-        for (rung, &skip) in rungs.iter().zip(&self.comment_rungs.clone()) {
-            if skip {
+        for (i, (rung, &skip)) in rungs.iter().zip(&self.comment_rungs.clone()).enumerate() {
+            let replayed = self.replay.as_ref().and_then(|r| r.rung(i));
+            if skip || replayed.is_some() {
                 idx += rung.elements().len();
-                continue;
+                if let Some(k) = replayed {
+                    self.replay_rung(k);
+                }
+            } else {
+                let power = self.mcr;
+                self.circuit(&rung.body, power, &mut idx);
             }
-            let power = self.mcr;
-            self.circuit(&rung.body, power, &mut idx);
+            after(self, i);
         }
         self.rungs = rungs;
         self.scans += 1;
@@ -317,9 +334,10 @@ impl Simulator {
         true
     }
 
-    /// Every bit: the program's contact and coil names and every input given so far.
-    pub fn bits(&self) -> &BTreeMap<String, bool> {
-        &self.bits
+    /// Every bit: the program's contact and coil names and every input given so far, in
+    /// name order (a copy).
+    pub fn bits(&self) -> BTreeMap<String, bool> {
+        self.bits.iter().map(|(n, v)| (n.clone(), *v)).collect()
     }
 
     /// Whether the current value of `name` (bit or integer) is exact, i.e. not
@@ -738,7 +756,7 @@ pub fn run(
         .iter()
         .map(|inputs| {
             sim.step(inputs);
-            sim.bits().clone()
+            sim.bits()
         })
         .collect()
 }

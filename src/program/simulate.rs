@@ -444,7 +444,38 @@ pub trait Reference: Send + Sync {
         let _ = names;
         self.simulator()
     }
+
+    /// A run of the whole program from power-up on `inputs` (one map a scan), recorded
+    /// for [`simulator_near`](Reference::simulator_near); `None` (the default) when
+    /// the front end keeps no such record.
+    fn record(&self, inputs: &[BTreeMap<String, bool>]) -> Option<Recording> {
+        let _ = inputs;
+        None
+    }
+
+    /// A new run from power-up, of at most `scans` scans whose inputs are those of the
+    /// run `base` recorded except `changed`, whose values of `names` are those
+    /// [`simulator`]'s run gives: a front end may run only the part of the program
+    /// that `changed` can change, and take what that part reads from elsewhere from its
+    /// record. `None` (the default) when it cannot: then
+    /// [`simulator_for`](Reference::simulator_for).
+    ///
+    /// [`simulator`]: Reference::simulator
+    fn simulator_near(
+        &self,
+        names: &std::collections::BTreeSet<String>,
+        base: &Recording,
+        changed: &std::collections::BTreeSet<String>,
+        scans: usize,
+    ) -> Option<Box<dyn ScanSimulator>> {
+        let _ = (names, base, changed, scans);
+        None
+    }
 }
+
+/// A front end's record of a run of the whole program ([`Reference::record`]), which
+/// only that front end reads.
+pub type Recording = std::sync::Arc<dyn std::any::Any + Send + Sync>;
 
 /// The scan model as its own reference (languages without a simulator of their own),
 /// timers counted as the runtime counts them.
