@@ -86,6 +86,7 @@ fn water_faulty_overlap_replays_on_the_scan_simulator() {
         max_steps: 200,
         max_scans: 100_000,
         minimised: false,
+        signals: true,
     };
     let Verdict::Refuted(c) = counterexample::refute(&session, &goal, limits) else {
         panic!("P2 is not refuted");
@@ -137,6 +138,7 @@ fn remembered_exact_checks_give_the_same_counterexamples() {
                 max_steps: 200,
                 max_scans: 100_000,
                 minimised: false,
+                signals: true,
             };
             let refuted = |p: &syntax::Statement<_>| match counterexample::refute(
                 &session,
@@ -193,6 +195,7 @@ fn a_kept_run_is_repaired_for_a_property_of_the_same_form() {
         max_steps: 200,
         max_scans: 100_000,
         minimised: false,
+        signals: true,
     };
     let Verdict::Refuted(first) = counterexample::refute(&session, &goals[0], limits) else {
         panic!("unit 2's property is refuted by a search of its own");
@@ -739,6 +742,7 @@ fn shared_limits() -> Limits {
         max_steps: 200,
         max_scans: 100_000,
         minimised: false,
+        signals: true,
     }
 }
 

@@ -7,6 +7,7 @@ use super::unroll::{Concrete, Model, unroll, violated};
 use super::{Counterexample, Limits, Program, ScanTrace, minimise, names_of, scans_of};
 use crate::kernel::Rel;
 use crate::ladder::{Hypothesis, HypothesisKind, SignalKind};
+use crate::program::simulate::Recording;
 use crate::prover::Obligation;
 use crate::semantics::falsify::violation;
 use crate::semantics::{Assignment, eval, format_time};
@@ -24,7 +25,68 @@ struct Run {
     constraints_hold: bool,
 }
 
-fn run_scans(model: &Model, goal: &Obligation, trace: &ScanTrace) -> Result<Run, String> {
+/// What a candidate judged on part of its property's cone reads from outside that part:
+/// a *base* run of the whole program, on which every compiled hypothesis was checked
+/// exactly once ([`base_holds`]). The part holds every equation of the cone that reads,
+/// through any chain, an input of `changed`; every other name the part reads that the
+/// program defines has its value in the base run. A candidate whose inputs differ from
+/// the base run's in any other input is not judged on it.
+pub(super) struct Background<'a> {
+    /// A defined name's value at a scan of the base run.
+    pub base: &'a (dyn Fn(&str, usize) -> Option<bool> + Sync),
+    /// The base run's inputs.
+    pub inputs: &'a ScanTrace,
+    /// The inputs the part was taken for.
+    pub changed: &'a BTreeSet<String>,
+    /// The front end's record of the base run, for its simulator.
+    pub record: Option<&'a Recording>,
+}
+
+impl Background<'_> {
+    /// The inputs whose values in `trace` differ from the base run's at a scan of
+    /// `trace`; `None` for a trace longer than the base run or on another cycle.
+    fn changed_in(&self, trace: &ScanTrace) -> Option<BTreeSet<String>> {
+        if trace.scans > self.inputs.scans || trace.cycle != self.inputs.cycle {
+            return None;
+        }
+        Some(changed_inputs(trace, self.inputs))
+    }
+}
+
+/// The inputs whose values in `trace` differ from those in `base` at a scan of `trace`
+/// (an input a trace does not give is 0): the two maps walked together, in order.
+pub(super) fn changed_inputs(trace: &ScanTrace, base: &ScanTrace) -> BTreeSet<String> {
+    let scans = trace.scans;
+    let differ = |a: Option<&Vec<bool>>, b: Option<&Vec<bool>>| match (a, b) {
+        (Some(a), Some(b)) if a.len() >= scans && b.len() >= scans => a[..scans] != b[..scans],
+        _ => (0..scans).any(|k| {
+            a.and_then(|v| v.get(k)).copied().unwrap_or(false)
+                != b.and_then(|v| v.get(k)).copied().unwrap_or(false)
+        }),
+    };
+    let (mut a, mut b) = (trace.values.iter().peekable(), base.values.iter().peekable());
+    let mut changed = BTreeSet::new();
+    loop {
+        let (name, x, y) = match (a.peek(), b.peek()) {
+            (None, None) => return changed,
+            (Some((n, _)), None) => (*n, a.next().map(|p| p.1), None),
+            (None, Some((n, _))) => (*n, None, b.next().map(|p| p.1)),
+            (Some((n, _)), Some((m, _))) if n < m => (*n, a.next().map(|p| p.1), None),
+            (Some((n, _)), Some((m, _))) if m < n => (*m, None, b.next().map(|p| p.1)),
+            (Some((n, _)), Some(_)) => (*n, a.next().map(|p| p.1), b.next().map(|p| p.1)),
+        };
+        if differ(x, y) {
+            changed.insert(name.clone());
+        }
+    }
+}
+
+fn run_scans(
+    model: &Model,
+    goal: &Obligation,
+    trace: &ScanTrace,
+    background: Option<&Background>,
+) -> Result<Run, String> {
     let cycle = trace.cycle.clone();
     let u = unroll(
         &mut Concrete,
@@ -32,7 +94,10 @@ fn run_scans(model: &Model, goal: &Obligation, trace: &ScanTrace) -> Result<Run,
         &[&goal.lhs, &goal.rhs],
         trace.scans,
         &|d| scans_of(d, &cycle),
-        &mut |_, name, k| trace.values.get(name).and_then(|v| v.get(k)).copied().unwrap_or(false),
+        &mut |_, name, k| match trace.values.get(name) {
+            Some(v) => v.get(k).copied().unwrap_or(false),
+            None => background.and_then(|b| (b.base)(name, k)).unwrap_or(false),
+        },
     )?;
     let constraints_hold = model
         .constraints
@@ -56,6 +121,7 @@ fn simulate(
     model: &Model,
     goal: &Obligation,
     trace: &ScanTrace,
+    background: Option<&Background>,
 ) -> Result<(Option<usize>, Values), String> {
     let mut read = BTreeSet::new();
     names_of(&goal.lhs, &mut read);
@@ -77,8 +143,16 @@ fn simulate(
             }
         }
     }
-    // The simulator may run only the rungs that can write what is watched.
-    let mut sim = program.reference.simulator_for(&watched);
+    // The simulator may run only the rungs that can write what is watched, and of
+    // those, for a candidate judged on part of its cone, only those the inputs it
+    // changes can change (the front end replays the others from its record of the
+    // base run).
+    let near = background.and_then(|b| {
+        let record = b.record?;
+        program.reference.simulator_near(&watched, record, b.changed, trace.scans)
+    });
+    let part = near.is_some();
+    let mut sim = near.unwrap_or_else(|| program.reference.simulator_for(&watched));
     // Every input at every scan (0 where the trace has none), the map built once; an
     // input held at 0 that the run never reads (outside its part of the program) is
     // left out, so that a scan costs what the part costs.
@@ -96,13 +170,13 @@ fn simulate(
             candidates.extend(signals.iter().filter(|(_, k)| k.is_input()).map(|(n, _)| n.as_str()))
         }
     }
+    // (A simulator of a part near a base run, whose programs have no integer inputs, is
+    // not given the trace's inputs it never reads.)
+    let given = |n: &str| trace.values.contains_key(n) && (!part || sim.reads(n));
     let mut step: BTreeMap<String, bool> = candidates
         .into_iter()
         .filter(|n| match signals.get(*n) {
-            Some(k) => {
-                k.is_input()
-                    && (trace.values.contains_key(*n) || watched.contains(*n) || sim.reads(n))
-            }
+            Some(k) => k.is_input() && (given(n) || watched.contains(*n) || sim.reads(n)),
             None => trace.values.contains_key(*n),
         })
         .map(|n| (n.to_string(), false))
@@ -113,10 +187,8 @@ fn simulate(
         watched.iter().map(|n| (n, program.compiled.signals.get(n))).collect();
     let mut values: Vec<Vec<bool>> = vec![Vec::with_capacity(trace.scans); kinds.len()];
     for k in 0..trace.scans {
-        for (n, v) in &trace.values {
-            if let Some(x) = step.get_mut(n) {
-                *x = v.get(k).copied().unwrap_or(false);
-            }
+        for (n, x) in step.iter_mut() {
+            *x = trace.values.get(n).and_then(|v| v.get(k)).copied().unwrap_or(false);
         }
         sim.step(&step);
         for ((n, kind), seen) in kinds.iter().zip(values.iter_mut()) {
@@ -303,14 +375,30 @@ pub(super) fn discrete_violation(
     goal: &Obligation,
     trace: &ScanTrace,
 ) -> Option<usize> {
-    violating_run(model, goal, trace).map(|(v, _)| v)
+    violating_run(model, goal, trace, None).map(|(v, _)| v)
+}
+
+/// [`discrete_violation`] on part of the cone, what it reads from outside taken from
+/// `background`.
+pub(super) fn discrete_violation_near(
+    model: &Model,
+    goal: &Obligation,
+    trace: &ScanTrace,
+    background: &Background,
+) -> Option<usize> {
+    violating_run(model, goal, trace, Some(background)).map(|(v, _)| v)
 }
 
 /// [`discrete_violation`] with the run: its first violating scan, and the run cut after
 /// it (a scan's values depend only on the scans before, so the cut run is the run of
 /// the cut trace).
-fn violating_run(model: &Model, goal: &Obligation, trace: &ScanTrace) -> Option<(usize, Run)> {
-    let mut run = run_scans(model, goal, trace).ok()?;
+fn violating_run(
+    model: &Model,
+    goal: &Obligation,
+    trace: &ScanTrace,
+    background: Option<&Background>,
+) -> Option<(usize, Run)> {
+    let mut run = run_scans(model, goal, trace, background).ok()?;
     if !run.constraints_hold {
         return None;
     }
@@ -328,32 +416,98 @@ pub(super) fn judge(
     mut trace: ScanTrace,
     limits: Limits,
 ) -> Result<Judged, String> {
-    let (v, run) = violating_run(model, goal, &trace).ok_or("no violation scan by scan")?;
+    let (v, run) = violating_run(model, goal, &trace, None).ok_or("no violation scan by scan")?;
     trace.truncate(v + 1);
     if limits.minimised {
-        let simulated = simulate(program, model, goal, &trace);
+        let simulated = simulate(program, model, goal, &trace, None);
         return confirmed(program, model, goal, (trace, run, v), simulated);
     }
     // The simulator runs the whole program: the trace is minimised on the cone's
     // equations, and the simulator asked about the result. Only when it shows the
     // violation on the candidate but not on the minimised trace is the minimisation
     // redone with the simulator asked at each step (as it keeps both).
-    let sim_ok = |t: &ScanTrace| matches!(simulate(program, model, goal, t), Ok((Some(_), _)));
+    let sim_ok =
+        |t: &ScanTrace| matches!(simulate(program, model, goal, t, None), Ok((Some(_), _)));
     let original = trace.clone();
     let discrete = |t: &ScanTrace| discrete_violation(model, goal, t).is_some();
     minimise(&mut trace, &discrete, limits);
-    let (mut v, mut run) = violating_run(model, goal, &trace).ok_or("lost the violation")?;
+    let (mut v, mut run) = violating_run(model, goal, &trace, None).ok_or("lost the violation")?;
     trace.truncate(v + 1);
-    let mut simulated = simulate(program, model, goal, &trace);
+    let mut simulated = simulate(program, model, goal, &trace, None);
     if !matches!(simulated, Ok((Some(_), _))) && sim_ok(&original) {
         trace = original;
         let keep = |t: &ScanTrace| discrete(t) && sim_ok(t);
         minimise(&mut trace, &keep, limits);
-        (v, run) = violating_run(model, goal, &trace).ok_or("lost the violation")?;
+        (v, run) = violating_run(model, goal, &trace, None).ok_or("lost the violation")?;
         trace.truncate(v + 1);
-        simulated = simulate(program, model, goal, &trace);
+        simulated = simulate(program, model, goal, &trace, None);
     }
     confirmed(program, model, goal, (trace, run, v), simulated)
+}
+
+/// [`judge`] of a candidate already minimised, on part of its property's cone `full`:
+/// the equations `part` keeps, what they read from outside taken from `background`, and
+/// the simulator asked for the same part. Fails when the trace changes an input outside
+/// `background.changed`. Once both confirmations hold, the counterexample's signals are
+/// completed with the inputs it sets and, with `all`, every signal of the whole cone,
+/// the values of those outside the part taken from the base run.
+pub(super) fn judge_near(
+    program: &Program,
+    (full, part): (&Model, &Model),
+    goal: &Obligation,
+    (mut trace, all): (ScanTrace, bool),
+    background: &Background,
+) -> Result<Judged, String> {
+    let changed = background.changed_in(&trace).ok_or("the trace is not one of the base run")?;
+    if let Some(n) = changed.iter().find(|n| !background.changed.contains(*n)) {
+        return Err(format!("the input `{n}` changes outside the part judged"));
+    }
+    let (v, run) =
+        violating_run(part, goal, &trace, Some(background)).ok_or("no violation scan by scan")?;
+    trace.truncate(v + 1);
+    let simulated = simulate(program, part, goal, &trace, Some(background));
+    let mut judged = confirmed(program, part, goal, (trace, run, v), simulated)?;
+    let (Judged::Both(c) | Judged::ExactOnly(c, _)) = &mut judged;
+    let mut names: BTreeSet<String> =
+        c.trace.values.iter().filter(|(_, v)| v.contains(&true)).map(|(n, _)| n.clone()).collect();
+    if all {
+        names.extend(full.defs.iter().map(|(n, _)| n.clone()));
+        names.extend(full.free_names([&goal.lhs, &goal.rhs].into_iter()));
+    }
+    for n in names {
+        let symbol = Symbol::from(n.as_str());
+        if c.assignment.signals.contains_key(&symbol) {
+            continue;
+        }
+        let values: Vec<bool> = (0..c.trace.scans)
+            .map(|k| match c.trace.values.get(&n) {
+                Some(v) => v.get(k).copied().unwrap_or(false),
+                None => (background.base)(&n, k).unwrap_or(false),
+            })
+            .collect();
+        c.assignment.signals.insert(symbol, c.trace.signal(&values)?);
+    }
+    Ok(judged)
+}
+
+/// Whether every compiled hypothesis holds exactly on `signals`, a run of the whole
+/// program (every signal, scan by scan) on the inputs of `trace`: the check that lets
+/// a [`Background`] take values from that run.
+pub(super) fn base_holds(
+    program: &Program,
+    signals: &BTreeMap<String, Vec<bool>>,
+    trace: &ScanTrace,
+) -> bool {
+    let mut env = Assignment::new(trace.horizon());
+    env.cycle = Some(trace.cycle.clone());
+    for (name, values) in signals {
+        let Ok(s) = trace.signal(values) else { return false };
+        env.signals.insert(Symbol::from(name.as_str()), s);
+    }
+    let run =
+        Run { signals: signals.clone(), lhs: Vec::new(), rhs: Vec::new(), constraints_hold: true };
+    let none = Model { defs: Vec::new(), constraints: Vec::new() };
+    hypotheses_hold(program, &none, &env, trace, &run)
 }
 
 /// The two confirmations of a trace that violates the goal at scan `v` (0-based),

@@ -41,11 +41,12 @@
 #![warn(missing_docs)]
 
 pub mod aiger;
+mod cone;
 mod confirm;
 pub mod shared;
 pub mod unroll;
 
-use std::collections::{BTreeMap, BTreeSet, HashMap, VecDeque};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::sync::Mutex;
 use std::time::Instant;
 
@@ -72,6 +73,10 @@ pub struct Limits {
     /// Candidates are confirmed as they are, not minimised first (a run already
     /// minimised for another property).
     pub minimised: bool,
+    /// A counterexample's assignment holds every signal of the property's cone; else
+    /// it may hold only the inputs it sets and what the property reads (what a timing
+    /// diagram shows).
+    pub signals: bool,
 }
 
 /// Input values scan by scan.
@@ -215,91 +220,6 @@ pub fn program_model(compiled: &CompiledProgram) -> Model {
 }
 
 impl Program<'_> {
-    /// The cone of `terms` and of every assumption: equations in scan order and all the
-    /// assumptions. A run that violates a property counts only if it satisfies every
-    /// `assume` up to that scan, also one about signals the property does not read (it
-    /// may contradict the program, or fix an input the run would otherwise leave free).
-    pub fn model(&self, terms: &[&Expr]) -> Model {
-        let mut all = terms.to_vec();
-        all.extend(self.assumptions.iter().flat_map(|a| [&a.lhs, &a.rhs]));
-        self.cone(&all, usize::MAX)
-    }
-
-    /// [`model`](Self::model) cut after `cap` equations: the names are expanded breadth
-    /// first from those `terms` read (all the equations of a name at once), and once
-    /// `cap` equations are taken the names not yet expanded stay undefined, so the
-    /// model leaves them free (any value at every step). Every run of the program is
-    /// then a run of the cut model, whose runs may be more.
-    pub fn cone(&self, terms: &[&Expr], cap: usize) -> Model {
-        // The cone is a closure over names, walked once (a breadth-first worklist) with
-        // the program's equation index (built once per program) and the assumptions
-        // indexed here.
-        let index = self.compiled.equation_index();
-        let hypotheses = &self.compiled.hypotheses;
-        let mentioned: Vec<BTreeSet<String>> = self
-            .assumptions
-            .iter()
-            .map(|a| {
-                let mut m = BTreeSet::new();
-                names_of(&a.lhs, &mut m);
-                names_of(&a.rhs, &mut m);
-                m
-            })
-            .collect();
-        let mut mentioning: HashMap<&str, Vec<usize>> = HashMap::new();
-        for (i, m) in mentioned.iter().enumerate() {
-            for n in m {
-                mentioning.entry(n.as_str()).or_default().push(i);
-            }
-        }
-        let mut reached = BTreeSet::new();
-        for t in terms {
-            names_of(t, &mut reached);
-        }
-        let mut pending: VecDeque<String> = reached.iter().cloned().collect();
-        let mut taken_a = vec![false; self.assumptions.len()];
-        let mut taken_defs = Vec::new();
-        while let Some(name) = pending.pop_front() {
-            if taken_defs.len() >= cap {
-                break;
-            }
-            let mut found = BTreeSet::new();
-            for &i in index.defining.get(name.as_str()).map_or(&[][..], Vec::as_slice) {
-                taken_defs.push(i);
-                names_of(&hypotheses[index.equations[i].1].rhs, &mut found);
-            }
-            for &i in mentioning.get(name.as_str()).map_or(&[][..], Vec::as_slice) {
-                if !taken_a[i] {
-                    taken_a[i] = true;
-                    found.extend(mentioned[i].iter().cloned());
-                }
-            }
-            for n in found {
-                if !reached.contains(&n) {
-                    reached.insert(n.clone());
-                    pending.push_back(n);
-                }
-            }
-        }
-        taken_defs.sort_unstable();
-        Model {
-            defs: taken_defs
-                .into_iter()
-                .map(|i| {
-                    let (n, h) = &index.equations[i];
-                    (n.clone(), hypotheses[*h].rhs.clone())
-                })
-                .collect(),
-            constraints: self
-                .assumptions
-                .iter()
-                .zip(&taken_a)
-                .filter(|(_, t)| **t)
-                .map(|(a, _)| (a.lhs.clone(), a.rel, a.rhs.clone()))
-                .collect(),
-        }
-    }
-
     fn cycle(&self) -> Option<Time> {
         (self.compiled.cycle_us > 0)
             .then(|| Time::new(self.compiled.cycle_us.into(), 1_000_000u64.into()))

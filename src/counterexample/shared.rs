@@ -25,6 +25,14 @@
 //! value in the run, so that the property fails; the result is judged on the whole cone
 //! like any candidate (an equation outside the cut may read a changed input).
 //!
+//! A candidate from a kept run is judged on part of its cone where the front end can
+//! replay a run ([`Shared::near`]): the equations that read, through any chain, an input
+//! whose values differ from the kept run's, everything else they read at its value in
+//! the kept run. That run of the whole program is computed and checked exactly once per
+//! kept run ([`Kept::base`]: every compiled hypothesis), and the front end's simulator
+//! runs the same part, replaying the rest from its own record of the run. A refutation
+//! near a kept run then costs what it changes, not its cone.
+//!
 //! Which properties a run can refute depends on the order they are checked in: a
 //! property whose cone is deep (its signals computed from long chains of rungs) has
 //! counterexamples that set more of the program in motion, so [`deepest_first`] orders
@@ -34,12 +42,14 @@ use std::collections::{BTreeMap, BTreeSet, HashMap, VecDeque};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, OnceLock};
 
+use super::confirm::{Background, base_holds, changed_inputs, discrete_violation_near, judge_near};
 use super::unroll::{Bits as _, Cnf, Concrete, Model, unroll, violated};
 use super::{
     Counterexample, Judged, Limits, Program, ScanTrace, discrete_violation, equations_model, judge,
     program_model, scans_of,
 };
 use crate::ladder::{CompiledProgram, SignalKind};
+use crate::program::simulate::Recording;
 use crate::prover::Obligation;
 use crate::term::{Expr, Symbol, Term};
 
@@ -72,7 +82,8 @@ pub struct Shared {
 /// Per signal, its value at each scan (bit `k` for scan `k + 1`).
 struct Bits {
     scans: usize,
-    values: HashMap<Symbol, u64>,
+    /// By name (read by `&str`, not interned: the runs read names by their text).
+    values: HashMap<String, u64>,
 }
 
 impl Bits {
@@ -81,13 +92,13 @@ impl Bits {
             .into_iter()
             .map(|(n, v)| {
                 let bits = v.iter().enumerate().fold(0u64, |m, (k, b)| m | (u64::from(*b) << k));
-                (Symbol::from(n.as_str()), bits)
+                (n, bits)
             })
             .collect();
         Bits { scans, values }
     }
 
-    fn at(&self, name: &Symbol, k: usize) -> Option<bool> {
+    fn at(&self, name: &str, k: usize) -> Option<bool> {
         self.values.get(name).map(|bits| bits >> k & 1 == 1)
     }
 }
@@ -106,15 +117,61 @@ struct Kept {
     drawn: Vec<String>,
     /// The check (by number) at which it was kept or last refuted a property.
     used: AtomicUsize,
+    /// The run of the whole program on its inputs, checked ([`Kept::base`]).
+    base: OnceLock<Option<Base>>,
+}
+
+/// A kept run as the base of candidates judged on part of their cones: every signal of
+/// the program on its inputs, every compiled hypothesis checked on them exactly, and the
+/// front end's record of the same run for its simulator.
+struct Base {
+    values: Bits,
+    record: Recording,
 }
 
 impl Kept {
+    /// The run as a base ([`Base`]), made at the first call; `None` when a compiled
+    /// hypothesis fails on it (then no candidate is judged on part of its cone).
+    fn base(&self, program: &Program) -> Option<&Base> {
+        self.base
+            .get_or_init(|| {
+                let trace = &self.trace;
+                let whole = program_model(program.compiled);
+                let cycle = trace.cycle.clone();
+                let run = unroll(
+                    &mut Concrete,
+                    &whole,
+                    &[],
+                    trace.scans,
+                    &|d| scans_of(d, &cycle),
+                    &mut |_, name, k| {
+                        trace.values.get(name).and_then(|v| v.get(k)).copied().unwrap_or(false)
+                    },
+                )
+                .ok()?;
+                if !base_holds(program, &run.signals, trace) {
+                    return None;
+                }
+                let inputs: Vec<BTreeMap<String, bool>> = (0..trace.scans)
+                    .map(|k| {
+                        trace
+                            .values
+                            .iter()
+                            .map(|(n, v)| (n.clone(), v.get(k) == Some(&true)))
+                            .collect()
+                    })
+                    .collect();
+                let record = program.reference.record(&inputs)?;
+                Some(Base { values: Bits::of(run.signals, trace.scans), record })
+            })
+            .as_ref()
+    }
+
     fn value(&self, name: &str, k: usize) -> bool {
-        let symbol = Symbol::from(name);
         self.moved
-            .at(&symbol, k)
+            .at(name, k)
             .or_else(|| self.trace.values.get(name).and_then(|v| v.get(k)).copied())
-            .or_else(|| self.quiet.at(&symbol, k))
+            .or_else(|| self.quiet.at(name, k))
             .unwrap_or(false)
     }
 }
@@ -200,15 +257,7 @@ impl Shared {
     ) {
         let Some(quiet) = self.quiet(program, &trace) else { return };
         let index = program.compiled.equation_index();
-        let readers = self.readers.get_or_init(|| {
-            let position: HashMap<usize, usize> =
-                index.equations.iter().enumerate().map(|(p, (_, h))| (*h, p)).collect();
-            index
-                .mentioning
-                .iter()
-                .map(|(n, hs)| (*n, hs.iter().filter_map(|h| position.get(h).copied()).collect()))
-                .collect()
-        });
+        let readers = self.readers(program);
         // The equations that read, through any chain, an input the run sets.
         let mut moved = BTreeSet::new();
         let mut pending: Vec<Symbol> = trace
@@ -234,7 +283,7 @@ impl Shared {
             &|d| scans_of(d, &cycle),
             &mut |_, name, k| match trace.values.get(name) {
                 Some(v) => v.get(k).copied().unwrap_or(false),
-                None => quiet.at(&Symbol::from(name), k).unwrap_or(false),
+                None => quiet.at(name, k).unwrap_or(false),
             },
         ) else {
             return;
@@ -248,6 +297,7 @@ impl Shared {
             form,
             drawn,
             used: AtomicUsize::new(now),
+            base: OnceLock::new(),
         };
         if let Ok(mut runs) = self.runs.lock() {
             if runs.len() == MAX_RUNS {
@@ -255,6 +305,60 @@ impl Shared {
             }
             runs.push_back(Arc::new(kept));
         }
+    }
+
+    /// Per name, the equations (positions in scan order) that read it.
+    fn readers(&self, program: &Program) -> &HashMap<Symbol, Vec<usize>> {
+        let index = program.compiled.equation_index();
+        self.readers.get_or_init(|| {
+            let position: HashMap<usize, usize> =
+                index.equations.iter().enumerate().map(|(p, (_, h))| (*h, p)).collect();
+            index
+                .mentioning
+                .iter()
+                .map(|(n, hs)| (*n, hs.iter().filter_map(|h| position.get(h).copied()).collect()))
+                .collect()
+        })
+    }
+
+    /// The part of `model` (a property's cone) that the inputs whose values in `trace`
+    /// differ from those of the run `kept`, and the inputs of `also`, can change: its
+    /// equations that read, through any chain, one of them. Every other name the part
+    /// reads that the program defines has its value in the kept run, on which every
+    /// compiled hypothesis is checked exactly once ([`Kept::base`]); `None` when that
+    /// check failed or `trace` is longer than the kept run.
+    fn near(
+        &self,
+        program: &Program,
+        model: &Model,
+        trace: &ScanTrace,
+        kept: &Arc<Kept>,
+        also: &[&String],
+    ) -> Option<Part> {
+        if trace.scans > kept.trace.scans {
+            return None;
+        }
+        kept.base(program)?;
+        let mut changed = changed_inputs(trace, &kept.trace);
+        changed.extend(also.iter().map(|n| (*n).clone()));
+        let index = program.compiled.equation_index();
+        let readers = self.readers(program);
+        let defined: BTreeSet<&str> = model.defs.iter().map(|(n, _)| n.as_str()).collect();
+        let mut moved: BTreeSet<&str> = BTreeSet::new();
+        let mut pending: Vec<Symbol> = changed.iter().map(|n| Symbol::from(n.as_str())).collect();
+        while let Some(n) = pending.pop() {
+            for &p in readers.get(&n).map_or(&[][..], Vec::as_slice) {
+                let name = index.equations[p].0.as_str();
+                if defined.contains(name) && moved.insert(name) {
+                    pending.push(Symbol::from(name));
+                }
+            }
+        }
+        let part = Model {
+            defs: model.defs.iter().filter(|(n, _)| moved.contains(n.as_str())).cloned().collect(),
+            constraints: model.constraints.clone(),
+        };
+        Some(Part { part, kept: kept.clone(), changed })
     }
 
     /// The program's run with every input at 0, at least as long as `trace`.
@@ -296,6 +400,56 @@ impl Shared {
     fn depth_of(&self, compiled: &CompiledProgram, sides: [&Expr; 2]) -> usize {
         let depth = self.depth.get_or_init(|| depths(compiled));
         sides.iter().map(|e| deepest(e, depth)).max().unwrap_or(0)
+    }
+}
+
+/// The part of a property's cone a candidate is judged on ([`Shared::near`]).
+struct Part {
+    part: Model,
+    kept: Arc<Kept>,
+    changed: BTreeSet<String>,
+}
+
+impl Part {
+    /// `f` given the background the part reads: the kept run's values of the names the
+    /// program defines.
+    fn with<T>(&self, program: &Program, f: impl FnOnce(&Background) -> T) -> Option<T> {
+        let base = self.kept.base(program)?;
+        let defining = &program.compiled.equation_index().defining;
+        let at = |n: &str, k: usize| match defining.contains_key(n) {
+            true => base.values.at(n, k),
+            false => None,
+        };
+        let background = Background {
+            base: &at,
+            inputs: &self.kept.trace,
+            changed: &self.changed,
+            record: Some(&base.record),
+        };
+        Some(f(&background))
+    }
+
+    /// Whether `trace` violates the goal on the part.
+    fn violates(&self, program: &Program, goal: &Obligation, trace: &ScanTrace) -> bool {
+        self.with(program, |b| discrete_violation_near(&self.part, goal, trace, b).is_some())
+            .unwrap_or(false)
+    }
+
+    /// The judge's verdict on `trace`, on the part of the cone `full` (every signal of
+    /// which the counterexample holds with `all`).
+    fn judge(
+        &self,
+        program: &Program,
+        full: &Model,
+        goal: &Obligation,
+        (trace, all): (ScanTrace, bool),
+    ) -> Option<Box<Counterexample>> {
+        let judged =
+            |b: &Background| judge_near(program, (full, &self.part), goal, (trace, all), b);
+        match self.with(program, judged)? {
+            Ok(Judged::Both(found)) => Some(found),
+            _ => None,
+        }
     }
 }
 
@@ -341,9 +495,13 @@ pub fn refute_shared(
         if drawn.len() > MAX_DRAWN {
             continue;
         }
-        keep_needed(&mut trace, &drawn, &|t| discrete_violation(model, goal, t).is_some());
-        let limits = Limits { minimised: true, ..limits };
-        if let Ok(Judged::Both(found)) = judge(program, model, goal, trace, limits) {
+        // Judged on the part of the cone that differs from the kept run where it can be.
+        let part = shared.near(program, model, &trace, kept, &drawn);
+        keep_needed(&mut trace, &drawn, &|t| match &part {
+            Some(part) => part.violates(program, goal, t),
+            None => discrete_violation(model, goal, t).is_some(),
+        });
+        if let Some(found) = judged(program, model, part.as_ref(), goal, trace, limits) {
             kept.used.store(now, Ordering::Relaxed);
             shared.hits.fetch_add(1, Ordering::Relaxed);
             if !kept.drawn.is_empty() {
@@ -358,7 +516,7 @@ pub fn refute_shared(
     let form = form(goal);
     for kept in runs.iter().filter(|k| k.form == form).take(REPAIRS) {
         let (model, free) = cone.get_or_insert_with(cone_of);
-        let near = Near { model: program.cone(&[&goal.lhs, &goal.rhs], REPAIR_CAP), kept, free };
+        let near = Near::new(program.cone(&[&goal.lhs, &goal.rhs], REPAIR_CAP), kept, free, goal);
         let Some((mut trace, changed)) = near.repaired(goal) else { continue };
         let still = |t: &ScanTrace| near.violation(goal, t).is_some();
         let Some(v) = near.violation(goal, &trace) else { continue };
@@ -367,14 +525,34 @@ pub fn refute_shared(
             changed.iter().filter(|n| trace.values.contains_key(*n)).collect();
         keep_needed(&mut trace, &changed, &still);
         steady(&mut trace, &changed, &still);
-        let limits = Limits { minimised: true, ..limits };
-        if let Ok(Judged::Both(found)) = judge(program, model, goal, trace, limits) {
+        let part = shared.near(program, model, &trace, kept, &[]);
+        if let Some(found) = judged(program, model, part.as_ref(), goal, trace, limits) {
             kept.used.store(now, Ordering::Relaxed);
             shared.hits.fetch_add(1, Ordering::Relaxed);
             return Some(found);
         }
     }
     None
+}
+
+/// A candidate from a kept run judged (already minimised): on `part` of the cone
+/// `model` where there is one, else on the whole cone; confirmed both ways or nothing.
+fn judged(
+    program: &Program,
+    model: &Model,
+    part: Option<&Part>,
+    goal: &Obligation,
+    trace: ScanTrace,
+    limits: Limits,
+) -> Option<Box<Counterexample>> {
+    if let Some(part) = part {
+        return part.judge(program, model, goal, (trace, limits.signals));
+    }
+    let limits = Limits { minimised: true, ..limits };
+    match judge(program, model, goal, trace, limits) {
+        Ok(Judged::Both(found)) => Some(found),
+        _ => None,
+    }
 }
 
 /// How many kept runs (the most recent first) are repaired for a property none of them
@@ -409,9 +587,30 @@ struct Near<'a> {
     model: Model,
     kept: &'a Kept,
     free: &'a BTreeSet<String>,
+    /// The names the cut reads from outside it, each with whether it is in `free`
+    /// (looked up once, not at each read of a run).
+    outside: HashMap<String, bool>,
 }
 
-impl Near<'_> {
+impl<'a> Near<'a> {
+    fn new(model: Model, kept: &'a Kept, free: &'a BTreeSet<String>, goal: &Obligation) -> Self {
+        let outside = model
+            .free_names([&goal.lhs, &goal.rhs].into_iter())
+            .into_iter()
+            .map(|n| {
+                let input = free.contains(&n);
+                (n, input)
+            })
+            .collect();
+        Near { model, kept, free, outside }
+    }
+
+    /// Whether the run reads `name` from the trace (an input of the whole cone), not
+    /// from the kept run.
+    fn is_input(&self, name: &str) -> bool {
+        self.outside.get(name).copied().unwrap_or_else(|| self.free.contains(name))
+    }
+
     /// The kept run with the inputs of the cut chosen anew by a solver, so that `goal`
     /// fails at some scan of the run while every assumption holds: the trace of the
     /// run's inputs of the whole cone with those chosen, and the names whose values
@@ -429,7 +628,7 @@ impl Near<'_> {
             trace.scans,
             &|d| scans_of(d, &cycle),
             &mut |b, name, k| {
-                if self.free.contains(name) {
+                if self.is_input(name) {
                     let l = b.fresh();
                     chosen.entry(name.to_string()).or_default().push(l);
                     l
@@ -473,7 +672,7 @@ impl Near<'_> {
             &[&goal.lhs, &goal.rhs],
             trace.scans,
             &|d| scans_of(d, &cycle),
-            &mut |_, name, k| match self.free.contains(name) {
+            &mut |_, name, k| match self.is_input(name) {
                 true => trace.values.get(name).and_then(|v| v.get(k)).copied().unwrap_or(false),
                 false => self.kept.value(name, k),
             },

@@ -775,6 +775,7 @@ fn search_on_simulators(
             max_steps: 200,
             max_scans: 100_000,
             minimised: false,
+            signals: true,
         };
         if let counterexample::Verdict::Refuted(c) =
             counterexample::confirm(session, goal, trace, limits)

@@ -49,7 +49,13 @@ pub fn attempt(
     // A run that refuted another property of the program may refute this one too.
     if let Some(session) = program {
         let deadline = started + FIRST_LOOK.min(opts.timeout);
-        let limits = Limits { deadline, max_steps: 200, max_scans: 100_000, minimised: false };
+        let limits = Limits {
+            deadline,
+            max_steps: 200,
+            max_scans: 100_000,
+            minimised: false,
+            signals: opts.run_signals,
+        };
         if let Some(c) = counterexample::shared::refute_shared(session, goal, limits) {
             return Attempt::Refuted(program_counterexample(session, goal, &c, opts, rename));
         }
@@ -281,7 +287,13 @@ fn search_counterexample(
     deadline: Instant,
 ) -> Search {
     if let Some(session) = program {
-        let limits = Limits { deadline, max_steps: 200, max_scans: 100_000, minimised: false };
+        let limits = Limits {
+            deadline,
+            max_steps: 200,
+            max_scans: 100_000,
+            minimised: false,
+            signals: true,
+        };
         return match counterexample::refute(session, goal, limits) {
             Verdict::Refuted(c) => {
                 Search::Refuted(program_counterexample(session, goal, &c, opts, rename))
