@@ -213,3 +213,44 @@ fn a_variable_not_computed_is_named_with_its_type() {
     let all = text(&out.stdout) + &text(&out.stderr);
     assert!(all.contains("the DINT n is not computed (the conversion LINT_TO_DINT"), "{all}");
 }
+
+/// A TIME variable written only with its declared literal, and a function block's TIME
+/// input given one literal by each instance's call, are exact presets; a TIME variable
+/// also written with another literal leaves its timer unconstrained, with the reason.
+#[test]
+fn time_variables_constant_in_fact_are_exact_presets() {
+    let st = "tests/data/st/programs/time_presets.st";
+    let out = ii_prove(&["show", st]);
+    let stdout = text(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(stdout.contains("AlarmTimer_Q = 2s/Start"), "{stdout}");
+    assert!(stdout.contains("B1_T_Q = 500ms/B1_Run"), "{stdout}");
+    assert!(stdout.contains("B2_T_Q = 1s/B2_Run"), "{stdout}");
+    assert!(stdout.contains("SlowTimer_Q = TON_SlowTimer"), "{stdout}");
+    assert!(
+        stdout.contains(
+            "a delay given by the variable Slow is not a constant: it holds T#1s and is also \
+             written with T#3s at line 42"
+        ),
+        "{stdout}"
+    );
+    let got = verdicts(&[st, "tests/data/st/programs/time_presets.ii"]);
+    assert!(got.len() == 4 && got.iter().all(|(_, v)| v == "proved"), "{got:?}");
+    // The block's body also writes its input: no instance's timer has a preset.
+    let written =
+        std::fs::read_to_string(st).unwrap().replace("  Q := T.Q;", "  Q := T.Q;\n  On := T#3s;");
+    let dir = std::env::temp_dir().join(format!("ii-prove-st-time-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("time_presets_written.st");
+    std::fs::write(&path, written).unwrap();
+    let all = text(&ii_prove(&["show", path.to_str().unwrap()]).stdout);
+    assert!(all.contains("B1_T_Q = TON_B1_T") && all.contains("B2_T_Q = TON_B2_T"), "{all}");
+    assert!(
+        all.contains(
+            "a delay given by the variable B1_On is not a constant: it holds T#500ms and is \
+             also written with T#3s at line 17"
+        ),
+        "{all}"
+    );
+    assert!(all.contains("AlarmTimer_Q = 2s/Start"), "{all}");
+}

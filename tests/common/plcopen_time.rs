@@ -43,10 +43,8 @@ impl Times {
 impl Gen {
     /// A timer's `PT`: now and then a TIME variable instead of the literal `literal`.
     pub(super) fn preset(&mut self, literal: &'static str) -> &'static str {
-        match self.times.as_mut() {
-            Some(t) if t.rng.chance(35) => *t.rng.pick(&TIME_VARS),
-            _ => literal,
-        }
+        let Some(t) = self.times.as_mut() else { return literal };
+        if t.rng.chance(35) { *t.rng.pick(&TIME_VARS) } else { literal }
     }
 
     /// In an FBD body: the TIME variables' writes, `D0 := its literal` sometimes, and
