@@ -88,10 +88,8 @@ pub(super) fn time_facts(sources: &Sources, unit: &ast::Unit) -> TimeFacts {
             let key = (pou.name.key(), v.name.key());
             let writes = found.writes.get(&key).map_or(&[][..], |w| w);
             let fact = match (pou.kind, v.class) {
-                (PouKind::FunctionBlock, VarClass::Input) => fixed_class(v).and_then(|()| {
-                    let init = init_of(v).map_err(bad_init)?;
-                    fb_input(init, writes, found.calls.get(&key), found.unknown_call.as_deref())
-                }),
+                // Each instance's own, by its declaration (`instance_facts`).
+                (PouKind::FunctionBlock, VarClass::Input) => continue,
                 (PouKind::Program, VarClass::Input) if writes.is_empty() => {
                     facts.unwritten_inputs.insert(key.clone());
                     Err("it is an input of the program, written from outside".into())
@@ -225,7 +223,7 @@ impl Walk<'_> {
                     self.write(target, Some(value), "an expression", found);
                     self.expr(value, found);
                 }
-                StmtKind::Call(inst, args) => self.call(inst, args, false, found),
+                StmtKind::Call(inst, args) => self.call(inst, args, found),
                 StmtKind::If(arms, otherwise) => {
                     for (c, body) in arms {
                         self.expr(c, found);
@@ -282,9 +280,8 @@ impl Walk<'_> {
         }
     }
 
-    /// The call of the instance `inst` with `args` (`first`: IL's current result is its
-    /// first input).
-    fn call(&self, inst: &Expr, args: &[Arg], first: bool, found: &mut Found) {
+    /// The call of the instance `inst` with `args`.
+    fn call(&self, inst: &Expr, args: &[Arg], found: &mut Found) {
         for a in args {
             match a {
                 Arg::Output(_, _, target) => self.write(target, None, "a call's output", found),
@@ -295,19 +292,16 @@ impl Walk<'_> {
         let inputs: Vec<&ast::VarDecl> =
             fb.vars.iter().filter(|v| v.class == VarClass::Input).collect();
         let at = self.at(inst);
-        let mut given: BTreeMap<String, Option<&Expr>> = BTreeMap::new();
-        let mut next = usize::from(first);
-        if first && let Some(v) = inputs.first() {
-            given.insert(v.name.key(), None);
-        }
+        let mut given: BTreeMap<String, &Expr> = BTreeMap::new();
+        let mut next = 0;
         for a in args {
             match a {
                 Arg::Input(n, e) => {
-                    given.insert(n.key(), Some(e));
+                    given.insert(n.key(), e);
                 }
                 Arg::Positional(e) => {
                     if let Some(v) = inputs.get(next) {
-                        given.insert(v.name.key(), Some(e));
+                        given.insert(v.name.key(), e);
                     }
                     next += 1;
                 }
@@ -315,11 +309,10 @@ impl Walk<'_> {
             }
         }
         for v in inputs.iter().filter(|v| is_time(v)) {
-            let w = given.get(&v.name.key()).map(|e| match e.map(|e| &e.kind) {
-                Some(ExprKind::Time(us)) => TimeWrite::Literal(*us, format!("by the call {at}")),
+            let w = given.get(&v.name.key()).map(|e| match &e.kind {
+                ExprKind::Time(us) => TimeWrite::Literal(*us, format!("by the call {at}")),
                 _ => TimeWrite::Other(format!("a value that is not a literal by the call {at}")),
             });
-            found.calls.entry((fb.name.key(), v.name.key())).or_default().push(w.clone());
             found.calls.entry((decl.clone(), v.name.key())).or_default().push(w);
         }
     }
@@ -347,19 +340,17 @@ impl Walk<'_> {
                         self.il(lines, found);
                     }
                 }
-                Some(IlInstr::Call { instance, args, .. }) => {
-                    self.call(instance, args, false, found)
-                }
+                Some(IlInstr::Call { instance, args, .. }) => self.call(instance, args, found),
                 Some(IlInstr::FbInput { pin, instance, .. }) => {
+                    // A call with the current result as `pin`, every other input left out.
                     if let Some((fb, decl)) = self.instance_type(instance, found) {
                         let at = self.at(instance);
-                        let w = TimeWrite::Other(format!("the IL operator {pin} {at}"));
-                        found
-                            .calls
-                            .entry((fb.name.key(), pin.clone()))
-                            .or_default()
-                            .push(Some(w.clone()));
-                        found.calls.entry((decl, pin.clone())).or_default().push(Some(w));
+                        for v in fb.vars.iter().filter(|v| v.class == VarClass::Input && is_time(v))
+                        {
+                            let w = (v.name.key() == *pin)
+                                .then(|| TimeWrite::Other(format!("the IL operator {pin} {at}")));
+                            found.calls.entry((decl.clone(), v.name.key())).or_default().push(w);
+                        }
                     }
                 }
                 _ => {}
