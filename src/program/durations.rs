@@ -36,9 +36,9 @@ pub fn constant_value(init: u64, writes: &[TimeWrite]) -> Result<u64, String> {
 /// A duration in µs as an IEC literal (`T#2s`, `T#1500ms`, `T#250us`).
 pub fn show(us: u64) -> String {
     let mut s = String::from("T#");
-    if us % 1_000_000 == 0 {
+    if us.is_multiple_of(1_000_000) {
         let _ = write!(s, "{}s", us / 1_000_000);
-    } else if us % 1_000 == 0 {
+    } else if us.is_multiple_of(1_000) {
         let _ = write!(s, "{}ms", us / 1_000);
     } else {
         let _ = write!(s, "{us}us");

@@ -44,7 +44,10 @@ impl Gen {
     /// A timer's `PT`: now and then a TIME variable instead of the literal `literal`.
     pub(super) fn preset(&mut self, literal: &'static str) -> &'static str {
         let Some(t) = self.times.as_mut() else { return literal };
-        if t.rng.chance(35) { *t.rng.pick(&TIME_VARS) } else { literal }
+        if !t.rng.chance(35) {
+            return literal;
+        }
+        TIME_VARS[usize::from(t.rng.chance(50))]
     }
 
     /// In an FBD body: the TIME variables' writes, `D0 := its literal` sometimes, and
