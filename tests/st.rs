@@ -235,21 +235,35 @@ fn time_variables_constant_in_fact_are_exact_presets() {
     }
     let got = verdicts(&[st, "tests/data/st/programs/time_presets.ii"]);
     assert!(got.len() == 4 && got.iter().all(|(_, v)| v == "proved"), "{got:?}");
-    // The block's body also writes its input: no instance's timer has a preset.
-    let written =
-        std::fs::read_to_string(st).unwrap().replace("  Q := T.Q;", "  Q := T.Q;\n  On := T#3s;");
+    // Variants, each with the timer it leaves unconstrained and the reason.
+    let variants = [
+        // The block's body also writes its input: no instance's timer has a preset.
+        (
+            ("  Q := T.Q;", "  Q := T.Q;\n  On := T#3s;"),
+            "B1_T_Q = TON_B1_T",
+            "the variable B1_On is not a constant: it holds T#500ms and is also written with \
+             T#3s at line 17",
+        ),
+        (
+            ("  Delay := T#2s;", "  Delay := Slow;"),
+            "AlarmTimer_Q = TON_AlarmTimer",
+            "the variable Delay is not a constant: it is written with an expression at line \
+             38, not a literal duration",
+        ),
+        (
+            ("  Delay : TIME", "  Delay AT %MD0 : TIME"),
+            "AlarmTimer_Q = TON_AlarmTimer",
+            "the variable Delay is not a constant: it is located at %MD0, which the outside \
+             world may write",
+        ),
+    ];
     let dir = std::env::temp_dir().join(format!("ii-prove-st-time-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("time_presets_written.st");
-    std::fs::write(&path, written).unwrap();
-    let all = shown(path.to_str().unwrap());
-    assert!(all.contains("B1_T_Q = TON_B1_T") && all.contains("B2_T_Q = TON_B2_T"), "{all}");
-    assert!(
-        all.contains(
-            "a delay given by the variable B1_On is not a constant: it holds T#500ms and is \
-             also written with T#3s at line 17"
-        ),
-        "{all}"
-    );
-    assert!(all.contains("AlarmTimer_Q = 2s/Start"), "{all}");
+    for (k, ((from, to), equation, reason)) in variants.into_iter().enumerate() {
+        let variant = std::fs::read_to_string(st).unwrap().replace(from, to);
+        let path = dir.join(format!("time_presets_{k}.st"));
+        std::fs::write(&path, variant).unwrap();
+        let all = shown(path.to_str().unwrap());
+        assert!(all.contains(equation) && all.contains(reason), "{equation}, {reason}: {all}");
+    }
 }

@@ -131,7 +131,15 @@ fn instance_facts(
         let writes = found.writes.get(&(fb.name.key(), x.name.key())).map_or(&[][..], |w| w);
         let calls = found.calls.get(&(decl.clone(), x.name.key()));
         let fact = fixed_class(x).and_then(|()| {
-            let init = init_of(x).map_err(bad_init)?;
+            // A retained instance's inputs start, after a warm restart, with any value.
+            let init = match init_of(x) {
+                _ if v.retain => Err(format!(
+                    "the instance {} is retained, and a call leaves it out or none writes \
+                     it: after a warm restart it keeps the value it had",
+                    v.name.name
+                )),
+                init => init.map_err(bad_init),
+            };
             fb_input(init, writes, calls, found.unknown_call.as_deref())
         });
         facts.values.insert((decl.clone(), x.name.key()), fact);
@@ -155,9 +163,10 @@ fn fixed_class(v: &ast::VarDecl) -> Result<(), String> {
 
 /// A function block's TIME input: each call writes it before the body reads it, so when
 /// every call gives the same literal and the body writes only that, the body reads it;
-/// a call that leaves it out keeps the value before, from the start value on.
+/// a call that leaves it out keeps the value before, from the start value `init` on (or
+/// why that is not known).
 fn fb_input(
-    init: u64,
+    init: Result<u64, String>,
     writes: &[TimeWrite],
     calls: Option<&Vec<Option<TimeWrite>>>,
     unknown_call: Option<&str>,
@@ -171,7 +180,7 @@ fn fb_input(
     let omitted = calls.iter().any(Option::is_none);
     match all.first() {
         Some(TimeWrite::Literal(us, _)) if !omitted => constant_value(*us, &all),
-        _ => constant_value(init, &all),
+        _ => constant_value(init?, &all),
     }
 }
 
