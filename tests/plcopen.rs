@@ -515,3 +515,57 @@ fn a_value_from_a_block_not_computed_names_the_block() {
     let all = text(&out.stdout) + &text(&out.stderr);
     assert!(all.contains("the output OUT of TempSimulation (Simulator) is not computed"), "{all}");
 }
+
+/// The door alarm of `tests/data/proves_programs/door_alarm_delay_var.xml` with the
+/// literal that writes `Delay` replaced by `written`.
+fn door_alarm(written: &str) -> String {
+    std::fs::read_to_string(root().join("tests/data/proves_programs/door_alarm_delay_var.xml"))
+        .unwrap()
+        .replace("<expression>T#2s</expression>", &format!("<expression>{written}</expression>"))
+}
+
+#[test]
+fn a_time_variable_written_with_a_second_literal_keeps_its_timer_unconstrained() {
+    let path = temp("door_3s.xml", &door_alarm("T#3s"));
+    let out = ii_prove(&["show", path.to_str().unwrap()]);
+    let all = text(&out.stdout) + &text(&out.stderr);
+    assert!(
+        all.contains(
+            "a delay given by the variable Delay is not a constant: it holds T#2s and is also \
+             written with T#3s by the outVariable with localId 6"
+        ),
+        "{all}"
+    );
+    assert!(all.contains("AlarmTimer_Q = TON_AlarmTimer"), "{all}");
+    // The PLC's alarm waits 3 s: not proved to wait 2 s (true, but the timer is
+    // unconstrained), and refuted to come 2 s after the door opened, the simulator
+    // reading Delay's current value.
+    let props = root().join("tests/data/proves_programs/door_alarm_delay_var.ii");
+    let out = ii_prove(&[path.to_str().unwrap(), props.to_str().unwrap()]);
+    let all = text(&out.stdout);
+    assert!(all.contains("AlarmAfterDelay  unknown"), "{all}");
+    assert!(all.contains("HeldDoorAlarms   refuted"), "{all}");
+    assert!(all.contains("by the scan simulator (violated at scan 101)"), "{all}");
+    // A non-literal write (another variable's value) is not one value either.
+    let path = temp("door_var.xml", &door_alarm("Door"));
+    let out = ii_prove(&["show", path.to_str().unwrap()]);
+    let all = text(&out.stdout) + &text(&out.stderr);
+    assert!(all.contains("it is written with a value that is not a literal by the"), "{all}");
+}
+
+#[test]
+fn the_simulator_reads_a_time_variable_preset_at_each_call() {
+    // The TON reads Delay (T#2s) at the first scan, T#3s from the second on (localId 6
+    // runs after it): matiec compares the elapsed time with PT at each call, so the
+    // alarm sounds at the first scan 3 s after the door opened, at 20 ms a scan.
+    let mut sources = Sources::new();
+    let file = sources.add("door.xml", door_alarm("T#3s"));
+    let p = read_plcopen(&sources, file).and_then(|p| select(&p, &Selection::default())).unwrap();
+    let mut sim = ii_prove::ladder::plcopen::PlcSimulator::new(&p);
+    let door = [("Door".to_string(), true)].into_iter().collect();
+    let first = (1..=200).find(|_| {
+        sim.step(&door);
+        sim.bit("Alarm")
+    });
+    assert_eq!(first, Some(151));
+}

@@ -62,9 +62,7 @@ fn assert_comments_are_properties_checked_where_they_stand() {
 #[test]
 fn every_program_of_the_configuration_runs_in_task_order() {
     let st = "tests/data/st/programs/two_tasks.st";
-    let out = ii_prove(&["show", st]);
-    let stdout = text(&out.stdout);
-    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let stdout = shown(st);
     // Pumps (task Fast, priority 1) runs before Alarm (task Slow), though declared after.
     let run = stdout.find("assume L06: Run = P_Latch").expect("Pumps writes Run");
     let timer = stdout.find("assume L13: T_Q = 2s/(Run · Fault)").expect("Alarm reads it");
@@ -156,14 +154,19 @@ fn random_st_programs_agree_with_the_scan_simulator() {
     );
 }
 
+/// What `show` prints for the program at `path`, which loads.
+fn shown(path: &str) -> String {
+    let out = ii_prove(&["show", path]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    text(&out.stdout)
+}
+
 /// User function blocks and functions are inlined: each instance's variables are bits
 /// of its own, a function's are its call's.
 #[test]
 fn user_function_blocks_and_functions_are_inlined() {
     let st = "tests/data/st/programs/user_blocks.st";
-    let out = ii_prove(&["show", st]);
-    let stdout = text(&out.stdout);
-    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let stdout = shown(st);
     assert!(stdout.contains("M1_Overload_Q = 2s/(M1_Run · ¬M1_Ok)"), "{stdout}");
     assert!(stdout.contains("M2_Overload_Q = 2s/(M2_Run · ¬M2_Ok)"), "{stdout}");
     assert!(stdout.contains("Permit_1 = Permit_1_Guard · ¬Permit_1_EStop"), "{stdout}");
@@ -176,9 +179,7 @@ fn user_function_blocks_and_functions_are_inlined() {
 #[test]
 fn case_and_constant_for_loops_are_lowered() {
     let st = "tests/data/st/programs/case_and_for.st";
-    let out = ii_prove(&["show", st]);
-    let stdout = text(&out.stdout);
-    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let stdout = shown(st);
     assert!(stdout.contains("Blink = ¬pre Blink"), "three toggles in one scan: {stdout}");
     assert!(stdout.contains("input Mode_b0, Mode_b1"), "the selector is an input: {stdout}");
     assert!(!stdout.contains("unconstrained"), "{stdout}");
@@ -212,4 +213,57 @@ fn a_variable_not_computed_is_named_with_its_type() {
     let out = ii_prove(&["show", path.to_str().unwrap()]);
     let all = text(&out.stdout) + &text(&out.stderr);
     assert!(all.contains("the DINT n is not computed (the conversion LINT_TO_DINT"), "{all}");
+}
+
+/// A TIME variable written only with its declared literal, and a function block's TIME
+/// input given one literal by each instance's call, are exact presets; a TIME variable
+/// also written with another literal leaves its timer unconstrained, with the reason.
+#[test]
+fn time_variables_constant_in_fact_are_exact_presets() {
+    let st = "tests/data/st/programs/time_presets.st";
+    let stdout = shown(st);
+    let equations = [
+        "AlarmTimer_Q = 2s/Start",
+        "B1_T_Q = 500ms/B1_Run",
+        "B2_T_Q = 1s/B2_Run",
+        "SlowTimer_Q = TON_SlowTimer",
+        "a delay given by the variable Slow is not a constant: it holds T#1s and is also \
+         written with T#3s at line 42",
+    ];
+    for e in equations {
+        assert!(stdout.contains(e), "{e}: {stdout}");
+    }
+    let got = verdicts(&[st, "tests/data/st/programs/time_presets.ii"]);
+    assert!(got.len() == 4 && got.iter().all(|(_, v)| v == "proved"), "{got:?}");
+    // Variants, each with the timer it leaves unconstrained and the reason.
+    let variants = [
+        // The block's body also writes its input: no instance's timer has a preset.
+        (
+            ("  Q := T.Q;", "  Q := T.Q;\n  On := T#3s;"),
+            "B1_T_Q = TON_B1_T",
+            "the variable B1_On is not a constant: it holds T#500ms and is also written with \
+             T#3s at line 17",
+        ),
+        (
+            ("  Delay := T#2s;", "  Delay := Slow;"),
+            "AlarmTimer_Q = TON_AlarmTimer",
+            "the variable Delay is not a constant: it is written with an expression at line \
+             38, not a literal duration",
+        ),
+        (
+            ("  Delay : TIME", "  Delay AT %MD0 : TIME"),
+            "AlarmTimer_Q = TON_AlarmTimer",
+            "the variable Delay is not a constant: it is located at %MD0, which the outside \
+             world may write",
+        ),
+    ];
+    let dir = std::env::temp_dir().join(format!("ii-prove-st-time-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (k, ((from, to), equation, reason)) in variants.into_iter().enumerate() {
+        let variant = std::fs::read_to_string(st).unwrap().replace(from, to);
+        let path = dir.join(format!("time_presets_{k}.st"));
+        std::fs::write(&path, variant).unwrap();
+        let all = shown(path.to_str().unwrap());
+        assert!(all.contains(equation) && all.contains(reason), "{equation}, {reason}: {all}");
+    }
 }

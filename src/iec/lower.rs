@@ -14,6 +14,7 @@
 //! input assigned outside its call, are refused with a located error.
 
 mod calls;
+mod durations;
 mod expr;
 mod flow;
 mod il;
@@ -41,6 +42,9 @@ pub struct Lowered {
     pub asserts: Vec<Assertion>,
     /// Warnings (cycle taken by default, elements not modelled exactly), located.
     pub warnings: Vec<StError>,
+    /// The program's TIME inputs no statement writes (a timer whose `PT` is one is
+    /// unconstrained here, [`Preset::Variable`](crate::program::Preset) named after it).
+    pub time_inputs: BTreeSet<String>,
 }
 
 /// A property written in the program: the bit that holds its truth at that point of the
@@ -149,8 +153,10 @@ pub fn lower(
     // An integer found opaque while lowering changes what reads it: lowered again
     // until no new one appears (each round adds one at least).
     let (mut opaque, mut omitted) = (BTreeMap::new(), BTreeSet::new());
+    let time_facts = durations::time_facts(sources, unit);
     loop {
         let mut l = Lowering::new(sources, cycle_us, warnings.clone());
+        l.time_facts = time_facts.clone();
         l.opaque = opaque.clone();
         l.omitted = omitted.clone();
         l.user = unit
@@ -328,9 +334,15 @@ struct Lowering<'s> {
     line: usize,
     /// Whether a body is Instruction List.
     il: bool,
-    /// `CONSTANT` TIME variables with a literal initial value (by their names in the
-    /// scan model): their µs.
+    /// `CONSTANT` TIME variables with a literal initial value and TIME variables
+    /// constant in fact (by their names in the scan model): their µs.
     durations: BTreeMap<String, u64>,
+    /// Every TIME variable of the file: its one value, or why it may change (given).
+    time_facts: durations::TimeFacts,
+    /// TIME variables that may change (by their names in the scan model): why.
+    time_why: BTreeMap<String, String>,
+    /// The programs' TIME inputs no statement writes (by their names in the scan model).
+    time_inputs: BTreeSet<String>,
     /// The function blocks and functions the file declares, by upper-case name.
     user: BTreeMap<String, ast::Pou>,
     /// Each user FB instance's variables (by the instance's name in the scan model).
@@ -385,6 +397,9 @@ impl<'s> Lowering<'s> {
             line: 0,
             il: false,
             durations: BTreeMap::new(),
+            time_facts: durations::TimeFacts::default(),
+            time_why: BTreeMap::new(),
+            time_inputs: BTreeSet::new(),
             user: BTreeMap::new(),
             instances: BTreeMap::new(),
             inlining: Vec::new(),
@@ -473,7 +488,8 @@ impl<'s> Lowering<'s> {
                 }
                 self.declare_int(v, &name, t, v.class == VarClass::Input);
             }
-            self.constant_duration(v, &name);
+            let owner = if k < n_globals { String::new() } else { pou.name.key() };
+            self.constant_duration(v, &name, &owner);
             if let Ty::Fb(
                 Fb::Ton | Fb::Tof | Fb::Tp | Fb::RTrig | Fb::FTrig | Fb::Sr | Fb::Rs | Fb::Counter,
                 _,
@@ -488,7 +504,8 @@ impl<'s> Lowering<'s> {
             }
             self.taken.insert(name.clone());
             if let Ty::User(fb) = &ty {
-                self.instantiate(&name, fb, v.name.span);
+                let owner = if k < n_globals { String::new() } else { pou.name.key() };
+                self.instantiate(&name, fb, &format!("{owner}.{key}"), v.name.span);
             }
             self.syms.insert(key, Sym { name, ty, span: v.name.span });
         }
@@ -503,12 +520,28 @@ impl<'s> Lowering<'s> {
         ));
     }
 
-    /// A `CONSTANT` TIME `v` with a literal value: a preset timers may take (as `name`).
-    fn constant_duration(&mut self, v: &ast::VarDecl, name: &str) {
+    /// A `CONSTANT` TIME `v` with a literal value, or a TIME variable of the POU `owner`
+    /// (`""`: a global) constant in fact: a preset timers may take (as `name`); else why
+    /// its value may change.
+    fn constant_duration(&mut self, v: &ast::VarDecl, name: &str, owner: &str) {
         if v.constant
             && let Some(ExprKind::Time(us)) = v.init.as_ref().map(|e| &e.kind)
         {
             self.durations.insert(name.to_string(), *us);
+            return;
+        }
+        let key = (owner.to_string(), v.name.key());
+        if self.time_facts.unwritten_inputs.contains(&key) {
+            self.time_inputs.insert(name.to_string());
+        }
+        match self.time_facts.values.get(&key) {
+            Some(Ok(us)) => {
+                self.durations.insert(name.to_string(), *us);
+            }
+            Some(Err(why)) => {
+                self.time_why.insert(name.to_string(), why.clone());
+            }
+            None => {}
         }
     }
 
@@ -716,6 +749,13 @@ impl<'s> Lowering<'s> {
                 Vec::new()
             }
             Ty::Int(t) => self.int_assign(&sym.name, t, value, span),
+            // A TIME variable constant in fact written with its one value: no change.
+            Ty::Other(_)
+                if matches!(value.kind, ExprKind::Time(us)
+                    if self.durations.get(&sym.name) == Some(&us)) =>
+            {
+                Vec::new()
+            }
             Ty::Other(t) => vec![integer_write(span, ":=", &t, &sym.name)],
             Ty::Fb(..) | Ty::User(_) => {
                 self.refuse(id.span, "assigning a function-block instance", "call it instead");
@@ -798,7 +838,12 @@ impl<'s> Lowering<'s> {
             started: self.started,
             hidden,
         };
-        Lowered { program, asserts: self.asserts, warnings: self.warnings }
+        Lowered {
+            program,
+            asserts: self.asserts,
+            warnings: self.warnings,
+            time_inputs: self.time_inputs,
+        }
     }
 }
 

@@ -469,7 +469,9 @@ impl<'a> Lowering<'a> {
                                 adjust: *adjust,
                                 default_of: (!adjust_given).then(|| self.program.version.label()),
                             },
-                            TimerDelay::Variable(v) => Preset::Variable(v.clone()),
+                            TimerDelay::Variable(v) => {
+                                Preset::Variable { name: v.clone(), why: None }
+                            }
                         };
                         let timer = Timer {
                             on_delay: *kind == TimerKind::Ton,

@@ -911,9 +911,12 @@ impl<'a> Compiler<'a> {
             _ if self.shared_timers.contains(name) => Some(format!(
                 "the accumulator {name} is also written by another element (RES, MOVE, a SHIFT_REGISTER stage, PERSIST at power-up, another timer, …)"
             )),
-            Preset::Variable(v) => {
-                Some(format!("a delay given by the variable {v} is not a constant"))
-            }
+            Preset::Variable { name, why } => Some(match why {
+                Some(why) => {
+                    format!("a delay given by the variable {name} is not a constant: {why}")
+                }
+                None => format!("a delay given by the variable {name} is not a constant"),
+            }),
             Preset::Micros { us: 0, .. } => Some("a zero delay is not a delay".into()),
             Preset::Micros { .. } if cycle == 0 => {
                 Some("with a zero cycle the timer never expires".into())

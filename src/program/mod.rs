@@ -16,6 +16,7 @@ pub mod any_state;
 pub mod atoms;
 pub mod bitvec;
 pub mod compile;
+pub mod durations;
 pub mod library;
 pub mod logic;
 pub mod names;
@@ -563,8 +564,14 @@ pub enum Preset {
         /// warning, "the default adjust of an LDmicro0.1 file").
         default_of: Option<String>,
     },
-    /// A delay given by a variable.
-    Variable(String),
+    /// A delay given by a variable whose value is not known to be one duration: its
+    /// name, and why not where the front end knows (`Delay` is also written with T#3s).
+    Variable {
+        /// The variable (or the pin, `T1.PT`).
+        name: String,
+        /// Why its value is not one literal duration.
+        why: Option<String>,
+    },
 }
 
 impl Preset {

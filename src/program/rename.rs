@@ -1,11 +1,14 @@
 //! A scan-model program's names renamed, and its scan-local values and one-shot indexes shifted: how a front end places a standalone program (a function block's body) inside another, one instance at a time.
 #![warn(missing_docs)]
 
+use std::collections::BTreeMap;
+
 use super::{Block, BoolExpr, IntExpr, Preset, Program, Stmt, WriteKind};
 
 /// What a renaming changes: every name (bits, integers, timer accumulators, variable
 /// presets, the bases of one-shot memories and unconstrained values) through `name`,
-/// every scan-local value by `temps`, every one-shot index through `edge`.
+/// every scan-local value by `temps`, every one-shot index through `edge`, and each
+/// variable preset whose (new) variable `presets` names into that preset.
 pub struct Renaming<'a> {
     /// The new name of a name.
     pub name: &'a dyn Fn(&str) -> String,
@@ -13,6 +16,8 @@ pub struct Renaming<'a> {
     pub temps: usize,
     /// The new index of a one-shot's memory.
     pub edge: &'a mut dyn FnMut(usize) -> usize,
+    /// The presets of variables known to hold one duration, by their new names.
+    pub presets: &'a BTreeMap<String, Preset>,
 }
 
 impl Renaming<'_> {
@@ -67,7 +72,10 @@ impl Renaming<'_> {
             BoolExpr::Or(xs) => BoolExpr::Or(xs.iter().map(|x| self.expr(x)).collect()),
             BoolExpr::Timer(t) => {
                 let preset = match &t.preset {
-                    Preset::Variable(v) => Preset::Variable(name(v)),
+                    Preset::Variable { name: v, why } => match self.presets.get(&name(v)) {
+                        Some(p) => p.clone(),
+                        None => Preset::Variable { name: name(v), why: why.clone() },
+                    },
                     p => p.clone(),
                 };
                 BoolExpr::Timer(Box::new(super::Timer {
@@ -112,7 +120,9 @@ impl Program {
     pub fn prefixed(&self, prefix: &str) -> Program {
         let name = |n: &str| format!("{prefix}{n}");
         let mut edge = |i: usize| i;
-        let blocks = Renaming { name: &name, temps: 0, edge: &mut edge }.blocks(&self.blocks);
+        let presets = BTreeMap::new();
+        let blocks = Renaming { name: &name, temps: 0, edge: &mut edge, presets: &presets }
+            .blocks(&self.blocks);
         let set = |s: &std::collections::BTreeSet<String>| s.iter().map(|n| name(n)).collect();
         Program {
             blocks,
@@ -129,6 +139,16 @@ impl Program {
             hidden: set(&self.hidden),
             ..self.clone()
         }
+    }
+
+    /// The program with each timer whose preset is a variable `presets` names given
+    /// that preset (a variable known to hold one duration).
+    pub fn with_presets(&self, presets: &BTreeMap<String, Preset>) -> Program {
+        let same = |n: &str| n.to_string();
+        let mut edge = |i: usize| i;
+        let blocks =
+            Renaming { name: &same, temps: 0, edge: &mut edge, presets }.blocks(&self.blocks);
+        Program { blocks, ..self.clone() }
     }
 
     /// One more than the largest scan-local value the blocks use (0 without any).

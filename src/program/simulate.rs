@@ -362,7 +362,7 @@ impl Simulator {
         let cycle = self.program.cycle_us;
         let scans = match &t.preset {
             _ if self.shared.contains(&t.accumulator) || cycle == 0 => None,
-            Preset::Micros { us: 0, .. } | Preset::Variable(_) => None,
+            Preset::Micros { us: 0, .. } | Preset::Variable { .. } => None,
             Preset::Micros { us, adjust, .. } => Some(match self.timers_model {
                 TimerModel::Plc => {
                     i64::try_from(us / cycle).unwrap_or(i64::MAX).saturating_add(*adjust)

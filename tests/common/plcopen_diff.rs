@@ -22,6 +22,8 @@ use ii_prove::term::Term;
 mod conv;
 #[path = "plcopen_real.rs"]
 mod real;
+#[path = "plcopen_time.rs"]
+mod time;
 
 const INPUTS: &[&str] = &["In0", "In1", "In2", "In3"];
 const BITS: &[&str] = &["B0", "B1", "B2", "Q0", "Q1"];
@@ -91,6 +93,8 @@ struct Gen {
     no_layout: bool,
     /// Whether the body may use the integer variables.
     ints: bool,
+    /// The TIME variables timers may take as presets (the main program's).
+    times: Option<time::Times>,
 }
 
 fn pins(rng: &mut Rng, ty: &str) -> Vec<&'static str> {
@@ -238,6 +242,7 @@ impl Gen {
             let refs = match pin {
                 "PT" => {
                     let preset = *self.rng.pick(PRESETS);
+                    let preset = self.preset(preset);
                     vec![(self.in_var(preset, fbd), None)]
                 }
                 "PV" => vec![(self.in_var("3", fbd), None)],
@@ -584,6 +589,7 @@ fn random_body(
     ghost: &'static str,
     user_fb: bool,
     reals: Option<Rng>,
+    times: Option<time::Times>,
 ) -> (String, &'static str, String, Rng) {
     let mut g = Gen {
         rng,
@@ -597,6 +603,7 @@ fn random_body(
         user_fb,
         no_layout: false,
         ints: inputs == INPUTS,
+        times,
     };
     g.no_layout = g.rng.chance(15);
     let fbd = g.rng.chance(45);
@@ -616,6 +623,9 @@ fn random_body(
             g.real_network();
         }
         std::mem::swap(&mut g.rng, &mut r);
+    }
+    if fbd {
+        g.time_writes();
     }
     let mut decls = String::new();
     for (inst, ty) in &g.instances {
@@ -653,7 +663,7 @@ pub fn random_program(seed: u64) -> String {
     let user_fb = rng.chance(30);
     let mut fb_pou = String::new();
     if user_fb {
-        let (body, lang, decls, r) = random_body(rng, FB_INPUTS, FB_BITS, "G1", false, None);
+        let (body, lang, decls, r) = random_body(rng, FB_INPUTS, FB_BITS, "G1", false, None, None);
         rng = r;
         fb_pou = format!(
             r#"<pou name="{USER_FB}" pouType="functionBlock"><interface><inputVars>{}</inputVars><outputVars>{}</outputVars><localVars>{}
@@ -666,7 +676,10 @@ pub fn random_program(seed: u64) -> String {
         );
     }
     let reals = Some(Rng::new(seed ^ 0x5EA1));
-    let (body, lang, decls, mut rng) = random_body(rng, INPUTS, BITS, GHOST, user_fb, reals);
+    let times = time::Times::new(seed);
+    let time_decls = times.decls();
+    let (body, lang, decls, mut rng) =
+        random_body(rng, INPUTS, BITS, GHOST, user_fb, reals, Some(times));
     // Beremiz SVGHMI variables (the HMI writes them before any scan): the first bit an
     // HMI_BOOL, the first integer an HMI_INT (both written by the program too, so latched),
     // the integer input an HMI_INT; drawn apart so that the other draws stay as they were.
@@ -725,6 +738,7 @@ pub fn random_program(seed: u64) -> String {
         writeln!(inputs, r#"<variable name="{r0}"><type><REAL/></type></variable>"#).unwrap();
     }
     vars.push_str(&decls);
+    writeln!(vars, "{time_decls}").unwrap();
     let retained = if retained.is_empty() {
         String::new()
     } else {

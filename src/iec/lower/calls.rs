@@ -210,14 +210,15 @@ impl Lowering<'_> {
                     Some(ExprKind::Var(id)) if self.duration(id).is_some() => {
                         Preset::iec(self.duration(id).unwrap_or(0), self.cycle_us)
                     }
-                    Some(_) => Preset::Variable(format!("{inst}.PT")),
+                    Some(ExprKind::Var(id)) => self.variable_preset(id, &inst),
+                    Some(_) => Preset::Variable { name: format!("{inst}.PT"), why: None },
                     None => {
                         self.refuse(
                             span,
                             &format!("a call of {inst} without PT"),
                             "give the preset in each call",
                         );
-                        Preset::Variable(format!("{inst}.PT"))
+                        Preset::Variable { name: format!("{inst}.PT"), why: None }
                     }
                 };
                 let timer = Timer {
@@ -282,7 +283,19 @@ impl Lowering<'_> {
         out
     }
 
-    /// The value of a `CONSTANT` TIME variable.
+    /// The preset of a timer whose `PT` is the variable `id`, not one known duration:
+    /// the variable with why it may change.
+    fn variable_preset(&self, id: &ast::Ident, inst: &str) -> Preset {
+        match self.syms.get(&id.key()) {
+            Some(sym) => Preset::Variable {
+                name: sym.name.clone(),
+                why: self.time_why.get(&sym.name).cloned(),
+            },
+            None => Preset::Variable { name: format!("{inst}.PT"), why: None },
+        }
+    }
+
+    /// The value of a `CONSTANT` TIME variable, or of one constant in fact.
     fn duration(&self, id: &ast::Ident) -> Option<u64> {
         let sym = self.syms.get(&id.key())?;
         self.durations.get(&sym.name).copied()
@@ -554,8 +567,18 @@ impl<'s> Lowering<'s> {
             _ => None,
         };
         let Some(pt) = pt else {
-            let why =
-                format!("the pulse timer {inst} has a preset that is not a constant duration");
+            let why = match inputs.get("PT").map(|e| &e.kind) {
+                Some(ExprKind::Var(id)) => match self.variable_preset(id, inst) {
+                    Preset::Variable { name, why: Some(why) } => format!(
+                        "the pulse timer {inst} has its preset from the variable {name}, which \
+                         is not a constant: {why}"
+                    ),
+                    _ => format!(
+                        "the pulse timer {inst} has a preset that is not a constant duration"
+                    ),
+                },
+                _ => format!("the pulse timer {inst} has a preset that is not a constant duration"),
+            };
             out.push(self.unconstrained_output(inst, ty, "Q", &why, span));
             return out;
         };

@@ -50,21 +50,29 @@ impl Lowering<'_> {
 
     /// The variables of the user FB instance `inst` (its name in the scan model) of type
     /// `fb`: bits named `inst_Var`, nested instances, globals through `VAR_EXTERNAL`.
-    pub(super) fn instantiate(&mut self, inst: &str, fb: &str, span: Span) {
+    /// `decl`: the instance's declaration, `POU.INSTANCE` (upper case, `.INSTANCE` for
+    /// a global), which the facts of its TIME inputs name.
+    pub(super) fn instantiate(&mut self, inst: &str, fb: &str, decl: &str, span: Span) {
         if self.recursive(fb, span) {
             return;
         }
         let Some(pou) = self.user.get(fb).cloned() else { return };
         self.inlining.push(fb.to_string());
-        let table = self.variables(&pou, inst, false);
+        let table = self.variables(&pou, inst, Some(decl));
         self.inlining.pop();
         self.instances.insert(inst.to_string(), table);
     }
 
-    /// The variables of `pou` named `prefix_Var`; `fresh`: a function call's, which
-    /// start from their initial values at each call (else an instance's, from the first
-    /// scan on).
-    fn variables(&mut self, pou: &ast::Pou, prefix: &str, fresh: bool) -> BTreeMap<String, Sym> {
+    /// The variables of `pou` named `prefix_Var`: an instance's (`instance`, its
+    /// declaration `POU.INSTANCE`), from the first scan on, else a function call's,
+    /// which start from their initial values at each call.
+    fn variables(
+        &mut self,
+        pou: &ast::Pou,
+        prefix: &str,
+        instance: Option<&str>,
+    ) -> BTreeMap<String, Sym> {
+        let fresh = instance.is_none();
         let mut table: BTreeMap<String, Sym> = BTreeMap::new();
         for v in &pou.vars {
             let key = v.name.key();
@@ -123,10 +131,15 @@ impl Lowering<'_> {
                     self.declare_int(v, &name, t, false);
                 }
             }
-            self.constant_duration(v, &name);
+            let owner = match (v.class, instance) {
+                (VarClass::Input, Some(decl)) => decl.to_string(),
+                _ => pou.name.key(),
+            };
+            self.constant_duration(v, &name, &owner);
             if let Ty::User(fb) = &ty {
                 let fb = fb.clone();
-                self.instantiate(&name, &fb, v.name.span);
+                let decl = format!("{}.{key}", pou.name.key());
+                self.instantiate(&name, &fb, &decl, v.name.span);
             }
             table.insert(key, Sym { name, ty, span: v.name.span });
         }
@@ -306,7 +319,7 @@ impl Lowering<'_> {
         let pou = self.user.get(&f.key()).cloned()?;
         self.calls += 1;
         let prefix = format!("{}_{}", pou.name.name, self.calls);
-        let mut names = self.variables(&pou, &prefix, true);
+        let mut names = self.variables(&pou, &prefix, None);
         let result_ty = pou.result.as_ref().map_or(Ty::Other("?".into()), |r| self.type_of(r));
         let result = self.unique(&prefix);
         names.insert(

@@ -21,6 +21,7 @@ use crate::program::{
     Block, BoolExpr, Fresh, Inputs, IntVar, Memory, Preset, Program, Stmt, Timer, WriteKind,
 };
 
+mod durations;
 mod en;
 mod ints;
 mod text;
@@ -590,12 +591,12 @@ impl<'p> Lower<'p> {
             return;
         }
         let mut vals: BTreeMap<String, BoolExpr> = BTreeMap::new();
-        let mut preset = None;
+        let mut preset = Err(None);
         for pin in inputs {
             let n = pin.name.to_ascii_uppercase();
             match n.as_str() {
                 "EN" => {}
-                "PT" => preset = self.preset(k, span),
+                "PT" => preset = self.preset(k),
                 _ => {
                     let v = self.pin_value(k, pin);
                     vals.insert(n, v);
@@ -653,7 +654,7 @@ impl<'p> Lower<'p> {
                 let preset = match delay {
                     // PT = 0 still takes one scan (the starting scan never switches):
                     // the delay of one cycle, counted exactly.
-                    Some(0) => {
+                    Ok(0) => {
                         self.warnings.push(PlcError::Note {
                             span,
                             message: format!(
@@ -664,8 +665,9 @@ impl<'p> Lower<'p> {
                         });
                         Preset::iec(0, p.cycle_us)
                     }
-                    Some(us) => Preset::iec(us, p.cycle_us),
-                    None => Preset::Variable(format!("{inst}.PT")),
+                    Ok(us) => Preset::iec(us, p.cycle_us),
+                    Err(None) => Preset::Variable { name: format!("{inst}.PT"), why: None },
+                    Err(Some((name, why))) => Preset::Variable { name, why: Some(why) },
                 };
                 let timer = Timer {
                     on_delay: s == Std::Ton,
@@ -682,8 +684,14 @@ impl<'p> Lower<'p> {
                 let inst = instance.as_deref().map_or_else(String::new, |i| {
                     p.vars.get(&i.to_ascii_uppercase()).map_or(i.to_string(), |v| v.name.clone())
                 });
-                let Some(pt) = preset else {
-                    let what = format!("the pulse timer {inst} with a PT that is not a literal");
+                let Ok(pt) = preset else {
+                    let what = match preset {
+                        Err(Some((var, why))) => format!(
+                            "the pulse timer {inst} with a PT given by the variable {var}, \
+                             which is not a constant: {why}"
+                        ),
+                        _ => format!("the pulse timer {inst} with a PT that is not a literal"),
+                    };
                     self.coil(fresh("TP", &what, span), &hidden("Q"), WriteKind::Assign, span);
                     self.no_pull = outer;
                     self.in_progress.remove(&k);
@@ -769,26 +777,6 @@ impl<'p> Lower<'p> {
         self.no_pull = outer;
         self.in_progress.remove(&k);
         self.called.insert(k);
-    }
-
-    /// The preset of a timer block, in µs, when it is a literal.
-    fn preset(&mut self, k: usize, _span: Span) -> Option<u64> {
-        let pin = self.p.pin(k, "PT")?;
-        if let Some((text, _)) = &pin.expr {
-            return super::parse_duration(text);
-        }
-        let [c] = pin.conns.as_slice() else { return None };
-        match self.p.source(c)? {
-            Source::Object(j) => match self.p.operands.get(&j) {
-                Some(Operand::Duration(us)) => Some(*us),
-                _ => None,
-            },
-            Source::BlockOut(j, _) | Source::BlockPin(j, _) => {
-                self.call(j);
-                None
-            }
-            Source::Rail => None,
-        }
     }
 
     fn statement(&mut self, k: usize) {

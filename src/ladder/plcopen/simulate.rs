@@ -56,6 +56,9 @@ pub struct PlcSimulator {
     texts: BTreeMap<usize, text::Instance>,
     /// Integer variables, block outputs and counts: value and C type.
     ints: BTreeMap<String, (i64, ints::CType)>,
+    /// TIME variables (by declared name): their value in µs, `None` once written with a
+    /// value that is not a literal duration or another TIME variable's.
+    times: BTreeMap<String, Option<u64>>,
     /// The free inputs of `REAL_TO_*` blocks, this body's and its inlined ones': the
     /// run's value where C leaves a block's result undefined.
     undefined: Vec<(String, String)>,
@@ -102,8 +105,16 @@ impl PlcSimulator {
                 ints.insert(latch.clone(), (0, ct));
             }
         }
+        // A TIME variable starts at its initial value, T#0s when none is declared.
+        let times = p
+            .vars
+            .values()
+            .filter(|v| matches!(&v.ty, super::Ty::Other(t) if t.eq_ignore_ascii_case("TIME")))
+            .map(|v| (v.name.clone(), v.init.as_deref().map_or(Some(0), super::parse_duration)))
+            .collect();
         PlcSimulator {
             ints,
+            times,
             subs,
             texts,
             p: p.clone(),
@@ -369,26 +380,55 @@ impl PlcSimulator {
         }
     }
 
-    fn preset(&mut self, k: usize) -> u64 {
-        let Some(pin) = self.p.pin(k, "PT").cloned() else { return 0 };
+    /// The `PT` of the timer block at `k` as it reads now: a literal, or a TIME
+    /// variable's current value (`None` when the simulator does not know it).
+    fn preset(&mut self, k: usize) -> Option<u64> {
+        let Some(pin) = self.p.pin(k, "PT").cloned() else { return Some(0) };
         if let Some((text, _)) = &pin.expr {
-            return super::parse_duration(text).unwrap_or(0);
+            return self.duration(text);
         }
-        let mut us = 0;
+        let mut us = Some(0);
         for c in &pin.conns {
             match self.p.source(c) {
-                Some(Source::Object(j)) => {
-                    if let Some(Operand::Duration(d)) = self.p.operands.get(&j) {
-                        us = *d;
-                    }
-                }
+                Some(Source::Object(j)) => match self.p.operands.get(&j) {
+                    Some(Operand::Duration(d)) => us = Some(*d),
+                    Some(Operand::Other(t)) => us = self.duration(&t.clone()),
+                    _ => {}
+                },
                 Some(src @ (Source::BlockOut(..) | Source::BlockPin(..))) => {
                     let _ = self.source(src, 0);
+                    us = None;
                 }
                 _ => {}
             }
         }
         us
+    }
+
+    /// The duration `text` stands for: a literal, or a TIME variable's current value.
+    fn duration(&self, text: &str) -> Option<u64> {
+        if let Some(us) = super::parse_duration(text) {
+            return Some(us);
+        }
+        let v = self.p.vars.get(&text.trim().to_ascii_uppercase())?;
+        self.times.get(&v.name).copied().flatten()
+    }
+
+    /// What the output or in-out variable object with input `input` writes to a TIME
+    /// variable: a literal, another TIME variable's value, else not known.
+    fn time_written(&self, input: &PinIn) -> Option<u64> {
+        if let Some((text, _)) = &input.expr {
+            return self.duration(text);
+        }
+        let [c] = input.conns.as_slice() else { return None };
+        match self.p.source(c)? {
+            Source::Object(j) => match self.p.operands.get(&j)? {
+                Operand::Duration(us) => Some(*us),
+                Operand::Other(t) => self.duration(t),
+                _ => None,
+            },
+            _ => None,
+        }
     }
 
     fn set_hidden(&mut self, k: usize, pin: &str, v: bool) {
@@ -433,7 +473,7 @@ impl PlcSimulator {
         }
         let en = self.en(k);
         let mut values: BTreeMap<String, bool> = BTreeMap::new();
-        let mut preset = 0;
+        let mut preset = Some(0);
         for pin in &names {
             let n = pin.name.to_ascii_uppercase();
             if n == "EN" {
@@ -483,6 +523,13 @@ impl PlcSimulator {
                 }
                 Some(s @ (Std::Ton | Std::Tof | Std::Tp)) => {
                     let input = get("IN");
+                    // A PT the simulator does not know: the timer's output is not known.
+                    if preset.is_none()
+                        && let Some(q) = self.p.hidden_name(k, "Q")
+                    {
+                        self.unknown.insert(q.to_string());
+                    }
+                    let preset = preset.unwrap_or(0);
                     let t = self.timers.entry(inst).or_default();
                     let due = t.start.saturating_add(preset) <= now;
                     match s {
@@ -617,7 +664,23 @@ impl PlcSimulator {
             _ => None,
         }
         .filter(|n| self.ints.contains_key(n));
+        let time_target = match self.p.operands.get(&k) {
+            Some(Operand::Other(n)) => {
+                self.p.vars.get(&n.to_ascii_uppercase()).map(|v| v.name.clone())
+            }
+            _ => None,
+        }
+        .filter(|n| self.times.contains_key(n));
         match &o.kind {
+            ObjKind::OutVar { input, .. } | ObjKind::InOutVar { input, .. }
+                if let Some(target) = &time_target =>
+            {
+                let _ = self.pin_power(input);
+                if self.eno_allows(input) {
+                    let v = self.time_written(input);
+                    self.times.insert(target.clone(), v);
+                }
+            }
             ObjKind::OutVar { input, .. } | ObjKind::InOutVar { input, .. }
                 if let Some(target) = &int_target =>
             {

@@ -1,12 +1,12 @@
 //! PLCopen POUs whose body is text: the POU's declarations from the XML and its `<ST>` or `<IL>` body, lowered by the IEC text front end into the scan model — the chosen program, and the user function blocks a graphical body calls.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use super::{Lang, PlcError, Pou, PouKind, Project, Selection, Ty, VarClass, parse_duration};
 use crate::diag::{Diagnostic, Report, Sources};
 use crate::iec::StError;
 use crate::iec::ast::{self, Expr, ExprKind, Ident};
-use crate::program::Program;
+use crate::program::{Preset, Program};
 
 /// A user function block whose body is Structured Text or Instruction List, lowered by
 /// the IEC text front end as a standalone program: its input variables are the
@@ -18,6 +18,9 @@ pub struct TextBlock {
     pub program: Program,
     /// What the IEC front end said of it (elements not modelled exactly), as notes.
     pub warnings: Vec<PlcError>,
+    /// Its TIME inputs the body never writes: a call that wires a literal to one gives
+    /// the timers reading it that preset.
+    pub time_inputs: BTreeSet<String>,
 }
 
 /// The chosen program, when its body is Structured Text or Instruction List: lowered by
@@ -224,7 +227,7 @@ fn text_block(
         .iter()
         .filter_map(|w| Some(PlcError::Note { span: w.span()?, message: w.message() }))
         .collect();
-    Ok(TextBlock { program: lowered.program, warnings })
+    Ok(TextBlock { program: lowered.program, warnings, time_inputs: lowered.time_inputs })
 }
 
 /// One instance of a [`TextBlock`] called from a graphical body: its program with every
@@ -242,13 +245,15 @@ pub struct TextCall {
 
 /// The call of the user function block `type_name` with a text body by the block
 /// `inputs` of `instance` (a declared instance of that type, `inst`): `None` for a type
-/// without a text body, the reason when it is kept opaque.
+/// without a text body, the reason when it is kept opaque. `literal` is the duration
+/// wired to a pin, when a literal is.
 pub fn call(
     project: &Project,
     type_name: &str,
     inst: Option<&super::Var>,
     inputs: &[super::PinIn],
     cycle_us: u64,
+    literal: &dyn Fn(&super::PinIn) -> Option<u64>,
 ) -> Option<Result<TextCall, String>> {
     let block = project.text_blocks.get(&type_name.to_ascii_uppercase())?;
     let fb = project.pous.iter().find(|p| p.name.eq_ignore_ascii_case(type_name))?;
@@ -277,11 +282,17 @@ pub fn call(
             inputs: BTreeMap::new(),
             outputs: BTreeMap::new(),
         };
+        let mut presets = BTreeMap::new();
         for v in &fb.vars {
             let upper = v.name.to_ascii_uppercase();
             let name = spelled(&v.name).unwrap_or_else(|| v.name.clone());
             let int = b.program.integers.contains_key(&name);
             let named = format!("{prefix}{name}");
+            let time = matches!(&v.ty, Ty::Other(t) if t.eq_ignore_ascii_case("TIME"));
+            if v.class == VarClass::Input && time {
+                let preset = time_preset(&b, (&v.name, &named), inputs, literal, cycle_us);
+                presets.insert(named.clone(), preset);
+            }
             match v.class {
                 // An input a call does not pass keeps its initial value, which the
                 // standalone program (whose inputs are free) does not have.
@@ -300,8 +311,31 @@ pub fn call(
                 _ => {}
             }
         }
+        call.program = call.program.with_presets(&presets);
         Ok(call)
     }))
+}
+
+/// The preset of the timers of a text block whose `PT` is its TIME input `var` (`named`
+/// in this instance) on a call with `inputs`: the literal wired to it when the body never
+/// writes it, else unconstrained with the reason.
+fn time_preset(
+    b: &TextBlock,
+    (var, named): (&str, &str),
+    inputs: &[super::PinIn],
+    literal: &dyn Fn(&super::PinIn) -> Option<u64>,
+    cycle_us: u64,
+) -> Preset {
+    let pin = inputs.iter().find(|p| p.name.eq_ignore_ascii_case(var));
+    let why = match pin.map(literal) {
+        _ if !b.time_inputs.iter().any(|n| n.eq_ignore_ascii_case(var)) => {
+            "the block's body writes it too"
+        }
+        Some(Some(us)) => return Preset::iec(us, cycle_us),
+        Some(None) => "this call wires it to a value that is not a literal duration",
+        None => "this call does not wire it",
+    };
+    Preset::Variable { name: named.to_string(), why: Some(why.into()) }
 }
 
 impl TextCall {

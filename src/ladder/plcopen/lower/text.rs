@@ -65,8 +65,10 @@ impl Lower<'_> {
         self.edges.extend((0..used).map(|i| (self.path.clone(), k, format!("TEXT{i}"))));
         let mut edge = |i: usize| base + i;
         let same = |n: &str| n.to_string();
-        let blocks = Renaming { name: &same, temps: self.next_temp, edge: &mut edge }
-            .blocks(&call.program.blocks);
+        let presets = BTreeMap::new();
+        let mut renaming =
+            Renaming { name: &same, temps: self.next_temp, edge: &mut edge, presets: &presets };
+        let blocks = renaming.blocks(&call.program.blocks);
         self.next_temp += call.program.temps_used();
         for b in blocks {
             self.push_block(b.stmts, b.span);

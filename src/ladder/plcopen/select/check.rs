@@ -391,6 +391,7 @@ pub(super) fn check_pou(
                         instance.as_deref().and_then(|i| program.vars.get(&i.to_ascii_uppercase())),
                         inputs,
                         cycle_us,
+                        &|pin| wired_duration(&program, pin),
                     )
                     .and_then(|c| c.map_err(|why| opaque_why = Some(why)).ok()) =>
                     {
@@ -726,5 +727,18 @@ impl PlcProgram {
             notes.push(PlcError::Note { span: v.span, message });
         }
         notes
+    }
+}
+
+/// The duration a literal wired to `pin` gives (its own text, or a variable object's).
+fn wired_duration(program: &PlcProgram, pin: &PinIn) -> Option<u64> {
+    if let Some((text, _)) = &pin.expr {
+        return parse_duration(text);
+    }
+    let [c] = pin.conns.as_slice() else { return None };
+    let Some(Source::Object(j)) = program.source(c) else { return None };
+    match &program.obj(j)?.kind {
+        ObjKind::InVar { expr, .. } => parse_duration(&expr.0),
+        _ => None,
     }
 }
