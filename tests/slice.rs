@@ -117,7 +117,6 @@ fn a_part_near_a_recorded_run_gives_what_the_whole_program_gives() {
         let p = read(&text);
         let scans = 2 + rng.below(20) as usize;
         let base = run(&mut rng, scans);
-        let record = Arc::new(p.record(&base).expect("a program of contacts, coils and timers"));
         // The run: the base run's inputs with a few of them changed.
         let changed: BTreeSet<String> =
             INPUTS.iter().filter(|_| rng.chance(20)).map(|n| n.to_string()).collect();
@@ -133,6 +132,14 @@ fn a_part_near_a_recorded_run_gives_what_the_whole_program_gives() {
         }
         let watched: BTreeSet<String> =
             BITS.iter().chain(TIMERS).filter(|_| rng.chance(40)).map(|n| n.to_string()).collect();
+        // The record: a run of the rungs that can write the names watched and a few more.
+        let recorded: BTreeSet<String> = BITS
+            .iter()
+            .chain(TIMERS)
+            .filter(|n| watched.contains(**n) || rng.chance(30))
+            .map(|n| n.to_string())
+            .collect();
+        let record = Arc::new(p.record(&recorded, &base).expect("contacts, coils and timers"));
         let whole = values(Simulator::new(&p), &inputs, &watched);
         let sliced = p.slice(&watched).expect("sliceable");
         assert_eq!(
@@ -160,8 +167,8 @@ fn a_part_near_a_recorded_run_replays_what_the_changed_inputs_do_not_reach() {
     let on = |a: bool, b: bool| -> BTreeMap<String, bool> {
         [("Xa".to_string(), a), ("Xb".to_string(), b)].into_iter().collect()
     };
-    let record = Arc::new(p.record(&[on(true, false), on(true, false)]).expect("record"));
     let watched: BTreeSet<String> = ["Yq".to_string()].into_iter().collect();
+    let record = Arc::new(p.record(&watched, &[on(true, false), on(true, false)]).expect("record"));
     let changed: BTreeSet<String> = ["Xb".to_string()].into_iter().collect();
     let mut near = p.slice_near(&watched, &record, &changed, 2).expect("a part");
     // Xa is left out of the step: the part reads Ra from the record, not from Xa.
@@ -173,4 +180,13 @@ fn a_part_near_a_recorded_run_replays_what_the_changed_inputs_do_not_reach() {
     near.step(&only_b);
     assert!(!near.is_known("Ra"));
     assert!(p.slice_near(&watched, &record, &changed, 3).is_none(), "longer than the record");
+    // A part that would replay a rung the record does not hold is refused: Yp's rung
+    // reads Ra, whose rung was recorded, but Yp's own rung was not.
+    let yp: BTreeSet<String> = ["Yp".to_string()].into_iter().collect();
+    let ra: BTreeSet<String> = ["Xa".to_string()].into_iter().collect();
+    assert!(p.slice_near(&yp, &record, &BTreeSet::new(), 2).is_none(), "Yp is not recorded");
+    // With Xa changed, both rungs run and nothing is replayed: no record needed.
+    let mut both = p.slice_near(&yp, &record, &ra, 2).expect("nothing to replay");
+    both.step(&on(false, true));
+    assert!(!both.bit("Yp"), "Xa at 0 in this run, not the record's 1");
 }

@@ -26,8 +26,8 @@ struct Run {
 }
 
 /// What a candidate judged on part of its property's cone reads from outside that part:
-/// a *base* run of the whole program, on which every compiled hypothesis was checked
-/// exactly once ([`base_holds`]). The part holds every equation of the cone that reads,
+/// a *base* run (of the part of the program it covers), on which every compiled
+/// hypothesis about its signals was checked exactly once ([`base_holds`]). The part holds every equation of the cone that reads,
 /// through any chain, an input of `changed`; every other name the part reads that the
 /// program defines has its value in the base run. A candidate whose inputs differ from
 /// the base run's in any other input is not judged on it.
@@ -490,9 +490,9 @@ pub(super) fn judge_near(
     Ok(judged)
 }
 
-/// Whether every compiled hypothesis holds exactly on `signals`, a run of the whole
-/// program (every signal, scan by scan) on the inputs of `trace`: the check that lets
-/// a [`Background`] take values from that run.
+/// Whether every compiled hypothesis whose names `signals` all give holds exactly on
+/// them, a run (every signal of part of the program, scan by scan) on the inputs of
+/// `trace`: the check that lets a [`Background`] take values from that run.
 pub(super) fn base_holds(
     program: &Program,
     signals: &BTreeMap<String, Vec<bool>>,

@@ -28,17 +28,17 @@
 //! A candidate from a kept run is judged on part of its cone where the front end can
 //! replay a run ([`Shared::near`]): the equations that read, through any chain, an input
 //! whose values differ from the kept run's, everything else they read at its value in
-//! the kept run. That run of the whole program is computed and checked exactly once per
-//! kept run ([`Kept::base`]: every compiled hypothesis), and the front end's simulator
-//! runs the same part, replaying the rest from its own record of the run. A refutation
-//! near a kept run then costs what it changes, not its cone.
+//! the kept run. That run of the cone of the property it refuted is computed and checked
+//! exactly once per kept run ([`Kept::base`]: every compiled hypothesis of the cone), and
+//! the front end's simulator runs the same part, replaying the rest from its own record
+//! of the run. A refutation near a kept run then costs what it changes, not its cone.
 //!
 //! Which properties a run can refute depends on the order they are checked in: a
 //! property whose cone is deep (its signals computed from long chains of rungs) has
 //! counterexamples that set more of the program in motion, so [`deepest_first`] orders
 //! the properties.
 
-use std::collections::{BTreeMap, BTreeSet, HashMap, VecDeque};
+use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet, VecDeque};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, OnceLock};
 
@@ -117,30 +117,35 @@ struct Kept {
     drawn: Vec<String>,
     /// The check (by number) at which it was kept or last refuted a property.
     used: AtomicUsize,
-    /// The run of the whole program on its inputs, checked ([`Kept::base`]).
+    /// The equations (positions in scan order) of the cone of the property it refuted.
+    cone: Arc<Vec<usize>>,
+    /// The names that cone defines (made at the first call of [`Kept::cone_names`]).
+    names: OnceLock<HashSet<String>>,
+    /// The run of that cone on its inputs, checked ([`Kept::base`]).
     base: OnceLock<Option<Base>>,
 }
 
 /// A kept run as the base of candidates judged on part of their cones: every signal of
-/// the program on its inputs, every compiled hypothesis checked on them exactly, and the
-/// front end's record of the same run for its simulator.
+/// the cone of the property it refuted on its inputs, every compiled hypothesis about them
+/// checked exactly, and the front end's record of the same run for its simulator.
 struct Base {
     values: Bits,
     record: Recording,
 }
 
 impl Kept {
-    /// The run as a base ([`Base`]), made at the first call; `None` when a compiled
-    /// hypothesis fails on it (then no candidate is judged on part of its cone).
+    /// The run as a base ([`Base`]), made at the first call: a run of the cone of the
+    /// property it refuted (a judge's cost); `None` when a compiled hypothesis fails on
+    /// it (then no candidate is judged on part of its cone).
     fn base(&self, program: &Program) -> Option<&Base> {
         self.base
             .get_or_init(|| {
                 let trace = &self.trace;
-                let whole = program_model(program.compiled);
+                let cone = equations_model(program.compiled, self.cone.iter().copied());
                 let cycle = trace.cycle.clone();
                 let run = unroll(
                     &mut Concrete,
-                    &whole,
+                    &cone,
                     &[],
                     trace.scans,
                     &|d| scans_of(d, &cycle),
@@ -161,10 +166,19 @@ impl Kept {
                             .collect()
                     })
                     .collect();
-                let record = program.reference.record(&inputs)?;
+                let names: BTreeSet<String> = cone.defs.iter().map(|(n, _)| n.clone()).collect();
+                let record = program.reference.record(&names, &inputs)?;
                 Some(Base { values: Bits::of(run.signals, trace.scans), record })
             })
             .as_ref()
+    }
+
+    /// The names the cone of the property it refuted defines.
+    fn cone_names(&self, program: &Program) -> &HashSet<String> {
+        self.names.get_or_init(|| {
+            let index = program.compiled.equation_index();
+            self.cone.iter().map(|&p| index.equations[p].0.clone()).collect()
+        })
     }
 
     fn value(&self, name: &str, k: usize) -> bool {
@@ -221,7 +235,17 @@ impl Shared {
         }
         let salt = self.kept.fetch_add(1, Ordering::Relaxed) as u64;
         let form = form(goal);
-        self.keep_run(program, trace.clone(), Vec::new(), (depth, form), now);
+        let defining = &program.compiled.equation_index().defining;
+        let mut cone: Vec<usize> = model
+            .defs
+            .iter()
+            .flat_map(|(n, _)| defining.get(n.as_str()).map_or(&[][..], Vec::as_slice))
+            .copied()
+            .collect();
+        cone.sort_unstable();
+        cone.dedup();
+        let cone = Arc::new(cone);
+        self.keep_run(program, trace.clone(), Vec::new(), (depth, form, cone.clone()), now);
         // The run grown: every Boolean input the property's cone does not read held at a
         // value drawn for it (it cannot change the violation, and sets in motion parts
         // of the program the run left at rest; each run kept draws other values). A
@@ -242,7 +266,7 @@ impl Shared {
             }
         }
         if !set.is_empty() && self.grown_kept.fetch_add(1, Ordering::Relaxed) < grown_paid {
-            self.keep_run(program, grown, set, (depth, form), now);
+            self.keep_run(program, grown, set, (depth, form, cone), now);
         }
     }
 
@@ -252,7 +276,7 @@ impl Shared {
         program: &Program,
         trace: ScanTrace,
         drawn: Vec<String>,
-        (depth, form): (usize, u64),
+        (depth, form, cone): (usize, u64, Arc<Vec<usize>>),
         now: usize,
     ) {
         let Some(quiet) = self.quiet(program, &trace) else { return };
@@ -297,6 +321,8 @@ impl Shared {
             form,
             drawn,
             used: AtomicUsize::new(now),
+            cone,
+            names: OnceLock::new(),
             base: OnceLock::new(),
         };
         if let Ok(mut runs) = self.runs.lock() {
@@ -326,19 +352,22 @@ impl Shared {
     /// equations that read, through any chain, one of them. Every other name the part
     /// reads that the program defines has its value in the kept run, on which every
     /// compiled hypothesis is checked exactly once ([`Kept::base`]); `None` when that
-    /// check failed or `trace` is longer than the kept run.
+    /// check failed, `trace` is longer than the kept run, the cone is small
+    /// ([`NEAR_MIN`]), or the part reads a name outside the cone of the property the
+    /// kept run refuted.
     fn near(
         &self,
         program: &Program,
-        model: &Model,
+        (model, goal): (&Model, &Obligation),
         trace: &ScanTrace,
         kept: &Arc<Kept>,
         also: &[&String],
     ) -> Option<Part> {
-        if trace.scans > kept.trace.scans {
+        // A run's base costs a run of the whole program, once: it pays only for cones that
+        // are a large part of the program (a judge costs its cone).
+        if trace.scans > kept.trace.scans || model.defs.len() < NEAR_MIN {
             return None;
         }
-        kept.base(program)?;
         let mut changed = changed_inputs(trace, &kept.trace);
         changed.extend(also.iter().map(|n| (*n).clone()));
         let index = program.compiled.equation_index();
@@ -358,6 +387,14 @@ impl Shared {
             defs: model.defs.iter().filter(|(n, _)| moved.contains(n.as_str())).cloned().collect(),
             constraints: model.constraints.clone(),
         };
+        // Every defined name the part reads from outside must be in the kept run's cone
+        // (looked up before the base is made: it costs a run of that cone).
+        let outside = part.free_names([&goal.lhs, &goal.rhs].into_iter());
+        let in_cone = kept.cone_names(program);
+        if outside.iter().any(|n| index.defining.contains_key(n) && !in_cone.contains(n)) {
+            return None;
+        }
+        kept.base(program)?;
         Some(Part { part, kept: kept.clone(), changed })
     }
 
@@ -495,8 +532,12 @@ pub fn refute_shared(
         if drawn.len() > MAX_DRAWN {
             continue;
         }
-        // Judged on the part of the cone that differs from the kept run where it can be.
-        let part = shared.near(program, model, &trace, kept, &drawn);
+        // Judged on the part of the cone that differs from the kept run where it can be
+        // (not from a grown run: every input it drew and this trace drops is a change).
+        let part = match kept.drawn.is_empty() {
+            true => shared.near(program, (model, goal), &trace, kept, &drawn),
+            false => None,
+        };
         keep_needed(&mut trace, &drawn, &|t| match &part {
             Some(part) => part.violates(program, goal, t),
             None => discrete_violation(model, goal, t).is_some(),
@@ -525,7 +566,7 @@ pub fn refute_shared(
             changed.iter().filter(|n| trace.values.contains_key(*n)).collect();
         keep_needed(&mut trace, &changed, &still);
         steady(&mut trace, &changed, &still);
-        let part = shared.near(program, model, &trace, kept, &[]);
+        let part = shared.near(program, (model, goal), &trace, kept, &[]);
         if let Some(found) = judged(program, model, part.as_ref(), goal, trace, limits) {
             kept.used.store(now, Ordering::Relaxed);
             shared.hits.fetch_add(1, Ordering::Relaxed);
@@ -554,6 +595,10 @@ fn judged(
         _ => None,
     }
 }
+
+/// A candidate is judged on part of its cone only when the cone has at least this many
+/// equations (a smaller cone is judged whole for less than finding the part costs).
+const NEAR_MIN: usize = 256;
 
 /// How many kept runs (the most recent first) are repaired for a property none of them
 /// violates.

@@ -299,8 +299,12 @@ impl crate::program::simulate::Reference for LdProgram {
         }
     }
 
-    fn record(&self, inputs: &[BTreeMap<String, bool>]) -> Option<Recording> {
-        Some(Arc::new(LdProgram::record(self, inputs)?))
+    fn record(
+        &self,
+        names: &BTreeSet<String>,
+        inputs: &[BTreeMap<String, bool>],
+    ) -> Option<Recording> {
+        Some(Arc::new(LdProgram::record(self, names, inputs)?))
     }
 
     fn simulator_near(

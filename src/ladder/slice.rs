@@ -24,12 +24,24 @@ impl LdProgram {
         Some(self.part(keep))
     }
 
-    /// A run of the whole program on `inputs` (one map a scan, at most 64), what each
-    /// rung wrote recorded for [`slice_near`](Self::slice_near); `None` where
-    /// [`slice`](Self::slice) is.
-    pub fn record(&self, inputs: &[BTreeMap<String, bool>]) -> Option<RunRecord> {
+    /// A run on `inputs` (one map a scan, at most 64) of the rungs that can write
+    /// `names` ([`slice`](Self::slice)), what each wrote recorded for
+    /// [`slice_near`](Self::slice_near); `None` where [`slice`](Self::slice) is.
+    pub fn record(
+        &self,
+        names: &BTreeSet<String>,
+        inputs: &[BTreeMap<String, bool>],
+    ) -> Option<RunRecord> {
         let tables = self.tables()?;
-        (inputs.len() <= 64).then(|| RunRecord::of(self, &tables.writes, inputs))
+        if inputs.len() > 64 {
+            return None;
+        }
+        let mut kept: Vec<usize> =
+            tables.writing(names.iter().map(String::as_str), |_| true).0.into_iter().collect();
+        kept.sort_unstable();
+        let part = self.part(kept.iter().copied().collect());
+        let writes: Vec<&[String]> = kept.iter().map(|&i| tables.writes[i].as_slice()).collect();
+        Some(RunRecord::of((&part, &kept, self.rungs.len()), &writes, inputs))
     }
 
     /// A simulator of the part of [`slice`](Self::slice)`(names)` that the inputs
@@ -40,7 +52,7 @@ impl LdProgram {
     /// so it writes at each scan what it wrote in the recorded run. The part runs the
     /// moved rungs that can write `names` and replays, from the record, the rungs that
     /// are not moved and write what those read. `None` where [`slice`](Self::slice) is,
-    /// or for a run longer than the record.
+    /// for a run longer than the record, or when a rung to replay is not recorded.
     pub fn slice_near(
         &self,
         names: &BTreeSet<String>,
@@ -57,7 +69,16 @@ impl LdProgram {
         // moved rung writes. (A writer of a name a rung of the slice reads is in it.)
         let mut moved = HashSet::new();
         let mut seen: HashSet<&str> = changed.iter().map(String::as_str).collect();
-        let mut pending: Vec<&str> = seen.iter().copied().collect();
+        // The changed inputs some rung of the slice reads (from the smaller side).
+        let mut pending: Vec<&str> = if changed.len() <= all.len() {
+            seen.iter().copied().collect()
+        } else {
+            all.iter()
+                .flat_map(|&i| &tables.reads[i])
+                .map(String::as_str)
+                .filter(|n| seen.contains(n))
+                .collect()
+        };
         while let Some(n) = pending.pop() {
             for &i in tables.readers.get(n).map_or(&[][..], Vec::as_slice) {
                 if all.contains(&i) && moved.insert(i) {
@@ -71,6 +92,9 @@ impl LdProgram {
         }
         let (live, replayed) =
             tables.writing(names.iter().map(String::as_str), |i| moved.contains(&i));
+        if !replayed.iter().all(|&i| record.has(i)) {
+            return None;
+        }
         let mut kept: Vec<usize> = live.iter().chain(&replayed).copied().collect();
         kept.sort_unstable();
         kept.dedup();

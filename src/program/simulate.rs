@@ -445,11 +445,16 @@ pub trait Reference: Send + Sync {
         self.simulator()
     }
 
-    /// A run of the whole program from power-up on `inputs` (one map a scan), recorded
-    /// for [`simulator_near`](Reference::simulator_near); `None` (the default) when
-    /// the front end keeps no such record.
-    fn record(&self, inputs: &[BTreeMap<String, bool>]) -> Option<Recording> {
-        let _ = inputs;
+    /// A run from power-up on `inputs` (one map a scan) of the part of the program that
+    /// can write `names` (as [`simulator_for`](Reference::simulator_for) runs it),
+    /// recorded for [`simulator_near`](Reference::simulator_near); `None` (the default)
+    /// when the front end keeps no such record.
+    fn record(
+        &self,
+        names: &std::collections::BTreeSet<String>,
+        inputs: &[BTreeMap<String, bool>],
+    ) -> Option<Recording> {
+        let _ = (names, inputs);
         None
     }
 

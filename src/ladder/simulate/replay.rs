@@ -10,8 +10,11 @@ use crate::ladder::LdProgram;
 #[derive(Debug)]
 pub struct RunRecord {
     scans: usize,
-    /// Per rung (program order), per name it writes, its values just after the rung.
-    writes: Vec<Vec<Written>>,
+    /// How many rungs the recorded program has.
+    rungs: usize,
+    /// Per rung recorded (by its index in the program), per name it writes, its values
+    /// just after the rung.
+    writes: std::collections::HashMap<usize, Vec<Written>>,
 }
 
 /// A name's values just after a rung, one bit a scan (at most 64 scans).
@@ -50,14 +53,20 @@ impl RunRecord {
 
     /// How many rungs the recorded program has.
     pub fn rungs(&self) -> usize {
-        self.writes.len()
+        self.rungs
     }
 
-    /// Runs `program` from power-up on `inputs` (one map a scan, at most 64 scans),
-    /// recording after each rung the names `writes` gives for it.
+    /// Whether the rung of index `k` (in the program) is recorded.
+    pub fn has(&self, k: usize) -> bool {
+        self.writes.contains_key(&k)
+    }
+
+    /// Runs `part`, the rungs `origin` (their indices in a program of `rungs` rungs), from
+    /// power-up on `inputs` (one map a scan, at most 64 scans), recording after each
+    /// rung the names `writes` gives for it (in the part's order).
     pub fn of(
-        program: &LdProgram,
-        writes: &[Vec<String>],
+        (part, origin, rungs): (&LdProgram, &[usize], usize),
+        writes: &[&[String]],
         inputs: &[BTreeMap<String, bool>],
     ) -> RunRecord {
         let scans = inputs.len().min(64);
@@ -76,7 +85,7 @@ impl RunRecord {
                     .collect()
             })
             .collect();
-        let mut sim = Simulator::new(program);
+        let mut sim = Simulator::new(part);
         for (k, step) in inputs.iter().take(scans).enumerate() {
             sim.scan(step, &mut |sim, i| {
                 for w in record.get_mut(i).map_or(&mut [][..], Vec::as_mut_slice) {
@@ -89,7 +98,8 @@ impl RunRecord {
                 }
             });
         }
-        RunRecord { scans, writes: record }
+        let writes = origin.iter().copied().zip(record).collect();
+        RunRecord { scans, rungs, writes }
     }
 }
 
@@ -111,7 +121,7 @@ impl Simulator {
     pub(super) fn replay_rung(&mut self, k: usize) {
         let Some(record) = self.replay.as_ref().map(|r| r.record.clone()) else { return };
         let scan = usize::try_from(self.scans).unwrap_or(usize::MAX);
-        for w in record.writes.get(k).map_or(&[][..], Vec::as_slice) {
+        for w in record.writes.get(&k).map_or(&[][..], Vec::as_slice) {
             if scan >= record.scans {
                 self.mark(&w.name, false);
                 continue;
