@@ -534,10 +534,7 @@ pub fn refute_shared(
         }
         // Judged on the part of the cone that differs from the kept run where it can be
         // (not from a grown run: every input it drew and this trace drops is a change).
-        let part = match kept.drawn.is_empty() {
-            true => shared.near(program, (model, goal), &trace, kept, &drawn),
-            false => None,
-        };
+        let part = shared.near(program, (model, goal), &trace, kept, &drawn);
         keep_needed(&mut trace, &drawn, &|t| match &part {
             Some(part) => part.violates(program, goal, t),
             None => discrete_violation(model, goal, t).is_some(),
