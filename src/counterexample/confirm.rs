@@ -474,18 +474,24 @@ pub(super) fn judge_near(
         names.extend(full.defs.iter().map(|(n, _)| n.clone()));
         names.extend(full.free_names([&goal.lhs, &goal.rhs].into_iter()));
     }
+    names.retain(|n| !c.assignment.signals.contains_key(&Symbol::from(n.as_str())));
+    // A defined name the base run does not give (outside the cone it covers, and not
+    // read by the part) takes its value from a run of the whole cone.
+    let defined = &program.compiled.equation_index().defining;
+    let outside =
+        names.iter().any(|n| defined.contains_key(n) && (background.base)(n, 0).is_none());
+    let whole = match outside {
+        true => Some(run_scans(full, goal, &c.trace, None)?.signals),
+        false => None,
+    };
     for n in names {
-        let symbol = Symbol::from(n.as_str());
-        if c.assignment.signals.contains_key(&symbol) {
-            continue;
-        }
         let values: Vec<bool> = (0..c.trace.scans)
-            .map(|k| match c.trace.values.get(&n) {
-                Some(v) => v.get(k).copied().unwrap_or(false),
-                None => (background.base)(&n, k).unwrap_or(false),
+            .map(|k| match (c.trace.values.get(&n), whole.as_ref().and_then(|w| w.get(&n))) {
+                (Some(v), _) | (None, Some(v)) => v.get(k).copied().unwrap_or(false),
+                (None, None) => (background.base)(&n, k).unwrap_or(false),
             })
             .collect();
-        c.assignment.signals.insert(symbol, c.trace.signal(&values)?);
+        c.assignment.signals.insert(Symbol::from(n.as_str()), c.trace.signal(&values)?);
     }
     Ok(judged)
 }
