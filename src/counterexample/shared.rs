@@ -363,8 +363,7 @@ impl Shared {
         kept: &Arc<Kept>,
         also: &[&String],
     ) -> Option<Part> {
-        // A run's base costs a run of the whole program, once: it pays only for cones that
-        // are a large part of the program (a judge costs its cone).
+        // A small cone is judged whole for less than finding its part costs.
         if trace.scans > kept.trace.scans || model.defs.len() < NEAR_MIN {
             return None;
         }
