@@ -27,10 +27,11 @@ struct Run {
 
 /// What a candidate judged on part of its property's cone reads from outside that part:
 /// a *base* run (of the part of the program it covers), on which every compiled
-/// hypothesis about its signals was checked exactly once ([`base_holds`]). The part holds every equation of the cone that reads,
-/// through any chain, an input of `changed`; every other name the part reads that the
-/// program defines has its value in the base run. A candidate whose inputs differ from
-/// the base run's in any other input is not judged on it.
+/// hypothesis about its signals was checked exactly once ([`base_holds`]). The part
+/// holds every equation of the cone that reads, through any chain, an input of
+/// `changed`; every other name the part reads that the program defines has its value in
+/// the base run. A candidate whose inputs differ from the base run's in any other input
+/// is not judged on it.
 pub(super) struct Background<'a> {
     /// A defined name's value at a scan of the base run.
     pub base: &'a (dyn Fn(&str, usize) -> Option<bool> + Sync),
@@ -263,14 +264,10 @@ fn exact(
     run: &Run,
     v: usize,
 ) -> Result<(Assignment, bool, bool), String> {
-    let mut env = Assignment::new(trace.horizon());
-    env.cycle = Some(trace.cycle.clone());
     // Every signal as the run computed it, scan by scan; then each equation must hold
     // exactly at every scan (a read one scan back, `pre`, makes the order of the
     // equations no guide).
-    for (name, values) in &run.signals {
-        env.signals.insert(Symbol::from(name.as_str()), trace.signal(values)?);
-    }
+    let env = environment(&run.signals, trace)?;
     let instants = trace.instants();
     let memo = Memo::of(program, &run.signals, trace.scans);
     for (name, rhs) in &model.defs {
@@ -315,7 +312,7 @@ fn hypotheses_hold(
     checked: &Model,
     env: &Assignment,
     trace: &ScanTrace,
-    run: &Run,
+    signals: &Values,
 ) -> bool {
     let mut done: HashMap<&str, Vec<&Expr>> = HashMap::new();
     for (n, rhs) in &checked.defs {
@@ -337,7 +334,7 @@ fn hypotheses_hold(
     candidates.sort_unstable();
     candidates.dedup();
     let instants = trace.instants();
-    let memo = Memo::of(program, &run.signals, trace.scans);
+    let memo = Memo::of(program, signals, trace.scans);
     candidates.into_iter().filter(|&i| !is_done(&program.compiled.hypotheses[i])).all(|i| {
         let h = &program.compiled.hypotheses[i];
         let known = |e: &Expr| {
@@ -499,21 +496,20 @@ pub(super) fn judge_near(
 /// Whether every compiled hypothesis whose names `signals` all give holds exactly on
 /// them, a run (every signal of part of the program, scan by scan) on the inputs of
 /// `trace`: the check that lets a [`Background`] take values from that run.
-pub(super) fn base_holds(
-    program: &Program,
-    signals: &BTreeMap<String, Vec<bool>>,
-    trace: &ScanTrace,
-) -> bool {
+pub(super) fn base_holds(program: &Program, signals: &Values, trace: &ScanTrace) -> bool {
+    let Ok(env) = environment(signals, trace) else { return false };
+    let none = Model { defs: Vec::new(), constraints: Vec::new() };
+    hypotheses_hold(program, &none, &env, trace, signals)
+}
+
+/// The exact signals of a run's values, scan by scan, on the trace's cycle and horizon.
+fn environment(signals: &Values, trace: &ScanTrace) -> Result<Assignment, String> {
     let mut env = Assignment::new(trace.horizon());
     env.cycle = Some(trace.cycle.clone());
     for (name, values) in signals {
-        let Ok(s) = trace.signal(values) else { return false };
-        env.signals.insert(Symbol::from(name.as_str()), s);
+        env.signals.insert(Symbol::from(name.as_str()), trace.signal(values)?);
     }
-    let run =
-        Run { signals: signals.clone(), lhs: Vec::new(), rhs: Vec::new(), constraints_hold: true };
-    let none = Model { defs: Vec::new(), constraints: Vec::new() };
-    hypotheses_hold(program, &none, &env, trace, &run)
+    Ok(env)
 }
 
 /// The two confirmations of a trace that violates the goal at scan `v` (0-based),
@@ -526,7 +522,7 @@ fn confirmed(
     simulated: Result<(Option<usize>, Values), String>,
 ) -> Result<Judged, String> {
     let (assignment, lhs, rhs) = exact(program, model, goal, &trace, &run, v)?;
-    if !hypotheses_hold(program, model, &assignment, &trace, &run) {
+    if !hypotheses_hold(program, model, &assignment, &trace, &run.signals) {
         return Err("a compiled hypothesis fails on the exact signals".into());
     }
     let mut cex = Counterexample {
