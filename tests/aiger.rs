@@ -27,7 +27,7 @@ use ii_prove::kernel::Rel;
 use ii_prove::ladder::{CompileOptions, HypothesisKind, SignalKind};
 use ii_prove::report::{self, Options};
 use rng::Rng;
-use scan_eval::{Hyp, Src, TimerStats};
+use scan_eval::{Hyp, Known, Src, TimerStats};
 
 /// An AIGER netlist as the format describes it.
 #[derive(Debug, PartialEq, Eq)]
@@ -205,7 +205,7 @@ fn compare(program: &Path, props: &Path, only: &[String], runs: u64, scans: usiz
     let with_atoms = loaded.compiled.with_atoms();
     let compiled = &with_atoms;
     let loose = scan_eval::loose_names(compiled);
-    let hyp = |name: &str, lhs, rel, rhs, known: &mut Vec<Src>| {
+    let hyp = |name: &str, lhs, rel, rhs, known: &mut Known| {
         let h = ii_prove::ladder::Hypothesis {
             name: name.to_string(),
             rung: 0,
@@ -221,7 +221,7 @@ fn compare(program: &Path, props: &Path, only: &[String], runs: u64, scans: usiz
         };
         Hyp::new(&h, compiled, compiled.cycle_us, known, &loose)
     };
-    let mut known = Vec::new();
+    let mut known = Known::default();
     let assumed: Vec<Hyp> = report::assumptions(&doc)
         .into_iter()
         .map(|a| hyp(&a.name, a.lhs, a.rel, a.rhs, &mut known))

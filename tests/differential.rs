@@ -642,7 +642,7 @@ fn check_program(label: &str, text: &str, program: &LdProgram, seed: u64) -> Fig
             );
         }
     }
-    let mut known: Vec<Src> = Vec::new();
+    let mut known = Known::default();
     let cycle = program.cycle_us;
     let loose = scan_eval::loose_names(&compiled);
     let mut hyps: Vec<Hyp> = compiled

@@ -108,7 +108,7 @@
 mod ints;
 pub mod start;
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 use super::logic::{L, Tables, factors, product, simp, simp_and, simp_sum, sum, summands};
 use super::{Block, BoolExpr, EdgeKind, Memory, Preset, Program, Stmt, Temp, Timer, WriteKind};
@@ -519,6 +519,8 @@ struct Compiler<'a> {
     shared_timers: BTreeSet<String>,
     /// Every name the program uses (for fresh-name uniqueness).
     taken: BTreeSet<String>,
+    /// Per base name, the suffix [`Compiler::unique`] tries next (the ones below are taken).
+    suffixes: HashMap<String, usize>,
     /// Per variable, the internal name standing for its previous-scan value while the
     /// scan is compiled (`pre_X`); [`Compiler::exact`] turns each into `pre X`.
     pre_names: BTreeMap<String, String>,
@@ -574,6 +576,7 @@ impl<'a> Compiler<'a> {
             unwritten: BTreeMap::new(),
             shared_timers: BTreeSet::new(),
             taken: BTreeSet::new(),
+            suffixes: HashMap::new(),
             pre_names: BTreeMap::new(),
             pre_of: BTreeMap::new(),
             fresh: BTreeMap::new(),
@@ -713,12 +716,19 @@ impl<'a> Compiler<'a> {
         L::Var(pre)
     }
 
+    /// `base`, else the first of `base_2`, `base_3`, … not taken: a new name.
     fn unique(&mut self, base: &str) -> String {
         let mut name = base.to_string();
-        let mut k = 2;
-        while self.taken.contains(&name) {
-            name = format!("{base}_{k}");
-            k += 1;
+        let k = self.suffixes.entry(base.to_string()).or_insert(2);
+        if self.taken.contains(&name) {
+            // The suffixes below `k` were taken by the earlier calls with this base.
+            loop {
+                name = format!("{base}_{k}");
+                *k += 1;
+                if !self.taken.contains(&name) {
+                    break;
+                }
+            }
         }
         self.taken.insert(name.clone());
         name

@@ -803,7 +803,7 @@ pub struct Prepared {
     pub lowered: Lowered,
     pub compiled: CompiledProgram,
     /// The values the hypotheses read, in the order `Hyp::scan` expects them.
-    pub known: Vec<Src>,
+    pub known: Known,
     pub hyps: Vec<Hyp>,
     /// A one-shot's memory index in the lowered program → its edge detector (an index
     /// into `lowered.edges`).
@@ -857,7 +857,7 @@ pub fn prepare(
         );
     }
     let cycle = plc.cycle_us;
-    let mut known: Vec<Src> = Vec::new();
+    let mut known = Known::default();
     let loose = super::scan_eval::loose_names(&compiled);
     let hyps: Vec<Hyp> = compiled
         .hypotheses

@@ -39,8 +39,37 @@ pub enum Node {
     Pre(usize, usize),
 }
 
+/// The known values' sources, each at its slot, with an index of them.
+#[derive(Clone, Debug, Default)]
+pub struct Known {
+    list: Vec<Src>,
+    index: std::collections::HashMap<Src, usize>,
+}
+
+impl std::ops::Deref for Known {
+    type Target = Vec<Src>;
+    fn deref(&self) -> &Vec<Src> {
+        &self.list
+    }
+}
+
+impl<'a> IntoIterator for &'a Known {
+    type Item = &'a Src;
+    type IntoIter = std::slice::Iter<'a, Src>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.list.iter()
+    }
+}
+
+impl Known {
+    /// The slot of `src`, if it has one.
+    pub fn position(&self, src: &Src) -> Option<usize> {
+        self.index.get(src).copied()
+    }
+}
+
 /// Where the value of a known name comes from at each scan.
-#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Src {
     /// The simulator's bit at the end of this scan.
     Bit(String),
@@ -132,7 +161,7 @@ impl Hyp {
         h: &ii_prove::ladder::Hypothesis,
         c: &CompiledProgram,
         cycle_us: u64,
-        known: &mut Vec<Src>,
+        known: &mut Known,
         loose: &BTreeSet<String>,
     ) -> Hyp {
         let mut nodes = Vec::new();
@@ -260,7 +289,7 @@ impl Hyp {
         }
         let rel = if h.rel == Rel::Eq { "=" } else { "⇒" };
         let defines = match &h.lhs[ii_prove::term::root(&h.lhs)] {
-            Term::Name(n) => known.iter().position(|s| *s == Src::Defined(n.as_str().into())),
+            Term::Name(n) => known.position(&Src::Defined(n.as_str().into())),
             _ => None,
         };
         Hyp {
@@ -461,11 +490,13 @@ pub fn loose_names(c: &CompiledProgram) -> BTreeSet<String> {
     }
 }
 
-pub fn slot(known: &mut Vec<Src>, src: Src) -> usize {
-    known.iter().position(|s| *s == src).unwrap_or_else(|| {
-        known.push(src);
-        known.len() - 1
-    })
+pub fn slot(known: &mut Known, src: Src) -> usize {
+    if let Some(k) = known.position(&src) {
+        return k;
+    }
+    known.list.push(src.clone());
+    known.index.insert(src, known.list.len() - 1);
+    known.list.len() - 1
 }
 
 /// What [`check_scans`] counted.
@@ -490,7 +521,7 @@ pub fn check_scans(
     schedule: &[std::collections::BTreeMap<String, bool>],
     each: &mut dyn FnMut(usize, &ii_prove::program::simulate::Simulator) -> Result<(), String>,
 ) -> Result<Checked, String> {
-    let mut known: Vec<Src> = Vec::new();
+    let mut known = Known::default();
     let loose = loose_names(compiled);
     let mut hyps: Vec<Hyp> = compiled
         .hypotheses
