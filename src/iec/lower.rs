@@ -20,6 +20,7 @@ mod flow;
 mod il;
 mod ints;
 mod known;
+mod reals;
 mod user;
 
 use calls::Fb;

@@ -8,7 +8,9 @@
 
 mod float;
 
-pub use float::{add_real, compare_real, div_real, int_to_real, mul_real, real_to_int};
+pub use float::{
+    add_real, compare_real, div_real, int_to_real, mul_real, quotient_real, real_to_int,
+};
 
 use super::CmpOp;
 use super::IntType;

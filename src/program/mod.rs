@@ -248,6 +248,9 @@ pub enum RealOp {
     /// `a / b`, and `+0.0` when `b` is `±0.0`: matiec's `DIV` returns `__INIT_REAL` then
     /// (`TEST_EN_COND(REAL, op2 == 0)`).
     Div,
+    /// `a / b` as C's `/` computes it: `±∞`, or NaN for `0.0 / 0.0`, when `b` is `±0.0`
+    /// (Structured Text's `/`, which matiec writes as C's).
+    Quotient,
 }
 
 impl RealOp {
@@ -258,6 +261,7 @@ impl RealOp {
             RealOp::Sub => real::sub(a, b),
             RealOp::Mul => real::mul(a, b),
             RealOp::Div => real::div(a, b),
+            RealOp::Quotient => real::quotient(a, b),
         }
     }
 }

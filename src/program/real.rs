@@ -53,6 +53,12 @@ pub fn div(a: i64, b: i64) -> i64 {
     if to_f32(b) == 0.0 { 0 } else { sse(a, b, |x, y| x / y) }
 }
 
+/// `a / b` of two stored `REAL` values as C's `/` computes it: `±∞` or NaN for a
+/// divisor `±0.0`.
+pub fn quotient(a: i64, b: i64) -> i64 {
+    sse(a, b, |x, y| x / y)
+}
+
 /// `-2^63` and `2^63` as stored `REAL`s: the ends of the 64-bit `LINT` range through
 /// which matiec's `REAL_TO_*` converts.
 pub const LINT_RANGE: (i64, i64) = (0xDF00_0000, 0x5F00_0000);
@@ -80,6 +86,12 @@ pub fn to_int(v: i64, unsigned: bool) -> Option<i64> {
 /// reads them as a `double` (correctly rounded) and converts that to `float` (round to
 /// nearest even). `None` for anything else (an integer literal, `LREAL#…`).
 pub fn literal(text: &str) -> Option<i64> {
+    literal_value(text).map(|v| of_f32(v as f32))
+}
+
+/// The value of the real literal `text` as C reads the constant matiec writes for it:
+/// a `double` (what [`literal`] converts to a stored `REAL`), or `None` if it is not one.
+pub fn literal_value(text: &str) -> Option<f64> {
     let t = text.trim();
     let t = match t.split_once('#') {
         Some((ty, rest)) if ty.eq_ignore_ascii_case("REAL") => rest,
@@ -104,7 +116,7 @@ pub fn literal(text: &str) -> Option<i64> {
         return None;
     }
     let double: f64 = digits.parse().ok()?;
-    Some(of_f32((sign * double) as f32))
+    Some(sign * double)
 }
 
 /// A stored `REAL` value as people read it (`2.5`, `100.0`, `-0.0`, `inf`, `NaN`).

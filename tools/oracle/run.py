@@ -21,7 +21,8 @@ The request names what to drive and what to read, in the prover's names:
    "starts": {"B1": 1, "N": 40, ...},           # written after init (warm restart)
    "want": [{"bit": "TON0_Q"},                  # a BOOL variable or FB member, by flat name
             {"int": "C1_CV"},                   # an integer one (SINT ... ULINT, BYTE ...
-                                                # LWORD; TIME in microseconds: `T1_ET`)
+                                                # LWORD; TIME in microseconds: `T1_ET`;
+                                                # a REAL as its 32-bit pattern)
             {"int": "F_X", "optional": true},   # null in the answer if there is no such
                                                 # member (any want may say so)
             {"edge": [path, localId, field, rank]}]}  # the edge detector Beremiz made
@@ -31,7 +32,7 @@ The request names what to drive and what to read, in the prover's names:
 A flat name is the C member path joined by `_` (matiec upper-cases identifiers), so
 `TON0.Q` is `TON0_Q` and `UF0.TON1.Q` is `UF0_TON1_Q`, the prover's names for them. An
 integer input's value is converted to the member's C type as C assignment does (so it
-wraps into an unsigned type).
+wraps into an unsigned type); a REAL input's value is its 32-bit pattern.
 
 The answer `K.out.json` is {"status": "ok", "trace": ["0101", [0, 1, 1, 2], ...]} (per
 want in order: a bit's string, one character per scan; an integer's list, one number per
@@ -118,7 +119,9 @@ def harness(req, types, prog_type, instance, trigs):
 
     def integer(name):
         """A C expression of type long long (unsigned for ULINT, LWORD), and its printf."""
-        c, ty = member(name, INTEGERS | {"TIME"}, "integer")
+        c, ty = member(name, INTEGERS | {"TIME", "REAL"}, "integer")
+        if ty == "REAL":
+            return "real_bits(%s)" % c, "%lld"
         if ty == "TIME":
             return "((long long)%s.tv_sec * 1000000LL + %s.tv_nsec / 1000)" % (c, c), "%lld"
         if ty in UNSIGNED64:
@@ -161,6 +164,9 @@ def harness(req, types, prog_type, instance, trigs):
         "#undef __LOCATED_VAR",
         '#include "POUS.h"',
         "#include <stdio.h>",
+        "#include <string.h>",
+        "static long long real_bits(REAL x) { unsigned u; memcpy(&u, &x, 4); return u; }",
+        "static REAL real_of(long long v) { unsigned u = (unsigned)v; REAL x; memcpy(&x, &u, 4); return x; }",
         "TIME __CURRENT_TIME;",
         "BOOL __DEBUG;",
         "extern unsigned long long common_ticktime__;",
@@ -179,6 +185,11 @@ def harness(req, types, prog_type, instance, trigs):
     def scalar(name):
         return member(name, INTEGERS | {"BOOL"}, "BOOL or integer")[0]
 
+    def driven(name):
+        """A C assignment of `v` (a C expression of the value given) to input `name`."""
+        c, ty = member(name, INTEGERS | {"BOOL", "REAL"}, "BOOL, integer or REAL")
+        return (lambda v: "%s = real_of(%s);" % (c, v)) if ty == "REAL" else (lambda v: "%s = %s;" % (c, v))
+
     for name, v in req.get("starts", {}).items():
         lines.append("  %s = %d;" % (scalar(name), v))
     lines.append("  for (unsigned long k = 0; k < %d; k++) {" % scans)
@@ -186,7 +197,7 @@ def harness(req, types, prog_type, instance, trigs):
         if isinstance(v, str):
             lines.append("    %s = in%d[k] == '1';" % (bit(name), j))
         else:
-            lines.append("    %s = in%d[k];" % (scalar(name), j))
+            lines.append("    " + driven(name)("in%d[k]" % j))
     lines += [
         "    __CURRENT_TIME.tv_sec = (k * %dULL) / 1000000000ULL;" % req["cycle_ns"],
         "    __CURRENT_TIME.tv_nsec = (k * %dULL) %% 1000000000ULL;" % req["cycle_ns"],

@@ -556,7 +556,8 @@ impl Lowering<'_> {
         }
         match &e.kind {
             ExprKind::Var(id) => match self.lookup(id) {
-                Some(Sym { ty: Ty::Int(_), .. }) => Cr::Int(self.int_expr(e)),
+                // Instruction List keeps a REAL in its current result: not computed yet.
+                Some(Sym { ty: Ty::Int(t), .. }) if !t.real => Cr::Int(self.int_expr(e)),
                 Some(Sym { ty, .. }) if ty.value_type().is_some() => {
                     Cr::Other(format!("a {}", ty.value_type().unwrap_or_default()))
                 }

@@ -1,5 +1,6 @@
 //! Integers of Structured Text in the scan model, as matiec compiles them to C: the IEC integer types (`SINT` … `UDINT`, `BYTE` … `DWORD`), literals and constants, `+ - * / MOD`, unary `-`, the `*_TO_*` conversions and `MIN`/`MAX`/`LIMIT`/`SEL`/`ABS`/`MOVE`, comparisons; values narrower than 32 bits are computed as C `int`, as the generated C does. An integer whose value cannot be computed exactly (a division by a variable, a `TIME` or `REAL` operand, a 64-bit type) is *opaque*: what reads it is an unconstrained value, with the reason.
 
+use super::reals::Double;
 use super::{Lowering, Sym, Ty};
 use crate::diag::Span;
 use crate::iec::StError;
@@ -24,26 +25,29 @@ pub(super) struct Int {
     pub e: IntExpr,
     pub ty: Option<IntType>,
     divides: bool,
+    /// A `REAL` the generated C computes in `double` ([`Double`]).
+    pub(super) double: Option<Double>,
 }
 
 impl Int {
+    /// The value `e`, of type `ty` (`None`: an integer literal).
+    pub(super) fn of(e: IntExpr, ty: Option<IntType>) -> Int {
+        Int { e, ty, divides: false, double: None }
+    }
+
     /// The variable `name` of type `t`.
     pub(super) fn var(name: &str, t: IntType) -> Int {
-        Int { e: IntExpr::Var(name.to_string()), ty: Some(t), divides: false }
+        Int::of(IntExpr::Var(name.to_string()), Some(t))
     }
 
     fn literal(v: i128) -> Int {
-        Int {
-            e: IntExpr::Const(v.clamp(i64::MIN.into(), i64::MAX.into()) as i64),
-            ty: None,
-            divides: false,
-        }
+        Int::of(IntExpr::Const(v.clamp(i64::MIN.into(), i64::MAX.into()) as i64), None)
     }
 
     /// The value as C computes it, read in a context of the type `t` it has: computed
     /// in `int` where a division makes the width matter, else in `t` itself (sums,
     /// differences and products wrap alike in any width at least `t`'s).
-    fn in_type(self, t: IntType) -> IntExpr {
+    pub(super) fn in_type(self, t: IntType) -> IntExpr {
         if self.divides && promoted(t) != t {
             IntExpr::Cast(Box::new(self.e), promoted(t))
         } else {
@@ -98,6 +102,9 @@ impl Lowering<'_> {
             }
             ExprKind::Unary(UnOp::Neg, x) => {
                 let x = self.int_expr(x)?;
+                if x.is_real() {
+                    return Ok(self.real_negate(x));
+                }
                 Ok(match x.e {
                     IntExpr::Const(v) if x.ty.is_none() => Int::literal(-i128::from(v)),
                     e => Int { e: IntExpr::minus(IntExpr::Const(0), e), ..x },
@@ -109,6 +116,9 @@ impl Lowering<'_> {
                 b,
             ) => {
                 let (a, b) = (self.int_expr(a)?, self.int_expr(b)?);
+                if a.is_real() || b.is_real() {
+                    return self.real_arithmetic(*op, a, b, e.span);
+                }
                 self.arithmetic(*op, a, b, e.span)
             }
             ExprKind::Binary(BinOp::Pow, ..) => Err("`**` computes in REAL".into()),
@@ -130,7 +140,7 @@ impl Lowering<'_> {
         match &sym.ty {
             Ty::Int(t) => {
                 if let Some(v) = self.constants.get(&sym.name) {
-                    return Ok(Int { e: IntExpr::Const(*v), ty: Some(*t), divides: false });
+                    return Ok(Int::of(IntExpr::Const(*v), Some(*t)));
                 }
                 if let Some((why, _)) = self.opaque.get(&sym.name) {
                     return Err(format!("{} is not computed: {why}", sym.name));
@@ -158,6 +168,9 @@ impl Lowering<'_> {
 
     /// `INT#5`, `DINT#16#FF`, `UINT#-0` and such.
     fn typed_literal(&mut self, s: &str, span: Span) -> Result<Int, Opaque> {
+        if let Some(x) = self.real_literal(s) {
+            return Ok(x);
+        }
         let Some((ty, value)) = s.split_once('#') else {
             return Err(format!("the literal `{s}` is not an integer"));
         };
@@ -183,11 +196,24 @@ impl Lowering<'_> {
             ));
             return Err("a bad literal".into());
         };
-        Ok(Int { e: IntExpr::Const(t.wrap(v as i64)), ty: Some(t), divides: false })
+        Ok(Int::of(IntExpr::Const(t.wrap(v as i64)), Some(t)))
     }
 
     /// The type two operands share (a literal takes the other's).
-    fn unify(&mut self, a: &Int, b: &Int, span: Span) -> Result<Option<IntType>, Opaque> {
+    pub(super) fn unify(
+        &mut self,
+        a: &Int,
+        b: &Int,
+        span: Span,
+    ) -> Result<Option<IntType>, Opaque> {
+        if (a.is_real() && b.ty.is_none()) || (b.is_real() && a.ty.is_none()) {
+            self.errors.push(StError::new(
+                span,
+                "an integer literal where a REAL is expected",
+                "write it as a real literal (`50.0`): matiec's type check refuses an integer one",
+            ));
+            return Err("a type error".into());
+        }
         match (a.ty, b.ty) {
             (Some(x), Some(y)) if x != y => {
                 let mut e = StError::new(
@@ -250,7 +276,7 @@ impl Lowering<'_> {
                 }
             }
         };
-        Ok(Int { e, ty, divides })
+        Ok(Int { e, ty, divides, double: None })
     }
 
     /// A function with an integer result: conversions, MIN/MAX/LIMIT/SEL/ABS/MOVE and the
@@ -264,18 +290,22 @@ impl Lowering<'_> {
             .collect();
         let name = f.key();
         if let Some((from, to)) = name.split_once("_TO_") {
-            let (Some(from), Some(to)) = (int_type(from), int_type(to)) else {
+            let (Some(from), Some(to)) = (library::number_type(from), library::number_type(to))
+            else {
                 return Err(format!("the conversion {} is not computed", f.name));
             };
             let [x] = values.as_slice() else {
                 return Err(format!("{} takes one argument", f.name));
             };
             let x = self.int_expr(x)?;
-            self.unify(&x, &Int { e: IntExpr::Const(0), ty: Some(from), divides: false }, e.span)?;
+            self.unify(&x, &Int::of(IntExpr::Const(0), Some(from)), e.span)?;
+            if from.real || to.real {
+                return Ok(self.real_conversion(&f.name, x, (from, to), e.span));
+            }
             // The argument is a value of `from` (converted as C passes it), then `to`.
             // A value of `to` in any context: converted from `from`, then wrapped to `to`.
             let v = IntExpr::Cast(Box::new(IntExpr::Cast(Box::new(x.in_type(from)), from)), to);
-            return Ok(Int { e: v, ty: Some(to), divides: false });
+            return Ok(Int::of(v, Some(to)));
         }
         let mut ints = Vec::new();
         let skip = usize::from(name == "SEL" || name == "MUX");
@@ -308,9 +338,10 @@ impl Lowering<'_> {
                 return Ok(Int::literal(k));
             }
         }
-        let mut ty = None;
+        // The arguments' one type (literals take it).
+        let ty = ints.iter().find_map(|x| x.ty);
         for x in &ints {
-            ty = self.unify(&Int { e: IntExpr::Const(0), ty, divides: false }, x, e.span)?;
+            self.unify(&Int::of(IntExpr::Const(0), ty), x, e.span)?;
         }
         let t = ty.unwrap_or(C_INT);
         let value = |x: &Int| x.clone().in_type(t);
@@ -337,6 +368,10 @@ impl Lowering<'_> {
                 if rest.len() > 1 && !matches!(op, BinOp::Add | BinOp::Mul) {
                     return Err(format!("{} takes two arguments", f.name));
                 }
+                if t.real {
+                    let vals: Vec<IntExpr> = ints.iter().map(value).collect();
+                    return super::reals::real_function(op, vals).map(|v| Int::of(v, ty));
+                }
                 let mut acc = first.clone();
                 for x in rest {
                     acc = self.arithmetic(op, acc, x.clone(), e.span)?;
@@ -345,8 +380,11 @@ impl Lowering<'_> {
             }
             _ => return Err(format!("the function {} is not computed", f.name)),
         };
+        if t.real {
+            return Ok(Int::of(e2, ty));
+        }
         // A function returns a value of its type: computed (its arguments passed) in `t`.
-        Ok(Int { e: IntExpr::Cast(Box::new(e2), t), ty, divides: false })
+        Ok(Int::of(IntExpr::Cast(Box::new(e2), t), ty))
     }
 
     /// `a op b` for integers: exact, else an unconstrained value with the reason.
@@ -366,6 +404,9 @@ impl Lowering<'_> {
 
     /// `a op b` for integer values already lowered.
     pub(super) fn int_compare_values(&mut self, op: CmpOp, a: Int, b: Int, span: Span) -> BoolExpr {
+        if a.is_real() || b.is_real() {
+            return self.real_compare(op, a, b, span);
+        }
         let ty = match self.unify(&a, &b, span) {
             Ok(t) => t,
             Err(why) => return self.unknown_comparison(op, span, &why),
@@ -429,7 +470,7 @@ impl Lowering<'_> {
             return Vec::new();
         }
         match v.and_then(|v| {
-            self.unify(&v, &Int { e: IntExpr::Const(0), ty: Some(t), divides: false }, at)?;
+            self.unify(&v, &Int::of(IntExpr::Const(0), Some(t)), at)?;
             Ok(v)
         }) {
             Ok(v) => vec![Stmt::SetInt { target: target.to_string(), value: v.in_type(t), span }],
@@ -452,9 +493,7 @@ impl Lowering<'_> {
     ) -> Result<Int, Opaque> {
         let v = self.arithmetic(op, cr, x, span)?;
         Ok(match v.ty {
-            Some(t) => {
-                Int { e: IntExpr::Cast(Box::new(v.in_type(t)), t), ty: Some(t), divides: false }
-            }
+            Some(t) => Int::of(IntExpr::Cast(Box::new(v.in_type(t)), t), Some(t)),
             None => v,
         })
     }
@@ -473,6 +512,9 @@ impl Lowering<'_> {
     /// values it reads are known before the scan; else what is not known.
     pub(super) fn known_value(&mut self, e: &ast::Expr) -> Result<i64, String> {
         let v = self.int_expr(e)?;
+        if v.is_real() {
+            return Err("a REAL".into());
+        }
         let t = v.ty.map_or(C_INT, promoted);
         self.known_int(&v.in_type(t), t).map_err(|x| format!("it reads {x}"))
     }
@@ -480,7 +522,7 @@ impl Lowering<'_> {
     /// The value of `e` for an integer input of type `t` (an FB's `PV`), or why not.
     pub(super) fn int_input(&mut self, e: &ast::Expr, t: IntType) -> Result<IntExpr, Opaque> {
         let v = self.int_expr(e)?;
-        self.unify(&v, &Int { e: IntExpr::Const(0), ty: Some(t), divides: false }, e.span)?;
+        self.unify(&v, &Int::of(IntExpr::Const(0), Some(t)), e.span)?;
         Ok(v.in_type(t))
     }
 
@@ -511,7 +553,7 @@ impl Lowering<'_> {
         let init = match &v.init {
             None => Some(0),
             Some(e) => match self.int_expr(e) {
-                Ok(Int { e: IntExpr::Const(k), ty, .. }) if ty.is_none_or(|x| x == t) => {
+                Ok(Int { e: IntExpr::Const(k), ty, .. }) if ty.map_or(!t.real, |x| x == t) => {
                     Some(t.wrap(k))
                 }
                 _ => None,
@@ -519,8 +561,9 @@ impl Lowering<'_> {
         };
         let Some(init) = init else {
             let why = format!(
-                "its initial value `{}` is not an integer literal",
-                self.text(v.init.as_ref().map_or(v.name.span, |e| e.span))
+                "its initial value `{}` is not {}",
+                self.text(v.init.as_ref().map_or(v.name.span, |e| e.span)),
+                if t.real { "a real literal" } else { "an integer literal" }
             );
             self.make_opaque(name, why, v.name.span);
             return;

@@ -17,9 +17,9 @@ impl Lowering<'_> {
     pub(super) fn type_of(&self, ty: &Ident) -> Ty {
         match ty.name.as_str() {
             "BOOL" => Ty::Bool,
-            t if super::ints::int_type(t).is_some() => {
-                Ty::Int(super::ints::int_type(t).unwrap_or(crate::program::IntType::I16))
-            }
+            t if crate::program::library::number_type(t).is_some() => Ty::Int(
+                crate::program::library::number_type(t).unwrap_or(crate::program::IntType::I16),
+            ),
             t => match Fb::of(t) {
                 Some(fb) => Ty::Fb(fb, t.to_string()),
                 None if self

@@ -181,6 +181,20 @@ fn special(
 /// bits and a remainder; the quotient, its leading 1 brought to bit 26, is rounded by
 /// [`round_pack`].
 pub fn div_real(a: &[L], b: &[L], name: Namer) -> Bits {
+    let (y_zero, out) = divide(a, b, false, name);
+    choose(&y_zero, &constant(0, 32), &out, name)
+}
+
+/// `a / b` for two `REAL`s as C's `/` computes it on x86-64 (`divss`), as [`div_real`]
+/// but with `b` `±0.0` too: `±∞` for a number, the default NaN for `±0.0` (Structured
+/// Text's `/`, which matiec writes as C's).
+pub fn quotient_real(a: &[L], b: &[L], name: Namer) -> Bits {
+    divide(a, b, true, name).1
+}
+
+/// `a / b` (`by_zero`: with IEEE 754's `±∞` and NaN where `b` is `±0.0`), and whether
+/// `b` is `±0.0`.
+fn divide(a: &[L], b: &[L], by_zero: bool, name: Namer) -> (L, Bits) {
     let (x, y) = (unpack(a, name), unpack(b, name));
     let sign = super::xor(&a[31], &b[31]);
     // Restoring division: 27 quotient bits, most significant first.
@@ -204,10 +218,14 @@ pub fn div_real(a: &[L], b: &[L], name: Namer) -> Bits {
     let below_one = choose(&top, &wide(127), &wide(126), name);
     let e = add(&sub(&x.e, &y.e, name), &below_one, L::Zero, name);
     let finite = round_pack(&e, s, rest, name);
-    let to_zero = name(simp(&x.zero.or(y.inf.clone())));
-    let invalid = simp(&x.inf.clone().and(y.inf));
-    let out = special(finite, &sign, (to_zero, x.inf, invalid), (a, &x.nan), (b, &y.nan), name);
-    choose(&y.zero, &constant(0, 32), &out, name)
+    let to_zero = name(simp(&x.zero.clone().or(y.inf.clone())));
+    let (mut inf, mut invalid) = (x.inf.clone(), simp(&x.inf.and(y.inf)));
+    if by_zero {
+        inf = name(simp(&inf.or(y.zero.clone())));
+        invalid = simp(&invalid.or(x.zero.and(y.zero.clone())));
+    }
+    let out = special(finite, &sign, (to_zero, inf, invalid), (a, &x.nan), (b, &y.nan), name);
+    (y.zero, out)
 }
 
 /// `a * b` for two `REAL`s as C computes it on x86-64 (`mulss`: the nearest number,
@@ -531,9 +549,10 @@ mod tests {
         Ok(())
     }
 
-    /// The division (0 for a divisor ±0, as matiec's `DIV`).
+    /// The division (0 for a divisor ±0, as matiec's `DIV`), and C's `/`.
     fn divides(x: u32, y: u32) -> Result<(), TestCaseError> {
-        computes(x, y, &|a, b, n| div_real(a, b, n), real::div)
+        computes(x, y, &|a, b, n| div_real(a, b, n), real::div)?;
+        computes(x, y, &|a, b, n| quotient_real(a, b, n), real::quotient)
     }
 
     /// The product.

@@ -121,6 +121,7 @@ impl Compiler<'_> {
                     RealOp::Sub => bitvec::add_real(&a, &b, true, &mut name),
                     RealOp::Mul => bitvec::mul_real(&a, &b, &mut name),
                     RealOp::Div => bitvec::div_real(&a, &b, &mut name),
+                    RealOp::Quotient => bitvec::quotient_real(&a, &b, &mut name),
                 }
             }
             IntExpr::FromReal(a, unsigned) => {

@@ -1,0 +1,255 @@
+//! `REAL` values of Structured Text in the scan model, as the C matiec writes computes them on x86-64: a `REAL` variable is a C `float`, a real literal (`0.5`) a C `double` constant, so an operation of a `REAL` and a literal is computed in `double`. Exact: `float` operations, comparisons with any literal, and one operation with a literal a `float` holds exactly once its result is stored or passed (rounding the exact result of one operation through `double` to `float` gives the `float` result, since 53 ≥ 2·24 + 2); a value kept in `double` beyond that is opaque.
+
+use super::Lowering;
+use super::ints::{Int, Opaque};
+use crate::diag::Span;
+use crate::iec::StError;
+use crate::iec::ast::BinOp;
+use crate::program::{BitOp, BoolExpr, CmpOp, IntExpr, IntType, RealOp, library, real};
+
+/// A `REAL` value the generated C computes in `double`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Double {
+    /// A real literal: a C `double` constant, of this value.
+    Literal(f64),
+    /// One operation of a `REAL` and a literal a `float` holds exactly: its value (the
+    /// `float` operation) is exact where C converts it to `REAL` (stored, passed to a
+    /// function), not where it is compared or computed on in `double`.
+    Rounded,
+}
+
+impl Int {
+    /// A real literal of value `v` (a C `double`): as a stored `REAL`, `(float)v`.
+    fn double_literal(v: f64) -> Int {
+        let mut x = Int::of(IntExpr::Const(real::of_f32(v as f32)), Some(IntType::REAL));
+        x.double = Some(Double::Literal(v));
+        x
+    }
+
+    /// Whether the value is a `REAL`.
+    pub(super) fn is_real(&self) -> bool {
+        self.ty.is_some_and(|t| t.real)
+    }
+}
+
+/// Whether the `double` `v` is a `float` value.
+fn is_float(v: f64) -> bool {
+    f64::from(v as f32) == v || v.is_nan()
+}
+
+/// `b op a` for `a op b`.
+fn swapped(op: CmpOp) -> CmpOp {
+    match op {
+        CmpOp::Lt => CmpOp::Gt,
+        CmpOp::Le => CmpOp::Ge,
+        CmpOp::Gt => CmpOp::Lt,
+        CmpOp::Ge => CmpOp::Le,
+        same => same,
+    }
+}
+
+impl Lowering<'_> {
+    /// A real literal as written (`0.5`, `1.0E3`: a C `double`; `REAL#0.5`: a `float`),
+    /// or `None` if `text` is not one.
+    pub(super) fn real_literal(&mut self, text: &str) -> Option<Int> {
+        let v = real::literal_value(text)?;
+        Some(if text.contains('#') {
+            Int::of(IntExpr::Const(real::of_f32(v as f32)), Some(IntType::REAL))
+        } else {
+            Int::double_literal(v)
+        })
+    }
+
+    /// `-x` of a `REAL`: C flips the sign bit (of a `double` too, so a rounded value
+    /// stays one).
+    pub(super) fn real_negate(&mut self, x: Int) -> Int {
+        if let Some(Double::Literal(v)) = x.double {
+            return Int::double_literal(-v);
+        }
+        let double = x.double;
+        let e = IntExpr::Bitwise(BitOp::Xor, Box::new(x.e), Box::new(IntExpr::Const(1 << 31)));
+        let mut negated = Int::of(e, x.ty);
+        negated.double = double;
+        negated
+    }
+
+    /// Why the value of the expression at `span` is not computed: C keeps it in `double`.
+    fn in_double(&self, span: Span) -> Opaque {
+        format!(
+            "`{}` is computed by the generated C in double precision (a real literal is a C \
+             `double`), which ii-prove does not compute",
+            self.text(span)
+        )
+    }
+
+    /// `a op b` (`+ - * /`) where one side is a `REAL`, as C computes it.
+    pub(super) fn real_arithmetic(
+        &mut self,
+        op: BinOp,
+        a: Int,
+        b: Int,
+        span: Span,
+    ) -> Result<Int, Opaque> {
+        self.unify(&a, &b, span)?;
+        let rop = match op {
+            BinOp::Add => RealOp::Add,
+            BinOp::Sub => RealOp::Sub,
+            BinOp::Mul => RealOp::Mul,
+            BinOp::Div => RealOp::Quotient,
+            _ => {
+                self.errors.push(StError::new(
+                    span,
+                    "MOD of REAL values",
+                    "MOD takes integers (the C matiec writes for it, `a % b`, does not compile with REALs)",
+                ));
+                return Err("a type error".into());
+            }
+        };
+        let value = IntExpr::Real(rop, Box::new(a.e), Box::new(b.e));
+        match (a.double, b.double) {
+            // Two literals: folded in `double`, as the C compiler folds them.
+            (Some(Double::Literal(x)), Some(Double::Literal(y))) => {
+                Ok(Int::double_literal(match rop {
+                    RealOp::Add => x + y,
+                    RealOp::Sub => x - y,
+                    RealOp::Mul => x * y,
+                    _ => x / y,
+                }))
+            }
+            (None, None) => Ok(Int::of(value, Some(IntType::REAL))),
+            (Some(Double::Literal(k)), None) | (None, Some(Double::Literal(k))) if is_float(k) => {
+                let mut x = Int::of(value, Some(IntType::REAL));
+                x.double = Some(Double::Rounded);
+                Ok(x)
+            }
+            _ => Err(self.in_double(span)),
+        }
+    }
+
+    /// `a op b` where one side is a `REAL`: as C compares a `float` (exactly a `double`
+    /// when promoted) with a `double` literal; unconstrained where a side is computed in
+    /// `double`.
+    pub(super) fn real_compare(&mut self, op: CmpOp, a: Int, b: Int, span: Span) -> BoolExpr {
+        if let Err(why) = self.unify(&a, &b, span) {
+            return self.unknown_comparison(op, span, &why);
+        }
+        match (a.double, b.double) {
+            (Some(Double::Literal(x)), Some(Double::Literal(y))) => {
+                BoolExpr::Const(op.compares(x, y))
+            }
+            (None, None) => library::compare(op, IntType::REAL, a.e, b.e),
+            (None, Some(Double::Literal(k))) => compare_with_literal(op, a.e, k),
+            (Some(Double::Literal(k)), None) => compare_with_literal(swapped(op), b.e, k),
+            _ => {
+                let why = self.in_double(span);
+                self.unknown_comparison(op, span, &why)
+            }
+        }
+    }
+}
+
+impl Lowering<'_> {
+    /// `F(x)` for a conversion `F` (`from` to `to`) with a `REAL` side, as matiec's C
+    /// converts: an integer to the nearest `float`; a `REAL` to the rounded integer where
+    /// C defines it, else a free input of `to` ([`library::real_to_int`]).
+    pub(super) fn real_conversion(
+        &mut self,
+        f: &str,
+        x: Int,
+        (from, to): (IntType, IntType),
+        span: Span,
+    ) -> Int {
+        let v = x.in_type(from);
+        if !from.real {
+            return Int::of(IntExpr::ToReal(Box::new(v), from), Some(to));
+        }
+        if to.real {
+            return Int::of(v, Some(to));
+        }
+        let free = self.unique(&format!("{}_UNDEFINED_L{:02}", f.to_ascii_uppercase(), self.line));
+        self.ints.insert(free.clone(), crate::program::IntVar { ty: to, input: true, init: 0 });
+        let cases = if to.signed {
+            "a NaN, ±inf or outside [-2^63, 2^63)"
+        } else {
+            "+inf or at least 2^63"
+        };
+        self.warnings.push(StError::warning(
+            span,
+            format!(
+                "{f}: where its input is {cases}, which C leaves undefined, its value is the \
+                 free input {free}: any {}",
+                library::type_name(to)
+            ),
+        ));
+        let e = library::real_to_int(v, !to.signed, &free);
+        Int::of(IntExpr::Cast(Box::new(e), to), Some(to))
+    }
+}
+
+/// `ADD`, `SUB`, `MUL` or `DIV` (`op`) of `REAL` arguments (each converted to `REAL` as
+/// passed): `float` operations, `DIV` by `±0.0` giving `0.0` (matiec's `DIV`).
+pub(super) fn real_function(op: BinOp, args: Vec<IntExpr>) -> Result<IntExpr, Opaque> {
+    let rop = match op {
+        BinOp::Add => RealOp::Add,
+        BinOp::Sub => RealOp::Sub,
+        BinOp::Mul => RealOp::Mul,
+        BinOp::Div => RealOp::Div,
+        _ => return Err("MOD of REAL values is not computed (MOD takes integers)".into()),
+    };
+    let mut it = args.into_iter();
+    let first = it.next().unwrap_or(IntExpr::Const(0));
+    Ok(it.fold(first, |acc, x| IntExpr::Real(rop, Box::new(acc), Box::new(x))))
+}
+
+/// `(double)x op k` for a `REAL` `x` and a `double` `k`: a `float` comparison, with `k`
+/// itself where a `float` holds it, else with the greatest `float` below `k` (no `float`
+/// lies between them: `x > k` is `x > lo`, `x < k` is `x <= lo`, `x = k` never).
+fn compare_with_literal(op: CmpOp, x: IntExpr, k: f64) -> BoolExpr {
+    if is_float(k) {
+        return library::compare(op, IntType::REAL, x, IntExpr::Const(real::of_f32(k as f32)));
+    }
+    let nearest = k as f32;
+    let lo = if f64::from(nearest) < k { nearest } else { nearest.next_down() };
+    let lo = IntExpr::Const(real::of_f32(lo));
+    match op {
+        CmpOp::Eq => BoolExpr::Const(false),
+        CmpOp::Ne => BoolExpr::Const(true),
+        CmpOp::Gt | CmpOp::Ge => library::compare(CmpOp::Gt, IntType::REAL, x, lo),
+        CmpOp::Lt | CmpOp::Le => library::compare(CmpOp::Le, IntType::REAL, x, lo),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every comparison of a `float` with a `double` literal no `float` holds, over the
+    /// `float`s around it, as C compares them (the `float` promoted).
+    #[test]
+    fn comparisons_with_double_literals_are_exact() {
+        let values = |k: f64| {
+            let f = k as f32;
+            let mut v = vec![f, f.next_up(), f.next_down(), 0.0, -0.0, f32::NAN];
+            v.extend([f32::INFINITY, f32::NEG_INFINITY, f32::MAX, f32::MIN_POSITIVE]);
+            v.extend([f32::from_bits(1), -f32::from_bits(1), f.next_up().next_up()]);
+            v
+        };
+        let ops = [CmpOp::Eq, CmpOp::Ne, CmpOp::Lt, CmpOp::Le, CmpOp::Gt, CmpOp::Ge];
+        for k in [0.1, -0.1, 1e-50, -1e-50, 1e39, -1e39, 3.4028235677973366e38, 16777217.0] {
+            assert!(!is_float(k), "{k}");
+            for x in values(k) {
+                for op in ops {
+                    let got = match compare_with_literal(op, IntExpr::Var("x".into()), k) {
+                        BoolExpr::Const(c) => c,
+                        BoolExpr::Compare(c) => match c.b {
+                            IntExpr::Const(lo) => c.ty.holds(c.op, real::of_f32(x), lo),
+                            _ => panic!("{op:?} {k}: not a comparison with a constant"),
+                        },
+                        _ => panic!("{op:?} {k}: not a comparison"),
+                    };
+                    assert_eq!(got, op.compares(f64::from(x), k), "{x:?} {op:?} {k}");
+                }
+            }
+        }
+    }
+}
