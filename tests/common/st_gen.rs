@@ -266,6 +266,9 @@ pub fn program(seed: u64) -> Generated {
 /// `NOT Q => x` (matiec stops with an internal error on them).
 pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
     let mut rng = Rng::new(seed);
+    // The draws of inputs left out and second calls, apart (the other draws, and so the
+    // rest of each program, stay what they were before these were generated).
+    let mut own = Rng::new(seed ^ 0x0DD5);
     let n_in = 1 + rng.below(4) as usize;
     let n_local = 2 + rng.below(5) as usize;
     let inputs: Vec<String> = (0..n_in).map(|k| format!("In{k}")).collect();
@@ -445,7 +448,7 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
                         }
                     };
                     // A call that leaves PT out: T#0s, as no call gives it.
-                    match g.rng.chance(20) {
+                    match own.chance(20) {
                         true => format!("{n}(IN := {})", g.expr(2)),
                         false => format!("{n}(IN := {}, PT := {pt})", g.expr(2)),
                     }
@@ -467,7 +470,7 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
     // Second calls of some instances other than timers, later in the scan, each input
     // left out keeping the value the first call gave.
     for (n, t) in &fbs {
-        if matches!(*t, "TON" | "TOF") || !g.rng.chance(25) {
+        if matches!(*t, "TON" | "TOF") || !own.chance(25) {
             continue;
         }
         let pins: &[&str] = match *t {
@@ -477,15 +480,16 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
         };
         let mut given = Vec::new();
         for p in pins {
-            if g.rng.chance(40) {
-                given.push(format!("{p} := {}", g.expr(2)));
+            if own.chance(40) {
+                given.push(format!("{p} := {}", own.pick(&g.reads)));
             }
         }
         calls.push(format!("  {n}({});\n", given.join(", ")));
     }
     calls.extend(user_calls);
     if let Some((c, t)) = &counter {
-        let pv = if g.rng.chance(70) { g.rng.below(5).to_string() } else { g.iexpr("INT", 1) };
+        let literal = g.rng.chance(70);
+        let pv = if literal { g.rng.below(5).to_string() } else { g.iexpr("INT", 1) };
         let mut args = Vec::new();
         if *t != "CTD" {
             args.push(format!("CU := {}", g.expr(1)));
@@ -506,15 +510,16 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
             args.push(format!("CV => {}", g.rng.pick(&ints)));
         }
         calls.push(format!("  {c}({});\n", args.join(", ")));
-        // A second call giving one counting input: the others and PV kept.
-        if g.rng.chance(25) {
+        // A second call giving one counting input: the others and PV kept (a literal: a
+        // kept expression of the count doubles the count's circuit, and the test's time).
+        if literal && own.chance(25) {
             let pin = if *t == "CTD" { "CD" } else { "CU" };
-            calls.push(format!("  {c}({pin} := {});\n", g.expr(1)));
+            calls.push(format!("  {c}({pin} := {});\n", own.pick(&g.reads)));
         }
     }
     if pulse {
         let pt = g.rng.below(6) * cycle_ms * 1000 + g.rng.below(3) * 700;
-        match g.rng.chance(20) {
+        match own.chance(20) {
             true => calls.push(format!("  P0(IN := {});\n", g.expr(1))),
             false => calls.push(format!("  P0(IN := {}, PT := T#{}us);\n", g.expr(1), pt)),
         }
