@@ -476,7 +476,12 @@ impl<'s> Lowering<'s> {
             let input = self.temp(out, input);
             let m = self.hidden(inst, pin);
             let before = self.temp(out, BoolExpr::var(&m));
-            out.push(Stmt::Write { target: m, kind: WriteKind::Assign, value: input.clone(), span });
+            out.push(Stmt::Write {
+                target: m,
+                kind: WriteKind::Assign,
+                value: input.clone(),
+                span,
+            });
             return BoolExpr::and(input, BoolExpr::negate(before));
         }
         let memory =
@@ -655,8 +660,8 @@ impl<'s> Lowering<'s> {
         let v = self.kept_input(inst, "IN", read, &mut out, span);
         let pt = match inputs.get("PT").map(|e| &e.kind) {
             Some(ExprKind::Time(us)) => Ok(*us),
-            Some(ExprKind::Var(id)) => self.duration(id).ok_or_else(|| {
-                match self.variable_preset(id, inst) {
+            Some(ExprKind::Var(id)) => {
+                self.duration(id).ok_or_else(|| match self.variable_preset(id, inst) {
                     Preset::Variable { name, why: Some(why) } => format!(
                         "the pulse timer {inst} has its preset from the variable {name}, which \
                          is not a constant: {why}"
@@ -664,8 +669,8 @@ impl<'s> Lowering<'s> {
                     _ => format!(
                         "the pulse timer {inst} has a preset that is not a constant duration"
                     ),
-                }
-            }),
+                })
+            }
             Some(_) => {
                 Err(format!("the pulse timer {inst} has a preset that is not a constant duration"))
             }
