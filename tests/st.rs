@@ -319,3 +319,64 @@ fn time_variables_constant_in_fact_are_exact_presets() {
         assert!(all.contains(equation) && all.contains(reason), "{equation}, {reason}: {all}");
     }
 }
+
+/// A call that leaves an input out runs the block with the value the instance last
+/// received (FALSE, 0 or T#0s before any call gives it): the latch's reset, the edge
+/// detector's memory and clock, the counter's preset and a TON's `PT` never given.
+#[test]
+fn inputs_left_out_keep_the_values_the_instance_last_received() {
+    let stdout = shown("tests/data/proves_programs/kept_inputs.st");
+    let equations = [
+        "Latch_R_in = Stop",
+        "Latch_Q1 = SR(Start, Latch_R_in + Stop)",
+        "Edge_Q = Edge_CLK_in · ¬Jog",
+        "Settle_Q = 10ms/Run",
+        "Jogs_R_in = Stop",
+    ];
+    for e in equations {
+        assert!(stdout.contains(e), "{e}: {stdout}");
+    }
+    assert!(!stdout.contains("unconstrained"), "{stdout}");
+}
+
+/// What stays unconstrained where inputs are left out, each with its reason: a pulse
+/// timer whose kept `PT` is not one literal, one called twice in a scan, and an IL input
+/// operator on a timer whose `PT` another call gives.
+#[test]
+fn inputs_left_out_that_are_not_one_value_are_named_with_the_reason() {
+    let program = |body: &str| {
+        format!(
+            "PROGRAM P\n  VAR_INPUT\n    A, B : BOOL;\n  END_VAR\n  VAR\n    T0 : TON;\n    \
+             P0 : TP;\n    X : BOOL;\n  END_VAR\n{body}END_PROGRAM\n"
+        )
+    };
+    let cases = [
+        (
+            "  P0(IN := A, PT := T#50ms);\n  X := P0.Q;\n  P0(IN := B);\n",
+            "the pulse timer P0 is called more than once in a scan, and its pulse ends at the \
+             first call one PT after it started, which is not modelled",
+        ),
+        (
+            "  P0(IN := A, PT := T#50ms);\n  X := P0.Q;\n  P0(IN := B);\n",
+            "the pulse timer P0 is called without PT, and the PT it keeps is not a constant: it \
+             holds T#0s and is also written with T#50ms by the call at line 10",
+        ),
+        (
+            "  T0(IN := A, PT := T#1s);\n  T0(IN := B);\n  X := T0.Q;\n",
+            "the accumulator T0 is also written by another element",
+        ),
+        (
+            "  T0(IN := A, PT := T#1s);\n  X := T0.Q;\n  T0.IN := B;\n",
+            "assigning to a member or an array element is not modelled yet",
+        ),
+    ];
+    let dir = std::env::temp_dir().join(format!("ii-prove-st-kept-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (k, (body, reason)) in cases.into_iter().enumerate() {
+        let path = dir.join(format!("kept_{k}.st"));
+        std::fs::write(&path, program(body)).unwrap();
+        let out = ii_prove(&["show", "--cycle", "10ms", path.to_str().unwrap()]);
+        let all = text(&out.stdout) + &text(&out.stderr);
+        assert!(all.contains(reason), "{reason}: {all}");
+    }
+}

@@ -153,13 +153,14 @@ pub fn lower(
     }
     // An integer found opaque while lowering changes what reads it: lowered again
     // until no new one appears (each round adds one at least).
-    let (mut opaque, mut omitted) = (BTreeMap::new(), BTreeSet::new());
+    let (mut opaque, mut omitted, mut multi) = (BTreeMap::new(), BTreeSet::new(), BTreeSet::new());
     let time_facts = durations::time_facts(sources, unit);
     loop {
         let mut l = Lowering::new(sources, cycle_us, warnings.clone());
         l.time_facts = time_facts.clone();
         l.opaque = opaque.clone();
         l.omitted = omitted.clone();
+        l.multi = multi.clone();
         l.user = unit
             .pous
             .iter()
@@ -192,8 +193,17 @@ pub fn lower(
         if !l.errors.is_empty() {
             return Err(l.errors);
         }
-        if l.opaque.len() > opaque.len() || l.omitted.len() > omitted.len() {
-            (opaque, omitted) = (l.opaque, l.omitted);
+        let called: BTreeSet<String> = l
+            .called
+            .iter()
+            .filter(|(_, n)| **n > 1)
+            .map(|(inst, _)| inst.to_ascii_uppercase())
+            .collect();
+        if l.opaque.len() > opaque.len()
+            || l.omitted.len() > omitted.len()
+            || called.len() > multi.len()
+        {
+            (opaque, omitted, multi) = (l.opaque, l.omitted, called);
             continue;
         }
         l.warn_opaque();
@@ -363,9 +373,15 @@ struct Lowering<'s> {
     opaque: BTreeMap<String, (ints::Opaque, Span)>,
     /// Integer globals (not located at `%Q`): inputs unless a statement writes them.
     int_globals: BTreeSet<String>,
-    /// Counter inputs some call leaves out (instance key, pin): every call that gives
-    /// them keeps them in a hidden bit (given; grows while lowering, like `opaque`).
+    /// Standard function blocks' inputs some call leaves out (instance key, pin): every
+    /// call that gives them keeps them in a hidden bit or integer (given; grows while
+    /// lowering, like `opaque`).
     omitted: BTreeSet<(String, String)>,
+    /// Calls of each standard function-block instance (by its name in the scan model).
+    called: BTreeMap<String, usize>,
+    /// The standard function-block instances called more than once in a scan (instance
+    /// key; given, grows while lowering, like `opaque`).
+    multi: BTreeSet<String>,
     /// The values known at this point of the scan (to count `WHILE`/`REPEAT` loops).
     known: known::Known,
     /// The bodies being lowered, with their `RETURN` and loop bits, innermost last.
@@ -411,6 +427,8 @@ impl<'s> Lowering<'s> {
             opaque: BTreeMap::new(),
             int_globals: BTreeSet::new(),
             omitted: BTreeSet::new(),
+            called: BTreeMap::new(),
+            multi: BTreeSet::new(),
             known: known::Known::default(),
             frames: Vec::new(),
             flow_bits: BTreeMap::new(),
@@ -505,8 +523,10 @@ impl<'s> Lowering<'s> {
             }
             self.taken.insert(name.clone());
             if let Ty::User(fb) = &ty {
-                let owner = if k < n_globals { String::new() } else { pou.name.key() };
                 self.instantiate(&name, fb, &format!("{owner}.{key}"), v.name.span);
+            }
+            if let Ty::Fb(Fb::Ton | Fb::Tof | Fb::Tp, _) = ty {
+                self.declare_timer(&name, &format!("{owner}.{key}"));
             }
             self.syms.insert(key, Sym { name, ty, span: v.name.span });
         }

@@ -1,4 +1,4 @@
-//! Random Instruction List programs for the differential tests, kept as instructions as well as text: loads, the Boolean operators with `N` and `( … )`, `NOT`, `EQ`/`NE`, `ST`/`STN`/`S`/`R`, forward `JMP`/`JMPC`/`JMPCN` with labels reached from several paths, `RETC`/`RETCN`, and calls of TON, TOF, R_TRIG, F_TRIG, SR, RS (`CAL` with formal inputs, `CLK` as an operator), each on every scan.
+//! Random Instruction List programs for the differential tests, kept as instructions as well as text: loads, the Boolean operators with `N` and `( … )`, `NOT`, `EQ`/`NE`, `ST`/`STN`/`S`/`R`, forward `JMP`/`JMPC`/`JMPCN` with labels reached from several paths, `RETC`/`RETCN`, and calls of TON, TOF, R_TRIG, F_TRIG, SR, RS (`CAL` with formal or positional inputs, `CLK`/`S1`/`R1`/`IN` as operators), each on every scan, some inputs left out (a timer's `PT` among them) and some instances called twice.
 #![allow(dead_code)]
 
 use super::rng::Rng;
@@ -119,8 +119,9 @@ pub enum Ins {
     /// `CAL inst(pin := [NOT] x, …, PT := T#…)`: the instance, its type, its Boolean
     /// inputs, the preset in µs for timers, and the call's form.
     Cal(String, String, Vec<(String, bool, Operand)>, Option<u64>, Form),
-    /// `LD x` then `CLK inst` (an edge detector called with the current result).
-    Clk(String),
+    /// `LD x` then `PIN inst` (`CLK R0`, `S1 S0`, `R1 Z0`, `IN T0`): a call with the
+    /// current result as that input, the instance's other inputs left out.
+    FbIn(String, String),
     /// `LD n` of an `INT`.
     LdInt(String),
     /// `ADD x`, `MUL 3`, …: the integer current result.
@@ -129,6 +130,34 @@ pub enum Ins {
     Compare(Cmp, IntOperand),
     /// `ST n` of the integer current result.
     StInt(String),
+}
+
+/// Whether some call of `g` leaves an input out (an input operator, a `CAL` without
+/// one of its instance's Boolean inputs or a timer's `PT`), and whether some instance
+/// is called twice.
+pub fn calls_leaving_inputs_out(g: &Generated) -> (bool, bool) {
+    let mut called: Vec<&str> = Vec::new();
+    let mut omits = false;
+    for i in &g.ins {
+        let inst = match i {
+            Ins::FbIn(_, inst) => {
+                omits = true;
+                inst
+            }
+            Ins::Cal(inst, ty, args, pt, _) => {
+                let pins = if ty == "TON" || ty == "TOF" || ty.ends_with("TRIG") { 1 } else { 2 };
+                let timer = ty == "TON" || ty == "TOF";
+                omits |= args.len() < pins || (timer && pt.is_none());
+                inst
+            }
+            _ => continue,
+        };
+        called.push(inst);
+    }
+    let n = called.len();
+    called.sort();
+    called.dedup();
+    (omits, called.len() < n)
 }
 
 /// A random program.
@@ -222,6 +251,10 @@ pub fn render(ins: &[Ins]) -> String {
                     Form::Formal => duration(us),
                     _ => format!("P_{inst}"),
                 };
+                if args.is_empty() && pt.is_none() {
+                    out += &format!("  CAL {inst}\n");
+                    continue;
+                }
                 if *form == Form::Positional && pt.is_none() {
                     let a: Vec<String> = args.iter().map(|(_, n, o)| value(*n, o)).collect();
                     out += &format!("  CAL {inst}({})\n", a.join(", "));
@@ -235,7 +268,7 @@ pub fn render(ins: &[Ins]) -> String {
                 // matiec reads a formal call's inputs on lines of their own.
                 out += &format!("  CAL {inst}(\n    {}\n  )\n", a.join(",\n    "));
             }
-            Ins::Clk(inst) => out += &format!("  CLK {inst}\n"),
+            Ins::FbIn(pin, inst) => out += &format!("  {pin} {inst}\n"),
             Ins::LdInt(n) => out += &format!("  LD {n}\n"),
             Ins::Arith(a, o) => {
                 let word = match a {
@@ -425,6 +458,8 @@ pub fn program_with(seed: u64, for_matiec: bool) -> Generated {
     // some jump skips is refused), returns only after the last call.
     let mut pending: Vec<String> = Vec::new();
     let mut calls: Vec<(String, String)> = fbs.clone();
+    // The instances called a second time.
+    let mut seconds: Vec<String> = Vec::new();
     let groups = 3 + g.rng.below(8);
     let mut returned = false;
     for k in 0..groups {
@@ -444,11 +479,26 @@ pub fn program_with(seed: u64, for_matiec: bool) -> Generated {
             }
             while !calls.is_empty() && (last_calls || g.rng.chance(50)) {
                 let (inst, ty) = calls.remove(0);
-                if (ty == "R_TRIG" || ty == "F_TRIG") && g.rng.chance(40) {
+                let timer = ty == "TON" || ty == "TOF";
+                // An instance other than a timer may be called again later in the scan
+                // (a timer's second call would share its count), its inputs left out.
+                let again = !timer && !seconds.contains(&inst) && g.rng.chance(30);
+                if again {
+                    seconds.push(inst.clone());
+                    calls.push((inst.clone(), ty.clone()));
+                }
+                // An input operator: the instance's other inputs keep their values.
+                let pin = match ty.as_str() {
+                    "R_TRIG" | "F_TRIG" => "CLK",
+                    "SR" => "S1",
+                    "RS" => "R1",
+                    _ => "IN",
+                };
+                if g.rng.chance(if timer { 15 } else { 40 }) {
                     let o = g.operand();
                     ins.push(Ins::Ld(g.rng.chance(30), o));
                     g.ops(&mut ins);
-                    ins.push(Ins::Clk(inst));
+                    ins.push(Ins::FbIn(pin.to_string(), inst));
                     continue;
                 }
                 let pins: &[&str] = match ty.as_str() {
@@ -457,13 +507,24 @@ pub fn program_with(seed: u64, for_matiec: bool) -> Generated {
                     "SR" => &["S1", "R"],
                     _ => &["S", "R1"],
                 };
-                let args = pins
+                let form = g.form();
+                let mut args: Vec<(String, bool, Operand)> = pins
                     .iter()
                     .map(|p| (p.to_string(), !g.for_matiec && g.rng.chance(25), g.argument()))
                     .collect();
-                let pt = (ty == "TON" || ty == "TOF")
-                    .then(|| g.rng.below(6) * cycle_ms * 1000 + g.rng.below(3) * 700);
-                let form = g.form();
+                // Inputs left out: a positional call's last ones, a formal call's any.
+                if args.len() > 1 && g.rng.chance(25) {
+                    let at = match form {
+                        Form::Positional => args.len() - 1,
+                        _ => g.rng.below(args.len() as u64) as usize,
+                    };
+                    args.remove(at);
+                } else if !timer && g.rng.chance(10) {
+                    args.clear();
+                }
+                let pt = timer
+                    .then(|| g.rng.below(6) * cycle_ms * 1000 + g.rng.below(3) * 700)
+                    .filter(|_| !g.rng.chance(20));
                 ins.push(Ins::Cal(inst, ty, args, pt, form));
             }
         }

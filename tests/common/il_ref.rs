@@ -1,4 +1,4 @@
-//! A reference interpreter of the generated Instruction List programs (`il_gen.rs`), written from IEC 61131-3's description of IL (one current result; `S`/`R` act when it is TRUE; `( … )` computes an operand; jumps and returns by the current result) and matiec's library (`lib/timer.txt`, `edge_detection.txt`, `bistable.txt`) with the clock at scan × cycle — not from the lowering it checks.
+//! A reference interpreter of the generated Instruction List programs (`il_gen.rs`), written from IEC 61131-3's description of IL (one current result; `S`/`R` act when it is TRUE; `( … )` computes an operand; jumps and returns by the current result) and matiec's library (`lib/timer.txt`, `edge_detection.txt`, `bistable.txt`; an instance keeps each input, `PT` included, from the last call that gave it) with the clock at scan × cycle — not from the lowering it checks.
 #![allow(dead_code)]
 
 use std::collections::BTreeMap;
@@ -15,6 +15,10 @@ struct FbState {
     start: u64,
     /// R_TRIG/F_TRIG memory.
     m: bool,
+    /// The inputs as the last call that gave each left them (FALSE before).
+    inputs: BTreeMap<String, bool>,
+    /// `PT` as the last call that gave it left it, in µs (T#0s before).
+    pt: u64,
 }
 
 /// The interpreter.
@@ -140,7 +144,7 @@ impl<'g> IlRef<'g> {
                 Ins::Cal(inst, ty, args, pt, _) => {
                     let vals: BTreeMap<&str, bool> =
                         args.iter().map(|(p, n, o)| (p.as_str(), self.read(o) != *n)).collect();
-                    self.call(inst, ty, &vals, pt.unwrap_or(0), now);
+                    self.call(inst, ty, &vals, *pt, now);
                 }
                 Ins::LdInt(n) => int_cr = self.ints[n],
                 Ins::Arith(a, o) => {
@@ -168,10 +172,10 @@ impl<'g> IlRef<'g> {
                 Ins::StInt(n) => {
                     self.ints.insert(n.clone(), int_cr);
                 }
-                Ins::Clk(inst) => {
+                Ins::FbIn(pin, inst) => {
                     let ty = self.g.fbs.iter().find(|(n, _)| n == inst).map(|(_, t)| t.clone());
-                    let vals = BTreeMap::from([("CLK", cr)]);
-                    self.call(inst, ty.as_deref().unwrap_or(""), &vals, 0, now);
+                    let vals = BTreeMap::from([(pin.as_str(), cr)]);
+                    self.call(inst, ty.as_deref().unwrap_or(""), &vals, None, now);
                 }
             }
             pc += 1;
@@ -179,8 +183,28 @@ impl<'g> IlRef<'g> {
         self.scan += 1;
     }
 
-    fn call(&mut self, inst: &str, ty: &str, vals: &BTreeMap<&str, bool>, pt: u64, now: u64) {
+    /// A call giving the inputs `vals` and the preset `pt` (`None`: left out); an FB
+    /// instance keeps each input from the last call that gave it.
+    fn call(
+        &mut self,
+        inst: &str,
+        ty: &str,
+        vals: &BTreeMap<&str, bool>,
+        pt: Option<u64>,
+        now: u64,
+    ) {
         let f = self.fbs.get_mut(inst).expect("declared instance");
+        for (pin, v) in vals {
+            f.inputs.insert(pin.to_string(), *v);
+        }
+        if let Some(pt) = pt {
+            f.pt = pt;
+        }
+        let vals: BTreeMap<&str, bool> = ["IN", "CLK", "S1", "R", "S", "R1"]
+            .into_iter()
+            .map(|p| (p, f.inputs.get(p).copied().unwrap_or(false)))
+            .collect();
+        let pt = f.pt;
         match ty {
             "TON" => {
                 let input = vals["IN"];

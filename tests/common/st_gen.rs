@@ -1,4 +1,4 @@
-//! Random Structured Text programs for the differential tests: Boolean assignments, IF/ELSIF/ELSE, every modelled function block (TON, TOF, TP, R_TRIG, F_TRIG, SR, RS, CTU, CTD, CTUD) with formal inputs and outputs, user functions and function blocks (inputs left out keep their values), FOR loops with constant bounds and WHILE/REPEAT loops counted before the scan (EXIT and CONTINUE under IF in their bodies), RETURN under IF in a program and a function block, the Boolean operators and functions, integers of every 8- to 32-bit type (arithmetic, division and MOD by literals, conversions, MIN/MAX/LIMIT/ABS/SEL, comparisons, CASE, integer inputs), initial values, and a configuration giving the cycle.
+//! Random Structured Text programs for the differential tests: Boolean assignments, IF/ELSIF/ELSE, every modelled function block (TON, TOF, TP, R_TRIG, F_TRIG, SR, RS, CTU, CTD, CTUD) with formal inputs and outputs (a timer's `PT` sometimes left out, and some instances called a second time with inputs left out), user functions and function blocks (inputs left out keep their values), FOR loops with constant bounds and WHILE/REPEAT loops counted before the scan (EXIT and CONTINUE under IF in their bodies), RETURN under IF in a program and a function block, the Boolean operators and functions, integers of every 8- to 32-bit type (arithmetic, division and MOD by literals, conversions, MIN/MAX/LIMIT/ABS/SEL, comparisons, CASE, integer inputs), initial values, and a configuration giving the cycle.
 #![allow(dead_code)]
 
 use super::rng::Rng;
@@ -266,12 +266,15 @@ pub fn program(seed: u64) -> Generated {
 /// `NOT Q => x` (matiec stops with an internal error on them).
 pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
     let mut rng = Rng::new(seed);
+    // The draws of inputs left out and second calls, apart (the other draws, and so the
+    // rest of each program, stay what they were before these were generated).
+    let mut own = Rng::new(seed ^ 0x0DD5);
     let n_in = 1 + rng.below(4) as usize;
     let n_local = 2 + rng.below(5) as usize;
     let inputs: Vec<String> = (0..n_in).map(|k| format!("In{k}")).collect();
     let locals: Vec<String> = (0..n_local).map(|k| format!("B{k}")).collect();
     let cycle_ms = *rng.pick(&[1u64, 5, 10, 20, 100]);
-    // Function blocks: each called once per scan, at top level.
+    // Function blocks: each called once per scan (some a second time, later), at top level.
     let fbs: Vec<(String, &str)> =
         [("T", "TON"), ("F", "TOF"), ("R", "R_TRIG"), ("D", "F_TRIG"), ("S", "SR"), ("Z", "RS")]
             .iter()
@@ -444,7 +447,11 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
                             format!("T#{}.{}ms", pt / 1000, format!("{f:03}").trim_end_matches('0'))
                         }
                     };
-                    format!("{n}(IN := {}, PT := {pt})", g.expr(2))
+                    // A call that leaves PT out: T#0s, as no call gives it.
+                    match own.chance(20) {
+                        true => format!("{n}(IN := {})", g.expr(2)),
+                        false => format!("{n}(IN := {}, PT := {pt})", g.expr(2)),
+                    }
                 }
                 "R_TRIG" | "F_TRIG" => format!("{n}(CLK := {})", g.expr(2)),
                 "SR" => format!("{n}(S1 := {}, R := {})", g.expr(2), g.expr(2)),
@@ -460,9 +467,29 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
             }
         })
         .collect();
+    // Second calls of some instances other than timers, later in the scan, each input
+    // left out keeping the value the first call gave.
+    for (n, t) in &fbs {
+        if matches!(*t, "TON" | "TOF") || !own.chance(25) {
+            continue;
+        }
+        let pins: &[&str] = match *t {
+            "SR" => &["S1", "R"],
+            "RS" => &["S", "R1"],
+            _ => &["CLK"],
+        };
+        let mut given = Vec::new();
+        for p in pins {
+            if own.chance(40) {
+                given.push(format!("{p} := {}", own.pick(&g.reads)));
+            }
+        }
+        calls.push(format!("  {n}({});\n", given.join(", ")));
+    }
     calls.extend(user_calls);
     if let Some((c, t)) = &counter {
-        let pv = if g.rng.chance(70) { g.rng.below(5).to_string() } else { g.iexpr("INT", 1) };
+        let literal = g.rng.chance(70);
+        let pv = if literal { g.rng.below(5).to_string() } else { g.iexpr("INT", 1) };
         let mut args = Vec::new();
         if *t != "CTD" {
             args.push(format!("CU := {}", g.expr(1)));
@@ -483,10 +510,19 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
             args.push(format!("CV => {}", g.rng.pick(&ints)));
         }
         calls.push(format!("  {c}({});\n", args.join(", ")));
+        // A second call giving one counting input: the others and PV kept (a literal: a
+        // kept expression of the count doubles the count's circuit, and the test's time).
+        if literal && own.chance(25) {
+            let pin = if *t == "CTD" { "CD" } else { "CU" };
+            calls.push(format!("  {c}({pin} := {});\n", own.pick(&g.reads)));
+        }
     }
     if pulse {
         let pt = g.rng.below(6) * cycle_ms * 1000 + g.rng.below(3) * 700;
-        calls.push(format!("  P0(IN := {}, PT := T#{}us);\n", g.expr(1), pt));
+        match own.chance(20) {
+            true => calls.push(format!("  P0(IN := {});\n", g.expr(1))),
+            false => calls.push(format!("  P0(IN := {}, PT := T#{}us);\n", g.expr(1), pt)),
+        }
     }
     let n_stmts = 3 + g.rng.below(7);
     for _ in 0..n_stmts {

@@ -7,7 +7,8 @@ use crate::diag::Span;
 use crate::iec::StError;
 use crate::iec::ast::{self, Arg, ExprKind};
 use crate::program::{
-    BoolExpr, EdgeKind, Fresh, IntType, IntVar, Memory, Preset, Stmt, Timer, WriteKind, library,
+    BoolExpr, EdgeKind, Fresh, IntExpr, IntType, IntVar, Memory, Preset, Stmt, Timer, WriteKind,
+    library,
 };
 
 /// Function-block types the lowering knows.
@@ -192,19 +193,18 @@ impl Lowering<'_> {
             }
         }
         let mut out = Vec::new();
-        let input = |l: &mut Self, pin: &str| -> BoolExpr {
+        // The value a call gives an input (`None`: the call leaves it out).
+        let input = |l: &mut Self, pin: &str| -> Option<BoolExpr> {
             match (inputs.get(pin), &given) {
-                (_, Some((p, v))) if *p == pin => v.clone(),
-                (Some(e), _) => l.bool_expr(e),
-                (None, _) => {
-                    l.refuse(span, &format!("a call of {inst} without {pin}"), "an input kept from an earlier call is not modelled; give every input in each call");
-                    BoolExpr::Const(false)
-                }
+                (_, Some((p, v))) if *p == pin => Some(v.clone()),
+                (Some(e), _) => Some(l.bool_expr(e)),
+                (None, _) => None,
             }
         };
+        *self.called.entry(inst.clone()).or_default() += 1;
         match fb {
             Fb::Ton | Fb::Tof => {
-                let v = input(self, "IN");
+                let v = self.kept_input(&inst, "IN", &input, &mut out, span);
                 let preset = match inputs.get("PT").map(|e| &e.kind) {
                     Some(ExprKind::Time(us)) => Preset::iec(*us, self.cycle_us),
                     Some(ExprKind::Var(id)) if self.duration(id).is_some() => {
@@ -212,14 +212,11 @@ impl Lowering<'_> {
                     }
                     Some(ExprKind::Var(id)) => self.variable_preset(id, &inst),
                     Some(_) => Preset::Variable { name: format!("{inst}.PT"), why: None },
-                    None => {
-                        self.refuse(
-                            span,
-                            &format!("a call of {inst} without PT"),
-                            "give the preset in each call",
-                        );
-                        Preset::Variable { name: format!("{inst}.PT"), why: None }
-                    }
+                    // Left out: the value the instance keeps from its last call.
+                    None => match self.kept_pt(&inst) {
+                        Ok(us) => Preset::iec(us, self.cycle_us),
+                        Err(why) => Preset::Variable { name: format!("{inst}.PT"), why },
+                    },
                 };
                 let timer = Timer {
                     on_delay: fb == Fb::Ton,
@@ -239,21 +236,18 @@ impl Lowering<'_> {
             }
             Fb::RTrig | Fb::FTrig => {
                 // matiec: Q := CLK AND NOT M; M := CLK (F_TRIG: CLK negated).
-                let v = input(self, "CLK");
+                let v = self.kept_input(&inst, "CLK", &input, &mut out, span);
                 let clk = if fb == Fb::FTrig { BoolExpr::negate(v) } else { v };
-                let memory =
-                    Memory { base: format!("{inst}_M"), element: ty.clone(), index: self.edges };
-                self.edges += 1;
+                let value = self.edge(&inst, "M", &ty, clk, &mut out, span);
                 let q = self.hidden(&inst, "Q");
-                let value = BoolExpr::Edge { kind: EdgeKind::Rising, input: Box::new(clk), memory };
                 out.push(Stmt::Write { target: q, kind: WriteKind::Assign, value, span });
             }
             Fb::Sr | Fb::Rs => {
                 // SR: Q1 := S1 OR (NOT R AND Q1) (reset, then set); RS: Q1 := NOT R1 AND (S OR Q1).
                 // Both inputs are read when the call starts, before Q1 changes.
                 let (set, reset) = if fb == Fb::Sr { ("S1", "R") } else { ("S", "R1") };
-                let s = input(self, set);
-                let r = input(self, reset);
+                let s = self.kept_input(&inst, set, &input, &mut out, span);
+                let r = self.kept_input(&inst, reset, &input, &mut out, span);
                 let (s, r) = (self.temp(&mut out, s), self.temp(&mut out, r));
                 let q = self.hidden(&inst, "Q1");
                 let set = Stmt::Write { target: q.clone(), kind: WriteKind::Set, value: s, span };
@@ -364,8 +358,9 @@ impl Lowering<'_> {
     }
 }
 
-/// How a call reads a Boolean input of the instance being called.
-type PinReader<'a, 's> = &'a dyn Fn(&mut Lowering<'s>, &str) -> BoolExpr;
+/// How a call reads a Boolean input of the instance being called: its value, or `None`
+/// where the call leaves it out.
+type PinReader<'a, 's> = &'a dyn Fn(&mut Lowering<'s>, &str) -> Option<BoolExpr>;
 
 impl<'s> Lowering<'s> {
     /// The count of the counter instance `inst` of type `t` (an integer of the scan
@@ -381,34 +376,143 @@ impl<'s> Lowering<'s> {
         n
     }
 
-    /// A Boolean input of a counter: as given, else the value its last call gave
-    /// (matiec keeps an FB's inputs between calls), kept in a hidden bit.
+    /// A Boolean input of a standard function block: as given, else the value its last
+    /// call gave (matiec keeps an FB's inputs between calls; FALSE before any call gives
+    /// it), kept in a hidden bit that every call giving it writes once some call of the
+    /// instance leaves it out.
     fn kept_input(
         &mut self,
         inst: &str,
         pin: &str,
-        inputs: &BTreeMap<String, &ast::Expr>,
         read: PinReader<'_, 's>,
         out: &mut Vec<Stmt>,
         span: Span,
     ) -> BoolExpr {
         let key = (inst.to_ascii_uppercase(), pin.to_string());
-        let kept = self.hidden(inst, &format!("{pin}_in"));
-        if inputs.contains_key(pin) {
-            let v = read(self, pin);
-            let v = self.temp(out, v);
-            if self.omitted.contains(&key) {
+        match read(self, pin) {
+            Some(v) if self.omitted.contains(&key) => {
+                let v = self.temp(out, v);
+                let kept = self.hidden(inst, &format!("{pin}_in"));
                 out.push(Stmt::Write {
                     target: kept,
                     kind: WriteKind::Assign,
                     value: v.clone(),
                     span,
                 });
+                v
             }
-            v
-        } else {
-            self.omitted.insert(key);
-            BoolExpr::var(&kept)
+            Some(v) => v,
+            None => {
+                self.omitted.insert(key);
+                BoolExpr::var(&self.hidden(inst, &format!("{pin}_in")))
+            }
+        }
+    }
+
+    /// An integer input of a standard function block (a counter's `PV`, of type `t`): as
+    /// given, else the value its last call gave (0 before any call gives it), kept in a
+    /// hidden integer like [`Self::kept_input`]'s bits; `Err`: why it is not computed.
+    fn kept_int_input(
+        &mut self,
+        inst: &str,
+        pin: &str,
+        given: Option<&ast::Expr>,
+        t: IntType,
+        out: &mut Vec<Stmt>,
+        span: Span,
+    ) -> Result<IntExpr, String> {
+        let key = (inst.to_ascii_uppercase(), pin.to_string());
+        let kept = |l: &mut Self| {
+            let key = (inst.to_ascii_uppercase(), format!("{pin}_in"));
+            if let Some(n) = l.hidden.get(&key) {
+                return n.clone();
+            }
+            let n = l.unique(&format!("{inst}_{pin}_in"));
+            l.hidden.insert(key, n.clone());
+            l.ints.insert(n.clone(), IntVar { ty: t, input: false, init: 0 });
+            n
+        };
+        match given {
+            Some(e) if self.omitted.contains(&key) => {
+                let target = kept(self);
+                match self.int_input(e, t) {
+                    Ok(value) => {
+                        out.push(Stmt::SetInt { target: target.clone(), value, span });
+                        Ok(IntExpr::Var(target))
+                    }
+                    Err(why) => {
+                        self.make_opaque(&target, why.clone(), e.span);
+                        Err(why)
+                    }
+                }
+            }
+            Some(e) => self.int_input(e, t),
+            None => {
+                self.omitted.insert(key);
+                let kept = kept(self);
+                match self.opaque.get(&kept) {
+                    Some((why, _)) => Err(why.clone()),
+                    None => Ok(IntExpr::Var(kept)),
+                }
+            }
+        }
+    }
+
+    /// The rising edge of `input` at a call of the instance `inst` (of type `ty`), over
+    /// the instance's memory `pin` (matiec: `input AND NOT M; M := input`). An instance
+    /// called once per scan: a one-shot of the scan model; called more often: the memory
+    /// a hidden bit each call reads and then writes, so that a later call in the same
+    /// scan sees what the earlier one left.
+    fn edge(
+        &mut self,
+        inst: &str,
+        pin: &str,
+        ty: &str,
+        input: BoolExpr,
+        out: &mut Vec<Stmt>,
+        span: Span,
+    ) -> BoolExpr {
+        if self.multi.contains(&inst.to_ascii_uppercase()) {
+            let input = self.temp(out, input);
+            let m = self.hidden(inst, pin);
+            let before = self.temp(out, BoolExpr::var(&m));
+            out.push(Stmt::Write {
+                target: m,
+                kind: WriteKind::Assign,
+                value: input.clone(),
+                span,
+            });
+            return BoolExpr::and(input, BoolExpr::negate(before));
+        }
+        let memory =
+            Memory { base: format!("{inst}_{pin}"), element: ty.to_string(), index: self.edges };
+        self.edges += 1;
+        BoolExpr::Edge { kind: EdgeKind::Rising, input: Box::new(input), memory }
+    }
+
+    /// The facts of the `PT` of the timer instance `inst` (its name in the scan model),
+    /// declared at `decl` (`POU.INSTANCE`), for the calls that leave it out.
+    pub(super) fn declare_timer(&mut self, inst: &str, decl: &str) {
+        let pin = format!("{inst}.PT");
+        match self.time_facts.values.get(&(decl.to_string(), "PT".to_string())) {
+            Some(Ok(us)) => {
+                self.durations.insert(pin, *us);
+            }
+            Some(Err(why)) => {
+                self.time_why.insert(pin, why.clone());
+            }
+            None => {}
+        }
+    }
+
+    /// The `PT` a call of the timer `inst` leaves out: the duration the instance holds at
+    /// every call (T#0s, or the one literal every call that gives it gives), else why it
+    /// may hold another.
+    fn kept_pt(&self, inst: &str) -> Result<u64, Option<String>> {
+        let pin = format!("{inst}.PT");
+        match self.durations.get(&pin) {
+            Some(us) => Ok(*us),
+            None => Err(self.time_why.get(&pin).cloned()),
         }
     }
 
@@ -426,19 +530,11 @@ impl<'s> Lowering<'s> {
         let kind = ty.split('_').next().unwrap_or(ty).to_string();
         let pv = inputs.get("PV").copied();
         let t = super::ints::counter_type(ty);
-        let value = match (t, pv) {
-            (Some(t), Some(e)) => self.int_input(e, t).map(|v| (t, v)),
-            (None, _) => Err(format!("{ty} counts in 64 bits, which ii-prove does not compute")),
-            (Some(_), None) => {
-                self.refuse(
-                    span,
-                    &format!("a call of {inst} without PV"),
-                    "give the preset in each call",
-                );
-                Err("no PV".into())
-            }
-        };
         let mut out = Vec::new();
+        let value = match t {
+            Some(t) => self.kept_int_input(inst, "PV", pv, t, &mut out, span).map(|v| (t, v)),
+            None => Err(format!("{ty} counts in 64 bits, which ii-prove does not compute")),
+        };
         let (t, pv) = match value {
             Ok(v) => v,
             Err(why) => {
@@ -460,31 +556,32 @@ impl<'s> Lowering<'s> {
             }
         };
         let cv_name = self.counter_value(inst, t);
-        let edge = |l: &mut Self, out: &mut Vec<Stmt>, pin: &str, v: BoolExpr| {
-            let memory =
-                Memory { base: format!("{inst}_{pin}_T"), element: ty.to_string(), index: l.edges };
-            l.edges += 1;
-            let e = BoolExpr::Edge { kind: EdgeKind::Rising, input: Box::new(v), memory };
+        let no = || BoolExpr::Const(false);
+        let pin = |l: &mut Self, out: &mut Vec<Stmt>, pin: &str| {
+            let v = l.kept_input(inst, pin, read, out, span);
+            l.temp(out, v)
+        };
+        let edge = |l: &mut Self, out: &mut Vec<Stmt>, p: &str, v: BoolExpr| {
+            let e = l.edge(inst, &format!("{p}_T"), ty, v, out, span);
             l.temp(out, e)
         };
-        let no = || BoolExpr::Const(false);
         let kind = library::Counter::of(&kind).unwrap_or(library::Counter::UpDown);
         let (edges, r, ld) = match kind {
             library::Counter::Up => {
-                let cu = self.kept_input(inst, "CU", inputs, read, &mut out, span);
-                let r = self.kept_input(inst, "R", inputs, read, &mut out, span);
+                let cu = pin(self, &mut out, "CU");
+                let r = pin(self, &mut out, "R");
                 ((edge(self, &mut out, "CU", cu), no()), r, no())
             }
             library::Counter::Down => {
-                let cd = self.kept_input(inst, "CD", inputs, read, &mut out, span);
-                let ld = self.kept_input(inst, "LD", inputs, read, &mut out, span);
+                let cd = pin(self, &mut out, "CD");
+                let ld = pin(self, &mut out, "LD");
                 ((no(), edge(self, &mut out, "CD", cd)), no(), ld)
             }
             library::Counter::UpDown => {
-                let cu = self.kept_input(inst, "CU", inputs, read, &mut out, span);
-                let cd = self.kept_input(inst, "CD", inputs, read, &mut out, span);
-                let r = self.kept_input(inst, "R", inputs, read, &mut out, span);
-                let ld = self.kept_input(inst, "LD", inputs, read, &mut out, span);
+                let cu = pin(self, &mut out, "CU");
+                let cd = pin(self, &mut out, "CD");
+                let r = pin(self, &mut out, "R");
+                let ld = pin(self, &mut out, "LD");
                 // matiec's CTUD: CD_T(CD); CU_T(CU).
                 let cd = edge(self, &mut out, "CD", cd);
                 let cu = edge(self, &mut out, "CU", cu);
@@ -560,15 +657,11 @@ impl<'s> Lowering<'s> {
         span: Span,
     ) -> Vec<Stmt> {
         let mut out = Vec::new();
-        let v = read(self, "IN");
+        let v = self.kept_input(inst, "IN", read, &mut out, span);
         let pt = match inputs.get("PT").map(|e| &e.kind) {
-            Some(ExprKind::Time(us)) => Some(*us),
-            Some(ExprKind::Var(id)) => self.duration(id),
-            _ => None,
-        };
-        let Some(pt) = pt else {
-            let why = match inputs.get("PT").map(|e| &e.kind) {
-                Some(ExprKind::Var(id)) => match self.variable_preset(id, inst) {
+            Some(ExprKind::Time(us)) => Ok(*us),
+            Some(ExprKind::Var(id)) => {
+                self.duration(id).ok_or_else(|| match self.variable_preset(id, inst) {
                     Preset::Variable { name, why: Some(why) } => format!(
                         "the pulse timer {inst} has its preset from the variable {name}, which \
                          is not a constant: {why}"
@@ -576,20 +669,39 @@ impl<'s> Lowering<'s> {
                     _ => format!(
                         "the pulse timer {inst} has a preset that is not a constant duration"
                     ),
-                },
-                _ => format!("the pulse timer {inst} has a preset that is not a constant duration"),
-            };
-            out.push(self.unconstrained_output(inst, ty, "Q", &why, span));
-            return out;
+                })
+            }
+            Some(_) => {
+                Err(format!("the pulse timer {inst} has a preset that is not a constant duration"))
+            }
+            None => self.kept_pt(inst).map_err(|why| match why {
+                Some(why) => format!(
+                    "the pulse timer {inst} is called without PT, and the PT it keeps is not \
+                     a constant: {why}"
+                ),
+                None => format!("the pulse timer {inst} keeps a PT that is not a constant"),
+            }),
+        };
+        // Called twice in a scan, the second call sees the time of the first, which the
+        // scan model's count of scans does not.
+        let pt = pt.and_then(|pt| match self.multi.contains(&inst.to_ascii_uppercase()) {
+            true if pt > 0 => Err(format!(
+                "the pulse timer {inst} is called more than once in a scan, and its pulse \
+                 ends at the first call one PT after it started, which is not modelled"
+            )),
+            _ => Ok(pt),
+        });
+        let pt = match pt {
+            Ok(pt) => pt,
+            Err(why) => {
+                out.push(self.unconstrained_output(inst, ty, "Q", &why, span));
+                return out;
+            }
         };
         let q = self.hidden(inst, "Q");
         let done = self.hidden(inst, "DONE");
         let input = self.temp(&mut out, v);
-        let memory =
-            Memory { base: format!("{inst}_PREV_IN"), element: ty.to_string(), index: self.edges };
-        self.edges += 1;
-        let rise =
-            BoolExpr::Edge { kind: EdgeKind::Rising, input: Box::new(input.clone()), memory };
+        let rise = self.edge(inst, "PREV_IN", ty, input.clone(), &mut out, span);
         let rise = self.temp(&mut out, rise);
         let pulse = library::Pulse {
             keyword: ty,

@@ -1,4 +1,4 @@
-//! TIME variables that are constant in fact, over the whole file before lowering: every write (initial value, assignments, IL stores, call outputs, and for a function block's input every call of its instances) gives the same literal duration, so a timer whose `PT` is that variable has that preset; any other TIME variable keeps the reason it may change.
+//! TIME variables that are constant in fact, over the whole file before lowering: every write (initial value, assignments, IL stores, call outputs, and for a function block's input, a standard timer's `PT` included, every call of its instances) gives the same literal duration, so a timer whose `PT` is that variable has that preset; any other TIME variable keeps the reason it may change.
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -125,25 +125,38 @@ fn instance_facts(
     found: &Found,
     facts: &mut TimeFacts,
 ) {
-    let Some(fb) = fbs.get(&v.ty.key()) else { return };
     let decl = format!("{owner}.{}", v.name.key());
+    // A retained instance's inputs start, after a warm restart, with any value.
+    let retained = |init: Result<u64, String>| match init {
+        _ if v.retain => Err(format!(
+            "the instance {} is retained, and a call leaves it out or none writes \
+             it: after a warm restart it keeps the value it had",
+            v.name.name
+        )),
+        init => init,
+    };
+    if timer_type(&v.ty.key()) {
+        // A standard timer's PT: T#0s until a call gives it; no body writes it.
+        let calls = found.calls.get(&(decl.clone(), "PT".to_string()));
+        let fact = fb_input(retained(Ok(0)), &[], calls, found.unknown_call.as_deref());
+        facts.values.insert((decl, "PT".to_string()), fact);
+        return;
+    }
+    let Some(fb) = fbs.get(&v.ty.key()) else { return };
     for x in fb.vars.iter().filter(|x| is_time(x) && x.class == VarClass::Input) {
         let writes = found.writes.get(&(fb.name.key(), x.name.key())).map_or(&[][..], |w| w);
         let calls = found.calls.get(&(decl.clone(), x.name.key()));
         let fact = fixed_class(x).and_then(|()| {
-            // A retained instance's inputs start, after a warm restart, with any value.
-            let init = match init_of(x) {
-                _ if v.retain => Err(format!(
-                    "the instance {} is retained, and a call leaves it out or none writes \
-                     it: after a warm restart it keeps the value it had",
-                    v.name.name
-                )),
-                init => init.map_err(bad_init),
-            };
+            let init = retained(init_of(x).map_err(bad_init));
             fb_input(init, writes, calls, found.unknown_call.as_deref())
         });
         facts.values.insert((decl.clone(), x.name.key()), fact);
     }
+}
+
+/// Whether a type is one of the standard timers, whose inputs are `IN` and `PT`.
+fn timer_type(ty: &str) -> bool {
+    matches!(ty, "TON" | "TOF" | "TP")
 }
 
 fn bad_init(text: String) -> String {
@@ -297,9 +310,7 @@ impl Walk<'_> {
                 Arg::Positional(x) | Arg::Input(_, x) => self.expr(x, found),
             }
         }
-        let Some((fb, decl)) = self.instance_type(inst, found) else { return };
-        let inputs: Vec<&ast::VarDecl> =
-            fb.vars.iter().filter(|v| v.class == VarClass::Input).collect();
+        let Some((inputs, decl)) = self.instance_inputs(inst, found) else { return };
         let at = self.at(inst);
         let mut given: BTreeMap<String, &Expr> = BTreeMap::new();
         let mut next = 0;
@@ -309,33 +320,45 @@ impl Walk<'_> {
                     given.insert(n.key(), e);
                 }
                 Arg::Positional(e) => {
-                    if let Some(v) = inputs.get(next) {
-                        given.insert(v.name.key(), e);
+                    if let Some((v, _)) = inputs.get(next) {
+                        given.insert(v.clone(), e);
                     }
                     next += 1;
                 }
                 Arg::Output(..) => {}
             }
         }
-        for v in inputs.iter().filter(|v| is_time(v)) {
-            let w = given.get(&v.name.key()).map(|e| match &e.kind {
+        for (v, _) in inputs.iter().filter(|(_, time)| *time) {
+            let w = given.get(v).map(|e| match &e.kind {
                 ExprKind::Time(us) => TimeWrite::Literal(*us, format!("by the call {at}")),
                 _ => TimeWrite::Other(format!("a value that is not a literal by the call {at}")),
             });
-            found.calls.entry((decl.clone(), v.name.key())).or_default().push(w);
+            found.calls.entry((decl.clone(), v.clone())).or_default().push(w);
         }
     }
 
-    /// The user function block type of the instance `inst`, if it is one, and its
-    /// declaration (`POU.INSTANCE`); a call of an instance this cannot name is noted
-    /// (every block input then stays unknown).
-    fn instance_type(&self, inst: &Expr, found: &mut Found) -> Option<(&ast::Pou, String)> {
+    /// The inputs of the instance `inst` when it is of a user function block or a
+    /// standard timer (upper-case names in declaration order, each with whether it is a
+    /// TIME), and its declaration (`POU.INSTANCE`); a call of an instance this cannot
+    /// name is noted (every block input then stays unknown).
+    fn instance_inputs(
+        &self,
+        inst: &Expr,
+        found: &mut Found,
+    ) -> Option<(Vec<(String, bool)>, String)> {
         let ExprKind::Var(id) = &inst.kind else {
             found.unknown_call.get_or_insert_with(|| self.at(inst));
             return None;
         };
         let (v, (owner, key)) = self.resolve(id)?;
-        Some((self.fbs.get(&v.ty.key()).copied()?, format!("{owner}.{key}")))
+        let inputs = if timer_type(&v.ty.key()) {
+            vec![("IN".to_string(), false), ("PT".to_string(), true)]
+        } else {
+            let fb = self.fbs.get(&v.ty.key())?;
+            let inputs = fb.vars.iter().filter(|v| v.class == VarClass::Input);
+            inputs.map(|v| (v.name.key(), is_time(v))).collect()
+        };
+        Some((inputs, format!("{owner}.{key}")))
     }
 
     fn il(&self, lines: &[ast::IlLine], found: &mut Found) {
@@ -352,13 +375,12 @@ impl Walk<'_> {
                 Some(IlInstr::Call { instance, args, .. }) => self.call(instance, args, found),
                 Some(IlInstr::FbInput { pin, instance, .. }) => {
                     // A call with the current result as `pin`, every other input left out.
-                    if let Some((fb, decl)) = self.instance_type(instance, found) {
+                    if let Some((inputs, decl)) = self.instance_inputs(instance, found) {
                         let at = self.at(instance);
-                        for v in fb.vars.iter().filter(|v| v.class == VarClass::Input && is_time(v))
-                        {
-                            let w = (v.name.key() == *pin)
+                        for (v, _) in inputs.iter().filter(|(_, time)| *time) {
+                            let w = (v == pin)
                                 .then(|| TimeWrite::Other(format!("the IL operator {pin} {at}")));
-                            found.calls.entry((decl.clone(), v.name.key())).or_default().push(w);
+                            found.calls.entry((decl.clone(), v.clone())).or_default().push(w);
                         }
                     }
                 }

@@ -136,10 +136,13 @@ impl Lowering<'_> {
                 _ => pou.name.key(),
             };
             self.constant_duration(v, &name, &owner);
+            let decl = format!("{}.{key}", pou.name.key());
             if let Ty::User(fb) = &ty {
                 let fb = fb.clone();
-                let decl = format!("{}.{key}", pou.name.key());
                 self.instantiate(&name, &fb, &decl, v.name.span);
+            }
+            if let (Ty::Fb(Fb::Ton | Fb::Tof | Fb::Tp, _), false) = (&ty, fresh) {
+                self.declare_timer(&name, &decl);
             }
             table.insert(key, Sym { name, ty, span: v.name.span });
         }

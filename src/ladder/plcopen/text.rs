@@ -222,6 +222,12 @@ fn text_block(
     if let Some(x) = outside.or(int_outside.map(|(x, _)| x.clone())) {
         return Err(format!("`{x}` is written by the outside world, not by the call"));
     }
+    // What the compiler refuses in the body (a timer under an `IF`) keeps the block
+    // opaque rather than refusing the caller.
+    if let Err(e) = crate::program::compile::compile(program, &Default::default()) {
+        let why = e.first().map_or_else(String::new, |e| format!(": {}", e.reason));
+        return Err(format!("its body is refused by the compiler{why}"));
+    }
     let warnings = lowered
         .warnings
         .iter()
