@@ -37,6 +37,9 @@ const LITERALS: [&str; 16] = [
     "7.25",
 ];
 
+/// Literals no `float` holds: compared with a `float` as C does, in `double`.
+const BETWEEN: [&str; 6] = ["0.1", "0.3", "0.2", "1.1", "16777217.0", "1.0E-50"];
+
 struct Gen<'r> {
     rng: &'r mut Rng,
     /// `REAL` variables and inputs to read.
@@ -97,6 +100,17 @@ impl Gen<'_> {
     fn boolean(&mut self, depth: u32) -> String {
         if self.rng.chance(15) && !self.bools.is_empty() {
             return self.rng.pick(&self.bools).clone();
+        }
+        // A variable against a literal: where a `float` meets a `double` literal.
+        if self.rng.chance(40) {
+            let op = *self.rng.pick(&["<", "<=", ">", ">=", "=", "<>"]);
+            let x = self.rng.pick(&self.reals).clone();
+            let k = if self.rng.chance(60) {
+                self.rng.pick(&BETWEEN).to_string()
+            } else {
+                self.literal()
+            };
+            return format!("{x} {op} {k}");
         }
         let op = *self.rng.pick(&["<", "<=", ">", ">=", "=", "<>"]);
         let d = depth.min(2);
@@ -164,6 +178,16 @@ pub fn program(seed: u64) -> Generated {
 /// zeros, infinities, NaN, subnormals and random patterns.
 pub fn real_value(rng: &mut Rng) -> i64 {
     let x: f32 = match rng.below(12) {
+        // A literal's own `float` (or its neighbour): where comparisons with `double`
+        // literals decide.
+        4..=7 => {
+            let l: f64 = match rng.chance(50) {
+                true => rng.pick(&BETWEEN).parse().unwrap_or(0.0),
+                false => rng.pick(&LITERALS).parse().unwrap_or(0.0),
+            };
+            let f = l as f32;
+            *rng.pick(&[f, f, f.next_up(), f.next_down(), -f])
+        }
         0 => f32::from_bits(rng.next() as u32),
         1 => *rng.pick(&[0.0, -0.0, f32::INFINITY, f32::NEG_INFINITY, f32::NAN, f32::MAX]),
         2 => *rng.pick(&[f32::from_bits(1), f32::MIN_POSITIVE, 0.1, 0.3, 1e-40, 3e38]),
