@@ -3,19 +3,9 @@
 
 use super::rng::Rng;
 
-/// A random program over `REAL`s.
-pub struct Generated {
-    /// The `.st` text.
-    pub text: String,
-    /// The program's type name.
-    pub pou: String,
-    /// Its BOOL inputs.
-    pub inputs: Vec<String>,
-    /// Its BOOL variables, worth comparing.
-    pub bits: Vec<String>,
-    /// The scan cycle, in µs.
-    pub cycle_us: u64,
-}
+/// A random program (of the ST generator's shape: its `REAL` inputs are found from the
+/// text by [`schedule`]).
+pub use super::st_gen::Generated;
 
 /// Literals a `float` holds and some it does not (`0.1`), large, small and subnormal.
 const LITERALS: [&str; 16] = [
@@ -171,7 +161,8 @@ pub fn program(seed: u64) -> Generated {
     }
     text += "END_PROGRAM\n\n";
     text += "CONFIGURATION Config\n  RESOURCE Res ON PLC\n    TASK Cyclic (INTERVAL := T#10ms, PRIORITY := 1);\n    PROGRAM Main WITH Cyclic : Random;\n  END_RESOURCE\nEND_CONFIGURATION\n";
-    Generated { text, pou: "Random".into(), inputs, bits, cycle_us: 10_000 }
+    let pou = "Random".into();
+    Generated { text, pou, inputs, bits, cycle_us: 10_000, ints: vec![], int_inputs: vec![] }
 }
 
 /// Values a `REAL` input takes, as stored (bit patterns): numbers around the literals,
