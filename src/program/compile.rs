@@ -719,9 +719,9 @@ impl<'a> Compiler<'a> {
     /// `base`, else the first of `base_2`, `base_3`, … not taken: a new name.
     fn unique(&mut self, base: &str) -> String {
         let mut name = base.to_string();
-        let k = self.suffixes.entry(base.to_string()).or_insert(2);
         if self.taken.contains(&name) {
             // The suffixes below `k` were taken by the earlier calls with this base.
+            let k = self.suffixes.entry(name.clone()).or_insert(2);
             loop {
                 name = format!("{base}_{k}");
                 *k += 1;

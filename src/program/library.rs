@@ -39,6 +39,16 @@ pub fn type_name(t: IntType) -> &'static str {
     }
 }
 
+/// Where [`real_to_int`] gives its free value, as a warning says it (`unsigned`: to an
+/// unsigned or bit-string type).
+pub fn real_to_int_undefined(unsigned: bool) -> &'static str {
+    if unsigned {
+        "where its input is +inf or at least 2^63, which C leaves undefined"
+    } else {
+        "where its input is a NaN, ±inf or outside [-2^63, 2^63), which C leaves undefined"
+    }
+}
+
 /// matiec's `REAL_TO_*` of the `REAL` `x` to an integer type (`unsigned`: an unsigned or
 /// bit-string one, `__real_to_uint`/`__real_to_bit`; else `__real_to_sint`): the rounded
 /// value ([`IntExpr::FromReal`]) where C defines it, else the free integer input `free`

@@ -103,7 +103,7 @@ impl Lowering<'_> {
             ExprKind::Unary(UnOp::Neg, x) => {
                 let x = self.int_expr(x)?;
                 if x.is_real() {
-                    return Ok(self.real_negate(x));
+                    return Ok(x.real_negated());
                 }
                 Ok(match x.e {
                     IntExpr::Const(v) if x.ty.is_none() => Int::literal(-i128::from(v)),
@@ -168,7 +168,7 @@ impl Lowering<'_> {
 
     /// `INT#5`, `DINT#16#FF`, `UINT#-0` and such.
     fn typed_literal(&mut self, s: &str, span: Span) -> Result<Int, Opaque> {
-        if let Some(x) = self.real_literal(s) {
+        if let Some(x) = Int::real_literal(s) {
             return Ok(x);
         }
         let Some((ty, value)) = s.split_once('#') else {

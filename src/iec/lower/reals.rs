@@ -30,6 +30,29 @@ impl Int {
     pub(super) fn is_real(&self) -> bool {
         self.ty.is_some_and(|t| t.real)
     }
+
+    /// A real literal as written (`0.5`, `1.0E3`: a C `double`; `REAL#0.5`: a `float`),
+    /// or `None` if `text` is not one.
+    pub(super) fn real_literal(text: &str) -> Option<Int> {
+        let v = real::literal_value(text)?;
+        Some(if text.contains('#') {
+            Int::of(IntExpr::Const(real::of_f32(v as f32)), Some(IntType::REAL))
+        } else {
+            Int::double_literal(v)
+        })
+    }
+
+    /// `-x` of a `REAL`: C flips the sign bit (of a `double` too, so a rounded value
+    /// stays one).
+    pub(super) fn real_negated(self) -> Int {
+        if let Some(Double::Literal(v)) = self.double {
+            return Int::double_literal(-v);
+        }
+        let e = IntExpr::Bitwise(BitOp::Xor, Box::new(self.e), Box::new(IntExpr::Const(1 << 31)));
+        let mut negated = Int::of(e, self.ty);
+        negated.double = self.double;
+        negated
+    }
 }
 
 /// Whether the `double` `v` is a `float` value.
@@ -49,30 +72,6 @@ fn swapped(op: CmpOp) -> CmpOp {
 }
 
 impl Lowering<'_> {
-    /// A real literal as written (`0.5`, `1.0E3`: a C `double`; `REAL#0.5`: a `float`),
-    /// or `None` if `text` is not one.
-    pub(super) fn real_literal(&mut self, text: &str) -> Option<Int> {
-        let v = real::literal_value(text)?;
-        Some(if text.contains('#') {
-            Int::of(IntExpr::Const(real::of_f32(v as f32)), Some(IntType::REAL))
-        } else {
-            Int::double_literal(v)
-        })
-    }
-
-    /// `-x` of a `REAL`: C flips the sign bit (of a `double` too, so a rounded value
-    /// stays one).
-    pub(super) fn real_negate(&mut self, x: Int) -> Int {
-        if let Some(Double::Literal(v)) = x.double {
-            return Int::double_literal(-v);
-        }
-        let double = x.double;
-        let e = IntExpr::Bitwise(BitOp::Xor, Box::new(x.e), Box::new(IntExpr::Const(1 << 31)));
-        let mut negated = Int::of(e, x.ty);
-        negated.double = double;
-        negated
-    }
-
     /// Why the value of the expression at `span` is not computed: C keeps it in `double`.
     fn in_double(&self, span: Span) -> Opaque {
         format!(
@@ -168,16 +167,11 @@ impl Lowering<'_> {
         }
         let free = self.unique(&format!("{}_UNDEFINED_L{:02}", f.to_ascii_uppercase(), self.line));
         self.ints.insert(free.clone(), crate::program::IntVar { ty: to, input: true, init: 0 });
-        let cases = if to.signed {
-            "a NaN, ±inf or outside [-2^63, 2^63)"
-        } else {
-            "+inf or at least 2^63"
-        };
         self.warnings.push(StError::warning(
             span,
             format!(
-                "{f}: where its input is {cases}, which C leaves undefined, its value is the \
-                 free input {free}: any {}",
+                "{f}: {}, its value is the free input {free}: any {}",
+                library::real_to_int_undefined(!to.signed),
                 library::type_name(to)
             ),
         ));

@@ -655,14 +655,9 @@ impl Lower<'_> {
     ) -> IntExpr {
         let free = crate::ladder::plcopen::ints::undefined_input(out);
         self.ints.insert(free.clone(), IntVar { ty: t, input: true, init: 0 });
-        let cases = if unsigned {
-            "+inf or at least 2^63"
-        } else {
-            "a NaN, ±inf or outside [-2^63, 2^63)"
-        };
         let message = format!(
-            "where its input is {cases}, which C leaves undefined, its OUT is the free input \
-             {free}: any {}",
+            "{}, its OUT is the free input {free}: any {}",
+            library::real_to_int_undefined(unsigned),
             library::type_name(t)
         );
         stmts.push(Stmt::Warn { span, element: keyword.to_string(), message });
