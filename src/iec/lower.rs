@@ -366,6 +366,8 @@ struct Lowering<'s> {
     calls: usize,
     /// The integers: (name in the scan model) → type, start value, whether an input.
     ints: BTreeMap<String, IntVar>,
+    /// The free integers standing for what C leaves undefined ([`Program::undefined`]).
+    undefined: BTreeSet<String>,
     /// `CONSTANT` integers with their values.
     constants: BTreeMap<String, i64>,
     /// Integers whose value is not computed, with the reason and where it was found
@@ -423,6 +425,7 @@ impl<'s> Lowering<'s> {
             prelude: Vec::new(),
             calls: 0,
             ints: BTreeMap::new(),
+            undefined: BTreeSet::new(),
             constants: BTreeMap::new(),
             opaque: BTreeMap::new(),
             int_globals: BTreeSet::new(),
@@ -858,6 +861,7 @@ impl<'s> Lowering<'s> {
             language: if self.il { "an Instruction List" } else { "a Structured Text" },
             started: self.started,
             hidden,
+            undefined: self.undefined,
         };
         Lowered {
             program,

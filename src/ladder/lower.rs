@@ -347,6 +347,8 @@ impl<'a> Lowering<'a> {
             language: "an LDmicro",
             started: None,
             hidden,
+            // LDmicro's runtime wraps its 16-bit arithmetic: nothing is undefined.
+            undefined: BTreeSet::new(),
         }
     }
 

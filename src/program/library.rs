@@ -1,6 +1,9 @@
 //! The IEC standard library's elements as matiec's C runs them, built over the scan model for every front end that has them (Structured Text, PLCopen LD/FBD): the integer types, comparisons (extensible), MIN/MAX/LIMIT/ABS, the counters CTU/CTD/CTUD and the pulse timer TP.
 
-use super::{BitOp, BoolExpr, CmpOp, Compare, IntExpr, IntType, Preset, Stmt, Timer, WriteKind};
+use super::{
+    BitOp, BoolExpr, Checked, CheckedOp, CmpOp, Compare, IntExpr, IntType, Preset, Stmt, Timer,
+    WriteKind,
+};
 use crate::diag::Span;
 
 /// The IEC integer type `name` (upper-case) as matiec declares it in C; `None` for the
@@ -157,9 +160,10 @@ pub fn limit(t: IntType, mn: IntExpr, x: IntExpr, mx: IntExpr) -> IntExpr {
 }
 
 /// `ABS(x)` in the type `t`: `x < 0 ? 0 - x : x` (wrapped: `ABS` of the smallest value is
-/// itself). For a `REAL`, C's `-op` flips the sign bit (`-0.0` and a NaN are kept: `x <
-/// 0` is false for them).
-pub fn abs(t: IntType, x: IntExpr) -> IntExpr {
+/// itself; with `undefined`, the value of that free integer there, as C leaves `-op` of
+/// the least `int` undefined: [`Checked`]). For a `REAL`, C's `-op` flips the sign bit
+/// (`-0.0` and a NaN are kept: `x < 0` is false for them).
+pub fn abs(t: IntType, x: IntExpr, undefined: Option<String>) -> IntExpr {
     if t.real {
         let negated = IntExpr::Bitwise(
             super::BitOp::Xor,
@@ -169,11 +173,17 @@ pub fn abs(t: IntType, x: IntExpr) -> IntExpr {
         let negative = compare(CmpOp::Lt, t, x.clone(), IntExpr::Const(0));
         return IntExpr::ite(negative, negated, x);
     }
-    IntExpr::ite(
-        compare(CmpOp::Lt, t, x.clone(), IntExpr::Const(0)),
-        IntExpr::minus(IntExpr::Const(0), x.clone()),
-        x,
-    )
+    let negated = match undefined {
+        Some(undefined) => IntExpr::Checked(Box::new(Checked {
+            op: CheckedOp::Sub,
+            a: IntExpr::Const(0),
+            b: x.clone(),
+            ty: t,
+            undefined,
+        })),
+        None => IntExpr::minus(IntExpr::Const(0), x.clone()),
+    };
+    IntExpr::ite(compare(CmpOp::Lt, t, x.clone(), IntExpr::Const(0)), negated, x)
 }
 
 /// Which counter.

@@ -15,6 +15,7 @@
 pub mod any_state;
 pub mod atoms;
 pub mod bitvec;
+mod checked;
 pub mod compile;
 pub mod durations;
 pub mod library;
@@ -29,6 +30,7 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use crate::diag::Span;
 
+pub use checked::{C_INT, Checked, CheckedOp, c_operation, promoted};
 pub use compile::{
     CompileError, CompileOptions, CompileWarning, CompiledProgram, EquationIndex, Hypothesis,
     HypothesisKind, SignalKind, TimerInfo, TimerModel, canonical, compile, program_to_ii,
@@ -71,6 +73,10 @@ pub struct Program {
     /// function block instance's pins and count, the start-up bit, guard bits, kept
     /// integers): never an output a user sees, though they are state like any other.
     pub hidden: BTreeSet<String>,
+    /// Free integers standing for what the runtime leaves undefined (a signed overflow
+    /// of C, a `REAL_TO_INT` of a NaN): inputs of this program alone, which no outside
+    /// world writes and no other program shares.
+    pub undefined: BTreeSet<String>,
 }
 
 /// An integer variable of the scan model.
@@ -234,6 +240,10 @@ pub enum IntExpr {
     /// `a + b`, `a - b`, `a * b` or `a / b` of two `REAL`s as C computes it (IEEE 754,
     /// the nearest number, ties to even; [`RealOp`]).
     Real(RealOp, Box<IntExpr>, Box<IntExpr>),
+    /// A signed operation as C computes it ([`Checked`]): exact where its result fits the
+    /// signed type, a free integer's value where C leaves it undefined (an overflow);
+    /// then converted to the context's type.
+    Checked(Box<Checked>),
 }
 
 /// An operation of two `REAL`s.
@@ -344,6 +354,11 @@ impl IntExpr {
                 walk(c, boolean);
                 a.visit(int, boolean);
                 b.visit(int, boolean);
+            }
+            IntExpr::Checked(c) => {
+                c.a.visit(int, boolean);
+                c.b.visit(int, boolean);
+                int(&c.undefined);
             }
         }
     }
@@ -685,6 +700,11 @@ pub fn int_visit_mut(
             int_visit_mut(a, var, boolean);
             int_visit_mut(b, var, boolean);
         }
+        IntExpr::Checked(c) => {
+            int_visit_mut(&mut c.a, var, boolean);
+            int_visit_mut(&mut c.b, var, boolean);
+            var(&mut c.undefined);
+        }
     }
 }
 
@@ -757,6 +777,7 @@ impl Default for Program {
             integers: BTreeMap::new(),
             started: None,
             hidden: BTreeSet::new(),
+            undefined: BTreeSet::new(),
         }
     }
 }

@@ -137,6 +137,7 @@ impl Program {
             integers: self.integers.iter().map(|(n, v)| (name(n), *v)).collect(),
             started: self.started.as_deref().map(name),
             hidden: set(&self.hidden),
+            undefined: set(&self.undefined),
             ..self.clone()
         }
     }

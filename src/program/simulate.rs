@@ -61,6 +61,9 @@ pub struct Simulator {
     temps: BTreeMap<Temp, V>,
     next_count: usize,
     next_memory: usize,
+    /// Whether the free integers of what the runtime leaves undefined
+    /// ([`Program::undefined`]) are unknown rather than given by their bits.
+    undefined_unknown: bool,
 }
 
 impl Simulator {
@@ -84,7 +87,15 @@ impl Simulator {
             temps: BTreeMap::new(),
             next_count: 0,
             next_memory: 0,
+            undefined_unknown: false,
         }
+    }
+
+    /// From now on, the free integers of what the runtime leaves undefined (a signed
+    /// overflow's value) are unknown, and so is what they decide: for comparing a run
+    /// with the runtime's own, which may compute anything there.
+    pub fn leave_undefined_unknown(&mut self) {
+        self.undefined_unknown = true;
     }
 
     /// Runs one scan with these input values (inputs not given are `0`).
@@ -101,7 +112,8 @@ impl Simulator {
                 .map(|k| inputs.get(&Program::int_bit(x, k)).copied().unwrap_or(false))
                 .collect();
             let value = super::bitvec::value_of(&bits, var.ty);
-            self.ints.insert(x.clone(), N { value, known: true });
+            let known = !(self.undefined_unknown && self.program.undefined.contains(x));
+            self.ints.insert(x.clone(), N { value, known });
         }
         self.temps.clear();
         self.next_count = 0;
@@ -278,6 +290,14 @@ impl Simulator {
             IntExpr::Shift(a, k) => {
                 let a = self.int_value(a, ty);
                 N { value: ty.wrap(super::shift(a.value, *k)), known: a.known }
+            }
+            IntExpr::Checked(c) => {
+                let (a, b) = (self.int_value(&c.a, c.ty), self.int_value(&c.b, c.ty));
+                let v = match c.op.apply(a.value, b.value, c.ty) {
+                    Some(v) => N { value: v, known: true },
+                    None => self.int_value(&IntExpr::Var(c.undefined.clone()), c.ty),
+                };
+                N { value: ty.wrap(v.value), known: v.known && a.known && b.known }
             }
             IntExpr::Ite(c, a, b) => {
                 let c = self.eval(c);

@@ -560,13 +560,11 @@ fn reference_of(p: &LoadedProgram) -> std::sync::Arc<dyn crate::ladder::Referenc
 }
 
 /// The integers the outside world writes; not the free values a front end gives where
-/// the runtime's result is undefined (a PLCopen `REAL_TO_INT` of a NaN), which each
-/// program chooses for itself.
+/// the runtime's result is undefined (a `REAL_TO_INT` of a NaN, a signed overflow), which
+/// each program chooses for itself.
 fn int_inputs(p: &LoadedProgram) -> BTreeSet<String> {
-    let undefined = |n: &String| {
-        p.scan.hidden.contains(n) && crate::ladder::plcopen::ints::is_undefined_input(n)
-    };
-    let inputs = p.compiled.integers.iter().filter(|(n, v)| v.input && !undefined(n));
+    let inputs =
+        p.compiled.integers.iter().filter(|(n, v)| v.input && !p.scan.undefined.contains(*n));
     inputs.map(|(n, _)| n.clone()).collect()
 }
 

@@ -5,17 +5,12 @@ use super::{Lowering, Sym, Ty};
 use crate::diag::Span;
 use crate::iec::StError;
 use crate::iec::ast::{self, Arg, BinOp, ExprKind, UnOp};
-use crate::program::{BoolExpr, CmpOp, Compare, Fresh, IntExpr, IntType, IntVar, Stmt, library};
-
-/// C's `int`: what matiec's generated code computes a value narrower than 32 bits in.
-const C_INT: IntType = IntType::int(32, true);
+use crate::program::{
+    BoolExpr, C_INT, Checked, CheckedOp, CmpOp, Compare, Fresh, IntExpr, IntType, IntVar, Stmt,
+    library, promoted,
+};
 
 pub(super) use crate::program::library::{counter_type, int_type, type_name};
-
-/// The type C computes a value of type `t` in (integer promotion).
-fn promoted(t: IntType) -> IntType {
-    if t.bits < 32 { C_INT } else { t }
-}
 
 /// A typed integer expression: its value, its type (`None`: a literal, typed by where
 /// it is used) and whether it divides (its result then depends on the width it is
@@ -27,12 +22,15 @@ pub(super) struct Int {
     divides: bool,
     /// A `REAL` the generated C computes in `double` ([`Double`]).
     pub(super) double: Option<Double>,
+    /// The bounds of the value C computes (in `int` for a narrower type) where they are
+    /// not the type's: an arithmetic result's, which tell where it cannot overflow.
+    bounds: Option<(i128, i128)>,
 }
 
 impl Int {
     /// The value `e`, of type `ty` (`None`: an integer literal).
     pub(super) fn of(e: IntExpr, ty: Option<IntType>) -> Int {
-        Int { e, ty, divides: false, double: None }
+        Int { e, ty, divides: false, double: None, bounds: None }
     }
 
     /// The variable `name` of type `t`.
@@ -42,6 +40,18 @@ impl Int {
 
     fn literal(v: i128) -> Int {
         Int::of(IntExpr::Const(v.clamp(i64::MIN.into(), i64::MAX.into()) as i64), None)
+    }
+
+    /// The bounds of the value C computes.
+    fn bounds(&self) -> (i128, i128) {
+        match (self.bounds, &self.e, self.ty) {
+            (Some(b), ..) => b,
+            (None, IntExpr::Const(k), _) => (i128::from(*k), i128::from(*k)),
+            (None, _, t) => {
+                let t = t.unwrap_or(C_INT);
+                (t.min().into(), t.max().into())
+            }
+        }
     }
 
     /// The value as C computes it, read in a context of the type `t` it has: computed
@@ -105,10 +115,10 @@ impl Lowering<'_> {
                 if x.is_real() {
                     return Ok(x.real_negated());
                 }
-                Ok(match x.e {
-                    IntExpr::Const(v) if x.ty.is_none() => Int::literal(-i128::from(v)),
-                    e => Int { e: IntExpr::minus(IntExpr::Const(0), e), ..x },
-                })
+                match x.e {
+                    IntExpr::Const(v) if x.ty.is_none() => Ok(Int::literal(-i128::from(v))),
+                    _ => self.c_arithmetic(CheckedOp::Sub, Int::literal(0), x, e.span, "NEG"),
+                }
             }
             ExprKind::Binary(
                 op @ (BinOp::Add | BinOp::Sub | BinOp::Mul | BinOp::Div | BinOp::Mod),
@@ -250,33 +260,88 @@ impl Lowering<'_> {
                 return Ok(Int::literal(v));
             }
         }
-        let divides = a.divides || b.divides || matches!(op, BinOp::Div | BinOp::Mod);
-        let e = match op {
-            BinOp::Add => IntExpr::plus(a.e, b.e),
-            BinOp::Sub => IntExpr::minus(a.e, b.e),
-            BinOp::Mul => IntExpr::Mul(Box::new(a.e), Box::new(b.e)),
-            _ => {
-                let k = match (&b.e, ty) {
-                    (IntExpr::Const(k), Some(t)) => t.wrap(*k),
-                    (IntExpr::Const(k), None) => *k,
-                    _ => {
-                        return Err(format!(
-                            "`{}` divides by a variable, which may be 0 (a run-time error of the PLC)",
-                            self.text(span)
-                        ));
-                    }
-                };
-                if k == 0 {
-                    return Err(format!("`{}` divides by 0", self.text(span)));
-                }
-                if op == BinOp::Div {
-                    IntExpr::Div(Box::new(a.e), k)
-                } else {
-                    IntExpr::Mod(Box::new(a.e), k)
-                }
-            }
+        let (cop, keyword) = match op {
+            BinOp::Add => (CheckedOp::Add, "ADD"),
+            BinOp::Sub => (CheckedOp::Sub, "SUB"),
+            BinOp::Mul => (CheckedOp::Mul, "MUL"),
+            BinOp::Div => (CheckedOp::Div, "DIV"),
+            _ => (CheckedOp::Mod, "MOD"),
         };
-        Ok(Int { e, ty, divides, double: None })
+        if matches!(op, BinOp::Div | BinOp::Mod) {
+            let k = match (&b.e, ty) {
+                (IntExpr::Const(k), Some(t)) => t.wrap(*k),
+                (IntExpr::Const(k), None) => *k,
+                _ => {
+                    return Err(format!(
+                        "`{}` divides by a variable, which may be 0 (a run-time error of the PLC)",
+                        self.text(span)
+                    ));
+                }
+            };
+            if k == 0 {
+                return Err(format!("`{}` divides by 0", self.text(span)));
+            }
+            let b = Int::of(IntExpr::Const(k), b.ty);
+            return self.c_arithmetic(cop, a, b, span, keyword);
+        }
+        self.c_arithmetic(cop, a, b, span, keyword)
+    }
+
+    /// `a op b` (operands of one type, a divisor a literal that is not 0) as the C
+    /// matiec writes computes it: in the type's promoted type, C's `int` for `DINT` and
+    /// every narrower type, where a result beyond `int` is undefined: there it is the
+    /// value of a free input (named after `keyword` and the line, with a warning), unless
+    /// the operands' bounds show it cannot happen (`INT + INT` never overflows `int`).
+    fn c_arithmetic(
+        &mut self,
+        op: CheckedOp,
+        a: Int,
+        b: Int,
+        span: Span,
+        keyword: &str,
+    ) -> Result<Int, Opaque> {
+        let ty = self.unify(&a, &b, span)?;
+        let divides = a.divides || b.divides || matches!(op, CheckedOp::Div | CheckedOp::Mod);
+        let c = ty.map_or(C_INT, promoted);
+        let (lo, hi) = op.bounds(a.bounds(), b.bounds());
+        let fits = i128::from(c.min()) <= lo && hi <= i128::from(c.max());
+        if c == C_INT && !fits {
+            let undefined = self.overflow_input(keyword, span);
+            let e =
+                IntExpr::Checked(Box::new(Checked { op, a: a.e, b: b.e, ty: C_INT, undefined }));
+            let bounds = Some((C_INT.min().into(), C_INT.max().into()));
+            return Ok(Int { e, ty, divides, double: None, bounds });
+        }
+        let (x, y) = (Box::new(a.e), Box::new(b.e));
+        let e = match (op, &*y) {
+            (CheckedOp::Add, _) => IntExpr::Add(x, y),
+            (CheckedOp::Sub, _) => IntExpr::Sub(x, y),
+            (CheckedOp::Mul, _) => IntExpr::Mul(x, y),
+            (CheckedOp::Div, IntExpr::Const(k)) => IntExpr::Div(x, *k),
+            (CheckedOp::Mod, IntExpr::Const(k)) => IntExpr::Mod(x, *k),
+            (CheckedOp::Div, _) => IntExpr::DivBy(x, y),
+            (CheckedOp::Mod, _) => IntExpr::ModBy(x, y),
+        };
+        // Unsigned arithmetic wraps (C defines it): any value of the type.
+        let bounds = fits.then_some((lo, hi));
+        Ok(Int { e, ty, divides, double: None, bounds })
+    }
+
+    /// A new free integer of C's `int`, the value of the operation at `span` where it
+    /// overflows (which C leaves undefined), with a warning that says so.
+    fn overflow_input(&mut self, keyword: &str, span: Span) -> String {
+        let free = self.unique(&format!("{keyword}_OVERFLOW_L{:02}", self.line_of(span)));
+        self.ints.insert(free.clone(), IntVar { ty: C_INT, input: true, init: 0 });
+        self.undefined.insert(free.clone());
+        self.warnings.push(StError::warning(
+            span,
+            format!(
+                "`{}` may overflow the 32-bit `int` the generated C computes it in, which C \
+                 leaves undefined: there its value is the free input {free}",
+                self.text(span)
+            ),
+        ));
+        free
     }
 
     /// A function with an integer result: conversions, MIN/MAX/LIMIT/SEL/ABS/MOVE and the
@@ -347,7 +412,13 @@ impl Lowering<'_> {
         let value = |x: &Int| x.clone().in_type(t);
         let e2 = match (name.as_str(), ints.as_slice()) {
             ("MOVE", [x]) => value(x),
-            ("ABS", [x]) => library::abs(t, value(x)),
+            ("ABS", [x]) => {
+                // `-op` of the least `DINT` overflows.
+                let (lo, _) = x.bounds();
+                let undefined = (promoted(t) == C_INT && lo <= i128::from(C_INT.min()))
+                    .then(|| self.overflow_input("ABS", e.span));
+                library::abs(t, value(x), undefined)
+            }
             ("MIN" | "MAX", [_, rest @ ..]) if !rest.is_empty() => {
                 let vals: Vec<IntExpr> = ints.iter().map(value).collect();
                 library::extreme(name == "MIN", t, &vals)
@@ -372,9 +443,12 @@ impl Lowering<'_> {
                     let vals: Vec<IntExpr> = ints.iter().map(value).collect();
                     return super::reals::real_function(op, vals).map(|v| Int::of(v, ty));
                 }
+                // Each step is `op1 = op1 OP op2` of the function's type (C `int` for a
+                // narrower one, then wrapped to it): `MUL` of three `INT`s cannot overflow.
                 let mut acc = first.clone();
                 for x in rest {
-                    acc = self.arithmetic(op, acc, x.clone(), e.span)?;
+                    let step = self.arithmetic(op, acc, x.clone(), e.span)?;
+                    acc = Int::of(IntExpr::Cast(Box::new(step.in_type(t)), t), Some(t));
                 }
                 acc.in_type(t)
             }

@@ -106,6 +106,11 @@ impl Lowering<'_> {
                 Ok(ty.wrap(op.apply(self.known_int(a, ty)?, self.known_int(b, ty)?)))
             }
             IntExpr::Shift(a, k) => Ok(ty.wrap(crate::program::shift(self.known_int(a, ty)?, *k))),
+            IntExpr::Checked(c) => {
+                let (a, b) = (self.known_int(&c.a, c.ty)?, self.known_int(&c.b, c.ty)?);
+                let v = c.op.apply(a, b, c.ty).ok_or_else(|| format!("`{}`", c.undefined))?;
+                Ok(ty.wrap(v))
+            }
             IntExpr::Ite(c, a, b) => match self.known_bool(c) {
                 Ok(true) => self.known_int(a, ty),
                 Ok(false) => self.known_int(b, ty),

@@ -167,6 +167,7 @@ impl Lowering<'_> {
         }
         let free = self.unique(&format!("{}_UNDEFINED_L{:02}", f.to_ascii_uppercase(), self.line));
         self.ints.insert(free.clone(), crate::program::IntVar { ty: to, input: true, init: 0 });
+        self.undefined.insert(free.clone());
         self.warnings.push(StError::warning(
             span,
             format!(

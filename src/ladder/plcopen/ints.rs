@@ -174,12 +174,6 @@ pub fn undefined_input(out: &str) -> String {
     format!("{out}_UNDEFINED")
 }
 
-/// Whether `name` is spelled as an [`undefined_input`] (a hidden name: a declared
-/// variable may be spelled so too).
-pub fn is_undefined_input(name: &str) -> bool {
-    name.ends_with("_OUT_UNDEFINED")
-}
-
 /// Whether an IEC type name (upper case) is an integer type, 64-bit ones included.
 pub fn is_int_type_name(t: &str) -> bool {
     matches!(

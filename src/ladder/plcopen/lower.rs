@@ -75,6 +75,8 @@ struct Lower<'p> {
     new_opaque: BTreeMap<String, String>,
     /// The next scan-local value's index.
     next_temp: usize,
+    /// The free integers standing for what C leaves undefined ([`Program::undefined`]).
+    undefined: BTreeSet<String>,
 }
 
 fn one() -> BoolExpr {
@@ -191,6 +193,7 @@ impl<'p> Lower<'p> {
             opaque: BTreeMap::new(),
             new_opaque: BTreeMap::new(),
             next_temp: 0,
+            undefined: BTreeSet::new(),
         }
     }
 
@@ -901,6 +904,7 @@ fn finish(p: &PlcProgram, mut l: Lower<'_>) -> Result<Lowered, Vec<PlcError>> {
         language: "a PLCopen",
         started: p.started.clone(),
         hidden,
+        undefined: std::mem::take(&mut l.undefined),
     };
     let mut warnings = p.warnings.clone();
     warnings.append(&mut l.warnings);

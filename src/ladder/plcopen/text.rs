@@ -218,7 +218,10 @@ fn text_block(
         }
         crate::program::Inputs::ByPrefix => Some("its inputs".into()),
     };
-    let int_outside = program.integers.iter().find(|(x, v)| v.input && !input_var(x));
+    let int_outside = program
+        .integers
+        .iter()
+        .find(|(x, v)| v.input && !input_var(x) && !program.undefined.contains(*x));
     if let Some(x) = outside.or(int_outside.map(|(x, _)| x.clone())) {
         return Err(format!("`{x}` is written by the outside world, not by the call"));
     }

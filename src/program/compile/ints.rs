@@ -12,7 +12,8 @@
 use super::super::bitvec::{self, Bits};
 use super::super::logic::{L, simp};
 use super::super::{
-    BitOp, BoolExpr, Compare, IntExpr, IntType, IntVar, Program, RealOp, Stmt, WriteKind,
+    BitOp, BoolExpr, Checked, CheckedOp, Compare, IntExpr, IntType, IntVar, Program, RealOp, Stmt,
+    WriteKind,
 };
 use super::{CompileError, Compiler, Pending, SignalKind};
 use crate::diag::Span;
@@ -158,6 +159,10 @@ impl Compiler<'_> {
                     a[n..].iter().cloned().chain(std::iter::repeat_n(fill, n)).collect()
                 }
             }
+            IntExpr::Checked(c) => {
+                let value = self.checked(c, span);
+                bitvec::resize(value, c.ty, ty)
+            }
             IntExpr::Ite(c, a, b) => {
                 // The condition is read by every bit: named unless it is a literal.
                 let c = self.eval(c);
@@ -172,6 +177,74 @@ impl Compiler<'_> {
                 a.iter().zip(&b).map(|(x, y)| bitvec::mux(&c, x, y)).collect()
             }
         }
+    }
+
+    /// A [`Checked`] operation's value in its type: the result's bits where it fits,
+    /// the free integer's where it overflows (the condition named, as every bit reads it).
+    fn checked(&mut self, c: &Checked, span: Span) -> Bits {
+        let w = c.ty.bits as usize;
+        let a = self.int(&c.a, c.ty, span);
+        let b = self.int(&c.b, c.ty, span);
+        let (sa, sb) = (a[w - 1].clone(), b[w - 1].clone());
+        let differ = |x: &L, y: &L| bitvec::mux(x, &y.clone().negate(), y);
+        let mut name = |t: L| self.intermediate(t);
+        let (value, overflow) = match c.op {
+            // `-b`: only the least value overflows.
+            CheckedOp::Sub if matches!(c.a, IntExpr::Const(0)) => {
+                let r = bitvec::sub(&a, &b, &mut name);
+                let rest = b[..w - 1].iter().map(|x| x.clone().negate());
+                (r, L::And(std::iter::once(sb).chain(rest).collect()))
+            }
+            // Operands of one sign (of two signs, for `-`) and a result of the other.
+            CheckedOp::Add | CheckedOp::Sub => {
+                let r = if c.op == CheckedOp::Add {
+                    bitvec::add(&a, &b, L::Zero, &mut name)
+                } else {
+                    bitvec::sub(&a, &b, &mut name)
+                };
+                let signs = differ(&sa, &sb);
+                let signs = if c.op == CheckedOp::Add { signs.negate() } else { signs };
+                let overflow = signs.and(differ(&r[w - 1], &sa));
+                (r, overflow)
+            }
+            // The exact product in twice the width: it fits where its high half copies
+            // the sign of its low half.
+            CheckedOp::Mul => {
+                let extend = |x: &Bits, s: &L| {
+                    x.iter().cloned().chain(std::iter::repeat_n(s.clone(), w)).collect::<Bits>()
+                };
+                let p = bitvec::mul(&extend(&a, &sa), &extend(&b, &sb), &mut name);
+                let overflow = L::Or(p[w..].iter().map(|x| differ(x, &p[w - 1])).collect());
+                (p[..w].to_vec(), overflow)
+            }
+            // Only the least value divided by −1 overflows.
+            CheckedOp::Div | CheckedOp::Mod => {
+                let r = if c.op == CheckedOp::Div {
+                    bitvec::div_by(&a, &b, c.ty, &mut |t: L| {
+                        self.intermediate_over(t, MAX_DIV_TERM)
+                    })
+                } else {
+                    bitvec::rem_by(&a, &b, c.ty, &mut |t: L| {
+                        self.intermediate_over(t, MAX_DIV_TERM)
+                    })
+                };
+                let least = bitvec::constant(c.ty.min(), c.ty.bits);
+                let all = |x: &Bits, k: &Bits| {
+                    L::And(x.iter().zip(k).map(|(x, k)| differ(x, k).negate()).collect())
+                };
+                let minus_one = bitvec::constant(-1, c.ty.bits);
+                (r, all(&a, &least).and(all(&b, &minus_one)))
+            }
+        };
+        let overflow = simp(&overflow);
+        let overflow = if overflow.size() > 2 {
+            let label = self.block().label.clone().unwrap_or_else(|| "v".into());
+            self.define(&format!("{label}_overflow"), overflow)
+        } else {
+            overflow
+        };
+        let free = self.int(&IntExpr::Var(c.undefined.clone()), c.ty, span);
+        value.iter().zip(&free).map(|(x, f)| bitvec::mux(&overflow, f, x)).collect()
     }
 
     /// A comparison, as a Boolean term of the bits.
@@ -273,6 +346,10 @@ pub(super) fn constants(program: &Program) -> Vec<i64> {
             | IntExpr::Ite(_, a, b) => {
                 walk(a, out);
                 walk(b, out);
+            }
+            IntExpr::Checked(c) => {
+                walk(&c.a, out);
+                walk(&c.b, out);
             }
         }
     }

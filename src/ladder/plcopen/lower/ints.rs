@@ -9,7 +9,8 @@ use crate::ladder::plcopen::ints::{Arith, ConvType, IntBlock, bcd_conversion};
 use crate::ladder::plcopen::{Edge, ObjKind, PinIn, PlcProgram, Source};
 use crate::program::library::{self, Counter};
 use crate::program::{
-    Block, BoolExpr, CmpOp, EdgeKind, IntExpr, IntType, IntVar, Memory, RealOp, Stmt, WriteKind,
+    Block, BoolExpr, C_INT, CheckedOp, CmpOp, EdgeKind, IntExpr, IntType, IntVar, Memory, RealOp,
+    Stmt, WriteKind, c_operation,
 };
 
 /// An integer value on a wire and its type (`None`: a literal, typed by its reader), or
@@ -595,7 +596,7 @@ impl Lower<'_> {
         let en = if runs { en } else { self.temp(&mut stmts, en) };
         let enabled = |v: BoolExpr| if runs { v } else { BoolExpr::and(en.clone(), v) };
         if let Some(out) = p.hidden_name(k, "OUT").map(str::to_string) {
-            match self.int_function(b, &bools, &ints) {
+            match self.int_function(b, &bools, &ints, &out) {
                 Ok(Value::Int(e, t)) => {
                     let e = match e {
                         IntExpr::FromReal(x, unsigned) => {
@@ -603,6 +604,18 @@ impl Lower<'_> {
                         }
                         e => e,
                     };
+                    let free = crate::ladder::plcopen::ints::undefined_input(&out);
+                    let mut overflows = false;
+                    e.visit(&mut |n| overflows |= n == free, &mut |_| {});
+                    if overflows && !self.undefined.contains(&free) {
+                        self.undefined.insert(free.clone());
+                        self.ints.insert(free.clone(), IntVar { ty: C_INT, input: true, init: 0 });
+                        let message = format!(
+                            "may overflow the 32-bit `int` the generated C computes it in, which \
+                             C leaves undefined: there its OUT is the free input {free}"
+                        );
+                        stmts.push(Stmt::Warn { span, element: upper.clone(), message });
+                    }
                     self.ints.insert(out.clone(), IntVar { ty: t, input: false, init: 0 });
                     let value =
                         if runs { e } else { IntExpr::ite(en.clone(), e, IntExpr::Const(0)) };
@@ -655,6 +668,7 @@ impl Lower<'_> {
     ) -> IntExpr {
         let free = crate::ladder::plcopen::ints::undefined_input(out);
         self.ints.insert(free.clone(), IntVar { ty: t, input: true, init: 0 });
+        self.undefined.insert(free.clone());
         let message = format!(
             "{}, its OUT is the free input {free}: any {}",
             library::real_to_int_undefined(unsigned),
@@ -671,6 +685,7 @@ impl Lower<'_> {
         b: &IntBlock,
         bools: &BTreeMap<String, BoolExpr>,
         ints: &[(String, IntVal)],
+        out: &str,
     ) -> Result<Value, String> {
         let mut vals: Vec<Arg> = Vec::new();
         for (n, v) in ints {
@@ -722,30 +737,52 @@ impl Lower<'_> {
                 rest.iter()
                     .fold(first.clone(), |a, b| IntExpr::Real(op, Box::new(a), Box::new(b.clone())))
             }
-            (IntBlock::Arith(Arith::Add), [first, rest @ ..]) if !rest.is_empty() => {
-                rest.iter().cloned().fold(first.clone(), IntExpr::plus)
+            // matiec's functions (`lib/C/iec_std_functions.h`): `op1 = op1 OP op2` in the
+            // type, computed in C `int` for a narrower one, where an overflow is undefined
+            // (`c_operation`: the block's OUT is then a free input); DIV and MOD (`__div`,
+            // `__mod`) truncate toward zero, the remainder with the dividend's sign, 0 for
+            // a divisor 0.
+            (IntBlock::Arith(op), [first, rest @ ..]) if !rest.is_empty() => {
+                let op = match op {
+                    Arith::Add => CheckedOp::Add,
+                    Arith::Sub => CheckedOp::Sub,
+                    Arith::Mul => CheckedOp::Mul,
+                    Arith::Div => CheckedOp::Div,
+                    Arith::Mod => CheckedOp::Mod,
+                };
+                if rest.len() > 1 && !matches!(op, CheckedOp::Add | CheckedOp::Mul) {
+                    return Err("its inputs are not the ones ii-prove computes".into());
+                }
+                let free = crate::ladder::plcopen::ints::undefined_input(out);
+                let mut acc = first.clone();
+                for (i, x) in rest.iter().enumerate() {
+                    // A step's result, stored into `op1`, is a value of the type.
+                    let a = if i == 0 { acc } else { IntExpr::Cast(Box::new(acc), t) };
+                    acc = match c_operation(op, a, x.clone(), t, &free) {
+                        Some(IntExpr::Checked(_)) if rest.len() > 1 => {
+                            return Err(format!(
+                                "a step of its sum or product of more than two {} values may \
+                                 overflow C's `int`, which C leaves undefined",
+                                library::type_name(t)
+                            ));
+                        }
+                        Some(v) => v,
+                        None => IntExpr::Const(0),
+                    };
+                }
+                acc
             }
-            (IntBlock::Arith(Arith::Mul), [first, rest @ ..]) if !rest.is_empty() => rest
-                .iter()
-                .cloned()
-                .fold(first.clone(), |a, b| IntExpr::Mul(Box::new(a), Box::new(b))),
-            (IntBlock::Arith(Arith::Sub), [a, b]) => IntExpr::minus(a.clone(), b.clone()),
-            // matiec's DIV and MOD (`lib/C/iec_std_functions.h`, `__div`, `__mod`): C's
-            // division truncated toward zero, the remainder with the dividend's sign, 0 for
-            // a divisor 0 (`IntExpr::DivBy`).
-            (IntBlock::Arith(op @ (Arith::Div | Arith::Mod)), [a, b]) => match b {
-                IntExpr::Const(0) => IntExpr::Const(0),
-                IntExpr::Const(d) if *op == Arith::Div => IntExpr::Div(Box::new(a.clone()), *d),
-                IntExpr::Const(d) => IntExpr::Mod(Box::new(a.clone()), *d),
-                b if *op == Arith::Div => IntExpr::DivBy(Box::new(a.clone()), Box::new(b.clone())),
-                b => IntExpr::ModBy(Box::new(a.clone()), Box::new(b.clone())),
-            },
             (IntBlock::Min, [_, _, ..]) => library::extreme(true, t, &args),
             (IntBlock::Max, [_, _, ..]) => library::extreme(false, t, &args),
             (IntBlock::Limit, [_, _, _]) => {
                 library::limit(t, named("MN")?, named("IN")?, named("MX")?)
             }
-            (IntBlock::Abs, [x]) => library::abs(t, x.clone()),
+            // `-op` of the least `DINT` overflows.
+            (IntBlock::Abs, [x]) => {
+                let undefined =
+                    (t == C_INT).then(|| crate::ladder::plcopen::ints::undefined_input(out));
+                library::abs(t, x.clone(), undefined)
+            }
             (IntBlock::Move, [x]) => x.clone(),
             (IntBlock::Sel, [_, _]) => {
                 let g = bools.get("G").cloned().unwrap_or(BoolExpr::Const(false));

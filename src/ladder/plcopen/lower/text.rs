@@ -13,8 +13,11 @@ impl Lower<'_> {
     pub(super) fn declare_text_ints(&mut self, p: &PlcProgram) {
         for call in p.text_calls.values() {
             for (x, v) in &call.program.integers {
-                self.ints.insert(x.clone(), IntVar { input: false, ..*v });
+                // What C leaves undefined stays free in the caller.
+                let input = call.program.undefined.contains(x);
+                self.ints.insert(x.clone(), IntVar { input, ..*v });
             }
+            self.undefined.extend(call.program.undefined.iter().cloned());
         }
         for sub in p.subs.values() {
             self.declare_text_ints(sub);

@@ -294,20 +294,41 @@ fn function(b: &IntBlock, args: Vec<(String, Val)>, get: impl Fn(&str) -> bool) 
     }
     let xs: Vec<i128> = vals.iter().map(|(_, x, _)| i128::from(ct.store((*x).into()))).collect();
     let named = |pin: &str| vals.iter().position(|(n, _, _)| n == pin).map(|j| xs[j]).unwrap_or(0);
+    // C computes `op1 OP op2` in `int` for a type of at most 32 signed bits or fewer
+    // bits (integer promotion), where a result beyond `int` is undefined; in `unsigned`
+    // for a 32-bit unsigned type, where it wraps.
+    let in_int = ct.bits < 32 || ct.signed;
+    let step = |v: i128| (!in_int || i32::try_from(v).is_ok()).then(|| i128::from(ct.store(v)));
+    let undefined = || Some(Out::Undefined(ct));
     let result: i128 = match b {
         IntBlock::Compare(op) => {
             return Some(Out::Bool(xs.windows(2).all(|w| op.compares(w[0], w[1]))));
         }
-        IntBlock::Arith(Arith::Add) => xs.iter().fold(0, |a, x| i128::from(ct.store(a + x))),
-        IntBlock::Arith(Arith::Mul) => xs.iter().fold(1, |a, x| i128::from(ct.store(a * x))),
+        IntBlock::Arith(op @ (Arith::Add | Arith::Mul)) => {
+            let (first, rest) = xs.split_first()?;
+            let mut acc = *first;
+            for x in rest {
+                match step(if *op == Arith::Add { acc + x } else { acc * x }) {
+                    Some(v) => acc = v,
+                    None => return undefined(),
+                }
+            }
+            acc
+        }
         IntBlock::Arith(op) => {
             let [a, d] = xs.as_slice() else { return None };
-            match op {
+            let v = match op {
                 Arith::Sub => a - d,
                 // matiec's DIV and MOD give 0 for a divisor 0.
                 _ if *d == 0 => 0,
                 Arith::Div => a / d,
+                // `a % d` is computed by the division, which may overflow.
+                _ if step(a / d).is_none() => return undefined(),
                 _ => a % d,
+            };
+            match step(v) {
+                Some(_) => v,
+                None => return undefined(),
             }
         }
         IntBlock::Min => xs.iter().copied().reduce(|a, x| if a > x { x } else { a }).unwrap_or(0),
@@ -318,7 +339,10 @@ fn function(b: &IntBlock, args: Vec<(String, Val)>, get: impl Fn(&str) -> bool) 
         }
         IntBlock::Abs => {
             let x = named("IN");
-            if x < 0 { -x } else { x }
+            match step(if x < 0 { -x } else { x }) {
+                Some(_) => x.abs(),
+                None => return undefined(),
+            }
         }
         IntBlock::Move => named("IN"),
         IntBlock::Sel => {
@@ -532,6 +556,7 @@ impl PlcSimulator {
             Some(Out::Undefined(ct)) => {
                 let free = crate::ladder::plcopen::ints::undefined_input(&out);
                 let v = if en { self.ints.get(&free).map_or(0, |(v, _)| *v) } else { 0 };
+                let v = ct.store(v.into());
                 self.ints.insert(out, (v, ct));
             }
             Some(Out::Bool(holds)) => {
