@@ -514,13 +514,10 @@ fn a_value_from_a_block_not_computed_names_the_block() {
     let out = ii_prove(&["show", dir.join("tests__projects__BACnet__plc.xml").to_str().unwrap()]);
     let all = text(&out.stdout) + &text(&out.stderr);
     assert!(all.contains("the output OUT of TempSimulation (Simulator) is not computed"), "{all}");
-    // Its ST body calls TON0 under an `IF`, which the compiler refuses: the block stays
-    // opaque with that reason (its `PT`, left out of the second call, is kept).
+    // Its ST body calls TON0 under an `IF` (a timer called under a condition, modelled)
+    // and a second time: a timer called at two places is unconstrained, with the reason.
     assert!(
-        all.contains(
-            "the user block `Simulator` is not modelled (its body is refused by the compiler: \
-             a timer, edge detector or toggle inside a conditional statement"
-        ),
+        all.contains("TON: the accumulator TempSimulation_TON0 is also written by another element"),
         "{all}"
     );
 }

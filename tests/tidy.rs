@@ -63,7 +63,7 @@ fn no_source_file_is_over_900_lines_except_those_due_to_be_split() {
         ("src/ladder/lower.rs", 909 + 60),
         ("src/ladder/plcopen/lower.rs", 907 + 60),
         ("src/ladder/simulate.rs", 1023 + 60),
-        ("src/program/compile.rs", 1396 + 60),
+        ("src/program/compile.rs", 1310 + 60),
         ("src/prover/boolean.rs", 1093 + 60),
     ];
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));

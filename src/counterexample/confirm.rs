@@ -196,7 +196,11 @@ fn simulate(
             // Compiler-made names (atoms, intermediate values) stand for what they read.
             let depends = match kind {
                 Some(SignalKind::IntBit { of, .. }) => Some(of),
-                Some(SignalKind::Atom | SignalKind::Intermediate { .. }) => None,
+                Some(
+                    SignalKind::Atom
+                    | SignalKind::Intermediate { .. }
+                    | SignalKind::HeldInput { .. },
+                ) => None,
                 _ => Some(*n),
             };
             if depends.is_some_and(|d| !sim.is_known(d)) {
@@ -224,7 +228,8 @@ fn simulate(
                         format!("the simulator does not show the integers of `{n}`")
                     })?
                 }
-                Some(SignalKind::Intermediate { .. }) => continue,
+                // A held timer input is checked through the timer's output it decides.
+                Some(SignalKind::Intermediate { .. } | SignalKind::HeldInput { .. }) => continue,
                 _ => sim.bit(n),
             };
             seen.push(value);
@@ -233,7 +238,9 @@ fn simulate(
     let seen: BTreeMap<String, Vec<bool>> = kinds
         .into_iter()
         .zip(values)
-        .filter(|((_, kind), _)| !matches!(kind, Some(SignalKind::Intermediate { .. })))
+        .filter(|((_, kind), _)| {
+            !matches!(kind, Some(SignalKind::Intermediate { .. } | SignalKind::HeldInput { .. }))
+        })
         .map(|((n, _), v)| (n.clone(), v))
         .collect();
     // The property (and the assumptions) on the simulator's values.

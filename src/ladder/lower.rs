@@ -482,6 +482,8 @@ impl<'a> Lowering<'a> {
                             preset,
                             input,
                             span: e.span,
+                            // LDmicro has no conditional statements.
+                            called: false,
                         };
                         return self.temp(BoolExpr::Timer(Box::new(timer)));
                     }

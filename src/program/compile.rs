@@ -107,11 +107,12 @@
 
 mod ints;
 pub mod start;
+mod timers;
 
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 use super::logic::{L, Tables, factors, product, simp, simp_and, simp_sum, sum, summands};
-use super::{Block, BoolExpr, EdgeKind, Memory, Preset, Program, Stmt, Temp, Timer, WriteKind};
+use super::{Block, BoolExpr, Memory, Program, Stmt, Temp, WriteKind};
 use crate::diag::{Report, Severity, Sources, Span};
 use crate::kernel::{Axiom, Rel};
 use crate::syntax::print::{
@@ -119,6 +120,7 @@ use crate::syntax::print::{
 };
 use crate::syntax::{Goal, Relation, Statement};
 use crate::term::{Delay, Expr, Symbol, Term, root};
+use timers::edge_of;
 
 /// What a signal of a compiled program is.
 #[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
@@ -157,6 +159,13 @@ pub enum SignalKind {
     /// A comparison atom of the properties (`[Cparts >= 10]`), defined by an equation
     /// over the integers' bits.
     Atom,
+    /// The input a timer called under a condition last received (`H = g·i + ¬g·pre H`
+    /// for the call's condition `g` and input `i`, 0 at first): what the runtime's timer
+    /// times between its calls.
+    HeldInput {
+        /// File rung number (1-based, comment rungs counted).
+        rung: usize,
+    },
     /// A part of an integer computation too large to copy into every read, named and
     /// defined by an exact equation stated with its block.
     Intermediate {
@@ -531,6 +540,9 @@ struct Compiler<'a> {
     write_index: usize,
     /// How many `If`s the statement being compiled is inside.
     depth: usize,
+    /// The condition under which the statement being compiled runs (its `If`s' branch
+    /// conditions; `1` outside them).
+    guard: L,
     /// The outermost `If` being compiled.
     if_span: Option<Span>,
     /// What a read of each written bit sees at this point of the scan, as a
@@ -582,6 +594,7 @@ impl<'a> Compiler<'a> {
             fresh: BTreeMap::new(),
             write_index: 0,
             depth: 0,
+            guard: L::One,
             if_span: None,
             current: BTreeMap::new(),
             temps: BTreeMap::new(),
@@ -805,14 +818,21 @@ impl<'a> Compiler<'a> {
         self.depth += 1;
         let conditions: Vec<L> = branches.iter().map(|(c, _)| self.eval(c)).collect();
         let entry = self.current.clone();
+        let outer = self.guard.clone();
         let mut outcomes = Vec::new();
-        for body in branches.iter().map(|(_, b)| b.as_slice()).chain([otherwise]) {
+        let mut none_before = L::One;
+        for (k, body) in branches.iter().map(|(_, b)| b.as_slice()).chain([otherwise]).enumerate() {
+            // A branch runs where no earlier condition holds and its own does.
+            let own = conditions.get(k).cloned().unwrap_or(L::One);
+            self.guard = simp(&L::And(vec![outer.clone(), none_before.clone(), own.clone()]));
+            none_before = simp(&none_before.and(own.negate()));
             self.current = entry.clone();
             for s in body {
                 self.stmt(s);
             }
             outcomes.push(std::mem::take(&mut self.current));
         }
+        self.guard = outer;
         self.depth -= 1;
         let Some(mut merged) = outcomes.pop() else { return };
         for (c, outcome) in conditions.iter().zip(outcomes).rev() {
@@ -843,23 +863,6 @@ impl<'a> Compiler<'a> {
         }
     }
 
-    /// A timer, one-shot or toggle inside an `If`: refused (its memory would update only
-    /// on the scans its branch runs).
-    fn conditional_memory(&mut self) {
-        let span = self.if_span.unwrap_or(self.block().span);
-        if self.errors.iter().any(|e| e.span == span) {
-            return;
-        }
-        self.errors.push(CompileError {
-            span,
-            keyword: "IF".into(),
-            reason: "a timer, edge detector or toggle inside a conditional statement updates \
-                     its memory only on the scans its branch runs, which ii-prove does not \
-                     model yet; call it unconditionally and use its output in the branch"
-                .into(),
-        });
-    }
-
     fn read(&mut self, name: &str) -> L {
         if let Some(v) = self.current.get(name) {
             return v.clone();
@@ -883,6 +886,22 @@ impl<'a> Compiler<'a> {
                 let outs: Vec<L> = xs.iter().map(|x| self.eval(x)).collect();
                 simp_sum(outs)
             }
+            BoolExpr::Timer(t) if self.depth > 0 && t.called && !self.options.any_state => {
+                let input = self.eval(&t.input);
+                let rung = self.block().number;
+                let base = format!("{}_IN", canonical(&t.accumulator));
+                let held = self.held_input(&base, &input, SignalKind::HeldInput { rung });
+                self.timer(t, L::Var(held))
+            }
+            BoolExpr::Edge { kind, input, memory } if self.depth > 0 && !self.options.any_state => {
+                let input = self.eval(input);
+                let rung = self.block().number;
+                let element = memory.element.clone();
+                let kind_of = SignalKind::EdgeMemory { rung, element, index: memory.index };
+                let held = self.held_input(&canonical(&memory.base), &input, kind_of);
+                let prev = L::Var(self.pre_name(&held));
+                edge_of(*kind, input, prev)
+            }
             BoolExpr::Timer(_) | BoolExpr::Edge { .. } if self.depth > 0 => {
                 self.conditional_memory();
                 L::Zero
@@ -896,133 +915,13 @@ impl<'a> Compiler<'a> {
                 // `i · ¬pre i`, falling `¬i · pre i`, not rising `¬(i · ¬pre i)`.
                 let input = self.eval(input);
                 let prev = self.previous_power(memory, &input);
-                match kind {
-                    EdgeKind::Rising => simp(&input.and(prev.negate())),
-                    EdgeKind::Falling => simp(&input.negate().and(prev)),
-                    EdgeKind::NotRising => simp(&input.and(prev.negate()).negate()),
-                }
+                edge_of(*kind, input, prev)
             }
             BoolExpr::Fresh(f) => self.new_fresh(&f.base, &f.keyword, f.span, &f.why),
             BoolExpr::Compare(c) => {
                 let span = self.block().span;
                 self.compare(c, span)
             }
-        }
-    }
-
-    fn timer(&mut self, t: &Timer, input: L) -> L {
-        if self.options.any_state {
-            return self.timer_from_any_state(t);
-        }
-        let keyword = t.keyword.clone();
-        let name = &t.accumulator;
-        let cycle = self.program.cycle_us;
-        let why = match &t.preset {
-            _ if self.shared_timers.contains(name) => Some(format!(
-                "the accumulator {name} is also written by another element (RES, MOVE, a SHIFT_REGISTER stage, PERSIST at power-up, another timer, …)"
-            )),
-            Preset::Variable { name, why } => Some(match why {
-                Some(why) => {
-                    format!("a delay given by the variable {name} is not a constant: {why}")
-                }
-                None => format!("a delay given by the variable {name} is not a constant"),
-            }),
-            Preset::Micros { us: 0, .. } => Some("a zero delay is not a delay".into()),
-            Preset::Micros { .. } if cycle == 0 => {
-                Some("with a zero cycle the timer never expires".into())
-            }
-            Preset::Micros { .. } => None,
-        };
-        let (Preset::Micros { us, adjust, default_of }, None) = (&t.preset, &why) else {
-            let why = why.unwrap_or_else(|| "the delay is not expressible".into());
-            return self.new_fresh(&format!("{keyword}_{name}"), &keyword, t.span, &why);
-        };
-        let (us, adjust) = (*us, *adjust);
-        // The runtime counts P = floor(delay / cycle) + adjust scans; a TON is on from
-        // the (P+1)-th consecutive scan with its input on, a TOF stays on for P scans
-        // after its input falls. On scan runs that is exactly `d/IN` and `IN/d` with
-        // d = P · cycle; with P ≤ 0 the output is the input.
-        let scans = i64::try_from(us / cycle).unwrap_or(i64::MAX).saturating_add(adjust);
-        let nominal = Delay::from_micros(us).ok();
-        let plc = u64::try_from(scans)
-            .ok()
-            .filter(|p| *p > 0)
-            .and_then(|p| p.checked_mul(cycle))
-            .and_then(|d| Delay::from_micros(d).ok());
-        if self.options.timers == TimerModel::Ideal && us % cycle != 0 {
-            // On scans only a whole number of cycles has one reading (semantics.md).
-            let (below, above) = (us / cycle * cycle, (us / cycle + 1) * cycle);
-            let nearest = if below == 0 {
-                format!("the shortest whole multiple is {above} µs")
-            } else {
-                format!("the nearest whole multiples are {below} µs and {above} µs")
-            };
-            self.errors.push(CompileError {
-                span: t.span,
-                keyword: keyword.clone(),
-                reason: format!(
-                    "with --timers ideal the delay is used as written, and {us} µs is not a \
-                     whole number of {cycle} µs scan cycles ({nearest}); the default \
-                     --timers plc uses the scans the runtime counts"
-                ),
-            });
-        }
-        let d = match self.options.timers {
-            TimerModel::Plc if scans < 1 => None,
-            TimerModel::Plc => plc.clone(),
-            TimerModel::Ideal => nominal.clone(),
-        };
-        if d.is_none() && (scans >= 1 || self.options.timers == TimerModel::Ideal) {
-            let why = "the delay is too large to express";
-            return self.new_fresh(&format!("{keyword}_{name}"), &keyword, t.span, why);
-        }
-        if scans < 1 {
-            self.warn(
-                t.span,
-                &keyword,
-                format!(
-                    "the runtime counts P = floor({us} µs / {cycle} µs) {} = {scans} scans: \
-                     LDmicro 2.x refuses to compile this timer, and the new LDmicro runs it \
-                     with its output following its input{}",
-                    signed(adjust),
-                    if self.options.timers == TimerModel::Plc {
-                        ", as compiled here"
-                    } else {
-                        "; --timers ideal uses the delay as written"
-                    }
-                ),
-            );
-        } else if self.options.timers == TimerModel::Plc && plc != nominal {
-            let effective = plc.as_ref().map_or_else(String::new, delay_to_string);
-            let nominal = nominal.as_ref().map_or_else(|| format!("{us} µs"), delay_to_string);
-            self.warn(
-                t.span,
-                &keyword,
-                format!(
-                    "the runtime counts P = floor({us} µs / {cycle} µs) {} = {scans} scans of \
-                     the cycle, so {name} times {effective}, not the {nominal} written{}; the \
-                     equation uses {effective} (--timers ideal uses {nominal})",
-                    signed(adjust),
-                    match default_of {
-                        Some(file) => format!(" (the default adjust of an {file} file)"),
-                        None => String::new(),
-                    }
-                ),
-            );
-        }
-        self.timer_info.push(TimerInfo {
-            rung: self.block().number,
-            keyword: keyword.clone(),
-            name: name.to_string(),
-            delay_us: us,
-            adjust,
-            scans,
-            effective: d.clone(),
-        });
-        match (d, t.on_delay) {
-            (None, _) => input,
-            (Some(d), true) => simp(&L::Ton(d, Box::new(input))),
-            (Some(d), false) => simp(&L::Tof(Box::new(input), d)),
         }
     }
 
@@ -1244,10 +1143,6 @@ impl<'a> Compiler<'a> {
         }
     }
 }
-/// An adjust as written in a formula: `+ 5`, `- 1`.
-fn signed(v: i64) -> String {
-    if v < 0 { format!("- {}", v.unsigned_abs()) } else { format!("+ {v}") }
-}
 
 /// `¬y`, with De Morgan applied when every operand of `y` is a complement
 /// (`¬(¬a · ¬b)` is written `a + b`).
@@ -1335,12 +1230,15 @@ pub fn program_to_ii(compiled: &CompiledProgram, notation: Notation) -> String {
         count(compiled.warnings.len(), "warning", "warnings")
     ));
     out.push_str("// first); with it this text describes scans, and reads back with a program.\n");
-    let groups: [(&str, KindFilter); 8] = [
+    let groups: [(&str, KindFilter); 9] = [
         ("inputs", |k| *k == SignalKind::Input),
         ("outputs", |k| *k == SignalKind::Output),
         ("relays", |k| *k == SignalKind::Relay),
         ("edge memories (the input of a one-shot or toggle coil)", |k| {
             matches!(k, SignalKind::EdgeMemory { .. })
+        }),
+        ("held inputs (what a timer called under a condition last received)", |k| {
+            matches!(k, SignalKind::HeldInput { .. })
         }),
         ("fresh outputs of unsupported elements (unconstrained)", |k| {
             matches!(k, SignalKind::Fresh { .. })

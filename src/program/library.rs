@@ -312,6 +312,7 @@ impl Pulse<'_> {
                 preset: Preset::iec(self.pt_us - self.cycle_us, self.cycle_us),
                 input: running.clone(),
                 span,
+                called: false,
             }))
         };
         let elapsed = local(&mut out, elapsed);

@@ -568,6 +568,11 @@ pub struct Timer {
     pub input: BoolExpr,
     /// The element.
     pub span: Span,
+    /// Whether it is a timer block by itself (an IEC `TON`/`TOF` call), which the
+    /// runtime runs only when it is called: under a condition it times the input its last
+    /// call gave it. `false` for a part of a larger element (the scans a `TP`'s pulse has
+    /// lasted), which is refused under a condition.
+    pub called: bool,
 }
 
 /// A timer's preset.

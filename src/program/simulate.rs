@@ -48,9 +48,9 @@ pub struct Simulator {
     bits: BTreeMap<String, V>,
     /// Every integer, as it stands in the scan (its power-up value before the first write).
     ints: BTreeMap<String, N>,
-    /// Per stateful element, in the order a scan meets them: a timer's count of
-    /// consecutive scans (input on for TON, off for TOF), a one-shot's last power.
-    counts: Vec<(u64, bool)>,
+    /// Per stateful element, in the order a scan meets them (every branch of an `If`
+    /// included, run or not): a timer's count, a one-shot's last power.
+    counts: Vec<Count>,
     memories: Vec<V>,
     /// A one-shot's memory by its index in the front end's order.
     by_index: BTreeMap<usize, V>,
@@ -61,9 +61,22 @@ pub struct Simulator {
     temps: BTreeMap<Temp, V>,
     next_count: usize,
     next_memory: usize,
+    /// The scans run so far.
+    scan: u64,
     /// Whether the free integers of what the runtime leaves undefined
     /// ([`Program::undefined`]) are unknown rather than given by their bits.
     undefined_unknown: bool,
+}
+
+/// A timer's state: the count of consecutive scans that make it run (input on for a
+/// TON, off for a TOF) up to its last call, whether it is known, whether that call made
+/// it run, and that call's scan.
+#[derive(Clone, Copy, Debug)]
+struct Count {
+    count: u64,
+    known: bool,
+    runs: bool,
+    at: u64,
 }
 
 impl Simulator {
@@ -87,6 +100,7 @@ impl Simulator {
             temps: BTreeMap::new(),
             next_count: 0,
             next_memory: 0,
+            scan: 0,
             undefined_unknown: false,
         }
     }
@@ -116,6 +130,7 @@ impl Simulator {
             self.ints.insert(x.clone(), N { value, known });
         }
         self.temps.clear();
+        self.scan += 1;
         self.next_count = 0;
         self.next_memory = 0;
         let program = self.program.clone();
@@ -179,13 +194,15 @@ impl Simulator {
                 self.current.insert(target.clone(), new);
             }
             Stmt::If { branches, otherwise, .. } => {
+                // Every condition, as the compiler reads them; the first that holds
+                // chooses the branch.
+                let conditions: Vec<V> = branches.iter().map(|(c, _)| self.eval(c)).collect();
                 let mut known = known;
-                let mut chosen = None;
-                for (c, body) in branches {
-                    let c = self.eval(c);
+                let mut chosen = branches.len();
+                for (k, c) in conditions.iter().enumerate() {
                     known &= c.known;
                     if c.value {
-                        chosen = Some(body);
+                        chosen = k;
                         break;
                     }
                 }
@@ -211,8 +228,22 @@ impl Simulator {
                         }
                     }
                 }
-                for s in chosen.unwrap_or(otherwise) {
-                    self.stmt(s, known);
+                // The timers and one-shots of a branch that does not run are not called:
+                // they keep their state (unknown where which branch runs is not known).
+                let bodies =
+                    branches.iter().map(|(_, b)| b.as_slice()).chain([otherwise.as_slice()]);
+                for (k, body) in bodies.enumerate() {
+                    if k != chosen {
+                        self.skip(body, known);
+                        continue;
+                    }
+                    let first = (self.next_count, self.next_memory);
+                    for s in body {
+                        self.stmt(s, known);
+                    }
+                    if !known {
+                        self.forget(first, (self.next_count, self.next_memory));
+                    }
                 }
             }
             Stmt::SetInt { target, value, .. } => {
@@ -315,11 +346,7 @@ impl Simulator {
     /// The one-shot memory met next in the scan: its value from the previous scan, then
     /// `power` kept for the next.
     fn memory(&mut self, power: V, index: usize) -> V {
-        let k = self.next_memory;
-        self.next_memory += 1;
-        if self.memories.len() <= k {
-            self.memories.push(V::of(self.edge_starts.get(&index).copied().unwrap_or(false)));
-        }
+        let k = self.next_memory_slot(index);
         let last = self.memories[k];
         self.memories[k] = power;
         self.by_index.insert(index, power);
@@ -372,13 +399,131 @@ impl Simulator {
         }
     }
 
-    fn timer(&mut self, t: &Timer, input: V) -> V {
+    /// The slot of the timer met next in the scan.
+    fn next_timer(&mut self, on_delay: bool) -> usize {
         let k = self.next_count;
         self.next_count += 1;
         if self.counts.len() <= k {
             // A TOF has been off "forever" at power-up: its output is off.
-            self.counts.push((if t.on_delay { 0 } else { u64::MAX }, true));
+            let count = if on_delay { 0 } else { u64::MAX };
+            self.counts.push(Count { count, known: true, runs: !on_delay, at: 0 });
         }
+        k
+    }
+
+    /// The one-shot memory met next in the scan.
+    fn next_memory_slot(&mut self, index: usize) -> usize {
+        let k = self.next_memory;
+        self.next_memory += 1;
+        if self.memories.len() <= k {
+            self.memories.push(V::of(self.edge_starts.get(&index).copied().unwrap_or(false)));
+        }
+        k
+    }
+
+    /// The timers and one-shots of `body`, a branch that does not run: passed, their
+    /// state kept (made unknown unless `known`: whether the branch runs is not known).
+    fn skip(&mut self, body: &[Stmt], known: bool) {
+        let first = (self.next_count, self.next_memory);
+        for s in body {
+            match s {
+                Stmt::Let { value, .. } => self.skip_expr(value),
+                Stmt::Write { value, kind, .. } => {
+                    self.skip_expr(value);
+                    if let WriteKind::Toggle(memory) = kind {
+                        self.next_memory_slot(memory.index);
+                    }
+                }
+                Stmt::If { branches, otherwise, .. } => {
+                    for (c, _) in branches {
+                        self.skip_expr(c);
+                    }
+                    for (_, b) in branches {
+                        self.skip(b, known);
+                    }
+                    self.skip(otherwise, known);
+                }
+                Stmt::SetInt { value, .. } => self.skip_int(value),
+                Stmt::Warn { .. } => {}
+            }
+        }
+        if !known {
+            self.forget(first, (self.next_count, self.next_memory));
+        }
+    }
+
+    /// [`Self::skip`] of an expression, in the order [`Self::eval`] meets its parts.
+    fn skip_expr(&mut self, e: &BoolExpr) {
+        match e {
+            BoolExpr::Not(x) => self.skip_expr(x),
+            BoolExpr::And(a, b) => {
+                self.skip_expr(a);
+                self.skip_expr(b);
+            }
+            BoolExpr::Or(xs) => xs.iter().for_each(|x| self.skip_expr(x)),
+            BoolExpr::Timer(t) => {
+                self.skip_expr(&t.input);
+                self.next_timer(t.on_delay);
+            }
+            BoolExpr::Edge { input, memory, .. } => {
+                self.skip_expr(input);
+                self.next_memory_slot(memory.index);
+            }
+            BoolExpr::Compare(c) => {
+                self.skip_int(&c.a);
+                self.skip_int(&c.b);
+            }
+            BoolExpr::Const(_) | BoolExpr::Var(_) | BoolExpr::Temp(_) | BoolExpr::Fresh(_) => {}
+        }
+    }
+
+    /// [`Self::skip_expr`] of the conditions inside an integer expression.
+    fn skip_int(&mut self, e: &IntExpr) {
+        match e {
+            IntExpr::Ite(c, a, b) => {
+                self.skip_expr(c);
+                self.skip_int(a);
+                self.skip_int(b);
+            }
+            IntExpr::Add(a, b)
+            | IntExpr::Sub(a, b)
+            | IntExpr::Mul(a, b)
+            | IntExpr::DivBy(a, b)
+            | IntExpr::ModBy(a, b)
+            | IntExpr::Real(_, a, b)
+            | IntExpr::Bitwise(_, a, b) => {
+                self.skip_int(a);
+                self.skip_int(b);
+            }
+            IntExpr::Div(a, _)
+            | IntExpr::Mod(a, _)
+            | IntExpr::Cast(a, _)
+            | IntExpr::ToReal(a, _)
+            | IntExpr::FromReal(a, _)
+            | IntExpr::Shift(a, _) => self.skip_int(a),
+            IntExpr::Checked(c) => {
+                self.skip_int(&c.a);
+                self.skip_int(&c.b);
+            }
+            IntExpr::Const(_) | IntExpr::Var(_) => {}
+        }
+    }
+
+    /// The timers and one-shot memories in these ranges of slots made unknown.
+    fn forget(&mut self, from: (usize, usize), to: (usize, usize)) {
+        for c in &mut self.counts[from.0..to.0] {
+            c.known = false;
+        }
+        for m in &mut self.memories[from.1..to.1] {
+            m.known = false;
+        }
+    }
+
+    /// A timer's output at a call: the runtime's timer runs only when it is called, and
+    /// measures the time since the call that started it (the scans since then, held
+    /// input included: a call under a condition sees nothing between its calls).
+    fn timer(&mut self, t: &Timer, input: V) -> V {
+        let k = self.next_timer(t.on_delay);
         let cycle = self.program.cycle_us;
         let scans = match &t.preset {
             _ if self.shared.contains(&t.accumulator) || cycle == 0 => None,
@@ -391,15 +536,23 @@ impl Simulator {
             }),
         };
         // The count of consecutive scans that make the timer run (input on for a TON, off
-        // for a TOF): a known reset restarts it, an unknown input leaves it unknown.
-        let (count, known) = &mut self.counts[k];
+        // for a TOF) up to this call, the input of the last call held between calls: a
+        // known reset restarts it, an unknown input leaves it unknown.
+        let scan = self.scan;
+        let Count { count, known, runs: ran, at } = &mut self.counts[k];
         let runs = if t.on_delay { input.value } else { !input.value };
         if !runs && input.known {
             (*count, *known) = (0, true);
         } else {
-            *count = if runs { count.saturating_add(1) } else { 0 };
+            let since = scan.saturating_sub(*at).max(1);
+            *count = match (runs, *ran) {
+                (true, true) => count.saturating_add(since),
+                (true, false) => 1,
+                (false, _) => 0,
+            };
             *known &= input.known;
         }
+        (*ran, *at) = (runs, scan);
         let Some(p) = scans else { return V { value: false, known: false } };
         if p <= 0 {
             return input;

@@ -238,13 +238,21 @@ impl Hyp {
                                 let src = Src::IntBit { of: of.clone(), bit: *bit, start: *start };
                                 Node::Known(slot(known, src))
                             }
-                            Some(SignalKind::Intermediate { .. } | SignalKind::Atom)
-                                if !loose.contains(s) =>
-                            {
+                            // A held timer input is computed from its recurrence, as the
+                            // timer's output it decides is checked against the simulator.
+                            Some(
+                                SignalKind::Intermediate { .. }
+                                | SignalKind::Atom
+                                | SignalKind::HeldInput { .. },
+                            ) if !loose.contains(s) => {
                                 Node::Known(slot(known, Src::Defined(s.to_string())))
                             }
                             // Defined from an unconstrained signal: as free as it is.
-                            Some(SignalKind::Intermediate { .. } | SignalKind::Atom) => {
+                            Some(
+                                SignalKind::Intermediate { .. }
+                                | SignalKind::Atom
+                                | SignalKind::HeldInput { .. },
+                            ) => {
                                 temporal_free |= under[i];
                                 let k = free.iter().position(|f| f == s).unwrap_or_else(|| {
                                     free.push(s.to_string());
@@ -446,7 +454,10 @@ impl Hyp {
 /// and transitively, on an unconstrained signal (or have no equation).
 pub fn loose_names(c: &CompiledProgram) -> BTreeSet<String> {
     let defined = |n: &str| {
-        matches!(c.signals.get(n), Some(SignalKind::Intermediate { .. } | SignalKind::Atom))
+        matches!(
+            c.signals.get(n),
+            Some(SignalKind::Intermediate { .. } | SignalKind::Atom | SignalKind::HeldInput { .. })
+        )
     };
     let mut equations: std::collections::BTreeMap<&str, &ii_prove::ladder::Hypothesis> =
         std::collections::BTreeMap::new();
@@ -473,9 +484,11 @@ pub fn loose_names(c: &CompiledProgram) -> BTreeSet<String> {
             let reads_loose = h.rhs.as_ref().iter().any(|t| match t {
                 Term::Name(x) => match c.signals.get(x.as_str()) {
                     Some(SignalKind::Fresh { .. }) => true,
-                    Some(SignalKind::Intermediate { .. } | SignalKind::Atom) => {
-                        loose.contains(x.as_str())
-                    }
+                    Some(
+                        SignalKind::Intermediate { .. }
+                        | SignalKind::Atom
+                        | SignalKind::HeldInput { .. },
+                    ) => loose.contains(x.as_str()),
                     _ => false,
                 },
                 _ => false,

@@ -1,4 +1,4 @@
-//! Random Structured Text programs for the differential tests: Boolean assignments, IF/ELSIF/ELSE, every modelled function block (TON, TOF, TP, R_TRIG, F_TRIG, SR, RS, CTU, CTD, CTUD) with formal inputs and outputs (a timer's `PT` sometimes left out, and some instances called a second time with inputs left out), user functions and function blocks (inputs left out keep their values), FOR loops with constant bounds and WHILE/REPEAT loops counted before the scan (EXIT and CONTINUE under IF in their bodies), RETURN under IF in a program and a function block, the Boolean operators and functions, integers of every 8- to 32-bit type (arithmetic, division and MOD by literals, conversions, MIN/MAX/LIMIT/ABS/SEL, comparisons, CASE, integer inputs), initial values, and a configuration giving the cycle.
+//! Random Structured Text programs for the differential tests: Boolean assignments, IF/ELSIF/ELSE, every modelled function block (TON, TOF, TP, R_TRIG, F_TRIG, SR, RS, CTU, CTD, CTUD) with formal inputs and outputs (timers and edge detectors sometimes called under an IF, a timer's `PT` sometimes left out, and some instances called a second time with inputs left out), user functions and function blocks (inputs left out keep their values), FOR loops with constant bounds and WHILE/REPEAT loops counted before the scan (EXIT and CONTINUE under IF in their bodies), RETURN under IF in a program and a function block, the Boolean operators and functions, integers of every 8- to 32-bit type (arithmetic, division and MOD by literals, conversions, MIN/MAX/LIMIT/ABS/SEL, comparisons, CASE, integer inputs), initial values, and a configuration giving the cycle.
 #![allow(dead_code)]
 
 use super::rng::Rng;
@@ -457,13 +457,20 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
                 "SR" => format!("{n}(S1 := {}, R := {})", g.expr(2), g.expr(2)),
                 _ => format!("{n}(S := {}, R1 := {})", g.expr(2), g.expr(2)),
             };
-            if g.rng.chance(30) {
+            let line = if g.rng.chance(30) {
                 let x = g.rng.pick(&locals).clone();
                 let not = if negated_outputs && g.rng.chance(30) { "NOT " } else { "" };
                 let pin = out_pin(t);
                 format!("  {}, {not}{pin} => {x});\n", call.strip_suffix(")").unwrap_or(&call))
             } else {
                 format!("  {call};\n")
+            };
+            // A timer or edge detector called under a condition: it runs only then.
+            if matches!(*t, "TON" | "TOF" | "R_TRIG" | "F_TRIG") && own.chance(25) {
+                let not = if own.chance(50) { "NOT " } else { "" };
+                format!("  IF {not}{} THEN\n  {line}  END_IF;\n", own.pick(&g.reads))
+            } else {
+                line
             }
         })
         .collect();

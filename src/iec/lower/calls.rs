@@ -225,6 +225,7 @@ impl Lowering<'_> {
                     preset,
                     input: v,
                     span,
+                    called: true,
                 };
                 let q = self.hidden(&inst, "Q");
                 out.push(Stmt::Write {

@@ -679,6 +679,7 @@ impl<'p> Lower<'p> {
                     preset,
                     input,
                     span,
+                    called: true,
                 };
                 let q = BoolExpr::Timer(Box::new(timer));
                 self.coil(q, &hidden("Q"), WriteKind::Assign, span);
