@@ -446,22 +446,36 @@ pub fn widen_real(a: &[L], name: Namer) -> Bits {
 /// `a`, a `double` (64 bits), as a `REAL` (32 bits), as C converts a `double` to `float`
 /// (`cvtsd2ss`): the nearest number, ties to even, subnormal results kept, `±∞` beyond
 /// the largest; a NaN keeps its sign and the top of its fraction and is made quiet.
+///
+/// The significand is not normalised: a subnormal `double` (below `2^-1022`) is far
+/// below half the least subnormal `float`, and [`round_pack`] shifts it out to `±0`.
 pub fn narrow_real(a: &[L], name: Namer) -> Bits {
-    let x = unpack(a, DOUBLE, name);
-    // The significand's top 27 bits (the leading 1 at bit 26), the rest sticky.
+    let (fraction, exponent) = (&a[..DOUBLE.fraction], &a[DOUBLE.fraction..63]);
+    let subnormal = all_zero(exponent);
+    let ones = simp(&L::And(exponent.to_vec()));
+    let no_fraction = all_zero(fraction);
+    let zero = name(simp(&subnormal.clone().and(no_fraction.clone())));
+    let inf = name(simp(&ones.clone().and(no_fraction.clone())));
+    let nan = name(simp(&ones.and(no_fraction.negate())));
+    let mut m: Bits = fraction.to_vec();
+    m.push(subnormal.clone().negate());
+    // The significand's top 27 bits (the leading 1 at bit 26, a subnormal's lower), the
+    // rest sticky.
     let cut = DOUBLE.fraction + 1 - (SINGLE.fraction + 4);
-    let sticky = name(simp(&L::Or(x.m[..cut].to_vec())));
-    let s = x.m[cut..].to_vec();
-    let e = sub(&x.e, &constant(DOUBLE.bias() - SINGLE.bias(), 15), name);
-    // Exponents of finite doubles (-51 to 2046) minus 896 fit the 12 bits of binary32's.
-    let finite = round_pack(&e[..12], s, sticky, SINGLE, name);
-    let nan: Bits = quiet(&a[DOUBLE.fraction - SINGLE.fraction..DOUBLE.fraction], SINGLE)
+    let sticky = name(simp(&L::Or(m[..cut].to_vec())));
+    let s = m[cut..].to_vec();
+    let e: Bits = exponent.iter().cloned().chain([L::Zero]).collect();
+    let e = choose(&subnormal, &constant(1, 12), &e, name);
+    // Biased exponents of doubles (1 to 2046) minus 896 fit the 12 bits of binary32's.
+    let e = sub(&e, &constant(DOUBLE.bias() - SINGLE.bias(), 12), name);
+    let finite = round_pack(&e, s, sticky, SINGLE, name);
+    let quiet_nan: Bits = quiet(&a[DOUBLE.fraction - SINGLE.fraction..DOUBLE.fraction], SINGLE)
         .into_iter()
         .chain(std::iter::repeat_n(L::One, SINGLE.exponent))
         .collect();
-    let mut out = choose(&x.zero, &constant(0, 31), &finite, name);
-    out = choose(&x.inf, &constant(SINGLE.infinity(), 31), &out, name);
-    out = choose(&x.nan, &nan, &out, name);
+    let mut out = choose(&zero, &constant(0, 31), &finite, name);
+    out = choose(&inf, &constant(SINGLE.infinity(), 31), &out, name);
+    out = choose(&nan, &quiet_nan, &out, name);
     out.push(a[63].clone());
     out
 }
