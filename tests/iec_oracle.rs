@@ -38,8 +38,8 @@ struct Job {
     inputs: Vec<String>,
     bits: Vec<String>,
     cycle_us: u64,
-    /// Whether a bit may be unknown (read from a value ii-prove leaves unconstrained, as
-    /// a `REAL` computed in `double`): not compared then. Otherwise it fails the job.
+    /// Whether a bit may be unknown (read from a value ii-prove leaves unconstrained):
+    /// not compared then. Otherwise it fails the job.
     partial: bool,
 }
 

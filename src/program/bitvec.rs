@@ -6,10 +6,13 @@
 //! intermediate values), which keeps every result linear in the width.
 #![warn(missing_docs)]
 
+#[cfg(test)]
+mod double_tests;
 mod float;
 
 pub use float::{
-    add_real, compare_real, div_real, int_to_real, mul_real, quotient_real, real_to_int,
+    add_real, compare_real, div_real, int_to_real, mul_real, narrow_real, quotient_real,
+    real_to_int, widen_real,
 };
 
 use super::CmpOp;

@@ -135,6 +135,12 @@ impl IntType {
     /// IEC `REAL`: IEEE 754 binary32, stored as its bit pattern (`2.5` is `0x4020_0000`).
     pub const REAL: IntType = IntType { bits: 32, signed: false, real: true };
 
+    /// C's `double` (IEEE 754 binary64), in which the C matiec writes computes an
+    /// operation of a `REAL` and a real literal: stored as its bit pattern (as an `i64`;
+    /// `signed` so that every pattern is a value of the type). No variable has it: only
+    /// the values of expressions ([`IntExpr::ToReal`] converts to and from it).
+    pub const LREAL: IntType = IntType { bits: 64, signed: true, real: true };
+
     /// One unsigned bit (0 or 1): a peripheral's flag, a hidden one-shot.
     pub const BIT: IntType = IntType::int(1, false);
 
@@ -167,12 +173,20 @@ impl IntType {
     /// Whether `a op b` for two values of the type (compared as floating-point numbers
     /// for a `REAL`).
     pub fn holds(self, op: CmpOp, a: i64, b: i64) -> bool {
-        if self.real { real::holds(op, a, b) } else { op.holds(a, b) }
+        match (self.real, self.bits) {
+            (true, 64) => real::holds_double(op, a, b),
+            (true, _) => real::holds(op, a, b),
+            _ => op.holds(a, b),
+        }
     }
 
     /// A value of the type as people read it (`2.5` for a `REAL`).
     pub fn show(self, v: i64) -> String {
-        if self.real { real::show(v) } else { v.to_string() }
+        match (self.real, self.bits) {
+            (true, 64) => real::show_double(v),
+            (true, _) => real::show(v),
+            _ => v.to_string(),
+        }
     }
 
     /// `INT`-style name for messages: `a 16-bit signed integer`.
@@ -228,7 +242,9 @@ pub enum IntExpr {
     Shift(Box<IntExpr>, i32),
     /// `a`, an integer computed in the type given, converted to a `REAL` (the context's
     /// type) as C converts an integer to `float`: the nearest number, ties to even
-    /// (matiec's `*_TO_REAL`).
+    /// (matiec's `*_TO_REAL`). Of a real type to the other ([`IntType::REAL`],
+    /// [`IntType::LREAL`]): C's conversion of a `float` to `double` (exact) or of a
+    /// `double` to `float` (the nearest, ties to even: [`real::widen`], [`real::narrow`]).
     ToReal(Box<IntExpr>, IntType),
     /// `a`, a `REAL`, converted to an integer (the context's type) as matiec's
     /// `REAL_TO_*` converts it ([`real::to_int`]: rounded to the nearest integer, ties to
@@ -264,6 +280,12 @@ pub enum RealOp {
 }
 
 impl RealOp {
+    /// The operation on two stored values of the real type `ty`: `REAL`s computed with
+    /// `f32`, `double`s ([`IntType::LREAL`]) with `f64`.
+    pub fn apply_in(self, ty: IntType, a: i64, b: i64) -> i64 {
+        if ty.bits == 64 { real::double_op(self, a, b) } else { self.apply(a, b) }
+    }
+
     /// The operation on two stored `REAL` values, computed with `f32`.
     pub fn apply(self, a: i64, b: i64) -> i64 {
         match self {

@@ -59,6 +59,89 @@ pub fn quotient(a: i64, b: i64) -> i64 {
     sse(a, b, |x, y| x / y)
 }
 
+/// The number a stored `double` (an [`IntType::LREAL`](super::IntType::LREAL) value: its
+/// bit pattern) stands for.
+pub fn to_f64(v: i64) -> f64 {
+    f64::from_bits(v as u64)
+}
+
+/// The stored value (bit pattern) of the `double` `x`.
+pub fn of_f64(x: f64) -> i64 {
+    x.to_bits() as i64
+}
+
+/// `op(x, y)` of two stored `double`s, its NaN as x86's SSE instructions give it
+/// (`addsd`, `subsd`, `mulsd`, `divsd`), as [`sse`] for `float`s: the first NaN operand
+/// made quiet, else the default NaN `0xFFF8000000000000`.
+fn sse_double(a: i64, b: i64, op: fn(f64, f64) -> f64) -> i64 {
+    let (x, y) = (to_f64(a), to_f64(b));
+    match op(x, y) {
+        _ if x.is_nan() => a | 1 << 51,
+        _ if y.is_nan() => b | 1 << 51,
+        r if r.is_nan() => of_f64(f64::from_bits(0xFFF8_0000_0000_0000)),
+        r => of_f64(r),
+    }
+}
+
+/// `op(a, b)` of two stored `double`s as C computes it (`Div`: `+0.0` for `b = ±0.0`,
+/// as matiec's `DIV`; `Quotient`: C's `/`).
+pub fn double_op(op: super::RealOp, a: i64, b: i64) -> i64 {
+    use super::RealOp;
+    match op {
+        RealOp::Add => sse_double(a, b, |x, y| x + y),
+        RealOp::Sub => sse_double(a, b, |x, y| x - y),
+        RealOp::Mul => sse_double(a, b, |x, y| x * y),
+        RealOp::Div if to_f64(b) == 0.0 => 0,
+        RealOp::Div | RealOp::Quotient => sse_double(a, b, |x, y| x / y),
+    }
+}
+
+/// The stored `REAL` `v` as a stored `double`, as C promotes a `float` (`cvtss2sd`):
+/// exactly; a NaN keeps its sign and fraction (at the top of the wider one), made quiet.
+pub fn widen(v: i64) -> i64 {
+    let x = to_f32(v);
+    if x.is_nan() {
+        let sign = (v >> 31 & 1) << 63;
+        return sign | 0x7FF8_0000_0000_0000 | (v & 0x007F_FFFF) << 29;
+    }
+    of_f64(f64::from(x))
+}
+
+/// The stored `double` `v` as a stored `REAL`, as C converts a `double` to `float`
+/// (`cvtsd2ss`): the nearest, ties to even, `±∞` beyond the largest; a NaN keeps its
+/// sign and the top of its fraction, made quiet.
+pub fn narrow(v: i64) -> i64 {
+    let x = to_f64(v);
+    if x.is_nan() {
+        let u = v as u64;
+        return ((u >> 63) << 31 | 0x7FC0_0000 | (u >> 29) & 0x007F_FFFF) as i64;
+    }
+    of_f32(x as f32)
+}
+
+/// [`IntExpr::ToReal`](super::IntExpr::ToReal) of the value `v` of type `from` into the
+/// real type `to`: an integer to the nearest `float` (Rust's `as f32` rounds to nearest,
+/// ties to even, as C does), a `float` to `double` or back.
+pub fn convert(v: i64, from: super::IntType, to: super::IntType) -> i64 {
+    match (from.real, from.bits, to.bits) {
+        (true, 32, 64) => widen(v),
+        (true, 64, 32) => narrow(v),
+        (true, _, _) => v,
+        (false, _, 64) => of_f64(v as f64),
+        (false, _, _) => of_f32(v as f32),
+    }
+}
+
+/// Whether `a op b` for two stored `double`s, as C compares them.
+pub fn holds_double(op: CmpOp, a: i64, b: i64) -> bool {
+    op.compares(to_f64(a), to_f64(b))
+}
+
+/// A stored `double` as people read it.
+pub fn show_double(v: i64) -> String {
+    format!("{:?}", to_f64(v))
+}
+
 /// `-2^63` and `2^63` as stored `REAL`s: the ends of the 64-bit `LINT` range through
 /// which matiec's `REAL_TO_*` converts.
 pub const LINT_RANGE: (i64, i64) = (0xDF00_0000, 0x5F00_0000);

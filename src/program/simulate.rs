@@ -302,17 +302,16 @@ impl Simulator {
             }
             IntExpr::Real(op, a, b) => {
                 let (a, b) = (self.int_value(a, ty), self.int_value(b, ty));
-                N { value: op.apply(a.value, b.value), known: a.known && b.known }
+                N { value: op.apply_in(ty, a.value, b.value), known: a.known && b.known }
             }
             IntExpr::FromReal(a, unsigned) => {
                 let a = self.int_value(a, IntType::REAL);
                 let v = super::real::to_int(a.value, *unsigned).unwrap_or(0);
                 N { value: ty.wrap(v), known: a.known }
             }
-            // Rust's `as f32` rounds to the nearest float, ties to even, as C does.
             IntExpr::ToReal(a, inner) => {
                 let a = self.int_value(a, *inner);
-                N { value: super::real::of_f32(a.value as f32), known: a.known }
+                N { value: super::real::convert(a.value, *inner, ty), known: a.known }
             }
             IntExpr::Bitwise(op, a, b) => {
                 let (a, b) = (self.int_value(a, ty), self.int_value(b, ty));

@@ -1,4 +1,4 @@
-//! Random Structured Text programs over `REAL` values, for the tests against matiec and of the compiled equations: `REAL` inputs and variables (initial values given or not), real literals plain (C `double`s) and typed (`REAL#…`), `+ - * /`, unary `-`, comparisons, `INT_TO_REAL`, `REAL_TO_INT` of a `LIMIT`ed value, `MIN`/`MAX`/`LIMIT`/`ABS`/`SEL`/`MOVE` and `ADD`/`SUB`/`MUL`/`DIV`, an `IF` on a comparison.
+//! Random Structured Text programs over `REAL` values, for the tests against matiec and of the compiled equations: `REAL` inputs and variables (initial values given or not), real literals plain (C `double`s) and typed (`REAL#…`), `+ - * /` (values the C computes in `double`, `INT_TO_REAL(N) * 0.1` among them), unary `-`, comparisons, `INT_TO_REAL`, `REAL_TO_INT` of a `LIMIT`ed value, `MIN`/`MAX`/`LIMIT`/`ABS`/`SEL`/`MOVE` and `ADD`/`SUB`/`MUL`/`DIV`, an `IF` on a comparison.
 #![allow(dead_code)]
 
 use super::rng::Rng;
@@ -65,6 +65,13 @@ impl Gen<'_> {
             0..=3 => {
                 let op = *self.rng.pick(&["+", "-", "*", "/"]);
                 format!("({} {op} {})", self.real(d), self.real(d))
+            }
+            4 if self.rng.chance(10) && !self.ints.is_empty() => {
+                // A raw reading scaled by a literal no `float` holds: computed in
+                // `double` by the C, rounded where stored, compared in `double`.
+                let n = self.rng.pick(&self.ints).clone();
+                let k = *self.rng.pick(&["0.1", "0.01", "0.3"]);
+                format!("(INT_TO_REAL({n}) * {k})")
             }
             4 => format!("-({})", self.real(d)),
             5 => {

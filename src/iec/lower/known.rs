@@ -94,13 +94,15 @@ impl Lowering<'_> {
             IntExpr::DivBy(a, b) => two(a, b, |x, y| if y == 0 { 0 } else { x.wrapping_div(y) }),
             IntExpr::ModBy(a, b) => two(a, b, |x, y| if y == 0 { 0 } else { x.wrapping_rem(y) }),
             IntExpr::Cast(a, inner) => Ok(ty.wrap(self.known_int(a, *inner)?)),
-            IntExpr::Real(op, a, b) => Ok(op.apply(self.known_int(a, ty)?, self.known_int(b, ty)?)),
+            IntExpr::Real(op, a, b) => {
+                Ok(op.apply_in(ty, self.known_int(a, ty)?, self.known_int(b, ty)?))
+            }
             IntExpr::FromReal(a, unsigned) => {
                 let a = self.known_int(a, crate::program::IntType::REAL)?;
                 Ok(ty.wrap(crate::program::real::to_int(a, *unsigned).unwrap_or(0)))
             }
             IntExpr::ToReal(a, inner) => {
-                Ok(crate::program::real::of_f32(self.known_int(a, *inner)? as f32))
+                Ok(crate::program::real::convert(self.known_int(a, *inner)?, *inner, ty))
             }
             IntExpr::Bitwise(op, a, b) => {
                 Ok(ty.wrap(op.apply(self.known_int(a, ty)?, self.known_int(b, ty)?)))

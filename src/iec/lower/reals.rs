@@ -1,4 +1,4 @@
-//! `REAL` values of Structured Text in the scan model, as the C matiec writes computes them on x86-64: a `REAL` variable is a C `float`, a real literal (`0.5`) a C `double` constant, so an operation of a `REAL` and a literal is computed in `double`. Exact: `float` operations, comparisons with any literal, and one operation with a literal a `float` holds exactly once its result is stored or passed (rounding the exact result of one operation through `double` to `float` gives the `float` result, since 53 ≥ 2·24 + 2); a value kept in `double` beyond that is opaque.
+//! `REAL` values of Structured Text in the scan model, as the C matiec writes computes them on x86-64: a `REAL` variable is a C `float`, a real literal (`0.5`) a C `double` constant, so an operation of a `REAL` and a literal is computed in `double` (binary64: [`IntType::LREAL`]), and so is every operation on its result, until C converts it to `float` (stored, passed to a function) or compares it (in `double`). Exact: all of these; what a function computes beyond them (`SQRT`, …) stays opaque where the front end says so.
 
 use super::Lowering;
 use super::ints::{Int, Opaque};
@@ -8,14 +8,13 @@ use crate::iec::ast::BinOp;
 use crate::program::{BitOp, BoolExpr, CmpOp, IntExpr, IntType, RealOp, library, real};
 
 /// A `REAL` value the generated C computes in `double`.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub(super) enum Double {
     /// A real literal: a C `double` constant, of this value.
     Literal(f64),
-    /// One operation of a `REAL` and a literal a `float` holds exactly: its value (the
-    /// `float` operation) is exact where C converts it to `REAL` (stored, passed to a
-    /// function), not where it is compared or computed on in `double`.
-    Rounded,
+    /// A value computed in `double`: this [`IntType::LREAL`] expression. The `Int`'s own
+    /// expression is its value as C converts it to `float` (stored, passed to a function).
+    Wide(IntExpr),
 }
 
 impl Int {
@@ -42,16 +41,40 @@ impl Int {
         })
     }
 
-    /// `-x` of a `REAL`: C flips the sign bit (of a `double` too, so a rounded value
-    /// stays one).
+    /// `-x` of a `REAL`: C flips the sign bit (of a `double` too, which commutes with
+    /// the conversion to `float`).
     pub(super) fn real_negated(self) -> Int {
-        if let Some(Double::Literal(v)) = self.double {
-            return Int::double_literal(-v);
+        let flip = |e: IntExpr, bit: u32| {
+            IntExpr::Bitwise(BitOp::Xor, Box::new(e), Box::new(IntExpr::Const(1 << bit)))
+        };
+        match self.double {
+            Some(Double::Literal(v)) => Int::double_literal(-v),
+            Some(Double::Wide(w)) => {
+                let mut negated = Int::of(flip(self.e, 31), self.ty);
+                negated.double = Some(Double::Wide(flip(w, 63)));
+                negated
+            }
+            None => Int::of(flip(self.e, 31), self.ty),
         }
-        let e = IntExpr::Bitwise(BitOp::Xor, Box::new(self.e), Box::new(IntExpr::Const(1 << 31)));
-        let mut negated = Int::of(e, self.ty);
-        negated.double = self.double;
-        negated
+    }
+
+    /// The value as C computes it in `double`: a `REAL` promoted (exactly), a literal
+    /// itself, a value computed in `double` as it is.
+    fn wide(&self) -> IntExpr {
+        match &self.double {
+            Some(Double::Literal(v)) => IntExpr::Const(real::of_f64(*v)),
+            Some(Double::Wide(w)) => w.clone(),
+            None => IntExpr::ToReal(Box::new(self.e.clone()), IntType::REAL),
+        }
+    }
+
+    /// A value computed in `double` (`w`, of [`IntType::LREAL`]); as a `REAL`, `e` if
+    /// given (a `float` computation of the same value), else `w` rounded to `float`.
+    fn computed_in_double(w: IntExpr, e: Option<IntExpr>) -> Int {
+        let e = e.unwrap_or_else(|| IntExpr::ToReal(Box::new(w.clone()), IntType::LREAL));
+        let mut x = Int::of(e, Some(IntType::REAL));
+        x.double = Some(Double::Wide(w));
+        x
     }
 }
 
@@ -72,15 +95,6 @@ fn swapped(op: CmpOp) -> CmpOp {
 }
 
 impl Lowering<'_> {
-    /// Why the value of the expression at `span` is not computed: C keeps it in `double`.
-    fn in_double(&self, span: Span) -> Opaque {
-        format!(
-            "`{}` is computed by the generated C in double precision (a real literal is a C \
-             `double`), which ii-prove does not compute",
-            self.text(span)
-        )
-    }
-
     /// `a op b` (`+ - * /`) where one side is a `REAL`, as C computes it.
     pub(super) fn real_arithmetic(
         &mut self,
@@ -104,10 +118,10 @@ impl Lowering<'_> {
                 return Err("a type error".into());
             }
         };
-        let value = IntExpr::Real(rop, Box::new(a.e), Box::new(b.e));
-        match (a.double, b.double) {
+        match (&a.double, &b.double) {
             // Two literals: folded in `double`, as the C compiler folds them.
             (Some(Double::Literal(x)), Some(Double::Literal(y))) => {
+                let (x, y) = (*x, *y);
                 Ok(Int::double_literal(match rop {
                     RealOp::Add => x + y,
                     RealOp::Sub => x - y,
@@ -115,34 +129,43 @@ impl Lowering<'_> {
                     _ => x / y,
                 }))
             }
-            (None, None) => Ok(Int::of(value, Some(IntType::REAL))),
-            (Some(Double::Literal(k)), None) | (None, Some(Double::Literal(k))) if is_float(k) => {
-                let mut x = Int::of(value, Some(IntType::REAL));
-                x.double = Some(Double::Rounded);
-                Ok(x)
+            (None, None) => {
+                Ok(Int::of(IntExpr::Real(rop, Box::new(a.e), Box::new(b.e)), Some(IntType::REAL)))
             }
-            _ => Err(self.in_double(span)),
+            _ => {
+                let w = IntExpr::Real(rop, Box::new(a.wide()), Box::new(b.wide()));
+                // One operation of a `float` and a literal a `float` holds: rounding the
+                // exact result through `double` to `float` gives the `float` operation's
+                // (53 ≥ 2·24 + 2), a smaller circuit for the value as a `REAL`.
+                let single = match (&a.double, &b.double) {
+                    (Some(Double::Literal(k)), None) | (None, Some(Double::Literal(k)))
+                        if is_float(*k) =>
+                    {
+                        Some(IntExpr::Real(rop, Box::new(a.e.clone()), Box::new(b.e.clone())))
+                    }
+                    _ => None,
+                };
+                Ok(Int::computed_in_double(w, single))
+            }
         }
     }
 
     /// `a op b` where one side is a `REAL`: as C compares a `float` (exactly a `double`
-    /// when promoted) with a `double` literal; unconstrained where a side is computed in
+    /// when promoted) with a `double` literal; in `double` where a side is computed in
     /// `double`.
     pub(super) fn real_compare(&mut self, op: CmpOp, a: Int, b: Int, span: Span) -> BoolExpr {
         if let Err(why) = self.unify(&a, &b, span) {
             return self.unknown_comparison(op, span, &why);
         }
-        match (a.double, b.double) {
+        match (&a.double, &b.double) {
             (Some(Double::Literal(x)), Some(Double::Literal(y))) => {
-                BoolExpr::Const(op.compares(x, y))
+                BoolExpr::Const(op.compares(*x, *y))
             }
             (None, None) => library::compare(op, IntType::REAL, a.e, b.e),
-            (None, Some(Double::Literal(k))) => compare_with_literal(op, a.e, k),
-            (Some(Double::Literal(k)), None) => compare_with_literal(swapped(op), b.e, k),
-            _ => {
-                let why = self.in_double(span);
-                self.unknown_comparison(op, span, &why)
-            }
+            (None, Some(Double::Literal(k))) => compare_with_literal(op, a.e, *k),
+            (Some(Double::Literal(k)), None) => compare_with_literal(swapped(op), b.e, *k),
+            // A value computed in `double`: compared in `double`.
+            _ => library::compare(op, IntType::LREAL, a.wide(), b.wide()),
         }
     }
 }

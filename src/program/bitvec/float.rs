@@ -1,31 +1,101 @@
-//! `REAL` (IEEE 754 binary32) comparisons as Boolean terms of the numbers' 32 bits (least significant first: 23 bits of fraction, 8 of exponent, the sign), as C compares floats: a NaN is unordered (every comparison false but `<>`), `-0 = +0`.
+//! IEEE 754 floating-point circuits on Boolean terms of a number's bits (least significant first: the fraction, the exponent, the sign), for `REAL` (binary32, C's `float`) and C's `double` (binary64), as C computes and compares them on x86-64: a NaN is unordered (every comparison false but `<>`), `-0 = +0`. The format of an operand is told by its width (32 or 64 bits).
 
 use super::super::logic::{L, simp};
 use super::super::{CmpOp, IntType};
 use super::{Bits, Namer, add, compare, constant, mux, resize, sub};
 
+/// An IEEE 754 binary format: the widths of its exponent and fraction.
+#[derive(Clone, Copy)]
+struct Format {
+    exponent: usize,
+    fraction: usize,
+}
+
+/// binary32 (`float`, `REAL`).
+const SINGLE: Format = Format { exponent: 8, fraction: 23 };
+/// binary64 (`double`).
+const DOUBLE: Format = Format { exponent: 11, fraction: 52 };
+
+impl Format {
+    /// The format of a number of `width` bits (32 or 64).
+    fn of(width: usize) -> Format {
+        match width {
+            32 => SINGLE,
+            64 => DOUBLE,
+            _ => panic!("no IEEE 754 format of {width} bits"),
+        }
+    }
+
+    /// The bits without the sign (also the sign's index).
+    fn magnitude(self) -> usize {
+        self.exponent + self.fraction
+    }
+
+    /// The exponent bias (127, 1023).
+    fn bias(self) -> i64 {
+        (1 << (self.exponent - 1)) - 1
+    }
+
+    /// The biased exponent of `∞` and NaNs (255, 2047).
+    fn top(self) -> i64 {
+        (1 << self.exponent) - 1
+    }
+
+    /// The magnitude bits of `+∞`.
+    fn infinity(self) -> i64 {
+        self.top() << self.fraction
+    }
+
+    /// x86's default NaN (`0xFFC00000`, `0xFFF8000000000000`), with its sign.
+    fn default_nan(self) -> i64 {
+        (-1i64 << (self.fraction - 1)) & (((1i128 << (self.magnitude() + 1)) - 1) as i64)
+    }
+
+    /// The width of the exponents of [`unpack`] and [`round_pack`] (two's complement).
+    fn wide_bits(self) -> u32 {
+        if self.exponent == 8 { 12 } else { 15 }
+    }
+
+    /// The type of those exponents.
+    fn wide_ty(self) -> IntType {
+        IntType::int(self.wide_bits(), true)
+    }
+
+    /// `v` as such an exponent.
+    fn wide(self, v: i64) -> Bits {
+        constant(v, self.wide_bits())
+    }
+}
+
+/// The number of doublings that reach `n` (5 for 24 to 32, 6 for 33 to 64).
+fn log2_up(n: usize) -> usize {
+    (usize::BITS - (n - 1).leading_zeros()) as usize
+}
+
 /// Whether a number is a NaN: its exponent all ones and its fraction not 0.
-fn is_nan(v: &[L]) -> L {
-    let exponent_ones = L::And(v[23..31].to_vec());
-    let fraction = L::Or(v[..23].to_vec());
+fn is_nan(v: &[L], f: Format) -> L {
+    let exponent_ones = L::And(v[f.fraction..f.magnitude()].to_vec());
+    let fraction = L::Or(v[..f.fraction].to_vec());
     simp(&exponent_ones.and(fraction))
 }
 
-/// `a op b` for two `REAL` values (32 bits each).
+/// `a op b` for two numbers of one format (`REAL`s or `double`s).
 ///
-/// Apart from NaNs, the order of binary32 numbers is the order of their magnitudes
-/// (the low 31 bits, as an unsigned integer) for two positive numbers, reversed for two
+/// Apart from NaNs, the order of the numbers is the order of their magnitudes (the bits
+/// below the sign, as an unsigned integer) for two positive numbers, reversed for two
 /// negative ones, and a negative number is below a positive one unless both are zeros.
 pub fn compare_real(op: CmpOp, a: &[L], b: &[L], name: Namer) -> L {
-    let magnitude = IntType::int(31, false);
-    let (ma, mb) = (&a[..31], &b[..31]);
-    let (sa, sb) = (a[31].clone(), b[31].clone());
+    let f = Format::of(a.len());
+    let n = f.magnitude();
+    let magnitude = IntType::int(n as u32, false);
+    let (ma, mb) = (&a[..n], &b[..n]);
+    let (sa, sb) = (a[n].clone(), b[n].clone());
     let lt = compare(CmpOp::Lt, magnitude, ma, mb, name);
     let lt = name(lt);
     let gt = compare(CmpOp::Lt, magnitude, mb, ma, name);
     let gt = name(gt);
     let zeros = simp(&L::And(ma.iter().chain(mb).map(|x| x.clone().negate()).collect()));
-    let ordered = name(simp(&is_nan(a).or(is_nan(b)).negate()));
+    let ordered = name(simp(&is_nan(a, f).or(is_nan(b, f)).negate()));
     let (pa, pb) = (sa.clone().negate(), sb.clone().negate());
     let same_sign = pa.clone().and(pb.clone()).or(sa.clone().and(sb.clone()));
     let same_magnitude = lt.clone().negate().and(gt.clone().negate());
@@ -48,12 +118,13 @@ pub fn compare_real(op: CmpOp, a: &[L], b: &[L], name: Namer) -> L {
     })
 }
 
-/// Shifts `m` left until its top bit is 1 (unless it is 0), 16 then 8, 4, 2, 1 places at
-/// a time (`m` at most 32 bits wide): the number of places, in `width` bits.
+/// Shifts `m` left until its top bit is 1 (unless it is 0), by halving steps (16, 8, 4,
+/// 2, 1 places for `m` at most 32 bits wide; from 32 for at most 64): the number of
+/// places, in `width` bits.
 fn normalize(m: &mut Bits, width: u32, name: Namer) -> Bits {
     let w = m.len();
     let mut count = vec![L::Zero; width as usize];
-    for k in (0..5).rev() {
+    for k in (0..log2_up(w)).rev() {
         let step = 1usize << k;
         let top_zero = name(simp(&L::Or(m[w - step..].to_vec()).negate()));
         let shifted: Bits =
@@ -74,27 +145,20 @@ fn all_zero(v: &[L]) -> L {
     simp(&L::Or(v.to_vec()).negate())
 }
 
-/// The exponents of [`unpack`] and [`round_pack`]: 12-bit two's complement.
-const WIDE: IntType = IntType::int(12, true);
-
-/// `v` in [`WIDE`] bits.
-fn wide(v: i64) -> Bits {
-    constant(v, 12)
-}
-
-/// A `REAL` operand taken apart.
+/// An operand taken apart.
 struct Unpacked {
-    /// The significand, its leading 1 at bit 23 (a subnormal one shifted up).
+    /// The significand, its leading 1 at the top (a subnormal one shifted up).
     m: Bits,
-    /// The biased exponent of that leading 1 (below 1 for a subnormal number).
+    /// The biased exponent of that leading 1 (below 1 for a subnormal number), in
+    /// [`Format::wide_bits`] bits.
     e: Bits,
     zero: L,
     inf: L,
     nan: L,
 }
 
-fn unpack(v: &[L], name: Namer) -> Unpacked {
-    let (fraction, exponent) = (&v[..23], &v[23..31]);
+fn unpack(v: &[L], f: Format, name: Namer) -> Unpacked {
+    let (fraction, exponent) = (&v[..f.fraction], &v[f.fraction..f.magnitude()]);
     let subnormal = all_zero(exponent);
     let ones = simp(&L::And(exponent.to_vec()));
     let no_fraction = all_zero(fraction);
@@ -103,27 +167,30 @@ fn unpack(v: &[L], name: Namer) -> Unpacked {
     let nan = name(simp(&ones.and(no_fraction.negate())));
     let mut m: Bits = fraction.to_vec();
     m.push(subnormal.clone().negate());
-    let count = normalize(&mut m, 12, name);
-    let e: Bits = exponent.iter().cloned().chain(std::iter::repeat_n(L::Zero, 4)).collect();
-    let e = choose(&subnormal, &wide(1), &e, name);
+    let count = normalize(&mut m, f.wide_bits(), name);
+    let pad = f.wide_bits() as usize - f.exponent;
+    let e: Bits = exponent.iter().cloned().chain(std::iter::repeat_n(L::Zero, pad)).collect();
+    let e = choose(&subnormal, &f.wide(1), &e, name);
     Unpacked { m, e: sub(&e, &count, name), zero, inf, nan }
 }
 
-/// The finite result `1.s × 2^(e - 127)` (`s` 27 bits, its leading 1 at bit 26; `sticky`:
-/// whether anything below them is not 0) rounded to a `REAL`'s 31 bits without the
-/// sign: shifted right where it is subnormal (`e ≤ 0`, the bits shifted out joining
-/// `sticky`), rounded on the guard bit, the bits below it and the last bit kept (ties
-/// to even), `∞` where it overflows.
-fn round_pack(e: &[L], mut s: Bits, mut sticky: L, name: Namer) -> Bits {
-    let overflow = compare(CmpOp::Ge, WIDE, e, &wide(255), name);
+/// The finite result `1.s × 2^(e - bias)` (`s` the fraction's width + 4 bits, its
+/// leading 1 at the top; `sticky`: whether anything below them is not 0) rounded to the
+/// bits of a number without the sign: shifted right where it is subnormal (`e ≤ 0`, the
+/// bits shifted out joining `sticky`), rounded on the guard bit, the bits below it and
+/// the last bit kept (ties to even), `∞` where it overflows.
+fn round_pack(e: &[L], mut s: Bits, mut sticky: L, f: Format, name: Namer) -> Bits {
+    let wide = f.wide_ty();
+    let overflow = compare(CmpOp::Ge, wide, e, &f.wide(f.top()), name);
     let overflow = name(overflow);
-    // Subnormal: shifted right by 1 - e places (all of it from 32 on).
-    let t = sub(&wide(1), e, name);
-    let tiny = compare(CmpOp::Ge, WIDE, &t, &wide(1), name);
+    // Subnormal: shifted right by 1 - e places (all of it from 2^steps on).
+    let steps = log2_up(s.len());
+    let t = sub(&f.wide(1), e, name);
+    let tiny = compare(CmpOp::Ge, wide, &t, &f.wide(1), name);
     let tiny = name(tiny);
-    let far = compare(CmpOp::Ge, WIDE, &t, &wide(32), name);
+    let far = compare(CmpOp::Ge, wide, &t, &f.wide(1 << steps), name);
     let all_out = name(tiny.clone().and(far));
-    for (j, amount) in t.iter().take(5).enumerate() {
+    for (j, amount) in t.iter().take(steps).enumerate() {
         let step = 1usize << j;
         let on = name(simp(&tiny.clone().and(amount.clone())));
         sticky = name(simp(&sticky.or(on.clone().and(L::Or(s[..step].to_vec())))));
@@ -132,29 +199,31 @@ fn round_pack(e: &[L], mut s: Bits, mut sticky: L, name: Namer) -> Bits {
         s = choose(&on, &down, &s, name);
     }
     sticky = name(simp(&sticky.or(all_out.clone().and(L::Or(s.clone())))));
-    s = choose(&all_out, &constant(0, 27), &s, name);
-    let exponent = choose(&tiny, &constant(0, 8), &e[..8], name);
-    let fraction = &s[3..26];
+    s = choose(&all_out, &constant(0, s.len() as u32), &s, name);
+    let exponent = choose(&tiny, &constant(0, f.exponent as u32), &e[..f.exponent], name);
+    let fraction = &s[3..3 + f.fraction];
     let sticky = simp(&sticky.or(s[1].clone()).or(s[0].clone()));
     let round = name(simp(&s[2].clone().and(sticky.or(fraction[0].clone()))));
     let unrounded: Bits = fraction.iter().chain(&exponent).cloned().collect();
-    let result = add(&unrounded, &constant(0, 31), round, name);
-    choose(&overflow, &constant(0x7F80_0000, 31), &result, name)
+    let n = f.magnitude() as u32;
+    let result = add(&unrounded, &constant(0, n), round, name);
+    choose(&overflow, &constant(f.infinity(), n), &result, name)
 }
 
 /// `v` made a quiet NaN (its fraction's top bit set), as x86 returns a NaN operand.
-fn quiet(v: &[L]) -> Bits {
-    v.iter().enumerate().map(|(i, x)| if i == 22 { L::One } else { x.clone() }).collect()
+fn quiet(v: &[L], f: Format) -> Bits {
+    let q = f.fraction - 1;
+    v.iter().enumerate().map(|(i, x)| if i == q { L::One } else { x.clone() }).collect()
 }
 
-/// The result `±v` (31 bits, then the sign).
-fn signed(v: i64, sign: &L) -> Bits {
-    constant(v, 31).into_iter().chain([sign.clone()]).collect()
+/// The result `±v` (the magnitude bits, then the sign).
+fn signed(v: i64, sign: &L, f: Format) -> Bits {
+    constant(v, f.magnitude() as u32).into_iter().chain([sign.clone()]).collect()
 }
 
-/// `finite` (31 bits) with its sign, unless a special case decides: `zero` gives `±0`,
-/// `inf` gives `±∞`, `invalid` the default NaN `0xFFC00000`, a NaN operand itself made
-/// quiet (`a`'s first), as x86's `mulss`/`divss` do.
+/// `finite` (the magnitude bits) with its sign, unless a special case decides: `zero`
+/// gives `±0`, `inf` gives `±∞`, `invalid` the default NaN, a NaN operand itself made
+/// quiet (`a`'s first), as x86's `mulss`/`divss` (`mulsd`/`divsd`) do.
 #[allow(clippy::too_many_arguments)]
 fn special(
     finite: Bits,
@@ -162,32 +231,34 @@ fn special(
     (zero, inf, invalid): (L, L, L),
     (a, nan_a): (&[L], &L),
     (b, nan_b): (&[L], &L),
+    f: Format,
     name: Namer,
 ) -> Bits {
     let mut out: Bits = finite.into_iter().chain([sign.clone()]).collect();
-    out = choose(&zero, &signed(0, sign), &out, name);
-    out = choose(&inf, &signed(0x7F80_0000, sign), &out, name);
-    out = choose(&invalid, &constant(0xFFC0_0000, 32), &out, name);
-    out = choose(nan_b, &quiet(b), &out, name);
-    choose(nan_a, &quiet(a), &out, name)
+    out = choose(&zero, &signed(0, sign, f), &out, name);
+    out = choose(&inf, &signed(f.infinity(), sign, f), &out, name);
+    out = choose(&invalid, &constant(f.default_nan(), a.len() as u32), &out, name);
+    out = choose(nan_b, &quiet(b, f), &out, name);
+    choose(nan_a, &quiet(a, f), &out, name)
 }
 
 /// `a / b` for two `REAL`s as C computes it on x86-64 (`divss`: the nearest number,
 /// ties to even, subnormal results kept), and `+0.0` when `b` is `±0.0`, where matiec's
 /// `DIV` returns `__INIT_REAL` (`TEST_EN_COND(REAL, op2 == 0)`). A NaN result is the
-/// first NaN operand made quiet, else (`∞/∞`) the default NaN `0xFFC00000`.
+/// first NaN operand made quiet, else (`∞/∞`) the default NaN `0xFFC00000`. Of two
+/// `double`s, the same in binary64 (`divsd`).
 ///
-/// The significands ([`unpack`]) are divided by restoring division into 27 quotient
-/// bits and a remainder; the quotient, its leading 1 brought to bit 26, is rounded by
-/// [`round_pack`].
+/// The significands ([`unpack`]) are divided by restoring division into the fraction's
+/// width + 4 quotient bits and a remainder; the quotient, its leading 1 brought to the
+/// top, is rounded by [`round_pack`].
 pub fn div_real(a: &[L], b: &[L], name: Namer) -> Bits {
     let (y_zero, out) = divide(a, b, false, name);
-    choose(&y_zero, &constant(0, 32), &out, name)
+    choose(&y_zero, &constant(0, a.len() as u32), &out, name)
 }
 
 /// `a / b` for two `REAL`s as C's `/` computes it on x86-64 (`divss`), as [`div_real`]
 /// but with `b` `±0.0` too: `±∞` for a number, the default NaN for `±0.0` (Structured
-/// Text's `/`, which matiec writes as C's).
+/// Text's `/`, which matiec writes as C's). Of two `double`s, `divsd`.
 pub fn quotient_real(a: &[L], b: &[L], name: Namer) -> Bits {
     divide(a, b, true, name).1
 }
@@ -195,106 +266,121 @@ pub fn quotient_real(a: &[L], b: &[L], name: Namer) -> Bits {
 /// `a / b` (`by_zero`: with IEEE 754's `±∞` and NaN where `b` is `±0.0`), and whether
 /// `b` is `±0.0`.
 fn divide(a: &[L], b: &[L], by_zero: bool, name: Namer) -> (L, Bits) {
-    let (x, y) = (unpack(a, name), unpack(b, name));
-    let sign = super::xor(&a[31], &b[31]);
-    // Restoring division: 27 quotient bits, most significant first.
+    let f = Format::of(a.len());
+    let (x, y) = (unpack(a, f, name), unpack(b, f, name));
+    let sign = super::xor(&a[f.magnitude()], &b[f.magnitude()]);
+    // Restoring division: fraction + 4 quotient bits, most significant first.
+    let (qw, rw) = (f.fraction + 4, f.fraction + 3);
     let divisor: Bits = y.m.iter().cloned().chain([L::Zero, L::Zero]).collect();
     let mut r: Bits = x.m.iter().cloned().chain([L::Zero, L::Zero]).collect();
-    let mut q = vec![L::Zero; 27];
-    for bit in (0..27).rev() {
+    let mut q = vec![L::Zero; qw];
+    for bit in (0..qw).rev() {
         let diff = sub(&r, &divisor, name);
-        let fits = name(diff[25].clone().negate());
+        let fits = name(diff[rw - 1].clone().negate());
         r = choose(&fits, &diff, &r, name);
         q[bit] = fits;
         if bit > 0 {
-            r = std::iter::once(L::Zero).chain(r[..25].iter().cloned()).collect();
+            r = std::iter::once(L::Zero).chain(r[..rw - 1].iter().cloned()).collect();
         }
     }
     let rest = name(simp(&L::Or(r)));
-    // The leading 1 at bit 26 (a quotient below 1 is shifted up once).
-    let top = q[26].clone();
-    let shifted: Bits = std::iter::once(L::Zero).chain(q[..26].iter().cloned()).collect();
+    // The leading 1 at the top (a quotient below 1 is shifted up once).
+    let top = q[qw - 1].clone();
+    let shifted: Bits = std::iter::once(L::Zero).chain(q[..qw - 1].iter().cloned()).collect();
     let s = choose(&top, &q, &shifted, name);
-    let below_one = choose(&top, &wide(127), &wide(126), name);
+    let below_one = choose(&top, &f.wide(f.bias()), &f.wide(f.bias() - 1), name);
     let e = add(&sub(&x.e, &y.e, name), &below_one, L::Zero, name);
-    let finite = round_pack(&e, s, rest, name);
+    let finite = round_pack(&e, s, rest, f, name);
     let to_zero = name(simp(&x.zero.clone().or(y.inf.clone())));
     let (mut inf, mut invalid) = (x.inf.clone(), simp(&x.inf.and(y.inf)));
     if by_zero {
         inf = name(simp(&inf.or(y.zero.clone())));
         invalid = simp(&invalid.or(x.zero.and(y.zero.clone())));
     }
-    let out = special(finite, &sign, (to_zero, inf, invalid), (a, &x.nan), (b, &y.nan), name);
+    let specials = (to_zero, inf, invalid);
+    let out = special(finite, &sign, specials, (a, &x.nan), (b, &y.nan), f, name);
     (y.zero, out)
 }
 
 /// `a * b` for two `REAL`s as C computes it on x86-64 (`mulss`: the nearest number,
 /// ties to even, subnormal results kept; a NaN result is the first NaN operand made
-/// quiet, else (`0 × ∞`) the default NaN `0xFFC00000`). Of two NaN operands the C
-/// compiler may put either first (the product commutes): which NaN results is then
-/// taken to be `a`'s, a choice no comparison, conversion to BOOL or other operation on
-/// it can tell apart.
+/// quiet, else (`0 × ∞`) the default NaN `0xFFC00000`); of two `double`s, `mulsd`. Of
+/// two NaN operands the C compiler may put either first (the product commutes): which
+/// NaN results is then taken to be `a`'s, a choice no comparison, conversion to BOOL or
+/// other operation on it can tell apart.
 ///
-/// The 48-bit product of the significands ([`unpack`]), its leading 1 brought to bit 47,
-/// keeps its top 27 bits, the rest joining the sticky bit of [`round_pack`].
+/// The product of the significands ([`unpack`]), its leading 1 brought to the top,
+/// keeps its top fraction + 4 bits, the rest joining the sticky bit of [`round_pack`].
 pub fn mul_real(a: &[L], b: &[L], name: Namer) -> Bits {
-    let (x, y) = (unpack(a, name), unpack(b, name));
-    let sign = super::xor(&a[31], &b[31]);
+    let f = Format::of(a.len());
+    let (x, y) = (unpack(a, f, name), unpack(b, f, name));
+    let sign = super::xor(&a[f.magnitude()], &b[f.magnitude()]);
+    let p = f.fraction + 1;
     let widen =
-        |m: &[L]| -> Bits { m.iter().cloned().chain(std::iter::repeat_n(L::Zero, 24)).collect() };
-    let p = super::mul(&widen(&x.m), &widen(&y.m), name);
-    let top = p[47].clone();
-    let shifted: Bits = std::iter::once(L::Zero).chain(p[..47].iter().cloned()).collect();
-    let p = choose(&top, &p, &shifted, name);
-    let sticky = name(simp(&L::Or(p[..21].to_vec())));
-    let s = p[21..].to_vec();
-    // 1.s × 2^(ea - 127) × 1.t × 2^(eb - 127), the product's leading 1 at 2^1 or 2^0.
-    let offset = choose(&top, &wide(-126), &wide(-127), name);
+        |m: &[L]| -> Bits { m.iter().cloned().chain(std::iter::repeat_n(L::Zero, p)).collect() };
+    let product = super::mul(&widen(&x.m), &widen(&y.m), name);
+    let top = product[2 * p - 1].clone();
+    let shifted: Bits =
+        std::iter::once(L::Zero).chain(product[..2 * p - 1].iter().cloned()).collect();
+    let product = choose(&top, &product, &shifted, name);
+    let low = f.fraction - 2;
+    let sticky = name(simp(&L::Or(product[..low].to_vec())));
+    let s = product[low..].to_vec();
+    // 1.s × 2^(ea - bias) × 1.t × 2^(eb - bias), the product's leading 1 at 2^1 or 2^0.
+    let offset = choose(&top, &f.wide(1 - f.bias()), &f.wide(-f.bias()), name);
     let e = add(&add(&x.e, &y.e, L::Zero, name), &offset, L::Zero, name);
-    let finite = round_pack(&e, s, sticky, name);
+    let finite = round_pack(&e, s, sticky, f, name);
     let zero = simp(&x.zero.clone().or(y.zero.clone()));
     let inf = simp(&x.inf.clone().or(y.inf.clone()));
     let invalid = name(simp(&zero.clone().and(inf.clone())));
-    special(finite, &sign, (name(zero), name(inf), invalid), (a, &x.nan), (b, &y.nan), name)
+    let specials = (name(zero), name(inf), invalid);
+    special(finite, &sign, specials, (a, &x.nan), (b, &y.nan), f, name)
 }
 
 /// `a + b` for two `REAL`s as C computes it on x86-64 (`addss`: the nearest number,
 /// ties to even, subnormal results kept; an exact zero sum is `+0.0` unless both are
 /// `-0.0`; a NaN result is the first NaN operand made quiet, else (`∞ - ∞`) the default
-/// NaN `0xFFC00000`). Of two NaN operands the C compiler may put either first: which
-/// NaN results is taken to be `a`'s, as for [`mul_real`]. `subtract` gives `a - b`
-/// (`b`'s sign flipped, a NaN `b` kept as it is, as `subss` does).
+/// NaN `0xFFC00000`); of two `double`s, `addsd`. Of two NaN operands the C compiler may
+/// put either first: which NaN results is taken to be `a`'s, as for [`mul_real`].
+/// `subtract` gives `a - b` (`b`'s sign flipped, a NaN `b` kept as it is, as `subss`
+/// does).
 ///
 /// The operand of the larger magnitude first; the other's significand, with three bits
 /// more (guard, round and a sticky bit collecting what is shifted out), shifted right
 /// by the difference of the exponents; added or subtracted; a carry shifted back, a
 /// cancellation normalised; then rounded by [`round_pack`].
 pub fn add_real(a: &[L], b: &[L], subtract: bool, name: Namer) -> Bits {
-    let sb = if subtract { b[31].clone().negate() } else { b[31].clone() };
-    let b_signed: Bits = b[..31].iter().cloned().chain([sb]).collect();
-    let magnitude = IntType::int(31, false);
-    let swap = compare(CmpOp::Lt, magnitude, &a[..31], &b[..31], name);
+    let f = Format::of(a.len());
+    let n = f.magnitude();
+    let sb = if subtract { b[n].clone().negate() } else { b[n].clone() };
+    let b_signed: Bits = b[..n].iter().cloned().chain([sb]).collect();
+    let magnitude = IntType::int(n as u32, false);
+    let swap = compare(CmpOp::Lt, magnitude, &a[..n], &b[..n], name);
     let swap = name(swap);
     let (big, small) = (choose(&swap, &b_signed, a, name), choose(&swap, a, &b_signed, name));
-    // Unpacked without normalising: `m × 2^(e - 150)`, `e` at least 1.
+    let pad = f.wide_bits() as usize - f.exponent;
+    // Unpacked without normalising: `m × 2^(e - bias - fraction - 3)`, `e` at least 1.
     let parts = |v: &[L], name: Namer| -> (Bits, Bits) {
-        let subnormal = all_zero(&v[23..31]);
+        let subnormal = all_zero(&v[f.fraction..n]);
         let m: Bits = [L::Zero, L::Zero, L::Zero]
             .into_iter()
-            .chain(v[..23].iter().cloned())
+            .chain(v[..f.fraction].iter().cloned())
             .chain([subnormal.clone().negate()])
             .collect();
-        let e: Bits = v[23..31].iter().cloned().chain(std::iter::repeat_n(L::Zero, 4)).collect();
-        (m, choose(&subnormal, &wide(1), &e, name))
+        let e: Bits =
+            v[f.fraction..n].iter().cloned().chain(std::iter::repeat_n(L::Zero, pad)).collect();
+        (m, choose(&subnormal, &f.wide(1), &e, name))
     };
     let (mx, ex) = parts(&big, name);
     let (mut my, ey) = parts(&small, name);
+    let width = mx.len();
+    let steps = log2_up(width);
     let d = sub(&ex, &ey, name);
-    // Shifted right by d (0 to 253), what leaves kept as a sticky bit 0.
-    let far = compare(CmpOp::Ge, WIDE, &d, &wide(32), name);
+    // Shifted right by d, what leaves kept as a sticky bit 0.
+    let far = compare(CmpOp::Ge, f.wide_ty(), &d, &f.wide(1 << steps), name);
     let far = name(far);
     let mut sticky = L::Zero;
-    for (j, amount) in d.iter().take(5).enumerate() {
+    for (j, amount) in d.iter().take(steps).enumerate() {
         let step = 1usize << j;
         sticky = name(simp(&sticky.or(amount.clone().and(L::Or(my[..step].to_vec())))));
         let down: Bits =
@@ -302,42 +388,96 @@ pub fn add_real(a: &[L], b: &[L], subtract: bool, name: Namer) -> Bits {
         my = choose(amount, &down, &my, name);
     }
     sticky = name(simp(&sticky.or(far.clone().and(L::Or(my.clone())))));
-    my = choose(&far, &constant(0, 27), &my, name);
+    my = choose(&far, &constant(0, width as u32), &my, name);
     my[0] = simp(&my[0].clone().or(sticky));
-    let same = name(simp(&super::xor(&big[31], &small[31]).negate()));
-    let (mx28, my28): (Bits, Bits) = (
+    let same = name(simp(&super::xor(&big[n], &small[n]).negate()));
+    let (mx1, my1): (Bits, Bits) = (
         mx.iter().cloned().chain([L::Zero]).collect(),
         my.iter().cloned().chain([L::Zero]).collect(),
     );
-    let sum = add(&mx28, &my28, L::Zero, name);
-    let difference = sub(&mx28, &my28, name);
+    let sum = add(&mx1, &my1, L::Zero, name);
+    let difference = sub(&mx1, &my1, name);
     let total = choose(&same, &sum, &difference, name);
     // A carry: shifted right once (its last bit kept as sticky), the exponent one up.
-    let carry = total[27].clone();
+    let carry = total[width].clone();
     let mut down: Bits = total[1..].to_vec();
     down[0] = simp(&down[0].clone().or(total[0].clone()));
-    let mut s = choose(&carry, &down, &total[..27], name);
-    let e = add(&ex, &constant(0, 12), carry, name);
+    let mut s = choose(&carry, &down, &total[..width], name);
+    let e = add(&ex, &constant(0, f.wide_bits()), carry, name);
     let cancelled = all_zero(&s);
-    let count = normalize(&mut s, 12, name);
+    let count = normalize(&mut s, f.wide_bits(), name);
     let e = sub(&e, &count, name);
-    let finite = round_pack(&e, s, L::Zero, name);
-    let (x, y) = (unpack(a, name), unpack(b, name));
+    let finite = round_pack(&e, s, L::Zero, f, name);
+    let (x, y) = (unpack(a, f, name), unpack(b, f, name));
     let inf = simp(&x.inf.clone().or(y.inf.clone()));
     // An exact zero: -0.0 only for two negative zeros (same signs).
     let exact_zero = name(simp(&cancelled.and(inf.clone().negate())));
-    let zero_sign = simp(&same.clone().and(big[31].clone()));
-    let sign = choose(&exact_zero, &[zero_sign], &[big[31].clone()], name).remove(0);
+    let zero_sign = simp(&same.clone().and(big[n].clone()));
+    let sign = choose(&exact_zero, &[zero_sign], &[big[n].clone()], name).remove(0);
     let opposite_inf = simp(&x.inf.and(y.inf).and(same.negate()));
     // `±∞` takes the sign of the infinite operand, which the larger magnitude is.
-    special(
-        finite,
-        &sign,
-        (exact_zero, name(inf), name(opposite_inf)),
-        (a, &x.nan),
-        (b, &y.nan),
-        name,
-    )
+    let specials = (exact_zero, name(inf), name(opposite_inf));
+    special(finite, &sign, specials, (a, &x.nan), (b, &y.nan), f, name)
+}
+
+/// `a`, a `REAL` (32 bits), as a `double` (64 bits), as C promotes a `float`
+/// (`cvtss2sd`): exactly, a subnormal number normalised; a NaN keeps its sign and
+/// fraction (shifted to the top of the wider one) and is made quiet.
+pub fn widen_real(a: &[L], name: Namer) -> Bits {
+    let x = unpack(a, SINGLE, name);
+    // The leading 1 of `x.m` dropped; the exponent rebiased (1023 - 127) into 11 bits.
+    let e = add(&x.e, &constant(DOUBLE.bias() - SINGLE.bias(), 12), L::Zero, name);
+    let low = DOUBLE.fraction - SINGLE.fraction;
+    let finite: Bits = std::iter::repeat_n(L::Zero, low)
+        .chain(x.m[..SINGLE.fraction].iter().cloned())
+        .chain(e[..DOUBLE.exponent].iter().cloned())
+        .collect();
+    let nan: Bits = std::iter::repeat_n(L::Zero, low)
+        .chain(quiet(&a[..SINGLE.fraction], SINGLE))
+        .chain(std::iter::repeat_n(L::One, DOUBLE.exponent))
+        .collect();
+    let mut out = choose(&x.zero, &constant(0, 63), &finite, name);
+    out = choose(&x.inf, &constant(DOUBLE.infinity(), 63), &out, name);
+    out = choose(&x.nan, &nan, &out, name);
+    out.push(a[31].clone());
+    out
+}
+
+/// `a`, a `double` (64 bits), as a `REAL` (32 bits), as C converts a `double` to `float`
+/// (`cvtsd2ss`): the nearest number, ties to even, subnormal results kept, `±∞` beyond
+/// the largest; a NaN keeps its sign and the top of its fraction and is made quiet.
+///
+/// The significand is not normalised: a subnormal `double` (below `2^-1022`) is far
+/// below half the least subnormal `float`, and [`round_pack`] shifts it out to `±0`.
+pub fn narrow_real(a: &[L], name: Namer) -> Bits {
+    let (fraction, exponent) = (&a[..DOUBLE.fraction], &a[DOUBLE.fraction..63]);
+    let subnormal = all_zero(exponent);
+    let ones = simp(&L::And(exponent.to_vec()));
+    let no_fraction = all_zero(fraction);
+    let zero = name(simp(&subnormal.clone().and(no_fraction.clone())));
+    let inf = name(simp(&ones.clone().and(no_fraction.clone())));
+    let nan = name(simp(&ones.and(no_fraction.negate())));
+    let mut m: Bits = fraction.to_vec();
+    m.push(subnormal.clone().negate());
+    // The significand's top 27 bits (the leading 1 at bit 26, a subnormal's lower), the
+    // rest sticky.
+    let cut = DOUBLE.fraction + 1 - (SINGLE.fraction + 4);
+    let sticky = name(simp(&L::Or(m[..cut].to_vec())));
+    let s = m[cut..].to_vec();
+    let e: Bits = exponent.iter().cloned().chain([L::Zero]).collect();
+    let e = choose(&subnormal, &constant(1, 12), &e, name);
+    // Biased exponents of doubles (1 to 2046) minus 896 fit the 12 bits of binary32's.
+    let e = sub(&e, &constant(DOUBLE.bias() - SINGLE.bias(), 12), name);
+    let finite = round_pack(&e, s, sticky, SINGLE, name);
+    let quiet_nan: Bits = quiet(&a[DOUBLE.fraction - SINGLE.fraction..DOUBLE.fraction], SINGLE)
+        .into_iter()
+        .chain(std::iter::repeat_n(L::One, SINGLE.exponent))
+        .collect();
+    let mut out = choose(&zero, &constant(0, 31), &finite, name);
+    out = choose(&inf, &constant(SINGLE.infinity(), 31), &out, name);
+    out = choose(&nan, &quiet_nan, &out, name);
+    out.push(a[63].clone());
+    out
 }
 
 /// `a`, an integer of type `ty` (at most 32 bits), as the nearest `REAL` (ties to
@@ -387,9 +527,10 @@ pub fn real_to_int(a: &[L], unsigned: bool, w: u32, name: Namer) -> Bits {
     let w = w as usize;
     let width = 24 + w;
     let e: Bits = a[23..31].iter().cloned().chain(std::iter::repeat_n(L::Zero, 4)).collect();
+    let (wide, ty) = (|v| SINGLE.wide(v), SINGLE.wide_ty());
     let shift = sub(&e, &wide(126), name);
-    let half = compare(CmpOp::Ge, WIDE, &shift, &wide(0), name);
-    let far = compare(CmpOp::Ge, WIDE, &shift, &wide(64), name);
+    let half = compare(CmpOp::Ge, ty, &shift, &wide(0), name);
+    let far = compare(CmpOp::Ge, ty, &shift, &wide(64), name);
     let rounds = name(simp(&half.and(far.negate())));
     let mut f: Bits = a[..23].to_vec();
     f.push(L::One);

@@ -75,7 +75,7 @@ impl Compiler<'_> {
             IntExpr::Const(v) => bitvec::constant(ty.wrap(*v), w),
             IntExpr::Var(x) => {
                 let Some(var) = self.int_var(x, span) else { return bitvec::constant(0, w) };
-                if var.ty.real != ty.real {
+                if var.ty.real != ty.real || (ty.real && var.ty.bits != ty.bits) {
                     return self.not_real(ty, span);
                 }
                 let stored = var.value(x, &mut |b| self.read(b));
@@ -111,7 +111,10 @@ impl Compiler<'_> {
                 }
             }
             IntExpr::Cast(_, inner) if inner.real => self.not_real(ty, span),
-            IntExpr::ToReal(_, inner) if inner.real || !ty.real => self.not_real(ty, span),
+            IntExpr::ToReal(_, inner) if !ty.real || (inner.real && inner.bits == ty.bits) => {
+                self.not_real(ty, span)
+            }
+            IntExpr::ToReal(_, inner) if !inner.real && ty.bits != 32 => self.not_real(ty, span),
             IntExpr::Real(..) if !ty.real => self.not_real(ty, span),
             IntExpr::Real(op, a, b) => {
                 let (a, b) = (self.int(a, ty, span), self.int(b, ty, span));
@@ -133,7 +136,11 @@ impl Compiler<'_> {
             IntExpr::ToReal(a, inner) => {
                 let a = self.int(a, *inner, span);
                 let mut name = |t: L| self.intermediate(t);
-                bitvec::int_to_real(&a, *inner, &mut name)
+                match (inner.real, inner.bits) {
+                    (false, _) => bitvec::int_to_real(&a, *inner, &mut name),
+                    (true, 32) => bitvec::widen_real(&a, &mut name),
+                    (true, _) => bitvec::narrow_real(&a, &mut name),
+                }
             }
             IntExpr::Cast(a, inner) => {
                 let a = self.int(a, *inner, span);
