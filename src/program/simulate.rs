@@ -13,7 +13,8 @@
 use std::collections::{BTreeMap, BTreeSet};
 
 use super::{
-    BoolExpr, EdgeKind, IntExpr, IntType, Preset, Program, Stmt, Temp, Timer, TimerModel, WriteKind,
+    BoolExpr, EdgeKind, IntExpr, IntType, Preset, Program, Stmt, Temp, Timer, TimerModel,
+    WriteKind, walk,
 };
 
 /// A value and whether the simulator knows it.
@@ -451,60 +452,27 @@ impl Simulator {
         }
     }
 
-    /// [`Self::skip`] of an expression, in the order [`Self::eval`] meets its parts.
+    /// [`Self::skip`] of an expression: its timers and one-shots passed in the order
+    /// [`Self::eval`] meets them (operands first, as [`walk`] goes).
     fn skip_expr(&mut self, e: &BoolExpr) {
-        match e {
-            BoolExpr::Not(x) => self.skip_expr(x),
-            BoolExpr::And(a, b) => {
-                self.skip_expr(a);
-                self.skip_expr(b);
-            }
-            BoolExpr::Or(xs) => xs.iter().for_each(|x| self.skip_expr(x)),
-            BoolExpr::Timer(t) => {
-                self.skip_expr(&t.input);
-                self.next_timer(t.on_delay);
-            }
-            BoolExpr::Edge { input, memory, .. } => {
-                self.skip_expr(input);
-                self.next_memory_slot(memory.index);
-            }
-            BoolExpr::Compare(c) => {
-                self.skip_int(&c.a);
-                self.skip_int(&c.b);
-            }
-            BoolExpr::Const(_) | BoolExpr::Var(_) | BoolExpr::Temp(_) | BoolExpr::Fresh(_) => {}
-        }
+        walk(e, &mut |b| self.pass(b));
     }
 
     /// [`Self::skip_expr`] of the conditions inside an integer expression.
     fn skip_int(&mut self, e: &IntExpr) {
-        match e {
-            IntExpr::Ite(c, a, b) => {
-                self.skip_expr(c);
-                self.skip_int(a);
-                self.skip_int(b);
+        e.visit(&mut |_| {}, &mut |b| self.pass(b));
+    }
+
+    /// The slot of a timer or one-shot `b` passed, its state kept.
+    fn pass(&mut self, b: &BoolExpr) {
+        match b {
+            BoolExpr::Timer(t) => {
+                self.next_timer(t.on_delay);
             }
-            IntExpr::Add(a, b)
-            | IntExpr::Sub(a, b)
-            | IntExpr::Mul(a, b)
-            | IntExpr::DivBy(a, b)
-            | IntExpr::ModBy(a, b)
-            | IntExpr::Real(_, a, b)
-            | IntExpr::Bitwise(_, a, b) => {
-                self.skip_int(a);
-                self.skip_int(b);
+            BoolExpr::Edge { memory, .. } => {
+                self.next_memory_slot(memory.index);
             }
-            IntExpr::Div(a, _)
-            | IntExpr::Mod(a, _)
-            | IntExpr::Cast(a, _)
-            | IntExpr::ToReal(a, _)
-            | IntExpr::FromReal(a, _)
-            | IntExpr::Shift(a, _) => self.skip_int(a),
-            IntExpr::Checked(c) => {
-                self.skip_int(&c.a);
-                self.skip_int(&c.b);
-            }
-            IntExpr::Const(_) | IntExpr::Var(_) => {}
+            _ => {}
         }
     }
 
