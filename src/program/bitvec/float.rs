@@ -157,7 +157,18 @@ struct Unpacked {
     nan: L,
 }
 
-fn unpack(v: &[L], f: Format, name: Namer) -> Unpacked {
+/// A number of format `f` read from its bits: its exponent bits, whether it is
+/// subnormal (or 0), and the significand with its hidden bit on top, not normalised.
+struct Classes<'a> {
+    exponent: &'a [L],
+    subnormal: L,
+    m: Bits,
+    zero: L,
+    inf: L,
+    nan: L,
+}
+
+fn classify<'a>(v: &'a [L], f: Format, name: Namer) -> Classes<'a> {
     let (fraction, exponent) = (&v[..f.fraction], &v[f.fraction..f.magnitude()]);
     let subnormal = all_zero(exponent);
     let ones = simp(&L::And(exponent.to_vec()));
@@ -167,6 +178,11 @@ fn unpack(v: &[L], f: Format, name: Namer) -> Unpacked {
     let nan = name(simp(&ones.and(no_fraction.negate())));
     let mut m: Bits = fraction.to_vec();
     m.push(subnormal.clone().negate());
+    Classes { exponent, subnormal, m, zero, inf, nan }
+}
+
+fn unpack(v: &[L], f: Format, name: Namer) -> Unpacked {
+    let Classes { exponent, subnormal, mut m, zero, inf, nan } = classify(v, f, name);
     let count = normalize(&mut m, f.wide_bits(), name);
     let pad = f.wide_bits() as usize - f.exponent;
     let e: Bits = exponent.iter().cloned().chain(std::iter::repeat_n(L::Zero, pad)).collect();
@@ -450,15 +466,7 @@ pub fn widen_real(a: &[L], name: Namer) -> Bits {
 /// The significand is not normalised: a subnormal `double` (below `2^-1022`) is far
 /// below half the least subnormal `float`, and [`round_pack`] shifts it out to `±0`.
 pub fn narrow_real(a: &[L], name: Namer) -> Bits {
-    let (fraction, exponent) = (&a[..DOUBLE.fraction], &a[DOUBLE.fraction..63]);
-    let subnormal = all_zero(exponent);
-    let ones = simp(&L::And(exponent.to_vec()));
-    let no_fraction = all_zero(fraction);
-    let zero = name(simp(&subnormal.clone().and(no_fraction.clone())));
-    let inf = name(simp(&ones.clone().and(no_fraction.clone())));
-    let nan = name(simp(&ones.and(no_fraction.negate())));
-    let mut m: Bits = fraction.to_vec();
-    m.push(subnormal.clone().negate());
+    let Classes { exponent, subnormal, m, zero, inf, nan } = classify(a, DOUBLE, name);
     // The significand's top 27 bits (the leading 1 at bit 26, a subnormal's lower), the
     // rest sticky.
     let cut = DOUBLE.fraction + 1 - (SINGLE.fraction + 4);
