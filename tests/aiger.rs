@@ -248,6 +248,7 @@ fn compare(program: &Path, props: &Path, only: &[String], runs: u64, scans: usiz
     let mut rng = Rng::new(0x5eed ^ label.len() as u64);
     for run in 0..runs {
         let mut sim = loaded.reference.simulator();
+        let mut carry = scan_eval::Carry::new(&known);
         let mut state = vec![false; net.latches.len()];
         let mut hyp_states: Vec<Vec<u32>> = assumed
             .iter()
@@ -279,7 +280,7 @@ fn compare(program: &Path, props: &Path, only: &[String], runs: u64, scans: usiz
                 inputs.iter().cloned().zip(values.iter().copied()).collect();
             sim.step(&map);
             let out = net.step(&mut state, &values);
-            let now: Vec<bool> = known
+            let mut now: Vec<bool> = known
                 .iter()
                 .map(|src| match src {
                     // A comparison atom: the comparison of the simulator's integers.
@@ -287,6 +288,7 @@ fn compare(program: &Path, props: &Path, only: &[String], runs: u64, scans: usiz
                     _ => src.read(&|n| sim.bit(n), &|k| sim.edge_memory(k), &|n| sim.int(n)),
                 })
                 .collect();
+            carry.fill(&mut now);
             let mut next_state = 0;
             for h in &assumed {
                 let (l, r) = h.step(&mut hyp_states[next_state], &now, 0, &mut vals, &mut stats);
@@ -327,6 +329,7 @@ fn compare(program: &Path, props: &Path, only: &[String], runs: u64, scans: usiz
                     want
                 );
             }
+            carry.keep(&now);
             figures.scans += 1;
         }
     }

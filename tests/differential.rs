@@ -650,6 +650,8 @@ fn check_program(label: &str, text: &str, program: &LdProgram, seed: u64) -> Fig
         .iter()
         .map(|h| Hyp::new(h, &compiled, cycle, &mut known, &loose))
         .collect();
+    hyps = scan_eval::in_order(hyps, &known);
+    let mut carry = scan_eval::Carry::new(&known);
     fig.timer_terms = compiled.timer_info.iter().filter(|t| t.effective.is_some()).count() as u64;
     let longest = longest_timer(program);
     let total = (6 * (longest + 2)).clamp(64, 3_000);
@@ -732,6 +734,7 @@ fn check_program(label: &str, text: &str, program: &LdProgram, seed: u64) -> Fig
         for (v, src) in values.iter_mut().zip(&known) {
             *v = src.read(&|n| sim.bit(n), &|k| sim.edge_memory(k), &|n| Some(sim.int(n)));
         }
+        carry.fill(&mut values);
         fig.scans += 1;
         fig.inexact_scans += u64::from(!sim.unknown().is_empty());
         for h in hyps.iter_mut() {
@@ -754,6 +757,7 @@ fn check_program(label: &str, text: &str, program: &LdProgram, seed: u64) -> Fig
                 break 'scans;
             }
         }
+        carry.keep(&values);
         prev = sim.bits().clone();
     }
     if exact_model && fig.disagreements == 0 {

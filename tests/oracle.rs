@@ -116,7 +116,7 @@ fn wants(p: &Prepared) -> Result<Vec<Want>, String> {
                 });
                 edge.unwrap_or_else(|| Want::Member(n.clone()))
             }
-            Src::IntBit { .. } | Src::Defined(_) => {
+            Src::IntBit { .. } | Src::Defined(_) | Src::PreDefined(_) => {
                 return Err(READS_INTEGERS.into());
             }
             Src::Edge(k) => {

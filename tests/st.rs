@@ -117,7 +117,7 @@ fn programs_to_run() -> u64 {
 fn random_st_programs_agree_with_the_scan_simulator() {
     let first: u64 = std::env::var("II_ST_FIRST").ok().and_then(|v| v.parse().ok()).unwrap_or(0);
     let (mut programs, mut scans, mut checked, mut fired) = (0u64, 0u64, 0u64, 0u64);
-    let mut too_large = 0u64;
+    let (mut too_large, mut repeated) = (0u64, 0u64);
     let mut failures: Vec<String> = Vec::new();
     for seed in first..first + programs_to_run() {
         let g = st_gen::program(seed);
@@ -132,6 +132,7 @@ fn random_st_programs_agree_with_the_scan_simulator() {
             }
         };
         programs += 1;
+        repeated += u64::from(!program.repeated_timers().is_empty());
         // An intermediate value too large to inline is an unconstrained signal (sound; the
         // evaluator treats it existentially).
         too_large += u64::from(compiled.signals.values().any(|k| k.is_unconstrained()));
@@ -146,7 +147,7 @@ fn random_st_programs_agree_with_the_scan_simulator() {
         }
     }
     eprintln!(
-        "random ST programs: {programs} compiled ({too_large} with an intermediate value too large to inline), {scans} scans, {checked} hypotheses checked at every scan, {fired} timer hypotheses fired; {} disagreements",
+        "random ST programs: {programs} compiled ({too_large} with an intermediate value too large to inline, {repeated} with a timer called at several places), {scans} scans, {checked} hypotheses checked at every scan, {fired} timer hypotheses fired; {} disagreements",
         failures.len()
     );
     assert!(

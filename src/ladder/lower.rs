@@ -470,6 +470,7 @@ impl<'a> Lowering<'a> {
                                 us: *us,
                                 adjust: *adjust,
                                 default_of: (!adjust_given).then(|| self.program.version.label()),
+                                zero: false,
                             },
                             TimerDelay::Variable(v) => {
                                 Preset::Variable { name: v.clone(), why: None }

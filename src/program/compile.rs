@@ -161,7 +161,8 @@ pub enum SignalKind {
     Atom,
     /// The input a timer called under a condition last received (`H = g·i + ¬g·pre H`
     /// for the call's condition `g` and input `i`, 0 at first): what the runtime's timer
-    /// times between its calls.
+    /// times between its calls. Also the parts of the state of a timer called at several
+    /// places (`T_runs`, `T_due`, `T_holds`: how its run stood at the end of the scan).
     HeldInput {
         /// File rung number (1-based, comment rungs counted).
         rung: usize,
@@ -526,6 +527,8 @@ struct Compiler<'a> {
     unwritten: BTreeMap<String, usize>,
     /// Timer accumulators written by more than one element.
     shared_timers: BTreeSet<String>,
+    /// The IEC timer instances called at several places, followed call by call.
+    repeated: BTreeMap<String, timers::Repeated>,
     /// Every name the program uses (for fresh-name uniqueness).
     taken: BTreeSet<String>,
     /// Per base name, the suffix [`Compiler::unique`] tries next (the ones below are taken).
@@ -587,6 +590,7 @@ impl<'a> Compiler<'a> {
             last_write: BTreeMap::new(),
             unwritten: BTreeMap::new(),
             shared_timers: BTreeSet::new(),
+            repeated: BTreeMap::new(),
             taken: BTreeSet::new(),
             suffixes: HashMap::new(),
             pre_names: BTreeMap::new(),
@@ -669,6 +673,7 @@ impl<'a> Compiler<'a> {
             }
         }
         self.shared_timers = program.shared_timers();
+        self.prepare_repeated();
         let written: Vec<String> = self.last_write.keys().cloned().collect();
         for x in written {
             let pre = self.pre_name(&x);
@@ -886,6 +891,10 @@ impl<'a> Compiler<'a> {
                 let outs: Vec<L> = xs.iter().map(|x| self.eval(x)).collect();
                 simp_sum(outs)
             }
+            BoolExpr::Timer(t) if self.repeated.contains_key(&t.accumulator) => {
+                let input = self.eval(&t.input);
+                self.repeated_call(t, input)
+            }
             BoolExpr::Timer(t) if self.depth > 0 && t.called && !self.options.any_state => {
                 let input = self.eval(&t.input);
                 let rung = self.block().number;
@@ -1025,6 +1034,7 @@ impl<'a> Compiler<'a> {
     }
 
     fn flush_block(&mut self) {
+        self.state_repeated();
         let pending = std::mem::take(&mut self.pending);
         if pending.is_empty() {
             return;
@@ -1237,9 +1247,10 @@ pub fn program_to_ii(compiled: &CompiledProgram, notation: Notation) -> String {
         ("edge memories (the input of a one-shot or toggle coil)", |k| {
             matches!(k, SignalKind::EdgeMemory { .. })
         }),
-        ("held inputs (what a timer called under a condition last received)", |k| {
-            matches!(k, SignalKind::HeldInput { .. })
-        }),
+        (
+            "timers' state between calls (the input the last call gave; how the run of one called at several places stands)",
+            |k| matches!(k, SignalKind::HeldInput { .. }),
+        ),
         ("fresh outputs of unsupported elements (unconstrained)", |k| {
             matches!(k, SignalKind::Fresh { .. })
         }),

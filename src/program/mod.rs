@@ -609,6 +609,10 @@ pub enum Preset {
         /// When the adjust is a default of the file rather than written: which (for the
         /// warning, "the default adjust of an LDmicro0.1 file").
         default_of: Option<String>,
+        /// An IEC preset of 0 (`T#0s`), counted as one cycle: a call once a scan sees the
+        /// timer expire one scan after it starts, but a second call in the scan that
+        /// started it sees it expired already.
+        zero: bool,
     },
     /// A delay given by a variable whose value is not known to be one duration: its
     /// name, and why not where the front end knows (`Delay` is also written with T#3s).
@@ -627,12 +631,12 @@ impl Preset {
     /// scans (a preset of 0 still takes one scan: the delay of one cycle).
     pub fn iec(pt_us: u64, cycle_us: u64) -> Preset {
         if pt_us == 0 || cycle_us == 0 {
-            return Preset::Micros { us: cycle_us, adjust: 0, default_of: None };
+            return Preset::Micros { us: cycle_us, adjust: 0, default_of: None, zero: pt_us == 0 };
         }
         let scans = pt_us.div_ceil(cycle_us).max(1);
         let adjust = i64::try_from(scans).unwrap_or(i64::MAX)
             - i64::try_from(pt_us / cycle_us).unwrap_or(i64::MAX);
-        Preset::Micros { us: pt_us, adjust, default_of: None }
+        Preset::Micros { us: pt_us, adjust, default_of: None, zero: false }
     }
 }
 
@@ -822,6 +826,36 @@ impl Program {
             });
         }
         count.into_iter().filter(|(_, n)| *n > 1).map(|(t, _)| t).collect()
+    }
+
+    /// The IEC timer instances (`TON`, `TOF`) called at several places in the scan, which
+    /// run call by call as the runtime runs them: every element writing the accumulator
+    /// is a call of the timer block itself ([`Timer::called`]), all of one kind and one
+    /// preset. Per instance, how many calls, and whether it is a TON.
+    pub fn repeated_timers(&self) -> BTreeMap<String, (usize, bool)> {
+        // Per accumulator: each call's kind, whether it is the block itself, its preset.
+        let mut calls: BTreeMap<String, Vec<(bool, bool, Preset)>> = BTreeMap::new();
+        for (_, s) in self.stmts() {
+            s.visit(&mut |_| {}, &mut |e| {
+                if let BoolExpr::Timer(t) = e {
+                    let call = (t.on_delay, t.called, t.preset.clone());
+                    calls.entry(t.accumulator.clone()).or_default().push(call);
+                }
+            });
+        }
+        calls
+            .into_iter()
+            .filter(|(name, ts)| {
+                let (on_delay, _, preset) = &ts[0];
+                ts.len() > 1
+                    && !self.integer_writers.contains_key(name)
+                    && ts.iter().all(|(o, called, p)| *called && o == on_delay && p == preset)
+            })
+            .map(|(name, ts)| {
+                let on_delay = ts[0].0;
+                (name, (ts.len(), on_delay))
+            })
+            .collect()
     }
 
     /// The name of bit `k` (0 the least significant) of integer `x`: `Ccount_b3`.

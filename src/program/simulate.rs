@@ -62,6 +62,11 @@ pub struct Simulator {
     temps: BTreeMap<Temp, V>,
     next_count: usize,
     next_memory: usize,
+    /// The timer instances called at several places, by name: each runs as the
+    /// runtime's block does, call by call.
+    blocks: BTreeMap<String, Block>,
+    /// The calls of those met in this scan so far, run or passed, in order.
+    met: Vec<String>,
     /// The scans run so far.
     scan: u64,
     /// Whether the free integers of what the runtime leaves undefined
@@ -78,6 +83,18 @@ struct Count {
     known: bool,
     runs: bool,
     at: u64,
+}
+
+/// A timer instance called at several places: the state of the runtime's block
+/// (`lib/timer.txt`): `STATE` (0 idle, 1 timing, 2 done), `PREV_IN`, the scan of its
+/// `START_TIME`, `Q`, and whether they are known.
+#[derive(Clone, Copy, Debug)]
+struct Block {
+    state: u8,
+    prev_in: bool,
+    start: u64,
+    q: bool,
+    known: bool,
 }
 
 impl Simulator {
@@ -101,6 +118,12 @@ impl Simulator {
             temps: BTreeMap::new(),
             next_count: 0,
             next_memory: 0,
+            blocks: program
+                .repeated_timers()
+                .into_keys()
+                .map(|n| (n, Block { state: 0, prev_in: false, start: 0, q: false, known: true }))
+                .collect(),
+            met: Vec::new(),
             scan: 0,
             undefined_unknown: false,
         }
@@ -131,6 +154,7 @@ impl Simulator {
             self.ints.insert(x.clone(), N { value, known });
         }
         self.temps.clear();
+        self.met.clear();
         self.scan += 1;
         self.next_count = 0;
         self.next_memory = 0;
@@ -238,12 +262,12 @@ impl Simulator {
                         self.skip(body, known);
                         continue;
                     }
-                    let first = (self.next_count, self.next_memory);
+                    let first = self.mark();
                     for s in body {
                         self.stmt(s, known);
                     }
                     if !known {
-                        self.forget(first, (self.next_count, self.next_memory));
+                        self.forget(first);
                     }
                 }
             }
@@ -424,7 +448,7 @@ impl Simulator {
     /// The timers and one-shots of `body`, a branch that does not run: passed, their
     /// state kept (made unknown unless `known`: whether the branch runs is not known).
     fn skip(&mut self, body: &[Stmt], known: bool) {
-        let first = (self.next_count, self.next_memory);
+        let first = self.mark();
         for s in body {
             match s {
                 Stmt::Let { value, .. } => self.skip_expr(value),
@@ -448,7 +472,7 @@ impl Simulator {
             }
         }
         if !known {
-            self.forget(first, (self.next_count, self.next_memory));
+            self.forget(first);
         }
     }
 
@@ -468,6 +492,9 @@ impl Simulator {
         match b {
             BoolExpr::Timer(t) => {
                 self.next_timer(t.on_delay);
+                if self.blocks.contains_key(&t.accumulator) {
+                    self.met.push(t.accumulator.clone());
+                }
             }
             BoolExpr::Edge { memory, .. } => {
                 self.next_memory_slot(memory.index);
@@ -476,13 +503,24 @@ impl Simulator {
         }
     }
 
-    /// The timers and one-shot memories in these ranges of slots made unknown.
-    fn forget(&mut self, from: (usize, usize), to: (usize, usize)) {
-        for c in &mut self.counts[from.0..to.0] {
+    /// Where the scan stands: the next timer and one-shot slots, and the calls met so far
+    /// of the timer instances called at several places.
+    fn mark(&self) -> (usize, usize, usize) {
+        (self.next_count, self.next_memory, self.met.len())
+    }
+
+    /// The timers, one-shot memories and timer instances met since `from` made unknown.
+    fn forget(&mut self, from: (usize, usize, usize)) {
+        for c in &mut self.counts[from.0..self.next_count] {
             c.known = false;
         }
-        for m in &mut self.memories[from.1..to.1] {
+        for m in &mut self.memories[from.1..self.next_memory] {
             m.known = false;
+        }
+        for name in &self.met[from.2..] {
+            if let Some(b) = self.blocks.get_mut(name) {
+                b.known = false;
+            }
         }
     }
 
@@ -491,6 +529,10 @@ impl Simulator {
     /// input included: a call under a condition sees nothing between its calls).
     fn timer(&mut self, t: &Timer, input: V) -> V {
         let k = self.next_timer(t.on_delay);
+        if self.blocks.contains_key(&t.accumulator) {
+            self.met.push(t.accumulator.clone());
+            return self.block_call(t, input);
+        }
         let cycle = self.program.cycle_us;
         let scans = match &t.preset {
             _ if self.shared.contains(&t.accumulator) || cycle == 0 => None,
@@ -527,6 +569,61 @@ impl Simulator {
         let p = p as u64;
         let value = if t.on_delay { *count > p } else { *count <= p };
         V { value, known: *known }
+    }
+
+    /// A call of a timer instance called at several places, as the runtime's `TON` or
+    /// `TOF` block runs it, the time being the scan's (`START_TIME + PT <= CURRENT_TIME`
+    /// is the scans since the start reaching `⌈PT / cycle⌉`, counted as the timer model
+    /// says).
+    fn block_call(&mut self, t: &Timer, input: V) -> V {
+        let cycle = self.program.cycle_us;
+        let scans = match &t.preset {
+            Preset::Micros { zero: true, .. } => Some(0),
+            _ if cycle == 0 => None,
+            Preset::Micros { us: 0, .. } | Preset::Variable { .. } => None,
+            Preset::Micros { us, adjust, .. } => match self.timers_model {
+                TimerModel::Plc => i64::try_from(us / cycle)
+                    .ok()
+                    .and_then(|p| p.checked_add(*adjust))
+                    .and_then(|p| u64::try_from(p).ok()),
+                TimerModel::Ideal => Some(us / cycle),
+            },
+        };
+        let scan = self.scan;
+        let unknown = V { value: false, known: false };
+        let Some(b) = self.blocks.get_mut(&t.accumulator) else { return unknown };
+        let i = input.value;
+        let (Some(k), true) = (scans, input.known) else {
+            b.known = false;
+            return unknown;
+        };
+        // A call that ends the run (a TON's FALSE, a TOF's TRUE) sets every part of the
+        // state that matters: from an unknown state, the block is known again.
+        let ends = if t.on_delay { !i } else { i };
+        if !b.known && !ends {
+            return unknown;
+        }
+        if t.on_delay {
+            if b.state == 0 && !b.prev_in && i {
+                (b.state, b.q, b.start) = (1, false, scan);
+            } else if !i {
+                (b.q, b.state) = (false, 0);
+            } else if b.state == 1 && scan - b.start >= k {
+                (b.state, b.q) = (2, true);
+            }
+        } else {
+            if b.state == 0 && b.prev_in && !i {
+                (b.state, b.start) = (1, scan);
+            } else if i {
+                b.state = 0;
+            } else if b.state == 1 && scan - b.start >= k {
+                b.state = 2;
+            }
+            b.q = i || b.state == 1;
+        }
+        b.prev_in = i;
+        b.known = true;
+        V::of(b.q)
     }
 }
 

@@ -902,6 +902,7 @@ pub fn prepare(
         }
     }
     fig.programs += 1;
+    let hyps = super::scan_eval::in_order(hyps, &known);
     Some(Prepared { plc, lowered, compiled, known, hyps, edge_of })
 }
 
@@ -971,6 +972,7 @@ pub fn check_run(
     let mut vals = Vec::new();
     let mut stats = TimerStats::default();
     let mut previous = String::new();
+    let mut carry = super::scan_eval::Carry::new(&p.known);
     for scan in 0..scans {
         let (mut known, shown) = match values(scan) {
             Ok(v) => v,
@@ -979,6 +981,7 @@ pub fn check_run(
                 return;
             }
         };
+        carry.fill(&mut known);
         fig.scans += 1;
         for h in p.hyps.iter_mut() {
             if !h.run(&mut known, &mut vals, &mut stats) {
@@ -991,15 +994,17 @@ pub fn check_run(
                 return;
             }
         }
+        carry.keep(&known);
         previous = shown;
     }
-    for (h, c) in p.hyps.iter().zip(&p.compiled.hypotheses) {
+    for h in &p.hyps {
         if h.skip.is_some() {
             fig.skipped += 1;
         } else {
             fig.checked += 1;
-            let lhs = &c.lhs[ii_prove::term::root(&c.lhs)];
-            fig.int_checked += u64::from(matches!(lhs, Term::Name(n)
+            let c = p.compiled.hypotheses.iter().find(|c| c.name == h.name);
+            let lhs = c.map(|c| &c.lhs[ii_prove::term::root(&c.lhs)]);
+            fig.int_checked += u64::from(matches!(lhs, Some(Term::Name(n))
                 if matches!(p.compiled.signals.get(n.as_str()), Some(SignalKind::IntBit { .. }))));
             fig.timer_fired += u64::from(h.has_timer && h.timer_fired);
         }
@@ -1042,7 +1047,7 @@ pub fn check(xml: &str, seed: u64, fig: &mut Figures, must_load: bool) {
                     let (path, owner, pin) = &lowered[edge_of[k]];
                     sim.edge_memory_of(path, *owner, pin).unwrap_or(false)
                 }
-                Src::IntBit { .. } | Src::Defined(_) => {
+                Src::IntBit { .. } | Src::Defined(_) | Src::PreDefined(_) => {
                     src.read(&|_| false, &|_| None, &|x| sim.int(x))
                 }
             })

@@ -82,6 +82,45 @@ pub enum Src {
     /// comparison atom): its value is that equation's right side at each scan
     /// ([`Hyp::run`]).
     Defined(String),
+    /// A defined name's value at the end of the previous scan (0 before the first),
+    /// kept by [`Carry`].
+    PreDefined(String),
+}
+
+/// The defined names' values carried from the end of a scan to their `pre` at the next.
+#[derive(Clone, Debug, Default)]
+pub struct Carry {
+    /// Each `pre` slot with the slot of its name.
+    pairs: Vec<(usize, usize)>,
+    last: Vec<bool>,
+}
+
+impl Carry {
+    pub fn new(known: &Known) -> Carry {
+        let pairs: Vec<(usize, usize)> = known
+            .iter()
+            .enumerate()
+            .filter_map(|(k, src)| match src {
+                Src::PreDefined(n) => Some((k, known.position(&Src::Defined(n.clone()))?)),
+                _ => None,
+            })
+            .collect();
+        Carry { last: vec![false; pairs.len()], pairs }
+    }
+
+    /// At the start of a scan: each `pre` of a defined name.
+    pub fn fill(&self, values: &mut [bool]) {
+        for ((p, _), v) in self.pairs.iter().zip(&self.last) {
+            values[*p] = *v;
+        }
+    }
+
+    /// At the end of a scan: the defined names' values, for the next.
+    pub fn keep(&mut self, values: &[bool]) {
+        for ((_, d), v) in self.pairs.iter().zip(self.last.iter_mut()) {
+            *v = values[*d];
+        }
+    }
 }
 
 impl Src {
@@ -97,7 +136,7 @@ impl Src {
             Src::Bit(n) => bit(n),
             Src::Edge(k) => edge(*k).unwrap_or(false),
             Src::IntBit { of, bit, start } => int(of).is_some_and(|v| v >> bit & 1 == 1) != *start,
-            Src::Defined(_) => false,
+            Src::Defined(_) | Src::PreDefined(_) => false,
         }
     }
 }
@@ -154,6 +193,55 @@ pub fn ceil_scans(d: &ii_prove::term::Delay, cycle_us: u64) -> Option<u32> {
     }
     let cycle = BigRational::new(cycle_us.into(), 1_000_000u64.into());
     (d.seconds() / cycle).ceil().to_integer().to_u32()
+}
+
+/// The hypotheses in an order where each runs after the equations of the defined names
+/// (intermediate values, atoms, held timer inputs) it reads: a defined name reads 0 until
+/// its equation has run in the scan, and its `pre` keeps the value read. The equations
+/// hold together, so any order is theirs; where defined names read each other in a
+/// cycle, the rest keep the compiler's order.
+pub fn in_order(hyps: Vec<Hyp>, known: &Known) -> Vec<Hyp> {
+    let defined = |slot: usize| matches!(known.get(slot), Some(Src::Defined(_)));
+    let reads: Vec<BTreeSet<usize>> = hyps
+        .iter()
+        .map(|h| {
+            h.nodes
+                .iter()
+                .filter_map(|n| match n {
+                    Node::Known(k) if defined(*k) && h.defines != Some(*k) => Some(*k),
+                    _ => None,
+                })
+                .collect()
+        })
+        .collect();
+    // Per defined name, how many of its equations have not run yet.
+    let mut waiting: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
+    for d in hyps.iter().filter_map(|h| h.defines) {
+        *waiting.entry(d).or_default() += 1;
+    }
+    let mut left: Vec<Option<Hyp>> = hyps.into_iter().map(Some).collect();
+    let mut out = Vec::with_capacity(left.len());
+    loop {
+        let mut placed = Vec::new();
+        for (k, slot) in left.iter_mut().enumerate() {
+            // A name is done once every equation of it has run (in an earlier round).
+            let ready = reads[k].iter().all(|r| waiting.get(r).is_none_or(|w| *w == 0));
+            if let Some(h) = slot.take_if(|_| ready) {
+                placed.extend(h.defines);
+                out.push(h);
+            }
+        }
+        if placed.is_empty() {
+            break;
+        }
+        for d in placed {
+            if let Some(w) = waiting.get_mut(&d) {
+                *w -= 1;
+            }
+        }
+    }
+    out.extend(left.into_iter().flatten());
+    out
 }
 
 impl Hyp {
@@ -262,6 +350,14 @@ impl Hyp {
                             }
                             _ => Node::Known(slot(known, Src::Bit(s.to_string()))),
                         }
+                    }
+                    // The previous value of a defined name: its value at the end of the
+                    // last scan, whichever order the equations run in ([`Carry`]).
+                    Term::Pre(a)
+                        if let Node::Known(k) = nodes[at(a)]
+                            && let Some(Src::Defined(n)) = known.get(k) =>
+                    {
+                        Node::Known(slot(known, Src::PreDefined(n.clone())))
                     }
                     Term::Pre(a) => {
                         n_state += 1;
@@ -536,11 +632,13 @@ pub fn check_scans(
 ) -> Result<Checked, String> {
     let mut known = Known::default();
     let loose = loose_names(compiled);
-    let mut hyps: Vec<Hyp> = compiled
+    let hyps: Vec<Hyp> = compiled
         .hypotheses
         .iter()
         .map(|h| Hyp::new(h, compiled, cycle_us, &mut known, &loose))
         .collect();
+    let mut hyps = in_order(hyps, &known);
+    let mut carry = Carry::new(&known);
     let mut sim =
         ii_prove::program::simulate::Simulator::new(program, ii_prove::ladder::TimerModel::Plc);
     let mut vals = Vec::new();
@@ -560,6 +658,7 @@ pub fn check_scans(
             .iter()
             .map(|src| src.read(&|n| sim.bit(n), &|k| sim.edge_memory(k), &|n| sim.int(n)))
             .collect();
+        carry.fill(&mut values);
         for h in hyps.iter_mut() {
             if !h.run(&mut values, &mut vals, &mut stats) {
                 return Err(format!(
@@ -570,6 +669,7 @@ pub fn check_scans(
                 ));
             }
         }
+        carry.keep(&values);
         each(scan, &sim)?;
     }
     Ok(Checked {

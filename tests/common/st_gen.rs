@@ -435,6 +435,8 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
     text += &user_vars;
     text += "  END_VAR\n";
     // The calls, placed among the other statements.
+    let mut pts: Vec<(String, String)> = Vec::new();
+    let mut conditional: Vec<String> = Vec::new();
     let mut calls: Vec<String> = fbs
         .iter()
         .map(|(n, t)| {
@@ -450,7 +452,10 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
                     // A call that leaves PT out: T#0s, as no call gives it.
                     match own.chance(20) {
                         true => format!("{n}(IN := {})", g.expr(2)),
-                        false => format!("{n}(IN := {}, PT := {pt})", g.expr(2)),
+                        false => {
+                            pts.push((n.clone(), pt.clone()));
+                            format!("{n}(IN := {}, PT := {pt})", g.expr(2))
+                        }
                     }
                 }
                 "R_TRIG" | "F_TRIG" => format!("{n}(CLK := {})", g.expr(2)),
@@ -467,6 +472,7 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
             };
             // A timer or edge detector called under a condition: it runs only then.
             if matches!(*t, "TON" | "TOF" | "R_TRIG" | "F_TRIG") && own.chance(25) {
+                conditional.push(n.clone());
                 let not = if own.chance(50) { "NOT " } else { "" };
                 format!("  IF {not}{} THEN\n  {line}  END_IF;\n", own.pick(&g.reads))
             } else {
@@ -474,9 +480,36 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
             }
         })
         .collect();
-    // Second calls of some instances other than timers, later in the scan, each input
-    // left out keeping the value the first call gave.
+    // Second calls of some instances, later in the scan, each input left out keeping the
+    // value the first call gave; a timer's perhaps under a condition, as a timer that
+    // resets itself (`IF T0.Q THEN T0(IN := FALSE)`).
     for (n, t) in &fbs {
+        if matches!(*t, "TON" | "TOF") && own.chance(35) {
+            let given = pts.iter().find(|(m, _)| m == n).map(|(_, pt)| pt);
+            // A call that leaves PT out after a first call under a condition keeps T#0s
+            // or the first call's: the timer is not computed.
+            let must = conditional.contains(n);
+            let pt = match given {
+                Some(pt) if must || own.chance(30) => format!(", PT := {pt}"),
+                _ => String::new(),
+            };
+            let value = if own.chance(30) {
+                format!("NOT {}", own.pick(&g.reads))
+            } else {
+                own.pick(&g.reads).clone()
+            };
+            let (stop, q) = if *t == "TON" { ("FALSE", "") } else { ("TRUE", "NOT ") };
+            calls.push(match own.below(4) {
+                0 => format!("  IF {q}{n}.Q THEN\n    {n}(IN := {stop}{pt});\n  END_IF;\n"),
+                1 => format!("  {n}(IN := {value}{pt});\n"),
+                2 => {
+                    let c = own.pick(&g.reads).clone();
+                    format!("  IF {c} THEN\n    {n}(IN := {value}{pt});\n  END_IF;\n")
+                }
+                _ => format!("  {n}({});\n", pt.trim_start_matches(", ")),
+            });
+            continue;
+        }
         if matches!(*t, "TON" | "TOF") || !own.chance(25) {
             continue;
         }

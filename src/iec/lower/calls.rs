@@ -212,7 +212,11 @@ impl Lowering<'_> {
                     }
                     Some(ExprKind::Var(id)) => self.variable_preset(id, &inst),
                     Some(_) => Preset::Variable { name: format!("{inst}.PT"), why: None },
-                    // Left out: the value the instance keeps from its last call.
+                    // Left out: the value the instance keeps from its last call, given
+                    // by a call that ran for sure earlier in the scan, or at every call.
+                    None if self.known.presets.contains_key(&inst) => {
+                        self.known.presets[&inst].clone()
+                    }
                     None => match self.kept_pt(&inst) {
                         Ok(us) => Preset::iec(us, self.cycle_us),
                         Err(why) => Preset::Variable { name: format!("{inst}.PT"), why },

@@ -12,7 +12,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 
 use super::Lowering;
-use crate::program::{BoolExpr, IntExpr, IntType, Stmt, Temp, WriteKind};
+use crate::program::{BoolExpr, IntExpr, IntType, Preset, Stmt, Temp, WriteKind, walk};
 
 /// The values known at a point of the scan.
 #[derive(Clone, Debug, Default)]
@@ -23,6 +23,9 @@ pub(super) struct Known {
     temps: BTreeMap<Temp, bool>,
     /// Guard bits taken as not set when their value is not known.
     pub(super) assumed: BTreeSet<String>,
+    /// Per timer instance, the preset its last call gave it, where that call ran for sure
+    /// earlier in this scan: what a call that leaves `PT` out keeps.
+    pub(super) presets: BTreeMap<String, Preset>,
 }
 
 impl Known {
@@ -30,6 +33,23 @@ impl Known {
     pub(super) fn clear(&mut self) {
         self.values.clear();
         self.temps.clear();
+        self.presets.clear();
+    }
+
+    /// The preset of the timers `e` calls, a literal kept for later calls.
+    fn note_timers(&mut self, e: &BoolExpr) {
+        walk(e, &mut |b| {
+            if let BoolExpr::Timer(t) = b
+                && t.called
+            {
+                match &t.preset {
+                    p @ Preset::Micros { .. } => {
+                        self.presets.insert(t.accumulator.clone(), p.clone())
+                    }
+                    Preset::Variable { .. } => self.presets.remove(&t.accumulator),
+                };
+            }
+        });
     }
 
     /// Whether the bit `x` is known to be set.
@@ -133,6 +153,16 @@ impl Lowering<'_> {
 
     fn run_known_one(&mut self, s: &Stmt) {
         match s {
+            Stmt::Let { value, .. } | Stmt::Write { value, .. } if has_timer(value) => {
+                self.known.note_timers(value);
+                self.run_known_value(s);
+            }
+            _ => self.run_known_value(s),
+        }
+    }
+
+    fn run_known_value(&mut self, s: &Stmt) {
+        match s {
             Stmt::Let { temp, value } => match self.known_bool(value) {
                 Ok(v) => {
                     self.known.temps.insert(*temp, v);
@@ -198,8 +228,19 @@ impl Lowering<'_> {
                     }
                     _ => {}
                 },
-                &mut |_| {},
+                &mut |e| {
+                    if let BoolExpr::Timer(t) = e {
+                        known.presets.remove(&t.accumulator);
+                    }
+                },
             );
         }
     }
+}
+
+/// Whether `e` calls a timer.
+fn has_timer(e: &BoolExpr) -> bool {
+    let mut found = false;
+    walk(e, &mut |b| found |= matches!(b, BoolExpr::Timer(_)));
+    found
 }
