@@ -181,7 +181,11 @@ fn search(
     let mut goals = goal_clauses(&expanded);
     let inputs = chains.map(Chains::input_names).unwrap_or_default();
     let read = read_before(&cone);
-    let state = state_bits(read.clone(), goal, &inputs);
+    // A name the goal reads the previous value of is state too (`Sample · pre Sample`),
+    // though no equation reads it so.
+    let mut with_goal = read.clone();
+    with_goal.extend(pre_names(&[&goal.lhs, &goal.rhs]));
+    let state = state_bits(with_goal, goal, &inputs);
     let mut more = clauses(&state);
     // Which of `more` are disjunctions of two literals (after the literals themselves).
     let pairs = 2 * state.len()..more.len();
@@ -470,15 +474,18 @@ fn state_bits(read: BTreeSet<String>, goal: &Obligation, also: &BTreeSet<String>
 
 /// The names whose previous value (`pre X`) the cone reads.
 fn read_before(cone: &[Axiom]) -> BTreeSet<String> {
+    pre_names(&cone.iter().flat_map(|h| [&h.lhs, &h.rhs]).collect::<Vec<_>>())
+}
+
+/// The names `X` of the terms' `pre X`.
+fn pre_names(terms: &[&Expr]) -> BTreeSet<String> {
     let mut read: BTreeSet<String> = BTreeSet::new();
-    for h in cone {
-        for side in [&h.lhs, &h.rhs] {
-            for t in side.as_ref() {
-                if let Term::Pre(a) = t
-                    && let Term::Name(n) = &side[*a]
-                {
-                    read.insert(n.as_str().to_string());
-                }
+    for side in terms {
+        for t in side.as_ref() {
+            if let Term::Pre(a) = t
+                && let Term::Name(n) = &side[*a]
+            {
+                read.insert(n.as_str().to_string());
             }
         }
     }
