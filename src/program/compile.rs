@@ -109,7 +109,9 @@ mod ints;
 pub mod start;
 mod timers;
 
-use std::collections::{BTreeMap, BTreeSet, HashMap};
+use std::collections::{BTreeMap, BTreeSet};
+
+use super::fast_hash::{FastMap as HashMap, FastSet as HashSet};
 
 use super::logic::{L, Tables, factors, product, simp, simp_and, simp_sum, sum, summands};
 use super::{Block, BoolExpr, Memory, Program, Stmt, Temp, WriteKind};
@@ -521,20 +523,20 @@ struct Compiler<'a> {
     program: &'a Program,
     options: CompileOptions,
     /// Per written variable, the global index of its last write.
-    last_write: BTreeMap<String, usize>,
+    last_write: HashMap<String, usize>,
     /// Bits read but never written and not inputs: they stay `0*`; first reading block.
     unwritten: BTreeMap<String, usize>,
     /// Timer accumulators written by more than one element.
     shared_timers: BTreeSet<String>,
     /// Every name the program uses (for fresh-name uniqueness).
-    taken: BTreeSet<String>,
+    taken: HashSet<String>,
     /// Per base name, the suffix [`Compiler::unique`] tries next (the ones below are taken).
     suffixes: HashMap<String, usize>,
     /// Per variable, the internal name standing for its previous-scan value while the
     /// scan is compiled (`pre_X`); [`Compiler::exact`] turns each into `pre X`.
-    pre_names: BTreeMap<String, String>,
+    pre_names: HashMap<String, String>,
     /// The inverse: internal previous-value name → the variable (or internal name) it is of.
-    pre_of: BTreeMap<String, String>,
+    pre_of: HashMap<String, String>,
     fresh: BTreeMap<String, SignalKind>,
     // Scan state.
     write_index: usize,
@@ -547,9 +549,12 @@ struct Compiler<'a> {
     if_span: Option<Span>,
     /// What a read of each written bit sees at this point of the scan, as a
     /// function of its previous-scan value `pre_X` (the signal `X` after its last write).
-    current: BTreeMap<String, L>,
-    /// The scan-local values.
-    temps: BTreeMap<Temp, L>,
+    current: HashMap<String, L>,
+    /// The scan-local values still to be read.
+    temps: HashMap<Temp, L>,
+    /// Per block (by index), the scan-local values no later block reads: dropped once
+    /// the block is compiled.
+    temps_done: Vec<Vec<Temp>>,
     // Current block.
     block: usize,
     pending: Vec<Pending>,
@@ -584,20 +589,21 @@ impl<'a> Compiler<'a> {
         let mut c = Compiler {
             program,
             options,
-            last_write: BTreeMap::new(),
+            last_write: HashMap::default(),
             unwritten: BTreeMap::new(),
             shared_timers: BTreeSet::new(),
-            taken: BTreeSet::new(),
-            suffixes: HashMap::new(),
-            pre_names: BTreeMap::new(),
-            pre_of: BTreeMap::new(),
+            taken: HashSet::default(),
+            suffixes: HashMap::default(),
+            pre_names: HashMap::default(),
+            pre_of: HashMap::default(),
             fresh: BTreeMap::new(),
             write_index: 0,
             depth: 0,
             guard: L::One,
             if_span: None,
-            current: BTreeMap::new(),
-            temps: BTreeMap::new(),
+            current: HashMap::default(),
+            temps: HashMap::default(),
+            temps_done: Vec::new(),
             block: 0,
             pending: Vec::new(),
             hypotheses: Vec::new(),
@@ -616,6 +622,7 @@ impl<'a> Compiler<'a> {
 
     fn prepass(&mut self) {
         let program = self.program;
+        self.taken.reserve(program.names.len() + program.signals.len());
         self.taken.extend(program.names.iter().cloned());
         self.taken.extend(program.signals.iter().cloned());
         // Writes are numbered in scan order (an `If`'s branches in order), as `run`
@@ -661,6 +668,32 @@ impl<'a> Compiler<'a> {
         for (k, target) in writes.into_iter().enumerate() {
             self.last_write.insert(target, k);
         }
+        // The last block defining or reading each scan-local value.
+        let mut temp_last: HashMap<Temp, usize> = HashMap::default();
+        for (idx, block) in program.blocks.iter().enumerate() {
+            let mut temps: Vec<Temp> = Vec::new();
+            for s in &block.stmts {
+                let mut read: Vec<Temp> = Vec::new();
+                s.visit(
+                    &mut |s| {
+                        if let Stmt::Let { temp, .. } = s {
+                            temps.push(*temp);
+                        }
+                    },
+                    &mut |x| {
+                        if let BoolExpr::Temp(t) = x {
+                            read.push(*t);
+                        }
+                    },
+                );
+                temps.extend(read);
+            }
+            temp_last.extend(temps.into_iter().map(|t| (t, idx)));
+        }
+        self.temps_done = vec![Vec::new(); program.blocks.len()];
+        for (t, idx) in temp_last {
+            self.temps_done[idx].push(t);
+        }
         // A bit that nothing writes and that is not an input stays 0*: a bit read in the
         // scan (first such block named), or one named only in code the PLC skips.
         for (n, number) in reads.into_iter().chain(program.skipped.iter().cloned()) {
@@ -669,7 +702,8 @@ impl<'a> Compiler<'a> {
             }
         }
         self.shared_timers = program.shared_timers();
-        let written: Vec<String> = self.last_write.keys().cloned().collect();
+        let mut written: Vec<String> = self.last_write.keys().cloned().collect();
+        written.sort_unstable();
         for x in written {
             let pre = self.pre_name(&x);
             self.current.insert(x, L::Var(pre));
@@ -788,6 +822,9 @@ impl<'a> Compiler<'a> {
                 self.stmt(s);
             }
             self.flush_block();
+            for t in std::mem::take(&mut self.temps_done[idx]) {
+                self.temps.remove(&t);
+            }
         }
     }
 
@@ -836,6 +873,8 @@ impl<'a> Compiler<'a> {
         self.depth -= 1;
         let Some(mut merged) = outcomes.pop() else { return };
         for (c, outcome) in conditions.iter().zip(outcomes).rev() {
+            let mut outcome: Vec<(String, L)> = outcome.into_iter().collect();
+            outcome.sort_unstable_by(|a, b| a.0.cmp(&b.0));
             for (x, v) in outcome {
                 let other = merged.get(&x).cloned().unwrap_or(L::Zero);
                 if v != other {
@@ -851,12 +890,13 @@ impl<'a> Compiler<'a> {
             return;
         }
         // The bits whose last write was inside: their end-of-scan values.
-        let last: Vec<String> = self
+        let mut last: Vec<String> = self
             .last_write
             .iter()
             .filter(|(_, k)| (first_write..self.write_index).contains(*k))
             .map(|(x, _)| x.clone())
             .collect();
+        last.sort_unstable();
         for x in last {
             let g = self.current.get(&x).cloned().unwrap_or(L::Zero);
             self.state(x, g, None);
@@ -1075,7 +1115,7 @@ impl<'a> Compiler<'a> {
         }
         self.state_start();
         let mut signals: BTreeMap<String, SignalKind> = BTreeMap::new();
-        let written: BTreeSet<&String> = self.last_write.keys().collect();
+        let written = &self.last_write;
         let classify = |n: &str| -> SignalKind {
             if let Some(k) = self.fresh.get(n) {
                 return k.clone();
@@ -1083,7 +1123,7 @@ impl<'a> Compiler<'a> {
             if let Some(k) = self.int_bit_kind(n) {
                 return k;
             }
-            if written.contains(&n.to_string()) {
+            if written.contains_key(n) {
                 if n.starts_with('Y') { SignalKind::Output } else { SignalKind::Relay }
             } else {
                 SignalKind::Input
@@ -1092,10 +1132,13 @@ impl<'a> Compiler<'a> {
         for s in &self.program.signals {
             signals.insert(s.clone(), classify(s));
         }
+        let mut seen: HashSet<Symbol> = HashSet::default();
         for h in &self.hypotheses {
             for side in [&h.lhs, &h.rhs] {
                 for node in side.as_ref() {
-                    if let crate::term::Term::Name(n) = node {
+                    if let crate::term::Term::Name(n) = node
+                        && seen.insert(*n)
+                    {
                         let n = n.as_str();
                         if !signals.contains_key(n) {
                             signals.insert(n.to_string(), classify(n));
