@@ -609,7 +609,9 @@ impl LdProgram {
         for rung in &self.rungs {
             for e in rung.elements() {
                 match &e.kind {
-                    ElementKind::Contacts { name, .. } | ElementKind::Coil { name, .. } => {
+                    ElementKind::Contacts { name, .. } | ElementKind::Coil { name, .. }
+                        if !out.contains(name) =>
+                    {
                         out.insert(name.clone());
                     }
                     _ => {}

@@ -113,7 +113,8 @@ struct Lowering<'a> {
     program: &'a LdProgram,
     /// Each element's position among all the program's elements, in file order (the
     /// simulator's key of a one-shot's memory).
-    index: BTreeMap<*const Element, usize>,
+    /// Built at the first one-shot or toggle (most programs have none).
+    index: std::cell::OnceCell<std::collections::HashMap<*const Element, usize>>,
     /// The timers whose accumulator is an integer of the scan model
     /// ([`timers::integer_timers`]).
     int_timers: BTreeSet<String>,
@@ -140,13 +141,12 @@ struct Lowering<'a> {
 
 impl<'a> Lowering<'a> {
     fn new(program: &'a LdProgram) -> Lowering<'a> {
-        let index = program.elements().enumerate().map(|(k, e)| (e as *const Element, k)).collect();
         let int_timers = timers::integer_timers(&live(program));
         let readings = super::readings(program);
         let (ints, opaque) = integers(program, &readings);
         Lowering {
             program,
-            index,
+            index: std::cell::OnceCell::new(),
             int_timers,
             blocks: Vec::new(),
             stmts: Vec::new(),
@@ -308,8 +308,12 @@ impl<'a> Lowering<'a> {
         let version = &program.version;
         let mut names = BTreeSet::new();
         for e in program.elements() {
-            names.extend(e.names_read().into_iter().map(canonical));
-            names.extend(e.names_written().iter().map(|n| canonical(n)));
+            for n in e.names_read() {
+                insert_canonical(&mut names, n);
+            }
+            for n in &e.names_written() {
+                insert_canonical(&mut names, n);
+            }
         }
         for r in self.readings.values() {
             names.extend(r.names().map(|n| canonical(n)));
@@ -337,7 +341,13 @@ impl<'a> Lowering<'a> {
             cycle_us: program.cycle_us,
             blocks: self.blocks,
             inputs,
-            signals: program.signals().iter().map(|s| canonical(s)).collect(),
+            signals: {
+                let mut signals = BTreeSet::new();
+                for n in &program.signals() {
+                    insert_canonical(&mut signals, n);
+                }
+                signals
+            },
             names,
             skipped,
             integer_writers: BTreeMap::new(),
@@ -369,8 +379,17 @@ impl<'a> Lowering<'a> {
         self.temp(BoolExpr::Fresh(Box::new(fresh)))
     }
 
+    /// The element's position among all the program's elements, in file order.
+    fn element_index(&self, e: &Element) -> usize {
+        let index = self.index.get_or_init(|| {
+            let elements = self.program.elements().enumerate();
+            elements.map(|(k, e)| (e as *const Element, k)).collect()
+        });
+        index.get(&(e as *const Element)).copied().unwrap_or(usize::MAX)
+    }
+
     fn memory(&self, base: String, e: &Element) -> Memory {
-        let index = self.index.get(&(e as *const Element)).copied().unwrap_or(usize::MAX);
+        let index = self.element_index(e);
         Memory { base, element: e.kind.keyword().into(), index }
     }
 
@@ -899,6 +918,15 @@ fn live(program: &LdProgram) -> Vec<&Element> {
 fn is_read(keyword: &str) -> bool {
     matches!(keyword, "READ_ADC" | "UART_RECV" | "PERSIST" | "I2C_RD")
         || super::STATUS_CONTACTS.contains(&keyword)
+}
+
+/// Adds `name`'s canonical form to `set`, allocating only when it is new.
+fn insert_canonical(set: &mut BTreeSet<String>, name: &str) {
+    if name.contains('`') {
+        set.insert(canonical(name));
+    } else if !set.contains(name) {
+        set.insert(name.to_string());
+    }
 }
 
 /// The relay LDmicro ≥ 2016 sets on an integer overflow.
