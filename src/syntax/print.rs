@@ -58,6 +58,11 @@ fn symbols(n: Notation) -> Symbols {
 /// Writes a delay so that it parses back exactly (`5s`, `250ms`, `1.5s`).
 pub fn delay_to_string(delay: &Delay) -> String {
     let seconds = delay.seconds();
+    // A whole number of seconds (at least 1) is its digits.
+    use num_traits::Signed;
+    if seconds.is_integer() && seconds.numer().is_positive() {
+        return format!("{}s", seconds.numer());
+    }
     let thousand = BigRational::from_integer(BigInt::from(1000));
     let one = BigRational::from_integer(BigInt::from(1));
     let millis = seconds * &thousand;
