@@ -306,15 +306,19 @@ impl<'a> Lowering<'a> {
     fn finish(self, inputs: Inputs) -> Program {
         let program = self.program;
         let version = &program.version;
-        let mut names = BTreeSet::new();
+        let mut read: Vec<&str> = Vec::new();
+        let mut written: Vec<String> = Vec::new();
         for e in program.elements() {
-            for n in e.names_read() {
-                insert_canonical(&mut names, n);
-            }
-            for n in &e.names_written() {
-                insert_canonical(&mut names, n);
-            }
+            read.extend(e.names_read());
+            written.extend(e.names_written());
         }
+        read.sort_unstable();
+        read.dedup();
+        let mut all: Vec<String> =
+            read.into_iter().chain(written.iter().map(String::as_str)).map(canonical).collect();
+        all.sort_unstable();
+        all.dedup();
+        let mut names: BTreeSet<String> = all.into_iter().collect();
         for r in self.readings.values() {
             names.extend(r.names().map(|n| canonical(n)));
         }
@@ -341,13 +345,7 @@ impl<'a> Lowering<'a> {
             cycle_us: program.cycle_us,
             blocks: self.blocks,
             inputs,
-            signals: {
-                let mut signals = BTreeSet::new();
-                for n in &program.signals() {
-                    insert_canonical(&mut signals, n);
-                }
-                signals
-            },
+            signals: program.signals().iter().map(|s| canonical(s)).collect(),
             names,
             skipped,
             integer_writers: BTreeMap::new(),
@@ -918,15 +916,6 @@ fn live(program: &LdProgram) -> Vec<&Element> {
 fn is_read(keyword: &str) -> bool {
     matches!(keyword, "READ_ADC" | "UART_RECV" | "PERSIST" | "I2C_RD")
         || super::STATUS_CONTACTS.contains(&keyword)
-}
-
-/// Adds `name`'s canonical form to `set`, allocating only when it is new.
-fn insert_canonical(set: &mut BTreeSet<String>, name: &str) {
-    if name.contains('`') {
-        set.insert(canonical(name));
-    } else if !set.contains(name) {
-        set.insert(name.to_string());
-    }
 }
 
 /// The relay LDmicro ≥ 2016 sets on an integer overflow.

@@ -638,57 +638,48 @@ impl<'a> Compiler<'a> {
                 &mut |_| {},
             );
         };
-        for (b, s) in program.stmts() {
-            let mut int_writes: Vec<(String, u32)> = Vec::new();
-            let mut set_reads: Vec<super::IntExpr> = Vec::new();
-            s.visit(
-                &mut |s| match s {
-                    Stmt::Write { target, .. } => writes.push(target.clone()),
-                    Stmt::SetInt { target, value, .. } => {
-                        let w = program.integers.get(target).map_or(0, |v| v.ty.bits);
-                        writes.extend((0..w).map(|k| Program::int_bit(target, k)));
-                        int_writes.push((target.clone(), w));
-                        set_reads.push(value.clone());
-                    }
-                    _ => {}
-                },
-                &mut |x| match x {
-                    BoolExpr::Var(n) => reads.push((n.clone(), b.number)),
-                    BoolExpr::Compare(c) => {
-                        int_reads(&c.a, &mut reads, b.number);
-                        int_reads(&c.b, &mut reads, b.number);
-                    }
-                    _ => {}
-                },
-            );
-            for e in &set_reads {
-                int_reads(e, &mut reads, b.number);
-            }
-        }
-        for (k, target) in writes.into_iter().enumerate() {
-            self.last_write.insert(target, k);
-        }
         // The last block defining or reading each scan-local value.
         let mut temp_last: HashMap<Temp, usize> = HashMap::default();
-        for (idx, block) in program.blocks.iter().enumerate() {
-            let mut temps: Vec<Temp> = Vec::new();
-            for s in &block.stmts {
-                let mut read: Vec<Temp> = Vec::new();
+        for (idx, b) in program.blocks.iter().enumerate() {
+            let (mut lets, mut temp_reads) = (Vec::new(), Vec::new());
+            for s in &b.stmts {
+                let mut int_writes: Vec<(String, u32)> = Vec::new();
+                let mut set_reads: Vec<super::IntExpr> = Vec::new();
                 s.visit(
-                    &mut |s| {
-                        if let Stmt::Let { temp, .. } = s {
-                            temps.push(*temp);
+                    &mut |s| match s {
+                        Stmt::Let { temp, .. } => lets.push(*temp),
+                        Stmt::Write { target, .. } => writes.push(target.clone()),
+                        Stmt::SetInt { target, value, .. } => {
+                            let w = program.integers.get(target).map_or(0, |v| v.ty.bits);
+                            writes.extend((0..w).map(|k| Program::int_bit(target, k)));
+                            int_writes.push((target.clone(), w));
+                            set_reads.push(value.clone());
                         }
+                        _ => {}
                     },
-                    &mut |x| {
-                        if let BoolExpr::Temp(t) = x {
-                            read.push(*t);
+                    &mut |x| match x {
+                        BoolExpr::Temp(t) => temp_reads.push(*t),
+                        BoolExpr::Var(n) => reads.push((n.clone(), b.number)),
+                        BoolExpr::Compare(c) => {
+                            int_reads(&c.a, &mut reads, b.number);
+                            int_reads(&c.b, &mut reads, b.number);
                         }
+                        _ => {}
                     },
                 );
-                temps.extend(read);
+                for e in &set_reads {
+                    int_reads(e, &mut reads, b.number);
+                }
             }
-            temp_last.extend(temps.into_iter().map(|t| (t, idx)));
+            temp_last.extend(lets.into_iter().chain(temp_reads).map(|t| (t, idx)));
+        }
+        let n = writes.len();
+        self.last_write.reserve(n);
+        self.pre_names.reserve(n);
+        self.pre_of.reserve(n);
+        self.current.reserve(n);
+        for (k, target) in writes.into_iter().enumerate() {
+            self.last_write.insert(target, k);
         }
         self.temps_done = vec![Vec::new(); program.blocks.len()];
         for (t, idx) in temp_last {
