@@ -113,14 +113,12 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use super::fast_hash::{FastMap as HashMap, FastSet as HashSet};
 
-use super::logic::{L, Tables, factors, product, simp, simp_and, simp_sum, sum, summands};
+use super::logic::{L, Name, Tables, factors, product, simp, simp_and, simp_sum, sum, summands};
 use super::{Block, BoolExpr, Memory, Program, Stmt, Temp, WriteKind};
 use crate::diag::{Report, Severity, Sources, Span};
 use crate::kernel::{Axiom, Rel};
-use crate::syntax::print::{
-    GoalKeyword, Notation, delay_to_string, goal_statement_to_string, name_to_string,
-};
-use crate::syntax::{Goal, Relation, Statement};
+use crate::syntax::print::{Notation, delay_to_string, name_to_string, push_assumption};
+use crate::syntax::{Goal, Relation};
 use crate::term::{Delay, Expr, Symbol, Term, root};
 use timers::edge_of;
 
@@ -534,9 +532,9 @@ struct Compiler<'a> {
     suffixes: HashMap<String, usize>,
     /// Per variable, the internal name standing for its previous-scan value while the
     /// scan is compiled (`pre_X`); [`Compiler::exact`] turns each into `pre X`.
-    pre_names: HashMap<String, String>,
+    pre_names: HashMap<String, Name>,
     /// The inverse: internal previous-value name → the variable (or internal name) it is of.
-    pre_of: HashMap<String, String>,
+    pre_of: HashMap<Name, String>,
     fresh: BTreeMap<String, SignalKind>,
     // Scan state.
     write_index: usize,
@@ -712,11 +710,11 @@ impl<'a> Compiler<'a> {
     }
 
     /// The internal name of `x`'s previous-scan value (made on first use).
-    fn pre_name(&mut self, x: &str) -> String {
+    fn pre_name(&mut self, x: &str) -> Name {
         if let Some(p) = self.pre_names.get(x) {
             return p.clone();
         }
-        let pre = self.unique(&format!("pre_{x}"));
+        let pre: Name = self.unique(&format!("pre_{x}")).into();
         if self.options.any_state && self.program.started.as_deref() != Some(x) {
             let start = self.unique(&format!("start_{x}"));
             self.starts.insert(x.to_string(), start);
@@ -730,11 +728,14 @@ impl<'a> Compiler<'a> {
     fn exact(&self, e: &L) -> L {
         let mut names = Vec::new();
         e.names(&mut names);
-        names.into_iter().filter(|n| self.pre_of.contains_key(n)).fold(e.clone(), |acc, p| {
-            let x = &self.pre_of[&p];
-            let of = L::Pre(Box::new(self.exact(&L::Var(x.clone()))));
-            acc.subst(&p, &self.start_or(x, of))
-        })
+        names.into_iter().filter(|n| self.pre_of.contains_key(n.as_str())).fold(
+            e.clone(),
+            |acc, p| {
+                let x = &self.pre_of[p.as_str()];
+                let of = L::Pre(Box::new(self.exact(&L::var(x))));
+                acc.subst(&p, &self.start_or(x, of))
+            },
+        )
     }
 
     /// The previous-scan value of the power `input` at this point of the scan (a
@@ -802,7 +803,7 @@ impl<'a> Compiler<'a> {
             keyword,
             format!("{why}; it is modelled with the unconstrained signal {name}"),
         );
-        L::Var(name)
+        L::Var(name.into())
     }
 
     fn run(&mut self) {
@@ -898,7 +899,7 @@ impl<'a> Compiler<'a> {
         if let Some(v) = self.current.get(name) {
             return v.clone();
         }
-        L::Var(name.to_string())
+        L::var(name)
     }
 
     fn eval(&mut self, e: &BoolExpr) -> L {
@@ -922,7 +923,7 @@ impl<'a> Compiler<'a> {
                 let rung = self.block().number;
                 let base = format!("{}_IN", canonical(&t.accumulator));
                 let held = self.held_input(&base, &input, SignalKind::HeldInput { rung });
-                self.timer(t, L::Var(held))
+                self.timer(t, L::var(&held))
             }
             BoolExpr::Edge { kind, input, memory } if self.depth > 0 && !self.options.any_state => {
                 let input = self.eval(input);
@@ -1025,7 +1026,7 @@ impl<'a> Compiler<'a> {
                  until its next coil see the unconstrained signal {name}"
             ),
         );
-        L::Var(name)
+        L::Var(name.into())
     }
 
     /// `x`'s last write is done: its end-of-scan value `g` is stated with this block
@@ -1033,7 +1034,7 @@ impl<'a> Compiler<'a> {
     fn state(&mut self, x: String, g: L, dominant: Option<bool>) {
         let pre = self.pre_names.get(&x).cloned().unwrap_or_default();
         let rhs = self.finish_var(&pre, g.clone(), dominant);
-        self.current.insert(x.clone(), L::Var(x.clone()));
+        self.current.insert(x.clone(), L::var(&x));
         let recurrence = (rhs != g).then_some(g);
         self.pending.push(Pending { var: x, rhs, recurrence });
     }
@@ -1065,7 +1066,7 @@ impl<'a> Compiler<'a> {
         let several = pending.len() > 1;
         for (k, p) in pending.into_iter().enumerate() {
             let name = if several { format!("{base}{}", letters(k)) } else { base.clone() };
-            let var = L::Var(p.var.clone()).to_expr();
+            let var = L::var(&p.var).to_expr();
             let rhs = self.exact(&p.rhs).to_expr();
             let recurrence = p.recurrence.as_ref().map(|g| self.exact(g).to_expr());
             let mut push = |name: String, kind, lhs: Expr, rel, rhs: Expr| {
@@ -1098,7 +1099,7 @@ impl<'a> Compiler<'a> {
                 rung: number,
                 span: block.map_or(Span::new(0, 0..0), |b| b.span),
                 kind: HypothesisKind::Equation,
-                lhs: L::Var(x.clone()).to_expr(),
+                lhs: L::var(&x).to_expr(),
                 rel: Rel::Eq,
                 rhs: L::Zero.to_expr(),
             });
@@ -1330,11 +1331,12 @@ pub fn program_to_ii(compiled: &CompiledProgram, notation: Notation) -> String {
         }
     }
     out.push('\n');
-    let dummy = Span::new(0, 0..0);
     for h in &compiled.hypotheses {
-        let statement =
-            Statement { name: h.name.clone(), name_span: dummy, span: dummy, value: h.goal() };
-        out.push_str(&goal_statement_to_string(GoalKeyword::Assume, &statement, notation));
+        let relation = match h.rel {
+            Rel::Eq => Relation::Equals,
+            Rel::Implies => Relation::Implies,
+        };
+        push_assumption(&mut out, &h.name, &h.lhs, relation, &h.rhs, notation);
         out.push('\n');
     }
     out
