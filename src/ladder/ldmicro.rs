@@ -605,18 +605,20 @@ fn other_writes_first(keyword: &str) -> bool {
 impl LdProgram {
     /// Every bit name used by a contact or a coil, sorted.
     pub fn signals(&self) -> BTreeSet<String> {
-        let mut out = BTreeSet::new();
+        let mut out: Vec<&str> = Vec::new();
         for rung in &self.rungs {
             for e in rung.elements() {
                 match &e.kind {
                     ElementKind::Contacts { name, .. } | ElementKind::Coil { name, .. } => {
-                        out.insert(name.clone());
+                        out.push(name);
                     }
                     _ => {}
                 }
             }
         }
-        out
+        out.sort_unstable();
+        out.dedup();
+        out.into_iter().map(str::to_string).collect()
     }
     /// `P`, the number of scans a timer with a literal delay counts to (§6.3):
     /// `floor(delay / cycle) + adjust`. `None` for a variable delay (then `P` is

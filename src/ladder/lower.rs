@@ -113,7 +113,8 @@ struct Lowering<'a> {
     program: &'a LdProgram,
     /// Each element's position among all the program's elements, in file order (the
     /// simulator's key of a one-shot's memory).
-    index: BTreeMap<*const Element, usize>,
+    /// Built at the first one-shot or toggle (most programs have none).
+    index: std::cell::OnceCell<std::collections::HashMap<*const Element, usize>>,
     /// The timers whose accumulator is an integer of the scan model
     /// ([`timers::integer_timers`]).
     int_timers: BTreeSet<String>,
@@ -140,13 +141,12 @@ struct Lowering<'a> {
 
 impl<'a> Lowering<'a> {
     fn new(program: &'a LdProgram) -> Lowering<'a> {
-        let index = program.elements().enumerate().map(|(k, e)| (e as *const Element, k)).collect();
         let int_timers = timers::integer_timers(&live(program));
         let readings = super::readings(program);
         let (ints, opaque) = integers(program, &readings);
         Lowering {
             program,
-            index,
+            index: std::cell::OnceCell::new(),
             int_timers,
             blocks: Vec::new(),
             stmts: Vec::new(),
@@ -306,11 +306,19 @@ impl<'a> Lowering<'a> {
     fn finish(self, inputs: Inputs) -> Program {
         let program = self.program;
         let version = &program.version;
-        let mut names = BTreeSet::new();
+        let mut read: Vec<&str> = Vec::new();
+        let mut written: Vec<String> = Vec::new();
         for e in program.elements() {
-            names.extend(e.names_read().into_iter().map(canonical));
-            names.extend(e.names_written().iter().map(|n| canonical(n)));
+            read.extend(e.names_read());
+            written.extend(e.names_written());
         }
+        read.sort_unstable();
+        read.dedup();
+        let mut all: Vec<String> =
+            read.into_iter().chain(written.iter().map(String::as_str)).map(canonical).collect();
+        all.sort_unstable();
+        all.dedup();
+        let mut names: BTreeSet<String> = all.into_iter().collect();
         for r in self.readings.values() {
             names.extend(r.names().map(|n| canonical(n)));
         }
@@ -369,8 +377,17 @@ impl<'a> Lowering<'a> {
         self.temp(BoolExpr::Fresh(Box::new(fresh)))
     }
 
+    /// The element's position among all the program's elements, in file order.
+    fn element_index(&self, e: &Element) -> usize {
+        let index = self.index.get_or_init(|| {
+            let elements = self.program.elements().enumerate();
+            elements.map(|(k, e)| (e as *const Element, k)).collect()
+        });
+        index.get(&(e as *const Element)).copied().unwrap_or(usize::MAX)
+    }
+
     fn memory(&self, base: String, e: &Element) -> Memory {
-        let index = self.index.get(&(e as *const Element)).copied().unwrap_or(usize::MAX);
+        let index = self.element_index(e);
         Memory { base, element: e.kind.keyword().into(), index }
     }
 

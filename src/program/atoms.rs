@@ -150,7 +150,7 @@ impl CompiledProgram {
                 rung: 0,
                 span: Span::new(0, 0..0),
                 kind: HypothesisKind::Equation,
-                lhs: L::Var(name.clone()).to_expr(),
+                lhs: L::var(&name).to_expr(),
                 rel: Rel::Eq,
                 rhs: super::logic::simp(&term).to_expr(),
             });

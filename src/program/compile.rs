@@ -109,16 +109,16 @@ mod ints;
 pub mod start;
 mod timers;
 
-use std::collections::{BTreeMap, BTreeSet, HashMap};
+use std::collections::{BTreeMap, BTreeSet};
 
-use super::logic::{L, Tables, factors, product, simp, simp_and, simp_sum, sum, summands};
+use super::fast_hash::{FastMap as HashMap, FastSet as HashSet};
+
+use super::logic::{L, Name, Tables, factors, product, simp, simp_and, simp_sum, sum, summands};
 use super::{Block, BoolExpr, Memory, Program, Stmt, Temp, WriteKind};
 use crate::diag::{Report, Severity, Sources, Span};
 use crate::kernel::{Axiom, Rel};
-use crate::syntax::print::{
-    GoalKeyword, Notation, delay_to_string, goal_statement_to_string, name_to_string,
-};
-use crate::syntax::{Goal, Relation, Statement};
+use crate::syntax::print::{Notation, delay_to_string, name_to_string, push_assumption};
+use crate::syntax::{Goal, Relation};
 use crate::term::{Delay, Expr, Symbol, Term, root};
 use timers::edge_of;
 
@@ -522,7 +522,7 @@ struct Compiler<'a> {
     program: &'a Program,
     options: CompileOptions,
     /// Per written variable, the global index of its last write.
-    last_write: BTreeMap<String, usize>,
+    last_write: HashMap<String, usize>,
     /// Bits read but never written and not inputs: they stay `0*`; first reading block.
     unwritten: BTreeMap<String, usize>,
     /// Timer accumulators written by more than one element.
@@ -530,14 +530,14 @@ struct Compiler<'a> {
     /// The IEC timer instances called at several places, followed call by call.
     repeated: BTreeMap<String, timers::Repeated>,
     /// Every name the program uses (for fresh-name uniqueness).
-    taken: BTreeSet<String>,
+    taken: HashSet<String>,
     /// Per base name, the suffix [`Compiler::unique`] tries next (the ones below are taken).
     suffixes: HashMap<String, usize>,
     /// Per variable, the internal name standing for its previous-scan value while the
     /// scan is compiled (`pre_X`); [`Compiler::exact`] turns each into `pre X`.
-    pre_names: BTreeMap<String, String>,
+    pre_names: HashMap<String, Name>,
     /// The inverse: internal previous-value name → the variable (or internal name) it is of.
-    pre_of: BTreeMap<String, String>,
+    pre_of: HashMap<Name, String>,
     fresh: BTreeMap<String, SignalKind>,
     // Scan state.
     write_index: usize,
@@ -550,9 +550,12 @@ struct Compiler<'a> {
     if_span: Option<Span>,
     /// What a read of each written bit sees at this point of the scan, as a
     /// function of its previous-scan value `pre_X` (the signal `X` after its last write).
-    current: BTreeMap<String, L>,
-    /// The scan-local values.
-    temps: BTreeMap<Temp, L>,
+    current: HashMap<String, L>,
+    /// The scan-local values still to be read.
+    temps: HashMap<Temp, L>,
+    /// Per block (by index), the scan-local values no later block reads: dropped once
+    /// the block is compiled.
+    temps_done: Vec<Vec<Temp>>,
     // Current block.
     block: usize,
     pending: Vec<Pending>,
@@ -587,21 +590,22 @@ impl<'a> Compiler<'a> {
         let mut c = Compiler {
             program,
             options,
-            last_write: BTreeMap::new(),
+            last_write: HashMap::default(),
             unwritten: BTreeMap::new(),
             shared_timers: BTreeSet::new(),
             repeated: BTreeMap::new(),
-            taken: BTreeSet::new(),
-            suffixes: HashMap::new(),
-            pre_names: BTreeMap::new(),
-            pre_of: BTreeMap::new(),
+            taken: HashSet::default(),
+            suffixes: HashMap::default(),
+            pre_names: HashMap::default(),
+            pre_of: HashMap::default(),
             fresh: BTreeMap::new(),
             write_index: 0,
             depth: 0,
             guard: L::One,
             if_span: None,
-            current: BTreeMap::new(),
-            temps: BTreeMap::new(),
+            current: HashMap::default(),
+            temps: HashMap::default(),
+            temps_done: Vec::new(),
             block: 0,
             pending: Vec::new(),
             hypotheses: Vec::new(),
@@ -620,6 +624,7 @@ impl<'a> Compiler<'a> {
 
     fn prepass(&mut self) {
         let program = self.program;
+        self.taken.reserve(program.names.len() + program.signals.len());
         self.taken.extend(program.names.iter().cloned());
         self.taken.extend(program.signals.iter().cloned());
         // Writes are numbered in scan order (an `If`'s branches in order), as `run`
@@ -635,35 +640,52 @@ impl<'a> Compiler<'a> {
                 &mut |_| {},
             );
         };
-        for (b, s) in program.stmts() {
-            let mut int_writes: Vec<(String, u32)> = Vec::new();
-            let mut set_reads: Vec<super::IntExpr> = Vec::new();
-            s.visit(
-                &mut |s| match s {
-                    Stmt::Write { target, .. } => writes.push(target.clone()),
-                    Stmt::SetInt { target, value, .. } => {
-                        let w = program.integers.get(target).map_or(0, |v| v.ty.bits);
-                        writes.extend((0..w).map(|k| Program::int_bit(target, k)));
-                        int_writes.push((target.clone(), w));
-                        set_reads.push(value.clone());
-                    }
-                    _ => {}
-                },
-                &mut |x| match x {
-                    BoolExpr::Var(n) => reads.push((n.clone(), b.number)),
-                    BoolExpr::Compare(c) => {
-                        int_reads(&c.a, &mut reads, b.number);
-                        int_reads(&c.b, &mut reads, b.number);
-                    }
-                    _ => {}
-                },
-            );
-            for e in &set_reads {
-                int_reads(e, &mut reads, b.number);
+        // The last block defining or reading each scan-local value.
+        let mut temp_last: HashMap<Temp, usize> = HashMap::default();
+        for (idx, b) in program.blocks.iter().enumerate() {
+            let (mut lets, mut temp_reads) = (Vec::new(), Vec::new());
+            for s in &b.stmts {
+                let mut int_writes: Vec<(String, u32)> = Vec::new();
+                let mut set_reads: Vec<super::IntExpr> = Vec::new();
+                s.visit(
+                    &mut |s| match s {
+                        Stmt::Let { temp, .. } => lets.push(*temp),
+                        Stmt::Write { target, .. } => writes.push(target.clone()),
+                        Stmt::SetInt { target, value, .. } => {
+                            let w = program.integers.get(target).map_or(0, |v| v.ty.bits);
+                            writes.extend((0..w).map(|k| Program::int_bit(target, k)));
+                            int_writes.push((target.clone(), w));
+                            set_reads.push(value.clone());
+                        }
+                        _ => {}
+                    },
+                    &mut |x| match x {
+                        BoolExpr::Temp(t) => temp_reads.push(*t),
+                        BoolExpr::Var(n) => reads.push((n.clone(), b.number)),
+                        BoolExpr::Compare(c) => {
+                            int_reads(&c.a, &mut reads, b.number);
+                            int_reads(&c.b, &mut reads, b.number);
+                        }
+                        _ => {}
+                    },
+                );
+                for e in &set_reads {
+                    int_reads(e, &mut reads, b.number);
+                }
             }
+            temp_last.extend(lets.into_iter().chain(temp_reads).map(|t| (t, idx)));
         }
+        let n = writes.len();
+        self.last_write.reserve(n);
+        self.pre_names.reserve(n);
+        self.pre_of.reserve(n);
+        self.current.reserve(n);
         for (k, target) in writes.into_iter().enumerate() {
             self.last_write.insert(target, k);
+        }
+        self.temps_done = vec![Vec::new(); program.blocks.len()];
+        for (t, idx) in temp_last {
+            self.temps_done[idx].push(t);
         }
         // A bit that nothing writes and that is not an input stays 0*: a bit read in the
         // scan (first such block named), or one named only in code the PLC skips.
@@ -674,7 +696,8 @@ impl<'a> Compiler<'a> {
         }
         self.shared_timers = program.shared_timers();
         self.prepare_repeated();
-        let written: Vec<String> = self.last_write.keys().cloned().collect();
+        let mut written: Vec<String> = self.last_write.keys().cloned().collect();
+        written.sort_unstable();
         for x in written {
             let pre = self.pre_name(&x);
             self.current.insert(x, L::Var(pre));
@@ -692,11 +715,11 @@ impl<'a> Compiler<'a> {
     }
 
     /// The internal name of `x`'s previous-scan value (made on first use).
-    fn pre_name(&mut self, x: &str) -> String {
+    fn pre_name(&mut self, x: &str) -> Name {
         if let Some(p) = self.pre_names.get(x) {
             return p.clone();
         }
-        let pre = self.unique(&format!("pre_{x}"));
+        let pre: Name = self.unique(&format!("pre_{x}")).into();
         if self.options.any_state && self.program.started.as_deref() != Some(x) {
             let start = self.unique(&format!("start_{x}"));
             self.starts.insert(x.to_string(), start);
@@ -710,11 +733,14 @@ impl<'a> Compiler<'a> {
     fn exact(&self, e: &L) -> L {
         let mut names = Vec::new();
         e.names(&mut names);
-        names.into_iter().filter(|n| self.pre_of.contains_key(n)).fold(e.clone(), |acc, p| {
-            let x = &self.pre_of[&p];
-            let of = L::Pre(Box::new(self.exact(&L::Var(x.clone()))));
-            acc.subst(&p, &self.start_or(x, of))
-        })
+        names.into_iter().filter(|n| self.pre_of.contains_key(n.as_str())).fold(
+            e.clone(),
+            |acc, p| {
+                let x = &self.pre_of[p.as_str()];
+                let of = L::Pre(Box::new(self.exact(&L::var(x))));
+                acc.subst(&p, &self.start_or(x, of))
+            },
+        )
     }
 
     /// The previous-scan value of the power `input` at this point of the scan (a
@@ -782,7 +808,7 @@ impl<'a> Compiler<'a> {
             keyword,
             format!("{why}; it is modelled with the unconstrained signal {name}"),
         );
-        L::Var(name)
+        L::Var(name.into())
     }
 
     fn run(&mut self) {
@@ -793,6 +819,9 @@ impl<'a> Compiler<'a> {
                 self.stmt(s);
             }
             self.flush_block();
+            for t in std::mem::take(&mut self.temps_done[idx]) {
+                self.temps.remove(&t);
+            }
         }
     }
 
@@ -841,6 +870,8 @@ impl<'a> Compiler<'a> {
         self.depth -= 1;
         let Some(mut merged) = outcomes.pop() else { return };
         for (c, outcome) in conditions.iter().zip(outcomes).rev() {
+            let mut outcome: Vec<(String, L)> = outcome.into_iter().collect();
+            outcome.sort_unstable_by(|a, b| a.0.cmp(&b.0));
             for (x, v) in outcome {
                 let other = merged.get(&x).cloned().unwrap_or(L::Zero);
                 if v != other {
@@ -856,12 +887,13 @@ impl<'a> Compiler<'a> {
             return;
         }
         // The bits whose last write was inside: their end-of-scan values.
-        let last: Vec<String> = self
+        let mut last: Vec<String> = self
             .last_write
             .iter()
             .filter(|(_, k)| (first_write..self.write_index).contains(*k))
             .map(|(x, _)| x.clone())
             .collect();
+        last.sort_unstable();
         for x in last {
             let g = self.current.get(&x).cloned().unwrap_or(L::Zero);
             self.state(x, g, None);
@@ -872,7 +904,7 @@ impl<'a> Compiler<'a> {
         if let Some(v) = self.current.get(name) {
             return v.clone();
         }
-        L::Var(name.to_string())
+        L::var(name)
     }
 
     fn eval(&mut self, e: &BoolExpr) -> L {
@@ -900,7 +932,7 @@ impl<'a> Compiler<'a> {
                 let rung = self.block().number;
                 let base = format!("{}_IN", canonical(&t.accumulator));
                 let held = self.held_input(&base, &input, SignalKind::HeldInput { rung });
-                self.timer(t, L::Var(held))
+                self.timer(t, L::var(&held))
             }
             BoolExpr::Edge { kind, input, memory } if self.depth > 0 && !self.options.any_state => {
                 let input = self.eval(input);
@@ -1003,7 +1035,7 @@ impl<'a> Compiler<'a> {
                  until its next coil see the unconstrained signal {name}"
             ),
         );
-        L::Var(name)
+        L::Var(name.into())
     }
 
     /// `x`'s last write is done: its end-of-scan value `g` is stated with this block
@@ -1011,7 +1043,7 @@ impl<'a> Compiler<'a> {
     fn state(&mut self, x: String, g: L, dominant: Option<bool>) {
         let pre = self.pre_names.get(&x).cloned().unwrap_or_default();
         let rhs = self.finish_var(&pre, g.clone(), dominant);
-        self.current.insert(x.clone(), L::Var(x.clone()));
+        self.current.insert(x.clone(), L::var(&x));
         let recurrence = (rhs != g).then_some(g);
         self.pending.push(Pending { var: x, rhs, recurrence });
     }
@@ -1044,7 +1076,7 @@ impl<'a> Compiler<'a> {
         let several = pending.len() > 1;
         for (k, p) in pending.into_iter().enumerate() {
             let name = if several { format!("{base}{}", letters(k)) } else { base.clone() };
-            let var = L::Var(p.var.clone()).to_expr();
+            let var = L::var(&p.var).to_expr();
             let rhs = self.exact(&p.rhs).to_expr();
             let recurrence = p.recurrence.as_ref().map(|g| self.exact(g).to_expr());
             let mut push = |name: String, kind, lhs: Expr, rel, rhs: Expr| {
@@ -1077,7 +1109,7 @@ impl<'a> Compiler<'a> {
                 rung: number,
                 span: block.map_or(Span::new(0, 0..0), |b| b.span),
                 kind: HypothesisKind::Equation,
-                lhs: L::Var(x.clone()).to_expr(),
+                lhs: L::var(&x).to_expr(),
                 rel: Rel::Eq,
                 rhs: L::Zero.to_expr(),
             });
@@ -1085,7 +1117,7 @@ impl<'a> Compiler<'a> {
         }
         self.state_start();
         let mut signals: BTreeMap<String, SignalKind> = BTreeMap::new();
-        let written: BTreeSet<&String> = self.last_write.keys().collect();
+        let written = &self.last_write;
         let classify = |n: &str| -> SignalKind {
             if let Some(k) = self.fresh.get(n) {
                 return k.clone();
@@ -1093,7 +1125,7 @@ impl<'a> Compiler<'a> {
             if let Some(k) = self.int_bit_kind(n) {
                 return k;
             }
-            if written.contains(&n.to_string()) {
+            if written.contains_key(n) {
                 if n.starts_with('Y') { SignalKind::Output } else { SignalKind::Relay }
             } else {
                 SignalKind::Input
@@ -1102,10 +1134,13 @@ impl<'a> Compiler<'a> {
         for s in &self.program.signals {
             signals.insert(s.clone(), classify(s));
         }
+        let mut seen: HashSet<Symbol> = HashSet::default();
         for h in &self.hypotheses {
             for side in [&h.lhs, &h.rhs] {
                 for node in side.as_ref() {
-                    if let crate::term::Term::Name(n) = node {
+                    if let crate::term::Term::Name(n) = node
+                        && seen.insert(*n)
+                    {
                         let n = n.as_str();
                         if !signals.contains_key(n) {
                             signals.insert(n.to_string(), classify(n));
@@ -1307,11 +1342,12 @@ pub fn program_to_ii(compiled: &CompiledProgram, notation: Notation) -> String {
         }
     }
     out.push('\n');
-    let dummy = Span::new(0, 0..0);
     for h in &compiled.hypotheses {
-        let statement =
-            Statement { name: h.name.clone(), name_span: dummy, span: dummy, value: h.goal() };
-        out.push_str(&goal_statement_to_string(GoalKeyword::Assume, &statement, notation));
+        let relation = match h.rel {
+            Rel::Eq => Relation::Equals,
+            Rel::Implies => Relation::Implies,
+        };
+        push_assumption(&mut out, &h.name, &h.lhs, relation, &h.rhs, notation);
         out.push('\n');
     }
     out

@@ -15,6 +15,9 @@ use crate::term::{Builder, Delay, Expr, Id, Term, root};
 /// The most atoms a truth table is built for (2^16 rows, 1024 words).
 pub const MAX_ATOMS: usize = 16;
 
+/// A signal's name in a working term, shared by every copy of the term.
+pub type Name = std::sync::Arc<str>;
+
 /// A working term.
 #[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum L {
@@ -23,7 +26,7 @@ pub enum L {
     /// `1*`.
     One,
     /// A named signal.
-    Var(String),
+    Var(Name),
     /// `¬f`.
     Not(Box<L>),
     /// A product (empty = `1*`).
@@ -45,7 +48,7 @@ pub enum L {
 impl L {
     /// A named signal.
     pub fn var(name: &str) -> L {
-        L::Var(name.to_string())
+        L::Var(name.into())
     }
 
     /// `¬self`, folding constants and double negation.
@@ -116,7 +119,7 @@ impl L {
     pub fn mentions(&self, name: &str) -> bool {
         match self {
             L::Zero | L::One => false,
-            L::Var(v) => v == name,
+            L::Var(v) => **v == *name,
             L::Not(x) | L::Ton(_, x) | L::Tof(x, _) | L::Pre(x) => x.mentions(name),
             L::And(xs) | L::Or(xs) => xs.iter().any(|x| x.mentions(name)),
             L::Sr(a, b) | L::Rs(a, b) => a.mentions(name) || b.mentions(name),
@@ -139,8 +142,8 @@ impl L {
         match self {
             L::Zero | L::One => {}
             L::Var(v) => {
-                if !out.contains(v) {
-                    out.push(v.clone());
+                if !out.iter().any(|o| **o == **v) {
+                    out.push(v.to_string());
                 }
             }
             L::Not(x) | L::Ton(_, x) | L::Tof(x, _) | L::Pre(x) => x.names(out),
@@ -158,7 +161,7 @@ impl L {
             L::Zero => L::Zero,
             L::One => L::One,
             L::Var(v) => {
-                if v == name {
+                if **v == *name {
                     value.clone()
                 } else {
                     self.clone()
@@ -180,7 +183,7 @@ impl L {
         match self {
             L::Zero => L::Zero,
             L::One => L::One,
-            L::Var(v) => L::Var(f(v)),
+            L::Var(v) => L::Var(f(v).into()),
             L::Not(x) => L::Not(Box::new(x.rename(f))),
             L::And(xs) => L::And(xs.iter().map(|x| x.rename(f)).collect()),
             L::Or(xs) => L::Or(xs.iter().map(|x| x.rename(f)).collect()),
@@ -326,7 +329,7 @@ fn from_node(expr: &Expr, id: Id) -> Option<L> {
     Some(match &expr[id] {
         Term::Zero => L::Zero,
         Term::One => L::One,
-        Term::Name(s) => L::Var(s.as_str().to_string()),
+        Term::Name(s) => L::Var(s.as_str().into()),
         Term::Not(x) => L::Not(Box::new(from_node(expr, *x)?)),
         Term::And([a, b]) => from_node(expr, *a)?.and(from_node(expr, *b)?),
         Term::Or([a, b]) => from_node(expr, *a)?.or(from_node(expr, *b)?),

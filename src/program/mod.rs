@@ -18,6 +18,7 @@ pub mod bitvec;
 mod checked;
 pub mod compile;
 pub mod durations;
+pub mod fast_hash;
 pub mod library;
 pub mod logic;
 pub mod names;

@@ -58,6 +58,11 @@ fn symbols(n: Notation) -> Symbols {
 /// Writes a delay so that it parses back exactly (`5s`, `250ms`, `1.5s`).
 pub fn delay_to_string(delay: &Delay) -> String {
     let seconds = delay.seconds();
+    // A whole number of seconds (at least 1) is its digits.
+    use num_traits::Signed;
+    if seconds.is_integer() && seconds.numer().is_positive() {
+        return format!("{}s", seconds.numer());
+    }
     let thousand = BigRational::from_integer(BigInt::from(1000));
     let one = BigRational::from_integer(BigInt::from(1));
     let millis = seconds * &thousand;
@@ -252,23 +257,43 @@ pub fn term_to_string(expr: &Expr, notation: Notation) -> String {
 }
 
 fn goal_doc(goal: &Goal, notation: Notation) -> Doc {
-    let rel = match goal.relation {
-        Relation::Implies => symbols(notation).implies,
-        Relation::Equals => "=",
-    };
-    let body = term_doc(&goal.lhs, notation)
-        .append(
-            RcDoc::line()
-                .append(text(rel))
-                .append(text(" "))
-                .append(term_doc(&goal.rhs, notation))
-                .nest(2),
-        )
-        .group();
+    let body = relation_doc(&goal.lhs, goal.relation, &goal.rhs, notation);
     match &goal.after {
         Some(d) => text(format!("after {}: ", delay_to_string(d))).append(body),
         None => body,
     }
+}
+
+/// `lhs ⇒ rhs` or `lhs = rhs`, broken after `lhs` where it does not fit.
+fn relation_doc(lhs: &Expr, relation: Relation, rhs: &Expr, notation: Notation) -> Doc {
+    let rel = match relation {
+        Relation::Implies => symbols(notation).implies,
+        Relation::Equals => "=",
+    };
+    term_doc(lhs, notation)
+        .append(
+            RcDoc::line()
+                .append(text(rel))
+                .append(text(" "))
+                .append(term_doc(rhs, notation))
+                .nest(2),
+        )
+        .group()
+}
+
+/// Writes `assume NAME: lhs = rhs` (or `⇒`) at the end of `out`: what
+/// [`goal_statement_to_string`] writes for the assumption of that goal, without building it.
+pub fn push_assumption(
+    out: &mut String,
+    name: &str,
+    lhs: &Expr,
+    relation: Relation,
+    rhs: &Expr,
+    notation: Notation,
+) {
+    use std::fmt::Write;
+    let doc = named("assume", name, relation_doc(lhs, relation, rhs, notation));
+    let _ = write!(out, "{}", doc.pretty(WIDTH));
 }
 
 /// Writes a goal: `f ⇒ g`, `f = g`, `after 5s: f ⇒ g`.

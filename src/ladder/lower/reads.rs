@@ -12,7 +12,7 @@ impl Lowering<'_> {
     /// arrived, and on an ARM target writes -1 when none did (`ladder::i2c_read`); a
     /// status contact gives the power and-ed with its flag.
     pub(super) fn read(&mut self, e: &Element, input: BoolExpr) -> BoolExpr {
-        let index = self.index.get(&(e as *const Element)).copied().unwrap_or(usize::MAX);
+        let index = self.element_index(e);
         let Some(r) = self.readings.get(&index).cloned() else { return input };
         let is = |name: &str, v: i64| {
             let (a, b) = (IntExpr::Var(canonical(name)), IntExpr::Const(v));

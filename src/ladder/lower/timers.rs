@@ -192,7 +192,7 @@ impl Lowering<'_> {
     /// The hidden 1-bit integer `k` of element `e` (see [`super::timer_bits`]), 0 at
     /// power-up.
     fn hidden_bit(&mut self, e: &Element, k: u8) -> String {
-        let index = self.index.get(&(e as *const Element)).copied().unwrap_or(usize::MAX);
+        let index = self.element_index(e);
         let bit = canonical(self.timer_bits.get(&(index, k)).map_or("", String::as_str));
         self.hidden_bits.insert(bit.clone());
         self.ints.insert(bit.clone(), IntVar { ty: IntType::BIT, input: false, init: 0 });

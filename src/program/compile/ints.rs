@@ -309,7 +309,7 @@ impl Compiler<'_> {
         let rung = self.block().number;
         self.fresh.insert(name.clone(), SignalKind::Intermediate { rung });
         self.pending.push(Pending { var: name.clone(), rhs: t, recurrence: None });
-        L::Var(name)
+        L::Var(name.into())
     }
 
     /// The kind of the bit signal `name`, if it is one.

@@ -58,9 +58,9 @@ impl Compiler<'_> {
     /// `--any-state`, `pre X` from the second scan on and `x`'s start value at the first.
     pub(super) fn start_or(&self, x: &str, pre: L) -> L {
         let Some(started) = &self.started else { return pre };
-        let later = L::Pre(Box::new(L::Var(started.clone())));
+        let later = L::Pre(Box::new(L::var(started)));
         let first_value = match self.starts.get(x) {
-            Some(s) => L::Var(s.clone()),
+            Some(s) => L::var(s),
             None if self.program.started.as_deref() == Some(x) => L::One,
             None => return pre,
         };
@@ -92,7 +92,7 @@ impl Compiler<'_> {
             rung: block.map_or(0, |b| b.number),
             span: block.map_or(crate::diag::Span::new(0, 0..0), |b| b.span),
             kind: super::HypothesisKind::Equation,
-            lhs: L::Var(started.clone()).to_expr(),
+            lhs: L::var(&started).to_expr(),
             rel: crate::kernel::Rel::Eq,
             rhs: L::One.to_expr(),
         });

@@ -348,7 +348,7 @@ impl Compiler<'_> {
             let b = self.read(&broken);
             self.state(held.clone(), end, None);
             let Some(k) = scans.filter(|k| *k >= 2) else { continue };
-            let e = L::Var(held.clone());
+            let e = L::var(&held);
             let pre_e = L::Var(self.pre_name(&held));
             // The part `U` (TON) or `F` (TOF), timed over K − 2 more scans.
             let part = if on_delay {
@@ -366,7 +366,7 @@ impl Compiler<'_> {
                     self.pending.push(Pending { var: runs.clone(), rhs: part, recurrence: None });
                     // `U · d/U` (= `d/U`): the run going on now, stated where the
                     // Boolean case splits, which keep timers opaque, can read it.
-                    L::And(vec![L::Var(runs.clone()), L::Ton(d, Box::new(L::Var(runs)))])
+                    L::And(vec![L::var(&runs), L::Ton(d, Box::new(L::var(&runs)))])
                 }
                 Ok(d) => L::Tof(Box::new(part), d),
                 Err(_) => {
