@@ -340,9 +340,10 @@ fn inputs_left_out_keep_the_values_the_instance_last_received() {
     assert!(!stdout.contains("unconstrained"), "{stdout}");
 }
 
-/// What stays unconstrained where inputs are left out, each with its reason: a pulse
-/// timer whose kept `PT` is not one literal, one called twice in a scan, and an IL input
-/// operator on a timer whose `PT` another call gives.
+/// What stays unconstrained (or refused) where inputs are left out, each with its reason:
+/// a pulse timer called twice in a scan, or whose kept `PT` is not one literal; a TON
+/// called twice whose second call keeps a `PT` that is not one literal; an input written
+/// outside the call.
 #[test]
 fn inputs_left_out_that_are_not_one_value_are_named_with_the_reason() {
     let program = |body: &str| {
@@ -362,8 +363,10 @@ fn inputs_left_out_that_are_not_one_value_are_named_with_the_reason() {
             "the pulse timer P0 is called without PT, and the PT it keeps is not a constant: it \
              holds T#0s and is also written with T#50ms by the call at line 10",
         ),
+        // Called twice, the second call keeping a PT the first gives only under a
+        // condition (T#0s or T#1s): two presets for one count.
         (
-            "  T0(IN := A, PT := T#1s);\n  T0(IN := B);\n  X := T0.Q;\n",
+            "  IF A THEN\n    T0(IN := A, PT := T#1s);\n  END_IF;\n  T0(IN := B);\n  X := T0.Q;\n",
             "the accumulator T0 is also written by another element",
         ),
         (
