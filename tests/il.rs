@@ -95,10 +95,11 @@ fn show_names_il_lines() {
 
 /// A forward jump guards what it skips, the CR at a label is that of the path taken
 /// (`jumps.il`); a function block and a function written in IL are inlined, a `RET` in
-/// the block ending only the block (`user_block.il`).
+/// the block ending only the block (`user_block.il`); a call a jump or `CALC` skips runs
+/// the block only at the scans it is called (`skipped_calls.il`).
 #[test]
 fn il_programs_with_jumps_and_user_blocks_prove_their_properties() {
-    for name in ["jumps", "user_block", "batch"] {
+    for name in ["jumps", "user_block", "batch", "skipped_calls"] {
         let program = format!("tests/data/il/programs/{name}.il");
         let props = format!("tests/data/il/programs/{name}.ii");
         let out = ii_prove(&["show", &program]);

@@ -1,7 +1,8 @@
-//! Random Instruction List programs for the differential tests, kept as instructions as well as text: loads, the Boolean operators with `N` and `( … )`, `NOT`, `EQ`/`NE`, `ST`/`STN`/`S`/`R`, forward `JMP`/`JMPC`/`JMPCN` with labels reached from several paths, `RETC`/`RETCN`, and calls of TON, TOF, R_TRIG, F_TRIG, SR, RS (`CAL` with formal or positional inputs, `CLK`/`S1`/`R1`/`IN` as operators), each on every scan, some inputs left out (a timer's `PT` among them) and some instances called twice.
+//! Random Instruction List programs for the differential tests, kept as instructions as well as text: loads, the Boolean operators with `N` and `( … )`, `NOT`, `EQ`/`NE`, `ST`/`STN`/`S`/`R`, forward `JMP`/`JMPC`/`JMPCN` with labels reached from several paths, `RETC`/`RETCN`, and calls of TON, TOF, R_TRIG, F_TRIG, SR, RS (`CAL` with formal or positional inputs, `CLK`/`S1`/`R1`/`IN` as operators), some skipped by jumps, some inputs left out (a timer's `PT` among them) and some instances called twice.
 #![allow(dead_code)]
 
 use super::rng::Rng;
+use std::collections::BTreeMap;
 
 /// An operand: a BOOL variable or FB output (`T0.Q`), possibly negated where it is an
 /// argument, or a literal.
@@ -454,12 +455,13 @@ pub fn program_with(seed: u64, for_matiec: bool) -> Generated {
     let mut g =
         Gen { rng: &mut rng, for_matiec, reads, locals: local_names, ints: int_names, labels: 0 };
     let mut ins = Vec::new();
-    // Labels that forward jumps wait for; calls come only where none is pending (a call
-    // some jump skips is refused), returns only after the last call.
+    // Labels that forward jumps wait for (calls mostly come where none is pending);
+    // returns only after the last call.
     let mut pending: Vec<String> = Vec::new();
     let mut calls: Vec<(String, String)> = fbs.clone();
-    // The instances called a second time.
+    // The instances called a second time, and each timer's `PT` at its first call.
     let mut seconds: Vec<String> = Vec::new();
+    let mut presets: BTreeMap<String, Option<u64>> = BTreeMap::new();
     let groups = 3 + g.rng.below(8);
     let mut returned = false;
     for k in 0..groups {
@@ -474,15 +476,20 @@ pub fn program_with(seed: u64, for_matiec: bool) -> Generated {
         }
         let last_calls = k + 1 == groups;
         if !calls.is_empty() && (last_calls || g.rng.chance(30)) {
-            for l in pending.drain(..) {
-                ins.push(Ins::Label(l));
+            // Most calls come where no jump is pending; the others are skipped by the
+            // jumps that pass them (the block runs only at the scans it is called).
+            if last_calls || g.rng.chance(70) {
+                for l in pending.drain(..) {
+                    ins.push(Ins::Label(l));
+                }
             }
             while !calls.is_empty() && (last_calls || g.rng.chance(50)) {
                 let (inst, ty) = calls.remove(0);
                 let timer = ty == "TON" || ty == "TOF";
-                // An instance other than a timer may be called again later in the scan
-                // (a timer's second call would share its count), its inputs left out.
-                let again = !timer && !seconds.contains(&inst) && g.rng.chance(30);
+                // An instance may be called again later in the scan, its inputs left out
+                // (a timer's with the same `PT`: one instance, one preset).
+                let second = seconds.contains(&inst);
+                let again = !second && g.rng.chance(30);
                 if again {
                     seconds.push(inst.clone());
                     calls.push((inst.clone(), ty.clone()));
@@ -494,7 +501,10 @@ pub fn program_with(seed: u64, for_matiec: bool) -> Generated {
                     "RS" => "R1",
                     _ => "IN",
                 };
-                if g.rng.chance(if timer { 15 } else { 40 }) {
+                if !(timer && second) && g.rng.chance(if timer { 15 } else { 40 }) {
+                    if timer {
+                        presets.insert(inst.clone(), None);
+                    }
                     let o = g.operand();
                     ins.push(Ins::Ld(g.rng.chance(30), o));
                     g.ops(&mut ins);
@@ -525,6 +535,13 @@ pub fn program_with(seed: u64, for_matiec: bool) -> Generated {
                 let pt = timer
                     .then(|| g.rng.below(6) * cycle_ms * 1000 + g.rng.below(3) * 700)
                     .filter(|_| !g.rng.chance(20));
+                let pt = match presets.get(&inst) {
+                    Some(first) if timer && second => *first,
+                    _ => pt,
+                };
+                if timer {
+                    presets.insert(inst.clone(), pt);
+                }
                 ins.push(Ins::Cal(inst, ty, args, pt, form));
             }
         }
@@ -589,7 +606,8 @@ pub fn program_with(seed: u64, for_matiec: bool) -> Generated {
         text += &format!("    {n} : {t};\n");
     }
     text += "  END_VAR\n";
-    let named: Vec<String> = ins
+    // One constant per instance (a timer called twice gives the same preset both times).
+    let mut named: Vec<String> = ins
         .iter()
         .filter_map(|i| match i {
             Ins::Cal(inst, _, _, Some(us), Form::Positional | Form::NamedPreset) => {
@@ -598,6 +616,8 @@ pub fn program_with(seed: u64, for_matiec: bool) -> Generated {
             _ => None,
         })
         .collect();
+    named.sort();
+    named.dedup();
     if !named.is_empty() {
         text += &format!("  VAR CONSTANT\n{}  END_VAR\n", named.concat());
     }

@@ -12,7 +12,6 @@
 
 use std::collections::BTreeMap;
 
-use super::calls::Fb;
 use super::ints::{Int, Opaque};
 use super::{Lowering, Sym, Ty};
 use crate::diag::Span;
@@ -717,8 +716,8 @@ impl Lowering<'_> {
         self.write_value(target, kind, v, word.span.to(target.span))
     }
 
-    /// A call, run when `when` holds: a timer or edge detector only where every scan
-    /// runs it.
+    /// A call, run when `when` holds (a call a jump, a return or `CALC` may skip is the
+    /// block run only at the scans it is called, as matiec runs it).
     fn il_call(
         &mut self,
         instance: &ast::Expr,
@@ -729,27 +728,6 @@ impl Lowering<'_> {
         out: &mut Vec<Stmt>,
     ) {
         let span = word.span.to(instance.span);
-        let memory = match &instance.kind {
-            ExprKind::Var(id) => match self.syms.get(&id.key()) {
-                Some(Sym {
-                    ty: Ty::Fb(fb @ (Fb::Ton | Fb::Tof | Fb::RTrig | Fb::FTrig), t),
-                    name,
-                    ..
-                }) => Some((*fb, t.clone(), name.clone())),
-                _ => None,
-            },
-            _ => None,
-        };
-        if let Some((_, t, name)) = &memory
-            && !is_const(when, true)
-        {
-            self.refuse(
-                span,
-                &format!("a call of the {t} `{name}` that a jump, return or condition may skip"),
-                "its memory would update only on the scans that call it; call it on every scan and jump over its uses instead",
-            );
-            return;
-        }
         let stmts = self.call_with(instance, args, given, span);
         out.extend(self.guarded(when, stmts, span));
     }
