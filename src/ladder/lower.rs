@@ -229,7 +229,7 @@ impl<'a> Lowering<'a> {
                 } else {
                     crate::program::EdgeKind::Falling
                 };
-                BoolExpr::Edge { kind, input: Box::new(input.clone()), memory }
+                BoolExpr::Edge { kind, input: Box::new(input.clone()), memory: Box::new(memory) }
             }
             CounterEdge::High => input.clone(),
             CounterEdge::Low => BoolExpr::negate(input.clone()),
@@ -456,7 +456,7 @@ impl<'a> Lowering<'a> {
                     CoilKind::Toggle => {
                         // On a rising edge of the power the bit flips (ldmicro.md §4, COIL
                         // ttrigger): the edge is `i · ¬pre i` over the coil's hidden bit.
-                        WriteKind::Toggle(self.memory(format!("TOGGLE_r{number}"), e))
+                        WriteKind::Toggle(Box::new(self.memory(format!("TOGGLE_r{number}"), e)))
                     }
                 };
                 let target = canonical(name);
@@ -516,7 +516,7 @@ impl<'a> Lowering<'a> {
                     EdgeKind::Osf => crate::program::EdgeKind::Falling,
                     _ => crate::program::EdgeKind::NotRising,
                 };
-                self.temp(BoolExpr::Edge { kind, input: Box::new(input), memory })
+                self.temp(BoolExpr::Edge { kind, input: Box::new(input), memory: Box::new(memory) })
             }
             ElementKind::Edge { .. } => {
                 let base = format!("{}_r{number}", e.kind.keyword());
@@ -644,7 +644,7 @@ impl<'a> Lowering<'a> {
                 let rising = BoolExpr::Edge {
                     kind: crate::program::EdgeKind::Rising,
                     input: Box::new(input.clone()),
-                    memory,
+                    memory: Box::new(memory),
                 };
                 let rising = self.temp(rising);
                 for k in (1..stages).rev() {

@@ -970,7 +970,14 @@ impl<'a> Compiler<'a> {
         let x = x.to_string();
         let k = self.write_index;
         self.write_index += 1;
-        let Some(old) = self.current.get(&x).cloned() else {
+        // A plain coil does not read the value it replaces: no copy of it.
+        let old = match kind {
+            WriteKind::Assign | WriteKind::AssignNot => {
+                self.current.contains_key(&x).then_some(L::Zero)
+            }
+            _ => self.current.get(&x).cloned(),
+        };
+        let Some(old) = old else {
             return;
         };
         // Which write kind dominates (the last set or reset), for the memory's form.
@@ -1042,27 +1049,33 @@ impl<'a> Compiler<'a> {
     /// (as a memory where it is one), and later reads see the signal `x` itself.
     fn state(&mut self, x: String, g: L, dominant: Option<bool>) {
         let pre = self.pre_names.get(&x).cloned().unwrap_or_default();
-        let rhs = self.finish_var(&pre, g.clone(), dominant);
+        let (rhs, recurrence) = self.finish_var(&pre, g, dominant);
         self.current.insert(x.clone(), L::var(&x));
-        let recurrence = (rhs != g).then_some(g);
         self.pending.push(Pending { var: x, rhs, recurrence });
     }
 
-    /// The end-of-scan value `g(pre)` of `x` as a term: an equation, or a memory.
-    fn finish_var(&self, pre: &str, g: L, prefer_rs: Option<bool>) -> L {
+    /// The end-of-scan value `g(pre)` of `x` as a term: an equation, or a memory; with
+    /// the scan recurrence `g` itself where it differs from that term.
+    fn finish_var(&self, pre: &str, g: L, prefer_rs: Option<bool>) -> (L, Option<L>) {
         // `SR`/`RS` start at 0: from an arbitrary state the scan recurrence is the equation.
         if !g.mentions(pre) || g.mentions_temporally(pre) || self.options.any_state {
-            return g;
+            return (g, None);
         }
         let g0 = simp(&g.subst(pre, &L::Zero));
         let g1 = simp(&g.subst(pre, &L::One));
         let Some(t) = Tables::new(&[&g0, &g1]) else {
-            return g;
+            return (g, None);
         };
         if !t.implies(0, 1) {
-            return g;
+            return (g, None);
         }
-        memory_form(&g, pre, g0, g1, prefer_rs).unwrap_or(g)
+        match memory_form(&g, pre, g0, g1, prefer_rs) {
+            Some(m) => {
+                let recurrence = (m != g).then_some(g);
+                (m, recurrence)
+            }
+            None => (g, None),
+        }
     }
 
     fn flush_block(&mut self) {

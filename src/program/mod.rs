@@ -502,7 +502,7 @@ pub enum WriteKind {
     /// `IF power THEN X := 0`.
     Reset,
     /// On a rising edge of the power `X` flips (the edge over a hidden memory).
-    Toggle(Memory),
+    Toggle(Box<Memory>),
 }
 
 /// The hidden memory of a one-shot: the power it saw at the previous scan, 0 at power-up.
@@ -540,13 +540,18 @@ pub enum BoolExpr {
         /// The power it watches.
         input: Box<BoolExpr>,
         /// Its hidden memory.
-        memory: Memory,
+        memory: Box<Memory>,
     },
     /// A value the algebra cannot express: an unconstrained signal, with a warning.
     Fresh(Box<Fresh>),
     /// A comparison of integers, exact: a Boolean function of their bits.
     Compare(Box<Compare>),
 }
+
+// The scan model holds one per node of every rung: a one-shot's memory is boxed so that
+// the other nodes are not as large as it.
+#[cfg(target_pointer_width = "64")]
+const _: () = assert!(std::mem::size_of::<BoolExpr>() <= 32);
 
 impl BoolExpr {
     /// A bit read.

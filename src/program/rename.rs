@@ -37,11 +37,11 @@ impl Renaming<'_> {
             }
             Stmt::Write { target, kind, value, span } => {
                 let kind = match kind {
-                    WriteKind::Toggle(m) => WriteKind::Toggle(super::Memory {
+                    WriteKind::Toggle(m) => WriteKind::Toggle(Box::new(super::Memory {
                         base: name(&m.base),
                         index: (self.edge)(m.index),
                         element: m.element.clone(),
-                    }),
+                    })),
                     k => k.clone(),
                 };
                 Stmt::Write { target: name(target), kind, value: self.expr(value), span: *span }
@@ -88,11 +88,11 @@ impl Renaming<'_> {
             BoolExpr::Edge { kind, input, memory } => BoolExpr::Edge {
                 kind: *kind,
                 input: Box::new(self.expr(input)),
-                memory: super::Memory {
+                memory: Box::new(super::Memory {
                     base: name(&memory.base),
                     index: (self.edge)(memory.index),
                     element: memory.element.clone(),
-                },
+                }),
             },
             BoolExpr::Fresh(f) => {
                 BoolExpr::Fresh(Box::new(super::Fresh { base: name(&f.base), ..(**f).clone() }))

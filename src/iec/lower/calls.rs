@@ -492,7 +492,7 @@ impl<'s> Lowering<'s> {
         let memory =
             Memory { base: format!("{inst}_{pin}"), element: ty.to_string(), index: self.edges };
         self.edges += 1;
-        BoolExpr::Edge { kind: EdgeKind::Rising, input: Box::new(input), memory }
+        BoolExpr::Edge { kind: EdgeKind::Rising, input: Box::new(input), memory: Box::new(memory) }
     }
 
     /// The facts of the `PT` of the timer instance `inst` (its name in the scan model),

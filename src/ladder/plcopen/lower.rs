@@ -164,7 +164,11 @@ fn not(c: BoolExpr) -> BoolExpr {
 fn trig(edge: Edge, v: BoolExpr, index: usize) -> BoolExpr {
     let clk = if edge == Edge::Falling { not(v) } else { v };
     let memory = Memory { base: "OSR".into(), element: "OSR".into(), index };
-    BoolExpr::Edge { kind: crate::program::EdgeKind::Rising, input: Box::new(clk), memory }
+    BoolExpr::Edge {
+        kind: crate::program::EdgeKind::Rising,
+        input: Box::new(clk),
+        memory: Box::new(memory),
+    }
 }
 
 fn xor(a: BoolExpr, b: BoolExpr) -> BoolExpr {
@@ -713,7 +717,11 @@ impl<'p> Lower<'p> {
                     index: self.edges.len() - 1,
                 };
                 let edge = crate::program::EdgeKind::Rising;
-                let rise = BoolExpr::Edge { kind: edge, input: Box::new(input.clone()), memory };
+                let rise = BoolExpr::Edge {
+                    kind: edge,
+                    input: Box::new(input.clone()),
+                    memory: Box::new(memory),
+                };
                 let rise = self.temp(&mut stmts, rise);
                 let (q, done) = (hidden("Q"), hidden("DONE"));
                 let pulse = crate::program::library::Pulse {

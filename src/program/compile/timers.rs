@@ -21,8 +21,7 @@ impl Compiler<'_> {
         let pre = self.pre_name(&h);
         let g = self.guard.clone();
         let next = simp(&g.clone().and(input.clone()).or(g.negate().and(L::Var(pre.clone()))));
-        let rhs = self.finish_var(&pre, next.clone(), None);
-        let recurrence = (rhs != next).then_some(next);
+        let (rhs, recurrence) = self.finish_var(&pre, next, None);
         self.pending.push(Pending { var: h.clone(), rhs, recurrence });
         h
     }

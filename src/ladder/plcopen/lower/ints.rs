@@ -843,7 +843,11 @@ impl Lower<'_> {
             l.edges.push((l.path.clone(), k, format!("{pin}_T")));
             let memory =
                 Memory { base: "OSR".into(), element: "OSR".into(), index: l.edges.len() - 1 };
-            let e = BoolExpr::Edge { kind: EdgeKind::Rising, input: Box::new(input(pin)), memory };
+            let e = BoolExpr::Edge {
+                kind: EdgeKind::Rising,
+                input: Box::new(input(pin)),
+                memory: Box::new(memory),
+            };
             l.temp(stmts, e)
         };
         let no = || BoolExpr::Const(false);
