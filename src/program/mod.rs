@@ -824,12 +824,8 @@ impl Program {
     /// timer and an integer element): such a timer does not time alone.
     pub fn shared_timers(&self) -> BTreeSet<String> {
         let mut count: BTreeMap<String, usize> = self.integer_writers.clone();
-        for (_, s) in self.stmts() {
-            s.visit(&mut |_| {}, &mut |e| {
-                if let BoolExpr::Timer(t) = e {
-                    *count.entry(t.accumulator.clone()).or_default() += 1;
-                }
-            });
+        for (name, calls) in self.timer_calls() {
+            *count.entry(name).or_default() += calls.len();
         }
         count.into_iter().filter(|(_, n)| *n > 1).map(|(t, _)| t).collect()
     }
@@ -839,7 +835,21 @@ impl Program {
     /// is a call of the timer block itself ([`Timer::called`]), all of one kind and one
     /// preset. Per instance, how many calls, and whether it is a TON.
     pub fn repeated_timers(&self) -> BTreeMap<String, (usize, bool)> {
-        // Per accumulator: each call's kind, whether it is the block itself, its preset.
+        self.timer_calls()
+            .into_iter()
+            .filter(|(name, ts)| {
+                let (on_delay, _, preset) = &ts[0];
+                ts.len() > 1
+                    && !self.integer_writers.contains_key(name)
+                    && ts.iter().all(|(o, called, p)| *called && o == on_delay && p == preset)
+            })
+            .map(|(name, ts)| (name, (ts.len(), ts[0].0)))
+            .collect()
+    }
+
+    /// Per timer accumulator, each element that times it, in scan order: its kind (a
+    /// TON), whether it is the timer block itself ([`Timer::called`]), its preset.
+    fn timer_calls(&self) -> BTreeMap<String, Vec<(bool, bool, Preset)>> {
         let mut calls: BTreeMap<String, Vec<(bool, bool, Preset)>> = BTreeMap::new();
         for (_, s) in self.stmts() {
             s.visit(&mut |_| {}, &mut |e| {
@@ -850,18 +860,6 @@ impl Program {
             });
         }
         calls
-            .into_iter()
-            .filter(|(name, ts)| {
-                let (on_delay, _, preset) = &ts[0];
-                ts.len() > 1
-                    && !self.integer_writers.contains_key(name)
-                    && ts.iter().all(|(o, called, p)| *called && o == on_delay && p == preset)
-            })
-            .map(|(name, ts)| {
-                let on_delay = ts[0].0;
-                (name, (ts.len(), on_delay))
-            })
-            .collect()
     }
 
     /// The name of bit `k` (0 the least significant) of integer `x`: `Ccount_b3`.

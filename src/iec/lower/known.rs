@@ -152,16 +152,9 @@ impl Lowering<'_> {
     }
 
     fn run_known_one(&mut self, s: &Stmt) {
-        match s {
-            Stmt::Let { value, .. } | Stmt::Write { value, .. } if has_timer(value) => {
-                self.known.note_timers(value);
-                self.run_known_value(s);
-            }
-            _ => self.run_known_value(s),
+        if let Stmt::Let { value, .. } | Stmt::Write { value, .. } = s {
+            self.known.note_timers(value);
         }
-    }
-
-    fn run_known_value(&mut self, s: &Stmt) {
         match s {
             Stmt::Let { temp, value } => match self.known_bool(value) {
                 Ok(v) => {
@@ -236,11 +229,4 @@ impl Lowering<'_> {
             );
         }
     }
-}
-
-/// Whether `e` calls a timer.
-fn has_timer(e: &BoolExpr) -> bool {
-    let mut found = false;
-    walk(e, &mut |b| found |= matches!(b, BoolExpr::Timer(_)));
-    found
 }
