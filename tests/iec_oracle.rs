@@ -13,6 +13,8 @@ mod il_gen;
 mod real_gen;
 #[path = "common/rng.rs"]
 mod rng;
+#[path = "common/sfc_gen.rs"]
+mod sfc_gen;
 #[path = "common/st_gen.rs"]
 mod st_gen;
 
@@ -158,6 +160,18 @@ fn random_real_programs_run_as_matiec_runs_them() {
         Job { seed, text, pou, inputs, bits, cycle_us, partial: true }
     });
     against_matiec("REAL", jobs.collect());
+}
+
+#[test]
+#[ignore = "needs the toolchain of tools/oracle/setup.sh (II_ORACLE=DIR)"]
+fn random_sfc_charts_run_as_matiec_runs_them() {
+    let (first, n) = (env_u64("II_SFC_FIRST", 0), env_u64("II_SFC_PROGRAMS", 500));
+    let jobs = (first..first + n).map(|seed| {
+        let g = sfc_gen::program(seed);
+        let (text, pou, inputs, bits, cycle_us) = (g.text, g.pou, g.inputs, g.bits, g.cycle_us);
+        Job { seed, text, pou, inputs, bits, cycle_us, partial: false }
+    });
+    against_matiec("SFC", jobs.collect());
 }
 
 #[test]

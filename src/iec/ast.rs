@@ -55,13 +55,81 @@ pub struct Pou {
     pub span: Span,
 }
 
-/// A POU's body: Structured Text statements or Instruction List lines.
+/// A POU's body: Structured Text statements, Instruction List lines or a sequential
+/// function chart.
 #[derive(Clone, Debug)]
 pub enum Body {
     /// Structured Text.
     St(Vec<Stmt>),
     /// Instruction List.
     Il(Vec<IlLine>),
+    /// A sequential function chart (`crate::iec::sfc` turns it into the Structured Text
+    /// matiec runs for it before lowering).
+    Sfc(Sfc),
+}
+
+/// A sequential function chart: its steps, transitions and actions, each in the order
+/// written.
+#[derive(Clone, Debug, Default)]
+pub struct Sfc {
+    /// `STEP` and `INITIAL_STEP`.
+    pub steps: Vec<Step>,
+    /// `TRANSITION … END_TRANSITION`.
+    pub transitions: Vec<Transition>,
+    /// `ACTION … END_ACTION`.
+    pub actions: Vec<Action>,
+}
+
+/// A step and its action associations.
+#[derive(Clone, Debug)]
+pub struct Step {
+    /// Its name.
+    pub name: Ident,
+    /// `INITIAL_STEP`.
+    pub initial: bool,
+    /// `action(qualifier)`, in order.
+    pub actions: Vec<Association>,
+}
+
+/// An action association `A(N)`, `A(D, T#2s)`, `A()`.
+#[derive(Clone, Debug)]
+pub struct Association {
+    /// The action: an `ACTION`'s name or a BOOL variable.
+    pub action: Ident,
+    /// Its qualifier as written (`None`: `A()`, which matiec runs unlike `A(N)`).
+    pub qualifier: Option<Ident>,
+    /// A timed qualifier's duration.
+    pub time: Option<Expr>,
+    /// The whole association.
+    pub span: Span,
+}
+
+/// A transition.
+#[derive(Clone, Debug)]
+pub struct Transition {
+    /// `TRANSITION name`.
+    pub name: Option<Ident>,
+    /// `(PRIORITY := n)`, with where.
+    pub priority: Option<(i128, Span)>,
+    /// The steps it leaves.
+    pub from: Vec<Ident>,
+    /// The steps it enters.
+    pub to: Vec<Ident>,
+    /// `:= condition;`.
+    pub condition: Expr,
+    /// From `TRANSITION` to `END_TRANSITION`.
+    pub span: Span,
+}
+
+/// An action with a body.
+#[derive(Clone, Debug)]
+pub struct Action {
+    /// Its name.
+    pub name: Ident,
+    /// Its statements.
+    pub body: Vec<Stmt>,
+    /// From `ACTION` to `END_ACTION`.
+    pub span: Span,
 }
 
 /// One line of an Instruction List body.
@@ -198,6 +266,8 @@ pub struct VarDecl {
     pub constant: bool,
     /// `AT %IX0.1`.
     pub location: Option<String>,
+    /// Made by the front end (a step's bits of a chart), not by the program's author.
+    pub made: bool,
 }
 
 /// An expression.

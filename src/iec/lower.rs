@@ -142,6 +142,12 @@ pub fn lower(
             "expected a positive interval (or give --cycle)",
         )]);
     }
+    // A chart is lowered as the Structured Text matiec runs for it.
+    if let Some(charts) = super::sfc::desugar(unit, cycle_us)? {
+        let mut lowered = lower(sources, &charts, pou, Some(cycle_us))?;
+        lowered.warnings.splice(0..0, warnings);
+        return Ok(lowered);
+    }
     let globals: Vec<&ast::VarDecl> = unit.configs.iter().flat_map(|c| &c.globals).collect();
     // A local name declared by more than one program instance is prefixed with the
     // instance's name (`Main_Pump`); every other name is used as declared.
@@ -188,6 +194,8 @@ pub fn lower(
                     l.il = true;
                     l.il_body(lines)
                 }
+                // Turned into Structured Text above.
+                ast::Body::Sfc(_) => {}
             }
         }
         if !l.errors.is_empty() {
@@ -392,6 +400,9 @@ struct Lowering<'s> {
     flow_bits: BTreeMap<(Span, &'static str), String>,
     /// Where a top-level `#ASSERT` stands after a `RETURN`: when it is reached.
     reached: Option<BoolExpr>,
+    /// The variables a chart's translation declared (by their names in the scan model):
+    /// hidden, as the front end's own.
+    made: BTreeSet<String>,
 }
 
 impl<'s> Lowering<'s> {
@@ -436,6 +447,7 @@ impl<'s> Lowering<'s> {
             frames: Vec::new(),
             flow_bits: BTreeMap::new(),
             reached: None,
+            made: BTreeSet::new(),
         }
     }
 
@@ -525,6 +537,9 @@ impl<'s> Lowering<'s> {
                 ));
             }
             self.taken.insert(name.clone());
+            if v.made {
+                self.made.insert(name.clone());
+            }
             if let Ty::User(fb) = &ty {
                 self.instantiate(&name, fb, &format!("{owner}.{key}"), v.name.span);
             }
@@ -840,7 +855,8 @@ impl<'s> Lowering<'s> {
                 signals.insert(s.name.clone());
             }
         }
-        let declared: BTreeSet<&String> = self.syms.values().map(|s| &s.name).collect();
+        let declared: BTreeSet<&String> =
+            self.syms.values().map(|s| &s.name).filter(|n| !self.made.contains(*n)).collect();
         let hidden = signals
             .iter()
             .chain(self.ints.keys())

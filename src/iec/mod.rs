@@ -13,6 +13,7 @@ pub mod lexer;
 pub mod literal;
 pub mod lower;
 pub mod parser;
+pub mod sfc;
 
 use crate::diag::{Report, Severity, Sources, Span};
 

@@ -1,6 +1,7 @@
 //! The Structured Text parser: recursive descent over the lexer's tokens into the AST, with IEC 61131-3 precedence and errors that say what was expected and where the open construct began.
 
 mod il;
+mod sfc;
 
 use std::collections::BTreeSet;
 
@@ -22,6 +23,7 @@ const ENDERS: &[&str] = &[
     "END_PROGRAM",
     "END_FUNCTION_BLOCK",
     "END_FUNCTION",
+    "END_ACTION",
 ];
 
 /// Keywords a misspelt word is compared with.
@@ -282,7 +284,9 @@ impl<'t> Parser<'t> {
             PouKind::FunctionBlock => "FUNCTION_BLOCK",
             PouKind::Function => "FUNCTION",
         };
-        let body = if self.il_ahead() {
+        let body = if self.sfc_ahead() {
+            Body::Sfc(self.sfc()?)
+        } else if self.il_ahead() {
             Body::Il(self.il_lines()?)
         } else {
             Body::St(self.stmts(Some((word, start)))?)
@@ -355,6 +359,7 @@ impl<'t> Parser<'t> {
                     retain,
                     constant,
                     location: location.clone(),
+                    made: false,
                 });
             }
         }
@@ -527,6 +532,7 @@ impl<'t> Parser<'t> {
                         "CASE" => "END_CASE",
                         "FOR" => "END_FOR",
                         "WHILE" => "END_WHILE",
+                        "ACTION" => "END_ACTION",
                         _ => "END_REPEAT",
                     };
                     return Err(self

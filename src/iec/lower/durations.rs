@@ -61,6 +61,8 @@ pub(super) fn time_facts(sources: &Sources, unit: &ast::Unit) -> TimeFacts {
         match &pou.body {
             ast::Body::St(stmts) => walk.stmts(stmts, &mut found),
             ast::Body::Il(lines) => walk.il(lines, &mut found),
+            // Charts are Structured Text by the time durations are read (`sfc::desugar`).
+            ast::Body::Sfc(_) => {}
         }
     }
     let mut facts = TimeFacts::default();

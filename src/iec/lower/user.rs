@@ -165,6 +165,8 @@ impl Lowering<'_> {
                 out
             }
             ast::Body::Il(lines) => self.il_run(lines).into_iter().flat_map(|r| r.2).collect(),
+            // Charts are Structured Text by the time a body is lowered (`sfc::desugar`).
+            ast::Body::Sfc(_) => Vec::new(),
         };
         self.inlining.pop();
         self.line = line;

@@ -138,6 +138,7 @@ fn decl(v: &super::Var, class: ast::VarClass) -> ast::VarDecl {
         }),
         retain: v.retain,
         constant: false,
+        made: false,
         location: v.address.clone(),
     }
 }

@@ -1,0 +1,70 @@
+//! Sequential function charts in Structured Text files: random charts (`common/sfc_gen.rs`) compile to equations that hold at every scan of the scan model's simulator, and malformed or unsupported charts are refused with located errors (`tests/data/sfc/rejects/`). What the charts mean is checked against matiec by `tests/iec_oracle.rs` (`random_sfc`).
+
+mod common;
+#[path = "common/rng.rs"]
+mod rng;
+#[path = "common/scan_eval.rs"]
+mod scan_eval;
+#[path = "common/sfc_gen.rs"]
+mod sfc_gen;
+#[path = "common/st_gen.rs"]
+mod st_gen;
+
+use ii_prove::diag::Sources;
+use scan_eval::check_scans;
+
+fn compile(
+    text: &str,
+) -> Result<(ii_prove::program::Program, ii_prove::ladder::CompiledProgram), String> {
+    let mut sources = Sources::new();
+    let file = sources.add("chart.st", text.to_string());
+    let unit = ii_prove::iec::read(&sources, file).map_err(|e| format!("{e:?}"))?;
+    let lowered =
+        ii_prove::iec::lower(&sources, &unit, None, None).map_err(|e| format!("{e:?}"))?;
+    let compiled = ii_prove::program::compile(&lowered.program, &Default::default())
+        .map_err(|e| format!("{e:?}"))?;
+    Ok((lowered.program, compiled))
+}
+
+/// Random charts (`II_SFC_PROGRAMS`, 150 by default): every compiled equation and
+/// recurrence holds at every scan of the scan model's simulator, and every bit is known.
+#[test]
+fn random_charts_agree_with_the_scan_simulator() {
+    let n: u64 = std::env::var("II_SFC_PROGRAMS").ok().and_then(|v| v.parse().ok()).unwrap_or(150);
+    let (mut programs, mut scans, mut checked) = (0u64, 0u64, 0u64);
+    let mut failures: Vec<String> = Vec::new();
+    for seed in 0..n {
+        let g = sfc_gen::program(seed);
+        let (program, compiled) = match compile(&g.text) {
+            Ok(x) => x,
+            Err(e) => {
+                failures.push(format!("seed {seed}: refused: {e}\n{}", g.text));
+                continue;
+            }
+        };
+        programs += 1;
+        let schedule = st_gen::schedule_of(&g.inputs, seed, 100);
+        match check_scans(&program, &compiled, g.cycle_us, &schedule, &mut |_, _| Ok(())) {
+            Ok(c) => {
+                scans += c.scans;
+                checked += c.hypotheses;
+            }
+            Err(e) => failures.push(format!("seed {seed}: {e}\n{}", g.text)),
+        }
+    }
+    eprintln!(
+        "random charts: {programs} compiled, {scans} scans, {checked} hypotheses checked at every scan; {} disagreements",
+        failures.len()
+    );
+    assert!(
+        failures.is_empty(),
+        "{}",
+        failures.iter().take(3).cloned().collect::<Vec<_>>().join("\n\n")
+    );
+}
+
+/// Every file of `tests/data/sfc/rejects/` is refused with a located error.
+#[test]
+fn malformed_and_unsupported_charts_are_refused_with_located_errors() {
+    assert!(common::check_rejects("tests/data/sfc/rejects", "st") >= 6);
+}
