@@ -1,4 +1,4 @@
-//! The IEC text front end against matiec, the editors' own compiler: random Structured Text (`common/st_gen.rs`) and Instruction List (`common/il_gen.rs`) programs are compiled by `iec2c` and gcc and run scan by scan (`tools/oracle/run.py`); every BOOL variable and function-block output must have, at every scan, the value the scan-model simulator gives the lowered program — whose compiled equations `tests/st.rs` and `tests/il.rs` check against that simulator — and so must every integer the lowered program computes (`Program::integers`, `C1_CV`; a TIME in µs), its integer inputs driven with the same random values on both sides.
+//! The IEC text front end against matiec, the editors' own compiler: random Structured Text (`common/st_gen.rs`), Instruction List (`common/il_gen.rs`) programs and sequential function charts (`common/sfc_gen.rs`, as text and as PLCopen `<SFC>` bodies, the latter turned into ST by Beremiz's generator) are compiled by `iec2c` and gcc and run scan by scan (`tools/oracle/run.py`); every BOOL variable and function-block output must have, at every scan, the value the scan-model simulator gives the lowered program — whose compiled equations `tests/st.rs` and `tests/il.rs` check against that simulator — and so must every integer the lowered program computes (`Program::integers`, `C1_CV`; a TIME in µs), its integer inputs driven with the same random values on both sides.
 //!
 //! Outside the test command (it needs the toolchain built by `tools/oracle/setup.sh DIR`):
 //! `II_ORACLE=DIR cargo test --release --test iec_oracle -- --ignored`, with
@@ -43,6 +43,9 @@ struct Job {
     /// Whether a bit may be unknown (read from a value ii-prove leaves unconstrained):
     /// not compared then. Otherwise it fails the job.
     partial: bool,
+    /// Whether `text` is a PLCopen project (read by ii-prove's PLCopen front end, turned
+    /// into ST by Beremiz's generator for matiec), else Structured Text.
+    xml: bool,
 }
 
 /// What the scan-model simulator says of a job.
@@ -88,10 +91,19 @@ fn int_schedule(ty: IntType, seed: u64, scans: usize) -> Vec<i64> {
 /// the seed).
 fn ours(g: &Job, inputs: &[BTreeMap<String, bool>]) -> Result<Expected, String> {
     let mut sources = Sources::new();
-    let file = sources.add("random.st", g.text.clone());
-    let unit = ii_prove::iec::read(&sources, file).map_err(|e| format!("{e:?}"))?;
-    let lowered =
-        ii_prove::iec::lower(&sources, &unit, None, None).map_err(|e| format!("{e:?}"))?;
+    let lowered = if g.xml {
+        use ii_prove::ladder::plcopen;
+        let file = sources.add("random.xml", g.text.clone());
+        let project = plcopen::read_plcopen(&sources, file).map_err(|e| format!("{e:?}"))?;
+        let selection = plcopen::Selection::default();
+        plcopen::st_program(&mut sources, &project, &selection)
+            .ok_or("no text or chart body")?
+            .map_err(|e| format!("{e:?}"))?
+    } else {
+        let file = sources.add("random.st", g.text.clone());
+        let unit = ii_prove::iec::read(&sources, file).map_err(|e| format!("{e:?}"))?;
+        ii_prove::iec::lower(&sources, &unit, None, None).map_err(|e| format!("{e:?}"))?
+    };
     let integers = &lowered.program.integers;
     let int_inputs: Vec<(String, Vec<i64>)> = integers
         .iter()
@@ -145,7 +157,7 @@ fn random_st_programs_run_as_matiec_runs_them() {
     let jobs = (first..first + n).map(|seed| {
         let g = st_gen::program_with(seed, false);
         let (text, pou, inputs, bits, cycle_us) = (g.text, g.pou, g.inputs, g.bits, g.cycle_us);
-        Job { seed, text, pou, inputs, bits, cycle_us, partial: false }
+        Job { seed, text, pou, inputs, bits, cycle_us, partial: false, xml: false }
     });
     against_matiec("ST", jobs.collect());
 }
@@ -157,7 +169,7 @@ fn random_real_programs_run_as_matiec_runs_them() {
     let jobs = (first..first + n).map(|seed| {
         let g = real_gen::program(seed);
         let (text, pou, inputs, bits, cycle_us) = (g.text, g.pou, g.inputs, g.bits, g.cycle_us);
-        Job { seed, text, pou, inputs, bits, cycle_us, partial: true }
+        Job { seed, text, pou, inputs, bits, cycle_us, partial: true, xml: false }
     });
     against_matiec("REAL", jobs.collect());
 }
@@ -169,9 +181,23 @@ fn random_sfc_charts_run_as_matiec_runs_them() {
     let jobs = (first..first + n).map(|seed| {
         let g = sfc_gen::program(seed);
         let (text, pou, inputs, bits, cycle_us) = (g.text, g.pou, g.inputs, g.bits, g.cycle_us);
-        Job { seed, text, pou, inputs, bits, cycle_us, partial: false }
+        Job { seed, text, pou, inputs, bits, cycle_us, partial: false, xml: false }
     });
     against_matiec("SFC", jobs.collect());
+}
+
+/// The same charts as PLCopen `<SFC>` bodies: ii-prove's reading of the XML against
+/// Beremiz's generator's (the ST it writes, run by matiec).
+#[test]
+#[ignore = "needs the toolchain of tools/oracle/setup.sh (II_ORACLE=DIR)"]
+fn random_plcopen_charts_run_as_the_toolchain_runs_them() {
+    let (first, n) = (env_u64("II_SFC_FIRST", 0), env_u64("II_SFC_PROGRAMS", 500));
+    let jobs = (first..first + n).map(|seed| {
+        let g = sfc_gen::project(seed);
+        let (text, pou, inputs, bits, cycle_us) = (g.text, g.pou, g.inputs, g.bits, g.cycle_us);
+        Job { seed, text, pou, inputs, bits, cycle_us, partial: false, xml: true }
+    });
+    against_matiec("PLCopen SFC", jobs.collect());
 }
 
 #[test]
@@ -182,7 +208,7 @@ fn random_il_programs_run_as_matiec_runs_them() {
         let g = il_gen::program_with(seed, true);
         let pou = "Random".to_string();
         let (text, inputs, bits, cycle_us) = (g.text, g.inputs, g.bits, g.cycle_us);
-        Job { seed, text, pou, inputs, bits, cycle_us, partial: false }
+        Job { seed, text, pou, inputs, bits, cycle_us, partial: false, xml: false }
     });
     against_matiec("IL", jobs.collect());
 }
@@ -229,7 +255,8 @@ fn against_matiec(language: &str, programs: Vec<Job>) {
             "inputs": drive,
             "want": want,
         });
-        std::fs::write(work.join(format!("{key}.st")), &g.text).expect("write");
+        let ext = if g.xml { "xml" } else { "st" };
+        std::fs::write(work.join(format!("{key}.{ext}")), &g.text).expect("write");
         std::fs::write(work.join(format!("{key}.req.json")), req.to_string()).expect("write");
         jobs.push((key, seed, g, expected));
     }
@@ -237,6 +264,9 @@ fn against_matiec(language: &str, programs: Vec<Job>) {
         .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("tools/oracle/run.py"))
         .arg(&work)
         .env("ORACLE_MATIEC", dir.join("matiec"))
+        // A PLCopen project goes through Beremiz's generator first.
+        .env("ORACLE_BEREMIZ", dir.join("beremiz"))
+        .env("ORACLE_PYTHON", dir.join("venv/bin/python"))
         .status()
         .expect("run.py");
     assert!(status.success(), "run.py failed");

@@ -1,4 +1,4 @@
-//! Sequential function charts in Structured Text files: random charts (`common/sfc_gen.rs`) compile to equations that hold at every scan of the scan model's simulator, and malformed or unsupported charts are refused with located errors (`tests/data/sfc/rejects/`). What the charts mean is checked against matiec by `tests/iec_oracle.rs` (`random_sfc`).
+//! Sequential function charts in Structured Text files and PLCopen `<SFC>` bodies: random charts (`common/sfc_gen.rs`, as text and as XML) compile to equations that hold at every scan of the scan model's simulator, and malformed or unsupported charts are refused with located errors (`tests/data/sfc/rejects/`; for PLCopen, `tests/data/plcopen/refused/chart_*`). What the charts mean is checked against matiec by `tests/iec_oracle.rs` (`random_sfc`).
 
 mod common;
 #[path = "common/rng.rs"]
@@ -26,16 +26,34 @@ fn compile(
     Ok((lowered.program, compiled))
 }
 
-/// Random charts (`II_SFC_PROGRAMS`, 150 by default): every compiled equation and
-/// recurrence holds at every scan of the scan model's simulator, and every bit is known.
+/// The PLCopen project `text`, whose program is a chart, lowered and compiled.
+fn compile_xml(
+    text: &str,
+) -> Result<(ii_prove::program::Program, ii_prove::ladder::CompiledProgram), String> {
+    use ii_prove::ladder::plcopen;
+    let mut sources = Sources::new();
+    let file = sources.add("chart.xml", text.to_string());
+    let project = plcopen::read_plcopen(&sources, file).map_err(|e| format!("{e:?}"))?;
+    let lowered = plcopen::st_program(&mut sources, &project, &plcopen::Selection::default())
+        .ok_or("no chart")?
+        .map_err(|e| format!("{e:?}"))?;
+    let compiled = ii_prove::program::compile(&lowered.program, &Default::default())
+        .map_err(|e| format!("{e:?}"))?;
+    Ok((lowered.program, compiled))
+}
+
+/// Random charts (`II_SFC_PROGRAMS`, 150 by default), as Structured Text and as PLCopen
+/// `<SFC>` bodies: every compiled equation and recurrence holds at every scan of the
+/// scan model's simulator, and every bit is known.
 #[test]
 fn random_charts_agree_with_the_scan_simulator() {
     let n: u64 = std::env::var("II_SFC_PROGRAMS").ok().and_then(|v| v.parse().ok()).unwrap_or(150);
     let (mut programs, mut scans, mut checked) = (0u64, 0u64, 0u64);
     let mut failures: Vec<String> = Vec::new();
-    for seed in 0..n {
-        let g = sfc_gen::program(seed);
-        let (program, compiled) = match compile(&g.text) {
+    for seed in 0..2 * n {
+        let xml = seed % 2 == 1;
+        let g = if xml { sfc_gen::project(seed / 2) } else { sfc_gen::program(seed / 2) };
+        let (program, compiled) = match if xml { compile_xml(&g.text) } else { compile(&g.text) } {
             Ok(x) => x,
             Err(e) => {
                 failures.push(format!("seed {seed}: refused: {e}\n{}", g.text));
@@ -43,7 +61,7 @@ fn random_charts_agree_with_the_scan_simulator() {
             }
         };
         programs += 1;
-        let schedule = st_gen::schedule_of(&g.inputs, seed, 100);
+        let schedule = st_gen::schedule_of(&g.inputs, seed / 2, 100);
         match check_scans(&program, &compiled, g.cycle_us, &schedule, &mut |_, _| Ok(())) {
             Ok(c) => {
                 scans += c.scans;

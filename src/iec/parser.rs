@@ -3,6 +3,8 @@
 mod il;
 mod sfc;
 
+pub use sfc::parse_condition;
+
 use std::collections::BTreeSet;
 
 use super::StError;

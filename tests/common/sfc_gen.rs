@@ -1,11 +1,11 @@
-//! Random textual sequential function charts for the differential tests: steps (one or two initial), transitions from one step or a pair to one or a pair (some with priorities, conditions over inputs and steps' `X`), every untimed qualifier (`N`, `S`, `R`, `P`, `P1`, `P0`, none) on BOOL variables and on actions whose bodies assign outputs, count and call a timer, and `D`/`L` with short times on the steps that are not initial.
+//! Random sequential function charts for the differential tests, as text or as a PLCopen `<SFC>` body (the same chart; steps entered through jumps, a selection divergence where a step has several transitions, simultaneous divergences and convergences for transitions to or from two steps): steps (one or two initial), transitions with priorities and conditions over inputs and steps' `X` (inline, or a named transition in the XML), every untimed qualifier on BOOL variables and on actions whose bodies assign outputs, count and call a timer, and `D`/`L` with short times on the steps that are not initial.
 #![allow(dead_code)]
 
 use super::rng::Rng;
 
 /// A random chart and what to compare.
 pub struct Generated {
-    /// The `.st` text.
+    /// The `.st` text, or the PLCopen project.
     pub text: String,
     /// The program's type name.
     pub pou: String,
@@ -17,33 +17,42 @@ pub struct Generated {
     pub cycle_us: u64,
 }
 
-const QUALIFIERS: [&str; 7] = ["N", "S", "R", "P", "P1", "P0", ""];
+/// A step: name, initial, associations (action, qualifier, duration in ms).
+type StepDesc = (String, bool, Vec<(String, String, Option<u64>)>);
 
-/// The random chart of `seed`.
-pub fn program(seed: u64) -> Generated {
+/// A transition: from, to, priority, condition.
+type TransitionDesc = (Vec<String>, Vec<String>, Option<u64>, String);
+
+struct Chart {
+    steps: Vec<StepDesc>,
+    transitions: Vec<TransitionDesc>,
+    /// Actions with a body: name and Structured Text.
+    actions: Vec<(String, String)>,
+    cycle_us: u64,
+}
+
+const QUALIFIERS: [&str; 7] = ["N", "S", "R", "P", "P1", "P0", ""];
+const INPUTS: [&str; 3] = ["In0", "In1", "In2"];
+const OUTPUTS: [&str; 4] = ["Out0", "Out1", "Out2", "Out3"];
+
+/// The chart of `seed`; `early` steps only (the initial `S0`) in `S.X` reads: matiec
+/// knows a step's name only after its declaration, and the generator of a PLCopen chart
+/// writes the steps in its own order.
+fn chart(seed: u64, early: bool) -> Chart {
     let mut r = Rng::new(seed ^ 0x5FC0);
-    let inputs: Vec<String> = (0..3).map(|k| format!("In{k}")).collect();
-    let outs: Vec<String> = (0..4).map(|k| format!("Out{k}")).collect();
     let n_steps = 3 + r.below(4) as usize;
     let steps: Vec<String> = (0..n_steps).map(|k| format!("S{k}")).collect();
     let n_actions = 1 + r.below(3) as usize;
     let actions: Vec<String> = (0..n_actions).map(|k| format!("A{k}")).collect();
     // Durations in whole milliseconds: matiec reads no `us`.
-    // Durations in whole milliseconds: matiec reads no `us`.
     let cycle_us = *r.pick(&[10_000u64, 20_000, 100_000]);
     let second_initial = r.chance(15);
-    let mut text = String::from("PROGRAM Chart\nVAR_INPUT\n");
-    for i in &inputs {
-        text += &format!("  {i} : BOOL;\n");
-    }
-    text += "END_VAR\nVAR\n";
-    for o in &outs {
-        text += &format!("  {o} : BOOL;\n");
-    }
-    text += "  Cnt : INT;\n  Tm : TON;\nEND_VAR\n";
     let literal = |r: &mut Rng| -> String {
-        let x =
-            if r.chance(25) { format!("{}.X", r.pick(&steps)) } else { r.pick(&inputs).clone() };
+        let x = if r.chance(25) {
+            format!("{}.X", if early { &steps[0] } else { r.pick(&steps) })
+        } else {
+            r.pick(&INPUTS).to_string()
+        };
         if r.chance(30) { format!("NOT {x}") } else { x }
     };
     let condition = |r: &mut Rng| -> String {
@@ -54,68 +63,266 @@ pub fn program(seed: u64) -> Generated {
             _ => "TRUE".to_string(),
         }
     };
+    let mut step_descs = Vec::new();
     for (k, s) in steps.iter().enumerate() {
         let initial = k == 0 || (k == 1 && second_initial);
-        text += &format!("{} {s}:\n", if initial { "INITIAL_STEP" } else { "STEP" });
+        let mut assoc = Vec::new();
         for _ in 0..r.below(3) {
             let target =
-                if r.chance(50) { r.pick(&outs).clone() } else { r.pick(&actions).clone() };
+                if r.chance(50) { r.pick(&OUTPUTS).to_string() } else { r.pick(&actions).clone() };
             if !initial && r.chance(15) {
-                let q = *r.pick(&["D", "L"]);
-                let t = (1 + r.below(4)) * cycle_us - if r.chance(50) { cycle_us / 2 } else { 0 };
-                text += &format!("  {target}({q}, T#{}ms);\n", t / 1000);
+                let q = r.pick(&["D", "L"]).to_string();
+                let ms = ((1 + r.below(4)) * cycle_us
+                    - if r.chance(50) { cycle_us / 2 } else { 0 })
+                    / 1000;
+                assoc.push((target, q, Some(ms)));
             } else {
-                text += &format!("  {target}({});\n", r.pick(&QUALIFIERS));
+                assoc.push((target, r.pick(&QUALIFIERS).to_string(), None));
+            }
+        }
+        step_descs.push((s.clone(), initial, assoc));
+    }
+    let mut transitions = Vec::new();
+    for k in 0..n_steps + r.below(3) as usize {
+        // Every step is left by some transition: the k-th from step k, then random ones.
+        let first = if k < n_steps { steps[k].clone() } else { r.pick(&steps).clone() };
+        let mut from = vec![first.clone()];
+        if r.chance(10) {
+            let other = r.pick(&steps).clone();
+            if other != first {
+                from.push(other);
+            }
+        }
+        // The k-th goes on to step k + 1: every step is reached.
+        let to_first =
+            if k < n_steps { steps[(k + 1) % n_steps].clone() } else { r.pick(&steps).clone() };
+        let mut to = vec![to_first.clone()];
+        if r.chance(10) {
+            let other = r.pick(&steps).clone();
+            if other != to_first {
+                to.push(other);
+            }
+        }
+        let priority = if r.chance(20) { Some(r.below(3)) } else { None };
+        transitions.push((from, to, priority, condition(&mut r)));
+    }
+    let mut action_descs = Vec::new();
+    for a in &actions {
+        let mut body = String::new();
+        for _ in 0..1 + r.below(2) {
+            body += &match r.below(4) {
+                0 => "Cnt := Cnt + 1;\n".to_string(),
+                1 => format!("Tm(IN := {}, PT := T#{}ms);\n", literal(&mut r), 2 * cycle_us / 1000),
+                2 => format!("{} := Tm.Q OR {};\n", r.pick(&OUTPUTS), literal(&mut r)),
+                _ => format!("{} := {};\n", r.pick(&OUTPUTS), condition(&mut r)),
+            };
+        }
+        action_descs.push((a.clone(), body));
+    }
+    Chart { steps: step_descs, transitions, actions: action_descs, cycle_us }
+}
+
+fn generated(text: String, cycle_us: u64) -> Generated {
+    Generated {
+        text,
+        pou: "Chart".into(),
+        inputs: INPUTS.iter().map(|s| s.to_string()).collect(),
+        bits: OUTPUTS.iter().map(|s| s.to_string()).collect(),
+        cycle_us,
+    }
+}
+
+/// The random chart of `seed`, as a Structured Text file.
+pub fn program(seed: u64) -> Generated {
+    let c = chart(seed, false);
+    let mut text = String::from("PROGRAM Chart\nVAR_INPUT\n");
+    for i in INPUTS {
+        text += &format!("  {i} : BOOL;\n");
+    }
+    text += "END_VAR\nVAR\n";
+    for o in OUTPUTS {
+        text += &format!("  {o} : BOOL;\n");
+    }
+    text += "  Cnt : INT;\n  Tm : TON;\nEND_VAR\n";
+    for (s, initial, assoc) in &c.steps {
+        text += &format!("{} {s}:\n", if *initial { "INITIAL_STEP" } else { "STEP" });
+        for (target, q, ms) in assoc {
+            match ms {
+                Some(ms) => text += &format!("  {target}({q}, T#{ms}ms);\n"),
+                None => text += &format!("  {target}({q});\n"),
             }
         }
         text += "END_STEP\n";
     }
-    let n_transitions = n_steps + r.below(3) as usize;
-    for k in 0..n_transitions {
-        // Every step is left by some transition: the k-th from step k, then random ones.
-        let from = if k < n_steps { steps[k].clone() } else { r.pick(&steps).clone() };
-        let from = if r.chance(10) {
-            let other = r.pick(&steps).clone();
-            if other == from { from } else { format!("({from}, {other})") }
-        } else {
-            from
-        };
-        let to = r.pick(&steps).clone();
-        let to = if r.chance(10) {
-            let other = r.pick(&steps).clone();
-            if other == to { to } else { format!("({to}, {other})") }
-        } else {
-            to
-        };
-        let priority =
-            if r.chance(20) { format!(" (PRIORITY := {})", r.below(3)) } else { String::new() };
+    let list = |xs: &[String]| {
+        if xs.len() == 1 { xs[0].clone() } else { format!("({})", xs.join(", ")) }
+    };
+    for (from, to, priority, cond) in &c.transitions {
+        let p = priority.map_or(String::new(), |p| format!(" (PRIORITY := {p})"));
         text += &format!(
-            "TRANSITION{priority} FROM {from} TO {to}\n  := {};\nEND_TRANSITION\n",
-            condition(&mut r)
+            "TRANSITION{p} FROM {} TO {}\n  := {cond};\nEND_TRANSITION\n",
+            list(from),
+            list(to)
         );
     }
-    for a in &actions {
-        text += &format!("ACTION {a}:\n");
-        for _ in 0..1 + r.below(2) {
-            match r.below(4) {
-                0 => text += "  Cnt := Cnt + 1;\n",
-                1 => {
-                    text += &format!(
-                        "  Tm(IN := {}, PT := T#{}ms);\n",
-                        literal(&mut r),
-                        2 * cycle_us / 1000
-                    )
-                }
-                2 => text += &format!("  {} := Tm.Q OR {};\n", r.pick(&outs), literal(&mut r)),
-                _ => text += &format!("  {} := {};\n", r.pick(&outs), condition(&mut r)),
-            }
-        }
-        text += "END_ACTION\n";
+    for (a, body) in &c.actions {
+        text += &format!("ACTION {a}:\n{body}END_ACTION\n");
     }
     text += "END_PROGRAM\n";
     text += &format!(
         "CONFIGURATION Config\n  RESOURCE Res ON PLC\n    TASK Main(INTERVAL := T#{}ms, PRIORITY := 0);\n    PROGRAM Inst WITH Main : Chart;\n  END_RESOURCE\nEND_CONFIGURATION\n",
-        cycle_us / 1000
+        c.cycle_us / 1000
     );
-    Generated { text, pou: "Chart".into(), inputs, bits: outs, cycle_us }
+    generated(text, c.cycle_us)
+}
+
+fn cdata(text: &str) -> String {
+    format!("<xhtml:p><![CDATA[{text}]]></xhtml:p>")
+}
+
+fn connect(to: u64) -> String {
+    format!("<connectionPointIn><connection refLocalId=\"{to}\"/></connectionPointIn>")
+}
+
+/// The random chart of `seed`, as a PLCopen project whose program's body is the chart:
+/// every step entered through jumps; some conditions named transitions of the POU, some
+/// actions inline.
+pub fn project(seed: u64) -> Generated {
+    let c = chart(seed, true);
+    let mut r = Rng::new(seed ^ 0xC0DE);
+    let mut next = 0u64;
+    let mut id = || {
+        next += 1;
+        next
+    };
+    let mut body = String::new();
+    let step_id: Vec<u64> = c.steps.iter().map(|_| id()).collect();
+    for ((name, initial, _), sid) in c.steps.iter().zip(&step_id) {
+        body += &format!(
+            "<step localId=\"{sid}\" name=\"{name}\" initialStep=\"{initial}\"><position x=\"0\" y=\"0\"/><connectionPointOut formalParameter=\"\"/></step>\n"
+        );
+    }
+    let index = |name: &str| c.steps.iter().position(|s| s.0 == name).unwrap_or(0);
+    // A step with several transitions from it alone is left through a selection divergence.
+    let mut source: Vec<u64> = step_id.clone();
+    for (k, sid) in step_id.iter().enumerate() {
+        let alone = c.transitions.iter().filter(|t| t.0.len() == 1 && index(&t.0[0]) == k);
+        if alone.count() > 1 {
+            let d = id();
+            body += &format!(
+                "<selectionDivergence localId=\"{d}\"><position x=\"0\" y=\"0\"/>{}</selectionDivergence>\n",
+                connect(*sid)
+            );
+            source[k] = d;
+        }
+    }
+    let mut named = String::new();
+    for (k, (from, to, priority, cond)) in c.transitions.iter().enumerate() {
+        let input = if from.len() == 1 {
+            source[index(&from[0])]
+        } else {
+            let v = id();
+            let ins: String = from.iter().map(|s| connect(step_id[index(s)])).collect();
+            body += &format!(
+                "<simultaneousConvergence localId=\"{v}\"><position x=\"0\" y=\"0\"/>{ins}</simultaneousConvergence>\n"
+            );
+            v
+        };
+        let t = id();
+        let p = priority.map_or(String::new(), |p| format!(" priority=\"{p}\""));
+        let condition = if r.chance(25) {
+            let n = format!("TR{k}");
+            named += &format!(
+                "<transition name=\"{n}\"><body><ST>{}</ST></body></transition>\n",
+                cdata(&format!(":= {cond};"))
+            );
+            format!("<reference name=\"{n}\"/>")
+        } else {
+            format!("<inline name=\"\"><ST>{}</ST></inline>", cdata(cond))
+        };
+        body += &format!(
+            "<transition localId=\"{t}\"{p}><position x=\"0\" y=\"0\"/>{}<connectionPointOut/><condition>{condition}</condition></transition>\n",
+            connect(input)
+        );
+        let out = if to.len() == 1 {
+            t
+        } else {
+            let d = id();
+            body += &format!(
+                "<simultaneousDivergence localId=\"{d}\"><position x=\"0\" y=\"0\"/>{}</simultaneousDivergence>\n",
+                connect(t)
+            );
+            d
+        };
+        for s in to {
+            let j = id();
+            body += &format!(
+                "<jumpStep localId=\"{j}\" targetName=\"{s}\"><position x=\"0\" y=\"0\"/>{}</jumpStep>\n",
+                connect(out)
+            );
+        }
+    }
+    for ((_, _, assoc), sid) in c.steps.iter().zip(&step_id) {
+        if assoc.is_empty() {
+            continue;
+        }
+        let b = id();
+        let mut acts = String::new();
+        for (target, q, ms) in assoc {
+            let q = if q.is_empty() { "N" } else { q };
+            let d = ms.map_or(String::new(), |ms| format!(" duration=\"T#{ms}ms\""));
+            let body = c.actions.iter().find(|a| &a.0 == target).map(|a| &a.1);
+            let content = match body {
+                // Some actions written inline in the block, each its own action.
+                Some(text) if r.chance(30) => {
+                    format!("<inline><ST>{}</ST></inline>", cdata(text))
+                }
+                _ => format!("<reference name=\"{target}\"/>"),
+            };
+            acts += &format!("<action localId=\"0\" qualifier=\"{q}\"{d}>{content}</action>");
+        }
+        body += &format!(
+            "<actionBlock localId=\"{b}\"><position x=\"0\" y=\"0\"/>{}{acts}</actionBlock>\n",
+            connect(*sid)
+        );
+    }
+    let actions: String = c
+        .actions
+        .iter()
+        .map(|(a, text)| {
+            format!("<action name=\"{a}\"><body><ST>{}</ST></body></action>\n", cdata(text))
+        })
+        .collect();
+    let inputs: String = INPUTS
+        .iter()
+        .map(|i| format!("<variable name=\"{i}\"><type><BOOL/></type></variable>\n"))
+        .collect();
+    let outputs: String = OUTPUTS
+        .iter()
+        .map(|o| format!("<variable name=\"{o}\"><type><BOOL/></type></variable>\n"))
+        .collect();
+    let actions =
+        if actions.is_empty() { actions } else { format!("<actions>\n{actions}</actions>\n") };
+    let named =
+        if named.is_empty() { named } else { format!("<transitions>\n{named}</transitions>\n") };
+    let cycle = format!("T#{}ms", c.cycle_us / 1000);
+    let text = format!(
+        r#"<?xml version="1.0" encoding="UTF-8"?>
+<project xmlns="http://www.plcopen.org/xml/tc6_0201" xmlns:xhtml="http://www.w3.org/1999/xhtml">
+<fileHeader companyName="test" productName="test" productVersion="1" creationDateTime="2026-01-01T00:00:00"/>
+<contentHeader name="chart"><coordinateInfo><fbd><scaling x="1" y="1"/></fbd><ld><scaling x="1" y="1"/></ld><sfc><scaling x="1" y="1"/></sfc></coordinateInfo></contentHeader>
+<types><dataTypes/><pous>
+<pou name="Chart" pouType="program"><interface><inputVars>
+{inputs}</inputVars><localVars>
+{outputs}<variable name="Cnt"><type><INT/></type></variable>
+<variable name="Tm"><type><derived name="TON"/></type></variable>
+</localVars></interface>
+{actions}{named}<body><SFC>
+{body}</SFC></body></pou>
+</pous></types>
+<instances><configurations><configuration name="Config"><resource name="Res"><task name="Main" priority="0" interval="{cycle}"><pouInstance name="Inst" typeName="Chart"/></task></resource></configuration></configurations></instances>
+</project>
+"#
+    );
+    generated(text, c.cycle_us)
 }

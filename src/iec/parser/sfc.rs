@@ -4,10 +4,31 @@ use super::Parser;
 use crate::iec::StError;
 use crate::iec::ast::{Action, Association, Expr, ExprKind, Ident, Sfc, Step, Transition};
 use crate::iec::lexer::Tok;
+use crate::iec::lexer::lex;
 
 /// The qualifiers of an action association (`D`, `L`, `SD`, `DS`, `SL` take a time).
 const QUALIFIERS: &[&str] = &["N", "R", "S", "P", "P0", "P1", "L", "D", "SD", "DS", "SL"];
 const TIMED: &[&str] = &["L", "D", "SD", "DS", "SL"];
+
+/// Parses a transition's condition at `range` of `text` (a PLCopen chart's): an
+/// expression, written alone (inline) or as `:= expression;` (a named transition's body).
+pub fn parse_condition(
+    file: usize,
+    text: &str,
+    range: std::ops::Range<usize>,
+) -> Result<Expr, StError> {
+    let toks = lex(file, text, range)?;
+    let mut p = Parser::new(toks, text);
+    let assigned = p.eat_sym(":=");
+    let e = p.expr()?;
+    if assigned {
+        p.expect_sym(";", "after the transition's condition")?;
+    } else {
+        p.eat_sym(";");
+    }
+    p.expect_eof()?;
+    Ok(e)
+}
 
 impl Parser<'_> {
     /// Whether a POU's body starting here is a chart.

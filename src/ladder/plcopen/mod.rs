@@ -13,6 +13,7 @@ pub mod ints;
 pub mod lower;
 mod read;
 mod select;
+mod sfc;
 pub mod simulate;
 mod text;
 

@@ -313,26 +313,7 @@ impl Reader<'_> {
                 }
             }
         }
-        let text = matches!(lang, Lang::St | Lang::Il).then(|| {
-            // The text is the body's text nodes (usually one, in `xhtml:p`, often CDATA).
-            // Whitespace between the tags is no part of it.
-            let nodes: Vec<Node> = content
-                .descendants()
-                .filter(|d| d.is_text() && d.text().is_some_and(|t| !t.trim().is_empty()))
-                .collect();
-            let decoded: String = nodes.iter().filter_map(|d| d.text()).collect();
-            let raw = match nodes.as_slice() {
-                [one] => {
-                    let r = one.range();
-                    let raw = self.text.get(r.clone()).unwrap_or("");
-                    raw.find(decoded.as_str())
-                        .filter(|_| !decoded.is_empty())
-                        .map(|k| r.start + k..r.start + k + decoded.len())
-                }
-                _ => None,
-            };
-            (raw, decoded)
-        });
+        let text = matches!(lang, Lang::St | Lang::Il).then(|| text_of_body(self.text, content));
         Some(Body { lang, objects, text, span: self.tag(content) })
     }
 
@@ -496,3 +477,25 @@ fn pou_instance(r: &mut Reader, i: Node) -> (String, String, Span) {
 }
 
 pub use crate::iec::literal::parse_duration;
+
+/// The text of a textual body or condition `content` (`ST`, `IL`): its text nodes
+/// (usually one, in `xhtml:p`, often CDATA; whitespace between the tags is no part of
+/// it), decoded, with where it stands in `text` when it stands there as it is.
+pub(super) fn text_of_body(text: &str, content: Node) -> (Option<std::ops::Range<usize>>, String) {
+    let nodes: Vec<Node> = content
+        .descendants()
+        .filter(|d| d.is_text() && d.text().is_some_and(|t| !t.trim().is_empty()))
+        .collect();
+    let decoded: String = nodes.iter().filter_map(|d| d.text()).collect();
+    let raw = match nodes.as_slice() {
+        [one] => {
+            let r = one.range();
+            let raw = text.get(r.clone()).unwrap_or("");
+            raw.find(decoded.as_str())
+                .filter(|_| !decoded.is_empty())
+                .map(|k| r.start + k..r.start + k + decoded.len())
+        }
+        _ => None,
+    };
+    (raw, decoded)
+}

@@ -31,7 +31,7 @@ pub fn st_program(
     sel: &Selection,
 ) -> Option<Result<crate::iec::Lowered, Vec<Diagnostic>>> {
     let (pou, task) = super::select::pick(project, sel).ok()?;
-    pou.body.as_ref().filter(|b| matches!(b.lang, Lang::St | Lang::Il))?;
+    pou.body.as_ref().filter(|b| matches!(b.lang, Lang::St | Lang::Il | Lang::Sfc))?;
     if let Err(e) = super::select::event_task(pou, task) {
         return Some(Err(e.into_iter().map(Diagnostic::from).collect()));
     }
@@ -51,32 +51,44 @@ fn task_cycle(sel: &Selection, task: Option<&super::Task>) -> Option<u64> {
     sel.cycle_us.or(interval)
 }
 
-/// The parsed text body of `pou` (`None` when it has no ST or IL body).
+/// The parsed body of `pou` (`None` when it has no ST, IL or SFC body).
 fn parse_body(
     sources: &mut Sources,
     project: &Project,
     pou: &Pou,
 ) -> Option<Result<ast::Body, StError>> {
-    let body = pou.body.as_ref().filter(|b| matches!(b.lang, Lang::St | Lang::Il))?;
+    let body = pou.body.as_ref().filter(|b| matches!(b.lang, Lang::St | Lang::Il | Lang::Sfc))?;
+    if body.lang == Lang::Sfc {
+        return Some(super::sfc::read(sources, project, pou));
+    }
     let il = body.lang == Lang::Il;
-    let parse = |file: usize, text: &str, range: std::ops::Range<usize>| {
-        if il {
-            crate::iec::parser::parse_il_body(file, text, range).map(ast::Body::Il)
-        } else {
-            crate::iec::parser::parse_body(file, text, range).map(ast::Body::St)
-        }
-    };
-    let (raw, decoded) = body.text.clone().unwrap_or((None, String::new()));
-    Some(match raw {
+    let what = format!("{} body of {}", body.lang.as_str(), pou.name);
+    let text = body.text.clone().unwrap_or((None, String::new()));
+    Some(if il {
+        parse_text(sources, project, text, &what, crate::iec::parser::parse_il_body)
+            .map(ast::Body::Il)
+    } else {
+        parse_text(sources, project, text, &what, crate::iec::parser::parse_body).map(ast::Body::St)
+    })
+}
+
+/// Parses a text of the project (a body, an action, a condition) where it stands in the
+/// file, or, when entities were decoded, as a source of its own named after `what`.
+pub(super) fn parse_text<T>(
+    sources: &mut Sources,
+    project: &Project,
+    (raw, decoded): (Option<std::ops::Range<usize>>, String),
+    what: &str,
+    parse: impl Fn(usize, &str, std::ops::Range<usize>) -> Result<T, StError>,
+) -> Result<T, StError> {
+    match raw {
         Some(range) => parse(project.file, sources.text(project.file), range),
         None => {
-            // Entities in the text: the decoded body is read as a source of its own.
-            let lang = body.lang.as_str();
-            let name = format!("{} ({lang} body of {})", sources.name(project.file), pou.name);
+            let name = format!("{} ({what})", sources.name(project.file));
             let file = sources.add(name, decoded.clone());
             parse(file, &decoded, 0..decoded.len())
         }
-    })
+    }
 }
 
 /// The IEC unit of `pou` as a PROGRAM (its declarations from the XML, its parsed body)
@@ -164,7 +176,7 @@ pub fn prepare_text_blocks(sources: &mut Sources, project: &mut Project, sel: &S
     let cycle = task_cycle(sel, task).unwrap_or(super::DEFAULT_CYCLE_US);
     let mut blocks = BTreeMap::new();
     for fb in project.pous.iter().filter(|p| p.kind == PouKind::FunctionBlock) {
-        if !fb.body.as_ref().is_some_and(|b| matches!(b.lang, Lang::St | Lang::Il)) {
+        if !fb.body.as_ref().is_some_and(|b| matches!(b.lang, Lang::St | Lang::Il | Lang::Sfc)) {
             continue;
         }
         let lowered = text_block(sources, project, fb, cycle);

@@ -1,0 +1,426 @@
+//! A PLCopen `<SFC>` body read as the textual chart Beremiz's `PLCGenerator.py` writes for matiec: the same steps, transitions and actions in the same order (steps from each initial step depth first, a step's actions and then its transitions, each transition followed by its next steps), so that `crate::iec::sfc` runs it as matiec runs the generated text.
+//!
+//! Read: steps, jumps, selection and simultaneous divergences and convergences, action
+//! blocks (actions referring to a BOOL variable or to an action of the POU with a
+//! Structured Text body, or inline Structured Text, which the generator names
+//! `STEP_INLINE1`, `STEP_INLINE2`, …), transitions with a priority and an inline
+//! Structured Text condition or one referring to a transition of the POU with a
+//! Structured Text body (`:= expression;`). Refused with a located error: a condition
+//! drawn as a network, Instruction List, Ladder or FBD in a condition or an action, macro
+//! steps.
+
+use std::collections::BTreeMap;
+use std::ops::Range;
+
+use super::{Pou, Project};
+use crate::diag::{Sources, Span};
+use crate::iec::StError;
+use crate::iec::ast::{self, Association, Expr, ExprKind, Ident};
+
+type Node<'a, 'i> = roxmltree::Node<'a, 'i>;
+
+/// The chart of `pou`, whose body is SFC, as the IEC front end's chart.
+pub fn read(sources: &mut Sources, project: &Project, pou: &Pou) -> Result<ast::Body, StError> {
+    let text = sources.text(project.file).to_string();
+    let body = pou.body.as_ref().map_or(pou.span, |b| b.span);
+    let options = roxmltree::ParsingOptions { allow_dtd: true, ..Default::default() };
+    let doc = roxmltree::Document::parse_with_options(&text, options)
+        .map_err(|_| StError::new(body, "the project is not well-formed XML", "here"))?;
+    let sfc = doc
+        .descendants()
+        .find(|n| n.is_element() && n.tag_name().name() == "SFC" && n.range().start == body.start)
+        .ok_or_else(|| StError::new(body, "this chart is not found again in the file", "here"))?;
+    let pou_node = sfc.ancestors().find(|n| n.tag_name().name() == "pou").unwrap_or(sfc);
+    let mut g = Gen {
+        sources,
+        project,
+        pou: pou_node,
+        nodes: sfc
+            .children()
+            .filter(|c| c.is_element())
+            .filter_map(|c| Some((c.attribute("localId")?.parse().ok()?, c)))
+            .collect(),
+        steps: BTreeMap::new(),
+        initial: Vec::new(),
+        transitions: BTreeMap::new(),
+        actions: BTreeMap::new(),
+        numbered: 0,
+        out: ast::Sfc::default(),
+    };
+    for c in sfc.children().filter(|c| c.is_element()) {
+        match c.tag_name().name() {
+            "step" => g.step(c)?,
+            "actionBlock" => g.action_block(c)?,
+            "transition" => g.transition(c)?,
+            "jumpStep" => g.jump(c)?,
+            "macroStep" => return Err(g.refuse(c, "a macro step is not read yet")),
+            _ => {}
+        }
+    }
+    for s in g.initial.clone() {
+        g.compute_step(&s)?;
+    }
+    Ok(ast::Body::Sfc(g.out))
+}
+
+struct StepInfo {
+    node: Range<usize>,
+    initial: bool,
+    /// The transitions leaving it (by `localId`), in the order they were read.
+    transitions: Vec<u64>,
+    actions: Vec<Association>,
+}
+
+struct TransitionInfo {
+    node: Range<usize>,
+    priority: Option<(i128, Span)>,
+    from: Vec<Ident>,
+    to: Vec<Ident>,
+    condition: Expr,
+}
+
+struct Gen<'g, 'a, 'i> {
+    sources: &'g mut Sources,
+    project: &'g Project,
+    pou: Node<'a, 'i>,
+    nodes: BTreeMap<u64, Node<'a, 'i>>,
+    /// Steps read, by upper-case name, with their name as written.
+    steps: BTreeMap<String, (String, StepInfo)>,
+    initial: Vec<String>,
+    transitions: BTreeMap<u64, TransitionInfo>,
+    /// Actions read (upper-case name → name and body), not yet written out.
+    actions: BTreeMap<String, (String, Vec<ast::Stmt>, Span)>,
+    numbered: usize,
+    out: ast::Sfc,
+}
+
+fn child<'a, 'i>(n: Node<'a, 'i>, name: &str) -> Option<Node<'a, 'i>> {
+    n.children().find(|c| c.is_element() && c.tag_name().name() == name)
+}
+
+impl<'a, 'i> Gen<'_, 'a, 'i> {
+    fn span(&self, n: Node) -> Span {
+        Span::new(self.project.file, n.range())
+    }
+
+    fn refuse(&self, n: Node, message: &str) -> StError {
+        StError::new(self.span(n), message, "not read yet")
+    }
+
+    /// The element `n`'s one input connection leads to.
+    fn input(&self, n: Node<'a, 'i>) -> Vec<Node<'a, 'i>> {
+        n.children()
+            .filter(|c| c.is_element() && c.tag_name().name() == "connectionPointIn")
+            .filter_map(|p| {
+                let conns: Vec<_> = p
+                    .children()
+                    .filter(|c| c.is_element() && c.tag_name().name() == "connection")
+                    .collect();
+                match conns.as_slice() {
+                    [one] => self.nodes.get(&one.attribute("refLocalId")?.parse().ok()?).copied(),
+                    _ => None,
+                }
+            })
+            .collect()
+    }
+
+    /// The transitions a step or a jump is entered by (`ExtractConvergenceInputs`…).
+    fn entering(&self, n: Node<'a, 'i>) -> Vec<Node<'a, 'i>> {
+        let Some(first) = self.input(n).first().copied() else { return Vec::new() };
+        match first.tag_name().name() {
+            "transition" => vec![first],
+            "selectionConvergence" => self.input(first),
+            "simultaneousDivergence" => match self.input(first).first().copied() {
+                Some(t) if t.tag_name().name() == "transition" => vec![t],
+                Some(c) if c.tag_name().name() == "selectionConvergence" => self.input(c),
+                _ => Vec::new(),
+            },
+            _ => Vec::new(),
+        }
+        .into_iter()
+        .filter(|t| t.tag_name().name() == "transition")
+        .collect()
+    }
+
+    fn step(&mut self, n: Node<'a, 'i>) -> Result<(), StError> {
+        let name = n.attribute("name").unwrap_or("").to_string();
+        let key = name.to_ascii_uppercase();
+        if self.steps.contains_key(&key) {
+            return Ok(());
+        }
+        let initial = n.attribute("initialStep") == Some("true");
+        if initial {
+            self.initial.push(key.clone());
+        }
+        let info =
+            StepInfo { node: n.range(), initial, transitions: Vec::new(), actions: Vec::new() };
+        self.steps.insert(key, (name.clone(), info));
+        for t in self.entering(n) {
+            self.transition(t)?;
+            let id = self.id(t);
+            let span = self.span(n);
+            if let Some(info) = self.transitions.get_mut(&id) {
+                info.to.push(Ident { name: name.clone(), span });
+            }
+        }
+        Ok(())
+    }
+
+    fn id(&self, n: Node) -> u64 {
+        n.attribute("localId").and_then(|v| v.parse().ok()).unwrap_or(u64::MAX)
+    }
+
+    fn jump(&mut self, n: Node<'a, 'i>) -> Result<(), StError> {
+        let target = n.attribute("targetName").unwrap_or("").to_string();
+        let known = self.nodes.values().any(|s| {
+            s.tag_name().name() == "step"
+                && s.attribute("name").is_some_and(|x| x.eq_ignore_ascii_case(&target))
+        });
+        if !known {
+            return Err(StError::new(
+                self.span(n),
+                format!("this jump goes to `{target}`, which is no step of the chart"),
+                "no such step",
+            ));
+        }
+        for t in self.entering(n) {
+            self.transition(t)?;
+            let (id, span) = (self.id(t), self.span(n));
+            if let Some(info) = self.transitions.get_mut(&id) {
+                info.to.push(Ident { name: target.clone(), span });
+            }
+        }
+        Ok(())
+    }
+
+    fn action_block(&mut self, n: Node<'a, 'i>) -> Result<(), StError> {
+        let Some(step) = self.input(n).first().copied() else { return Ok(()) };
+        if step.tag_name().name() != "step" {
+            return Ok(());
+        }
+        self.step(step)?;
+        let step_name = step.attribute("name").unwrap_or("").to_string();
+        for a in n.children().filter(|c| c.is_element() && c.tag_name().name() == "action") {
+            let span = self.span(a);
+            let qualifier = a.attribute("qualifier").unwrap_or("N").to_ascii_uppercase();
+            let time =
+                a.attribute("duration").map(|d| match crate::iec::literal::parse_duration(d) {
+                    Some(us) => Expr { kind: ExprKind::Time(us), span },
+                    None => Expr {
+                        kind: ExprKind::Var(Ident { name: d.trim().to_string(), span }),
+                        span,
+                    },
+                });
+            let name = if let Some(r) = child(a, "reference") {
+                let name = r.attribute("name").unwrap_or("").to_string();
+                self.named_action(&name, span)?;
+                name
+            } else if let Some(inline) = child(a, "inline") {
+                self.numbered += 1;
+                let name = format!("{}_INLINE{}", step_name.to_ascii_uppercase(), self.numbered);
+                let body = self.statements(inline, &format!("action {name}"))?;
+                self.actions.insert(name.to_ascii_uppercase(), (name.clone(), body, span));
+                name
+            } else {
+                return Err(self.refuse(a, "an action without a reference or an inline body"));
+            };
+            let qualifier = Some(Ident { name: qualifier, span });
+            let action = Ident { name, span };
+            let association = Association { action, qualifier, time, span };
+            if let Some((_, info)) = self.steps.get_mut(&step_name.to_ascii_uppercase()) {
+                info.actions.push(association);
+            }
+        }
+        Ok(())
+    }
+
+    /// The POU's action `name`, if it has one (else `name` is a variable).
+    fn named_action(&mut self, name: &str, span: Span) -> Result<(), StError> {
+        let key = name.to_ascii_uppercase();
+        if self.actions.contains_key(&key) {
+            return Ok(());
+        }
+        let found = child(self.pou, "actions").and_then(|acts| {
+            acts.children().find(|c| {
+                c.tag_name().name() == "action"
+                    && c.attribute("name").is_some_and(|x| x.eq_ignore_ascii_case(name))
+            })
+        });
+        if let Some(act) = found {
+            let body = child(act, "body").unwrap_or(act);
+            let body = self.statements(body, &format!("action {name}"))?;
+            self.actions.insert(key, (name.to_string(), body, span));
+        }
+        Ok(())
+    }
+
+    /// The Structured Text statements in `n` (an `inline` or a `body`).
+    fn statements(&mut self, n: Node<'a, 'i>, what: &str) -> Result<Vec<ast::Stmt>, StError> {
+        let Some(st) = child(n, "ST") else {
+            let lang = n.children().find(|c| c.is_element()).map_or("?", |c| c.tag_name().name());
+            return Err(self.refuse(
+                n,
+                &format!("an {what} in {lang} is not read yet (only Structured Text)"),
+            ));
+        };
+        let text = super::read::text_of_body(self.sources.text(self.project.file), st);
+        if text.1.contains('{') {
+            return Err(self.refuse(
+                st,
+                &format!("an {what} with a pragma `{{…}}`, C code that ii-prove cannot see"),
+            ));
+        }
+        super::text::parse_text(
+            self.sources,
+            self.project,
+            text,
+            what,
+            crate::iec::parser::parse_body,
+        )
+    }
+
+    fn transition(&mut self, n: Node<'a, 'i>) -> Result<(), StError> {
+        let id = self.id(n);
+        if self.transitions.contains_key(&id) {
+            return Ok(());
+        }
+        let mut from = Vec::new();
+        if let Some(first) = self.input(n).first().copied() {
+            from = match first.tag_name().name() {
+                "step" => vec![first],
+                "selectionDivergence" => match self.input(first).first().copied() {
+                    Some(s) if s.tag_name().name() == "step" => vec![s],
+                    Some(c) if c.tag_name().name() == "simultaneousConvergence" => self.input(c),
+                    _ => Vec::new(),
+                },
+                "simultaneousConvergence" => self.input(first),
+                _ => Vec::new(),
+            };
+        }
+        let span = self.span(n);
+        let priority =
+            n.attribute("priority").and_then(|p| p.trim().parse::<i128>().ok()).map(|p| (p, span));
+        let condition = self.condition(n)?;
+        let info = TransitionInfo {
+            node: n.range(),
+            priority,
+            from: Vec::new(),
+            to: Vec::new(),
+            condition,
+        };
+        self.transitions.insert(id, info);
+        for s in from.into_iter().filter(|s| s.tag_name().name() == "step") {
+            self.step(s)?;
+            let name = s.attribute("name").unwrap_or("").to_string();
+            let step_span = self.span(s);
+            if let Some(info) = self.transitions.get_mut(&id) {
+                info.from.push(Ident { name: name.clone(), span: step_span });
+            }
+            if let Some((_, step)) = self.steps.get_mut(&name.to_ascii_uppercase()) {
+                step.transitions.push(id);
+            }
+        }
+        Ok(())
+    }
+
+    fn condition(&mut self, n: Node<'a, 'i>) -> Result<Expr, StError> {
+        let Some(c) = child(n, "condition") else {
+            return Err(self.refuse(n, "a transition without a condition"));
+        };
+        if let Some(inline) = child(c, "inline") {
+            let Some(st) = child(inline, "ST") else {
+                return Err(self.refuse(
+                    inline,
+                    "a transition condition that is not Structured Text is not read yet",
+                ));
+            };
+            let text = super::read::text_of_body(self.sources.text(self.project.file), st);
+            return super::text::parse_text(
+                self.sources,
+                self.project,
+                text,
+                "a condition",
+                crate::iec::parser::parse_condition,
+            );
+        }
+        if let Some(r) = child(c, "reference") {
+            let name = r.attribute("name").unwrap_or("");
+            let body = child(self.pou, "transitions")
+                .and_then(|ts| {
+                    ts.children().find(|t| {
+                        t.tag_name().name() == "transition"
+                            && t.attribute("name").is_some_and(|x| x.eq_ignore_ascii_case(name))
+                    })
+                })
+                .and_then(|t| child(t, "body"));
+            let Some(body) = body else {
+                return Err(
+                    self.refuse(r, &format!("the transition `{name}` is not found in the POU"))
+                );
+            };
+            let Some(st) = child(body, "ST") else {
+                return Err(self.refuse(
+                    body,
+                    &format!("the transition `{name}` is not Structured Text: not read yet"),
+                ));
+            };
+            let text = super::read::text_of_body(self.sources.text(self.project.file), st);
+            return super::text::parse_text(
+                self.sources,
+                self.project,
+                text,
+                &format!("transition {name}"),
+                crate::iec::parser::parse_condition,
+            );
+        }
+        Err(self.refuse(c, "a transition condition drawn as a network is not read yet"))
+    }
+
+    /// Writes step `key` out, then its actions and its transitions (with their next
+    /// steps), as the generator does.
+    fn compute_step(&mut self, key: &str) -> Result<(), StError> {
+        let Some((name, info)) = self.steps.remove(key) else { return Ok(()) };
+        let span = Span::new(self.project.file, info.node.clone());
+        let names: Vec<String> = info.actions.iter().map(|a| a.action.key()).collect();
+        self.out.steps.push(ast::Step {
+            name: Ident { name, span },
+            initial: info.initial,
+            actions: info.actions,
+        });
+        for a in names {
+            if let Some((name, body, span)) = self.actions.remove(&a) {
+                self.out.actions.push(ast::Action { name: Ident { name, span }, body, span });
+            }
+        }
+        for t in info.transitions {
+            self.compute_transition(t)?;
+        }
+        Ok(())
+    }
+
+    fn compute_transition(&mut self, id: u64) -> Result<(), StError> {
+        let Some(t) = self.transitions.remove(&id) else { return Ok(()) };
+        let span = Span::new(self.project.file, t.node.clone());
+        if t.from.is_empty() || t.to.is_empty() {
+            let side = if t.from.is_empty() { "previous" } else { "next" };
+            return Err(StError::new(
+                span,
+                format!("this transition is not connected to a {side} step"),
+                "not connected",
+            ));
+        }
+        let next: Vec<String> = t.to.iter().map(Ident::key).collect();
+        self.out.transitions.push(ast::Transition {
+            name: None,
+            priority: t.priority,
+            from: t.from,
+            to: t.to,
+            condition: t.condition,
+            span,
+        });
+        for s in next {
+            self.compute_step(&s)?;
+        }
+        Ok(())
+    }
+}
