@@ -574,3 +574,21 @@ fn the_simulator_reads_a_time_variable_preset_at_each_call() {
     });
     assert_eq!(first, Some(151));
 }
+
+/// A block of a library that talks to the outside world (a CSV file read through the
+/// runtime's Python thread) is named a peripheral, its Boolean outputs free inputs; a
+/// standard block the lowering does not compute is not.
+#[test]
+fn library_blocks_that_read_the_outside_world_are_peripherals() {
+    let out = ii_prove(&[
+        "show",
+        "tests/data/plcopen/corpus/beremiz__beremiz/exemples__csv_read__plc.xml",
+    ]);
+    let all = format!("{}{}", text(&out.stdout), text(&out.stderr));
+    for block in ["csv_read_by_string", "csv_read_by_int", "csv_reload"] {
+        let line = format!("the library block `{block}` is a peripheral");
+        assert!(all.contains(&line), "wanted `{line}` in\n{all}");
+    }
+    assert!(all.contains("CSV_READ_BY_INT: a peripheral: the output ACK of csv_read_by_int0"));
+    assert!(!all.contains("the library block `csv_reload` is not modelled"));
+}

@@ -129,6 +129,16 @@ fn fresh_because(keyword: &str, why: String, span: Span) -> BoolExpr {
     BoolExpr::Fresh(Box::new(Fresh { base: keyword.clone(), keyword, why, span }))
 }
 
+/// A Boolean output of a library block that is a peripheral (`peripherals`): a free
+/// input, with what it follows.
+fn peripheral(type_name: &str, instance: Option<&str>, pin: &str, span: Span) -> BoolExpr {
+    let upper = type_name.to_ascii_uppercase();
+    let out = instance.map_or(upper.clone(), |i| format!("the output {pin} of {i} ({upper})"));
+    let what = super::peripherals::peripheral(type_name).unwrap_or("it answers from outside");
+    let why = format!("a peripheral: {out}: {what}, which ii-prove does not model");
+    fresh_because(type_name, why, span)
+}
+
 /// A Boolean output of a block the algebra does not express (counters, comparisons, …).
 fn opaque(type_name: &str, instance: Option<&str>, pin: &str, span: Span) -> BoolExpr {
     let upper = type_name.to_ascii_uppercase();
@@ -566,6 +576,9 @@ impl<'p> Lower<'p> {
                     Some(n) => contact(n, false),
                     None => fresh(type_name, &format!("the output {pin} of {type_name}"), span),
                 }
+            }
+            _ if self.p.peripherals.contains(&k) => {
+                peripheral(type_name, instance.as_deref(), pin, span)
             }
             _ => opaque(type_name, instance.as_deref(), pin, span),
         }

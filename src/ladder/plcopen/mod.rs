@@ -11,6 +11,7 @@
 mod ast;
 pub mod ints;
 pub mod lower;
+mod peripherals;
 mod read;
 mod select;
 mod sfc;

@@ -122,6 +122,7 @@ pub(super) fn check_pou(
         subs: BTreeMap::new(),
         text_calls: BTreeMap::new(),
         warnings: Vec::new(),
+        peripherals: BTreeSet::new(),
     };
     // Check every wire, block type and operand.
     let mut taken: BTreeSet<String> = program.vars.keys().cloned().collect();
@@ -440,11 +441,22 @@ pub(super) fn check_pou(
                             }),
                             None => warnings.push(PlcError::Note {
                                 span: o.span,
-                                message: format!(
-                                    "the {what} `{type_name}` is not modelled{}: its Boolean \
-                                     outputs are unconstrained signals",
-                                    opaque_why.take().map_or(String::new(), |w| format!(" ({w})"))
-                                ),
+                                message: match super::super::peripherals::peripheral(type_name) {
+                                    Some(why) if !user => {
+                                        program.peripherals.insert(k);
+                                        format!(
+                                            "the library block `{type_name}` is a peripheral \
+                                         ({why}): its Boolean outputs are free inputs"
+                                        )
+                                    }
+                                    _ => format!(
+                                        "the {what} `{type_name}` is not modelled{}: its Boolean \
+                                         outputs are unconstrained signals",
+                                        opaque_why
+                                            .take()
+                                            .map_or(String::new(), |w| format!(" ({w})"))
+                                    ),
+                                },
                             }),
                         }
                     }

@@ -232,6 +232,9 @@ pub struct PlcProgram {
     pub text_calls: BTreeMap<usize, crate::ladder::plcopen::text::TextCall>,
     /// Warnings.
     pub warnings: Vec<PlcError>,
+    /// The library blocks that are peripherals (`peripherals`), by block object: their
+    /// Boolean outputs are free inputs.
+    pub peripherals: BTreeSet<usize>,
 }
 
 impl PlcProgram {
