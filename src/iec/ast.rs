@@ -198,6 +198,9 @@ pub struct VarDecl {
     pub constant: bool,
     /// `AT %IX0.1`.
     pub location: Option<String>,
+    /// The limits of its subrange type (`TYPE R : INT (0..100); END_TYPE`), whose name
+    /// `ty` then no longer gives: it is the base type's.
+    pub range: Option<(i64, i64)>,
 }
 
 /// An expression.

@@ -370,6 +370,8 @@ struct Lowering<'s> {
     undefined: BTreeSet<String>,
     /// `CONSTANT` integers with their values.
     constants: BTreeMap<String, i64>,
+    /// The limits of the integers of a subrange type.
+    ranges: BTreeMap<String, (i64, i64)>,
     /// Integers whose value is not computed, with the reason and where it was found
     /// (given; grows while lowering, which then runs again).
     opaque: BTreeMap<String, (ints::Opaque, Span)>,
@@ -427,6 +429,7 @@ impl<'s> Lowering<'s> {
             ints: BTreeMap::new(),
             undefined: BTreeSet::new(),
             constants: BTreeMap::new(),
+            ranges: BTreeMap::new(),
             opaque: BTreeMap::new(),
             int_globals: BTreeSet::new(),
             omitted: BTreeSet::new(),

@@ -1,6 +1,7 @@
 //! The Structured Text parser: recursive descent over the lexer's tokens into the AST, with IEC 61131-3 precedence and errors that say what was expected and where the open construct began.
 
 mod il;
+mod types;
 
 use std::collections::BTreeSet;
 
@@ -237,9 +238,11 @@ impl<'t> Parser<'t> {
 
     fn unit(&mut self) -> Result<Unit, StError> {
         let mut unit = Unit::default();
+        let mut types = Vec::new();
         loop {
             let t = self.peek().clone();
             if t.tok == Tok::Eof {
+                types::resolve(&mut unit, &types);
                 return Ok(unit);
             }
             if self.eat_kw("PROGRAM") {
@@ -250,12 +253,8 @@ impl<'t> Parser<'t> {
                 unit.pous.push(self.pou(PouKind::Function, "END_FUNCTION", t.span)?);
             } else if self.eat_kw("CONFIGURATION") {
                 unit.configs.push(self.config(t.span)?);
-            } else if t.is_kw("TYPE") {
-                return Err(StError::new(
-                    t.span,
-                    "user type declarations (`TYPE … END_TYPE`) are not read yet",
-                    "not supported",
-                ));
+            } else if self.eat_kw("TYPE") {
+                self.types(&mut types)?;
             } else {
                 return Err(
                     self.unexpected("`PROGRAM`, `FUNCTION_BLOCK`, `FUNCTION` or `CONFIGURATION`")
@@ -355,6 +354,7 @@ impl<'t> Parser<'t> {
                     retain,
                     constant,
                     location: location.clone(),
+                    range: None,
                 });
             }
         }

@@ -139,6 +139,7 @@ fn decl(v: &super::Var, class: ast::VarClass) -> ast::VarDecl {
         retain: v.retain,
         constant: false,
         location: v.address.clone(),
+        range: None,
     }
 }
 
