@@ -275,7 +275,7 @@ fn against_matiec(language: &str, programs: Vec<Job>) {
     let mut unknown_scans = 0u64;
     // Integer-scans compared, and the integers matiec's program has no member for.
     let (mut int_scans, mut absent) = (0u64, BTreeMap::<String, u64>::new());
-    let mut flow = 0u64;
+    let (mut flow, mut ranged) = (0u64, 0u64);
     for (key, seed, g, expected) in jobs {
         let out = std::fs::read_to_string(work.join(format!("{key}.out.json"))).expect("an answer");
         let out: Value = serde_json::from_str(&out).expect("JSON");
@@ -291,6 +291,7 @@ fn against_matiec(language: &str, programs: Vec<Job>) {
         // Programs with a jump or a loop counted before the scan.
         let words = ["EXIT;", "CONTINUE;", "RETURN;", "WHILE ", "REPEAT\n", "RET", "JMP"];
         flow += u64::from(words.iter().any(|w| g.text.contains(w)));
+        ranged += u64::from(g.text.contains("END_TYPE"));
         let traces: &[Value] = out["trace"].as_array().map_or(&[], Vec::as_slice);
         let mut differs = None;
         for (k, bit) in g.bits.iter().enumerate() {
@@ -346,7 +347,7 @@ fn against_matiec(language: &str, programs: Vec<Job>) {
         }
     }
     eprintln!(
-        "random {language} programs against matiec: {n} generated, {compared} run by the toolchain ({refused:?} refused; {flow} with EXIT, CONTINUE, RETURN, WHILE, REPEAT or a jump), {bit_scans} bit-scans ({unknown_scans} more unknown to ii-prove) and {int_scans} integer-scans compared; {} disagreements",
+        "random {language} programs against matiec: {n} generated, {compared} run by the toolchain ({refused:?} refused; {flow} with EXIT, CONTINUE, RETURN, WHILE, REPEAT or a jump; {ranged} with a subrange type), {bit_scans} bit-scans ({unknown_scans} more unknown to ii-prove) and {int_scans} integer-scans compared; {} disagreements",
         failures.len()
     );
     if !absent.is_empty() {

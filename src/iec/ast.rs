@@ -268,6 +268,9 @@ pub struct VarDecl {
     pub location: Option<String>,
     /// Made by the front end (a step's bits of a chart), not by the program's author.
     pub made: bool,
+    /// The limits of its subrange type (`TYPE R : INT (0..100); END_TYPE`), whose name
+    /// `ty` then no longer gives: it is the base type's.
+    pub range: Option<(i64, i64)>,
 }
 
 /// An expression.

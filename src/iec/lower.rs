@@ -378,6 +378,8 @@ struct Lowering<'s> {
     undefined: BTreeSet<String>,
     /// `CONSTANT` integers with their values.
     constants: BTreeMap<String, i64>,
+    /// The limits of the integers of a subrange type.
+    ranges: BTreeMap<String, (i64, i64)>,
     /// Integers whose value is not computed, with the reason and where it was found
     /// (given; grows while lowering, which then runs again).
     opaque: BTreeMap<String, (ints::Opaque, Span)>,
@@ -438,6 +440,7 @@ impl<'s> Lowering<'s> {
             ints: BTreeMap::new(),
             undefined: BTreeSet::new(),
             constants: BTreeMap::new(),
+            ranges: BTreeMap::new(),
             opaque: BTreeMap::new(),
             int_globals: BTreeSet::new(),
             omitted: BTreeSet::new(),
@@ -795,7 +798,7 @@ impl<'s> Lowering<'s> {
             {
                 Vec::new()
             }
-            Ty::Other(t) => vec![integer_write(span, ":=", &t, &sym.name)],
+            Ty::Other(t) => vec![ints::integer_write(span, ":=", &t, &sym.name)],
             Ty::Fb(..) | Ty::User(_) => {
                 self.refuse(id.span, "assigning a function-block instance", "call it instead");
                 Vec::new()
@@ -885,16 +888,5 @@ impl<'s> Lowering<'s> {
             warnings: self.warnings,
             time_inputs: self.time_inputs,
         }
-    }
-}
-
-/// A write of an integer variable: no Boolean effect, with a warning at `element`.
-fn integer_write(span: Span, element: &str, ty: &str, name: &str) -> Stmt {
-    Stmt::Warn {
-        span,
-        element: element.to_string(),
-        message: format!(
-            "writes the {ty} variable {name}: no Boolean effect (integers are not modelled yet)"
-        ),
     }
 }

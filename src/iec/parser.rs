@@ -2,6 +2,7 @@
 
 mod il;
 mod sfc;
+mod types;
 
 pub use sfc::parse_condition;
 
@@ -241,9 +242,11 @@ impl<'t> Parser<'t> {
 
     fn unit(&mut self) -> Result<Unit, StError> {
         let mut unit = Unit::default();
+        let mut types = Vec::new();
         loop {
             let t = self.peek().clone();
             if t.tok == Tok::Eof {
+                types::resolve(&mut unit, &types);
                 return Ok(unit);
             }
             if self.eat_kw("PROGRAM") {
@@ -254,12 +257,8 @@ impl<'t> Parser<'t> {
                 unit.pous.push(self.pou(PouKind::Function, "END_FUNCTION", t.span)?);
             } else if self.eat_kw("CONFIGURATION") {
                 unit.configs.push(self.config(t.span)?);
-            } else if t.is_kw("TYPE") {
-                return Err(StError::new(
-                    t.span,
-                    "user type declarations (`TYPE … END_TYPE`) are not read yet",
-                    "not supported",
-                ));
+            } else if self.eat_kw("TYPE") {
+                self.types(&mut types)?;
             } else {
                 return Err(
                     self.unexpected("`PROGRAM`, `FUNCTION_BLOCK`, `FUNCTION` or `CONFIGURATION`")
@@ -362,6 +361,7 @@ impl<'t> Parser<'t> {
                     constant,
                     location: location.clone(),
                     made: false,
+                    range: None,
                 });
             }
         }

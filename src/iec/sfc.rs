@@ -153,6 +153,7 @@ impl<'a> Chart<'a> {
             constant: false,
             location: None,
             made: true,
+            range: None,
         });
         name
     }

@@ -159,6 +159,17 @@ pub fn limit(t: IntType, mn: IntExpr, x: IntExpr, mx: IntExpr) -> IntExpr {
     IntExpr::ite(compare(CmpOp::Gt, t, x, mn.clone()), below_max, mn)
 }
 
+/// matiec's check of a subrange type `t (lo..hi)` on `x`, a value of `t`
+/// (`generate_c_typedecl.cc`, `__CHECK_name`): `x < lo ? lo : x > hi ? hi : x`.
+pub fn subrange_check(t: IntType, x: IntExpr, lo: i64, hi: i64) -> IntExpr {
+    let above = IntExpr::ite(
+        compare(CmpOp::Gt, t, x.clone(), IntExpr::Const(hi)),
+        IntExpr::Const(hi),
+        x.clone(),
+    );
+    IntExpr::ite(compare(CmpOp::Lt, t, x, IntExpr::Const(lo)), IntExpr::Const(lo), above)
+}
+
 /// `ABS(x)` in the type `t`: `x < 0 ? 0 - x : x` (wrapped: `ABS` of the smallest value is
 /// itself; with `undefined`, the value of that free integer there, as C leaves `-op` of
 /// the least `int` undefined: [`Checked`]). For a `REAL`, C's `-op` flips the sign bit

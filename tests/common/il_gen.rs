@@ -1,4 +1,4 @@
-//! Random Instruction List programs for the differential tests, kept as instructions as well as text: loads, the Boolean operators with `N` and `( … )`, `NOT`, `EQ`/`NE`, `ST`/`STN`/`S`/`R`, forward `JMP`/`JMPC`/`JMPCN` with labels reached from several paths, `RETC`/`RETCN`, and calls of TON, TOF, R_TRIG, F_TRIG, SR, RS (`CAL` with formal or positional inputs, `CLK`/`S1`/`R1`/`IN` as operators), some skipped by jumps, some inputs left out (a timer's `PT` among them) and some instances called twice.
+//! Random Instruction List programs for the differential tests, kept as instructions as well as text: loads, the Boolean operators with `N` and `( … )`, `NOT`, `EQ`/`NE`, `ST`/`STN`/`S`/`R`, forward `JMP`/`JMPC`/`JMPCN` with labels reached from several paths, `RETC`/`RETCN`, and calls of TON, TOF, R_TRIG, F_TRIG, SR, RS (`CAL` with formal or positional inputs, `CLK`/`S1`/`R1`/`IN` as operators), some skipped by jumps, some inputs left out (a timer's `PT` among them) and some instances called twice; `INT` locals, the first sometimes of a subrange type.
 #![allow(dead_code)]
 
 use super::rng::Rng;
@@ -591,7 +591,17 @@ pub fn program_with(seed: u64, for_matiec: bool) -> Generated {
         let form = g.form();
         ins.push(Ins::Cal(inst, ty, args, pt, form));
     }
-    let mut text = String::from("PROGRAM Random\n  VAR_INPUT\n");
+    // Sometimes the first INT local is of a subrange type (drawn apart, so the rest of
+    // the program stays as it was): matiec's `ST` stores into it unchecked.
+    let mut sub = Rng::new(seed ^ 0x5B12);
+    let ranged = !ints.is_empty() && sub.chance(50);
+    let mut text = String::new();
+    if ranged {
+        let lo = sub.below(40) as i64 - 20;
+        let hi = lo + sub.below(60) as i64;
+        text += &format!("TYPE\n  Rg0 : INT ({lo}..{hi});\nEND_TYPE\n\n");
+    }
+    text += "PROGRAM Random\n  VAR_INPUT\n";
     for i in &inputs {
         text += &format!("    {i} : BOOL;\n");
     }
@@ -599,8 +609,9 @@ pub fn program_with(seed: u64, for_matiec: bool) -> Generated {
     for (b, init) in &locals {
         text += &format!("    {b} : BOOL{};\n", if *init { " := TRUE" } else { "" });
     }
-    for (n, init) in &ints {
-        text += &format!("    {n} : INT := {init};\n");
+    for (k, (n, init)) in ints.iter().enumerate() {
+        let t = if ranged && k == 0 { "Rg0" } else { "INT" };
+        text += &format!("    {n} : {t} := {init};\n");
     }
     for (n, t) in &fbs {
         text += &format!("    {n} : {t};\n");

@@ -1,4 +1,4 @@
-//! Random Structured Text programs for the differential tests: Boolean assignments, IF/ELSIF/ELSE, every modelled function block (TON, TOF, TP, R_TRIG, F_TRIG, SR, RS, CTU, CTD, CTUD) with formal inputs and outputs (timers and edge detectors sometimes called under an IF, a timer's `PT` sometimes left out, and some instances called a second time with inputs left out), user functions and function blocks (inputs left out keep their values), FOR loops with constant bounds and WHILE/REPEAT loops counted before the scan (EXIT and CONTINUE under IF in their bodies), RETURN under IF in a program and a function block, the Boolean operators and functions, integers of every 8- to 32-bit type (arithmetic, division and MOD by literals, conversions, MIN/MAX/LIMIT/ABS/SEL, comparisons, CASE, integer inputs), initial values, and a configuration giving the cycle.
+//! Random Structured Text programs for the differential tests: Boolean assignments, IF/ELSIF/ELSE, every modelled function block (TON, TOF, TP, R_TRIG, F_TRIG, SR, RS, CTU, CTD, CTUD) with formal inputs and outputs (timers and edge detectors sometimes called under an IF, a timer's `PT` sometimes left out, and some instances called a second time with inputs left out), user functions and function blocks (inputs left out keep their values), FOR loops with constant bounds and WHILE/REPEAT loops counted before the scan (EXIT and CONTINUE under IF in their bodies), RETURN under IF in a program and a function block, the Boolean operators and functions, integers of every 8- to 32-bit type and a subrange of one (arithmetic, division and MOD by literals, conversions, MIN/MAX/LIMIT/ABS/SEL, comparisons, CASE, integer inputs), initial values, and a configuration giving the cycle.
 #![allow(dead_code)]
 
 use super::rng::Rng;
@@ -342,6 +342,55 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
     let mut user_bits = Vec::new();
     let mut user_calls = Vec::new();
     let mut user_vars = String::new();
+    // A subrange type over one integer's type (drawn apart, as above): some variables of
+    // that type declared of it, and a block whose input is of it, called with its output
+    // given into one of them, where matiec holds the value within the limits.
+    let mut sub = Rng::new(seed ^ 0x5B12);
+    let subrange = (with_ints && sub.chance(70)).then(|| {
+        let base = sub.pick(&int_vars).1.clone();
+        let (bits, signed) = int_info(&base);
+        let (min, max) = match signed {
+            true => (-(1i64 << (bits - 1)), (1i64 << (bits - 1)) - 1),
+            false => (0, (1i64 << bits) - 1),
+        };
+        let lo = (sub.below(60) as i64 - if signed { 30 } else { 0 }).clamp(min, max);
+        let hi = (lo + sub.below(80) as i64).min(max);
+        (base, lo, hi)
+    });
+    let mut ranged: Vec<String> = Vec::new();
+    if let Some((base, lo, hi)) = &subrange {
+        let init = match sub.chance(25) {
+            true => format!(" := {}", lo + sub.below((hi - lo + 1) as u64) as i64),
+            false => String::new(),
+        };
+        text += &format!("TYPE\n  Rg0 : {base} ({lo}..{hi}){init};\nEND_TYPE\n\n");
+        ranged = int_vars
+            .iter()
+            .filter(|(_, t)| t == base)
+            .filter(|_| sub.chance(60))
+            .map(|(n, _)| n.clone())
+            .collect();
+        let k = sub.below(20);
+        let op = if sub.chance(50) { "+" } else { "-" };
+        text += &format!(
+            "FUNCTION_BLOCK Sb0\n  VAR_INPUT\n    X : Rg0;\n  END_VAR\n  VAR_OUTPUT\n    Y : {base};\n  END_VAR\n  Y := X {op} {k};\nEND_FUNCTION_BLOCK\n\n"
+        );
+        user_vars += "    Q0 : Sb0;\n";
+        let mut f = Gen {
+            rng: &mut sub,
+            reads: g.reads.clone(),
+            writes: Vec::new(),
+            funcs: Vec::new(),
+            ints: g.ints.clone(),
+            int_writes: Vec::new(),
+        };
+        let x = f.iexpr(base, 1);
+        let out = match ranged.is_empty() || f.rng.chance(20) {
+            true => String::new(),
+            false => format!(", Y => {}", f.rng.pick(&ranged)),
+        };
+        user_calls.push(format!("  Q0(X := {x}{out});\n"));
+    }
     if g.rng.chance(35) {
         let mut f = Gen {
             rng: &mut *g.rng,
@@ -416,6 +465,7 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
     text += "  END_VAR\n  VAR\n";
     for (n, t) in &int_vars {
         let init = if g.rng.chance(30) { format!(" := {}", g.literal(t)) } else { String::new() };
+        let t = if ranged.contains(n) { "Rg0" } else { t };
         text += &format!("    {n} : {t}{init};\n");
     }
     if let Some((c, t)) = &counter {

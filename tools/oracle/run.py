@@ -52,18 +52,22 @@ PYTHON = os.environ.get("ORACLE_PYTHON", sys.executable)
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 STRUCT = re.compile(r"typedef struct \{(.*?)\}\s*(\w+);", re.S)
+DERIVED = re.compile(r"__DECLARE_DERIVED_TYPE\((\w+),\s*(\w+)\)")
 FIELD = re.compile(r"__DECLARE_(VAR|LOCATED|EXTERNAL)\((\w+),(\w+)\)|^\s*(\w+)\s+(\w+);", re.M)
 
 
 def structs(*headers):
-    """Struct name -> [(kind, type, field)] from matiec's C headers."""
+    """Struct name -> [(kind, type, field)] from matiec's C headers; a field of a derived
+    type (a subrange, `__DECLARE_DERIVED_TYPE(LEVEL_T,INT)`) has its base type."""
     out = {}
-    for h in headers:
-        for body, name in STRUCT.findall(open(h, encoding="utf-8", errors="replace").read()):
+    texts = [open(h, encoding="utf-8", errors="replace").read() for h in headers]
+    derived = {name: base for text in texts for name, base in DERIVED.findall(text)}
+    for text in texts:
+        for body, name in STRUCT.findall(text):
             fields = []
             for m in FIELD.finditer(body):
                 if m.group(1):
-                    fields.append((m.group(1), m.group(2), m.group(3)))
+                    fields.append((m.group(1), derived.get(m.group(2), m.group(2)), m.group(3)))
                 elif m.group(4) not in ("return", "typedef"):
                     fields.append(("FB", m.group(4), m.group(5)))
             out[name] = fields

@@ -650,7 +650,12 @@ impl Lowering<'_> {
                 }
                 Some(Sym { ty, name, .. }) if ty.value_type().is_some() => {
                     let t = ty.value_type().unwrap_or_default();
-                    vec![super::integer_write(span, &word.name.to_ascii_uppercase(), &t, &name)]
+                    vec![super::ints::integer_write(
+                        span,
+                        &word.name.to_ascii_uppercase(),
+                        &t,
+                        &name,
+                    )]
                 }
                 Some(_) => {
                     self.errors.push(StError::new(

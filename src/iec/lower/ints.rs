@@ -606,6 +606,19 @@ impl Lowering<'_> {
     }
 }
 
+impl Lowering<'_> {
+    /// matiec's `__CHECK_R(value)` on the integer `name` of type `t` just written, when
+    /// it is of a subrange type (`generate_c_typedecl.cc`): below the lower limit it
+    /// takes the lower limit, above the upper one the upper one. matiec calls it where a
+    /// call passes a value into a variable of a subrange type — a function block's
+    /// input, an output given with `=>` — not on `:=` or an IL `ST` (docs/iec.md).
+    pub(super) fn subrange_check(&self, name: &str, t: IntType, span: Span) -> Option<Stmt> {
+        let &(lo, hi) = self.ranges.get(name)?;
+        let value = library::subrange_check(t, IntExpr::var(name), lo, hi);
+        Some(Stmt::SetInt { target: name.to_string(), value, span })
+    }
+}
+
 trait ByBits {
     fn min_by_bits(self, o: IntType) -> IntType;
     fn max_by_bits(self, o: IntType) -> IntType;
@@ -624,8 +637,9 @@ impl Lowering<'_> {
     /// Declares the integer `name` of type `t` (`v` its declaration): its start value,
     /// whether the outside world writes it, or its constant value.
     pub(super) fn declare_int(&mut self, v: &ast::VarDecl, name: &str, t: IntType, input: bool) {
+        // A subrange variable starts at its lower limit (matiec's `__INIT_VAR`).
         let init = match &v.init {
-            None => Some(0),
+            None => Some(v.range.map_or(0, |r| r.0)),
             Some(e) => match self.int_expr(e) {
                 Ok(Int { e: IntExpr::Const(k), ty, .. }) if ty.map_or(!t.real, |x| x == t) => {
                     Some(t.wrap(k))
@@ -633,6 +647,9 @@ impl Lowering<'_> {
                 _ => None,
             },
         };
+        if let Some(r) = v.range {
+            self.ranges.insert(name.to_string(), r);
+        }
         let Some(init) = init else {
             let why = format!(
                 "its initial value `{}` is not {}",
@@ -695,7 +712,13 @@ impl Lowering<'_> {
                 if self.opaque.contains_key(&sym.name) {
                     return Vec::new();
                 }
-                vec![Stmt::SetInt { target: sym.name, value: IntExpr::var(source), span }]
+                let mut out = vec![Stmt::SetInt {
+                    target: sym.name.clone(),
+                    value: IntExpr::var(source),
+                    span,
+                }];
+                out.extend(self.subrange_check(&sym.name, t, span));
+                out
             }
             _ => {
                 self.errors.push(StError::new(
@@ -706,5 +729,16 @@ impl Lowering<'_> {
                 Vec::new()
             }
         }
+    }
+}
+
+/// A write of an integer variable: no Boolean effect, with a warning at `element`.
+pub(super) fn integer_write(span: Span, element: &str, ty: &str, name: &str) -> Stmt {
+    Stmt::Warn {
+        span,
+        element: element.to_string(),
+        message: format!(
+            "writes the {ty} variable {name}: no Boolean effect (integers are not modelled yet)"
+        ),
     }
 }

@@ -225,7 +225,10 @@ impl Lowering<'_> {
                     let (t, name) = (*t, name.clone());
                     if !self.opaque.contains_key(&name) {
                         match self.int_input(e, t) {
-                            Ok(value) => out.push(Stmt::SetInt { target: name, value, span }),
+                            Ok(value) => {
+                                out.push(Stmt::SetInt { target: name.clone(), value, span });
+                                out.extend(self.subrange_check(&name, t, span));
+                            }
                             Err(why) => self.make_opaque(&name, why, e.span),
                         }
                     }

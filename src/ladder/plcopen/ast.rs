@@ -113,6 +113,9 @@ pub struct Var {
     /// Declared in a `retain="true"` or `persistent="true"` list: after a warm restart
     /// it keeps the value it had.
     pub retain: bool,
+    /// The limits of its subrange type (a `dataType` with `subrangeSigned` or
+    /// `subrangeUnsigned`), whose base type `ty` then names.
+    pub range: Option<(i64, i64)>,
     /// The `variable` element.
     pub span: Span,
 }

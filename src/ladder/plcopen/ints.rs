@@ -143,12 +143,11 @@ impl ConvType {
             t if t.contains("BCD") => {
                 "it converts to or from BCD, which ii-prove does not compute".to_string()
             }
-            // matiec's C clamps every assignment to a subrange type to its range
-            // (`__CHECK_…`, `stage4/generate_c/generate_c_typedecl.cc`, `subrange_c`).
+            // A subrange of an integer type is read as that type (`read.rs`).
             _ => format!(
-                "{t} is not a type ii-prove computes: a derived type (a subrange, whose every \
-                 assignment matiec's C clamps to its range with `__CHECK_{t}`, an enumeration, \
-                 a structure or an array) is not modelled"
+                "{t} is not a type ii-prove computes: a derived type (an enumeration, a \
+                 structure, an array, or a subrange of a 64-bit type or with limits outside \
+                 its base type) is not modelled"
             ),
         })
     }

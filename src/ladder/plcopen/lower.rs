@@ -780,6 +780,9 @@ impl<'p> Lower<'p> {
                         self.coil(v.clone(), var, WriteKind::Assign, span);
                     } else if let Some(var) = p.sub_int_input(k, &n) {
                         self.int_assign(var, pin, span);
+                        if let Some(range) = p.sub_int_range(k, &n) {
+                            self.subrange_check(var, range, span);
+                        }
                     }
                 }
                 if let Some(child) = p.subs.get(&k) {

@@ -2,6 +2,7 @@
 
 use super::*;
 use crate::diag::{FileId, Sources, Span};
+use std::collections::BTreeMap;
 
 type Node<'a, 'i> = roxmltree::Node<'a, 'i>;
 
@@ -335,7 +336,16 @@ impl Reader<'_> {
                 .and_then(|s| s.attribute("value"))
                 .map(str::to_string);
             let address = v.attribute("address").map(str::to_string);
-            out.push(Var { name, class, ty, address, init, retain, span: self.tag(v) });
+            out.push(Var {
+                name,
+                class,
+                ty,
+                address,
+                init,
+                retain,
+                range: None,
+                span: self.tag(v),
+            });
         }
     }
 
@@ -461,10 +471,63 @@ pub fn read_plcopen(sources: &Sources, file: FileId) -> Result<Project, Vec<PlcE
             _ => {}
         }
     }
+    let types = subranges(root);
+    for v in pous.iter_mut().flat_map(|p| p.vars.iter_mut()).chain(globals.iter_mut()) {
+        resolve_subrange(v, &types);
+    }
     if r.errors.is_empty() {
         Ok(Project { file, version, pous, tasks, globals, span, text_blocks: Default::default() })
     } else {
         Err(r.errors)
+    }
+}
+
+/// A subrange type: its base type (an XML element name, `INT`), limits and initial value.
+type Subrange = (String, i64, i64, Option<String>);
+
+/// The subrange types of `types/dataTypes` by upper-case name: a `dataType` whose base
+/// type is a `subrangeSigned` or `subrangeUnsigned` of an integer type matiec allows one
+/// of, with limits in order and within that type (others stay derived types, opaque).
+fn subranges(root: Node) -> BTreeMap<String, Subrange> {
+    let mut out = BTreeMap::new();
+    let in_list = |d: &Node| d.parent_element().is_some_and(|p| p.tag_name().name() == "dataTypes");
+    for d in root.descendants().filter(|d| d.tag_name().name() == "dataType" && in_list(d)) {
+        let Some(range) = child(d, "baseType")
+            .and_then(|b| child(b, "subrangeSigned").or_else(|| child(b, "subrangeUnsigned")))
+        else {
+            continue;
+        };
+        let base = child(range, "baseType").and_then(|b| b.children().find(|c| c.is_element()));
+        let base = base.map(|b| b.tag_name().name().to_string()).unwrap_or_default();
+        let limit = |a: &str| {
+            child(range, "range")
+                .and_then(|r| r.attribute(a))
+                .and_then(|v| v.trim().parse::<i64>().ok())
+        };
+        let (Some(lo), Some(hi)) = (limit("lower"), limit("upper")) else { continue };
+        let fits = crate::program::library::int_type(&base)
+            .filter(|_| !matches!(base.as_str(), "BYTE" | "WORD" | "DWORD"))
+            .is_some_and(|t| t.min() <= lo && lo <= hi && hi <= t.max());
+        let init = child(d, "initialValue")
+            .and_then(|i| child(i, "simpleValue"))
+            .and_then(|s| s.attribute("value"))
+            .map(str::to_string);
+        if fits && let Some(name) = d.attribute("name") {
+            out.insert(name.to_ascii_uppercase(), (base, lo, hi, init));
+        }
+    }
+    out
+}
+
+/// A variable of a subrange type takes its base type and limits, and starts at the
+/// type's initial value, else the lower limit (matiec's `__INIT_VAR`), when it gives none.
+fn resolve_subrange(v: &mut Var, types: &BTreeMap<String, Subrange>) {
+    let Ty::Derived(name) = &v.ty else { return };
+    let Some((base, lo, hi, init)) = types.get(&name.to_ascii_uppercase()) else { return };
+    v.ty = Ty::Other(base.clone());
+    v.range = Some((*lo, *hi));
+    if v.init.is_none() {
+        v.init = Some(init.clone().unwrap_or_else(|| lo.to_string()));
     }
 }
 

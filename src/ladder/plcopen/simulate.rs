@@ -613,6 +613,9 @@ impl PlcSimulator {
                         let n = pin.name.to_ascii_uppercase();
                         if let Some(var) = self.p.sub_int_input(k, &n).map(str::to_string) {
                             self.int_assign(&var, pin);
+                            if let Some(range) = self.p.sub_int_range(k, &n) {
+                                self.subrange_check(&var, range);
+                            }
                         }
                     }
                     if let Some(mut sub) = self.subs.remove(&k) {

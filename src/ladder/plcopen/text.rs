@@ -152,6 +152,7 @@ fn decl(v: &super::Var, class: ast::VarClass) -> ast::VarDecl {
         constant: false,
         made: false,
         location: v.address.clone(),
+        range: v.range,
     }
 }
 
@@ -321,6 +322,14 @@ pub fn call(
                 VarClass::Input if !wired(&v.name) && v.init.is_some() => {
                     return Err(format!(
                         "its input `{}` has an initial value and no wire on this call",
+                        v.name
+                    ));
+                }
+                // matiec holds what the call passes within the limits (`__CHECK_…`),
+                // which the standalone program's free input does not.
+                VarClass::Input if wired(&v.name) && v.range.is_some() => {
+                    return Err(format!(
+                        "its input `{}` is of a subrange type, which text blocks do not model yet",
                         v.name
                     ));
                 }

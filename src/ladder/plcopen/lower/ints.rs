@@ -511,6 +511,14 @@ impl Lower<'_> {
     }
 
     /// `target := ` the integer at `input` (an output or in-out variable on an integer).
+    /// matiec's `__CHECK_…` of a subrange type `lo..hi` on the integer `var` just
+    /// written (`library::subrange_check`); nothing when `var` is not computed.
+    pub(super) fn subrange_check(&mut self, var: &str, (lo, hi): (i64, i64), span: Span) {
+        let Some(t) = self.ints.get(var).map(|v| v.ty) else { return };
+        let value = library::subrange_check(t, IntExpr::var(var), lo, hi);
+        self.push_block(vec![Stmt::SetInt { target: var.to_string(), value, span }], span);
+    }
+
     pub(super) fn int_assign(&mut self, target: &str, input: &PinIn, span: Span) {
         let value = self.int_pin(input);
         let Some(var) = self.ints.get(target).copied() else { return };

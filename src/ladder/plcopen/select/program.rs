@@ -399,6 +399,13 @@ impl PlcProgram {
         (v.class == VarClass::Input && sub.int_var_type(&v.name).is_some())
             .then_some(v.name.as_str())
     }
+
+    /// The limits of the subrange type of an inlined block's integer input (`IN1` of the
+    /// instance at `k`), if it is of one: Beremiz passes it in a formal call
+    /// (`inst(IN1 := …)`), where matiec's C holds it within them (`__CHECK_…`).
+    pub fn sub_int_range(&self, k: usize, pin: &str) -> Option<(i64, i64)> {
+        self.subs.get(&k)?.vars.get(&pin.to_ascii_uppercase())?.range
+    }
 }
 
 /// Whether an assignment (coil, output or in-out variable) has nothing wired to it:

@@ -471,6 +471,21 @@ impl PlcSimulator {
     }
 
     /// `target := ` the integer at `input` (an output or in-out variable).
+    /// A value passed into an input of a subrange type `lo..hi`: matiec's C function
+    /// `__CHECK_…` (`generate_c_typedecl.cc`) returns `lo` below it, `hi` above it.
+    pub(super) fn subrange_check(&mut self, target: &str, (lo, hi): (i64, i64)) {
+        if let Some((x, t)) = self.ints.get(target).copied() {
+            let held = if x < lo {
+                lo
+            } else if x > hi {
+                hi
+            } else {
+                x
+            };
+            self.ints.insert(target.to_string(), (held, t));
+        }
+    }
+
     pub(super) fn int_assign(&mut self, target: &str, input: &PinIn) {
         let v = self.int_pin(input);
         if let (Some((x, t)), Some((_, ct))) = (v, self.ints.get(target).copied()) {
