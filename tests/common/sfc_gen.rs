@@ -3,19 +3,8 @@
 
 use super::rng::Rng;
 
-/// A random chart and what to compare.
-pub struct Generated {
-    /// The `.st` text, or the PLCopen project.
-    pub text: String,
-    /// The program's type name.
-    pub pou: String,
-    /// Its BOOL inputs.
-    pub inputs: Vec<String>,
-    /// Its BOOL variables worth comparing.
-    pub bits: Vec<String>,
-    /// The scan cycle, in µs.
-    pub cycle_us: u64,
-}
+/// A random chart and what to compare (its integers: none given).
+pub use super::st_gen::Generated;
 
 /// A step: name, initial, associations (action, qualifier, duration in ms).
 type StepDesc = (String, bool, Vec<(String, String, Option<u64>)>);
@@ -129,6 +118,8 @@ fn generated(text: String, cycle_us: u64) -> Generated {
         inputs: INPUTS.iter().map(|s| s.to_string()).collect(),
         bits: OUTPUTS.iter().map(|s| s.to_string()).collect(),
         cycle_us,
+        ints: Vec::new(),
+        int_inputs: Vec::new(),
     }
 }
 
