@@ -381,9 +381,18 @@ impl<'a> Chart<'a> {
             let c = self.expr(&t.condition);
             condition.push(c);
         }
+        // Each transition's steps, resolved once (an unknown one is reported once).
+        let ends: Vec<(Vec<StepBits>, Vec<StepBits>)> = sfc
+            .transitions
+            .iter()
+            .map(|t| {
+                let from = t.from.iter().filter_map(|s| self.step(s)).collect();
+                (from, t.to.iter().filter_map(|s| self.step(s)).collect())
+            })
+            .collect();
         for &(k, _) in &list {
             let t = &sfc.transitions[k];
-            let from: Vec<_> = t.from.iter().filter_map(|s| self.step(s)).collect();
+            let from = &ends[k].0;
             let Some(all) = from.iter().map(|(x, ..)| var(x, t.span)).reduce(and) else { continue };
             let mut then = vec![assign(&fire[k], condition[k].clone(), t.span)];
             if t.priority.is_some() {
@@ -396,21 +405,17 @@ impl<'a> Chart<'a> {
         // Transitions reset steps, then set steps.
         for (k, t) in sfc.transitions.iter().enumerate() {
             if t.priority.is_none() {
-                let leave = t
-                    .from
-                    .iter()
-                    .filter_map(|s| self.step(s))
-                    .map(|(x, ..)| assign(&x, lit(false, t.span), t.span))
-                    .collect();
+                let leave =
+                    ends[k].0.iter().map(|(x, ..)| assign(x, lit(false, t.span), t.span)).collect();
                 out.push(when(var(&fire[k], t.span), leave, vec![]));
             }
         }
         for (k, t) in sfc.transitions.iter().enumerate() {
             let mut enter = Vec::new();
-            for (x, _, time) in t.to.iter().filter_map(|s| self.step(s)) {
-                enter.push(assign(&x, lit(true, t.span), t.span));
+            for (x, _, time) in &ends[k].1 {
+                enter.push(assign(x, lit(true, t.span), t.span));
                 if let Some((ticks, _)) = time {
-                    enter.push(assign(&ticks, int(0, t.span), t.span));
+                    enter.push(assign(ticks, int(0, t.span), t.span));
                 }
             }
             out.push(when(var(&fire[k], t.span), enter, vec![]));

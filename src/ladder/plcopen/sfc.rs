@@ -155,12 +155,16 @@ impl<'a, 'i> Gen<'_, 'a, 'i> {
         let info =
             StepInfo { node: n.range(), initial, transitions: Vec::new(), actions: Vec::new() };
         self.steps.insert(key, (name.clone(), info));
+        self.entered_by(n, &name)
+    }
+
+    /// The transitions `n` (a step or a jump) is entered by lead to step `name`.
+    fn entered_by(&mut self, n: Node<'a, 'i>, name: &str) -> Result<(), StError> {
         for t in self.entering(n) {
             self.transition(t)?;
-            let id = self.id(t);
-            let span = self.span(n);
+            let (id, span) = (self.id(t), self.span(n));
             if let Some(info) = self.transitions.get_mut(&id) {
-                info.to.push(Ident { name: name.clone(), span });
+                info.to.push(Ident { name: name.to_string(), span });
             }
         }
         Ok(())
@@ -183,14 +187,7 @@ impl<'a, 'i> Gen<'_, 'a, 'i> {
                 "no such step",
             ));
         }
-        for t in self.entering(n) {
-            self.transition(t)?;
-            let (id, span) = (self.id(t), self.span(n));
-            if let Some(info) = self.transitions.get_mut(&id) {
-                info.to.push(Ident { name: target.clone(), span });
-            }
-        }
-        Ok(())
+        self.entered_by(n, &target)
     }
 
     fn action_block(&mut self, n: Node<'a, 'i>) -> Result<(), StError> {
