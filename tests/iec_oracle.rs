@@ -1,4 +1,4 @@
-//! The IEC text front end against matiec, the editors' own compiler: random Structured Text (`common/st_gen.rs`), Instruction List (`common/il_gen.rs`) programs and sequential function charts (`common/sfc_gen.rs`, as text and as PLCopen `<SFC>` bodies, the latter turned into ST by Beremiz's generator) are compiled by `iec2c` and gcc and run scan by scan (`tools/oracle/run.py`); every BOOL variable and function-block output must have, at every scan, the value the scan-model simulator gives the lowered program — whose compiled equations `tests/st.rs` and `tests/il.rs` check against that simulator — and so must every integer the lowered program computes (`Program::integers`, `C1_CV`; a TIME in µs), its integer inputs driven with the same random values on both sides.
+//! The IEC text front end against matiec, the editors' own compiler: random Structured Text (`common/st_gen.rs`), Instruction List (`common/il_gen.rs`) programs and sequential function charts (`common/sfc_gen.rs`, as text and as PLCopen `<SFC>` bodies, the latter turned into ST by Beremiz's generator) are compiled by `iec2c` and gcc and run scan by scan (`tools/oracle/run.py`); every BOOL variable and function-block output must have, at every scan, the value the scan-model simulator gives the lowered program — whose compiled equations `tests/st.rs` and `tests/il.rs` check against that simulator — and so must every integer the lowered program computes (`Program::integers`, `C1_CV`; a TIME in ns), its integer inputs driven with the same random values on both sides.
 //!
 //! Outside the test command (it needs the toolchain built by `tools/oracle/setup.sh DIR`):
 //! `II_ORACLE=DIR cargo test --release --test iec_oracle -- --ignored`, with
@@ -381,7 +381,7 @@ fn run_one(dir: &Path, name: &str, text: &str, req: &Value) -> Value {
     serde_json::from_str(&answer.expect("an answer")).expect("JSON")
 }
 
-/// The oracle reads integers: counters' `CV`, a TON's `ET` in µs, integer variables of
+/// The oracle reads integers: counters' `CV`, a TON's `ET` in ns, integer variables of
 /// every width, with integer inputs driven per scan — checked against values worked out
 /// here from matiec's library (`lib/counter.txt`, `lib/timer.txt`) and C's arithmetic
 /// as matiec generates it: `+`, `/`, comparisons in C `int` after promotion (so
@@ -468,7 +468,7 @@ END_CONFIGURATION
     let (mut c1, mut d1, mut n) = (0i64, 0i64, 5i64);
     let (mut last_up, mut t_state, mut t_start, mut t_et, mut t_q) = (false, 0, 0i64, 0i64, false);
     for k in 0..scans {
-        let now = k as i64 * 20_000;
+        let now = k as i64 * 20_000_000;
         let (u, r) = (up[k] == 1, rst[k] == 1);
         let rising = u && !last_up;
         last_up = u;
@@ -488,8 +488,8 @@ END_CONFIGURATION
         } else if !u {
             (t_et, t_q, t_state) = (0, false, 0);
         } else if t_state == 1 {
-            if t_start + 50_000 <= now {
-                (t_state, t_q, t_et) = (2, true, 50_000);
+            if t_start + 50_000_000 <= now {
+                (t_state, t_q, t_et) = (2, true, 50_000_000);
             } else {
                 t_et = now - t_start;
             }

@@ -1,4 +1,8 @@
-//! IEC 61131-3 literals shared by the front ends: durations (`T#5s`, `TIME#1h2m`, 1.0's `00:00:00.100`) in microseconds (a part finer than 1 µs is dropped).
+//! IEC 61131-3 literals shared by the front ends: durations (`T#5s`, `TIME#1h2m`, 1.0's `00:00:00.100`) in microseconds (a part finer than 1 µs is dropped), and in nanoseconds as matiec's C computes them.
+
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{One, Signed, ToPrimitive, Zero};
 
 /// An IEC duration literal (`T#5s`, `TIME#1h2m`, `t#1.5s`, `T#-0s`) or a 1.0 interval
 /// (`00:00:00.100000`), in microseconds.
@@ -45,6 +49,74 @@ pub fn parse_duration(text: &str) -> Option<u64> {
     Some(total)
 }
 
+/// The nanoseconds matiec's C gives the duration literal `text` (`T#25.7ms`): `iec2c`
+/// writes its parts as written (`__time_to_timespec(1, 25.7, 0, 0, 0, 0)`: ms, s, m, h,
+/// d), each a C `double`, and the macro computes `((d*24 + h)*60 + m)*60 + s + ms/1e3`
+/// in `long double` (x87's 64-bit significand, each operation rounded to nearest), then
+/// `tv_sec` and `tv_nsec` truncated toward zero: `T#25.7ms` is 25,699,999 ns, `T#1400ms`
+/// 1,399,999,999. `None` for a part in `us` or `ns` (which matiec does not read), a
+/// negative one, or a 1.0 interval.
+pub fn matiec_duration_ns(text: &str) -> Option<i64> {
+    let upper = text.trim().to_ascii_uppercase();
+    let (_, body) = upper.split_once('#')?;
+    let body: String = body.chars().filter(|c| *c != '_').collect();
+    let units = ["MS", "D", "H", "M", "S"];
+    let mut parts: [BigRational; 5] = Default::default();
+    let mut rest = body.as_str();
+    while !rest.is_empty() {
+        let n = rest.find(|c: char| !(c.is_ascii_digit() || c == '.')).unwrap_or(rest.len());
+        let (num, after) = rest.split_at(n);
+        let k = units.iter().position(|u| after.starts_with(u))?;
+        if num.is_empty() || after.starts_with("US") || after.starts_with("NS") {
+            return None;
+        }
+        let (int, frac) = num.split_once('.').unwrap_or((num, ""));
+        let digits: BigInt = format!("{int}{frac}").parse().ok()?;
+        let exact = BigRational::new(digits, BigInt::from(10).pow(frac.len() as u32));
+        parts[k] = round(&exact, 53);
+        rest = &after[units[k].len()..];
+    }
+    let [ms, d, h, m, s] = parts;
+    let x = |r: BigRational| round(&r, 64);
+    let k = |v: i64| BigRational::from_integer(BigInt::from(v));
+    let total = x(x(x(x(x(x(d * k(24)) + h) * k(60)) + m) * k(60)) + s) + x(ms / k(1000));
+    let total = x(total);
+    let sec = total.trunc();
+    let ns = x(x(total - sec.clone()) * k(1_000_000_000)).trunc();
+    (sec * k(1_000_000_000) + ns).to_integer().to_i64()
+}
+
+/// `r` rounded to the nearest number with a `bits`-bit significand (ties to even), as
+/// IEEE arithmetic rounds (no exponent limits: the durations here are far from them).
+fn round(r: &BigRational, bits: u32) -> BigRational {
+    if r.is_zero() {
+        return r.clone();
+    }
+    let a = r.abs();
+    let two = BigRational::from_integer(BigInt::from(2));
+    let (lo, hi) = (BigInt::one() << (bits - 1), BigInt::one() << bits);
+    let mut e: i64 = a.numer().bits() as i64 - a.denom().bits() as i64 - i64::from(bits);
+    let scaled = |e: i64| {
+        if e >= 0 { &a / two.pow(e as i32) } else { &a * two.pow((-e) as i32) }
+    };
+    let mut m = scaled(e);
+    while m.floor().to_integer() < lo {
+        e -= 1;
+        m = scaled(e);
+    }
+    while m.floor().to_integer() >= hi {
+        e += 1;
+        m = scaled(e);
+    }
+    let floor = m.floor();
+    let frac = &m - &floor;
+    let half = BigRational::new(BigInt::one(), BigInt::from(2));
+    let odd = floor.to_integer() % 2 != BigInt::zero();
+    let n = if frac > half || (frac == half && odd) { floor + BigRational::one() } else { floor };
+    let v = if e >= 0 { n * two.pow(e as i32) } else { n / two.pow((-e) as i32) };
+    if r.is_negative() { -v } else { v }
+}
+
 /// `12.5` × `scale`, truncated.
 fn parse_decimal(s: &str, scale: u64) -> Option<u64> {
     let (int, frac) = s.split_once('.').unwrap_or((s, ""));
@@ -88,4 +160,32 @@ pub fn int_literal(text: &str) -> Option<(i128, Option<String>)> {
         None => return None,
     };
     Some((if negative { -v } else { v }, ty))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Values gcc gives matiec's `__time_to_timespec` macro (x86-64, `long double`) for
+    /// these literals' parts, `tv_sec * 10^9 + tv_nsec` (tools: a C file with the macro
+    /// and `printf("%ld %ld")`).
+    #[test]
+    fn durations_are_what_matiec_s_macro_computes() {
+        for (text, ns) in [
+            ("T#300ms", 300_000_000),
+            ("T#25.7ms", 25_699_999),
+            ("T#1400ms", 1_399_999_999),
+            ("T#0.5ms", 499_999),
+            ("T#0.3s", 299_999_999),
+            ("T#1.1s", 1_100_000_000),
+            ("T#2.9s", 2_899_999_999),
+            ("T#2500ms", 2_500_000_000),
+            ("T#1m30s", 90_000_000_000),
+            ("TIME#1h_2m", 3_720_000_000_000),
+        ] {
+            assert_eq!(matiec_duration_ns(text), Some(ns), "{text}");
+        }
+        assert_eq!(matiec_duration_ns("T#5us"), None);
+        assert_eq!(matiec_duration_ns("T#-5s"), None);
+    }
 }

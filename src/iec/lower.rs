@@ -15,6 +15,7 @@
 
 mod calls;
 mod durations;
+mod elapsed;
 mod expr;
 mod flow;
 mod il;
@@ -160,6 +161,7 @@ pub fn lower(
     // An integer found opaque while lowering changes what reads it: lowered again
     // until no new one appears (each round adds one at least).
     let (mut opaque, mut omitted, mut multi) = (BTreeMap::new(), BTreeSet::new(), BTreeSet::new());
+    let mut elapsed = BTreeMap::new();
     let time_facts = durations::time_facts(sources, unit);
     loop {
         let mut l = Lowering::new(sources, cycle_us, warnings.clone());
@@ -167,6 +169,7 @@ pub fn lower(
         l.opaque = opaque.clone();
         l.omitted = omitted.clone();
         l.multi = multi.clone();
+        l.elapsed = elapsed.clone();
         l.user = unit
             .pous
             .iter()
@@ -201,6 +204,7 @@ pub fn lower(
         if !l.errors.is_empty() {
             return Err(l.errors);
         }
+        l.elapsed_conditional();
         let called: BTreeSet<String> = l
             .called
             .iter()
@@ -210,8 +214,9 @@ pub fn lower(
         if l.opaque.len() > opaque.len()
             || l.omitted.len() > omitted.len()
             || called.len() > multi.len()
+            || l.elapsed != elapsed
         {
-            (opaque, omitted, multi) = (l.opaque, l.omitted, called);
+            (opaque, omitted, multi, elapsed) = (l.opaque, l.omitted, called, l.elapsed);
             continue;
         }
         l.warn_opaque();
@@ -394,6 +399,9 @@ struct Lowering<'s> {
     /// The standard function-block instances called more than once in a scan (instance
     /// key; given, grows while lowering, like `opaque`).
     multi: BTreeSet<String>,
+    /// The timer instances whose `ET` a statement reads (key), with its type once a call
+    /// gave it (grows like `opaque`).
+    elapsed: BTreeMap<String, crate::program::IntType>,
     /// The values known at this point of the scan (to count `WHILE`/`REPEAT` loops).
     known: known::Known,
     /// The bodies being lowered, with their `RETURN` and loop bits, innermost last.
@@ -446,6 +454,7 @@ impl<'s> Lowering<'s> {
             omitted: BTreeSet::new(),
             called: BTreeMap::new(),
             multi: BTreeSet::new(),
+            elapsed: BTreeMap::new(),
             known: known::Known::default(),
             frames: Vec::new(),
             flow_bits: BTreeMap::new(),
@@ -736,27 +745,6 @@ impl<'s> Lowering<'s> {
                 self.assertion(e, name.as_ref(), reached)
             }
         }
-    }
-
-    /// A property comment: the bit `assert_NAME` takes the asserted value here (where
-    /// `reached` is given, only the scans that reach this point count).
-    fn assertion(
-        &mut self,
-        e: &ast::Expr,
-        name: Option<&Ident>,
-        reached: Option<BoolExpr>,
-    ) -> Vec<Stmt> {
-        let mut value = self.bool_expr(e);
-        if let Some(g) = reached {
-            value = BoolExpr::Or(vec![BoolExpr::negate(g), value]);
-        }
-        let name = match name {
-            Some(n) => n.name.clone(),
-            None => format!("ASSERT_L{:02}", self.line),
-        };
-        let signal = self.unique(&format!("assert_{name}"));
-        self.asserts.push(Assertion { name, signal: signal.clone(), span: e.span });
-        vec![Stmt::Write { target: signal, kind: WriteKind::Assign, value, span: e.span }]
     }
 
     fn assign(&mut self, target: &ast::Expr, value: &ast::Expr, span: Span) -> Vec<Stmt> {

@@ -86,10 +86,20 @@ impl CompiledProgram {
                     Ok((IntOperand::Var(x), Some(ty)))
                 }
                 IntOperand::Int(k) => Ok((IntOperand::Int(*k), None)),
+                IntOperand::Time(us) => Ok((IntOperand::Time(*us), Some(IntType::TIME))),
             }
         };
         let (a, ta) = side(a)?;
         let (b, tb) = side(b)?;
+        let time = |t: Option<IntType>| t.is_some_and(|t| t.time);
+        let zero = |o: &IntOperand| matches!(o, IntOperand::Int(0));
+        if time(ta) != time(tb) && !(tb.is_none() && zero(&b)) && !(ta.is_none() && zero(&a)) {
+            let help = match (ta.or(tb), [&a, &b].iter().any(|o| matches!(o, IntOperand::Int(_)))) {
+                (Some(t), true) if t.time => "write the duration as `T#2s`, `T#150ms`",
+                _ => "compare a TIME with a TIME or a duration, an integer with an integer",
+            };
+            return Err(("this compares a TIME with an integer".into(), Some(help.into())));
+        }
         if [ta, tb].iter().flatten().any(|t| t.real) {
             return Err((
                 "a property compares integers only, and this one is a REAL".into(),
@@ -97,6 +107,7 @@ impl CompiledProgram {
             ));
         }
         let ty = match (ta, tb) {
+            _ if time(ta) || time(tb) => IntType::TIME,
             (Some(x), Some(y)) if x == y => x,
             (Some(_), Some(_)) => IntType::int(63, true),
             (Some(t), None) | (None, Some(t)) => t,
@@ -108,7 +119,7 @@ impl CompiledProgram {
             }
         };
         for side in [&a, &b] {
-            if let IntOperand::Int(k) = side
+            if let IntOperand::Int(k) | IntOperand::Time(k) = side
                 && !ty.contains(*k)
             {
                 return Err((
@@ -137,7 +148,7 @@ impl CompiledProgram {
             }
             let value = |o: &IntOperand| -> Bits {
                 match o {
-                    IntOperand::Int(k) => bitvec::constant(*k, atom.ty.bits),
+                    IntOperand::Int(k) | IntOperand::Time(k) => bitvec::constant(*k, atom.ty.bits),
                     IntOperand::Var(x) => self.int_bits(x, atom.ty),
                 }
             };
@@ -170,7 +181,7 @@ impl CompiledProgram {
     pub fn atom_value(&self, name: &str, int: &dyn Fn(&str) -> Option<i64>) -> Option<bool> {
         let atom = self.atoms.0.lock().ok()?.get(name)?.clone();
         let value = |o: &IntOperand| match o {
-            IntOperand::Int(k) => Some(*k),
+            IntOperand::Int(k) | IntOperand::Time(k) => Some(*k),
             IntOperand::Var(x) => int(x),
         };
         Some(atom.ty.holds(atom.op, value(&atom.a)?, value(&atom.b)?))

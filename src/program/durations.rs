@@ -1,7 +1,5 @@
 //! TIME variables that are constant in fact: when every write of the whole program, the initial value included, gives the same literal duration, a timer whose preset is that variable reads that duration at every call; the front ends list the writes, this decides.
 
-use std::fmt::Write as _;
-
 /// One write of a TIME variable, as a front end found it.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum TimeWrite {
@@ -35,15 +33,7 @@ pub fn constant_value(init: u64, writes: &[TimeWrite]) -> Result<u64, String> {
 
 /// A duration in µs as an IEC literal (`T#2s`, `T#1500ms`, `T#250us`).
 pub fn show(us: u64) -> String {
-    let mut s = String::from("T#");
-    if us.is_multiple_of(1_000_000) {
-        let _ = write!(s, "{}s", us / 1_000_000);
-    } else if us.is_multiple_of(1_000) {
-        let _ = write!(s, "{}ms", us / 1_000);
-    } else {
-        let _ = write!(s, "{us}us");
-    }
-    s
+    crate::syntax::print::duration(us)
 }
 
 #[cfg(test)]

@@ -32,6 +32,9 @@ pub fn type_name(t: IntType) -> &'static str {
     if t.real {
         return "REAL";
     }
+    if t.time {
+        return "TIME";
+    }
     match (t.bits, t.signed) {
         (8, true) => "SINT",
         (16, true) => "INT",
@@ -195,6 +198,103 @@ pub fn abs(t: IntType, x: IntExpr, undefined: Option<String>) -> IntExpr {
         None => IntExpr::minus(IntExpr::Const(0), x.clone()),
     };
     IntExpr::ite(compare(CmpOp::Lt, t, x.clone(), IntExpr::Const(0)), negated, x)
+}
+
+/// Which of matiec's timers (`lib/standard_FB.txt`) measures its elapsed time `ET`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Elapsed {
+    /// `TON`: from a rising edge of `IN` while `IN` stays on; 0 when it is off.
+    On,
+    /// `TOF`: from a falling edge of `IN` while it stays off; 0 when it is on.
+    Off,
+    /// `TP`: from a rising edge while idle, to `PT`, held until `IN` is off.
+    Pulse,
+}
+
+/// The elapsed time `ET` of a timer called once at every scan, as matiec computes it
+/// with the runtime's clock at `k · cycle` on scan `k`: `CURRENT_TIME - START_TIME`
+/// while running, `PT` once it has run out, 0 when idle. It is counted in scans: the
+/// hidden count `scans` (of type `count`, 0 at first) is 0 while idle, `j + 1` on the
+/// `j`-th scan after the start, and `n + 1` once the timer has run out, where `n` is
+/// the first `j` with `j · cycle >= PT` (at least 1: the start's scan compares nothing).
+#[derive(Clone, Debug)]
+pub struct ElapsedTime<'a> {
+    /// Which timer.
+    pub kind: Elapsed,
+    /// The hidden count's name.
+    pub scans: &'a str,
+    /// Its type (unsigned, wide enough for `n + 2`).
+    pub count: IntType,
+    /// The scans until it runs out.
+    pub n: i64,
+    /// The preset, in ns (as matiec's C computes its literal).
+    pub pt_ns: i64,
+    /// The cycle, in ns.
+    pub cycle_ns: i64,
+}
+
+impl ElapsedTime<'_> {
+    /// The count after a call that reads `input` (`IN`), where `before` is `IN` at the
+    /// previous scan's call (FALSE before the first).
+    pub fn next(&self, input: BoolExpr, before: BoolExpr) -> IntExpr {
+        let t = self.count;
+        let d = || IntExpr::var(self.scans);
+        let k = IntExpr::Const;
+        let is = |op, v| compare(op, t, d(), k(v));
+        let step = IntExpr::ite(is(CmpOp::Ge, self.n + 1), k(self.n + 1), IntExpr::plus(d(), k(1)));
+        match self.kind {
+            // STATE 0 and IN: started (1); IN on: the next scan; IN off: 0.
+            Elapsed::On => IntExpr::ite(input, step, k(0)),
+            // IN on: 0; a falling edge (IN was on) or running: the next scan.
+            Elapsed::Off => {
+                let running = BoolExpr::Or(vec![is(CmpOp::Gt, 0), before]);
+                IntExpr::ite(input, k(0), IntExpr::ite(running, step, k(0)))
+            }
+            // Idle: started by IN. Running: the next scan, to idle at once if it runs
+            // out while IN is off. Run out: held while IN is on.
+            Elapsed::Pulse => {
+                let ends_off =
+                    BoolExpr::and(is(CmpOp::Eq, self.n), BoolExpr::negate(input.clone()));
+                let running = IntExpr::ite(ends_off, k(0), IntExpr::plus(d(), k(1)));
+                let held = IntExpr::ite(input.clone(), k(self.n + 1), k(0));
+                IntExpr::ite(
+                    is(CmpOp::Eq, 0),
+                    IntExpr::ite(input, k(1), k(0)),
+                    IntExpr::ite(is(CmpOp::Le, self.n), running, held),
+                )
+            }
+        }
+    }
+
+    /// `Q` from the count (updated by a call reading `input`): TON's is on once it has
+    /// run out, TP's while it runs, TOF's while `IN` is on or it runs.
+    pub fn q(&self, input: BoolExpr) -> BoolExpr {
+        let (t, d, k) = (self.count, || IntExpr::var(self.scans), IntExpr::Const);
+        let running =
+            BoolExpr::and(compare(CmpOp::Ge, t, d(), k(1)), compare(CmpOp::Le, t, d(), k(self.n)));
+        match self.kind {
+            Elapsed::On => compare(CmpOp::Gt, t, d(), k(self.n)),
+            Elapsed::Off => BoolExpr::Or(vec![input, running]),
+            Elapsed::Pulse => running,
+        }
+    }
+
+    /// `ET` (a [`IntType::TIME`]) from the count: 0, `(count - 1) · cycle`, or `PT`.
+    pub fn value(&self) -> IntExpr {
+        let t = self.count;
+        let d = || IntExpr::Cast(Box::new(IntExpr::var(self.scans)), t);
+        let k = IntExpr::Const;
+        let elapsed = IntExpr::Mul(Box::new(IntExpr::minus(d(), k(1))), Box::new(k(self.cycle_ns)));
+        IntExpr::ite(
+            compare(CmpOp::Eq, t, IntExpr::var(self.scans), k(0)),
+            k(0),
+            IntExpr::ite(
+                compare(CmpOp::Gt, t, IntExpr::var(self.scans), k(self.n)),
+                k(self.pt_ns),
+                elapsed,
+            ),
+        )
+    }
 }
 
 /// Which counter.

@@ -19,6 +19,7 @@ mod checked;
 pub mod compile;
 pub mod durations;
 pub mod fast_hash;
+mod int_type;
 pub mod library;
 pub mod logic;
 pub mod names;
@@ -110,94 +111,7 @@ impl IntVar {
     }
 }
 
-/// A two's-complement integer type: its width and signedness; or IEC `REAL` (IEEE 754
-/// binary32), whose values are stored as their 32-bit patterns ([`IntType::REAL`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub struct IntType {
-    /// Width in bits (1 to 63).
-    pub bits: u32,
-    /// Signed (two's complement) or unsigned.
-    pub signed: bool,
-    /// Whether the value is a `REAL`: the 32-bit pattern of an IEEE 754 binary32 number
-    /// (`bits` 32, `signed` false), compared and converted as floating-point numbers,
-    /// never computed with integer arithmetic.
-    pub real: bool,
-}
-
-impl IntType {
-    /// A two's-complement integer type of `bits` bits.
-    pub const fn int(bits: u32, signed: bool) -> IntType {
-        IntType { bits, signed, real: false }
-    }
-
-    /// LDmicro's 16-bit signed integers (IEC `INT`).
-    pub const I16: IntType = IntType::int(16, true);
-
-    /// IEC `REAL`: IEEE 754 binary32, stored as its bit pattern (`2.5` is `0x4020_0000`).
-    pub const REAL: IntType = IntType { bits: 32, signed: false, real: true };
-
-    /// C's `double` (IEEE 754 binary64), in which the C matiec writes computes an
-    /// operation of a `REAL` and a real literal: stored as its bit pattern (as an `i64`;
-    /// `signed` so that every pattern is a value of the type). No variable has it: only
-    /// the values of expressions ([`IntExpr::ToReal`] converts to and from it).
-    pub const LREAL: IntType = IntType { bits: 64, signed: true, real: true };
-
-    /// One unsigned bit (0 or 1): a peripheral's flag, a hidden one-shot.
-    pub const BIT: IntType = IntType::int(1, false);
-
-    /// The smallest value.
-    pub fn min(self) -> i64 {
-        if self.signed { -(1i64 << (self.bits - 1)) } else { 0 }
-    }
-
-    /// The largest value (computed wide: `(1 << 63) - 1` is the largest 63-bit one).
-    pub fn max(self) -> i64 {
-        let bits = if self.signed { self.bits - 1 } else { self.bits };
-        ((1i128 << bits) - 1) as i64
-    }
-
-    /// Whether `v` is a value of the type.
-    pub fn contains(self, v: i64) -> bool {
-        (self.min()..=self.max()).contains(&v)
-    }
-
-    /// `v` reduced into the type as the runtime's arithmetic wraps it.
-    pub fn wrap(self, v: i64) -> i64 {
-        // In 128 bits: the 63-bit type a comparison with a wide literal uses reaches
-        // `1 << 63`, out of i64.
-        let m = i128::from(v) & ((1i128 << self.bits) - 1);
-        let r =
-            if self.signed && m > i128::from(self.max()) { m - (1i128 << self.bits) } else { m };
-        r as i64
-    }
-
-    /// Whether `a op b` for two values of the type (compared as floating-point numbers
-    /// for a `REAL`).
-    pub fn holds(self, op: CmpOp, a: i64, b: i64) -> bool {
-        match (self.real, self.bits) {
-            (true, 64) => real::holds_double(op, a, b),
-            (true, _) => real::holds(op, a, b),
-            _ => op.holds(a, b),
-        }
-    }
-
-    /// A value of the type as people read it (`2.5` for a `REAL`).
-    pub fn show(self, v: i64) -> String {
-        match (self.real, self.bits) {
-            (true, 64) => real::show_double(v),
-            (true, _) => real::show(v),
-            _ => v.to_string(),
-        }
-    }
-
-    /// `INT`-style name for messages: `a 16-bit signed integer`.
-    pub fn describe(self) -> String {
-        if self.real {
-            return "a REAL".into();
-        }
-        format!("a {}-bit {} integer", self.bits, if self.signed { "signed" } else { "unsigned" })
-    }
-}
+pub use int_type::IntType;
 
 pub use crate::syntax::CmpOp;
 

@@ -125,6 +125,8 @@ pub enum IntOperand {
     Var(String),
     /// A literal.
     Int(i64),
+    /// A duration (`T#2500ms`), in ns: compared with a `TIME` of the program.
+    Time(i64),
 }
 
 impl std::fmt::Display for IntOperand {
@@ -132,6 +134,7 @@ impl std::fmt::Display for IntOperand {
         match self {
             IntOperand::Var(v) => write!(f, "{v}"),
             IntOperand::Int(k) => write!(f, "{k}"),
+            IntOperand::Time(us) => write!(f, "{}", super::print::signed_duration_ns(*us)),
         }
     }
 }

@@ -564,7 +564,22 @@ impl Parser {
         let operand = match &self.peek().tok {
             Tok::Ident(n) | Tok::Quoted(n) => IntOperand::Var(n.clone()),
             Tok::Int(v) => IntOperand::Int(*v),
-            _ => return Err(self.unexpected(names(&["an integer variable", "an integer"]))),
+            Tok::Duration(d) => {
+                let us = d.seconds() * num_bigint::BigInt::from(1_000_000_000);
+                match us.is_integer().then(|| i64::try_from(us.to_integer()).ok()).flatten() {
+                    Some(us) => IntOperand::Time(us),
+                    None => {
+                        let reason = "a duration compared with a TIME is a whole number of \
+                                      nanoseconds, at most 2^62"
+                            .into();
+                        return Err(SyntaxError::BadDuration { span: self.peek().span, reason });
+                    }
+                }
+            }
+            _ => {
+                let expected = ["an integer variable", "an integer", "a duration"];
+                return Err(self.unexpected(names(&expected)));
+            }
         };
         self.bump();
         Ok(operand)

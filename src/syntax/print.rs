@@ -454,6 +454,25 @@ pub fn document_to_string(doc: &Document, notation: Notation) -> String {
     out
 }
 
+/// A duration in µs as an IEC literal (`T#2s`, `T#1500ms`, `T#250us`), in the
+/// largest of these units that divides it.
+pub fn duration(us: u64) -> String {
+    if us.is_multiple_of(1_000_000) {
+        format!("T#{}s", us / 1_000_000)
+    } else if us.is_multiple_of(1_000) {
+        format!("T#{}ms", us / 1_000)
+    } else {
+        format!("T#{us}us")
+    }
+}
+
+/// A signed duration in ns as an IEC literal (`T#-5s`, `T#1399999999ns`).
+pub fn signed_duration_ns(ns: i64) -> String {
+    let a = ns.unsigned_abs();
+    let text = if a.is_multiple_of(1_000) { duration(a / 1_000) } else { format!("T#{a}ns") };
+    if ns < 0 { text.replacen("T#", "T#-", 1) } else { text }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -493,12 +493,7 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
             let call = match *t {
                 "TON" | "TOF" => {
                     let pt = g.rng.below(6) * cycle_ms * 1000 + g.rng.below(3) * 700;
-                    let pt = match pt % 1000 {
-                        0 => format!("T#{}ms", pt / 1000),
-                        f => {
-                            format!("T#{}.{}ms", pt / 1000, format!("{f:03}").trim_end_matches('0'))
-                        }
-                    };
+                    let pt = format!("T#{}ms", ms(pt));
                     // A call that leaves PT out: T#0s, as no call gives it.
                     match own.chance(20) {
                         true => format!("{n}(IN := {})", g.expr(2)),
@@ -549,6 +544,7 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
                 own.pick(&g.reads).clone()
             };
             let (stop, q) = if *t == "TON" { ("FALSE", "") } else { ("TRUE", "NOT ") };
+            conditional.push(n.clone());
             calls.push(match own.below(4) {
                 0 => format!("  IF {q}{n}.Q THEN\n    {n}(IN := {stop}{pt});\n  END_IF;\n"),
                 1 => format!("  {n}(IN := {value}{pt});\n"),
@@ -607,12 +603,60 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
             calls.push(format!("  {c}({pin} := {});\n", own.pick(&g.reads)));
         }
     }
+    let mut pulse_pt = false;
     if pulse {
         let pt = g.rng.below(6) * cycle_ms * 1000 + g.rng.below(3) * 700;
         match own.chance(20) {
             true => calls.push(format!("  P0(IN := {});\n", g.expr(1))),
-            false => calls.push(format!("  P0(IN := {}, PT := T#{}us);\n", g.expr(1), pt)),
+            false => {
+                pulse_pt = true;
+                calls.push(format!("  P0(IN := {}, PT := T#{}ms);\n", g.expr(1), ms(pt)))
+            }
         }
+    }
+    // Reads of the elapsed time of timers called once at every scan (of the others it
+    // is not computed), among the calls (before a call: the last scan's value):
+    // compared with a duration, or whole seconds into an integer.
+    // (A preset not given in the call is not computed: its value in matiec's C is
+    // another literal's, rounded as `__time_to_timespec` rounds it.)
+    let mut timers: Vec<String> = fbs
+        .iter()
+        .filter(|(n, t)| matches!(*t, "TON" | "TOF") && !conditional.contains(n))
+        .filter(|(n, _)| pts.iter().any(|(m, _)| m == n))
+        .map(|(n, _)| n.clone())
+        .collect();
+    if pulse_pt {
+        timers.push("P0".into());
+    }
+    for n in &timers {
+        if !own.chance(40) {
+            continue;
+        }
+        let ms = own.below(7) * cycle_ms / 2 + own.below(2) * 350;
+        let op = *own.pick(&[">=", ">", "<", "<=", "=", "<>"]);
+        let x = own.pick(&locals).clone();
+        let read = match own.below(4) {
+            0 => format!("{x} := {n}.ET {op} T#{ms}ms;"),
+            1 => format!("{x} := {} AND T#{ms}ms {op} {n}.ET;", own.pick(&g.reads)),
+            2 => format!("IF {n}.ET {op} T#{ms}ms THEN {x} := NOT {x}; END_IF;"),
+            _ => {
+                let ints: Vec<&String> = int_vars
+                    .iter()
+                    .filter(|(_, t)| matches!(t.as_str(), "INT" | "DINT" | "SINT"))
+                    .map(|(v, _)| v)
+                    .collect();
+                match ints.is_empty() {
+                    true => format!("{x} := MAX({n}.ET, T#{ms}ms) = {n}.ET;"),
+                    false => {
+                        let v = own.pick(&ints);
+                        let t = &int_vars.iter().find(|(w, _)| w == *v).map_or("INT", |(_, t)| t);
+                        format!("{v} := TIME_TO_{t}({n}.ET);")
+                    }
+                }
+            }
+        };
+        let at = own.below(calls.len() as u64 + 1) as usize;
+        calls.insert(at, format!("  {read}\n"));
     }
     let n_stmts = 3 + g.rng.below(7);
     for _ in 0..n_stmts {
@@ -715,4 +759,12 @@ pub fn schedule_of(
                 .collect()
         })
         .collect()
+}
+
+/// `us` µs in milliseconds as a literal's number (`2.7`, `15`).
+fn ms(us: u64) -> String {
+    match us % 1000 {
+        0 => format!("{}", us / 1000),
+        f => format!("{}.{}", us / 1000, format!("{f:03}").trim_end_matches('0')),
+    }
 }

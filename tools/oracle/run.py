@@ -127,7 +127,7 @@ def harness(req, types, prog_type, instance, trigs):
         if ty == "REAL":
             return "real_bits(%s)" % c, "%lld"
         if ty == "TIME":
-            return "((long long)%s.tv_sec * 1000000LL + %s.tv_nsec / 1000)" % (c, c), "%lld"
+            return "((long long)%s.tv_sec * 1000000000LL + %s.tv_nsec)" % (c, c), "%lld"
         if ty in UNSIGNED64:
             return "((unsigned long long)%s)" % c, "%llu"
         return "((long long)%s)" % c, "%lld"

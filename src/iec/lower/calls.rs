@@ -10,6 +10,7 @@ use crate::program::{
     BoolExpr, EdgeKind, Fresh, IntExpr, IntType, IntVar, Memory, Preset, Stmt, Timer, WriteKind,
     library,
 };
+use library::Elapsed;
 
 /// Function-block types the lowering knows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -222,22 +223,22 @@ impl Lowering<'_> {
                         Err(why) => Preset::Variable { name: format!("{inst}.PT"), why },
                     },
                 };
-                let timer = Timer {
-                    on_delay: fb == Fb::Ton,
-                    keyword: ty.clone(),
-                    accumulator: inst.clone(),
-                    preset,
-                    input: v,
-                    span,
-                    called: true,
+                let kind = if fb == Fb::Ton { Elapsed::On } else { Elapsed::Off };
+                let pt = inputs.get("PT").copied();
+                let value = match self.elapsed_timer(&inst, kind, pt, &v, &mut out, span) {
+                    Some(q) => q,
+                    None => BoolExpr::Timer(Box::new(Timer {
+                        on_delay: fb == Fb::Ton,
+                        keyword: ty.clone(),
+                        accumulator: inst.clone(),
+                        preset,
+                        input: v,
+                        span,
+                        called: true,
+                    })),
                 };
                 let q = self.hidden(&inst, "Q");
-                out.push(Stmt::Write {
-                    target: q,
-                    kind: WriteKind::Assign,
-                    value: BoolExpr::Timer(Box::new(timer)),
-                    span,
-                });
+                out.push(Stmt::Write { target: q, kind: WriteKind::Assign, value, span });
             }
             Fb::RTrig | Fb::FTrig => {
                 // matiec: Q := CLK AND NOT M; M := CLK (F_TRIG: CLK negated).
@@ -267,6 +268,10 @@ impl Lowering<'_> {
                 out.extend(self.counter_output(&inst, &ty, target, span));
                 continue;
             }
+            if matches!(fb, Fb::Ton | Fb::Tof | Fb::Tp) && pin.key() == "ET" && !negated {
+                out.extend(self.elapsed_output(&inst, target, span));
+                continue;
+            }
             if !fb.outputs().contains(&pin.key().as_str()) {
                 self.refuse(
                     pin.span,
@@ -280,6 +285,29 @@ impl Lowering<'_> {
             out.extend(self.assign_value(target, value, span));
         }
         out
+    }
+
+    /// A call of the TON or TOF `inst` with the preset `pt` and `IN` `v` whose `ET` is
+    /// read: the statements that update its count, then `Some(Q)` from it; `None` where
+    /// its `ET` is not read or not computed (the timer of the algebra gives `Q`).
+    fn elapsed_timer(
+        &mut self,
+        inst: &str,
+        kind: Elapsed,
+        pt: Option<&ast::Expr>,
+        v: &BoolExpr,
+        out: &mut Vec<Stmt>,
+        span: Span,
+    ) -> Option<BoolExpr> {
+        if !self.elapsed.contains_key(&inst.to_ascii_uppercase()) {
+            return None;
+        }
+        let pt = self.preset_ns(pt);
+        let mut stmts = Vec::new();
+        let v = self.temp(&mut stmts, v.clone());
+        let q = self.elapsed_call(inst, kind, pt, &v, &mut stmts, span)?;
+        out.extend(stmts);
+        Some(q)
     }
 
     /// The preset of a timer whose `PT` is the variable `id`, not one known duration:
@@ -371,11 +399,17 @@ impl<'s> Lowering<'s> {
     /// The count of the counter instance `inst` of type `t` (an integer of the scan
     /// model, `{inst}_CV`, from 0).
     pub(super) fn counter_value(&mut self, inst: &str, t: IntType) -> String {
-        let key = (inst.to_ascii_uppercase(), "CV".to_string());
+        self.hidden_int(inst, "CV", t)
+    }
+
+    /// The hidden integer `pin` of the instance `inst` (`{inst}_{pin}`, 0 at first), of
+    /// type `t`.
+    pub(super) fn hidden_int(&mut self, inst: &str, pin: &str, t: IntType) -> String {
+        let key = (inst.to_ascii_uppercase(), pin.to_string());
         if let Some(n) = self.hidden.get(&key) {
             return n.clone();
         }
-        let n = self.unique(&format!("{inst}_CV"));
+        let n = self.unique(&format!("{inst}_{pin}"));
         self.hidden.insert(key, n.clone());
         self.ints.insert(n.clone(), IntVar { ty: t, input: false, init: 0 });
         n
@@ -427,16 +461,7 @@ impl<'s> Lowering<'s> {
         span: Span,
     ) -> Result<IntExpr, String> {
         let key = (inst.to_ascii_uppercase(), pin.to_string());
-        let kept = |l: &mut Self| {
-            let key = (inst.to_ascii_uppercase(), format!("{pin}_in"));
-            if let Some(n) = l.hidden.get(&key) {
-                return n.clone();
-            }
-            let n = l.unique(&format!("{inst}_{pin}_in"));
-            l.hidden.insert(key, n.clone());
-            l.ints.insert(n.clone(), IntVar { ty: t, input: false, init: 0 });
-            n
-        };
+        let kept = |l: &mut Self| l.hidden_int(inst, &format!("{pin}_in"), t);
         match given {
             Some(e) if self.omitted.contains(&key) => {
                 let target = kept(self);
@@ -706,6 +731,12 @@ impl<'s> Lowering<'s> {
         let q = self.hidden(inst, "Q");
         let done = self.hidden(inst, "DONE");
         let input = self.temp(&mut out, v);
+        let pt_ns = self.preset_ns(inputs.get("PT").copied());
+        if let Some(value) = self.elapsed_call(inst, Elapsed::Pulse, pt_ns, &input, &mut out, span)
+        {
+            out.push(Stmt::Write { target: q, kind: WriteKind::Assign, value, span });
+            return out;
+        }
         let rise = self.edge(inst, "PREV_IN", ty, input.clone(), &mut out, span);
         let rise = self.temp(&mut out, rise);
         let pulse = library::Pulse {

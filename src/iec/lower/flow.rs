@@ -150,6 +150,27 @@ impl Lowering<'_> {
         }
     }
 
+    /// A property comment: the bit `assert_NAME` takes the asserted value here (where
+    /// `reached` is given, only the scans that reach this point count).
+    pub(super) fn assertion(
+        &mut self,
+        e: &ast::Expr,
+        name: Option<&crate::iec::ast::Ident>,
+        reached: Option<BoolExpr>,
+    ) -> Vec<Stmt> {
+        let mut value = self.bool_expr(e);
+        if let Some(g) = reached {
+            value = BoolExpr::Or(vec![BoolExpr::negate(g), value]);
+        }
+        let name = match name {
+            Some(n) => n.name.clone(),
+            None => format!("ASSERT_L{:02}", self.line),
+        };
+        let signal = self.unique(&format!("assert_{name}"));
+        self.asserts.push(super::Assertion { name, signal: signal.clone(), span: e.span });
+        vec![Stmt::Write { target: signal, kind: WriteKind::Assign, value, span: e.span }]
+    }
+
     /// A program's body: a block per top-level statement; after a statement that may
     /// `RETURN`, each block under `IF NOT _RETURN` (an `#ASSERT` counts only on the scans
     /// that reach it).

@@ -1,7 +1,7 @@
 //! Integers of Structured Text in the scan model, as matiec compiles them to C: the IEC integer types (`SINT` … `UDINT`, `BYTE` … `DWORD`), literals and constants, `+ - * / MOD`, unary `-`, the `*_TO_*` conversions and `MIN`/`MAX`/`LIMIT`/`SEL`/`ABS`/`MOVE`, comparisons; values narrower than 32 bits are computed as C `int`, as the generated C does. An integer whose value cannot be computed exactly (a division by a variable, a `TIME` or `REAL` operand, a 64-bit type) is *opaque*: what reads it is an unconstrained value, with the reason.
 
 use super::reals::Double;
-use super::{Lowering, Sym, Ty};
+use super::{Fb, Lowering, Sym, Ty};
 use crate::diag::Span;
 use crate::iec::StError;
 use crate::iec::ast::{self, Arg, BinOp, ExprKind, UnOp};
@@ -96,6 +96,7 @@ impl Lowering<'_> {
                             sym.name
                         )),
                     },
+                    (Ty::Fb(Fb::Ton | Fb::Tof | Fb::Tp, _), "ET") => self.elapsed_read(&sym.name),
                     (Ty::User(_), _) => match self
                         .instances
                         .get(&sym.name)
@@ -112,6 +113,7 @@ impl Lowering<'_> {
             }
             ExprKind::Unary(UnOp::Neg, x) => {
                 let x = self.int_expr(x)?;
+                no_time_arithmetic(&[&x])?;
                 if x.is_real() {
                     return Ok(x.real_negated());
                 }
@@ -126,6 +128,7 @@ impl Lowering<'_> {
                 b,
             ) => {
                 let (a, b) = (self.int_expr(a)?, self.int_expr(b)?);
+                no_time_arithmetic(&[&a, &b])?;
                 if a.is_real() || b.is_real() {
                     return self.real_arithmetic(*op, a, b, e.span);
                 }
@@ -133,7 +136,18 @@ impl Lowering<'_> {
             }
             ExprKind::Binary(BinOp::Pow, ..) => Err("`**` computes in REAL".into()),
             ExprKind::Call(f, args) => self.int_function(f, args, e),
-            ExprKind::Time(_) => Err("a TIME value is not computed".into()),
+            ExprKind::Time(_) => {
+                match crate::iec::literal::matiec_duration_ns(&self.text(e.span)) {
+                    Some(ns) if IntType::TIME.contains(ns) => {
+                        Ok(Int::of(IntExpr::Const(ns), Some(IntType::time_for(ns as u64))))
+                    }
+                    _ => Err(format!(
+                        "the TIME literal `{}` is not computed (a part in us or ns, which matiec \
+                     does not read, or beyond 2^62 ns)",
+                        self.text(e.span)
+                    )),
+                }
+            }
             _ => {
                 self.errors.push(StError::new(
                     e.span,
@@ -225,6 +239,8 @@ impl Lowering<'_> {
             return Err("a type error".into());
         }
         match (a.ty, b.ty) {
+            // Durations: each held in the bits its values need, compared in the wider.
+            (Some(x), Some(y)) if x.time && y.time => Ok(Some(x.max_by_bits(y))),
             (Some(x), Some(y)) if x != y => {
                 let mut e = StError::new(
                     span,
@@ -354,6 +370,9 @@ impl Lowering<'_> {
             })
             .collect();
         let name = f.key();
+        if let Some(to) = name.strip_prefix("TIME_TO_") {
+            return self.time_conversion(f, to, &values, e.span);
+        }
         if let Some((from, to)) = name.split_once("_TO_") {
             let (Some(from), Some(to)) = (library::number_type(from), library::number_type(to))
             else {
@@ -404,7 +423,13 @@ impl Lowering<'_> {
             }
         }
         // The arguments' one type (literals take it).
-        let ty = ints.iter().find_map(|x| x.ty);
+        let mut ty = ints.iter().find_map(|x| x.ty);
+        if ty.is_some_and(|t| t.time) {
+            ty = ints.iter().filter_map(|x| x.ty).reduce(|a, b| a.max_by_bits(b));
+        }
+        if !matches!(name.as_str(), "MOVE" | "MIN" | "MAX" | "LIMIT" | "SEL") {
+            no_time_arithmetic(&ints.iter().collect::<Vec<_>>())?;
+        }
         for x in &ints {
             self.unify(&Int::of(IntExpr::Const(0), ty), x, e.span)?;
         }
@@ -459,6 +484,30 @@ impl Lowering<'_> {
         }
         // A function returns a value of its type: computed (its arguments passed) in `t`.
         Ok(Int::of(IntExpr::Cast(Box::new(e2), t), ty))
+    }
+
+    /// matiec's `TIME_TO_*` (`to`: the target type's name) of the one argument in
+    /// `values`: `__time_to_int`, the whole seconds (`tv_sec`, truncated toward zero),
+    /// converted as C converts a `LINT` to the type.
+    fn time_conversion(
+        &mut self,
+        f: &ast::Ident,
+        to: &str,
+        values: &[&ast::Expr],
+        span: Span,
+    ) -> Result<Int, Opaque> {
+        let Some(to) = int_type(to) else {
+            return Err(format!("the conversion {} is not computed", f.name));
+        };
+        let [x] = values else {
+            return Err(format!("{} takes one argument", f.name));
+        };
+        let x = self.int_expr(x)?;
+        let from = self.unify(&x, &Int::of(IntExpr::Const(0), Some(IntType::time_for(0))), span)?;
+        let from = from.unwrap_or(IntType::TIME);
+        let seconds = IntExpr::Div(Box::new(x.e), 1_000_000_000);
+        let v = IntExpr::Cast(Box::new(IntExpr::Cast(Box::new(seconds), from)), to);
+        Ok(Int::of(v, Some(to)))
     }
 
     /// `a op b` for integers: exact, else an unconstrained value with the reason.
@@ -740,5 +789,14 @@ pub(super) fn integer_write(span: Span, element: &str, ty: &str, name: &str) -> 
         message: format!(
             "writes the {ty} variable {name}: no Boolean effect (integers are not modelled yet)"
         ),
+    }
+}
+
+/// `Err` where one of `values` is a TIME: its arithmetic is not computed (matiec adds
+/// `{tv_sec, tv_nsec}` pairs, whose overflow the scan model's integers do not follow).
+fn no_time_arithmetic(values: &[&Int]) -> Result<(), Opaque> {
+    match values.iter().any(|x| x.ty.is_some_and(|t| t.time)) {
+        true => Err("TIME arithmetic is not computed".into()),
+        false => Ok(()),
     }
 }
