@@ -1,4 +1,4 @@
-//! Random sequential function charts for the differential tests, as text or as a PLCopen `<SFC>` body (the same chart; steps entered through jumps, a selection divergence where a step has several transitions, simultaneous divergences and convergences for transitions to or from two steps): steps (one or two initial), transitions with priorities and conditions over inputs and steps' `X` (inline, or a named transition in the XML), every untimed qualifier on BOOL variables and on actions whose bodies assign outputs, count and call a timer, and `D`/`L` with short times on the steps that are not initial.
+//! Random sequential function charts for the differential tests, as text or as a PLCopen `<SFC>` body (the same chart; steps entered through jumps, a selection divergence where a step has several transitions, simultaneous divergences and convergences for transitions to or from two steps): steps (one or two initial), transitions with priorities and conditions over inputs and steps' `X` (inline, or a named transition in the XML), every untimed qualifier on BOOL variables and on actions whose bodies assign outputs, count and call a timer, and `D`/`L` with short times on the steps that are not initial; in the XML, some conditions drawn as networks (contacts in series and parallel, negated, from a left rail or a timer's `Q`, or an FBD variable; in the chart's body or as a named transition's LD body) and some named actions as LD or FBD bodies (coils plain, negated, set and reset, output variables, a `TON` call).
 #![allow(dead_code)]
 
 use super::rng::Rng;
@@ -224,7 +224,7 @@ pub fn project(seed: u64) -> Generated {
         let drawn = r.below(100);
         let condition = if drawn < 20 {
             // Drawn in the chart's body.
-            let ends = drawn_condition(&mut r, &mut id, &mut body);
+            let ends = drawn_condition(&mut r, &mut id, &mut body, c.cycle_us);
             let ends: Vec<(u64, Option<&str>)> = ends.into_iter().map(|k| (k, None)).collect();
             connections(&ends)
         } else if drawn < 30 {
@@ -236,7 +236,7 @@ pub fn project(seed: u64) -> Generated {
                 lid += 1;
                 lid
             };
-            let ends = drawn_condition(&mut r, &mut lid, &mut ld);
+            let ends = drawn_condition(&mut r, &mut lid, &mut ld, c.cycle_us);
             let ends: Vec<(u64, Option<&str>)> = ends.into_iter().map(|k| (k, None)).collect();
             let c = lid();
             named += &format!(
@@ -335,6 +335,7 @@ pub fn project(seed: u64) -> Generated {
 {inputs}</inputVars><localVars>
 {outputs}<variable name="Cnt"><type><INT/></type></variable>
 <variable name="Tm"><type><derived name="TON"/></type></variable>
+<variable name="Tc"><type><derived name="TON"/></type></variable>
 </localVars></interface>
 {actions}{named}<body><SFC>
 {body}</SFC></body></pou>
@@ -412,7 +413,12 @@ fn rail(id: &mut dyn FnMut() -> u64, out: &mut String) -> u64 {
 
 /// What a condition drawn as a network is wired to: a network of contacts from a left rail,
 /// or (FBD) a variable holding a literal.
-fn drawn_condition(r: &mut Rng, id: &mut dyn FnMut() -> u64, out: &mut String) -> Vec<u64> {
+fn drawn_condition(
+    r: &mut Rng,
+    id: &mut dyn FnMut() -> u64,
+    out: &mut String,
+    cycle_us: u64,
+) -> Vec<u64> {
     if r.chance(25) {
         let v = id();
         let x = r.pick(&INPUTS);
@@ -422,9 +428,15 @@ fn drawn_condition(r: &mut Rng, id: &mut dyn FnMut() -> u64, out: &mut String) -
         );
         return vec![v];
     }
-    let rl = rail(id, out);
+    // Some networks read a timer `Tc` (its call then runs in the generator's
+    // `COMPUTE_FUNCTION_BLOCKS` action).
+    let from = if r.chance(20) {
+        (fbd_timer(r, id, out, cycle_us, "Tc"), Some("Q"))
+    } else {
+        (rail(id, out), None)
+    };
     let n = net(r, 2);
-    draw(&n, &[(rl, None)], id, out).into_iter().map(|(k, _)| k).collect()
+    draw(&n, &[from], id, out).into_iter().map(|(k, _)| k).collect()
 }
 
 /// A random LD or FBD body for an action: rungs of contacts to coils (plain, negated,
@@ -446,7 +458,8 @@ fn network_action(r: &mut Rng, cycle_us: u64) -> String {
         if fbd {
             // A variable (a literal) or the timer's output to an output variable.
             let from = if r.chance(40) {
-                let t = *timer.get_or_insert_with(|| fbd_timer(r, &mut id, &mut out, cycle_us));
+                let t =
+                    *timer.get_or_insert_with(|| fbd_timer(r, &mut id, &mut out, cycle_us, "Tm"));
                 vec![(t, Some("Q"))]
             } else {
                 let v = id();
@@ -467,7 +480,7 @@ fn network_action(r: &mut Rng, cycle_us: u64) -> String {
         let rl = rail(&mut id, &mut out);
         let mut from = vec![(rl, None)];
         if r.chance(30) {
-            let t = *timer.get_or_insert_with(|| fbd_timer(r, &mut id, &mut out, cycle_us));
+            let t = *timer.get_or_insert_with(|| fbd_timer(r, &mut id, &mut out, cycle_us, "Tm"));
             from = vec![(t, Some("Q"))];
         }
         let n = net(r, 2);
@@ -488,15 +501,22 @@ fn network_action(r: &mut Rng, cycle_us: u64) -> String {
     format!("<{lang}>\n{out}</{lang}>")
 }
 
-/// A call of `Tm` (its `IN` a literal, its `PT` twice the cycle) placed below the rungs.
-fn fbd_timer(r: &mut Rng, id: &mut dyn FnMut() -> u64, out: &mut String, cycle_us: u64) -> u64 {
+/// A call of the timer `name` (its `IN` a literal, its `PT` twice the cycle) placed below
+/// the rungs.
+fn fbd_timer(
+    r: &mut Rng,
+    id: &mut dyn FnMut() -> u64,
+    out: &mut String,
+    cycle_us: u64,
+    name: &str,
+) -> u64 {
     let (b, v, p) = (id(), id(), id());
     let x = r.pick(&INPUTS);
     let x = if r.chance(30) { format!("NOT {x}") } else { x.to_string() };
     *out += &format!(
         "<inVariable localId=\"{v}\" height=\"30\" width=\"60\"><position x=\"0\" y=\"1000\"/><connectionPointOut/><expression>{x}</expression></inVariable>\n\
          <inVariable localId=\"{p}\" height=\"30\" width=\"60\"><position x=\"0\" y=\"1040\"/><connectionPointOut/><expression>T#{}ms</expression></inVariable>\n\
-         <block localId=\"{b}\" height=\"60\" width=\"60\" typeName=\"TON\" instanceName=\"Tm\"><position x=\"100\" y=\"1000\"/><inputVariables><variable formalParameter=\"IN\">{}</variable><variable formalParameter=\"PT\">{}</variable></inputVariables><inOutVariables/><outputVariables><variable formalParameter=\"Q\"><connectionPointOut/></variable><variable formalParameter=\"ET\"><connectionPointOut/></variable></outputVariables></block>\n",
+         <block localId=\"{b}\" height=\"60\" width=\"60\" typeName=\"TON\" instanceName=\"{name}\"><position x=\"100\" y=\"1000\"/><inputVariables><variable formalParameter=\"IN\">{}</variable><variable formalParameter=\"PT\">{}</variable></inputVariables><inOutVariables/><outputVariables><variable formalParameter=\"Q\"><connectionPointOut/></variable><variable formalParameter=\"ET\"><connectionPointOut/></variable></outputVariables></block>\n",
         2 * cycle_us / 1000,
         connections(&[(v, None)]),
         connections(&[(p, None)]),

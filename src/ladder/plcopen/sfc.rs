@@ -5,9 +5,12 @@
 //! Structured Text body, or inline Structured Text, which the generator names
 //! `STEP_INLINE1`, `STEP_INLINE2`, …), transitions with a priority and an inline
 //! Structured Text condition or one referring to a transition of the POU with a
-//! Structured Text body (`:= expression;`). Refused with a located error: a condition
-//! drawn as a network, Instruction List, Ladder or FBD in a condition or an action, macro
-//! steps.
+//! Structured Text body (`:= expression;`); a condition drawn as a network in the chart's
+//! body, a named transition and a named action whose body is LD or FBD (`sfc/network.rs`;
+//! the calls of the blocks of condition networks in the action `COMPUTE_FUNCTION_BLOCKS`,
+//! qualifier `S`, of the first initial step, as the generator writes them). Refused with a
+//! located error: Instruction List, LD or FBD inline in an action block, what
+//! `sfc/network.rs` refuses, macro steps.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::ops::Range;
@@ -449,10 +452,10 @@ impl<'a, 'i> Gen<'_, 'a, 'i> {
                 "coil" => child(n, "variable"),
                 _ => None,
             };
-            if text.and_then(|t| t.text()) == Some(name) {
-                if let Some(e) = net.input(n)? {
-                    value = Some(e);
-                }
+            if text.and_then(|t| t.text()) == Some(name)
+                && let Some(e) = net.input(n)?
+            {
+                value = Some(e);
             }
         }
         let calls = std::mem::take(&mut net.out);

@@ -164,10 +164,9 @@ impl<'a, 'i> Net<'_, 'a, 'i> {
                 .ok_or_else(|| self.refuse(n, "a coil wired to nothing, read by another object")),
             "continuation" => self.continuation(n),
             "block" => self.block_output(n, c.attribute("formalParameter")),
-            other => Err(self.refuse(
-                n,
-                &format!("a `{other}` in a network of a chart is not read yet"),
-            )),
+            other => {
+                Err(self.refuse(n, &format!("a `{other}` in a network of a chart is not read yet")))
+            }
         };
         self.visiting.remove(&n.range().start);
         e
@@ -245,7 +244,9 @@ impl<'a, 'i> Net<'_, 'a, 'i> {
             ));
         }
         if b.attribute("executionOrderId").is_some_and(|v| v.trim().parse() != Ok(0)) {
-            return Err(self.refuse(b, "an execution order number in a chart's network is not read yet"));
+            return Err(
+                self.refuse(b, "an execution order number in a chart's network is not read yet")
+            );
         }
         Ok(instance.to_string())
     }
@@ -296,9 +297,10 @@ impl<'a, 'i> Net<'_, 'a, 'i> {
                 return Err(self.refuse(v, "`EN` in a chart's network is not read yet"));
             }
             if outs.contains(&pin) || edge(v) {
-                return Err(
-                    self.refuse(v, "an in-out pin or an edge pin in a chart's network is not read yet")
-                );
+                return Err(self.refuse(
+                    v,
+                    "an in-out pin or an edge pin in a chart's network is not read yet",
+                ));
             }
             let Some(e) = self.input(v)? else { continue };
             let span = self.span(v);
@@ -318,7 +320,8 @@ impl<'a, 'i> Net<'_, 'a, 'i> {
         let mut connectors = Vec::new();
         for n in body.children().filter(|c| c.is_element()) {
             if n.attribute("executionOrderId").is_some_and(|v| v.trim().parse() != Ok(0)) {
-                return Err(self.refuse(n, "an execution order number in a chart's network is not read yet"));
+                return Err(self
+                    .refuse(n, "an execution order number in a chart's network is not read yet"));
             }
             match n.tag_name().name() {
                 "outVariable" | "inOutVariable" | "coil" => outs.push(n),
