@@ -54,6 +54,12 @@ fn edge(n: Node) -> bool {
     n.attribute("edge").is_some_and(|v| v.trim() != "none" && !v.trim().is_empty())
 }
 
+/// An edge, or a `set`/`reset` storage, on what is no coil: the generator's
+/// `ExtractModifier` writes an instance or an `IF` of its own for it.
+fn modified(n: Node) -> bool {
+    edge(n) || n.attribute("storage").is_some_and(|v| matches!(v.trim(), "set" | "reset"))
+}
+
 pub(super) fn local_ids<'a, 'i>(body: Node<'a, 'i>) -> BTreeMap<u64, Node<'a, 'i>> {
     body.children()
         .filter(|c| c.is_element())
@@ -188,10 +194,10 @@ impl<'a, 'i> Net<'_, 'a, 'i> {
 
     fn contact(&mut self, n: Node<'a, 'i>) -> Result<Expr, StError> {
         let span = self.span(n);
-        if edge(n) {
+        if modified(n) {
             return Err(self.refuse(
                 n,
-                "a contact with an edge (an `R_TRIG`/`F_TRIG` instance the generator declares) in a chart is not read yet",
+                "a contact with an edge or a storage (an `R_TRIG`/`F_TRIG` instance the generator declares) in a chart is not read yet",
             ));
         }
         let Some(v) = child(n, "variable") else {
@@ -266,7 +272,7 @@ impl<'a, 'i> Net<'_, 'a, 'i> {
             .into_iter()
             .find(|v| v.attribute("formalParameter") == Some(pin))
             .ok_or_else(|| self.refuse(b, &format!("the block has no output `{pin}`")))?;
-        if edge(out) {
+        if modified(out) {
             return Err(self.refuse(out, "an output pin with an edge in a chart is not read yet"));
         }
         let span = self.span(out);
@@ -296,7 +302,7 @@ impl<'a, 'i> Net<'_, 'a, 'i> {
             if pin.eq_ignore_ascii_case("EN") {
                 return Err(self.refuse(v, "`EN` in a chart's network is not read yet"));
             }
-            if outs.contains(&pin) || edge(v) {
+            if outs.contains(&pin) || modified(v) {
                 return Err(self.refuse(
                     v,
                     "an in-out pin or an edge pin in a chart's network is not read yet",
