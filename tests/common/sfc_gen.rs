@@ -1,4 +1,4 @@
-//! Random sequential function charts for the differential tests, as text or as a PLCopen `<SFC>` body (the same chart; steps entered through jumps, a selection divergence where a step has several transitions, simultaneous divergences and convergences for transitions to or from two steps): steps (one or two initial), transitions with priorities and conditions over inputs and steps' `X` (inline, or a named transition in the XML), every untimed qualifier on BOOL variables and on actions whose bodies assign outputs, count and call a timer, and `D`/`L` with short times on the steps that are not initial.
+//! Random sequential function charts for the differential tests, as text or as a PLCopen `<SFC>` body (the same chart; steps entered through jumps, a selection divergence where a step has several transitions, simultaneous divergences and convergences for transitions to or from two steps): steps (one or two initial), transitions with priorities and conditions over inputs and steps' `X` (inline, or a named transition in the XML), every untimed qualifier on BOOL variables and on actions whose bodies assign outputs, count and call a timer, and `D`/`L` with short times on the steps that are not initial; in the XML, some conditions drawn as networks (contacts in series and parallel, negated, from a left rail or a timer's `Q`, or an FBD variable; in the chart's body or as a named transition's LD body) and some named actions as LD or FBD bodies (coils plain, negated, set and reset, output variables, a `TON` call).
 #![allow(dead_code)]
 
 use super::rng::Rng;
@@ -221,7 +221,30 @@ pub fn project(seed: u64) -> Generated {
         };
         let t = id();
         let p = priority.map_or(String::new(), |p| format!(" priority=\"{p}\""));
-        let condition = if r.chance(25) {
+        let drawn = r.below(100);
+        let condition = if drawn < 20 {
+            // Drawn in the chart's body.
+            let ends = drawn_condition(&mut r, &mut id, &mut body, c.cycle_us);
+            let ends: Vec<(u64, Option<&str>)> = ends.into_iter().map(|k| (k, None)).collect();
+            connections(&ends)
+        } else if drawn < 30 {
+            // A named transition drawn in LD: a coil named after it.
+            let n = format!("TR{k}");
+            let mut ld = String::new();
+            let mut lid = 0u64;
+            let mut lid = || {
+                lid += 1;
+                lid
+            };
+            let ends = drawn_condition(&mut r, &mut lid, &mut ld, c.cycle_us);
+            let ends: Vec<(u64, Option<&str>)> = ends.into_iter().map(|k| (k, None)).collect();
+            let c = lid();
+            named += &format!(
+                "<transition name=\"{n}\"><body><LD>\n{ld}<coil localId=\"{c}\" height=\"15\" width=\"21\"><position x=\"300\" y=\"0\"/>{}<connectionPointOut/><variable>{n}</variable></coil>\n</LD></body></transition>\n",
+                connections(&ends)
+            );
+            format!("<reference name=\"{n}\"/>")
+        } else if r.chance(33) {
             let n = format!("TR{k}");
             named += &format!(
                 "<transition name=\"{n}\"><body><ST>{}</ST></body></transition>\n",
@@ -281,7 +304,12 @@ pub fn project(seed: u64) -> Generated {
         .actions
         .iter()
         .map(|(a, text)| {
-            format!("<action name=\"{a}\"><body><ST>{}</ST></body></action>\n", cdata(text))
+            let body = if r.chance(40) {
+                network_action(&mut r, c.cycle_us)
+            } else {
+                format!("<ST>{}</ST>", cdata(text))
+            };
+            format!("<action name=\"{a}\"><body>{body}</body></action>\n")
         })
         .collect();
     let inputs: String = INPUTS
@@ -307,6 +335,7 @@ pub fn project(seed: u64) -> Generated {
 {inputs}</inputVars><localVars>
 {outputs}<variable name="Cnt"><type><INT/></type></variable>
 <variable name="Tm"><type><derived name="TON"/></type></variable>
+<variable name="Tc"><type><derived name="TON"/></type></variable>
 </localVars></interface>
 {actions}{named}<body><SFC>
 {body}</SFC></body></pou>
@@ -316,4 +345,181 @@ pub fn project(seed: u64) -> Generated {
 "#
     );
     generated(text, c.cycle_us)
+}
+
+/// A random series-parallel network of contacts over the inputs and `S0.X`.
+enum Net {
+    Contact(String, bool),
+    Series(Box<Net>, Box<Net>),
+    Parallel(Box<Net>, Box<Net>),
+}
+
+fn net(r: &mut Rng, depth: u32) -> Net {
+    if depth == 0 || r.chance(40) {
+        let x = if r.chance(20) { "S0.X".to_string() } else { r.pick(&INPUTS).to_string() };
+        return Net::Contact(x, r.chance(30));
+    }
+    let (a, b) = (Box::new(net(r, depth - 1)), Box::new(net(r, depth - 1)));
+    if r.chance(50) { Net::Series(a, b) } else { Net::Parallel(a, b) }
+}
+
+fn connections(from: &[(u64, Option<&str>)]) -> String {
+    let conns: String = from
+        .iter()
+        .map(|(id, pin)| match pin {
+            Some(p) => format!("<connection refLocalId=\"{id}\" formalParameter=\"{p}\"/>"),
+            None => format!("<connection refLocalId=\"{id}\"/>"),
+        })
+        .collect();
+    format!("<connectionPointIn>{conns}</connectionPointIn>")
+}
+
+/// Writes `n`'s contacts, powered by `from`, into `out`; the objects whose outputs carry
+/// its power.
+fn draw<'p>(
+    n: &Net,
+    from: &[(u64, Option<&'p str>)],
+    id: &mut dyn FnMut() -> u64,
+    out: &mut String,
+) -> Vec<(u64, Option<&'p str>)> {
+    match n {
+        Net::Contact(x, negated) => {
+            let c = id();
+            *out += &format!(
+                "<contact localId=\"{c}\" height=\"15\" width=\"21\" negated=\"{negated}\"><position x=\"0\" y=\"0\"/>{}<connectionPointOut/><variable>{x}</variable></contact>\n",
+                connections(from)
+            );
+            vec![(c, None)]
+        }
+        Net::Series(a, b) => {
+            let mid = draw(a, from, id, out);
+            draw(b, &mid, id, out)
+        }
+        Net::Parallel(a, b) => {
+            let mut outs = draw(a, from, id, out);
+            outs.extend(draw(b, from, id, out));
+            outs
+        }
+    }
+}
+
+fn rail(id: &mut dyn FnMut() -> u64, out: &mut String) -> u64 {
+    let k = id();
+    *out += &format!(
+        "<leftPowerRail localId=\"{k}\" height=\"40\" width=\"3\"><position x=\"0\" y=\"0\"/><connectionPointOut formalParameter=\"\"/></leftPowerRail>\n"
+    );
+    k
+}
+
+/// What a condition drawn as a network is wired to: a network of contacts from a left rail,
+/// or (FBD) a variable holding a literal.
+fn drawn_condition(
+    r: &mut Rng,
+    id: &mut dyn FnMut() -> u64,
+    out: &mut String,
+    cycle_us: u64,
+) -> Vec<u64> {
+    if r.chance(25) {
+        let v = id();
+        let x = r.pick(&INPUTS);
+        let x = if r.chance(40) { format!("NOT {x}") } else { x.to_string() };
+        *out += &format!(
+            "<inVariable localId=\"{v}\" height=\"30\" width=\"60\"><position x=\"0\" y=\"0\"/><connectionPointOut/><expression>{x}</expression></inVariable>\n"
+        );
+        return vec![v];
+    }
+    // Some networks read a timer `Tc` (its call then runs in the generator's
+    // `COMPUTE_FUNCTION_BLOCKS` action).
+    let from = if r.chance(20) {
+        (fbd_timer(r, id, out, cycle_us, "Tc"), Some("Q"))
+    } else {
+        (rail(id, out), None)
+    };
+    let n = net(r, 2);
+    draw(&n, &[from], id, out).into_iter().map(|(k, _)| k).collect()
+}
+
+/// A random LD or FBD body for an action: rungs of contacts to coils (plain, negated,
+/// set, reset) on the outputs, a call of the timer `Tm` and coils or variables reading
+/// its `Q`, one statement per row (by position as in document order).
+fn network_action(r: &mut Rng, cycle_us: u64) -> String {
+    let mut next = 0u64;
+    let mut id = || {
+        next += 1;
+        next
+    };
+    let mut out = String::new();
+    let fbd = r.chance(30);
+    let mut row = 0;
+    let mut timer: Option<u64> = None;
+    for _ in 0..1 + r.below(3) {
+        row += 100;
+        let target = r.pick(&OUTPUTS);
+        if fbd {
+            // A variable (a literal) or the timer's output to an output variable.
+            let from = if r.chance(40) {
+                let t =
+                    *timer.get_or_insert_with(|| fbd_timer(r, &mut id, &mut out, cycle_us, "Tm"));
+                vec![(t, Some("Q"))]
+            } else {
+                let v = id();
+                let x = r.pick(&INPUTS);
+                let x = if r.chance(30) { format!("NOT {x}") } else { x.to_string() };
+                out += &format!(
+                    "<inVariable localId=\"{v}\" height=\"30\" width=\"60\"><position x=\"0\" y=\"{row}\"/><connectionPointOut/><expression>{x}</expression></inVariable>\n"
+                );
+                vec![(v, None)]
+            };
+            let o = id();
+            out += &format!(
+                "<outVariable localId=\"{o}\" height=\"30\" width=\"60\"><position x=\"300\" y=\"{row}\"/>{}<expression>{target}</expression></outVariable>\n",
+                connections(&from)
+            );
+            continue;
+        }
+        let rl = rail(&mut id, &mut out);
+        let mut from = vec![(rl, None)];
+        if r.chance(30) {
+            let t = *timer.get_or_insert_with(|| fbd_timer(r, &mut id, &mut out, cycle_us, "Tm"));
+            from = vec![(t, Some("Q"))];
+        }
+        let n = net(r, 2);
+        let ends = draw(&n, &from, &mut id, &mut out);
+        let (negated, storage) = match r.below(5) {
+            0 => ("true", "none"),
+            1 => ("false", "set"),
+            2 => ("false", "reset"),
+            _ => ("false", "none"),
+        };
+        let c = id();
+        out += &format!(
+            "<coil localId=\"{c}\" height=\"15\" width=\"21\" negated=\"{negated}\" storage=\"{storage}\"><position x=\"300\" y=\"{row}\"/>{}<connectionPointOut/><variable>{target}</variable></coil>\n",
+            connections(&ends)
+        );
+    }
+    let lang = if fbd { "FBD" } else { "LD" };
+    format!("<{lang}>\n{out}</{lang}>")
+}
+
+/// A call of the timer `name` (its `IN` a literal, its `PT` twice the cycle) placed below
+/// the rungs.
+fn fbd_timer(
+    r: &mut Rng,
+    id: &mut dyn FnMut() -> u64,
+    out: &mut String,
+    cycle_us: u64,
+    name: &str,
+) -> u64 {
+    let (b, v, p) = (id(), id(), id());
+    let x = r.pick(&INPUTS);
+    let x = if r.chance(30) { format!("NOT {x}") } else { x.to_string() };
+    *out += &format!(
+        "<inVariable localId=\"{v}\" height=\"30\" width=\"60\"><position x=\"0\" y=\"1000\"/><connectionPointOut/><expression>{x}</expression></inVariable>\n\
+         <inVariable localId=\"{p}\" height=\"30\" width=\"60\"><position x=\"0\" y=\"1040\"/><connectionPointOut/><expression>T#{}ms</expression></inVariable>\n\
+         <block localId=\"{b}\" height=\"60\" width=\"60\" typeName=\"TON\" instanceName=\"{name}\"><position x=\"100\" y=\"1000\"/><inputVariables><variable formalParameter=\"IN\">{}</variable><variable formalParameter=\"PT\">{}</variable></inputVariables><inOutVariables/><outputVariables><variable formalParameter=\"Q\"><connectionPointOut/></variable><variable formalParameter=\"ET\"><connectionPointOut/></variable></outputVariables></block>\n",
+        2 * cycle_us / 1000,
+        connections(&[(v, None)]),
+        connections(&[(p, None)]),
+    );
+    b
 }

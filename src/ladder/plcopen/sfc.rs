@@ -5,12 +5,17 @@
 //! Structured Text body, or inline Structured Text, which the generator names
 //! `STEP_INLINE1`, `STEP_INLINE2`, …), transitions with a priority and an inline
 //! Structured Text condition or one referring to a transition of the POU with a
-//! Structured Text body (`:= expression;`). Refused with a located error: a condition
-//! drawn as a network, Instruction List, Ladder or FBD in a condition or an action, macro
-//! steps.
+//! Structured Text body (`:= expression;`); a condition drawn as a network in the chart's
+//! body, a named transition and a named action whose body is LD or FBD (`sfc/network.rs`;
+//! the calls of the blocks of condition networks in the action `COMPUTE_FUNCTION_BLOCKS`,
+//! qualifier `S`, of the first initial step, as the generator writes them). Refused with a
+//! located error: Instruction List, LD or FBD inline in an action block, what
+//! `sfc/network.rs` refuses, macro steps.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::ops::Range;
+
+mod network;
 
 use super::{Pou, Project};
 use crate::diag::{Sources, Span};
@@ -46,6 +51,9 @@ pub fn read(sources: &mut Sources, project: &Project, pou: &Pou) -> Result<ast::
         actions: BTreeMap::new(),
         numbered: 0,
         out: ast::Sfc::default(),
+        connectors: BTreeMap::new(),
+        called: BTreeSet::new(),
+        computed: Vec::new(),
     };
     for c in sfc.children().filter(|c| c.is_element()) {
         match c.tag_name().name() {
@@ -55,6 +63,25 @@ pub fn read(sources: &mut Sources, project: &Project, pou: &Pou) -> Result<ast::
             "jumpStep" => g.jump(c)?,
             "macroStep" => return Err(g.refuse(c, "a macro step is not read yet")),
             _ => {}
+        }
+    }
+    // The calls of the networks drawn for conditions: an action of the first initial step
+    // (`COMPUTE_FUNCTION_BLOCKS`, qualifier `S`), as the generator writes it.
+    if let Some(first) = g.initial.first().cloned()
+        && !g.computed.is_empty()
+    {
+        let name = "COMPUTE_FUNCTION_BLOCKS".to_string();
+        let span = g.span(sfc);
+        let body = std::mem::take(&mut g.computed);
+        g.actions.insert(name.clone(), (name.clone(), body, span));
+        let association = Association {
+            action: Ident { name, span },
+            qualifier: Some(Ident { name: "S".into(), span }),
+            time: None,
+            span,
+        };
+        if let Some((_, info)) = g.steps.get_mut(&first) {
+            info.actions.push(association);
         }
     }
     for s in g.initial.clone() {
@@ -92,6 +119,12 @@ struct Gen<'g, 'a, 'i> {
     actions: BTreeMap<String, (String, Vec<ast::Stmt>, Span)>,
     numbered: usize,
     out: ast::Sfc,
+    /// Connectors' values, by name, for the whole POU (the generator's `ComputedConnectors`).
+    connectors: BTreeMap<String, Expr>,
+    /// The blocks of networks already called (by where they start in the file).
+    called: BTreeSet<usize>,
+    /// The calls of the networks drawn for conditions (the generator's `SFCComputedBlocks`).
+    computed: Vec<ast::Stmt>,
 }
 
 fn child<'a, 'i>(n: Node<'a, 'i>, name: &str) -> Option<Node<'a, 'i>> {
@@ -253,6 +286,12 @@ impl<'a, 'i> Gen<'_, 'a, 'i> {
 
     /// The Structured Text statements in `n` (an `inline` or a `body`).
     fn statements(&mut self, n: Node<'a, 'i>, what: &str) -> Result<Vec<ast::Stmt>, StError> {
+        let network = child(n, "LD").or_else(|| child(n, "FBD"));
+        if let Some(body) = network.filter(|_| n.tag_name().name() == "body") {
+            let mut net = self.net(network::local_ids(body));
+            net.program(body)?;
+            return Ok(net.out);
+        }
         let Some(st) = child(n, "ST") else {
             let lang = n.children().find(|c| c.is_element()).map_or("?", |c| c.tag_name().name());
             return Err(self.refuse(
@@ -274,6 +313,19 @@ impl<'a, 'i> Gen<'_, 'a, 'i> {
             what,
             crate::iec::parser::parse_body,
         )
+    }
+
+    /// The network whose objects are `nodes`.
+    fn net<'s>(&'s mut self, nodes: BTreeMap<u64, Node<'a, 'i>>) -> network::Net<'s, 'a, 'i> {
+        network::Net {
+            sources: self.sources,
+            project: self.project,
+            nodes,
+            connectors: &mut self.connectors,
+            called: &mut self.called,
+            out: Vec::new(),
+            visiting: BTreeSet::new(),
+        }
     }
 
     fn transition(&mut self, n: Node<'a, 'i>) -> Result<(), StError> {
@@ -324,6 +376,12 @@ impl<'a, 'i> Gen<'_, 'a, 'i> {
         let Some(c) = child(n, "condition") else {
             return Err(self.refuse(n, "a transition without a condition"));
         };
+        if c.attribute("negated").is_some_and(|v| v.trim() == "true" || v.trim() == "1") {
+            return Err(self.refuse(
+                c,
+                "a negated condition (which Beremiz's generator ignores) is not read yet",
+            ));
+        }
         if let Some(inline) = child(c, "inline") {
             let Some(st) = child(inline, "ST") else {
                 return Err(self.refuse(
@@ -355,6 +413,9 @@ impl<'a, 'i> Gen<'_, 'a, 'i> {
                     self.refuse(r, &format!("the transition `{name}` is not found in the POU"))
                 );
             };
+            if let Some(network) = child(body, "LD").or_else(|| child(body, "FBD")) {
+                return self.named_network(network, name);
+            }
             let Some(st) = child(body, "ST") else {
                 return Err(self.refuse(
                     body,
@@ -370,7 +431,41 @@ impl<'a, 'i> Gen<'_, 'a, 'i> {
                 crate::iec::parser::parse_condition,
             );
         }
-        Err(self.refuse(c, "a transition condition drawn as a network is not read yet"))
+        // Drawn as a network in the chart's body.
+        let nodes = self.nodes.clone();
+        let mut net = self.net(nodes);
+        let value = net.input(c)?;
+        let calls = std::mem::take(&mut net.out);
+        self.computed.extend(calls);
+        value.ok_or_else(|| self.refuse(c, "a transition condition wired to nothing"))
+    }
+
+    /// The condition of the transition `name` whose body is the LD or FBD `network`: what
+    /// is wired to its output variable or coil named `name` (the last one, as the
+    /// generator writes them all and keeps the last).
+    fn named_network(&mut self, network: Node<'a, 'i>, name: &str) -> Result<Expr, StError> {
+        let mut net = self.net(network::local_ids(network));
+        let mut value = None;
+        for n in network.children().filter(|c| c.is_element()) {
+            let text = match n.tag_name().name() {
+                "outVariable" => child(n, "expression"),
+                "coil" => child(n, "variable"),
+                _ => None,
+            };
+            if text.and_then(|t| t.text()) == Some(name)
+                && let Some(e) = net.input(n)?
+            {
+                value = Some(e);
+            }
+        }
+        let calls = std::mem::take(&mut net.out);
+        self.computed.extend(calls);
+        value.ok_or_else(|| {
+            self.refuse(
+                network,
+                &format!("the transition `{name}` has no output variable or coil `{name}` wired to a value"),
+            )
+        })
     }
 
     /// Writes step `key` out, then its actions and its transitions (with their next
