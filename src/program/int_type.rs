@@ -1,4 +1,4 @@
-//! The scan model's integer types: a width and signedness, IEC `REAL` and `LREAL` as bit patterns, and `TIME` in microseconds; their ranges, wrapping, comparison and how a value reads.
+//! The scan model's integer types: a width and signedness, IEC `REAL` and `LREAL` as bit patterns, and `TIME` in nanoseconds; their ranges, wrapping, comparison and how a value reads.
 
 use super::{CmpOp, real};
 

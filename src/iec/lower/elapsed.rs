@@ -49,27 +49,31 @@ impl Lowering<'_> {
             return None;
         }
         let cycle = self.cycle_us as i64 * 1000;
-        let scans =
-            pt_ns.filter(|_| cycle > 0).map(|pt| (pt.max(0) as u64).div_ceil(cycle as u64).max(1));
-        let why = if self.multi.contains(&inst.to_ascii_uppercase()) {
-            Some("its timer is called more than once in a scan".to_string())
+        // The scans until it runs out, or why its elapsed time is not computed.
+        let found = if self.multi.contains(&key) {
+            Err("its timer is called more than once in a scan")
         } else if cycle == 0 {
-            Some("the cycle is 0".into())
-        } else if pt_ns.is_none() {
-            Some("its timer's preset is not a duration literal in the call".into())
-        } else if scans.is_some_and(|n| n >= 1 << 60) {
-            Some("its timer's preset is beyond the TIME values computed".into())
+            Err("the cycle is 0")
         } else {
-            None
+            match pt_ns {
+                None => Err("its timer's preset is not a duration literal in the call"),
+                Some(pt) => match (pt.max(0) as u64).div_ceil(cycle as u64).max(1) {
+                    n if n >= 1 << 60 => {
+                        Err("its timer's preset is beyond the TIME values computed")
+                    }
+                    n => Ok((pt, n as i64)),
+                },
+            }
         };
-        let (Some(pt), Some(n), None) = (pt_ns, scans, why.clone()) else {
-            let why = why.unwrap_or_else(|| "its timer's preset is not known".into());
-            self.make_opaque(&et, why, span);
-            return None;
+        let (pt, n) = match found {
+            Ok(x) => x,
+            Err(why) => {
+                self.make_opaque(&et, why.into(), span);
+                return None;
+            }
         };
         // Read as a TIME of the bits its values (0 to PT) need, from the next lowering on.
         self.elapsed.insert(key, IntType::time_for(pt.max(0) as u64));
-        let n = n as i64;
         let bits = 64 - (n + 2).leading_zeros();
         let count = IntType::int(bits, false);
         let scans = self.hidden_int(inst, "ET_SCANS", count);

@@ -424,14 +424,12 @@ impl Lowering<'_> {
         }
         // The arguments' one type (literals take it).
         let mut ty = ints.iter().find_map(|x| x.ty);
-        if ty.is_some_and(|t| t.time) {
-            ty = ints.iter().filter_map(|x| x.ty).reduce(|a, b| a.max_by_bits(b));
-        }
         if !matches!(name.as_str(), "MOVE" | "MIN" | "MAX" | "LIMIT" | "SEL") {
             no_time_arithmetic(&ints.iter().collect::<Vec<_>>())?;
         }
+        // (Durations meet in the widest of their types: `unify` gives it.)
         for x in &ints {
-            self.unify(&Int::of(IntExpr::Const(0), ty), x, e.span)?;
+            ty = self.unify(&Int::of(IntExpr::Const(0), ty), x, e.span)?;
         }
         let t = ty.unwrap_or(C_INT);
         let value = |x: &Int| x.clone().in_type(t);
