@@ -349,7 +349,9 @@ impl Shared {
 
     /// The part of `model` (a property's cone) that the inputs whose values in `trace`
     /// differ from those of the run `kept`, and the inputs of `also`, can change: its
-    /// equations that read, through any chain, one of them. Every other name the part
+    /// equations that read, through any chain, one of them, and those of the equations
+    /// outside the cone of the property the kept run refuted (with the inputs they read,
+    /// counted as changed), which the kept run's base does not give. Every other name the part
     /// reads that the program defines has its value in the kept run, on which every
     /// compiled hypothesis is checked exactly once ([`Kept::base`]); `None` when that
     /// check failed, `trace` is longer than the kept run, the cone is small
@@ -372,8 +374,29 @@ impl Shared {
         let index = program.compiled.equation_index();
         let readers = self.readers(program);
         let defined: BTreeSet<&str> = model.defs.iter().map(|(n, _)| n.as_str()).collect();
+        // The equations of the cone whose signals the base run does not give (outside the
+        // cone of the property the kept run refuted) are run too, as if an input they read
+        // had changed: the part then reads from the base only what it gives. The inputs
+        // they read count as changed (the simulator runs the rungs that read them).
+        let in_cone = kept.cone_names(program);
         let mut moved: BTreeSet<&str> = BTreeSet::new();
-        let mut pending: Vec<Symbol> = changed.iter().map(|n| Symbol::from(n.as_str())).collect();
+        let mut pending: Vec<Symbol> = Vec::new();
+        for (n, rhs) in &model.defs {
+            if in_cone.contains(n) {
+                continue;
+            }
+            if moved.insert(n.as_str()) {
+                pending.push(Symbol::from(n.as_str()));
+            }
+            for node in rhs.as_ref() {
+                if let Term::Name(m) = node
+                    && !index.defining.contains_key(m.as_str())
+                {
+                    changed.insert(m.as_str().to_string());
+                }
+            }
+        }
+        pending.extend(changed.iter().map(|n| Symbol::from(n.as_str())));
         while let Some(n) = pending.pop() {
             for &p in readers.get(&n).map_or(&[][..], Vec::as_slice) {
                 let name = index.equations[p].0.as_str();
@@ -389,7 +412,6 @@ impl Shared {
         // Every defined name the part reads from outside must be in the kept run's cone
         // (looked up before the base is made: it costs a run of that cone).
         let outside = part.free_names([&goal.lhs, &goal.rhs].into_iter());
-        let in_cone = kept.cone_names(program);
         if outside.iter().any(|n| index.defining.contains_key(n) && !in_cone.contains(n)) {
             return None;
         }
