@@ -829,3 +829,26 @@ fn a_kept_run_refutes_the_other_properties_it_violates() {
     // `holds` holds: no run kept refutes it.
     assert!(counterexample::shared::refute_shared(&session, &goals[3], limits).is_none());
 }
+
+/// A property whose cone reaches past that of the kept run's property (`RArmed` reads
+/// the end of a 300-rung chain and its own input) is refuted near the kept run, the
+/// equations outside that cone judged with the part: confirmed on the simulator, the
+/// program's own simulator sets `RArmed` on its inputs, and `RClash` (0 in every run)
+/// is not refuted.
+#[test]
+fn a_property_past_the_kept_cone_is_refuted_near_the_kept_run() {
+    let mut sources = Sources::new();
+    let props =
+        "property deep: RChain300 = 0*\nproperty armed: RArmed = 0*\nproperty clash: RClash = 0*\n";
+    let (loaded, goals) = program_and_goals(&mut sources, "past", &long_chain(300), props);
+    let shared = counterexample::shared::Shared::default();
+    let session = shared_session(&loaded, &shared);
+    let limits = shared_limits();
+    refute_deep(&session, &goals[0], limits);
+    let c = counterexample::shared::refute_shared(&session, &goals[1], limits)
+        .expect("the run that refutes `deep` is repaired for `armed`");
+    assert!(c.simulator_scan.is_some(), "confirmed on the simulator");
+    assert!(c.trace.values.get("XArm").is_some_and(|v| v.contains(&true)), "{:?}", c.trace);
+    assert!(replay_sets(&loaded, &c, "RArmed"), "the replay sets RArmed");
+    assert!(counterexample::shared::refute_shared(&session, &goals[2], limits).is_none());
+}
