@@ -653,6 +653,10 @@ struct Near<'a> {
     /// The names the cut reads from outside it, each with whether it is in `free`
     /// (looked up once, not at each read of a run).
     outside: HashMap<String, bool>,
+    /// The same names, each with its values in the kept run at each of its scans (bit `k`
+    /// for scan `k + 1`, read once rather than at each run of the cut), or `None` for
+    /// those in `free`.
+    held: HashMap<String, Option<u64>>,
 }
 
 impl<'a> Near<'a> {
@@ -664,8 +668,16 @@ impl<'a> Near<'a> {
                 let input = free.contains(&n);
                 (n, input)
             })
+            .collect::<HashMap<String, bool>>();
+        let scans = kept.trace.scans.min(64);
+        let held = outside
+            .iter()
+            .map(|(n, input)| {
+                let bits = (0..scans).fold(0u64, |m, k| m | (u64::from(kept.value(n, k)) << k));
+                (n.clone(), (!*input).then_some(bits))
+            })
             .collect();
-        Near { model, kept, free, outside }
+        Near { model, kept, free, outside, held }
     }
 
     /// Whether the run reads `name` from the trace (an input of the whole cone), not
@@ -735,9 +747,15 @@ impl<'a> Near<'a> {
             &[&goal.lhs, &goal.rhs],
             trace.scans,
             &|d| scans_of(d, &cycle),
-            &mut |_, name, k| match self.is_input(name) {
-                true => trace.values.get(name).and_then(|v| v.get(k)).copied().unwrap_or(false),
-                false => self.kept.value(name, k),
+            &mut |_, name, k| match self.held.get(name) {
+                Some(Some(bits)) if k < self.kept.trace.scans.min(64) => bits >> k & 1 == 1,
+                Some(None) => {
+                    trace.values.get(name).and_then(|v| v.get(k)).copied().unwrap_or(false)
+                }
+                _ => match self.is_input(name) {
+                    true => trace.values.get(name).and_then(|v| v.get(k)).copied().unwrap_or(false),
+                    false => self.kept.value(name, k),
+                },
             },
         )
         .ok()?;
