@@ -849,7 +849,7 @@ fn unroll_agrees(
 // ---------------------------------------------------------------- tests
 
 fn programs_to_run() -> u64 {
-    std::env::var("II_DIFF_PROGRAMS").ok().and_then(|v| v.parse().ok()).unwrap_or(8_000)
+    std::env::var("II_DIFF_PROGRAMS").ok().and_then(|v| v.parse().ok()).unwrap_or(6_000)
 }
 
 fn base_seed() -> u64 {

@@ -20,7 +20,7 @@ use plcopen_diff::{Figures, check, random_program};
 use std::path::Path;
 
 fn programs() -> u64 {
-    std::env::var("II_PLC_DIFF_PROGRAMS").ok().and_then(|v| v.parse().ok()).unwrap_or(800)
+    std::env::var("II_PLC_DIFF_PROGRAMS").ok().and_then(|v| v.parse().ok()).unwrap_or(600)
 }
 
 #[test]

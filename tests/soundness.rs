@@ -20,76 +20,92 @@ fn opts() -> Options {
 
 /// Every `NAME.ld` (or PLCopen `NAME.xml`, Structured Text `NAME.st`, `NAME.il`) of
 /// `proves_programs/` with its `NAME.ii`: every property proved, its printed trace
-/// (`--trace`, lemmas folded) within the bound written above it.
+/// (`--trace`, lemmas folded) within the bound written above it. Every property of an
+/// `.ld` or `.xml` there proved by induction over scans (the timing cases): its folded
+/// trace is at most 25 lines, the trace of `--trace-all` prints every lemma the kernel
+/// checked with the proof, each under its name, and each timer chain's template,
+/// written out for every count it lists, is a lemma of the full trace. The files are
+/// shared between two threads.
 #[test]
-fn programs_whose_properties_hold_are_proved() {
+fn programs_whose_properties_hold_are_proved_and_their_traces_fold() {
     let mut files = common::files_with(&data("proves_programs"), "ld");
     files.extend(common::files_with(&data("proves_programs"), "xml"));
     files.extend(common::files_with(&data("proves_programs"), "st"));
     files.extend(common::files_with(&data("proves_programs"), "il"));
     assert!(files.len() >= 3, "only {} cases", files.len());
-    for ld in files {
-        let ii = ld.with_extension("ii").display().to_string();
-        let ld = ld.display().to_string();
-        let run = report::run_program(&ld, std::slice::from_ref(&ii), &opts())
-            .unwrap_or_else(|e| panic!("{ld}: {}", e.rendered));
-        assert!(!run.properties.is_empty(), "{ii}: no property");
-        let bounds = trace_bounds(&std::fs::read_to_string(&ii).expect("readable"));
-        for p in &run.properties {
-            assert_eq!(p.status, Status::Proved, "{ld}: {} ({:?})", p.name, p.reason);
-            if let (Some(&bound), Some(trace)) = (bounds.get(&p.name), &p.trace) {
-                let printed = printed_lines(&trace.lines);
-                assert!(
-                    printed <= bound,
-                    "{ii}: the proof of {} prints {printed} lines, at most {bound} expected:\n{}",
-                    p.name,
-                    trace.lines.join("\n")
-                );
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let (inductions, templates) = std::thread::scope(|scope| {
+        let worker = || {
+            let (mut inductions, mut templates) = (0, 0);
+            while let Some(ld) = files.get(next.fetch_add(1, std::sync::atomic::Ordering::SeqCst)) {
+                let (i, t) = proved_with_folding_traces(ld);
+                (inductions, templates) = (inductions + i, templates + t);
             }
-        }
-        assert_eq!(run.timers, Some("plc"));
-    }
-}
-
-/// Every property of `proves_programs/` proved by induction over scans (the timing
-/// cases): its folded trace is at most 25 lines, the trace of `--trace-all` prints
-/// every lemma the kernel checked with the proof, each under its name, and each timer
-/// chain's template, written out for every count it lists, is a lemma of the full trace.
-#[test]
-fn induction_traces_fold_and_the_full_trace_lists_every_lemma() {
-    let mut files = common::files_with(&data("proves_programs"), "ld");
-    files.extend(common::files_with(&data("proves_programs"), "xml"));
-    let full = Options { trace_all: true, ..opts() };
-    let (mut inductions, mut templates) = (0, 0);
-    for ld in files {
-        let ii = ld.with_extension("ii").display().to_string();
-        let ld = ld.display().to_string();
-        let folded = report::run_program(&ld, std::slice::from_ref(&ii), &opts()).expect("runs");
-        let whole = report::run_program(&ld, std::slice::from_ref(&ii), &full).expect("runs");
-        for (p, q) in folded.properties.iter().zip(&whole.properties) {
-            let (Some(t), Some(u)) = (&p.trace, &q.trace) else { continue };
-            if t.method != "induction" {
-                continue;
-            }
-            inductions += 1;
-            let (short, long) = (printed_lines(&t.lines), printed_lines(&u.lines));
-            println!("{ii} {}: {short} lines folded, {long} in full", p.name);
-            assert!(short <= 25, "{ii}: {} prints {short} lines:\n{}", p.name, t.lines.join("\n"));
-            assert!(!u.lemmas.is_empty(), "{ii}: {}: an induction with no lemma", p.name);
-            for lemma in &u.lemmas {
-                let header = format!("lemma {lemma}:");
-                assert!(
-                    u.lines.contains(&header),
-                    "{ii}: {}: `{header}` missing from the full trace",
-                    p.name
-                );
-            }
-            assert_eq!(t.lemmas, u.lemmas, "{ii}: {}: the same proof both ways", p.name);
-            templates += chain_templates_match(&t.lines, &u.lines, &format!("{ii}: {}", p.name));
-        }
-    }
+            (inductions, templates)
+        };
+        let other = scope.spawn(worker);
+        let (i, t) = worker();
+        let (j, u) = other.join().expect("the other thread");
+        (i + j, t + u)
+    });
     assert!(inductions >= 8, "only {inductions} properties proved by induction");
     assert!(templates >= 100, "only {templates} chain lemmas read back from templates");
+}
+
+/// The checks of [`programs_whose_properties_hold_are_proved_and_their_traces_fold`] on
+/// one program: how many properties were proved by induction, and how many chain
+/// lemmas were read back from templates.
+fn proved_with_folding_traces(ld: &Path) -> (usize, usize) {
+    let ii = ld.with_extension("ii").display().to_string();
+    let ladder = matches!(ld.extension().and_then(|e| e.to_str()), Some("ld" | "xml"));
+    let ld = ld.display().to_string();
+    let folded = report::run_program(&ld, std::slice::from_ref(&ii), &opts())
+        .unwrap_or_else(|e| panic!("{ld}: {}", e.rendered));
+    assert!(!folded.properties.is_empty(), "{ii}: no property");
+    assert_eq!(folded.timers, Some("plc"));
+    let bounds = trace_bounds(&std::fs::read_to_string(&ii).expect("readable"));
+    for p in &folded.properties {
+        assert_eq!(p.status, Status::Proved, "{ld}: {} ({:?})", p.name, p.reason);
+        if let (Some(&bound), Some(trace)) = (bounds.get(&p.name), &p.trace) {
+            let printed = printed_lines(&trace.lines);
+            assert!(
+                printed <= bound,
+                "{ii}: the proof of {} prints {printed} lines, at most {bound} expected:\n{}",
+                p.name,
+                trace.lines.join("\n")
+            );
+        }
+    }
+    let by_induction =
+        |p: &&report::PropertyReport| p.trace.as_ref().is_some_and(|t| t.method == "induction");
+    if !ladder || !folded.properties.iter().any(|p| by_induction(&p)) {
+        return (0, 0);
+    }
+    let full = Options { trace_all: true, ..opts() };
+    let whole = report::run_program(&ld, std::slice::from_ref(&ii), &full).expect("runs");
+    let (mut inductions, mut templates) = (0, 0);
+    for (p, q) in folded.properties.iter().zip(&whole.properties) {
+        let (Some(t), Some(u)) = (&p.trace, &q.trace) else { continue };
+        if t.method != "induction" {
+            continue;
+        }
+        inductions += 1;
+        let (short, long) = (printed_lines(&t.lines), printed_lines(&u.lines));
+        println!("{ii} {}: {short} lines folded, {long} in full", p.name);
+        assert!(short <= 25, "{ii}: {} prints {short} lines:\n{}", p.name, t.lines.join("\n"));
+        assert!(!u.lemmas.is_empty(), "{ii}: {}: an induction with no lemma", p.name);
+        for lemma in &u.lemmas {
+            let header = format!("lemma {lemma}:");
+            assert!(
+                u.lines.contains(&header),
+                "{ii}: {}: `{header}` missing from the full trace",
+                p.name
+            );
+        }
+        assert_eq!(t.lemmas, u.lemmas, "{ii}: {}: the same proof both ways", p.name);
+        templates += chain_templates_match(&t.lines, &u.lines, &format!("{ii}: {}", p.name));
+    }
+    (inductions, templates)
 }
 
 /// Reads the folded trace's timer chains back — each header's abbreviation (`X = …`) and

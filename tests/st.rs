@@ -107,7 +107,7 @@ fn compile(
 }
 
 fn programs_to_run() -> u64 {
-    std::env::var("II_ST_PROGRAMS").ok().and_then(|v| v.parse().ok()).unwrap_or(150)
+    std::env::var("II_ST_PROGRAMS").ok().and_then(|v| v.parse().ok()).unwrap_or(120)
 }
 
 /// Random ST programs: every compiled equation and recurrence holds at every scan of the

@@ -25,7 +25,7 @@ fn root() -> PathBuf {
 }
 
 fn opts(trace: bool) -> Options {
-    Options { timeout: Duration::from_secs(1), trace, ..Options::default() }
+    Options { timeout: Duration::from_millis(500), trace, ..Options::default() }
 }
 
 /// The program a `readable/` case names on its first line.
