@@ -603,3 +603,82 @@ fn counterexamples_of_the_faulty_text_plants_replay_on_matiec() {
         );
     }
 }
+
+/// `STRING_TO_BOOL` and `STRING_TO_<integer>` of random string literals (signs, digits,
+/// `2#`/`8#`/`16#` bodies, separators, letters, `$` escapes): the value matiec's run
+/// gives each, compared with the lowered program's (the literal read by
+/// `iec::literal`). A literal the lowering leaves not computed (C's overflow) is counted,
+/// not compared.
+#[test]
+#[ignore = "needs the toolchain of tools/oracle/setup.sh (II_ORACLE=DIR)"]
+fn string_literals_convert_as_matiec_converts_them() {
+    let dir = PathBuf::from(std::env::var_os("II_ORACLE").expect("II_ORACLE=DIR"));
+    let rounds = env_u64("II_STRING_ROUNDS", 4);
+    let types = ["BOOL", "SINT", "INT", "DINT", "USINT", "UINT", "UDINT", "BYTE", "WORD", "DWORD"];
+    let (mut compared, mut skipped) = (0, 0);
+    for round in 0..rounds {
+        let mut rng = rng::Rng::new(0x5781 + round);
+        let pieces = [
+            "0", "1", "7", "9", "12", "-", "+", ".", "_", " ", ",", "a", "F", "g", "x", "2#", "8#",
+            "16#", "$$", "$'", "$N", "$T", "$41", "TRUE", "true", "e", "99999", "65535",
+        ];
+        let (mut decls, mut body, mut want) = (String::new(), String::new(), Vec::new());
+        for k in 0..60 {
+            let mut s = String::new();
+            if rng.chance(40) {
+                s.push_str(rng.pick::<&str>(&["2#", "8#", "16#", "-", ""]));
+            }
+            for _ in 0..rng.below(9) {
+                s.push_str(rng.pick::<&str>(&pieces));
+            }
+            let ty = *rng.pick(&types);
+            decls.push_str(&format!("    V{k} : {ty};\n"));
+            body.push_str(&format!("  V{k} := STRING_TO_{ty}('{s}');\n"));
+            want.push((format!("V{k}"), ty == "BOOL", s));
+        }
+        let text = format!(
+            "PROGRAM Main\n  VAR\n{decls}  END_VAR\n{body}END_PROGRAM\nCONFIGURATION Cfg\n  \
+             RESOURCE Res ON PLC\n    TASK Tk(INTERVAL := T#20ms, PRIORITY := 0);\n    \
+             PROGRAM Inst WITH Tk : Main;\n  END_RESOURCE\nEND_CONFIGURATION\n"
+        );
+        let mut sources = Sources::new();
+        let file = sources.add("strings.st", text.clone());
+        let unit = ii_prove::iec::read(&sources, file).expect("reads");
+        let lowered = ii_prove::iec::lower(&sources, &unit, None, None).expect("lowers");
+        let mut sim =
+            ii_prove::program::simulate::Simulator::new(&lowered.program, TimerModel::Plc);
+        sim.step(&BTreeMap::new());
+        let req = json!({
+            "pou": "Main",
+            "cycle_ns": 20_000_000u64,
+            "scans": 1,
+            "inputs": {},
+            "want": want.iter().map(|(n, bit, _)| if *bit { json!({"bit": n}) } else { json!({"int": n}) })
+                .collect::<Vec<_>>(),
+        });
+        let answer = run_one(&dir, "strings", &text, &req);
+        assert_eq!(answer["status"], "ok", "{answer}");
+        let trace = answer["trace"].as_array().expect("traces");
+        for ((n, bit, s), got) in want.iter().zip(trace) {
+            let computed = match bit {
+                true => sim.is_known(n),
+                false => lowered.program.integers.contains_key(n),
+            };
+            if !computed {
+                skipped += 1;
+                continue;
+            }
+            let theirs = match bit {
+                true => got.as_str().map(|b| i64::from(b == "1")),
+                false => got.as_array().and_then(|v| v.first()).and_then(Value::as_i64),
+            };
+            let ours = if *bit { Some(i64::from(sim.bit(n))) } else { sim.int(n) };
+            assert_eq!(theirs, ours, "{n} := STRING_TO_…('{s}')");
+            compared += 1;
+        }
+    }
+    eprintln!(
+        "{compared} conversions of string literals as matiec computes them, {skipped} not computed"
+    );
+    assert!(compared > 0);
+}

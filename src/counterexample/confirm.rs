@@ -604,7 +604,7 @@ fn responsible(
         .signals
         .iter()
         .filter_map(|(n, k)| match k {
-            SignalKind::Fresh { rung, element } if trace.values.contains_key(n) => {
+            SignalKind::Fresh { rung, element, .. } if trace.values.contains_key(n) => {
                 Some(format!("`{n}` ({element}, rung {rung})"))
             }
             _ => None,

@@ -211,7 +211,13 @@ pub fn lex(file: usize, text: &str, range: std::ops::Range<usize>) -> Result<Vec
         }
         if c == b'\'' || c == b'"' {
             let q = c as char;
-            let Some(n) = rest[1..].find(q) else {
+            // `$` escapes the character after it (`$'`, `$$`, `$N`, …).
+            let bytes = rest.as_bytes();
+            let mut k = 1;
+            while k < bytes.len() && bytes[k] != c {
+                k += if bytes[k] == b'$' { 2 } else { 1 };
+            }
+            let Some(n) = (k < bytes.len()).then(|| k - 1) else {
                 return Err(StError::new(
                     span(i, i + 1),
                     "unterminated string",

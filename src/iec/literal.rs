@@ -1,4 +1,4 @@
-//! IEC 61131-3 literals shared by the front ends: durations (`T#5s`, `TIME#1h2m`, 1.0's `00:00:00.100`) in microseconds (a part finer than 1 µs is dropped), and in nanoseconds as matiec's C computes them.
+//! IEC 61131-3 literals shared by the front ends: durations (`T#5s`, `TIME#1h2m`, 1.0's `00:00:00.100`) in microseconds (a part finer than 1 µs is dropped), and in nanoseconds as matiec's C computes them; string literals and matiec's conversions of them to BOOL and integers.
 
 use num_bigint::BigInt;
 use num_rational::BigRational;
@@ -162,6 +162,128 @@ pub fn int_literal(text: &str) -> Option<(i128, Option<String>)> {
     Some((if negative { -v } else { v }, ty))
 }
 
+/// The bytes of an IEC single-byte string literal (`'Tank $'A$''`, its quotes included,
+/// or typed: `STRING#'12'`)
+/// as matiec's C holds them: `$$`, `$'`, `$N` (LF), `$P` (FF), `$R` (CR), `$T` (tab) and
+/// `$hh` decoded as its `single_byte_character_string_c` visitor writes them
+/// (`stage4/generate_c/generate_c_base.cc`). `None` for what that C does not hold as
+/// written: `$L` (the visitor writes a raw line feed inside the C string), `$hh` or
+/// `$N` (written `\x0A`) followed by a hex digit (C reads the longer escape), a body past `STR_MAX_LEN` (126
+/// bytes), a byte outside printable ASCII.
+pub fn string_literal(text: &str) -> Option<Vec<u8>> {
+    let text = text.trim();
+    let text = match text.split_once('#') {
+        Some((ty, s)) if ty.eq_ignore_ascii_case("STRING") => s,
+        _ => text,
+    };
+    let body = text.strip_prefix('\'')?.strip_suffix('\'')?.as_bytes();
+    let mut out = Vec::new();
+    let mut k = 0;
+    while k < body.len() {
+        let c = body[k];
+        k += 1;
+        if !(b' '..=b'~').contains(&c) {
+            return None;
+        }
+        if c == b'\'' {
+            return None;
+        }
+        if c != b'$' {
+            out.push(c);
+            continue;
+        }
+        let e = *body.get(k)?;
+        k += 1;
+        let hex_next = body.get(k).is_some_and(|b| b.is_ascii_hexdigit());
+        out.push(match e.to_ascii_uppercase() {
+            b'$' | b'\'' => e,
+            // Written `\x0A`: a hex digit after it would continue C's escape.
+            b'N' if hex_next => return None,
+            b'N' => b'\n',
+            b'P' => 0x0c,
+            b'R' => b'\r',
+            b'T' => b'\t',
+            _ => {
+                let hex = |b: u8| (b as char).to_digit(16);
+                let (hi, lo) = (hex(e)?, hex(*body.get(k)?)?);
+                k += 1;
+                if body.get(k).is_some_and(|b| hex(*b).is_some()) {
+                    return None;
+                }
+                (hi * 16 + lo) as u8
+            }
+        });
+    }
+    (out.len() <= 126).then_some(out)
+}
+
+/// matiec's `__string_to_bool` (`lib/C/iec_std_lib.h`): `"1"`, or `TRUE` in any case.
+pub fn matiec_string_to_bool(body: &[u8]) -> bool {
+    match body.len() {
+        1 => body == b"1",
+        4 => body.eq_ignore_ascii_case(b"TRUE"),
+        _ => false,
+    }
+}
+
+/// matiec's `__pstring_to_sint` (`lib/C/iec_std_lib.h`), the `LINT` that every
+/// `STRING_TO_<integer>` casts to its type: `2#`, `8#`, `16#` bodies read from their last
+/// digit, other characters skipped; otherwise decimal digits read from the last, at most
+/// 20, a character from `.` up that is not a digit starting again, negative when the
+/// body starts with `-`. `None` where that C overflows (undefined behaviour): a `2#`
+/// digit shifted 31 places or more, an `8#` digit 30 or more (it shifts an `int`), more
+/// than 18 decimal digits.
+pub fn matiec_string_to_lint(body: &[u8]) -> Option<i64> {
+    let radix = |prefix: &[u8], bits: u32, max_shift: u32| -> Option<i64> {
+        let mut res: u64 = 0;
+        let mut shift = 0u32;
+        for &c in body[prefix.len()..].iter().rev() {
+            if shift >= 64 {
+                break;
+            }
+            if let Some(d) = (c as char).to_digit(1 << bits) {
+                if shift > max_shift {
+                    return None;
+                }
+                res |= u64::from(d) << shift;
+                shift += bits;
+            }
+        }
+        Some(res as i64)
+    };
+    if body.is_empty() {
+        return Some(0);
+    }
+    if body.len() > 1 && body.starts_with(b"2#") {
+        return radix(b"2#", 1, 30);
+    }
+    if body.len() > 1 && body.starts_with(b"8#") {
+        return radix(b"8#", 3, 27);
+    }
+    if body.len() > 2 && body.starts_with(b"16#") {
+        return radix(b"16#", 4, 60);
+    }
+    let sign: i64 = if body[0] == b'-' { -1 } else { 1 };
+    let (mut res, mut fac, mut digits) = (0i64, sign, 0u32);
+    for &c in body.iter().rev() {
+        if digits >= 20 {
+            break;
+        }
+        if c.is_ascii_digit() {
+            if digits >= 18 {
+                return None;
+            }
+            res += i64::from(c - b'0') * fac;
+            fac *= 10;
+            digits += 1;
+        } else if (b'.'..0x80).contains(&c) {
+            // C's `char` is signed: a byte from 0x80 up is below `'.'`.
+            (res, fac, digits) = (0, sign, 0);
+        }
+    }
+    Some(res)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -187,5 +309,83 @@ mod tests {
         }
         assert_eq!(matiec_duration_ns("T#5us"), None);
         assert_eq!(matiec_duration_ns("T#-5s"), None);
+    }
+
+    /// What matiec's `__string_to_bool` and `__string_to_sint` (`lib/C/iec_std_lib.h`)
+    /// return for these bodies: a C file including the library header, built by gcc
+    /// (x86-64), printed each `(body, bool, LINT)`.
+    #[test]
+    fn string_conversions_are_what_matiec_s_library_computes() {
+        let cases: &[(&[u8], i32, i64)] = &[
+            (b"", 0, 0),
+            (b"1", 1, 1),
+            (b"0", 0, 0),
+            (b"TRUE", 1, 0),
+            (b"true", 1, 0),
+            (b"TrUe", 1, 0),
+            (b"True ", 0, 0),
+            (b"yes", 0, 0),
+            (b"12", 0, 12),
+            (b"-12", 0, -12),
+            (b"+7", 0, 7),
+            (b"1_000", 0, 1),
+            (b"-1_000", 0, -1),
+            (b"12.5", 0, 12),
+            (b"3.14abc", 0, 3),
+            (b"a12", 0, 0),
+            (b"12a", 0, 12),
+            (b"1,234", 0, 1234),
+            (b" 42 ", 0, 42),
+            (b"--5", 0, -5),
+            (b"5-", 0, 5),
+            (b"99999", 0, 99999),
+            (b"65535", 0, 65535),
+            (b"-32769", 0, -32769),
+            (b"2#1010", 0, 10),
+            (b"2#1111_0000", 0, 240),
+            (b"2#", 0, 0),
+            (b"2#12", 0, 1),
+            (b"8#777", 0, 511),
+            (b"8#19", 0, 1),
+            (b"16#FF", 0, 255),
+            (b"16#ff", 0, 255),
+            (b"16#DEAD_beef", 0, 3735928559),
+            (b"16#G1", 0, 1),
+            (b"16#", 0, 0),
+            (b"16#FFFFFFFFFFFFFFFF", 0, -1),
+            (b"123456789012345678", 0, 123456789012345678),
+            (b"x1y2", 0, 0),
+            (b"1.2.3", 0, 1),
+            (b"7/8", 0, 7),
+            (b"9:30", 0, 9),
+            (b"-", 0, 0),
+            (b".", 0, 0),
+            (b"1e5", 0, 1),
+        ];
+        for (body, b, v) in cases {
+            let text = String::from_utf8_lossy(body);
+            assert_eq!(matiec_string_to_bool(body), *b == 1, "STRING_TO_BOOL('{text}')");
+            assert_eq!(matiec_string_to_lint(body), Some(*v), "STRING_TO_LINT('{text}')");
+        }
+        // Where that C overflows (undefined), no value.
+        for body in [
+            &b"2#1000_0000_0000_0000_0000_0000_0000_0000"[..],
+            b"8#77777777777",
+            b"1234567890123456789",
+        ] {
+            assert_eq!(matiec_string_to_lint(body), None);
+        }
+    }
+
+    /// The bytes matiec's visitor writes into the C string for each escape.
+    #[test]
+    fn string_literals_are_decoded_as_matiec_writes_them() {
+        assert_eq!(string_literal("'a$Nx$$c$'d$Te$72'"), Some(b"a\nx$c'd\ter".to_vec()));
+        assert_eq!(string_literal("''"), Some(Vec::new()));
+        // A raw line feed inside the C string, a longer hex escape, too long, unclosed.
+        for text in ["'$L'", "'$41B'", "'$N8'", &format!("'{}'", "x".repeat(127)), "'abc", "'a'b'"]
+        {
+            assert_eq!(string_literal(text), None, "{text}");
+        }
     }
 }

@@ -373,7 +373,13 @@ impl<'a> Lowering<'a> {
     }
 
     fn fresh(&mut self, base: String, e: &Element, why: &str) -> BoolExpr {
-        let fresh = Fresh { base, keyword: e.kind.keyword().into(), why: why.into(), span: e.span };
+        self.free(base, e, why, false)
+    }
+
+    /// A free value for `e`'s output: unconstrained, or a peripheral read.
+    fn free(&mut self, base: String, e: &Element, why: &str, peripheral: bool) -> BoolExpr {
+        let keyword = e.kind.keyword().into();
+        let fresh = Fresh { base, keyword, why: why.into(), span: e.span, peripheral };
         self.temp(BoolExpr::Fresh(Box::new(fresh)))
     }
 
@@ -669,13 +675,14 @@ impl<'a> Lowering<'a> {
                     );
                     input
                 } else {
-                    let why = if matches!(keyword.as_str(), "UART_SEND" | "FORMATTED_STRING") {
+                    let uart = matches!(keyword.as_str(), "UART_SEND" | "FORMATTED_STRING");
+                    let why = if uart {
                         "a peripheral: its output follows the UART's transmission, which the \
                          hardware times and ii-prove does not model"
                     } else {
                         "an integer, peripheral or text element is not expressible"
                     };
-                    self.fresh(format!("{keyword}_r{number}"), e, why)
+                    self.free(format!("{keyword}_r{number}"), e, why, uart)
                 }
             }
         }

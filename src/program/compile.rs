@@ -107,6 +107,7 @@
 
 mod ints;
 pub mod start;
+mod text;
 mod timers;
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -117,9 +118,9 @@ use super::logic::{L, Name, Tables, factors, product, simp, simp_and, simp_sum, 
 use super::{Block, BoolExpr, Memory, Program, Stmt, Temp, WriteKind};
 use crate::diag::{Report, Severity, Sources, Span};
 use crate::kernel::{Axiom, Rel};
-use crate::syntax::print::{Notation, delay_to_string, name_to_string, push_assumption};
 use crate::syntax::{Goal, Relation};
 use crate::term::{Delay, Expr, Symbol, Term, root};
+pub use text::program_to_ii;
 use timers::edge_of;
 
 /// What a signal of a compiled program is.
@@ -176,12 +177,16 @@ pub enum SignalKind {
     /// Under `--any-state`: `1*` at every scan, so that its `pre` is 0 at the first scan
     /// only (where the state's free start values are read).
     Started,
-    /// The output of an element the algebra cannot express; unconstrained.
+    /// The output of an element the algebra cannot express, or a peripheral read;
+    /// unconstrained.
     Fresh {
         /// File rung number (1-based, comment rungs counted).
         rung: usize,
         /// The element keyword.
         element: String,
+        /// Whether it is what the world outside the scan answers (a peripheral read),
+        /// free by nature, rather than an element ii-prove leaves out.
+        peripheral: bool,
     },
 }
 
@@ -230,11 +235,16 @@ pub struct Hypothesis {
 impl Hypothesis {
     /// The hypothesis as a goal of the `.ii` language (what `show` prints).
     pub fn goal(&self) -> Goal {
-        let relation = match self.rel {
+        let (lhs, rhs, relation) = (self.lhs.clone(), self.rhs.clone(), self.relation());
+        Goal { lhs, relation, rhs, after: None, pattern: None }
+    }
+
+    /// `=` or `⇒`, as the `.ii` language writes it.
+    pub fn relation(&self) -> Relation {
+        match self.rel {
             Rel::Eq => Relation::Equals,
             Rel::Implies => Relation::Implies,
-        };
-        Goal { lhs: self.lhs.clone(), relation, rhs: self.rhs.clone(), after: None, pattern: None }
+        }
     }
 
     /// The hypothesis as a ground kernel axiom.
@@ -795,6 +805,19 @@ impl<'a> Compiler<'a> {
     }
 
     fn new_fresh(&mut self, base: &str, keyword: &str, span: Span, why: &str) -> L {
+        self.new_free(base, keyword, span, why, false)
+    }
+
+    /// A free signal: the output of an element the algebra cannot express, or a
+    /// peripheral read.
+    fn new_free(
+        &mut self,
+        base: &str,
+        keyword: &str,
+        span: Span,
+        why: &str,
+        peripheral: bool,
+    ) -> L {
         let base = if base.starts_with(|c: char| c.is_ascii_digit()) {
             format!("_{base}")
         } else {
@@ -802,12 +825,10 @@ impl<'a> Compiler<'a> {
         };
         let name = self.unique(&canonical(&base));
         let rung = self.block().number;
-        self.fresh.insert(name.clone(), SignalKind::Fresh { rung, element: keyword.to_string() });
-        self.warn(
-            span,
-            keyword,
-            format!("{why}; it is modelled with the unconstrained signal {name}"),
-        );
+        let element = keyword.to_string();
+        self.fresh.insert(name.clone(), SignalKind::Fresh { rung, element, peripheral });
+        let what = if peripheral { "the free input" } else { "the unconstrained signal" };
+        self.warn(span, keyword, format!("{why}; it is modelled with {what} {name}"));
         L::Var(name.into())
     }
 
@@ -958,7 +979,7 @@ impl<'a> Compiler<'a> {
                 let prev = self.previous_power(memory, &input);
                 edge_of(*kind, input, prev)
             }
-            BoolExpr::Fresh(f) => self.new_fresh(&f.base, &f.keyword, f.span, &f.why),
+            BoolExpr::Fresh(f) => self.new_free(&f.base, &f.keyword, f.span, &f.why, f.peripheral),
             BoolExpr::Compare(c) => {
                 let span = self.block().span;
                 self.compare(c, span)
@@ -1033,7 +1054,8 @@ impl<'a> Compiler<'a> {
         }
         let name = self.unique(&format!("{x}_r{}", self.block().number));
         let rung = self.block().number;
-        self.fresh.insert(name.clone(), SignalKind::Fresh { rung, element: "COIL".into() });
+        let element = "COIL".into();
+        self.fresh.insert(name.clone(), SignalKind::Fresh { rung, element, peripheral: false });
         self.warn(
             span,
             "COIL",
@@ -1260,108 +1282,4 @@ fn memory_form(g: &L, pre: &str, g0: L, g1: L, prefer_rs: Option<bool>) -> Optio
     }
     let fallback = L::Sr(Box::new(g0), Box::new(simp(&g1.negate())));
     Some(simp(&fallback))
-}
-
-type KindFilter = fn(&SignalKind) -> bool;
-
-/// The compiled program as `.ii` text: a header comment, `input` lines declaring
-/// every signal, the warnings as `//` comments naming their rung, and one
-/// `assume` per hypothesis. It parses back with
-/// [`parse_document`](crate::syntax::parse_document) and
-/// [`NoProgram`](crate::syntax::NoProgram) to the same hypotheses.
-pub fn program_to_ii(compiled: &CompiledProgram, notation: Notation) -> String {
-    let mut out = String::new();
-    out.push_str(&format!(
-        "// Compiled from {} program by ii-prove (timers: {}).\n",
-        compiled.language,
-        match compiled.timers {
-            TimerModel::Plc => "plc, the scans the runtime counts",
-            TimerModel::Ideal => "ideal, the delays as written",
-        }
-    ));
-    let count =
-        |n: usize, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
-    out.push_str(&format!(
-        "// {}, {}, {}. `pre X` is X's value at the previous scan (0 before the\n",
-        count(compiled.hypotheses.len(), "hypothesis", "hypotheses"),
-        count(compiled.signals.len(), "signal", "signals"),
-        count(compiled.warnings.len(), "warning", "warnings")
-    ));
-    out.push_str("// first); with it this text describes scans, and reads back with a program.\n");
-    let groups: [(&str, KindFilter); 9] = [
-        ("inputs", |k| *k == SignalKind::Input),
-        ("outputs", |k| *k == SignalKind::Output),
-        ("relays", |k| *k == SignalKind::Relay),
-        ("edge memories (the input of a one-shot or toggle coil)", |k| {
-            matches!(k, SignalKind::EdgeMemory { .. })
-        }),
-        (
-            "timers' state between calls (the input the last call gave; how the run of one called at several places stands)",
-            |k| matches!(k, SignalKind::HeldInput { .. }),
-        ),
-        ("fresh outputs of unsupported elements (unconstrained)", |k| {
-            matches!(k, SignalKind::Fresh { .. })
-        }),
-        ("bits no coil writes (always 0*)", |k| *k == SignalKind::Unwritten),
-        ("integers, as bits (X_b0 the least significant; stored xor the start value)", |k| {
-            matches!(k, SignalKind::IntBit { .. })
-        }),
-        ("intermediate values of integer computations", |k| {
-            matches!(k, SignalKind::Intermediate { .. })
-        }),
-    ];
-    for (title, pick) in groups {
-        let names: Vec<String> = compiled
-            .signals
-            .iter()
-            .filter(|(_, k)| pick(k))
-            .map(|(n, _)| name_to_string(n))
-            .collect();
-        if names.is_empty() {
-            continue;
-        }
-        out.push_str(&format!("\n// {title}\n"));
-        for chunk in names.chunks(8) {
-            out.push_str(&format!("input {}\n", chunk.join(", ")));
-        }
-    }
-    if !compiled.timer_info.is_empty() {
-        out.push_str(&format!("\n// timers (--timers {})\n", compiled.timers.as_str()));
-        for t in &compiled.timer_info {
-            let effective = match &t.effective {
-                Some(d) => delay_to_string(d),
-                None => "none: the output follows the input".into(),
-            };
-            out.push_str(&format!(
-                "// {} {}: {} {} {} µs, adjust {}: P = {} scan{}; effective delay {}\n",
-                compiled.block_noun,
-                t.rung,
-                t.keyword,
-                t.name,
-                t.delay_us,
-                t.adjust,
-                t.scans,
-                if t.scans == 1 { "" } else { "s" },
-                effective
-            ));
-        }
-    }
-    if !compiled.warnings.is_empty() {
-        out.push_str("\n// warnings\n");
-        for w in &compiled.warnings {
-            let text = format!("{}: {}: {}", w.rung_label(), w.element, w.message);
-            let text: String = text.chars().map(|c| if c.is_control() { ' ' } else { c }).collect();
-            out.push_str(&format!("// warning: {text}\n"));
-        }
-    }
-    out.push('\n');
-    for h in &compiled.hypotheses {
-        let relation = match h.rel {
-            Rel::Eq => Relation::Equals,
-            Rel::Implies => Relation::Implies,
-        };
-        push_assumption(&mut out, &h.name, &h.lhs, relation, &h.rhs, notation);
-        out.push('\n');
-    }
-    out
 }

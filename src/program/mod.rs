@@ -571,6 +571,10 @@ pub struct Fresh {
     pub why: String,
     /// The element.
     pub span: Span,
+    /// Whether it is a peripheral read: what the world outside the scan answers (a
+    /// UART's transmission, a Python thread, a socket), free by nature rather than left
+    /// out by ii-prove.
+    pub peripheral: bool,
 }
 
 /// Calls `f` on every expression of `e` (itself included), operands first.

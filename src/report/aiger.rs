@@ -103,9 +103,12 @@ pub fn export_aiger(
     let sides: Vec<&Expr> = properties.iter().flat_map(|p| [&p.lhs, &p.rhs]).collect();
     let model = Model { constraints: Vec::new(), ..session.model(&sides) };
     // Elements the algebra leaves unconstrained would be free inputs: an approximation.
+    // A peripheral read is one by nature: what the world outside the scan answers.
     let assumed = groups.iter().flatten().flat_map(|(l, _, r)| [l, r]);
     for name in model.free_names(sides.iter().copied().chain(assumed)) {
-        if let Some(SignalKind::Fresh { rung, element }) = compiled.signals.get(&name) {
+        if let Some(SignalKind::Fresh { rung, element, peripheral: false }) =
+            compiled.signals.get(&name)
+        {
             let warning =
                 compiled.warnings.iter().find(|w| w.rung == *rung && &w.element == element);
             let message = format!(

@@ -61,6 +61,10 @@ impl Gen<'_> {
                     let op = *self.rng.pick(&["<", "<=", ">", ">=", "=", "<>"]);
                     format!("({a} {op} {b})")
                 }
+                5 if !self.ints.is_empty() => {
+                    let t = self.rng.pick(&self.ints).1.clone();
+                    format!("{t}_TO_BOOL({})", self.iexpr(&t, 1))
+                }
                 2 if !self.funcs.is_empty() => {
                     let f = self.rng.pick(&self.funcs).clone();
                     let (a, b) =

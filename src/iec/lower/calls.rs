@@ -643,6 +643,7 @@ impl<'s> Lowering<'s> {
             keyword: ty.to_string(),
             why: why.to_string(),
             span,
+            peripheral: false,
         };
         let target = self.hidden(inst, pin);
         Stmt::Write {

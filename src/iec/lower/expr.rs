@@ -36,6 +36,7 @@ impl Lowering<'_> {
             ExprKind::Call(f, _) => {
                 ["AND", "OR", "XOR", "NOT", "GT", "GE", "EQ", "NE", "LT", "LE"]
                     .contains(&f.key().as_str())
+                    || f.key().ends_with("_TO_BOOL")
                     || self.bool_function(f)
             }
             _ => false,
@@ -57,6 +58,7 @@ impl Lowering<'_> {
                 self.text(span)
             ),
             span,
+            peripheral: false,
         }))
     }
 
@@ -191,8 +193,11 @@ impl Lowering<'_> {
                     values.windows(2).map(|w| self.int_compare(op, w[0], w[1], e.span)).collect();
                 all.into_iter().reduce(BoolExpr::and).unwrap_or(BoolExpr::Const(true))
             }
+            n if n.ends_with("_TO_BOOL") && values.len() == 1 => {
+                self.conversion_to_bool(f, &n[..n.len() - "_TO_BOOL".len()], values[0], e.span)
+            }
             _ => {
-                self.refuse(f.span, &format!("the function `{}`", f.name), "the Boolean functions AND, OR, XOR, NOT and SEL are modelled, comparisons as unconstrained");
+                self.refuse(f.span, &format!("the function `{}`", f.name), "the Boolean functions AND, OR, XOR, NOT, SEL, the comparisons and the conversions `*_TO_BOOL` are computed");
                 BoolExpr::Const(false)
             }
         }

@@ -373,6 +373,9 @@ impl Lowering<'_> {
         if let Some(to) = name.strip_prefix("TIME_TO_") {
             return self.time_conversion(f, to, &values, e.span);
         }
+        if let Some(to) = name.strip_prefix("STRING_TO_") {
+            return string_conversion(f, to, &values);
+        }
         if let Some((from, to)) = name.split_once("_TO_") {
             let (Some(from), Some(to)) = (library::number_type(from), library::number_type(to))
             else {
@@ -546,6 +549,55 @@ impl Lowering<'_> {
         BoolExpr::Compare(Box::new(Compare { op, ty: cty, a: a.e, b: b.e }))
     }
 
+    /// matiec's `<from>_TO_BOOL` of `x` (`lib/C/iec_std_functions.h`): `op == 0 ? 0 : 1`
+    /// for a number or bit string, `__string_to_bool` for a string literal; an
+    /// unconstrained value with the reason where `x` is not computed.
+    pub(super) fn conversion_to_bool(
+        &mut self,
+        f: &ast::Ident,
+        from: &str,
+        x: &ast::Expr,
+        span: Span,
+    ) -> BoolExpr {
+        let unknown = |this: &mut Self, why: &str| {
+            BoolExpr::Fresh(Box::new(Fresh {
+                base: format!("{}_L{:02}", f.key(), this.line),
+                keyword: f.key(),
+                why: format!("the conversion `{}` is not computed: {why}", this.text(span)),
+                span,
+                peripheral: false,
+            }))
+        };
+        if from == "STRING" {
+            return match string_body(x) {
+                Some(body) => BoolExpr::Const(crate::iec::literal::matiec_string_to_bool(&body)),
+                None => unknown(
+                    self,
+                    "its argument is not a string literal, and ii-prove computes no STRING",
+                ),
+            };
+        }
+        let Some(ty) = library::number_type(from) else {
+            return unknown(self, &format!("{from} is not a type ii-prove computes"));
+        };
+        let value = self.int_expr(x).and_then(|x| {
+            self.unify(&x, &Int::of(IntExpr::Const(0), Some(ty)), span)?;
+            Ok(x)
+        });
+        match value {
+            Ok(x) => {
+                // The argument as C passes it: a value of `from`.
+                let v = match ty.real {
+                    true => self.real_conversion(&f.name, x, (ty, ty), span),
+                    false => Int::of(IntExpr::Cast(Box::new(x.in_type(ty)), ty), Some(ty)),
+                };
+                let zero = Int::of(IntExpr::Const(0), Some(ty));
+                self.int_compare_values(CmpOp::Ne, v, zero, span)
+            }
+            Err(why) => unknown(self, &why),
+        }
+    }
+
     /// An unconstrained comparison, with the reason its operands are not computed.
     pub(super) fn unknown_comparison(&mut self, op: CmpOp, span: Span, why: &str) -> BoolExpr {
         let keyword = match op {
@@ -561,6 +613,7 @@ impl Lowering<'_> {
             keyword: keyword.to_string(),
             why: format!("the comparison `{}` is not computed: {why}", self.text(span)),
             span,
+            peripheral: false,
         }))
     }
 
@@ -779,14 +832,42 @@ impl Lowering<'_> {
     }
 }
 
-/// A write of an integer variable: no Boolean effect, with a warning at `element`.
+/// A write of a variable of a type ii-prove does not compute (`STRING`, `TIME`, …): no
+/// effect in the scan model (what reads it is not computed), with a warning at `element`.
 pub(super) fn integer_write(span: Span, element: &str, ty: &str, name: &str) -> Stmt {
     Stmt::Warn {
         span,
         element: element.to_string(),
         message: format!(
-            "writes the {ty} variable {name}: no Boolean effect (integers are not modelled yet)"
+            "writes the {ty} variable {name}, which is not computed: what reads it is not \
+             computed either"
         ),
+    }
+}
+
+/// The bytes of `x` if it is a string literal (`'True'`, `STRING#'12'`) matiec's C holds
+/// as written ([`literal::string_literal`](crate::iec::literal::string_literal)).
+pub(super) fn string_body(x: &ast::Expr) -> Option<Vec<u8>> {
+    let ast::ExprKind::Literal(text) = &x.kind else { return None };
+    crate::iec::literal::string_literal(text)
+}
+
+/// matiec's `STRING_TO_<to>` of a string literal: its `__string_to_sint` (or `_uint`,
+/// `_bit`, the same `LINT`) cast to `to` as C casts. Not computed for a string that is
+/// not a literal (ii-prove computes no STRING) nor for `REAL`s (`__string_to_real`).
+fn string_conversion(f: &ast::Ident, to: &str, values: &[&ast::Expr]) -> Result<Int, Opaque> {
+    let not = |why: &str| Err(format!("the conversion {} is not computed: {why}", f.name));
+    let to = match library::number_type(to) {
+        Some(t) if !t.real => t,
+        _ => return not("its result type is not an integer ii-prove computes"),
+    };
+    let [x] = values else { return Err(format!("{} takes one argument", f.name)) };
+    let Some(body) = string_body(x) else {
+        return not("its argument is not a string literal, and ii-prove computes no STRING");
+    };
+    match crate::iec::literal::matiec_string_to_lint(&body) {
+        Some(v) => Ok(Int::of(IntExpr::Const(to.wrap(v)), Some(to))),
+        None => not("the C that reads this literal overflows, which C leaves undefined"),
     }
 }
 

@@ -24,6 +24,7 @@ use crate::program::{
 mod durations;
 mod en;
 mod ints;
+mod strings;
 mod text;
 
 /// A lowered program: the scan model and the warnings of reading and lowering.
@@ -120,13 +121,20 @@ fn fresh(keyword: &str, what: &str, span: Span) -> BoolExpr {
         keyword,
         why: format!("{what} is not expressible in the algebra"),
         span,
+        peripheral: false,
     }))
 }
 
 /// An unconstrained value for the reason `why`, named after `keyword`.
 fn fresh_because(keyword: &str, why: String, span: Span) -> BoolExpr {
     let keyword = keyword.to_ascii_uppercase();
-    BoolExpr::Fresh(Box::new(Fresh { base: keyword.clone(), keyword, why, span }))
+    BoolExpr::Fresh(Box::new(Fresh {
+        base: keyword.clone(),
+        keyword,
+        why,
+        span,
+        peripheral: false,
+    }))
 }
 
 /// A Boolean output of a library block that is a peripheral (`peripherals`): a free
@@ -136,7 +144,8 @@ fn peripheral(type_name: &str, instance: Option<&str>, pin: &str, span: Span) ->
     let out = instance.map_or(upper.clone(), |i| format!("the output {pin} of {i} ({upper})"));
     let what = super::peripherals::peripheral(type_name).unwrap_or("it answers from outside");
     let why = format!("a peripheral: {out}: {what}, which ii-prove does not model");
-    fresh_because(type_name, why, span)
+    let keyword = type_name.to_ascii_uppercase();
+    BoolExpr::Fresh(Box::new(Fresh { base: keyword.clone(), keyword, why, span, peripheral: true }))
 }
 
 /// A Boolean output of a block the algebra does not express (counters, comparisons, …).
