@@ -592,3 +592,48 @@ fn library_blocks_that_read_the_outside_world_are_peripherals() {
     assert!(all.contains("CSV_READ_BY_INT: a peripheral: the output ACK of csv_read_by_int0"));
     assert!(!all.contains("the library block `csv_reload` is not modelled"));
 }
+
+/// What a peripheral gives is a peripheral read, computed on from there: a socket's
+/// integer stored in a variable is a free input of the variable's type, so the
+/// comparisons on it are exact (a property about the connection flag is proved, another
+/// refuted with the socket's number drawn, the PLCopen simulator confirming it); a
+/// Python thread's string converted by `STRING_TO_INT` is a free INT; `STRING_TO_BOOL`
+/// of a literal is matiec's value. `show` lists these under peripheral reads and leaves
+/// no comparison unconstrained.
+#[test]
+fn integers_and_strings_from_peripherals_are_peripheral_reads() {
+    let corpus = "tests/data/plcopen/corpus";
+    let tcp = format!("{corpus}/thiagoralves__editor/examples__TCP_socket__plc.xml");
+    let props = temp(
+        "tcp.ii",
+        "property holds: connected => [socket_id >= 0]\nproperty fails: connected => [socket_id > 0]\n",
+    );
+    let props = props.display().to_string();
+    let pairs = |v: &[(&str, &str)]| -> Vec<(String, String)> {
+        v.iter().map(|(a, b)| (a.to_string(), b.to_string())).collect()
+    };
+    assert_eq!(verdicts(&[&tcp, &props]), pairs(&[("holds", "proved"), ("fails", "refuted")]));
+    let out = ii_prove(&[&tcp, &props, "--only", "fails"]);
+    let stdout = text(&out.stdout);
+    assert!(stdout.contains("confirmed by exact evaluation and by the scan simulator"), "{stdout}");
+    assert!(stdout.contains("TCP_Connect0_SOCKET_ID"), "{stdout}");
+    let shown = |file: &str| {
+        let out = ii_prove(&["show", file]);
+        format!("{}{}", text(&out.stdout), text(&out.stderr))
+    };
+    let all = shown(&tcp);
+    assert!(all.contains("a peripheral read: the free input TCP_Connect0_SOCKET_ID, any INT"));
+    for cmp in ["LT: the comparison", "GT: the comparison"] {
+        assert!(!all.contains(cmp), "{cmp} in\n{all}");
+    }
+    let wx = shown(&format!("{corpus}/beremiz__beremiz/tests__projects__wxGlade__plc.xml"));
+    assert!(wx.contains("its OUT is the free input _TMP_STRING_TO_INT30_OUT_READ, any INT"));
+    assert!(!wx.contains("INT_TO_BOOL: the conversion"), "{wx}");
+    assert!(!wx.contains("// fresh outputs of unsupported elements"), "{wx}");
+    assert!(wx.contains(
+        "// peripheral reads (free: what the world outside the scan answers)\ninput PYTHON_POLL_r1"
+    ));
+    let py = format!("{corpus}/beremiz__beremiz/tests__python__plc.xml");
+    let props = temp("py.ii", "property from_string: Test_Bool = 1*\n");
+    assert_eq!(verdicts(&[&py, &props.display().to_string()]), pairs(&[("from_string", "proved")]));
+}

@@ -23,6 +23,7 @@ use crate::diag::{Report, Severity, Span};
 pub use ast::*;
 pub use ints::IntBlock;
 pub use lower::{EdgeKey, Lowered, lower};
+pub use peripherals::StringSource;
 pub use read::*;
 pub use select::*;
 pub use simulate::PlcSimulator;

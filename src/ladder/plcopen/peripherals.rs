@@ -29,3 +29,104 @@ pub fn peripheral(type_name: &str) -> Option<&'static str> {
         _ => return None,
     })
 }
+
+/// Where the string a `STRING_TO_*` block converts comes from, when it is known.
+pub enum StringSource {
+    /// A string literal on its `IN` or on the input variable wired to it: its bytes as
+    /// matiec's C holds them ([`string_literal`](crate::iec::literal::string_literal)).
+    Literal(Vec<u8>),
+    /// An output of a peripheral block: the block and the output's name (upper case).
+    Peripheral(usize, String),
+}
+
+impl super::PlcProgram {
+    /// The peripheral block output wired straight to `input`, if it is one: the block
+    /// and the output's name (upper case).
+    pub fn peripheral_output(&self, input: &super::PinIn) -> Option<(usize, String)> {
+        let [c] = input.conns.as_slice() else { return None };
+        let Some(super::Source::BlockOut(j, pin)) = self.source(c) else { return None };
+        self.peripherals.contains(&j).then(|| (j, self.output_pin(j, pin).0))
+    }
+
+    /// The free input that stands for the integer output `pin` of the peripheral block
+    /// `j`: its hidden variable, else `{instance}_{pin}`.
+    pub fn peripheral_input(&self, j: usize, pin: &str) -> String {
+        match (self.hidden_name(j, pin), self.obj(j).map(|o| &o.kind)) {
+            (Some(n), _) => n.to_string(),
+            (None, Some(super::ObjKind::Block { instance: Some(i), .. })) => format!("{i}_{pin}"),
+            (None, Some(super::ObjKind::Block { type_name, .. })) => {
+                format!("_TMP_{}{j}_{pin}", type_name.to_ascii_uppercase())
+            }
+            _ => format!("_TMP_{j}_{pin}"),
+        }
+    }
+
+    /// The free input that stands for `STRING_TO_*` (whose `OUT` is `out`) of a
+    /// peripheral's string.
+    pub fn peripheral_conversion_input(out: &str) -> String {
+        format!("{out}_READ")
+    }
+
+    /// The string at block `k`'s input `IN`: a literal, or a peripheral's output.
+    pub fn string_input(&self, k: usize) -> Option<StringSource> {
+        let pin = self.pin(k, "IN")?;
+        if pin.negated || pin.edge != super::Edge::None {
+            return None;
+        }
+        let literal =
+            |text: &str| crate::iec::literal::string_literal(text).map(StringSource::Literal);
+        if let Some((text, _)) = &pin.expr {
+            return literal(text);
+        }
+        if let Some((j, out)) = self.peripheral_output(pin) {
+            return Some(StringSource::Peripheral(j, out));
+        }
+        let [c] = pin.conns.as_slice() else { return None };
+        match &self
+            .obj(match self.source(c)? {
+                super::Source::Object(j) => j,
+                _ => return None,
+            })?
+            .kind
+        {
+            super::ObjKind::InVar { expr, .. } => literal(&expr.0),
+            _ => None,
+        }
+    }
+
+    /// The free integer inputs that stand for what peripherals give, with their types
+    /// (upper case): each integer output of a peripheral block written into an integer
+    /// variable, and each `STRING_TO_<integer>` of a peripheral's string.
+    pub fn peripheral_inputs(&self) -> Vec<(String, String)> {
+        let mut out = Vec::new();
+        for (k, o) in self.objects().iter().enumerate() {
+            match &o.kind {
+                super::ObjKind::OutVar { input, .. } | super::ObjKind::InOutVar { input, .. } => {
+                    let Some(super::Operand::Other(var)) = self.operands.get(&k) else { continue };
+                    let (Some(t), Some((j, pin))) =
+                        (self.int_var_type(var), self.peripheral_output(input))
+                    else {
+                        continue;
+                    };
+                    out.push((self.peripheral_input(j, &pin), t));
+                }
+                super::ObjKind::Block { type_name, .. } => {
+                    let upper = type_name.to_ascii_uppercase();
+                    let Some(to) = upper.strip_prefix("STRING_TO_") else { continue };
+                    if !matches!(self.string_input(k), Some(StringSource::Peripheral(..))) {
+                        continue;
+                    }
+                    let computed = matches!(
+                        super::ints::ConvType::of(to),
+                        Ok(super::ints::ConvType::Int(t)) if !t.real
+                    );
+                    if let (Some(o), true) = (self.hidden_name(k, "OUT"), computed) {
+                        out.push((Self::peripheral_conversion_input(o), to.to_string()));
+                    }
+                }
+                _ => {}
+            }
+        }
+        out
+    }
+}

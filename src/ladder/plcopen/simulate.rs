@@ -59,14 +59,17 @@ pub struct PlcSimulator {
     /// TIME variables (by declared name): their value in µs, `None` once written with a
     /// value that is not a literal duration or another TIME variable's.
     times: BTreeMap<String, Option<u64>>,
-    /// The free inputs of `REAL_TO_*` blocks, this body's and its inlined ones': the
-    /// run's value where C leaves a block's result undefined.
+    /// The free inputs of `REAL_TO_*` blocks, this body's and its inlined ones' (the
+    /// run's value where C leaves a block's result undefined), and those that stand for
+    /// what peripherals give.
     undefined: Vec<(String, String)>,
 }
 
-/// The free inputs of the `REAL_TO_*` blocks of `p` and of its inlined bodies.
+/// The free inputs of the `REAL_TO_*` blocks of `p` and of its inlined bodies, and of
+/// what its peripherals give.
 fn undefined_inputs(p: &PlcProgram) -> Vec<(String, String)> {
     let mut out = p.undefined_inputs();
+    out.extend(p.peripheral_inputs());
     out.extend(p.subs.values().flat_map(undefined_inputs));
     out
 }

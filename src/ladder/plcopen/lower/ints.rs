@@ -140,7 +140,7 @@ fn k_in_range(keyword: &str, ints: &[(String, IntVal)], span: Span) -> BoolExpr 
 }
 
 /// What a function gives: an integer of a type, or a BOOL.
-enum Value {
+pub(super) enum Value {
     Int(IntExpr, IntType),
     Bool(BoolExpr),
 }
@@ -522,6 +522,8 @@ impl Lower<'_> {
     pub(super) fn int_assign(&mut self, target: &str, input: &PinIn, span: Span) {
         let value = self.int_pin(input);
         let Some(var) = self.ints.get(target).copied() else { return };
+        let value =
+            value.or_else(|why| self.peripheral_int(input, var.ty, span).unwrap_or(Err(why)));
         let exact = value.and_then(|(e, ty)| {
             if var.input {
                 return Err("both the outside world and the program write it".into());
@@ -604,7 +606,13 @@ impl Lower<'_> {
         let en = if runs { en } else { self.temp(&mut stmts, en) };
         let enabled = |v: BoolExpr| if runs { v } else { BoolExpr::and(en.clone(), v) };
         if let Some(out) = p.hidden_name(k, "OUT").map(str::to_string) {
-            match self.int_function(b, &bools, &ints, &out) {
+            let string = match b {
+                IntBlock::Convert(from, to) if from == "STRING" => {
+                    self.string_conversion(k, to, &out, &mut stmts, span)
+                }
+                _ => None,
+            };
+            match string.unwrap_or_else(|| self.int_function(b, &bools, &ints, &out)) {
                 Ok(Value::Int(e, t)) => {
                     let e = match e {
                         IntExpr::FromReal(x, unsigned) => {

@@ -446,7 +446,8 @@ pub(super) fn check_pou(
                                         program.peripherals.insert(k);
                                         format!(
                                             "the library block `{type_name}` is a peripheral \
-                                         ({why}): its Boolean outputs are free inputs"
+                                         ({why}): its Boolean outputs, and the integers \
+                                         and strings read from it, are free inputs"
                                         )
                                     }
                                     _ => format!(

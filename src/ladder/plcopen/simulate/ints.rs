@@ -377,7 +377,7 @@ impl PlcSimulator {
             ints.insert(v.name.clone(), (init, ct));
         }
         // The free inputs of `REAL_TO_*` blocks (C's undefined results).
-        for (n, t) in p.undefined_inputs() {
+        for (n, t) in p.undefined_inputs().into_iter().chain(p.peripheral_inputs()) {
             ints.extend(CType::of(&t).map(|ct| (n, (0, ct))));
         }
         for sub in p.subs.values() {
@@ -462,9 +462,14 @@ impl PlcSimulator {
             },
             Source::BlockOut(j, p) => {
                 // Its block was called (or not, by the order) when the inputs were computed.
+                // A peripheral's integer is the run's value of its free input.
                 let (name, _) = self.p.output_pin(j, p);
-                let h = self.p.hidden_name(j, &name)?;
-                self.ints.get(h).map(|(x, t)| (*x, Some(*t)))
+                let h = match self.p.hidden_name(j, &name) {
+                    Some(h) => h.to_string(),
+                    None if self.p.peripherals.contains(&j) => self.p.peripheral_input(j, &name),
+                    None => return None,
+                };
+                self.ints.get(&h).map(|(x, t)| (*x, Some(*t)))
             }
             _ => None,
         }
@@ -560,7 +565,11 @@ impl PlcSimulator {
         };
         self.set_hidden(k, "ENO", en && !divides_by_zero && !past && !not_bcd);
         let Some(out) = self.p.hidden_name(k, "OUT").map(str::to_string) else { return };
-        match function(b, args, get) {
+        let string = match b {
+            IntBlock::Convert(from, to) if from == "STRING" => self.string_conversion(k, to, &out),
+            _ => None,
+        };
+        match string.or_else(|| function(b, args, get)) {
             Some(Out::Int(_, ct)) if !en => {
                 self.ints.insert(out, (0, ct));
             }
@@ -578,6 +587,27 @@ impl PlcSimulator {
                 self.bits.insert(out, en && holds);
             }
             None => {}
+        }
+    }
+
+    /// `STRING_TO_<to>` of block `k` (its `OUT` is `out`): matiec's `__string_to_bool`
+    /// and `__string_to_sint` (`lib/C/iec_std_lib.h`) of a string literal, the run's
+    /// value of its free input for a peripheral's string into an integer; `None` (not
+    /// known) otherwise.
+    fn string_conversion(&self, k: usize, to: &str, out: &str) -> Option<Out> {
+        use crate::iec::literal::{matiec_string_to_bool, matiec_string_to_lint};
+        use crate::ladder::plcopen::StringSource;
+        let ct = if to == "BOOL" { None } else { Some(CType::of(to).filter(|c| !c.float)?) };
+        match (self.p.string_input(k)?, ct) {
+            (StringSource::Literal(body), None) => Some(Out::Bool(matiec_string_to_bool(&body))),
+            (StringSource::Literal(body), Some(ct)) => {
+                Some(Out::Int(matiec_string_to_lint(&body)?.into(), ct))
+            }
+            (StringSource::Peripheral(..), Some(ct)) => {
+                let free = PlcProgram::peripheral_conversion_input(out);
+                Some(Out::Int(self.ints.get(&free)?.0.into(), ct))
+            }
+            (StringSource::Peripheral(..), None) => None,
         }
     }
 
