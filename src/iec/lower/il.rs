@@ -622,6 +622,10 @@ impl Lowering<'_> {
         let values: Vec<Cr> = args.iter().map(|e| self.il_value(e)).collect();
         match (key.as_str(), &cr, values.as_slice()) {
             ("MOVE", _, []) => cr,
+            (k, Cr::Int(v), []) if k.ends_with("_TO_BOOL") => {
+                let from = &k[..k.len() - "_TO_BOOL".len()];
+                Cr::Bool(self.value_to_bool(f, from, v.clone(), f.span))
+            }
             ("SEL", Cr::Bool(g), [Cr::Bool(a), Cr::Bool(b)]) => Cr::Bool(BoolExpr::Or(vec![
                 BoolExpr::and(BoolExpr::negate(g.clone()), a.clone()),
                 BoolExpr::and(g.clone(), b.clone()),

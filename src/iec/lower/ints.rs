@@ -559,28 +559,33 @@ impl Lowering<'_> {
         x: &ast::Expr,
         span: Span,
     ) -> BoolExpr {
-        let unknown = |this: &mut Self, why: &str| {
-            BoolExpr::Fresh(Box::new(Fresh {
-                base: format!("{}_L{:02}", f.key(), this.line),
-                keyword: f.key(),
-                why: format!("the conversion `{}` is not computed: {why}", this.text(span)),
-                span,
-                peripheral: false,
-            }))
-        };
         if from == "STRING" {
             return match string_body(x) {
                 Some(body) => BoolExpr::Const(crate::iec::literal::matiec_string_to_bool(&body)),
-                None => unknown(
-                    self,
+                None => self.unknown_conversion(
+                    f,
+                    span,
                     "its argument is not a string literal, and ii-prove computes no STRING",
                 ),
             };
         }
+        let value = self.int_expr(x);
+        self.value_to_bool(f, from, value, span)
+    }
+
+    /// `<from>_TO_BOOL` of the integer `value` (IL's current result, or an ST argument).
+    pub(super) fn value_to_bool(
+        &mut self,
+        f: &ast::Ident,
+        from: &str,
+        value: Result<Int, Opaque>,
+        span: Span,
+    ) -> BoolExpr {
         let Some(ty) = library::number_type(from) else {
-            return unknown(self, &format!("{from} is not a type ii-prove computes"));
+            let why = format!("{from} is not a type ii-prove computes");
+            return self.unknown_conversion(f, span, &why);
         };
-        let value = self.int_expr(x).and_then(|x| {
+        let value = value.and_then(|x| {
             self.unify(&x, &Int::of(IntExpr::Const(0), Some(ty)), span)?;
             Ok(x)
         });
@@ -594,8 +599,19 @@ impl Lowering<'_> {
                 let zero = Int::of(IntExpr::Const(0), Some(ty));
                 self.int_compare_values(CmpOp::Ne, v, zero, span)
             }
-            Err(why) => unknown(self, &why),
+            Err(why) => self.unknown_conversion(f, span, &why),
         }
+    }
+
+    /// An unconstrained value for the conversion `f` at `span`, with the reason.
+    fn unknown_conversion(&mut self, f: &ast::Ident, span: Span, why: &str) -> BoolExpr {
+        BoolExpr::Fresh(Box::new(Fresh {
+            base: format!("{}_L{:02}", f.key(), self.line),
+            keyword: f.key(),
+            why: format!("the conversion `{}` is not computed: {why}", self.text(span)),
+            span,
+            peripheral: false,
+        }))
     }
 
     /// An unconstrained comparison, with the reason its operands are not computed.
