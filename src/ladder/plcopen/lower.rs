@@ -127,25 +127,30 @@ fn fresh(keyword: &str, what: &str, span: Span) -> BoolExpr {
 
 /// An unconstrained value for the reason `why`, named after `keyword`.
 fn fresh_because(keyword: &str, why: String, span: Span) -> BoolExpr {
+    free(keyword, why, span, false)
+}
+
+/// A free value for the reason `why`, named after `keyword`: unconstrained, or a
+/// peripheral read.
+fn free(keyword: &str, why: String, span: Span, peripheral: bool) -> BoolExpr {
     let keyword = keyword.to_ascii_uppercase();
-    BoolExpr::Fresh(Box::new(Fresh {
-        base: keyword.clone(),
-        keyword,
-        why,
-        span,
-        peripheral: false,
-    }))
+    BoolExpr::Fresh(Box::new(Fresh { base: keyword.clone(), keyword, why, span, peripheral }))
+}
+
+/// What output `pin` of the peripheral library block `type_name` is: `the output ACK of
+/// py1 (PYTHON_EVAL): its outputs are set when …`.
+fn peripheral_output(type_name: &str, instance: Option<&str>, pin: &str) -> String {
+    let upper = type_name.to_ascii_uppercase();
+    let out = instance.map_or(upper.clone(), |i| format!("the output {pin} of {i} ({upper})"));
+    let what = super::peripherals::peripheral(type_name).unwrap_or("it answers from outside");
+    format!("{out}: {what}")
 }
 
 /// A Boolean output of a library block that is a peripheral (`peripherals`): a free
 /// input, with what it follows.
 fn peripheral(type_name: &str, instance: Option<&str>, pin: &str, span: Span) -> BoolExpr {
-    let upper = type_name.to_ascii_uppercase();
-    let out = instance.map_or(upper.clone(), |i| format!("the output {pin} of {i} ({upper})"));
-    let what = super::peripherals::peripheral(type_name).unwrap_or("it answers from outside");
-    let why = format!("a peripheral: {out}: {what}, which ii-prove does not model");
-    let keyword = type_name.to_ascii_uppercase();
-    BoolExpr::Fresh(Box::new(Fresh { base: keyword.clone(), keyword, why, span, peripheral: true }))
+    let out = peripheral_output(type_name, instance, pin);
+    free(type_name, format!("a peripheral: {out}, which ii-prove does not model"), span, true)
 }
 
 /// A Boolean output of a block the algebra does not express (counters, comparisons, …).

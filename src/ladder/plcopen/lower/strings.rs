@@ -6,7 +6,7 @@ use crate::diag::Span;
 use crate::iec::literal::{matiec_string_to_bool, matiec_string_to_lint};
 use crate::ladder::plcopen::ints::ConvType;
 use crate::ladder::plcopen::{ObjKind, PinIn, PlcProgram, StringSource};
-use crate::program::{BoolExpr, Fresh, IntExpr, IntType, IntVar, Stmt, library};
+use crate::program::{BoolExpr, IntExpr, IntType, IntVar, Stmt, library};
 
 impl Lower<'_> {
     /// `STRING_TO_<to>` of block `k` whose `OUT` is `out`: matiec's `__string_to_bool` or
@@ -41,10 +41,8 @@ impl Lower<'_> {
                 }
             },
             (StringSource::Peripheral(j, pin), None) => {
-                let keyword = "STRING_TO_BOOL".to_string();
                 let why = format!("a peripheral: STRING_TO_BOOL of {}", self.what(j, &pin)?);
-                let fresh = Fresh { base: keyword.clone(), keyword, why, span, peripheral: true };
-                Ok(Value::Bool(BoolExpr::Fresh(Box::new(fresh))))
+                Ok(Value::Bool(super::free("STRING_TO_BOOL", why, span, true)))
             }
             (StringSource::Peripheral(j, pin), Some(t)) => {
                 let free = PlcProgram::peripheral_conversion_input(out);
@@ -91,9 +89,6 @@ impl Lower<'_> {
     /// (PYTHON_POLL): its outputs are set when …`.
     fn what(&self, j: usize, pin: &str) -> Option<String> {
         let ObjKind::Block { type_name, instance, .. } = &self.p.obj(j)?.kind else { return None };
-        let upper = type_name.to_ascii_uppercase();
-        let of = instance.as_deref().map_or(String::new(), |i| format!(" of {i}"));
-        let what = crate::ladder::plcopen::peripherals::peripheral(type_name)?;
-        Some(format!("the output {pin}{of} ({upper}): {what}"))
+        Some(super::peripheral_output(type_name, instance.as_deref(), pin))
     }
 }
