@@ -347,6 +347,8 @@ struct Lowering<'s> {
     /// Hidden bits of FB instances: (instance key, pin) → name.
     hidden: BTreeMap<(String, String), String>,
     taken: BTreeSet<String>,
+    /// The suffix [`Lowering::unique`] tries next, per base name.
+    suffixes: crate::program::unique::Suffixes,
     blocks: Vec<Block>,
     labels: BTreeSet<String>,
     next_temp: usize,
@@ -427,6 +429,7 @@ impl<'s> Lowering<'s> {
             started: None,
             hidden: BTreeMap::new(),
             taken: BTreeSet::new(),
+            suffixes: Default::default(),
             blocks: Vec::new(),
             labels: BTreeSet::new(),
             next_temp: 0,
@@ -608,12 +611,10 @@ impl<'s> Lowering<'s> {
     }
 
     fn unique(&mut self, base: &str) -> String {
-        let mut name = base.to_string();
-        let mut k = 2;
-        while self.taken.contains(&name) || self.syms.contains_key(&name.to_ascii_uppercase()) {
-            name = format!("{base}_{k}");
-            k += 1;
-        }
+        let (taken, syms) = (&self.taken, &self.syms);
+        let name = self
+            .suffixes
+            .unique(base, |n| taken.contains(n) || syms.contains_key(&n.to_ascii_uppercase()));
         self.taken.insert(name.clone());
         name
     }

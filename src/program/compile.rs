@@ -542,7 +542,7 @@ struct Compiler<'a> {
     /// Every name the program uses (for fresh-name uniqueness).
     taken: HashSet<String>,
     /// Per base name, the suffix [`Compiler::unique`] tries next (the ones below are taken).
-    suffixes: HashMap<String, usize>,
+    suffixes: crate::program::unique::Suffixes,
     /// Per variable, the internal name standing for its previous-scan value while the
     /// scan is compiled (`pre_X`); [`Compiler::exact`] turns each into `pre X`.
     pre_names: HashMap<String, Name>,
@@ -605,7 +605,7 @@ impl<'a> Compiler<'a> {
             shared_timers: BTreeSet::new(),
             repeated: BTreeMap::new(),
             taken: HashSet::default(),
-            suffixes: HashMap::default(),
+            suffixes: Default::default(),
             pre_names: HashMap::default(),
             pre_of: HashMap::default(),
             fresh: BTreeMap::new(),
@@ -772,18 +772,8 @@ impl<'a> Compiler<'a> {
 
     /// `base`, else the first of `base_2`, `base_3`, … not taken: a new name.
     fn unique(&mut self, base: &str) -> String {
-        let mut name = base.to_string();
-        if self.taken.contains(&name) {
-            // The suffixes below `k` were taken by the earlier calls with this base.
-            let k = self.suffixes.entry(name.clone()).or_insert(2);
-            loop {
-                name = format!("{base}_{k}");
-                *k += 1;
-                if !self.taken.contains(&name) {
-                    break;
-                }
-            }
-        }
+        let taken = &self.taken;
+        let name = self.suffixes.unique(base, |n| taken.contains(n));
         self.taken.insert(name.clone());
         name
     }

@@ -15,6 +15,11 @@ use crate::term::{Builder, Delay, Expr, Id, Term, root};
 /// The most atoms a truth table is built for (2^16 rows, 1024 words).
 pub const MAX_ATOMS: usize = 16;
 
+/// The most word operations one simplification spends on truth tables (beyond it the
+/// operands are kept as they are): bounds the cost of simplifying large terms of many
+/// atoms, such as bit-blasted arithmetic, which is rebuilt at every operator.
+const SIMPLIFY_BUDGET: usize = 1 << 16;
+
 /// A signal's name in a working term, shared by every copy of the term.
 pub type Name = std::sync::Arc<str>;
 
@@ -371,6 +376,13 @@ pub struct Tables {
 impl Tables {
     /// Tables for `terms`, or `None` if they have more than [`MAX_ATOMS`] atoms together.
     pub fn new(terms: &[&L]) -> Option<Tables> {
+        Tables::within(terms, usize::MAX)
+    }
+
+    /// Tables for `terms`, or `None` if they have more than [`MAX_ATOMS`] atoms together
+    /// or building them would cost more than `budget` word operations (their size times
+    /// the words of a table).
+    pub fn within(terms: &[&L], budget: usize) -> Option<Tables> {
         let mut atoms = Vec::new();
         for t in terms {
             if !t.atoms(&mut atoms) {
@@ -379,6 +391,9 @@ impl Tables {
         }
         let n = atoms.len();
         let words = if n <= 6 { 1 } else { 1 << (n - 6) };
+        if words > 1 && terms.iter().map(|t| t.size()).sum::<usize>() * words > budget {
+            return None;
+        }
         let mask = if n >= 6 { !0 } else { (1u64 << (1u32 << n)) - 1 };
         let tables = terms.iter().map(|t| t.table(&atoms, words)).collect();
         Some(Tables { tables, mask })
@@ -483,7 +498,7 @@ fn combine(xs: impl Iterator<Item = L>, is_and: bool) -> L {
     }
     if items.len() > 1 {
         let refs: Vec<&L> = items.iter().collect();
-        if let Some(t) = Tables::new(&refs) {
+        if let Some(t) = Tables::within(&refs, SIMPLIFY_BUDGET) {
             let n = items.len();
             let mut keep = vec![true; n];
             // Drop, from the last to the first, an operand made redundant by another kept one.

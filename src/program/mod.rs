@@ -27,6 +27,7 @@ pub mod product;
 pub mod real;
 pub mod rename;
 pub mod simulate;
+pub mod unique;
 
 use std::collections::{BTreeMap, BTreeSet};
 

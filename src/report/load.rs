@@ -108,6 +108,9 @@ pub fn load_program_with(
         || lower_path.ends_with(".il");
     let is_plcopen = !is_st && plcopen::is_plcopen(sources.text(file));
     let mut properties = Vec::new();
+    // A PLCopen program whose statement order is disputed, with the other order: refused
+    // unless both orders compile to the same equations.
+    let mut dispute = None;
     let project = match is_plcopen {
         true => Some(plcopen::read_plcopen(sources, file).map_err(plc_diagnostics)?),
         false => None,
@@ -152,15 +155,9 @@ pub fn load_program_with(
         plcopen::prepare_text_blocks(sources, &mut project, selection);
         let plc = plcopen::select(&project, selection).map_err(plc_diagnostics)?;
         let lowered = plcopen::lower(&plc).map_err(plc_diagnostics)?;
-        if selection.order.is_none()
-            && let Some(dispute) = plc.order_dispute()
-            && !same_scan(
-                &lowered.program,
-                &plc.with_order(plcopen::StatementOrder::Document),
-                options,
-            )
-        {
-            return Err(plc_diagnostics(vec![dispute]));
+        if selection.order.is_none() {
+            dispute =
+                plc.order_dispute().map(|d| (d, plc.with_order(plcopen::StatementOrder::Document)));
         }
         let notes = with_places(sources, &lowered.warnings);
         (
@@ -176,6 +173,11 @@ pub fn load_program_with(
     let compiled = crate::program::compile(&scan, options).map_err(|errors| {
         diagnostics(errors.into_iter().map(crate::ladder::LadderError::from).collect())
     })?;
+    if let Some((dispute, other)) = dispute
+        && !same_scan(&compiled, &other, options)
+    {
+        return Err(plc_diagnostics(vec![dispute]));
+    }
     let notes: Vec<String> = located
         .iter()
         .map(|w| match &w.location {
@@ -192,13 +194,12 @@ pub fn load_program_with(
 /// Whether `other` lowers and compiles to the same equations as `program` (up to their
 /// names and order): the two statement orders then do the same on every scan.
 fn same_scan(
-    program: &crate::program::Program,
+    program: &crate::program::CompiledProgram,
     other: &crate::ladder::plcopen::PlcProgram,
     options: &crate::ladder::CompileOptions,
 ) -> bool {
     use crate::ladder::SignalKind;
-    let equations = |p: &crate::program::Program| {
-        let compiled = crate::program::compile(p, options).ok()?;
+    let equations = |compiled: &crate::program::CompiledProgram| {
         // Compiler-made names carry their rung number: compare them by what they stand
         // for. An intermediate signal (a part of an integer value) stands for its
         // definition, named by a hash of the definition's canonical text, which names the
@@ -241,11 +242,11 @@ fn same_scan(
             all.push(format!("{} {:?} {rhs}", words(&lhs, &defined), h.rel));
         }
         all.sort();
-        Some(all)
+        all
     };
     let Ok(lowered) = crate::ladder::plcopen::lower(other) else { return false };
-    let (a, b) = (equations(program), equations(&lowered.program));
-    a.is_some() && a == b
+    let Ok(compiled) = crate::program::compile(&lowered.program, options) else { return false };
+    equations(program) == equations(&compiled)
 }
 
 /// A front end's warnings as the report shows them, each with its place.
