@@ -148,13 +148,14 @@ fn programs_to_run() -> u64 {
 fn random_il_programs_run_as_the_reference_interpreter_runs_them() {
     let first: u64 = std::env::var("II_IL_FIRST").ok().and_then(|v| v.parse().ok()).unwrap_or(0);
     let (mut programs, mut scans, mut checked, mut fired, mut bit_scans) = (0u64, 0, 0, 0, 0u64);
-    let (mut jumps, mut nested, mut int_scans) = (0u64, 0u64, 0u64);
+    let (mut jumps, mut nested, mut int_scans, mut to_bool) = (0u64, 0u64, 0u64, 0u64);
     let (mut left_out, mut twice) = (0u64, 0u64);
     let mut failures: Vec<String> = Vec::new();
     for seed in first..first + programs_to_run() {
         let g = il_gen::program(seed);
         jumps += u64::from(g.ins.iter().any(|i| matches!(i, il_gen::Ins::Jump(..))));
         nested += u64::from(g.ins.iter().any(|i| matches!(i, il_gen::Ins::Nested(..))));
+        to_bool += u64::from(g.ins.iter().any(|i| matches!(i, il_gen::Ins::ToBool(..))));
         let (omits, again) = il_gen::calls_leaving_inputs_out(&g);
         (left_out, twice) = (left_out + u64::from(omits), twice + u64::from(again));
         let mut sources = Sources::new();
@@ -224,7 +225,7 @@ fn random_il_programs_run_as_the_reference_interpreter_runs_them() {
         }
     }
     eprintln!(
-        "random IL programs: {programs} lowered ({jumps} with jumps, {nested} with parentheses, {left_out} with a call that leaves an input out, {twice} with an instance called twice), {scans} scans, {bit_scans} bit-scans and {int_scans} integer-scans compared with the interpreter, {checked} hypotheses checked at every scan, {fired} timer hypotheses fired; {} disagreements",
+        "random IL programs: {programs} lowered ({jumps} with jumps, {nested} with parentheses, {to_bool} with `INT_TO_BOOL`, {left_out} with a call that leaves an input out, {twice} with an instance called twice), {scans} scans, {bit_scans} bit-scans and {int_scans} integer-scans compared with the interpreter, {checked} hypotheses checked at every scan, {fired} timer hypotheses fired; {} disagreements",
         failures.len()
     );
     assert!(

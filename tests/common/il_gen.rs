@@ -1,4 +1,4 @@
-//! Random Instruction List programs for the differential tests, kept as instructions as well as text: loads, the Boolean operators with `N` and `( … )`, `NOT`, `EQ`/`NE`, `ST`/`STN`/`S`/`R`, forward `JMP`/`JMPC`/`JMPCN` with labels reached from several paths, `RETC`/`RETCN`, and calls of TON, TOF, R_TRIG, F_TRIG, SR, RS (`CAL` with formal or positional inputs, `CLK`/`S1`/`R1`/`IN` as operators), some skipped by jumps, some inputs left out (a timer's `PT` among them) and some instances called twice; `INT` locals, the first sometimes of a subrange type.
+//! Random Instruction List programs for the differential tests, kept as instructions as well as text: loads, the Boolean operators with `N` and `( … )`, `NOT`, `EQ`/`NE`, `ST`/`STN`/`S`/`R`, forward `JMP`/`JMPC`/`JMPCN` with labels reached from several paths, `RETC`/`RETCN`, `INT` arithmetic ending in a comparison or `INT_TO_BOOL`, and calls of TON, TOF, R_TRIG, F_TRIG, SR, RS (`CAL` with formal or positional inputs, `CLK`/`S1`/`R1`/`IN` as operators), some skipped by jumps, some inputs left out (a timer's `PT` among them) and some instances called twice; `INT` locals, the first sometimes of a subrange type.
 #![allow(dead_code)]
 
 use super::rng::Rng;
@@ -131,6 +131,9 @@ pub enum Ins {
     Compare(Cmp, IntOperand),
     /// `ST n` of the integer current result.
     StInt(String),
+    /// `INT_TO_BOOL` (the type named): the integer current result a BOOL from then on,
+    /// TRUE when it is not 0.
+    ToBool(String),
 }
 
 /// Whether some call of `g` leaves an input out (an input operator, a `CAL` without
@@ -293,6 +296,7 @@ pub fn render(ins: &[Ins]) -> String {
                 out += &format!("  {word} {}\n", int_text(o));
             }
             Ins::StInt(n) => out += &format!("  ST {n}\n"),
+            Ins::ToBool(t) => out += &format!("  {t}_TO_BOOL\n"),
         }
     }
     out
@@ -386,8 +390,9 @@ impl Gen<'_> {
         }
     }
 
-    /// An integer group: `LD n`, arithmetic and stores, then a comparison (the current
-    /// result a BOOL again) and writes of it.
+    /// An integer group: `LD n`, arithmetic and stores, then a comparison or (one group
+    /// in four) `INT_TO_BOOL` followed by Boolean operations (the current result a BOOL
+    /// again), and writes of it.
     fn integers(&mut self, out: &mut Vec<Ins>) {
         out.push(Ins::LdInt(self.rng.pick(&self.ints).clone()));
         for _ in 0..1 + self.rng.below(4) {
@@ -408,9 +413,14 @@ impl Gen<'_> {
                 out.push(Ins::StInt(self.rng.pick(&self.ints).clone()));
             }
         }
-        let c = *self.rng.pick(&[Cmp::Gt, Cmp::Ge, Cmp::Eq, Cmp::Ne, Cmp::Lt, Cmp::Le]);
-        let o = self.int_operand();
-        out.push(Ins::Compare(c, o));
+        if self.rng.chance(25) {
+            out.push(Ins::ToBool("INT".into()));
+            self.ops(out);
+        } else {
+            let c = *self.rng.pick(&[Cmp::Gt, Cmp::Ge, Cmp::Eq, Cmp::Ne, Cmp::Lt, Cmp::Le]);
+            let o = self.int_operand();
+            out.push(Ins::Compare(c, o));
+        }
         self.writes(out);
     }
 

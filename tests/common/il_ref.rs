@@ -1,4 +1,4 @@
-//! A reference interpreter of the generated Instruction List programs (`il_gen.rs`), written from IEC 61131-3's description of IL (one current result; `S`/`R` act when it is TRUE; `( … )` computes an operand; jumps and returns by the current result) and matiec's library (`lib/timer.txt`, `edge_detection.txt`, `bistable.txt`; an instance keeps each input, `PT` included, from the last call that gave it) with the clock at scan × cycle — not from the lowering it checks.
+//! A reference interpreter of the generated Instruction List programs (`il_gen.rs`), written from IEC 61131-3's description of IL (one current result; `S`/`R` act when it is TRUE; `( … )` computes an operand; jumps and returns by the current result; `INT_TO_BOOL` TRUE when the integer is not 0, as matiec's `iec_std_functions.h` has it) and matiec's library (`lib/timer.txt`, `edge_detection.txt`, `bistable.txt`; an instance keeps each input, `PT` included, from the last call that gave it) with the clock at scan × cycle — not from the lowering it checks.
 #![allow(dead_code)]
 
 use std::collections::BTreeMap;
@@ -172,6 +172,8 @@ impl<'g> IlRef<'g> {
                 Ins::StInt(n) => {
                     self.ints.insert(n.clone(), int_cr);
                 }
+                // matiec's `<T>_TO_BOOL` (`iec_std_functions.h`): `op == 0 ? 0 : 1`.
+                Ins::ToBool(_) => cr = int_cr != 0,
                 Ins::FbIn(pin, inst) => {
                     let ty = self.g.fbs.iter().find(|(n, _)| n == inst).map(|(_, t)| t.clone());
                     let vals = BTreeMap::from([(pin.as_str(), cr)]);
