@@ -19,6 +19,7 @@ mod elapsed;
 mod expr;
 mod flow;
 mod il;
+mod int_functions;
 mod ints;
 mod known;
 mod reals;
