@@ -9,7 +9,7 @@
 //! Every operator is causal (its value at `t` depends only on `(0, t]`), so
 //! computing it on `(0, H]` is exact, not an approximation of the signal on
 //! `(0, ∞)`. Every operator matches `/work/shared/spec/semantics.md` exactly; the tests
-//! in `tests/semantics.rs` check each one against a brute-force evaluation of
+//! in `tests/suite/semantics.rs` check each one against a brute-force evaluation of
 //! its quantified definition.
 
 use std::fmt;

@@ -1,7 +1,7 @@
 //! Requirement patterns: properties in a control engineer's words, compiled to II goals.
 //!
 //! Each pattern is a safety property over scans, stated as one goal of the algebra (the
-//! README's catalogue gives the sentence each one means; `tests/patterns.rs` checks the
+//! README's catalogue gives the sentence each one means; `tests/suite/patterns.rs` checks the
 //! goal against an evaluation of that sentence on random scan runs). With `n = d/δ`
 //! scans of the program's cycle `δ`:
 //!

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Builds the editors' toolchain for tests/oracle.rs into DIR: matiec (iec2c) from source,
+# Builds the editors' toolchain for tests/suite/plcopen_oracle.rs into DIR: matiec (iec2c) from source,
 # Beremiz's sources and a Python environment for its generator. A few minutes; needs
 # git mirrors or network access to github.com/beremiz, flex, bison, autotools, gcc.
 #
@@ -31,4 +31,4 @@ if [ ! -x "$dir/venv/bin/python" ]; then
   # What PLCGenerator.py needs when loaded as Beremiz's command line loads it (fake_wx).
   "$dir/venv/bin/pip" install -q lxml future six click numpy matplotlib "zeroconf==0.62.0"
 fi
-echo "toolchain ready: II_ORACLE=$dir cargo test --release --test oracle -- --ignored --nocapture"
+echo "toolchain ready: II_ORACLE=$dir cargo test --release --test suite plcopen_oracle:: -- --ignored --nocapture"

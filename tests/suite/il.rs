@@ -1,16 +1,10 @@
 //! Instruction List end to end: the water plant in IL (a `.il` file and a PLCopen `<IL>` body, beside the `<ST>` one) proves what `water.ld` proves and its faulty variants are refuted; malformed and unsupported IL fails with located errors (`tests/data/il/rejects/`); random IL programs run as an interpreter written from the standard and matiec's library runs them, and compile to equations that hold at every scan.
 
-mod common;
-#[path = "common/il_gen.rs"]
-mod il_gen;
-#[path = "common/il_ref.rs"]
-mod il_ref;
-#[path = "common/rng.rs"]
-mod rng;
-#[path = "common/scan_eval.rs"]
-mod scan_eval;
-#[path = "common/st_gen.rs"]
-mod st_gen;
+use crate::common;
+use crate::common::il_gen;
+use crate::common::il_ref;
+use crate::common::scan_eval;
+use crate::common::st_gen;
 
 use std::path::Path;
 

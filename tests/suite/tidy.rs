@@ -1,6 +1,6 @@
 //! Architecture invariants checked on the source tree (see ARCHITECTURE.md).
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 
@@ -93,7 +93,7 @@ fn no_source_file_is_over_900_lines_except_those_due_to_be_split() {
 #[test]
 fn only_the_kernel_builds_theorems() {
     for (path, text) in sources() {
-        if path.ends_with("src/kernel.rs") || path.ends_with("tests/tidy.rs") {
+        if path.ends_with("src/kernel.rs") || path.ends_with("tests/suite/tidy.rs") {
             continue;
         }
         assert!(!text.contains("Theorem {"), "{} constructs a Theorem", path.display());
@@ -103,7 +103,7 @@ fn only_the_kernel_builds_theorems() {
 #[test]
 fn no_should_panic_in_tests() {
     for (path, text) in sources() {
-        if path.ends_with("tests/tidy.rs") {
+        if path.ends_with("tests/suite/tidy.rs") {
             continue;
         }
         assert!(!text.contains("should_panic"), "{} uses should_panic", path.display());
@@ -118,7 +118,7 @@ fn tests_and_transcripts_write_no_files_into_the_tree() {
     let mut files = common::files_with(&root.join("tests"), "rs");
     files.extend(common::files_with(&root.join("tests/repl"), "session"));
     for path in files {
-        if path.ends_with("tests/tidy.rs") {
+        if path.ends_with("tests/suite/tidy.rs") {
             continue;
         }
         let text = std::fs::read_to_string(&path).unwrap();

@@ -2,7 +2,7 @@
 //! cited by every property; the proofs are the same alone, in any order and at any
 //! `--jobs`, and a broken link is still refuted.
 
-mod common;
+use crate::common;
 
 use std::path::PathBuf;
 

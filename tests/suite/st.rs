@@ -1,14 +1,9 @@
 //! The Structured Text front end end to end: the water plant in ST proves what `water.ld` proves and its faulty variant is refuted, malformed and unsupported files fail with located errors (data in `tests/data/st/rejects/`), and random ST programs (over BOOLs and integers, and over REALs) compile to equations that hold at every scan of the scan model's simulator.
 
-mod common;
-#[path = "common/real_gen.rs"]
-mod real_gen;
-#[path = "common/rng.rs"]
-mod rng;
-#[path = "common/scan_eval.rs"]
-mod scan_eval;
-#[path = "common/st_gen.rs"]
-mod st_gen;
+use crate::common;
+use crate::common::real_gen;
+use crate::common::scan_eval;
+use crate::common::st_gen;
 
 use common::{ii_prove, laws, text, verdicts};
 use ii_prove::diag::Sources;
@@ -163,7 +158,7 @@ fn random_st_programs_agree_with_the_scan_simulator() {
 /// subnormals (values the C computes in `double` among them); a program that compares a
 /// value ii-prove leaves unconstrained is counted, not run. Few and short, as a `REAL` operation compiles to
 /// hundreds of equations; what the lowering reads programs as is checked against matiec
-/// by `tests/iec_oracle.rs`, and each `REAL` circuit against `f32` in `bitvec::float`.
+/// by `tests/suite/iec_oracle.rs`, and each `REAL` circuit against `f32` in `bitvec::float`.
 #[test]
 fn random_real_programs_agree_with_the_scan_simulator() {
     let var = |name: &str, default: u64| {

@@ -12,11 +12,9 @@
 //! ii-prove's: proved ↔ "Property proved", refuted ↔ a counterexample.
 #![warn(missing_docs)]
 
-mod common;
-#[path = "common/rng.rs"]
-mod rng;
-#[path = "common/scan_eval.rs"]
-mod scan_eval;
+use crate::common;
+use crate::common::rng;
+use crate::common::scan_eval;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

@@ -1,10 +1,8 @@
 //! `ii-prove equiv`: the pairs of tests/data/equivalent are proved output by output, those of tests/data/differs refuted with the simulators' confirmation; the water plant's refactorings and variants; located refusals; the front ends' hidden names never compared; and randomized checks on random LDmicro programs, their behaviour-preserving refactorings (seal-in to set/reset among them), their ports to Structured Text and their mutants, against both programs' own simulators (`II_EQUIV_PAIRS=N` scales them, `II_EQUIV_SEED=S` starts elsewhere).
 
-mod common;
-#[path = "common/ld_to_st.rs"]
-mod ld_to_st;
-#[path = "common/rng.rs"]
-mod rng;
+use crate::common;
+use crate::common::ld_to_st;
+use crate::common::rng;
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -745,7 +743,7 @@ fn random_refactorings_are_proved_and_mutants_never_are() {
     );
 }
 
-/// Random LDmicro programs ported to Structured Text (`tests/common/ld_to_st.rs`, from
+/// Random LDmicro programs ported to Structured Text (`tests/suite/common/ld_to_st.rs`, from
 /// the format note), and ports of their mutants: a port counts as an equivalent pair
 /// when the LDmicro simulator on the `.ld` and the scan model's simulator on the `.st`
 /// agree on every random run; then `equiv` must prove it. No output the simulators

@@ -1,14 +1,9 @@
-//! Sequential function charts in Structured Text files and PLCopen `<SFC>` bodies: random charts (`common/sfc_gen.rs`, as text and as XML) compile to equations that hold at every scan of the scan model's simulator, and malformed or unsupported charts are refused with located errors (`tests/data/sfc/rejects/`; for PLCopen, `tests/data/plcopen/refused/chart_*`). What the charts mean is checked against matiec by `tests/iec_oracle.rs` (`random_sfc`).
+//! Sequential function charts in Structured Text files and PLCopen `<SFC>` bodies: random charts (`common/sfc_gen.rs`, as text and as XML) compile to equations that hold at every scan of the scan model's simulator, and malformed or unsupported charts are refused with located errors (`tests/data/sfc/rejects/`; for PLCopen, `tests/data/plcopen/refused/chart_*`). What the charts mean is checked against matiec by `tests/suite/iec_oracle.rs` (`random_sfc`).
 
-mod common;
-#[path = "common/rng.rs"]
-mod rng;
-#[path = "common/scan_eval.rs"]
-mod scan_eval;
-#[path = "common/sfc_gen.rs"]
-mod sfc_gen;
-#[path = "common/st_gen.rs"]
-mod st_gen;
+use crate::common;
+use crate::common::scan_eval;
+use crate::common::sfc_gen;
+use crate::common::st_gen;
 
 use ii_prove::diag::Sources;
 use scan_eval::check_scans;

@@ -11,8 +11,7 @@
 //! `II_INT_KEEP=DIR` keeps the generated files in `DIR`. Every property no run violates
 //! and the prover leaves unknown is printed.
 
-#[path = "common/rng.rs"]
-mod rng;
+use crate::common::rng;
 
 use std::collections::BTreeMap;
 use std::time::Duration;

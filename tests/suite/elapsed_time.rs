@@ -1,8 +1,7 @@
 //! A timer's elapsed time `ET` (TON, TOF, TP) in Structured Text: the scan model's values of `ET` and `Q` against matiec's `lib/timer.txt` state machines transcribed here (STATE, PREV_IN, START_TIME against the runtime's clock), on random inputs; the star-delta example's stages proved and its overlap refuted with the elapsed time drawn; TIME comparisons of the wrong type refused.
 
-mod common;
-#[path = "common/rng.rs"]
-mod rng;
+use crate::common;
+use crate::common::rng;
 
 use std::collections::BTreeMap;
 

@@ -3,7 +3,7 @@
 //! A new case is a new file. In `proves/`, a comment `// trace: at most N lines`
 //! right above a property bounds the length of its printed proof.
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

@@ -1,7 +1,7 @@
 //! The command line end to end: exit codes in both modes, `show`, `axioms`, JSON, and the
 //! length of the water plant's proofs against the paper's.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 use std::process::Command;

@@ -1,6 +1,6 @@
 //! Integration tests for the LDmicro reader and simulator: the real-world corpus, malformed files, fuzzing and the examples.
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeMap;
 use std::fs;

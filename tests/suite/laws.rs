@@ -180,7 +180,7 @@ fn laws_in_folder(folder: &str) -> Vec<theory::LawEntry> {
 
 #[test]
 fn every_law_is_restated_as_a_property_that_the_cli_proves() {
-    // tests/verdicts.rs proves these files; here we check they cover the whole registry.
+    // tests/suite/verdicts.rs proves these files; here we check they cover the whole registry.
     // The laws of `pre` are about scans: tests/data/proves_programs/scan_laws.ii restates
     // them for a program.
     let mut sources = Sources::new();

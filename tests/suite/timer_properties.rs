@@ -5,8 +5,7 @@
 //! inputs held for random stretches, independently of the prover. `II_TIMER_PROGRAMS=N`
 //! runs `N` programs (8 by default); the figures are printed.
 
-#[path = "common/rng.rs"]
-mod rng;
+use crate::common::rng;
 
 use std::collections::BTreeMap;
 use std::time::Duration;

@@ -1,6 +1,6 @@
 //! Integers of LDmicro programs: counters, comparisons and arithmetic compiled exactly (their bits), comparison atoms `[Cparts >= 10]` in properties, the parts example proved and its faulty variant refuted with the count shown, and comparisons that do not fit the program refused with located errors.
 
-mod common;
+use crate::common;
 
 use common::{ii_prove, text, verdicts};
 

@@ -1,22 +1,17 @@
-//! The IEC text front end against matiec, the editors' own compiler: random Structured Text (`common/st_gen.rs`), Instruction List (`common/il_gen.rs`) programs and sequential function charts (`common/sfc_gen.rs`, as text and as PLCopen `<SFC>` bodies, the latter turned into ST by Beremiz's generator) are compiled by `iec2c` and gcc and run scan by scan (`tools/oracle/run.py`); every BOOL variable and function-block output must have, at every scan, the value the scan-model simulator gives the lowered program — whose compiled equations `tests/st.rs` and `tests/il.rs` check against that simulator — and so must every integer the lowered program computes (`Program::integers`, `C1_CV`; a TIME in ns), its integer inputs driven with the same random values on both sides.
+//! The IEC text front end against matiec, the editors' own compiler: random Structured Text (`common/st_gen.rs`), Instruction List (`common/il_gen.rs`) programs and sequential function charts (`common/sfc_gen.rs`, as text and as PLCopen `<SFC>` bodies, the latter turned into ST by Beremiz's generator) are compiled by `iec2c` and gcc and run scan by scan (`tools/oracle/run.py`); every BOOL variable and function-block output must have, at every scan, the value the scan-model simulator gives the lowered program — whose compiled equations `tests/suite/st.rs` and `tests/suite/il.rs` check against that simulator — and so must every integer the lowered program computes (`Program::integers`, `C1_CV`; a TIME in ns), its integer inputs driven with the same random values on both sides.
 //!
 //! Outside the test command (it needs the toolchain built by `tools/oracle/setup.sh DIR`):
-//! `II_ORACLE=DIR cargo test --release --test iec_oracle -- --ignored`, with
+//! `II_ORACLE=DIR cargo test --release --test suite iec_oracle:: -- --ignored`, with
 //! `II_ST_PROGRAMS=N` / `II_IL_PROGRAMS=N` / `II_REAL_PROGRAMS=N` programs (500 by
 //! default) from seed `II_ST_FIRST` / `II_IL_FIRST` / `II_REAL_FIRST` (0). The `REAL`
 //! programs (`common/real_gen.rs`) compare every `REAL` variable as its bit pattern.
 
-mod common;
-#[path = "common/il_gen.rs"]
-mod il_gen;
-#[path = "common/real_gen.rs"]
-mod real_gen;
-#[path = "common/rng.rs"]
-mod rng;
-#[path = "common/sfc_gen.rs"]
-mod sfc_gen;
-#[path = "common/st_gen.rs"]
-mod st_gen;
+use crate::common;
+use crate::common::il_gen;
+use crate::common::real_gen;
+use crate::common::rng;
+use crate::common::sfc_gen;
+use crate::common::st_gen;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

@@ -8,13 +8,8 @@
 //! scans. `II_PLC_DIFF_PROGRAMS=N` sets the number of random programs (2000 by
 //! default), `II_PLC_DIFF_SEED=S` reruns one; failures print the XML and the seed.
 
-mod common;
-#[path = "common/plcopen_diff.rs"]
-mod plcopen_diff;
-#[path = "common/rng.rs"]
-mod rng;
-#[path = "common/scan_eval.rs"]
-mod scan_eval;
+use crate::common;
+use crate::common::plcopen_diff;
 use plcopen_diff::{Figures, check, random_program};
 
 use std::path::Path;
@@ -79,7 +74,7 @@ fn examples_and_corpus_agree_with_the_simulator() {
     }
     for (k, f) in files.iter().enumerate() {
         let Ok(text) = std::fs::read_to_string(f) else { continue };
-        // Text bodies are the IEC text front end's (tests/st.rs, tests/il.rs).
+        // Text bodies are the IEC text front end's (tests/suite/st.rs, tests/suite/il.rs).
         if text.contains("<ST>") && !text.contains("<LD>") && !text.contains("<FBD>")
             || text.contains("<IL>") && !text.contains("<LD>") && !text.contains("<FBD>")
         {

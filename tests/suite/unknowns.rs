@@ -4,7 +4,7 @@
 //! `tests/data/unknown_programs/readable/` (corpus programs, each `.ii` naming its program
 //! on a first line `// program: PATH`), the other unknown cases and the examples.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::time::Duration;

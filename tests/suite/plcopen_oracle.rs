@@ -12,7 +12,7 @@
 //! these tests are ignored by default:
 //!
 //! ```text
-//! II_ORACLE=DIR cargo test --release --test oracle -- --ignored --nocapture
+//! II_ORACLE=DIR cargo test --release --test suite plcopen_oracle:: -- --ignored --nocapture
 //! ```
 //!
 //! `II_ORACLE_PROGRAMS=N` sets the number of random programs (1000 by default),
@@ -20,13 +20,9 @@
 //! counted by stage, not checked; a disagreement fails the test with the seed, the
 //! XML and the compiled equations.
 
-mod common;
-#[path = "common/plcopen_diff.rs"]
-mod plcopen_diff;
-#[path = "common/rng.rs"]
-mod rng;
-#[path = "common/scan_eval.rs"]
-mod scan_eval;
+use crate::common;
+use crate::common::plcopen_diff;
+use crate::common::scan_eval;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -92,7 +88,7 @@ fn edge_rank(kind: &ObjKind, pin: &str) -> Option<usize> {
 
 /// Why a program is not compared: its hypotheses read integers, which this oracle's
 /// reading of the toolchain's run does not cover yet (the PLCopen simulator checks them:
-/// `tests/plcopen_differential.rs`).
+/// `tests/suite/plcopen_differential.rs`).
 const READS_INTEGERS: &str = "the hypotheses read integers";
 
 /// What to read from the toolchain's run for each value the hypotheses read.

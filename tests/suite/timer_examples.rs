@@ -5,8 +5,7 @@
 //! its false variant. This checks the examples' truth independently of the prover (and of
 //! the patterns' compilation to II terms).
 
-#[path = "common/rng.rs"]
-mod rng;
+use crate::common::rng;
 
 use std::collections::BTreeMap;
 use std::path::Path;

@@ -1,7 +1,7 @@
 //! Parse → print → parse is the identity, for every `.ii` file of the repository
 //! and for random terms, in both notations.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -29,15 +29,13 @@
 //! `X`, `I` or `M`), with values held for random numbers of scans (long enough
 //! for timers to fire, and one-scan pulses). Programs with control flow must be
 //! refused by the compiler, and only they. Failures print the program text and
-//! the seed; `II_DIFF_PROGRAMS=N` scales the random part (8,000 by default,
-//! about 80 s in release on 2 cores; 20,000 or more outside CI), `II_DIFF_SEED=S` reruns one program.
+//! the seed; `II_DIFF_PROGRAMS=N` scales the random part (6,000 by default,
+//! about 75 s in release; 20,000 or more outside CI), `II_DIFF_SEED=S` reruns one program.
 #![warn(missing_docs)]
 
-mod common;
-#[path = "common/rng.rs"]
-mod rng;
-#[path = "common/scan_eval.rs"]
-mod scan_eval;
+use crate::common;
+use crate::common::rng;
+use crate::common::scan_eval;
 use rng::Rng;
 use scan_eval::*;
 

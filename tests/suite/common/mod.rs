@@ -1,4 +1,14 @@
-//! Helpers shared by the test binaries.
+//! Helpers shared by the test modules: file listing, running the binary, and the random program generators with their reference interpreters.
+
+pub mod il_gen;
+pub mod il_ref;
+pub mod ld_to_st;
+pub mod plcopen_diff;
+pub mod real_gen;
+pub mod rng;
+pub mod scan_eval;
+pub mod sfc_gen;
+pub mod st_gen;
 
 use std::path::{Path, PathBuf};
 

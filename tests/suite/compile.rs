@@ -1,7 +1,7 @@
-//! Integration tests of the rung compiler: water.ld's equations, seal-ins, set/reset, bounds, names, `.ii` round trips and data-driven cases (the differential test against the scan simulator is `tests/differential.rs`).
+//! Integration tests of the rung compiler: water.ld's equations, seal-ins, set/reset, bounds, names, `.ii` round trips and data-driven cases (the differential test against the scan simulator is `tests/suite/differential.rs`).
 #![warn(missing_docs)]
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeSet;
 use std::fs;
@@ -621,7 +621,7 @@ mod random_programs {
         #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
 
         /// Random programs: the compiler never panics and its `.ii` text parses back
-        /// (`tests/differential.rs` checks the hypotheses against the simulator).
+        /// (`tests/suite/differential.rs` checks the hypotheses against the simulator).
         #[test]
         fn random_programs_compile_and_round_trip(text in program()) {
             let Some(program) = parse("random.ld", &text) else { return Ok(()) };

@@ -1,7 +1,6 @@
 //! The kernel's propositional refutation rule: a goal shown `0*` from proved facts and clauses derived by unit propagation, accepted only when it follows, refused when a clause, a fact or the empty clause is missing or forged.
 
-#[path = "common/rng.rs"]
-mod rng;
+use crate::common::rng;
 
 use ii_prove::kernel::{Axiom, Certificate, Kernel, Proof, Rel, Rule, Source, Step, Use};
 use ii_prove::prover::boolean::{Constraint, refute};

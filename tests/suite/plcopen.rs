@@ -1,6 +1,6 @@
 //! The PLCopen XML front end end to end: the corpus loads or is refused with located errors, the reader never panics, the water plant drawn in LD and FBD proves what `water.ld` proves, the command line (`show`, `--pou`, `--cycle`, errors).
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};

@@ -1,6 +1,6 @@
 //! The ladder model against what the PLC does: programs whose properties hold are proved (`tests/data/proves_programs/`), programs the compiler cannot model are refused with a located error (`tests/data/ldmicro/refused/`), and `--timers` changes what is compiled.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -14,7 +14,7 @@ fn data(folder: &str) -> PathBuf {
 }
 
 fn opts() -> Options {
-    // As tests/verdicts.rs: a timer invariant is found and checked within seconds.
+    // As tests/suite/verdicts.rs: a timer invariant is found and checked within seconds.
     Options { timeout: Duration::from_secs(20), ..Options::default() }
 }
 
@@ -239,7 +239,7 @@ fn printed_lines(lines: &[String]) -> usize {
 }
 
 /// The bounds `// trace: at most N lines` written right above `property NAME` (as in
-/// `tests/verdicts.rs`).
+/// `tests/suite/verdicts.rs`).
 fn trace_bounds(text: &str) -> std::collections::BTreeMap<String, usize> {
     let mut bounds = std::collections::BTreeMap::new();
     let mut pending = None;

@@ -2,7 +2,7 @@
 //! is rejected with a located error whose text and place its first two lines record
 //! (`// error: FRAGMENT`, `// at: LINE:COL`).
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

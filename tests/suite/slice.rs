@@ -5,8 +5,7 @@
 //! elements slicing applies to; `II_SLICE_PROGRAMS=N` scales the number of programs.
 #![warn(missing_docs)]
 
-#[path = "common/rng.rs"]
-mod rng;
+use crate::common::rng;
 use rng::Rng;
 
 use std::collections::{BTreeMap, BTreeSet};
