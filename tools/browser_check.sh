@@ -5,6 +5,7 @@
 #
 #   tools/browser_check.sh [OUT_DIR]     (default: a temporary folder; needs chromium)
 #
+# II_PROVE names the binary to run (default: `cargo run --release --quiet --`).
 # On Debian: apt-get install chromium. .ci/run installs it and runs this.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -15,9 +16,10 @@ if [ -z "$browser" ]; then
   echo "browser_check: no chromium on PATH (apt-get install chromium)" >&2
   exit 2
 fi
+read -r -a ii_prove <<<"${II_PROVE:-cargo run --release --quiet --}"
 report="$out/water_faulty.html"
 status=0
-cargo run --release --quiet -- --format html examples/water_faulty.ld examples/water.ii >"$report" || status=$?
+"${ii_prove[@]}" --format html examples/water_faulty.ld examples/water.ii >"$report" || status=$?
 [ "$status" -eq 1 ] || { echo "browser_check: expected exit 1 (P2 refuted), got $status" >&2; exit 1; }
 flags=(--headless --disable-gpu --no-sandbox --hide-scrollbars --enable-logging=stderr --v=0)
 "$browser" "${flags[@]}" --dump-dom "file://$(realpath "$report")" >"$out/dom.html" 2>"$out/console.log"
@@ -29,7 +31,7 @@ if grep -E "CONSOLE|Uncaught" "$out/console.log" | grep -qiE "error|uncaught"; t
   exit 1
 fi
 # The tracks the browser rendered are the signals of P2's text diagram.
-expected=$(cargo run --release --quiet -- --format json --only P2 examples/water_faulty.ld examples/water.ii |
+expected=$("${ii_prove[@]}" --format json --only P2 examples/water_faulty.ld examples/water.ii |
   python3 -c 'import json,sys
 d=json.load(sys.stdin)["properties"][0]["counterexample"]["diagram"]
 for l in d:
