@@ -141,10 +141,10 @@ fn programs_to_run() -> u64 {
 #[test]
 fn random_il_programs_run_as_the_reference_interpreter_runs_them() {
     let first: u64 = std::env::var("II_IL_FIRST").ok().and_then(|v| v.parse().ok()).unwrap_or(0);
-    let (mut programs, mut scans, mut checked, mut fired, mut bit_scans) = (0u64, 0, 0, 0, 0u64);
-    let (mut jumps, mut nested, mut int_scans, mut to_bool) = (0u64, 0u64, 0u64, 0u64);
+    let (mut programs, mut bit_scans, mut int_scans) = (0u64, 0u64, 0u64);
+    let (mut jumps, mut nested, mut to_bool) = (0u64, 0u64, 0u64);
     let (mut left_out, mut twice) = (0u64, 0u64);
-    let mut failures: Vec<String> = Vec::new();
+    let mut tally = scan_eval::Tally::default();
     for seed in first..first + programs_to_run() {
         let g = il_gen::program(seed);
         jumps += u64::from(g.ins.iter().any(|i| matches!(i, il_gen::Ins::Jump(..))));
@@ -161,14 +161,14 @@ fn random_il_programs_run_as_the_reference_interpreter_runs_them() {
         let lowered = match lowered {
             Ok(l) => l,
             Err(e) => {
-                failures.push(format!("seed {seed}: refused: {e}\n{}", g.text));
+                tally.fail(seed, &g.text, &format!("refused: {e}"));
                 continue;
             }
         };
         let compiled = match ii_prove::program::compile(&lowered.program, &Default::default()) {
             Ok(c) => c,
             Err(e) => {
-                failures.push(format!("seed {seed}: not compiled: {e:?}\n{}", g.text));
+                tally.fail(seed, &g.text, &format!("not compiled: {e:?}"));
                 continue;
             }
         };
@@ -209,22 +209,10 @@ fn random_il_programs_run_as_the_reference_interpreter_runs_them() {
             &schedule,
             &mut compare,
         );
-        match run {
-            Ok(c) => {
-                scans += c.scans;
-                checked += c.hypotheses;
-                fired += c.fired;
-            }
-            Err(e) => failures.push(format!("seed {seed}: {e}\n{}", g.text)),
-        }
+        tally.add(seed, &g.text, run);
     }
-    eprintln!(
-        "random IL programs: {programs} lowered ({jumps} with jumps, {nested} with parentheses, {to_bool} with `INT_TO_BOOL`, {left_out} with a call that leaves an input out, {twice} with an instance called twice), {scans} scans, {bit_scans} bit-scans and {int_scans} integer-scans compared with the interpreter, {checked} hypotheses checked at every scan, {fired} timer hypotheses fired; {} disagreements",
-        failures.len()
-    );
-    assert!(
-        failures.is_empty(),
-        "{}",
-        failures.iter().take(3).cloned().collect::<Vec<_>>().join("\n\n")
-    );
+    let scan_eval::Checked { scans, hypotheses, fired } = tally.totals;
+    tally.finish(&format!(
+        "random IL programs: {programs} lowered ({jumps} with jumps, {nested} with parentheses, {to_bool} with `INT_TO_BOOL`, {left_out} with a call that leaves an input out, {twice} with an instance called twice), {scans} scans, {bit_scans} bit-scans and {int_scans} integer-scans compared with the interpreter, {hypotheses} hypotheses checked at every scan, {fired} timer hypotheses fired"
+    ));
 }

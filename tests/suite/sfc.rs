@@ -6,7 +6,7 @@ use crate::common::sfc_gen;
 use crate::common::st_gen;
 
 use ii_prove::diag::Sources;
-use scan_eval::check_scans;
+use scan_eval::{Checked, Tally, check_scans};
 
 fn compile(
     text: &str,
@@ -43,37 +43,27 @@ fn compile_xml(
 #[test]
 fn random_charts_agree_with_the_scan_simulator() {
     let n: u64 = std::env::var("II_SFC_PROGRAMS").ok().and_then(|v| v.parse().ok()).unwrap_or(150);
-    let (mut programs, mut scans, mut checked) = (0u64, 0u64, 0u64);
-    let mut failures: Vec<String> = Vec::new();
+    let mut programs = 0u64;
+    let mut tally = Tally::default();
     for seed in 0..2 * n {
         let xml = seed % 2 == 1;
         let g = if xml { sfc_gen::project(seed / 2) } else { sfc_gen::program(seed / 2) };
         let (program, compiled) = match if xml { compile_xml(&g.text) } else { compile(&g.text) } {
             Ok(x) => x,
             Err(e) => {
-                failures.push(format!("seed {seed}: refused: {e}\n{}", g.text));
+                tally.fail(seed, &g.text, &format!("refused: {e}"));
                 continue;
             }
         };
         programs += 1;
         let schedule = st_gen::schedule_of(&g.inputs, seed / 2, 100);
-        match check_scans(&program, &compiled, g.cycle_us, &schedule, &mut |_, _| Ok(())) {
-            Ok(c) => {
-                scans += c.scans;
-                checked += c.hypotheses;
-            }
-            Err(e) => failures.push(format!("seed {seed}: {e}\n{}", g.text)),
-        }
+        let run = check_scans(&program, &compiled, g.cycle_us, &schedule, &mut |_, _| Ok(()));
+        tally.add(seed, &g.text, run);
     }
-    eprintln!(
-        "random charts: {programs} compiled, {scans} scans, {checked} hypotheses checked at every scan; {} disagreements",
-        failures.len()
-    );
-    assert!(
-        failures.is_empty(),
-        "{}",
-        failures.iter().take(3).cloned().collect::<Vec<_>>().join("\n\n")
-    );
+    let Checked { scans, hypotheses, .. } = tally.totals;
+    tally.finish(&format!(
+        "random charts: {programs} compiled, {scans} scans, {hypotheses} hypotheses checked at every scan"
+    ));
 }
 
 /// Every file of `tests/data/sfc/rejects/` is refused with a located error.

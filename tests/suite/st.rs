@@ -7,7 +7,7 @@ use crate::common::st_gen;
 
 use common::{ii_prove, laws, text, verdicts};
 use ii_prove::diag::Sources;
-use scan_eval::check_scans;
+use scan_eval::{Checked, Tally, check_scans};
 
 #[test]
 fn the_water_plant_in_st_proves_what_water_ld_proves() {
@@ -111,9 +111,8 @@ fn programs_to_run() -> u64 {
 #[test]
 fn random_st_programs_agree_with_the_scan_simulator() {
     let first: u64 = std::env::var("II_ST_FIRST").ok().and_then(|v| v.parse().ok()).unwrap_or(0);
-    let (mut programs, mut scans, mut checked, mut fired) = (0u64, 0u64, 0u64, 0u64);
-    let (mut too_large, mut repeated) = (0u64, 0u64);
-    let mut failures: Vec<String> = Vec::new();
+    let (mut programs, mut too_large, mut repeated) = (0u64, 0u64, 0u64);
+    let mut tally = Tally::default();
     for seed in first..first + programs_to_run() {
         let g = st_gen::program(seed);
         if std::env::var_os("II_ST_SHOW").is_some() {
@@ -122,7 +121,7 @@ fn random_st_programs_agree_with_the_scan_simulator() {
         let (program, compiled) = match compile(&g.text) {
             Ok(x) => x,
             Err(e) => {
-                failures.push(format!("seed {seed}: refused: {e}\n{}", g.text));
+                tally.fail(seed, &g.text, &format!("refused: {e}"));
                 continue;
             }
         };
@@ -132,24 +131,13 @@ fn random_st_programs_agree_with_the_scan_simulator() {
         // evaluator treats it existentially).
         too_large += u64::from(compiled.signals.values().any(|k| k.is_unconstrained()));
         let schedule = st_gen::schedule(&g, seed, 120);
-        match check_scans(&program, &compiled, g.cycle_us, &schedule, &mut |_, _| Ok(())) {
-            Ok(c) => {
-                scans += c.scans;
-                checked += c.hypotheses;
-                fired += c.fired;
-            }
-            Err(e) => failures.push(format!("seed {seed}: {e}\n{}", g.text)),
-        }
+        let run = check_scans(&program, &compiled, g.cycle_us, &schedule, &mut |_, _| Ok(()));
+        tally.add(seed, &g.text, run);
     }
-    eprintln!(
-        "random ST programs: {programs} compiled ({too_large} with an intermediate value too large to inline, {repeated} with a timer called at several places), {scans} scans, {checked} hypotheses checked at every scan, {fired} timer hypotheses fired; {} disagreements",
-        failures.len()
-    );
-    assert!(
-        failures.is_empty(),
-        "{}",
-        failures.iter().take(3).cloned().collect::<Vec<_>>().join("\n\n")
-    );
+    let Checked { scans, hypotheses, fired } = tally.totals;
+    tally.finish(&format!(
+        "random ST programs: {programs} compiled ({too_large} with an intermediate value too large to inline, {repeated} with a timer called at several places), {scans} scans, {hypotheses} hypotheses checked at every scan, {fired} timer hypotheses fired"
+    ));
 }
 
 /// Random programs over `REAL`s (`common/real_gen.rs`; `II_REAL_PROGRAMS`, 8 by default,
@@ -165,14 +153,14 @@ fn random_real_programs_agree_with_the_scan_simulator() {
         std::env::var(name).ok().and_then(|v| v.parse().ok()).unwrap_or(default)
     };
     let (n, length) = (var("II_REAL_PROGRAMS", 8), var("II_REAL_SCANS", 10));
-    let (mut scans, mut checked, mut exact, mut partial) = (0u64, 0u64, 0u64, 0u64);
-    let mut failures: Vec<String> = Vec::new();
+    let (mut exact, mut partial) = (0u64, 0u64);
+    let mut tally = Tally::default();
     for seed in 0..n {
         let g = real_gen::program(seed);
         let (program, compiled) = match compile(&g.text) {
             Ok(x) => x,
             Err(e) => {
-                failures.push(format!("seed {seed}: refused: {e}\n{}", g.text));
+                tally.fail(seed, &g.text, &format!("refused: {e}"));
                 continue;
             }
         };
@@ -182,24 +170,14 @@ fn random_real_programs_agree_with_the_scan_simulator() {
         }
         exact += program.integers.values().filter(|v| v.ty.real && !v.input).count() as u64;
         let schedule = real_gen::schedule(&g, seed, length as usize);
-        match check_scans(&program, &compiled, g.cycle_us, &schedule, &mut |_, _| Ok(())) {
-            Ok(c) => {
-                scans += c.scans;
-                checked += c.hypotheses;
-            }
-            Err(e) => failures.push(format!("seed {seed}: {e}\n{}", g.text)),
-        }
+        let run = check_scans(&program, &compiled, g.cycle_us, &schedule, &mut |_, _| Ok(()));
+        tally.add(seed, &g.text, run);
     }
-    eprintln!(
-        "random REAL programs: {n}, {partial} with an unconstrained value, {exact} REAL variables computed in the others, {scans} scans, {checked} hypotheses checked at every scan; {} disagreements",
-        failures.len()
-    );
+    let Checked { scans, hypotheses, .. } = tally.totals;
+    tally.finish(&format!(
+        "random REAL programs: {n}, {partial} with an unconstrained value, {exact} REAL variables computed in the others, {scans} scans, {hypotheses} hypotheses checked at every scan"
+    ));
     assert!(exact >= n / 2, "too few REAL variables computed: {exact}");
-    assert!(
-        failures.is_empty(),
-        "{}",
-        failures.iter().take(3).cloned().collect::<Vec<_>>().join("\n\n")
-    );
 }
 
 /// What `show` prints for the program at `path`, which loads.

@@ -608,6 +608,45 @@ pub fn slot(known: &mut Known, src: Src) -> usize {
     known.list.len() - 1
 }
 
+/// What random programs checked with [`check_scans`] add up to: the counts of the runs
+/// and the failures, each with its seed and the program's text.
+#[derive(Default, Debug)]
+pub struct Tally {
+    /// The runs' counts, summed.
+    pub totals: Checked,
+    /// `seed S: error` and the program, per failure.
+    pub failures: Vec<String>,
+}
+
+impl Tally {
+    /// Adds one program's run, or its failure.
+    pub fn add(&mut self, seed: u64, text: &str, run: Result<Checked, String>) {
+        match run {
+            Ok(c) => {
+                self.totals.scans += c.scans;
+                self.totals.hypotheses += c.hypotheses;
+                self.totals.fired += c.fired;
+            }
+            Err(e) => self.fail(seed, text, &e),
+        }
+    }
+
+    /// Records a failure of the program drawn from `seed`.
+    pub fn fail(&mut self, seed: u64, text: &str, error: &str) {
+        self.failures.push(format!("seed {seed}: {error}\n{text}"));
+    }
+
+    /// Prints `summary` with the number of disagreements; fails with the first three.
+    pub fn finish(&self, summary: &str) {
+        eprintln!("{summary}; {} disagreements", self.failures.len());
+        assert!(
+            self.failures.is_empty(),
+            "{}",
+            self.failures.iter().take(3).cloned().collect::<Vec<_>>().join("\n\n")
+        );
+    }
+}
+
 /// What [`check_scans`] counted.
 #[derive(Default, Clone, Copy, Debug)]
 pub struct Checked {
