@@ -16,7 +16,7 @@ if [ -z "$browser" ]; then
   echo "browser_check: no chromium on PATH (apt-get install chromium)" >&2
   exit 2
 fi
-read -r -a ii_prove <<<"${II_PROVE:-cargo run --release --quiet --}"
+if [ -n "${II_PROVE:-}" ]; then ii_prove=("$II_PROVE"); else ii_prove=(cargo run --release --quiet --); fi
 report="$out/water_faulty.html"
 status=0
 "${ii_prove[@]}" --format html examples/water_faulty.ld examples/water.ii >"$report" || status=$?

@@ -8,19 +8,6 @@ use crate::common::st_gen;
 use ii_prove::diag::Sources;
 use scan_eval::{Checked, Tally, check_scans};
 
-fn compile(
-    text: &str,
-) -> Result<(ii_prove::program::Program, ii_prove::ladder::CompiledProgram), String> {
-    let mut sources = Sources::new();
-    let file = sources.add("chart.st", text.to_string());
-    let unit = ii_prove::iec::read(&sources, file).map_err(|e| format!("{e:?}"))?;
-    let lowered =
-        ii_prove::iec::lower(&sources, &unit, None, None).map_err(|e| format!("{e:?}"))?;
-    let compiled = ii_prove::program::compile(&lowered.program, &Default::default())
-        .map_err(|e| format!("{e:?}"))?;
-    Ok((lowered.program, compiled))
-}
-
 /// The PLCopen project `text`, whose program is a chart, lowered and compiled.
 fn compile_xml(
     text: &str,
@@ -48,7 +35,9 @@ fn random_charts_agree_with_the_scan_simulator() {
     for seed in 0..2 * n {
         let xml = seed % 2 == 1;
         let g = if xml { sfc_gen::project(seed / 2) } else { sfc_gen::program(seed / 2) };
-        let (program, compiled) = match if xml { compile_xml(&g.text) } else { compile(&g.text) } {
+        let compiled =
+            if xml { compile_xml(&g.text) } else { common::compile_text("chart.st", &g.text) };
+        let (program, compiled) = match compiled {
             Ok(x) => x,
             Err(e) => {
                 tally.fail(seed, &g.text, &format!("refused: {e}"));

@@ -63,7 +63,7 @@ fn proved_with_folding_traces(ld: &Path) -> (usize, usize) {
         .unwrap_or_else(|e| panic!("{ld}: {}", e.rendered));
     assert!(!folded.properties.is_empty(), "{ii}: no property");
     assert_eq!(folded.timers, Some("plc"));
-    let bounds = trace_bounds(&std::fs::read_to_string(&ii).expect("readable"));
+    let bounds = common::trace_bounds(&std::fs::read_to_string(&ii).expect("readable"));
     for p in &folded.properties {
         assert_eq!(p.status, Status::Proved, "{ld}: {} ({:?})", p.name, p.reason);
         if let (Some(&bound), Some(trace)) = (bounds.get(&p.name), &p.trace) {
@@ -236,25 +236,6 @@ fn replace_word(text: &str, name: &str, by: &str) -> String {
 /// The lines a trace prints (a term broken over several lines counts each).
 fn printed_lines(lines: &[String]) -> usize {
     lines.iter().map(|l| l.lines().count().max(1)).sum()
-}
-
-/// The bounds `// trace: at most N lines` written right above `property NAME` (as in
-/// `tests/suite/verdicts.rs`).
-fn trace_bounds(text: &str) -> std::collections::BTreeMap<String, usize> {
-    let mut bounds = std::collections::BTreeMap::new();
-    let mut pending = None;
-    for line in text.lines().map(str::trim) {
-        if let Some(n) = line.strip_prefix("// trace: at most ") {
-            let n = n.trim_end_matches(" lines").trim_end_matches(" line");
-            pending = Some(n.parse::<usize>().expect("`// trace: at most N lines`"));
-        } else if let Some(rest) = line.strip_prefix("property ") {
-            let name = rest.split(':').next().unwrap_or("").trim().to_string();
-            if let Some(n) = pending.take() {
-                bounds.insert(name, n);
-            }
-        }
-    }
-    bounds
 }
 
 /// Every `refused/NAME.ld` fails to load, and the rendered error contains every

@@ -6,7 +6,6 @@ use crate::common::scan_eval;
 use crate::common::st_gen;
 
 use common::{ii_prove, laws, text, verdicts};
-use ii_prove::diag::Sources;
 use scan_eval::{Checked, Tally, check_scans};
 
 #[test]
@@ -87,20 +86,6 @@ fn malformed_and_unsupported_st_is_refused_with_located_errors() {
     assert!(n >= 15, "{n} reject files");
 }
 
-/// Loads an ST text and compiles it.
-fn compile(
-    text: &str,
-) -> Result<(ii_prove::program::Program, ii_prove::ladder::CompiledProgram), String> {
-    let mut sources = Sources::new();
-    let file = sources.add("random.st", text.to_string());
-    let unit = ii_prove::iec::read(&sources, file).map_err(|e| format!("{e:?}"))?;
-    let lowered =
-        ii_prove::iec::lower(&sources, &unit, None, None).map_err(|e| format!("{e:?}"))?;
-    let compiled = ii_prove::program::compile(&lowered.program, &Default::default())
-        .map_err(|e| format!("{e:?}"))?;
-    Ok((lowered.program, compiled))
-}
-
 fn programs_to_run() -> u64 {
     std::env::var("II_ST_PROGRAMS").ok().and_then(|v| v.parse().ok()).unwrap_or(120)
 }
@@ -118,7 +103,7 @@ fn random_st_programs_agree_with_the_scan_simulator() {
         if std::env::var_os("II_ST_SHOW").is_some() {
             eprintln!("seed {seed}:\n{}", g.text);
         }
-        let (program, compiled) = match compile(&g.text) {
+        let (program, compiled) = match common::compile_text("random.st", &g.text) {
             Ok(x) => x,
             Err(e) => {
                 tally.fail(seed, &g.text, &format!("refused: {e}"));
@@ -157,7 +142,7 @@ fn random_real_programs_agree_with_the_scan_simulator() {
     let mut tally = Tally::default();
     for seed in 0..n {
         let g = real_gen::program(seed);
-        let (program, compiled) = match compile(&g.text) {
+        let (program, compiled) = match common::compile_text("random.st", &g.text) {
             Ok(x) => x,
             Err(e) => {
                 tally.fail(seed, &g.text, &format!("refused: {e}"));

@@ -5,7 +5,6 @@
 
 use crate::common;
 
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
@@ -18,26 +17,6 @@ fn files(verdict: &str) -> Vec<PathBuf> {
     out
 }
 
-/// The bounds `// trace: at most N lines` written right above `property NAME`.
-fn trace_bounds(text: &str) -> BTreeMap<String, usize> {
-    let mut bounds = BTreeMap::new();
-    let mut pending = None;
-    for line in text.lines().map(str::trim) {
-        if let Some(n) = line.strip_prefix("// trace: at most ") {
-            let n = n.trim_end_matches(" lines").trim_end_matches(" line");
-            pending = Some(n.parse::<usize>().expect("`// trace: at most N lines`"));
-        } else if let Some(rest) = line.strip_prefix("property ") {
-            let name = rest.split(':').next().unwrap_or("").trim().to_string();
-            if let Some(n) = pending.take() {
-                bounds.insert(name, n);
-            }
-        } else if !line.is_empty() {
-            assert!(pending.is_none(), "a trace bound must stand right above its property");
-        }
-    }
-    bounds
-}
-
 fn check_folder(verdict: &str, expected: Status, timeout: Duration) {
     let opts = Options { timeout, ..Options::default() };
     let mut checked = 0;
@@ -46,7 +25,7 @@ fn check_folder(verdict: &str, expected: Status, timeout: Duration) {
         let run = report::run_free(std::slice::from_ref(&name), &opts)
             .unwrap_or_else(|e| panic!("{name} does not load:\n{}", e.rendered));
         assert!(!run.properties.is_empty(), "{name} has no property");
-        let bounds = trace_bounds(&std::fs::read_to_string(&path).expect("readable"));
+        let bounds = common::trace_bounds(&std::fs::read_to_string(&path).expect("readable"));
         for p in &run.properties {
             assert_eq!(p.status, expected, "{name}: {} is {:?} ({:?})", p.name, p.status, p.reason);
             match expected {

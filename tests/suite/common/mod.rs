@@ -110,3 +110,40 @@ pub fn oracle_work_dir(temp: &Path) -> PathBuf {
     std::fs::create_dir_all(&work).expect("work directory");
     work
 }
+
+/// The bounds `// trace: at most N lines` written right above `property NAME` in a
+/// property file; a bound anywhere else fails the test.
+pub fn trace_bounds(text: &str) -> std::collections::BTreeMap<String, usize> {
+    let mut bounds = std::collections::BTreeMap::new();
+    let mut pending = None;
+    for line in text.lines().map(str::trim) {
+        if let Some(n) = line.strip_prefix("// trace: at most ") {
+            let n = n.trim_end_matches(" lines").trim_end_matches(" line");
+            pending = Some(n.parse::<usize>().expect("`// trace: at most N lines`"));
+        } else if let Some(rest) = line.strip_prefix("property ") {
+            let name = rest.split(':').next().unwrap_or("").trim().to_string();
+            if let Some(n) = pending.take() {
+                bounds.insert(name, n);
+            }
+        } else if !line.is_empty() {
+            assert!(pending.is_none(), "a trace bound must stand right above its property");
+        }
+    }
+    bounds
+}
+
+/// The Structured Text or Instruction List `text` (shown as `file`) read, lowered and
+/// compiled: the scan model and its equations, or the first error.
+pub fn compile_text(
+    file: &str,
+    text: &str,
+) -> Result<(ii_prove::program::Program, ii_prove::ladder::CompiledProgram), String> {
+    let mut sources = ii_prove::diag::Sources::new();
+    let file = sources.add(file, text.to_string());
+    let unit = ii_prove::iec::read(&sources, file).map_err(|e| format!("{e:?}"))?;
+    let lowered =
+        ii_prove::iec::lower(&sources, &unit, None, None).map_err(|e| format!("{e:?}"))?;
+    let compiled = ii_prove::program::compile(&lowered.program, &Default::default())
+        .map_err(|e| format!("{e:?}"))?;
+    Ok((lowered.program, compiled))
+}
