@@ -155,6 +155,15 @@ enum Order {
     Document,
 }
 
+impl Order {
+    fn choice(self) -> ii_prove::ladder::plcopen::StatementOrder {
+        match self {
+            Order::Layout => ii_prove::ladder::plcopen::StatementOrder::Layout,
+            Order::Document => ii_prove::ladder::plcopen::StatementOrder::Document,
+        }
+    }
+}
+
 /// A scan cycle in µs: an IEC literal (`T#20ms`) or a plain duration (`20ms`).
 fn parse_cycle(text: &str) -> Result<u64, String> {
     let us = ii_prove::ladder::plcopen::parse_duration(text).or_else(|| {
@@ -172,10 +181,7 @@ impl Compilation {
             pou: self.pou.clone(),
             cycle_us: self.cycle,
             cold_start: self.cold_start,
-            order: self.order.map(|o| match o {
-                Order::Layout => ii_prove::ladder::plcopen::StatementOrder::Layout,
-                Order::Document => ii_prove::ladder::plcopen::StatementOrder::Document,
-            }),
+            order: self.order.map(Order::choice),
         }
     }
 
@@ -304,6 +310,11 @@ enum Command {
         /// B's scan cycle, for a PLCopen, ST or IL program (default: as --cycle).
         #[arg(long, value_parser = parse_cycle, value_name = "DURATION")]
         cycle_b: Option<u64>,
+        /// B's statement order, for a PLCopen program whose LD/FBD positions and document
+        /// order differ (default: as --order); `equiv P.xml P.xml --order layout
+        /// --order-b document` asks whether the two editors' orders do the same.
+        #[arg(long, value_enum, value_name = "ORDER")]
+        order_b: Option<Order>,
         /// Start both programs from any state instead of power-up: the bits and integers
         /// both write under one name (or a --map pair) start equal, the rest (one-shot
         /// memories too) arbitrary; a timer is refused (its count is not modelled).
@@ -466,9 +477,20 @@ fn main() -> ExitCode {
                 Err(e) => Err(report::InputError { rendered: format!("error: {e}\n") }),
             }
         }
-        Some(Command::Equiv { a, b, map, outputs, timers_b, cycle_b, any_state, common }) => {
+        Some(Command::Equiv {
+            a,
+            b,
+            map,
+            outputs,
+            timers_b,
+            cycle_b,
+            order_b,
+            any_state,
+            common,
+        }) => {
             let b_plcopen = ii_prove::ladder::plcopen::Selection {
                 cycle_us: cycle_b.or(common.compilation.cycle),
+                order: order_b.map(Order::choice).or(common.compilation.selection().order),
                 ..common.compilation.selection()
             };
             let equiv = report::equiv::EquivOptions {

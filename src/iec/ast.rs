@@ -78,6 +78,9 @@ pub struct Sfc {
     pub transitions: Vec<Transition>,
     /// `ACTION … END_ACTION`.
     pub actions: Vec<Action>,
+    /// Variables the chart's generator declares: the results of the functions in its LD
+    /// and FBD networks (`_TMP_NOT12_OUT`).
+    pub temps: Vec<VarDecl>,
 }
 
 /// A step and its action associations.

@@ -108,12 +108,16 @@ pub fn load_program_with(
         || lower_path.ends_with(".il");
     let is_plcopen = !is_st && plcopen::is_plcopen(sources.text(file));
     let mut properties = Vec::new();
-    // A PLCopen program whose statement order is disputed, with the other order: refused
-    // unless both orders compile to the same equations.
-    let mut dispute = None;
+    // A PLCopen program whose statement order is disputed (in its body or in a chart's
+    // action): refused unless both orders compile to the same equations.
+    let mut dispute: Option<Diagnostic> = None;
     let project = match is_plcopen {
         true => Some(plcopen::read_plcopen(sources, file).map_err(plc_diagnostics)?),
         false => None,
+    };
+    let chart_dispute = match (&project, selection.order) {
+        (Some(p), None) => plcopen::chart_order_dispute(sources, p).map(Diagnostic::from),
+        _ => None,
     };
     // A PLCopen program with a Structured Text or Instruction List body is read by the
     // IEC text front end.
@@ -123,7 +127,10 @@ pub fn load_program_with(
             errors.into_iter().map(Diagnostic::from).collect::<Vec<_>>()
         };
         let lowered = match st_body {
-            Some(lowered) => lowered?,
+            Some(lowered) => {
+                dispute = chart_dispute;
+                lowered?
+            }
             None => {
                 let unit = crate::iec::read(sources, file).map_err(st_diagnostics)?;
                 crate::iec::lower(sources, &unit, selection.pou.as_deref(), selection.cycle_us)
@@ -156,8 +163,7 @@ pub fn load_program_with(
         let plc = plcopen::select(&project, selection).map_err(plc_diagnostics)?;
         let lowered = plcopen::lower(&plc).map_err(plc_diagnostics)?;
         if selection.order.is_none() {
-            dispute =
-                plc.order_dispute().map(|d| (d, plc.with_order(plcopen::StatementOrder::Document)));
+            dispute = plc.order_dispute().map(Diagnostic::from).or(chart_dispute);
         }
         let notes = with_places(sources, &lowered.warnings);
         (
@@ -173,10 +179,12 @@ pub fn load_program_with(
     let compiled = crate::program::compile(&scan, options).map_err(|errors| {
         diagnostics(errors.into_iter().map(crate::ladder::LadderError::from).collect())
     })?;
-    if let Some((dispute, other)) = dispute
-        && !same_scan(&compiled, &other, options)
-    {
-        return Err(plc_diagnostics(vec![dispute]));
+    if let Some(dispute) = dispute {
+        let other = in_document_order(sources, file, selection);
+        let same = other.and_then(|scan| crate::program::compile(&scan, options).ok());
+        if !same.is_some_and(|other| same_equations(&compiled, &other)) {
+            return Err(vec![dispute]);
+        }
     }
     let notes: Vec<String> = located
         .iter()
@@ -191,12 +199,30 @@ pub fn load_program_with(
     Ok(LoadedProgram { reference, scan, properties, notes, compiled, warnings, located })
 }
 
-/// Whether `other` lowers and compiles to the same equations as `program` (up to their
-/// names and order): the two statement orders then do the same on every scan.
-fn same_scan(
+/// The PLCopen program of `file` with every statement in document order (its graphical
+/// body's and its charts' LD and FBD actions'), in the scan model.
+fn in_document_order(
+    sources: &mut Sources,
+    file: usize,
+    selection: &crate::ladder::plcopen::Selection,
+) -> Option<crate::program::Program> {
+    use crate::ladder::plcopen;
+    let document =
+        plcopen::Selection { order: Some(plcopen::StatementOrder::Document), ..selection.clone() };
+    let mut project = plcopen::read_plcopen(sources, file).ok()?;
+    if let Some(lowered) = plcopen::st_program(sources, &project, &document) {
+        return lowered.ok().map(|l| l.program);
+    }
+    plcopen::prepare_text_blocks(sources, &mut project, &document);
+    let plc = plcopen::select(&project, &document).ok()?;
+    plcopen::lower(&plc).ok().map(|l| l.program)
+}
+
+/// Whether `program` and `other` have the same equations (up to their names and order):
+/// the two statement orders then do the same on every scan.
+fn same_equations(
     program: &crate::program::CompiledProgram,
-    other: &crate::ladder::plcopen::PlcProgram,
-    options: &crate::ladder::CompileOptions,
+    other: &crate::program::CompiledProgram,
 ) -> bool {
     use crate::ladder::SignalKind;
     let equations = |compiled: &crate::program::CompiledProgram| {
@@ -244,9 +270,7 @@ fn same_scan(
         all.sort();
         all
     };
-    let Ok(lowered) = crate::ladder::plcopen::lower(other) else { return false };
-    let Ok(compiled) = crate::program::compile(&lowered.program, options) else { return false };
-    equations(program) == equations(&compiled)
+    equations(program) == equations(other)
 }
 
 /// A front end's warnings as the report shows them, each with its place.

@@ -90,7 +90,8 @@ fn ours(g: &Job, inputs: &[BTreeMap<String, bool>]) -> Result<Expected, String> 
         use ii_prove::ladder::plcopen;
         let file = sources.add("random.xml", g.text.clone());
         let project = plcopen::read_plcopen(&sources, file).map_err(|e| format!("{e:?}"))?;
-        let selection = plcopen::Selection::default();
+        // The statement order of the generator the oracle runs.
+        let selection = crate::plcopen_oracle::selection();
         plcopen::st_program(&mut sources, &project, &selection)
             .ok_or("no text or chart body")?
             .map_err(|e| format!("{e:?}"))?
@@ -262,6 +263,7 @@ fn against_matiec(language: &str, programs: Vec<Job>) {
         // A PLCopen project goes through Beremiz's generator first.
         .env("ORACLE_BEREMIZ", dir.join("beremiz"))
         .env("ORACLE_PYTHON", dir.join("venv/bin/python"))
+        .env("ORACLE_ORDER", if crate::plcopen_oracle::layout() { "layout" } else { "document" })
         .status()
         .expect("run.py");
     assert!(status.success(), "run.py failed");

@@ -201,11 +201,11 @@ fn request(
 /// `II_ORACLE_ORDER=layout` checks the statement order by position against Beremiz's
 /// generator with its Python 2 position comparator restored; by default, document
 /// order against the generator as it is (since 2022 its comparator compares nothing).
-fn layout() -> bool {
+pub(crate) fn layout() -> bool {
     std::env::var("II_ORACLE_ORDER").is_ok_and(|o| o == "layout")
 }
 
-fn selection() -> Selection {
+pub(crate) fn selection() -> Selection {
     let order = if layout() { StatementOrder::Layout } else { StatementOrder::Document };
     Selection { order: Some(order), ..Selection::default() }
 }

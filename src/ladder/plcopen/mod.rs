@@ -26,6 +26,7 @@ pub use lower::{EdgeKey, Lowered, lower};
 pub use peripherals::StringSource;
 pub use read::*;
 pub use select::*;
+pub use sfc::order_dispute as chart_order_dispute;
 pub use simulate::PlcSimulator;
 pub use text::{TextBlock, TextCall, prepare_text_blocks, st_program};
 

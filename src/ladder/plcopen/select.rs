@@ -13,6 +13,9 @@ mod order;
 mod program;
 mod refusals;
 
+pub use order::ORDER_CHOICE;
+pub(in crate::ladder::plcopen) use order::geometric;
+
 pub use check::hmi_base;
 pub use program::{
     Operand, OrderRule, PlcProgram, Source, Std, bool_literal, bool_of_int_literal,

@@ -17,15 +17,21 @@ use std::ops::Range;
 
 mod network;
 
-use super::{Pou, Project};
+use super::{Pou, Project, StatementOrder};
 use crate::diag::{Sources, Span};
 use crate::iec::StError;
 use crate::iec::ast::{self, Association, Expr, ExprKind, Ident};
 
 type Node<'a, 'i> = roxmltree::Node<'a, 'i>;
 
-/// The chart of `pou`, whose body is SFC, as the IEC front end's chart.
-pub fn read(sources: &mut Sources, project: &Project, pou: &Pou) -> Result<ast::Body, StError> {
+/// The chart of `pou`, whose body is SFC, as the IEC front end's chart; the statements
+/// of its LD and FBD actions in the order `order` chooses (by position when none).
+pub fn read<'g>(
+    sources: &'g mut Sources,
+    project: &'g Project,
+    pou: &'g Pou,
+    order: Option<StatementOrder>,
+) -> Result<ast::Body, StError> {
     let text = sources.text(project.file).to_string();
     let body = pou.body.as_ref().map_or(pou.span, |b| b.span);
     let options = roxmltree::ParsingOptions { allow_dtd: true, ..Default::default() };
@@ -54,6 +60,10 @@ pub fn read(sources: &mut Sources, project: &Project, pou: &Pou) -> Result<ast::
         connectors: BTreeMap::new(),
         called: BTreeSet::new(),
         computed: Vec::new(),
+        order,
+        vars: &pou.vars,
+        functions: BTreeMap::new(),
+        temps: Vec::new(),
     };
     for c in sfc.children().filter(|c| c.is_element()) {
         match c.tag_name().name() {
@@ -87,7 +97,33 @@ pub fn read(sources: &mut Sources, project: &Project, pou: &Pou) -> Result<ast::
     for s in g.initial.clone() {
         g.compute_step(&s)?;
     }
+    g.out.temps = std::mem::take(&mut g.temps);
     Ok(ast::Body::Sfc(g.out))
+}
+
+/// The first LD or FBD action of a chart of `project` whose statements run in another
+/// order by position than in document order: the error to report if the difference
+/// changes what the program does.
+pub fn order_dispute(sources: &Sources, project: &Project) -> Option<StError> {
+    let options = roxmltree::ParsingOptions { allow_dtd: true, ..Default::default() };
+    let doc = roxmltree::Document::parse_with_options(sources.text(project.file), options).ok()?;
+    let charts = doc.descendants().filter(|n| n.is_element() && n.tag_name().name() == "SFC");
+    let pous = charts.filter_map(|c| c.ancestors().find(|n| n.tag_name().name() == "pou"));
+    let actions = pous.filter_map(|p| child(p, "actions")).flat_map(|a| a.children());
+    let bodies = actions.filter_map(|a| child(a, "body"));
+    let networks = bodies.filter_map(|b| child(b, "LD").or_else(|| child(b, "FBD")));
+    let first = networks.into_iter().find_map(network::order_dispute)?;
+    Some(StError::new(
+        Span::new(project.file, first.range()),
+        format!(
+            "a statement order that depends on the editor (this `{}` of a chart's action runs \
+             at another place by position than in document order, and the program computes \
+             differently): {}",
+            first.tag_name().name(),
+            super::ORDER_CHOICE
+        ),
+        "its place differs",
+    ))
 }
 
 struct StepInfo {
@@ -125,6 +161,14 @@ struct Gen<'g, 'a, 'i> {
     called: BTreeSet<usize>,
     /// The calls of the networks drawn for conditions (the generator's `SFCComputedBlocks`).
     computed: Vec<ast::Stmt>,
+    /// The statement order `--order` chooses for LD and FBD actions.
+    order: Option<StatementOrder>,
+    /// The POU's variables.
+    vars: &'g [super::Var],
+    /// The functions of its networks computed so far, with their result variables, and
+    /// those variables' declarations.
+    functions: BTreeMap<usize, Expr>,
+    temps: Vec<ast::VarDecl>,
 }
 
 fn child<'a, 'i>(n: Node<'a, 'i>, name: &str) -> Option<Node<'a, 'i>> {
@@ -325,6 +369,10 @@ impl<'a, 'i> Gen<'_, 'a, 'i> {
             called: &mut self.called,
             out: Vec::new(),
             visiting: BTreeSet::new(),
+            order: self.order,
+            vars: self.vars,
+            functions: &mut self.functions,
+            temps: &mut self.temps,
         }
     }
 

@@ -2,7 +2,9 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use super::{Lang, PlcError, Pou, PouKind, Project, Selection, Ty, VarClass, parse_duration};
+use super::{
+    Lang, PlcError, Pou, PouKind, Project, Selection, StatementOrder, Ty, VarClass, parse_duration,
+};
 use crate::diag::{Diagnostic, Report, Sources};
 use crate::iec::StError;
 use crate::iec::ast::{self, Expr, ExprKind, Ident};
@@ -36,7 +38,7 @@ pub fn st_program(
         return Some(Err(e.into_iter().map(Diagnostic::from).collect()));
     }
     let fail = |errors: Vec<StError>| errors.into_iter().map(Diagnostic::from).collect::<Vec<_>>();
-    let unit = match unit_of(sources, project, pou, false) {
+    let unit = match unit_of(sources, project, pou, false, sel.order) {
         Ok(u) => u,
         Err(e) => return Some(Err(fail(vec![e]))),
     };
@@ -56,10 +58,11 @@ fn parse_body(
     sources: &mut Sources,
     project: &Project,
     pou: &Pou,
+    order: Option<StatementOrder>,
 ) -> Option<Result<ast::Body, StError>> {
     let body = pou.body.as_ref().filter(|b| matches!(b.lang, Lang::St | Lang::Il | Lang::Sfc))?;
     if body.lang == Lang::Sfc {
-        return Some(super::sfc::read(sources, project, pou));
+        return Some(super::sfc::read(sources, project, pou, order));
     }
     let il = body.lang == Lang::Il;
     let what = format!("{} body of {}", body.lang.as_str(), pou.name);
@@ -99,12 +102,20 @@ fn unit_of(
     project: &Project,
     pou: &Pou,
     callees: bool,
+    order: Option<StatementOrder>,
 ) -> Result<ast::Unit, StError> {
-    let body = parse_body(sources, project, pou).unwrap_or(Ok(ast::Body::St(Vec::new())))?;
+    let body = parse_body(sources, project, pou, order).unwrap_or(Ok(ast::Body::St(Vec::new())))?;
     let as_pou = |p: &Pou, kind: ast::PouKind, body: ast::Body| ast::Pou {
         kind,
         name: Ident { name: p.name.clone(), span: p.span },
-        vars: p.vars.iter().map(|v| decl(v, class(v.class))).collect(),
+        vars: {
+            let mut vars: Vec<ast::VarDecl> =
+                p.vars.iter().map(|v| decl(v, class(v.class))).collect();
+            if let ast::Body::Sfc(chart) = &body {
+                vars.extend(chart.temps.iter().cloned());
+            }
+            vars
+        },
         result: None,
         body,
         span: p.span,
@@ -116,7 +127,7 @@ fn unit_of(
             if p.name.eq_ignore_ascii_case(&pou.name) || has_pragma(p) {
                 continue;
             }
-            if let Some(Ok(b)) = parse_body(sources, project, p) {
+            if let Some(Ok(b)) = parse_body(sources, project, p, order) {
                 pous.push(as_pou(p, ast::PouKind::FunctionBlock, b));
             }
         }
@@ -180,7 +191,7 @@ pub fn prepare_text_blocks(sources: &mut Sources, project: &mut Project, sel: &S
         if !fb.body.as_ref().is_some_and(|b| matches!(b.lang, Lang::St | Lang::Il | Lang::Sfc)) {
             continue;
         }
-        let lowered = text_block(sources, project, fb, cycle);
+        let lowered = text_block(sources, project, fb, cycle, sel.order);
         blocks.insert(fb.name.to_ascii_uppercase(), lowered);
     }
     project.text_blocks = blocks;
@@ -198,6 +209,7 @@ fn text_block(
     project: &Project,
     fb: &Pou,
     cycle: u64,
+    order: Option<StatementOrder>,
 ) -> Result<TextBlock, String> {
     if !fb.errors.is_empty() {
         return Err("its declarations are malformed".into());
@@ -215,7 +227,12 @@ fn text_block(
     }
     let first =
         |e: Vec<StError>| e.first().map_or_else(|| "its body is not read".into(), |e| e.message());
-    let unit = unit_of(sources, project, fb, true).map_err(|e| first(vec![e]))?;
+    let mut unit = unit_of(sources, project, fb, true, order).map_err(|e| first(vec![e]))?;
+    // Its body sees no global variable (it declares none external): the project's
+    // globals would only be inputs of the standalone program that nothing reads.
+    for config in &mut unit.configs {
+        config.globals.clear();
+    }
     let lowered = crate::iec::lower(sources, &unit, Some(&fb.name), Some(cycle)).map_err(first)?;
     // Only its input variables are the standalone program's inputs: the call writes
     // them; anything else the outside world wrote would read 0 inlined.

@@ -1,4 +1,4 @@
-//! Random sequential function charts for the differential tests, as text or as a PLCopen `<SFC>` body (the same chart; steps entered through jumps, a selection divergence where a step has several transitions, simultaneous divergences and convergences for transitions to or from two steps): steps (one or two initial), transitions with priorities and conditions over inputs and steps' `X` (inline, or a named transition in the XML), every untimed qualifier on BOOL variables and on actions whose bodies assign outputs, count and call a timer, and `D`/`L` with short times on the steps that are not initial; in the XML, some conditions drawn as networks (contacts in series and parallel, negated, from a left rail or a timer's `Q`, or an FBD variable; in the chart's body or as a named transition's LD body) and some named actions as LD or FBD bodies (coils plain, negated, set and reset, output variables, a `TON` call).
+//! Random sequential function charts for the differential tests, as text or as a PLCopen `<SFC>` body (the same chart; steps entered through jumps, a selection divergence where a step has several transitions, simultaneous divergences and convergences for transitions to or from two steps): steps (one or two initial), transitions with priorities and conditions over inputs and steps' `X` (inline, or a named transition in the XML), every untimed qualifier on BOOL variables and on actions whose bodies assign outputs, count and call a timer, and `D`/`L` with short times on the steps that are not initial; in the XML, some conditions drawn as networks (contacts in series and parallel, negated, from a left rail or a timer's `Q`, or an FBD variable; in the chart's body or as a named transition's LD body) and some named actions as LD or FBD bodies (coils plain, negated, set and reset, output variables, a `TON` call, functions `NOT`/`AND`/`OR`/`XOR` read once or twice and an `XOR` wired to its own output, rows drawn top to bottom or bottom to top).
 #![allow(dead_code)]
 
 use super::rng::Rng;
@@ -225,7 +225,6 @@ pub fn project(seed: u64) -> Generated {
         let condition = if drawn < 20 {
             // Drawn in the chart's body.
             let ends = drawn_condition(&mut r, &mut id, &mut body, c.cycle_us);
-            let ends: Vec<(u64, Option<&str>)> = ends.into_iter().map(|k| (k, None)).collect();
             connections(&ends)
         } else if drawn < 30 {
             // A named transition drawn in LD: a coil named after it.
@@ -237,7 +236,6 @@ pub fn project(seed: u64) -> Generated {
                 lid
             };
             let ends = drawn_condition(&mut r, &mut lid, &mut ld, c.cycle_us);
-            let ends: Vec<(u64, Option<&str>)> = ends.into_iter().map(|k| (k, None)).collect();
             let c = lid();
             named += &format!(
                 "<transition name=\"{n}\"><body><LD>\n{ld}<coil localId=\"{c}\" height=\"15\" width=\"21\"><position x=\"300\" y=\"0\"/>{}<connectionPointOut/><variable>{n}</variable></coil>\n</LD></body></transition>\n",
@@ -418,7 +416,7 @@ fn drawn_condition(
     id: &mut dyn FnMut() -> u64,
     out: &mut String,
     cycle_us: u64,
-) -> Vec<u64> {
+) -> Vec<(u64, Option<&'static str>)> {
     if r.chance(25) {
         let v = id();
         let x = r.pick(&INPUTS);
@@ -426,7 +424,10 @@ fn drawn_condition(
         *out += &format!(
             "<inVariable localId=\"{v}\" height=\"30\" width=\"60\"><position x=\"0\" y=\"0\"/><connectionPointOut/><expression>{x}</expression></inVariable>\n"
         );
-        return vec![v];
+        return vec![(v, None)];
+    }
+    if r.chance(15) {
+        return vec![(function(r, id, out, 0), Some("OUT"))];
     }
     // Some networks read a timer `Tc` (its call then runs in the generator's
     // `COMPUTE_FUNCTION_BLOCKS` action).
@@ -436,12 +437,13 @@ fn drawn_condition(
         (rail(id, out), None)
     };
     let n = net(r, 2);
-    draw(&n, &[from], id, out).into_iter().map(|(k, _)| k).collect()
+    draw(&n, &[from], id, out).into_iter().map(|(k, _)| (k, None)).collect()
 }
 
 /// A random LD or FBD body for an action: rungs of contacts to coils (plain, negated,
 /// set, reset) on the outputs, a call of the timer `Tm` and coils or variables reading
-/// its `Q`, one statement per row (by position as in document order).
+/// its `Q`, functions (`function`), one statement per row (a quarter of the bodies drawn
+/// bottom to top, so that by position they run in the reverse of document order).
 fn network_action(r: &mut Rng, cycle_us: u64) -> String {
     let mut next = 0u64;
     let mut id = || {
@@ -450,17 +452,29 @@ fn network_action(r: &mut Rng, cycle_us: u64) -> String {
     };
     let mut out = String::new();
     let fbd = r.chance(30);
-    let mut row = 0;
     let mut timer: Option<u64> = None;
-    for _ in 0..1 + r.below(3) {
-        row += 100;
+    let mut last_function: Option<u64> = None;
+    let statements = 1 + r.below(3);
+    // Some bodies drawn bottom to top: by position, their statements run in the reverse
+    // of document order.
+    let upwards = r.chance(25);
+    for k in 0..statements {
+        let row = 100 * if upwards { statements - k } else { k + 1 };
         let target = r.pick(&OUTPUTS);
         if fbd {
-            // A variable (a literal) or the timer's output to an output variable.
+            // A variable (a literal), the timer's output or a function's to an output
+            // variable.
             let from = if r.chance(40) {
                 let t =
                     *timer.get_or_insert_with(|| fbd_timer(r, &mut id, &mut out, cycle_us, "Tm"));
                 vec![(t, Some("Q"))]
+            } else if r.chance(40) {
+                let f = match last_function {
+                    Some(f) if r.chance(30) => f,
+                    _ => function(r, &mut id, &mut out, row),
+                };
+                last_function = Some(f);
+                vec![(f, Some("OUT"))]
             } else {
                 let v = id();
                 let x = r.pick(&INPUTS);
@@ -499,6 +513,41 @@ fn network_action(r: &mut Rng, cycle_us: u64) -> String {
     }
     let lang = if fbd { "FBD" } else { "LD" };
     format!("<{lang}>\n{out}</{lang}>")
+}
+
+/// A function of the inputs at height `row`, as Beremiz's editor draws it: `NOT`, a
+/// two-input `AND`, `OR` or `XOR`, or an `XOR` of an input and its own output (a toggle:
+/// the generator reads the output of its last call there).
+fn function(r: &mut Rng, id: &mut dyn FnMut() -> u64, out: &mut String, row: u64) -> u64 {
+    let f = id();
+    let mut variable = |r: &mut Rng, out: &mut String| {
+        let v = id();
+        let x = r.pick(&INPUTS);
+        let x = if r.chance(30) { format!("NOT {x}") } else { x.to_string() };
+        *out += &format!(
+            "<inVariable localId=\"{v}\" height=\"30\" width=\"60\"><position x=\"0\" y=\"{row}\"/><connectionPointOut/><expression>{x}</expression></inVariable>\n"
+        );
+        v
+    };
+    let (ty, inputs) = match r.below(5) {
+        0 => ("NOT", vec![("IN", (variable(r, out), None))]),
+        1 => ("XOR", vec![("IN1", (variable(r, out), None)), ("IN2", (f, Some("OUT")))]),
+        k => {
+            let ty = ["AND", "OR", "XOR"][k as usize - 2];
+            let (a, b) = (variable(r, out), variable(r, out));
+            (ty, vec![("IN1", (a, None)), ("IN2", (b, None))])
+        }
+    };
+    let pins: String = inputs
+        .iter()
+        .map(|(pin, from)| {
+            format!("<variable formalParameter=\"{pin}\">{}</variable>", connections(&[*from]))
+        })
+        .collect();
+    *out += &format!(
+        "<block localId=\"{f}\" height=\"60\" width=\"60\" typeName=\"{ty}\"><position x=\"150\" y=\"{row}\"/><inputVariables>{pins}</inputVariables><inOutVariables/><outputVariables><variable formalParameter=\"OUT\"><connectionPointOut/></variable></outputVariables></block>\n"
+    );
+    f
 }
 
 /// A call of the timer `name` (its `IN` a literal, its `PT` twice the cycle) placed below

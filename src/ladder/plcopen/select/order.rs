@@ -8,6 +8,11 @@ use std::collections::BTreeSet;
 use super::super::*;
 use super::{OrderRule, PlcProgram, StatementOrder};
 
+/// What to do about a statement order that depends on the editor.
+pub const ORDER_CHOICE: &str = "Beremiz before 2022 and the OpenPLC editor run statements by \
+    position, Beremiz since 2022 in document order; choose with `--order layout` or `--order \
+    document` (`ii-prove equiv FILE FILE --order layout --order-b document` compares the two)";
+
 impl PlcProgram {
     /// This program with the statements of every body in the order `choice` gives.
     pub fn with_order(&self, choice: StatementOrder) -> PlcProgram {
@@ -42,10 +47,7 @@ impl PlcProgram {
                     ob.tag(),
                     ob.id
                 ),
-                reason: "Beremiz before 2022 and the OpenPLC editor run statements by position, \
-                         Beremiz since 2022 in document order; choose with `--order layout` or \
-                         `--order document`"
-                    .into(),
+                reason: ORDER_CHOICE.into(),
             });
         }
         self.subs.values().find_map(PlcProgram::order_dispute)
@@ -91,7 +93,7 @@ impl PlcProgram {
         };
         if layout {
             let mut rows_of = |list: &mut Vec<usize>| {
-                let amb = match geometric(list, objects) {
+                let amb = match geometric(list, &|k| objects[k].pos.unwrap_or((0, 0))) {
                     Ok(amb) => amb,
                     Err((a, b)) => {
                         errors.push(PlcError::Unsupported {
@@ -154,11 +156,11 @@ impl PlcProgram {
 /// strictly descending) and inserts the rest by binary search. Returns a pair whose order
 /// depended on the 10-unit rule (different heights, one row), if any; `Err` with such a
 /// pair for a longer list, where the merges of the algorithm are not reproduced here.
-fn geometric(
+/// `pos` gives the position `(x, y)` of each item of `list`.
+pub(in crate::ladder::plcopen) fn geometric(
     list: &mut Vec<usize>,
-    objects: &[Obj],
+    pos: &dyn Fn(usize) -> (i64, i64),
 ) -> Result<Option<(usize, usize)>, (usize, usize)> {
-    let pos = |k: usize| objects[k].pos.unwrap_or((0, 0));
     let lt = |a: usize, b: usize| {
         let ((ax, ay), (bx, by)) = (pos(a), pos(b));
         if (ay - by).abs() < 10 { ax < bx } else { ay < by }

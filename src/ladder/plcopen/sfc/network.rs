@@ -4,22 +4,26 @@
 //! (`NOT(v)` when negated) AND the paths wired to it; a left rail is `TRUE`; a variable
 //! is its expression; a continuation is its connector's value, computed once for the
 //! whole POU as the generator does; a function block's output is `instance.pin`, the
-//! block being called (`instance(IN := …);`) the first time a path reaches it. A body is
-//! its coils and output variables (by position and in document order, which must
-//! agree), then its blocks not yet called: `v := e;`, `v := NOT(e);`,
-//! `IF e THEN v := TRUE; END_IF;`. Refused with a located error: functions (their
-//! results are variables the generator declares), `EN`/`ENO`, in-out pins, edges
-//! (`R_TRIG` instances the generator declares), execution order numbers, a text with
-//! operators pasted next to another operand (the generator pastes it without
-//! parentheses), and objects that are no network element.
+//! block being called (`instance(IN := …);`) the first time a path reaches it; a
+//! function's output is the variable the generator declares for it (`_TMP_AND8_OUT`,
+//! assigned the first time a path reaches it); a path back to a block reads what it gave
+//! at its last call. A body is its coils and output variables, then its blocks not yet
+//! called, each list in the statement order `--order` chooses (by position when none:
+//! the loader compares the two orders where they differ): `v := e;`, `v := NOT(e);`,
+//! `IF e THEN v := TRUE; END_IF;`. Refused with a located error: `EN`/`ENO`, in-out
+//! pins, edges (`R_TRIG` instances the generator declares), execution order numbers, a
+//! function whose result's type is not known here, a text with operators pasted next to
+//! another operand (the generator pastes it without parentheses), a loop through no
+//! block, and objects that are no network element.
 
 use std::collections::{BTreeMap, BTreeSet};
 
 use crate::diag::{Sources, Span};
 use crate::iec::StError;
-use crate::iec::ast::{Arg, BinOp, Expr, ExprKind, Ident, Stmt, StmtKind, UnOp};
+use crate::iec::ast::{Arg, BinOp, Expr, ExprKind, Ident, Stmt, StmtKind, UnOp, VarClass, VarDecl};
 
-use super::super::Project;
+use super::super::select::geometric;
+use super::super::{Project, StatementOrder, Ty, Var};
 
 type Node<'a, 'i> = roxmltree::Node<'a, 'i>;
 
@@ -36,6 +40,14 @@ pub(super) struct Net<'g, 'a, 'i> {
     /// The calls written so far.
     pub out: Vec<Stmt>,
     pub visiting: BTreeSet<usize>,
+    /// The statement order `--order` chooses (by position when none).
+    pub order: Option<StatementOrder>,
+    /// The POU's variables.
+    pub vars: &'g [Var],
+    /// The functions already computed (by where they start in the file), with their
+    /// result variable; those variables' declarations.
+    pub functions: &'g mut BTreeMap<usize, Expr>,
+    pub temps: &'g mut Vec<VarDecl>,
 }
 
 fn child<'a, 'i>(n: Node<'a, 'i>, name: &str) -> Option<Node<'a, 'i>> {
@@ -80,16 +92,75 @@ fn is_true(e: &Expr) -> bool {
     matches!(e.kind, ExprKind::Bool(true))
 }
 
-/// The generator's position comparator (`SortInstances`): rows 10 units high, left to right.
-fn by_position(a: Node, b: Node) -> std::cmp::Ordering {
-    let pos = |n: Node| {
-        child(n, "position").map_or((0, 0), |p| {
-            let v = |k| p.attribute(k).and_then(|x| x.trim().parse::<f64>().ok()).unwrap_or(0.0);
-            (v("x") as i64, v("y") as i64)
-        })
-    };
-    let ((ax, ay), (bx, by)) = (pos(a), pos(b));
-    if (ay - by).abs() < 10 { ax.cmp(&bx) } else { ay.cmp(&by) }
+/// The statements of an LD or FBD body in document order: its coils and output
+/// variables, its blocks, its connectors.
+struct Statements<'a, 'i> {
+    outs: Vec<Node<'a, 'i>>,
+    blocks: Vec<Node<'a, 'i>>,
+    connectors: Vec<Node<'a, 'i>>,
+}
+
+impl<'a, 'i> Statements<'a, 'i> {
+    /// The statements of `body`, or the object with an execution order number.
+    fn of(body: Node<'a, 'i>) -> Result<Self, Node<'a, 'i>> {
+        let mut lists = Statements { outs: Vec::new(), blocks: Vec::new(), connectors: Vec::new() };
+        for n in body.children().filter(|c| c.is_element()) {
+            if n.attribute("executionOrderId").is_some_and(|v| v.trim().parse() != Ok(0)) {
+                return Err(n);
+            }
+            match n.tag_name().name() {
+                "outVariable" | "inOutVariable" | "coil" => lists.outs.push(n),
+                "block" => lists.blocks.push(n),
+                "connector" => lists.connectors.push(n),
+                _ => {}
+            }
+        }
+        Ok(lists)
+    }
+
+    /// The outputs and the blocks each sorted by position as the generator's
+    /// `SortInstances` sorts them (document order when they have no distinct
+    /// positions), or an object where that sort is not reproduced.
+    #[allow(clippy::type_complexity)]
+    fn by_position(&self) -> Result<(Vec<Node<'a, 'i>>, Vec<Node<'a, 'i>>), Node<'a, 'i>> {
+        let all = || self.outs.iter().chain(&self.blocks);
+        let positions: Vec<Option<(i64, i64)>> = all().map(|n| position(*n)).collect();
+        let distinct: BTreeSet<(i64, i64)> = positions.iter().flatten().copied().collect();
+        if positions.iter().any(Option::is_none) || distinct.len() < 2 {
+            return Ok((self.outs.clone(), self.blocks.clone()));
+        }
+        let sort = |list: &Vec<Node<'a, 'i>>| {
+            let pos = |k: usize| position(list[k]).unwrap_or((0, 0));
+            let mut order: Vec<usize> = (0..list.len()).collect();
+            match geometric(&mut order, &pos) {
+                Ok(_) => Ok(order.into_iter().map(|k| list[k]).collect::<Vec<_>>()),
+                Err((_, b)) => Err(list[b]),
+            }
+        };
+        Ok((sort(&self.outs)?, sort(&self.blocks)?))
+    }
+}
+
+/// Whether the block `b` is a function (no instance name).
+fn is_function(b: Node) -> bool {
+    b.attribute("instanceName").is_none_or(|i| i.trim().is_empty())
+}
+
+/// The position `(x, y)` of an object, as the generator reads it.
+fn position(n: Node) -> Option<(i64, i64)> {
+    let p = child(n, "position")?;
+    let v = |k| p.attribute(k)?.trim().parse::<f64>().ok();
+    Some((v("x")? as i64, v("y")? as i64))
+}
+
+/// Where the statements of the LD or FBD `body` run in another order by position than
+/// in document order: the first statement whose place differs.
+pub(super) fn order_dispute<'a, 'i>(body: Node<'a, 'i>) -> Option<Node<'a, 'i>> {
+    let lists = Statements::of(body).ok()?;
+    let Ok((outs, blocks)) = lists.by_position() else { return lists.outs.first().copied() };
+    let by_position = outs.iter().chain(&blocks);
+    let document = lists.outs.iter().chain(&lists.blocks);
+    by_position.zip(document).find(|(a, b)| a != b).map(|(a, _)| *a)
 }
 
 impl<'a, 'i> Net<'_, 'a, 'i> {
@@ -158,8 +229,12 @@ impl<'a, 'i> Net<'_, 'a, 'i> {
             return Err(self.refuse(c, "a wire from an object that is not in this body"));
         };
         let span = self.span(n);
-        if !self.visiting.insert(n.range().start) {
-            return Err(self.refuse(n, "a network wired in a loop"));
+        // A loop through a block reads what the block gave at its last call, as the
+        // generator's code does (it marks a block computed before its inputs); any other
+        // loop has no value.
+        let block = n.tag_name().name() == "block";
+        if !block && !self.visiting.insert(n.range().start) {
+            return Err(self.refuse(n, "a network wired in a loop through no block"));
         }
         let e = match n.tag_name().name() {
             "leftPowerRail" => Ok(Expr { kind: ExprKind::Bool(true), span }),
@@ -174,7 +249,9 @@ impl<'a, 'i> Net<'_, 'a, 'i> {
                 Err(self.refuse(n, &format!("a `{other}` in a network of a chart is not read yet")))
             }
         };
-        self.visiting.remove(&n.range().start);
+        if !block {
+            self.visiting.remove(&n.range().start);
+        }
         e
     }
 
@@ -239,16 +316,7 @@ impl<'a, 'i> Net<'_, 'a, 'i> {
     /// Refuses what the generator would write with declarations of its own or in an order
     /// of its own.
     fn plain_block(&self, b: Node<'a, 'i>) -> Result<String, StError> {
-        let ty = b.attribute("typeName").unwrap_or("");
         let instance = b.attribute("instanceName").unwrap_or("").trim();
-        if instance.is_empty() {
-            return Err(self.refuse(
-                b,
-                &format!(
-                    "the function `{ty}` in a network of a chart (its result a variable the generator declares) is not read yet"
-                ),
-            ));
-        }
         if b.attribute("executionOrderId").is_some_and(|v| v.trim().parse() != Ok(0)) {
             return Err(
                 self.refuse(b, "an execution order number in a chart's network is not read yet")
@@ -258,6 +326,15 @@ impl<'a, 'i> Net<'_, 'a, 'i> {
     }
 
     fn block_output(&mut self, b: Node<'a, 'i>, pin: Option<&str>) -> Result<Expr, StError> {
+        if is_function(b) {
+            if pin.is_some_and(|p| p.trim().eq_ignore_ascii_case("ENO")) {
+                return Err(self.refuse(b, "`ENO` in a chart's network is not read yet"));
+            }
+            if pin.is_none_or(|p| p.trim().is_empty()) {
+                return Err(self.refuse(b, "a wire from a block that names no output pin"));
+            }
+            return self.function(b);
+        }
         let instance = self.plain_block(b)?;
         let Some(pin) = pin.map(str::trim).filter(|p| !p.is_empty()) else {
             return Err(self.refuse(b, "a wire from a block that names no output pin"));
@@ -290,6 +367,15 @@ impl<'a, 'i> Net<'_, 'a, 'i> {
         if !self.called.insert(b.range().start) {
             return Ok(());
         }
+        let args = self.arguments(b)?;
+        let span = self.span(b);
+        let f = Expr { kind: ExprKind::Var(Ident { name: instance, span }), span };
+        self.out.push(Stmt { kind: StmtKind::Call(f, args), span });
+        Ok(())
+    }
+
+    /// The arguments of the call of the block `b`: `PIN := value` for each input wired.
+    fn arguments(&mut self, b: Node<'a, 'i>) -> Result<Vec<Arg>, StError> {
         let outs: Vec<String> = child(b, "outputVariables")
             .map(|o| elements(o, "variable").filter_map(|v| v.attribute("formalParameter")))
             .into_iter()
@@ -313,58 +399,159 @@ impl<'a, 'i> Net<'_, 'a, 'i> {
             let e = if flag(v, "negated") { not(e, span) } else { e };
             args.push(Arg::Input(Ident { name: pin, span }, e));
         }
-        let span = self.span(b);
-        let f = Expr { kind: ExprKind::Var(Ident { name: instance, span }), span };
-        self.out.push(Stmt { kind: StmtKind::Call(f, args), span });
-        Ok(())
+        Ok(args)
     }
 
-    /// The statements of an LD or FBD body (`ComputeProgram`).
+    /// The result of the function `b` (a block without an instance), as the generator
+    /// computes it: the first time a path reaches it (or, unread, in its place among the
+    /// blocks), `_TMP_<TYPE><localId>_OUT := TYPE(IN1 := …, …);`, a variable of the
+    /// result's type it declares; then that variable.
+    fn function(&mut self, b: Node<'a, 'i>) -> Result<Expr, StError> {
+        if let Some(e) = self.functions.get(&b.range().start) {
+            return Ok(e.clone());
+        }
+        let ty = b.attribute("typeName").unwrap_or("").trim().to_ascii_uppercase();
+        if b.attribute("executionOrderId").is_some_and(|v| v.trim().parse() != Ok(0)) {
+            return Err(
+                self.refuse(b, "an execution order number in a chart's network is not read yet")
+            );
+        }
+        let outs: Vec<Node> =
+            child(b, "outputVariables").into_iter().flat_map(|o| elements(o, "variable")).collect();
+        let [out] = outs.as_slice() else {
+            return Err(self.refuse(b, &format!("the function `{ty}` without one output")));
+        };
+        if modified(*out) || flag(*out, "negated") {
+            return Err(self.refuse(
+                *out,
+                "a negated or edge output of a function in a chart's network is not read yet",
+            ));
+        }
+        let pin = out.attribute("formalParameter").unwrap_or("OUT").trim().to_string();
+        let span = self.span(b);
+        let id = b.attribute("localId").unwrap_or("").trim();
+        let name = format!("_TMP_{ty}{id}_{pin}");
+        let ident = |name: &str| Ident { name: name.to_string(), span };
+        let target = Expr { kind: ExprKind::Var(ident(&name)), span };
+        // Marked computed before its inputs: a loop back to it reads its last result.
+        self.functions.insert(b.range().start, target.clone());
+        let args = self.arguments(b)?;
+        let Some(result) = self.result_type(&ty, &args) else {
+            return Err(self.refuse(
+                b,
+                &format!(
+                    "the function `{ty}` in a network of a chart, whose result's type is not known here (the generator takes it from the variables wired to it), is not read yet"
+                ),
+            ));
+        };
+        self.temps.push(VarDecl {
+            name: ident(&name),
+            class: VarClass::Local,
+            ty: ident(&result),
+            init: None,
+            retain: false,
+            constant: false,
+            location: None,
+            made: true,
+            range: None,
+        });
+        let value = Expr { kind: ExprKind::Call(ident(&ty), args), span };
+        self.out.push(Stmt { kind: StmtKind::Assign(target.clone(), value), span });
+        Ok(target)
+    }
+
+    /// The type of the result of the function `ty` called with `args`, where it is
+    /// known: BOOL for a comparison, `T` for a conversion `…_TO_T`, else (the Boolean,
+    /// bit, arithmetic and selection functions) the one type of its operands whose type
+    /// is known.
+    fn result_type(&self, ty: &str, args: &[Arg]) -> Option<String> {
+        if matches!(ty, "GT" | "GE" | "EQ" | "LE" | "LT" | "NE") {
+            return Some("BOOL".into());
+        }
+        if let Some((_, to)) = ty.rsplit_once("_TO_") {
+            return Some(to.to_string());
+        }
+        let same = [
+            "AND", "OR", "XOR", "NOT", "MOVE", "ADD", "SUB", "MUL", "DIV", "MOD", "MIN", "MAX",
+            "ABS", "SEL", "LIMIT",
+        ];
+        if !same.contains(&ty) {
+            return None;
+        }
+        let operands = args.iter().filter_map(|a| match a {
+            Arg::Input(pin, e) if !(ty == "SEL" && pin.name.eq_ignore_ascii_case("G")) => Some(e),
+            _ => None,
+        });
+        let types: BTreeSet<Option<String>> = operands.map(|e| self.type_of(e)).collect();
+        let known: Vec<&String> = types.iter().flatten().collect();
+        match known.as_slice() {
+            [one] => Some(one.to_string()),
+            _ => None,
+        }
+    }
+
+    /// The type of `e`, a value in a network, where it is plain: a Boolean literal, a
+    /// contact's AND/OR/NOT, a variable of the POU, a function's result.
+    fn type_of(&self, e: &Expr) -> Option<String> {
+        match &e.kind {
+            ExprKind::Bool(_) => Some("BOOL".into()),
+            ExprKind::Unary(UnOp::Not, x) => self.type_of(x),
+            ExprKind::Binary(BinOp::And | BinOp::Or, a, b) => {
+                let t = self.type_of(a)?;
+                (self.type_of(b)? == t).then_some(t)
+            }
+            ExprKind::Literal(text) => {
+                let (prefix, _) = text.split_once('#')?;
+                match prefix.trim().to_ascii_uppercase().as_str() {
+                    "T" | "TIME" => Some("TIME".into()),
+                    p if p.chars().all(|c| c.is_ascii_alphabetic()) => Some(p.to_string()),
+                    _ => None,
+                }
+            }
+            ExprKind::Var(id) => {
+                if let Some(t) = self.temps.iter().find(|t| t.name.name == id.name) {
+                    return Some(t.ty.name.clone());
+                }
+                let v = self.vars.iter().find(|v| v.name.eq_ignore_ascii_case(&id.name))?;
+                Some(match &v.ty {
+                    Ty::Bool => "BOOL".into(),
+                    Ty::Derived(n) | Ty::Other(n) => n.to_ascii_uppercase(),
+                })
+            }
+            _ => None,
+        }
+    }
+
+    /// The statements of an LD or FBD body (`ComputeProgram`), in the statement order
+    /// `--order` chooses where position and document order differ (by position when it
+    /// chooses none: [`order_dispute`] then finds the difference, which the loader
+    /// settles).
     pub fn program(&mut self, body: Node<'a, 'i>) -> Result<(), StError> {
-        let mut outs = Vec::new();
-        let mut blocks = Vec::new();
-        let mut connectors = Vec::new();
-        for n in body.children().filter(|c| c.is_element()) {
-            if n.attribute("executionOrderId").is_some_and(|v| v.trim().parse() != Ok(0)) {
-                return Err(self
-                    .refuse(n, "an execution order number in a chart's network is not read yet"));
-            }
-            match n.tag_name().name() {
-                "outVariable" | "inOutVariable" | "coil" => outs.push(n),
-                "block" => blocks.push(n),
-                "connector" => connectors.push(n),
-                _ => {}
-            }
-        }
-        for list in [&outs, &blocks] {
-            let mut sorted = list.clone();
-            // Insertion sort (stable, never panics), then checked to be an order.
-            for k in 1..sorted.len() {
-                let mut j = k;
-                while j > 0 && by_position(sorted[j - 1], sorted[j]).is_gt() {
-                    sorted.swap(j - 1, j);
-                    j -= 1;
-                }
-            }
-            for (k, a) in sorted.iter().enumerate() {
-                for b in &sorted[k + 1..] {
-                    if by_position(*a, *b).is_gt() || sorted != *list {
-                        return Err(self.refuse(
-                            *b,
-                            "a statement order that depends on the editor (by position, it differs from document order) in a chart's network is not read yet",
-                        ));
-                    }
-                }
-            }
-        }
+        let lists = Statements::of(body).map_err(|n| {
+            self.refuse(n, "an execution order number in a chart's network is not read yet")
+        })?;
+        let (outs, blocks) = match self.order {
+            Some(StatementOrder::Document) => (lists.outs, lists.blocks),
+            _ => match lists.by_position() {
+                Ok(by_position) => by_position,
+                Err(n) => return Err(self.refuse(
+                    n,
+                    "a statement order by position among 64 or more objects less than 10 units apart in height (Beremiz's position comparison is no order there, and what its sort makes of it is not reproduced for so many objects; align them, move them 10 units apart, or choose `--order document`)",
+                )),
+            },
+        };
         for n in outs {
             self.statement(n)?;
         }
         for b in blocks {
-            self.plain_block(b)?;
-            self.call(b)?;
+            if is_function(b) {
+                self.function(b)?;
+            } else {
+                self.plain_block(b)?;
+                self.call(b)?;
+            }
         }
-        for c in connectors {
+        for c in lists.connectors {
             let name = c.attribute("name").unwrap_or("").to_string();
             if !self.connectors.contains_key(&name)
                 && let Some(e) = self.input(c)?
