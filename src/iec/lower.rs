@@ -517,12 +517,15 @@ impl<'s> Lowering<'s> {
                 if input {
                     self.inputs.insert(name.clone());
                 }
+                // matiec reads an integer literal 0 or 1 as a BOOL here too.
                 match v.init.as_ref().map(|e| &e.kind) {
-                    Some(ExprKind::Bool(true)) if !input && !self.starts.contains(&name) => {
+                    Some(ExprKind::Bool(true) | ExprKind::Int(1))
+                        if !input && !self.starts.contains(&name) =>
+                    {
                         self.starts.push(name.clone())
                     }
-                    Some(ExprKind::Bool(true)) => {}
-                    Some(ExprKind::Bool(_)) | None => {}
+                    Some(ExprKind::Bool(true) | ExprKind::Int(1)) => {}
+                    Some(ExprKind::Bool(_) | ExprKind::Int(0)) | None => {}
                     Some(_) if input => {}
                     Some(_) => self.bad_bool_init(v),
                 }
@@ -570,7 +573,7 @@ impl<'s> Lowering<'s> {
     fn bad_bool_init(&mut self, v: &ast::VarDecl) {
         self.errors.push(StError::new(
             v.init.as_ref().map_or(v.name.span, |e| e.span),
-            "a BOOL's initial value must be TRUE or FALSE",
+            "a BOOL's initial value must be TRUE, FALSE, 0 or 1",
             "expected `TRUE` or `FALSE`",
         ));
     }

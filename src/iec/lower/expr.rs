@@ -23,14 +23,22 @@ impl Lowering<'_> {
                 },
                 _ => false,
             },
-            ExprKind::Unary(UnOp::Not, x) => self.is_bool(x),
-            ExprKind::Binary(BinOp::And | BinOp::Or | BinOp::Xor, a, _) => self.is_bool(a),
+            // matiec reads an integer literal 0 or 1 as a BOOL where a BOOL fits.
+            ExprKind::Unary(UnOp::Not, x) => self.is_bool(x) || bit_literal(x).is_some(),
+            ExprKind::Binary(BinOp::And | BinOp::Or | BinOp::Xor, a, b) => match bit_literal(a) {
+                Some(_) => self.is_bool(b) || bit_literal(b).is_some(),
+                None => self.is_bool(a),
+            },
             ExprKind::Binary(
                 BinOp::Eq | BinOp::Ne | BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge,
                 ..,
             ) => true,
-            ExprKind::Call(f, args) if f.key() == "SEL" => match args.get(1) {
-                Some(Arg::Positional(x) | Arg::Input(_, x)) => self.is_bool(x),
+            ExprKind::Call(f, args) if f.key() == "SEL" => match (args.get(1), args.get(2)) {
+                (
+                    Some(Arg::Positional(x) | Arg::Input(_, x)),
+                    Some(Arg::Positional(y) | Arg::Input(_, y)),
+                ) if bit_literal(x).is_some() => self.is_bool(y) || bit_literal(y).is_some(),
+                (Some(Arg::Positional(x) | Arg::Input(_, x)), _) => self.is_bool(x),
                 _ => true,
             },
             ExprKind::Call(f, _) => {
@@ -117,7 +125,8 @@ impl Lowering<'_> {
                 }
             }
             ExprKind::Binary(op @ (BinOp::Eq | BinOp::Ne), a, b)
-                if self.is_bool(a) && self.is_bool(b) =>
+                if self.is_bool(a) && (self.is_bool(b) || bit_literal(b).is_some())
+                    || bit_literal(a).is_some() && self.is_bool(b) =>
             {
                 let (a, b) = (self.bool_expr(a), self.bool_expr(b));
                 if *op == BinOp::Ne { xor(a, b) } else { BoolExpr::negate(xor(a, b)) }
@@ -128,8 +137,11 @@ impl Lowering<'_> {
                 b,
             ) => self.int_compare(comparison_op(*op), a, b, e.span),
             ExprKind::Call(f, args) => self.function(f, args, e),
+            ExprKind::Int(_) if bit_literal(e).is_some() => {
+                BoolExpr::Const(bit_literal(e) == Some(true))
+            }
             ExprKind::Int(_) | ExprKind::Time(_) | ExprKind::Literal(_) => {
-                self.not_bool(e, "a literal that is not TRUE or FALSE")
+                self.not_bool(e, "a literal that is not TRUE, FALSE, 0 or 1")
             }
             ExprKind::Binary(..) | ExprKind::Unary(UnOp::Neg, _) => self.not_bool(e, "arithmetic"),
             ExprKind::Index(..) => {
@@ -303,5 +315,15 @@ pub(super) fn comparison_op(op: BinOp) -> CmpOp {
         BinOp::Le => CmpOp::Le,
         BinOp::Gt => CmpOp::Gt,
         _ => CmpOp::Ge,
+    }
+}
+
+/// An integer literal 0 or 1 (in any base), which matiec reads as FALSE or TRUE where a
+/// BOOL is expected.
+fn bit_literal(e: &ast::Expr) -> Option<bool> {
+    match e.kind {
+        ExprKind::Int(0) => Some(false),
+        ExprKind::Int(1) => Some(true),
+        _ => None,
     }
 }

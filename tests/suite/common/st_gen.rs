@@ -37,6 +37,8 @@ fn int_info(t: &str) -> (u32, bool) {
 
 struct Gen<'r> {
     rng: &'r mut Rng,
+    /// Boolean literals written so far (every third is written `1` or `0`).
+    literals: u32,
     /// Readable Boolean terms.
     reads: Vec<String>,
     /// Writable BOOL variables.
@@ -50,11 +52,25 @@ struct Gen<'r> {
 }
 
 impl Gen<'_> {
+    /// `TRUE` or `FALSE`, every third time `1` or `0` (matiec reads an integer literal 0
+    /// or 1 as a BOOL where a BOOL fits); no draw of the generator's.
+    fn bool_literal(&mut self, value: bool) -> String {
+        self.literals += 1;
+        let bit = self.literals.is_multiple_of(3);
+        match (value, bit) {
+            (true, false) => "TRUE",
+            (false, false) => "FALSE",
+            (true, true) => "1",
+            (false, true) => "0",
+        }
+        .into()
+    }
+
     fn expr(&mut self, depth: u32) -> String {
         if depth == 0 || self.rng.chance(30) {
             return match self.rng.below(12) {
-                0 => "TRUE".into(),
-                1 => "FALSE".into(),
+                0 => self.bool_literal(true),
+                1 => self.bool_literal(false),
                 3 | 4 if !self.ints.is_empty() => {
                     let t = self.rng.pick(&self.ints).1.clone();
                     let (a, b) = (self.iexpr(&t, 1), self.iexpr(&t, 1));
@@ -333,6 +349,7 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
     }
     let mut g = Gen {
         rng: &mut rng,
+        literals: 0,
         reads,
         writes: locals.clone(),
         funcs: Vec::new(),
@@ -382,6 +399,7 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
         user_vars += "    Q0 : Sb0;\n";
         let mut f = Gen {
             rng: &mut sub,
+            literals: 0,
             reads: g.reads.clone(),
             writes: Vec::new(),
             funcs: Vec::new(),
@@ -398,6 +416,7 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
     if g.rng.chance(35) {
         let mut f = Gen {
             rng: &mut *g.rng,
+            literals: 0,
             reads: vec!["A".into(), "B".into(), "L".into()],
             writes: vec!["L".into(), "Fn0".into()],
             funcs: Vec::new(),
@@ -418,6 +437,7 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
         }
         let mut f = Gen {
             rng: &mut *g.rng,
+            literals: 0,
             reads,
             writes: vec!["O0".into(), "O1".into(), "M".into()],
             funcs: g.funcs.clone(),
