@@ -176,6 +176,7 @@ impl Compilation {
                 Order::Layout => ii_prove::ladder::plcopen::StatementOrder::Layout,
                 Order::Document => ii_prove::ladder::plcopen::StatementOrder::Document,
             }),
+            elapsed: Default::default(),
         }
     }
 
