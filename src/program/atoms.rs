@@ -80,9 +80,22 @@ impl CompiledProgram {
     /// `inst_pin` the front end computes for that pin, its case as IEC ignores it.
     fn pin_integer(&self, inst: &str, pin: &str) -> Result<String, (String, Option<String>)> {
         let wanted = format!("{inst}_{pin}");
-        let found = self.integers.keys().find(|x| x.eq_ignore_ascii_case(&wanted));
-        if let Some(x) = found {
-            return Ok(x.clone());
+        if self.integers.contains_key(&wanted) {
+            return Ok(wanted);
+        }
+        // Else the one integer of that name in another case (IEC names ignore it).
+        let found: Vec<&String> =
+            self.integers.keys().filter(|x| x.eq_ignore_ascii_case(&wanted)).collect();
+        match found.as_slice() {
+            [one] => return Ok((*one).clone()),
+            [_, _, ..] => {
+                let names: Vec<&str> = found.iter().map(|x| x.as_str()).collect();
+                return Err((
+                    format!("`{inst}.{pin}` could name any of {}", names.join(", ")),
+                    Some("write the integer's name as the program spells it".into()),
+                ));
+            }
+            [] => {}
         }
         // The pins of integers the program computes (`T1.ET`, `B1.Count`; not the hidden
         // count `T1_ET_SCANS`), as a property may name them.
