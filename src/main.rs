@@ -182,6 +182,7 @@ impl Compilation {
             cycle_us: self.cycle,
             cold_start: self.cold_start,
             order: self.order.map(Order::choice),
+            elapsed: Default::default(),
         }
     }
 

@@ -41,6 +41,7 @@
 #![warn(missing_docs)]
 
 pub mod aiger;
+mod complete;
 mod cone;
 mod confirm;
 pub mod shared;

@@ -99,6 +99,20 @@ pub fn lower(
     pou: Option<&str>,
     cycle_us: Option<u64>,
 ) -> Result<Lowered, Vec<StError>> {
+    lower_wanting(sources, unit, pou, cycle_us, &BTreeSet::new())
+}
+
+/// [`lower`], computing also the elapsed time `ET` of the timer instances `wanted`
+/// names (lowered names, upper case) as if a statement read it: a property may name it
+/// (`[T1.ET < T#2s]`) though the program does not. A name that is no timer instance
+/// changes nothing.
+pub fn lower_wanting(
+    sources: &Sources,
+    unit: &ast::Unit,
+    pou: Option<&str>,
+    cycle_us: Option<u64>,
+    wanted: &BTreeSet<String>,
+) -> Result<Lowered, Vec<StError>> {
     let runs = pick(unit, pou)?;
     let first = &runs[0];
     let mut warnings = Vec::new();
@@ -146,7 +160,7 @@ pub fn lower(
     }
     // A chart is lowered as the Structured Text matiec runs for it.
     if let Some(charts) = super::sfc::desugar(unit, cycle_us)? {
-        let mut lowered = lower(sources, &charts, pou, Some(cycle_us))?;
+        let mut lowered = lower_wanting(sources, &charts, pou, Some(cycle_us), wanted)?;
         lowered.warnings.splice(0..0, warnings);
         return Ok(lowered);
     }
@@ -162,7 +176,8 @@ pub fn lower(
     // An integer found opaque while lowering changes what reads it: lowered again
     // until no new one appears (each round adds one at least).
     let (mut opaque, mut omitted, mut multi) = (BTreeMap::new(), BTreeSet::new(), BTreeSet::new());
-    let mut elapsed = BTreeMap::new();
+    let mut elapsed: BTreeMap<String, crate::program::IntType> =
+        wanted.iter().map(|w| (w.to_ascii_uppercase(), crate::program::IntType::TIME)).collect();
     let time_facts = durations::time_facts(sources, unit);
     loop {
         let mut l = Lowering::new(sources, cycle_us, warnings.clone());

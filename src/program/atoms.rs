@@ -18,6 +18,12 @@ use crate::diag::Span;
 use crate::kernel::Rel;
 use crate::syntax::IntOperand;
 
+/// Why a timer's `ET` may be missing: where it is computed.
+const ET_HELP: &str = "a timer's elapsed time is computed where the program reads it, or where \
+     a property file given with the program names it (`ii-prove prog.st props.ii`; in the REPL, \
+     a file whose `program \"prog.st\"` header loads the program): a timer instance called once \
+     a scan with a duration literal as PT";
+
 /// At most this many integer bounds are offered to the invariant search as candidates.
 pub const BOUND_HINTS: usize = 256;
 
@@ -39,6 +45,9 @@ impl CompiledProgram {
     /// The integer variable a property names `name` (exactly, or without its LDmicro kind
     /// prefix).
     fn integer(&self, name: &str) -> Result<String, (String, Option<String>)> {
+        if let Some((inst, pin)) = name.split_once('.') {
+            return self.pin_integer(inst, pin);
+        }
         if self.integers.contains_key(name) {
             return Ok(name.to_string());
         }
@@ -58,12 +67,64 @@ impl CompiledProgram {
         let names: Vec<&str> = self.integers.keys().map(String::as_str).collect();
         let help = match crate::diag::did_you_mean(name, names.iter().copied()) {
             Some(s) => Some(format!("did you mean `{s}`?")),
+            None if name.to_ascii_uppercase().ends_with("_ET") => Some(ET_HELP.into()),
             None if names.is_empty() => {
                 Some("the program computes no integer (counters, MOVE, arithmetic)".into())
             }
             None => Some(format!("the program's integers: {}", names.join(", "))),
         };
         Err((reason, help))
+    }
+
+    /// The integer a property names `inst.pin` (`T1.ET`, `C0.CV`): the hidden integer
+    /// `inst_pin` the front end computes for that pin, its case as IEC ignores it.
+    fn pin_integer(&self, inst: &str, pin: &str) -> Result<String, (String, Option<String>)> {
+        let wanted = format!("{inst}_{pin}");
+        if self.integers.contains_key(&wanted) {
+            return Ok(wanted);
+        }
+        // Else the one integer of that name in another case (IEC names ignore it).
+        let found: Vec<&String> =
+            self.integers.keys().filter(|x| x.eq_ignore_ascii_case(&wanted)).collect();
+        match found.as_slice() {
+            [one] => return Ok((*one).clone()),
+            [_, _, ..] => {
+                let names: Vec<&str> = found.iter().map(|x| x.as_str()).collect();
+                return Err((
+                    format!("`{inst}.{pin}` could name any of {}", names.join(", ")),
+                    Some("write the integer's name as the program spells it".into()),
+                ));
+            }
+            [] => {}
+        }
+        // The pins of integers the program computes (`T1.ET`, `B1.Count`; not the hidden
+        // count `T1_ET_SCANS`), as a property may name them.
+        let pins: Vec<String> = self
+            .integers
+            .keys()
+            .filter(|x| !x.ends_with("_ET_SCANS"))
+            .filter_map(|x| x.rsplit_once('_'))
+            .filter(|(i, p)| !i.is_empty() && !p.is_empty())
+            .map(|(i, p)| format!("{i}.{p}"))
+            .collect();
+        let asked = format!("{inst}.{pin}");
+        let mine: Vec<&str> = pins
+            .iter()
+            .filter(|p| p.split_once('.').is_some_and(|(i, _)| i.eq_ignore_ascii_case(inst)))
+            .map(String::as_str)
+            .collect();
+        let help = match crate::diag::did_you_mean(&asked, pins.iter().map(String::as_str)) {
+            Some(s) => format!("did you mean `{s}`?"),
+            None if pin.eq_ignore_ascii_case("ET") => ET_HELP.into(),
+            None if mine.is_empty() => format!(
+                "the program computes no integer pin of `{inst}` (a timer's ET, a counter's CV)"
+            ),
+            None => format!("the pins of `{inst}` the program computes: {}", mine.join(", ")),
+        };
+        Err((
+            format!("unknown pin `{asked}`: the program computes no integer `{wanted}`"),
+            Some(help),
+        ))
     }
 
     fn lookup_bit(&self, name: &str) -> bool {

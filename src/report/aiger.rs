@@ -57,7 +57,8 @@ pub fn export_aiger(
     signals: bool,
 ) -> Result<Exported, InputError> {
     let mut sources = Sources::new();
-    let loaded = load_program_with(&mut sources, program, &compile_options(opts), &opts.plcopen)
+    let selection = super::wanting_elapsed(&opts.plcopen, paths);
+    let loaded = load_program_with(&mut sources, program, &compile_options(opts), &selection)
         .map_err(|d| fail(&sources, d, opts))?;
     let (docs, paths) = program_documents(&mut sources, program, &loaded, paths, opts)?;
     // The comparison atoms the properties use, each defined by its equation.

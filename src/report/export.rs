@@ -102,7 +102,10 @@ pub fn vcd(report: &RunReport) -> Option<String> {
         for t in &c.tracks {
             let id = vcd_identifier(n);
             n += 1;
-            out.push_str(&format!("$var wire {} {id} {} $end\n", t.ty.bits, vcd_name(&t.name)));
+            out.push_str(&format!("$var wire {} {id} {} $end\n", t.vcd_width(), vcd_name(&t.name)));
+            if t.ty.time {
+                out.push_str(&format!("$comment {} is a TIME in ns $end\n", vcd_name(&t.name)));
+            }
             words.push((id, t));
         }
         out.push_str("$upscope $end\n");
@@ -244,7 +247,7 @@ pub fn wavedrom(report: &RunReport) -> Option<String> {
                     wave.push('.');
                 } else {
                     wave.push('=');
-                    data.push(v.to_string());
+                    data.push(t.time_text(v).unwrap_or_else(|| v.to_string()));
                 }
                 last = Some(v);
             }

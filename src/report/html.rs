@@ -371,7 +371,7 @@ fn diagram(out: &mut String, c: &CounterexampleReport) {
                 x1 - b,
                 x0 + a
             );
-            let text = v.to_string();
+            let text = t.time_text(*v).unwrap_or_else(|| v.to_string());
             if x1 - x0 > 7.4 * text.len() as f64 + 6.0 {
                 let _ = writeln!(
                     out,
@@ -432,7 +432,12 @@ fn values(out: &mut String, c: &CounterexampleReport, points: &BTreeSet<Time>) {
     for t in &c.tracks {
         let _ = write!(out, "<tr><th title=\"{}\">{}</th>", esc(&t.name), esc(&label(&t.name)));
         for s in &starts {
-            let _ = write!(out, "<td class=\"int\">{}</td>", t.value_after(s));
+            let v = t.value_after(s);
+            let _ = write!(
+                out,
+                "<td class=\"int\">{}</td>",
+                t.time_text(v).unwrap_or_else(|| v.to_string())
+            );
         }
         out.push_str("</tr>\n");
     }

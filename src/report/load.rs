@@ -133,7 +133,8 @@ pub fn load_program_with(
             }
             None => {
                 let unit = crate::iec::read(sources, file).map_err(st_diagnostics)?;
-                crate::iec::lower(sources, &unit, selection.pou.as_deref(), selection.cycle_us)
+                let (pou, cycle) = (selection.pou.as_deref(), selection.cycle_us);
+                crate::iec::lower_wanting(sources, &unit, pou, cycle, &selection.elapsed)
                     .map_err(st_diagnostics)?
             }
         };
@@ -282,4 +283,52 @@ fn with_places<R: crate::diag::Report>(sources: &Sources, warnings: &[R]) -> Vec
             location: w.span().map(|s| Location::of(sources, s)),
         })
         .collect()
+}
+
+/// `selection` with the timer instances whose elapsed time the property files `paths`
+/// name: a cheap scan of their text for `X.ET` and `X_ET` (any case; a file that cannot
+/// be read names none). Naming too many costs nothing but the computation: a name that
+/// is no timer instance changes nothing.
+pub fn wanting_elapsed(
+    selection: &crate::ladder::plcopen::Selection,
+    paths: &[String],
+) -> crate::ladder::plcopen::Selection {
+    let mut out = selection.clone();
+    for path in paths {
+        if let Ok(text) = std::fs::read_to_string(path) {
+            out.elapsed.extend(elapsed_named(&text));
+        }
+    }
+    out
+}
+
+/// The instances `text` names the elapsed time of, upper case: `T1` for `T1.ET` and
+/// for `T1_ET` (any case).
+pub fn elapsed_named(text: &str) -> std::collections::BTreeSet<String> {
+    let upper = text.to_ascii_uppercase();
+    // The words, each with where it starts and ends.
+    let mut words: Vec<(usize, usize)> = Vec::new();
+    let mut start = None;
+    for (at, c) in upper.char_indices().chain(std::iter::once((upper.len(), ' '))) {
+        match (c.is_alphanumeric() || c == '_', start) {
+            (true, None) => start = Some(at),
+            (false, Some(s)) => {
+                words.push((s, at));
+                start = None;
+            }
+            _ => {}
+        }
+    }
+    let mut out = std::collections::BTreeSet::new();
+    for (k, &(s, e)) in words.iter().enumerate() {
+        let w = &upper[s..e];
+        if let Some(inst) = w.strip_suffix("_ET").filter(|i| !i.is_empty()) {
+            out.insert(inst.to_string());
+        }
+        let pin = words.get(k + 1).filter(|(s2, _)| *s2 == e + 1 && upper[e..].starts_with('.'));
+        if pin.is_some_and(|&(s2, e2)| &upper[s2..e2] == "ET") {
+            out.insert(w.to_string());
+        }
+    }
+    out
 }

@@ -28,7 +28,10 @@ mod vacuity;
 use vacuity::{contradictory, flag_vacuity, forced_by_assumptions, forced_constants, forced_text};
 pub mod waveform;
 
-pub use load::{Inputs, LoadedProgram, classify, is_ladder, load_program, load_program_with};
+pub use load::{
+    Inputs, LoadedProgram, classify, elapsed_named, is_ladder, load_program, load_program_with,
+    wanting_elapsed,
+};
 pub use model::{
     CounterexampleReport, EquationLine, IntegerReport, Location, PropertyReport, RunReport,
     SignalReport, Status, StepReport, Summary, TraceReport, Unchecked, WarningReport,
@@ -505,7 +508,9 @@ pub fn run_program_with(
 ) -> Result<RunReport, InputError> {
     let mut sources = Sources::new();
     let theory = theory::standard(&mut sources).map_err(|d| fail(&sources, d, opts))?;
-    let loaded = load_program_with(&mut sources, program, &compile_options(opts), &opts.plcopen)
+    // A timer's elapsed time the properties name is computed as if the program read it.
+    let selection = wanting_elapsed(&opts.plcopen, paths);
+    let loaded = load_program_with(&mut sources, program, &compile_options(opts), &selection)
         .map_err(|d| fail(&sources, d, opts))?;
     let (docs, paths) = program_documents(&mut sources, program, &loaded, paths, opts)?;
     // The comparison atoms the properties use, each defined by its equation.

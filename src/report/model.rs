@@ -116,8 +116,12 @@ pub struct CounterexampleReport {
 pub struct IntegerReport {
     /// Its name, as the report spells it.
     pub name: String,
-    /// Its value at the end of each scan, from the first.
+    /// Its value at the end of each scan, from the first (a TIME's in ns).
     pub values: Vec<i64>,
+    /// `"TIME"` for a duration (its values in ns, a timer's elapsed time `T1_ET`);
+    /// absent for an integer.
+    #[serde(rename = "type", skip_serializing_if = "Option::is_none")]
+    pub ty: Option<&'static str>,
 }
 
 /// Where something is written: a file as named on the command line, 1-based line and

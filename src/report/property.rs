@@ -385,7 +385,14 @@ pub(super) fn program_counterexample(
         confirmed_by.push("scan simulator".into());
     }
     // Integers whose bits the run computed: a value row each, and their bits unshown.
-    let tracked = IntegerTrack::all(session.compiled, env, &named);
+    // A timer's elapsed time is drawn as the TIME the run computes (its bits the
+    // property does not read added from the run of their cone), not as its count.
+    let wanted = IntegerTrack::elapsed_bits(session.compiled, env);
+    let completed = match wanted.is_empty() {
+        true => None,
+        false => session.completed(c, &wanted),
+    };
+    let tracked = IntegerTrack::all(session.compiled, completed.as_ref().unwrap_or(env), &named);
     shown.retain(|(label, _)| !tracked.iter().any(|t| t.shows_bit(label)));
     CounterexampleReport {
         time: format_time(&c.time),
@@ -405,6 +412,7 @@ pub(super) fn program_counterexample(
             .map(|t| IntegerReport {
                 name: t.name.clone(),
                 values: (0..c.trace.scans).map(|k| t.value_at(&c.trace.instant(k))).collect(),
+                ty: t.ty.time.then_some("TIME"),
             })
             .collect(),
         tracks: tracked,

@@ -38,7 +38,33 @@ impl IntegerTrack {
                     .collect::<Option<Vec<_>>>()?;
                 Some(IntegerTrack { name: named(x), ty: var.ty, bits })
             })
+            .collect::<Vec<_>>()
+            .into_iter()
+            .filter(|t| !elapsed_count(compiled, env, &t.name, named))
             .collect()
+    }
+
+    /// The bits a counterexample's `env` lacks of the elapsed times (`T1_ET`, a TIME)
+    /// it shows in part or whose hidden count of scans (`T1_ET_SCANS`) it has: a
+    /// diagram draws the time, not the count, once they are added.
+    pub fn elapsed_bits(compiled: &CompiledProgram, env: &Assignment) -> Vec<String> {
+        let has = |x: &str, k: u32| {
+            env.signals.contains_key(&Symbol::from(Program::int_bit(x, k).as_str()))
+        };
+        let mut out = Vec::new();
+        for (x, var) in compiled.integers.iter().filter(|(_, v)| v.ty.time) {
+            let count = format!("{x}_SCANS");
+            let counted = compiled
+                .integers
+                .get(&count)
+                .is_some_and(|c| (0..c.ty.bits).all(|k| has(&count, k)));
+            if counted || (0..var.ty.bits).any(|k| has(x, k)) {
+                out.extend(
+                    (0..var.ty.bits).filter(|k| !has(x, *k)).map(|k| Program::int_bit(x, k)),
+                );
+            }
+        }
+        out
     }
 
     /// Whether `label` names one of this integer's bits (`X_b3`), which a diagram
@@ -72,11 +98,38 @@ impl IntegerTrack {
         self.bits.iter().flat_map(|(s, _)| s.breakpoints().iter().cloned()).collect()
     }
 
+    /// A TIME's value (ns) in its units, as a duration literal without `T#` (`20ms`,
+    /// `1m30s`); `None` for an integer of another type.
+    pub fn time_text(&self, value: i64) -> Option<String> {
+        self.ty.time.then(|| self.ty.show(value).replacen("T#", "", 1))
+    }
+
+    /// How many bits VCD writes the value in: a TIME in 64 (ns), another integer in
+    /// its width.
+    pub fn vcd_width(&self) -> u32 {
+        if self.ty.time { 64 } else { self.ty.bits }
+    }
+
     /// The value as the `bits`-wide two's-complement word (`0110…`, most significant
     /// first), as VCD writes a vector.
     pub fn word(&self, value: i64) -> String {
-        (0..self.ty.bits).rev().map(|k| if value >> k & 1 == 1 { '1' } else { '0' }).collect()
+        (0..self.vcd_width()).rev().map(|k| if value >> k & 1 == 1 { '1' } else { '0' }).collect()
     }
+}
+
+/// Whether the integer named `label` is a timer's hidden count of scans
+/// (`T1_ET_SCANS`) whose elapsed time (`T1_ET`) `env` holds whole: that is drawn instead.
+fn elapsed_count(
+    compiled: &CompiledProgram,
+    env: &Assignment,
+    label: &str,
+    named: &dyn Fn(&str) -> String,
+) -> bool {
+    compiled.integers.iter().filter(|(_, v)| v.ty.time).any(|(x, var)| {
+        named(&format!("{x}_SCANS")) == label
+            && (0..var.ty.bits)
+                .all(|k| env.signals.contains_key(&Symbol::from(Program::int_bit(x, k).as_str())))
+    })
 }
 
 /// `signals` drawn with a value row for each of `tracks` (`Cparts  0    1    2 …`).
@@ -86,12 +139,17 @@ pub fn draw(
     mark: Option<&Time>,
     glyphs: waveform::Glyphs,
 ) -> Vec<String> {
+    // A TIME in its units (`20ms`, as the property's `T#20ms`), each value over the
+    // scans it holds.
+    let text = |t: &IntegerTrack, v: i64| t.time_text(v).unwrap_or_else(|| t.ty.show(v));
     let readers: Vec<_> =
-        tracks.iter().map(|t| move |time: &Time| Some(t.ty.show(t.value_at(time)))).collect();
+        tracks.iter().map(|t| move |time: &Time| Some(text(t, t.value_at(time)))).collect();
+    let changes: Vec<Time> =
+        tracks.iter().filter(|t| t.ty.time).flat_map(|t| t.breakpoints()).collect();
     let values: Vec<waveform::Track> = tracks
         .iter()
         .zip(&readers)
         .map(|(t, f)| (t.name.clone(), f as &dyn Fn(&Time) -> Option<String>))
         .collect();
-    waveform::draw_with_values(signals, &values, mark, glyphs)
+    waveform::draw_with_changes(signals, &values, &changes, mark, glyphs)
 }

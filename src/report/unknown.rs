@@ -155,7 +155,11 @@ pub fn step_candidate(
         diagram,
         integers: tracked
             .iter()
-            .map(|t| IntegerReport { name: t.name.clone(), values: vec![t.value_at(&one), t.value_at(&two)] })
+            .map(|t| IntegerReport {
+                name: t.name.clone(),
+                values: vec![t.value_at(&one), t.value_at(&two)],
+                ty: t.ty.time.then_some("TIME"),
+            })
             .collect(),
         tracks: tracked,
         scan: None,

@@ -30,7 +30,7 @@ const INTERVAL_WIDTH: usize = 5;
 
 /// Draws the named signals over their common horizon; `mark` points at one instant.
 pub fn draw(signals: &[(String, Signal)], mark: Option<&Time>, glyphs: Glyphs) -> Vec<String> {
-    draw_full(signals, &[], mark, glyphs, usize::MAX)
+    draw_full(signals, (&[], &[]), mark, glyphs, usize::MAX)
 }
 
 /// The value of an integer at an instant.
@@ -44,7 +44,24 @@ pub fn draw_with_values(
     mark: Option<&Time>,
     glyphs: Glyphs,
 ) -> Vec<String> {
-    draw_full(signals, values, mark, glyphs, usize::MAX)
+    draw_full(signals, (values, &[]), mark, glyphs, usize::MAX)
+}
+
+/// At most this many columns of instants in a diagram: the instants where a value
+/// changes are columns of their own only within it.
+const VALUE_COLUMNS: usize = 16;
+
+/// [`draw_with_values`], with a column for each of the instants `changes` too (where a
+/// value changes: each value then written over the interval it holds), if the diagram
+/// has at most [`VALUE_COLUMNS`] instants with them.
+pub fn draw_with_changes(
+    signals: &[(String, Signal)],
+    values: &[Track],
+    changes: &[Time],
+    mark: Option<&Time>,
+    glyphs: Glyphs,
+) -> Vec<String> {
+    draw_full(signals, (values, changes), mark, glyphs, usize::MAX)
 }
 
 /// [`draw`], at most `width` characters wide where the signals allow it: the earliest
@@ -55,12 +72,12 @@ pub fn draw_within(
     glyphs: Glyphs,
     width: usize,
 ) -> Vec<String> {
-    draw_full(signals, &[], mark, glyphs, width)
+    draw_full(signals, (&[], &[]), mark, glyphs, width)
 }
 
 fn draw_full(
     signals: &[(String, Signal)],
-    values: &[Track],
+    (values, changes): (&[Track], &[Time]),
     mark: Option<&Time>,
     glyphs: Glyphs,
     width: usize,
@@ -75,6 +92,13 @@ fn draw_full(
         points.insert(t.clone());
     }
     points.insert(horizon.clone());
+    let mut with_changes = points.clone();
+    with_changes.extend(
+        changes.iter().filter(|c| **c > Time::from_integer(0.into()) && **c <= horizon).cloned(),
+    );
+    if with_changes.len() <= VALUE_COLUMNS {
+        points = with_changes;
+    }
     let mut points: Vec<Time> = points.into_iter().collect();
     let name_width = signals
         .iter()

@@ -148,7 +148,13 @@ pub fn load_script(
     };
     let path = program_path(sources.name(file), &program);
     let shown = path.display().to_string();
-    let loaded = report::load_program(sources, &shown, options).map_err(|mut diagnostics| {
+    // The elapsed times the script names are computed (`[T1.ET < T#2s]`).
+    let selection = crate::ladder::plcopen::Selection {
+        elapsed: report::elapsed_named(sources.text(file)),
+        ..Default::default()
+    };
+    let loaded = report::load_program_with(sources, &shown, options, &selection);
+    let loaded = loaded.map_err(|mut diagnostics| {
         diagnostics.push(Diagnostic::from(ScriptError::BadContext {
             span,
             reason: format!("the program `{shown}` named here cannot be loaded"),

@@ -106,6 +106,8 @@ pub enum Tok {
     Or,
     /// `.`, `·`, `&` or `∧`.
     And,
+    /// `.` inside a comparison's brackets: an instance's pin (`[T1.ET < T#2s]`).
+    Dot,
     /// `!`, `¬` or `~`.
     Not,
     /// `/`.
@@ -154,7 +156,7 @@ impl Tok {
             Tok::Implies => "`=>`".into(),
             Tok::Eq => "`=`".into(),
             Tok::Or => "`+`".into(),
-            Tok::And => "`.`".into(),
+            Tok::And | Tok::Dot => "`.`".into(),
             Tok::Not => "`!`".into(),
             Tok::Slash => "`/`".into(),
             Tok::LParen => "`(`".into(),
@@ -310,6 +312,7 @@ impl Lexer<'_> {
             '=' => Tok::Eq,
             '⇒' => Tok::Implies,
             '+' | '∨' | '|' => Tok::Or,
+            '.' if self.brackets > 0 => Tok::Dot,
             '.' | '·' | '&' | '∧' => Tok::And,
             '!' | '¬' | '~' => Tok::Not,
             '/' => Tok::Slash,

@@ -562,6 +562,17 @@ impl Parser {
 
     fn int_operand(&mut self) -> PResult<IntOperand> {
         let operand = match &self.peek().tok {
+            // An instance's pin, `T1.ET`: the scope resolves it to the pin's name.
+            Tok::Ident(n) | Tok::Quoted(n) if self.peek_at(1) == &Tok::Dot => {
+                let inst = n.clone();
+                self.bump();
+                self.bump();
+                let pin = match &self.peek().tok {
+                    Tok::Ident(p) | Tok::Quoted(p) => p.clone(),
+                    _ => return Err(self.unexpected(names(&["a pin name (`T1.ET`)"]))),
+                };
+                IntOperand::Var(format!("{inst}.{pin}"))
+            }
             Tok::Ident(n) | Tok::Quoted(n) => IntOperand::Var(n.clone()),
             Tok::Int(v) => IntOperand::Int(*v),
             Tok::Duration(d) => {

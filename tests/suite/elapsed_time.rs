@@ -171,7 +171,7 @@ fn the_star_delta_stages_are_proved_and_their_overlap_refuted_with_the_elapsed_t
         .lines()
         .find(|l| l.trim_start().starts_with("Ramp_ET "))
         .expect("the elapsed time as a value row");
-    assert!(row.contains("T#900ms"), "{report}");
+    assert!(row.contains(" 900ms"), "{report}");
 }
 
 #[test]
@@ -191,4 +191,252 @@ fn a_time_compared_with_an_integer_is_refused() {
         let err = text(&out.stderr);
         assert!(err.contains(expected), "{property}: {err}");
     }
+}
+
+/// Where the elapsed-time properties' program is.
+const UNREAD: &str = "tests/data/refutes_programs/timer_et_unread";
+
+/// A signal of the JSON report at the instant `t` (s): the value at a breakpoint, else
+/// on the interval that ends at the next one.
+fn json_value(signal: &serde_json::Value, t: f64) -> bool {
+    let breaks: Vec<f64> = signal["breakpoints"]
+        .as_array()
+        .expect("breakpoints")
+        .iter()
+        .map(|b| b.as_str().expect("a time").parse::<f64>().expect("a decimal"))
+        .collect();
+    if let Some(i) = breaks.iter().position(|b| (b - t).abs() < 1e-9) {
+        return signal["points"][i].as_bool().expect("a bit");
+    }
+    let i = breaks.iter().filter(|b| **b < t).count();
+    signal["intervals"][i].as_bool().expect("a bit")
+}
+
+/// A duration below 1 s as the diagrams write it (`0s`, `20ms`), written here from its
+/// value in ns.
+fn in_ms(ns: i64) -> String {
+    assert!((0..1_000_000_000).contains(&ns) && ns % 1_000_000 == 0, "{ns}");
+    if ns == 0 { "0s".into() } else { format!("{}ms", ns / 1_000_000) }
+}
+
+/// Consecutive repeats dropped: the values a track writes where they change.
+fn changes(values: &[String]) -> Vec<String> {
+    let mut out: Vec<String> = Vec::new();
+    for v in values {
+        if out.last() != Some(v) {
+            out.push(v.clone());
+        }
+    }
+    out
+}
+
+/// The program does not read `T1.ET`; the properties do. Each counterexample draws
+/// the elapsed time, not the hidden count of scans, in the text diagram, JSON, VCD
+/// (a 64-bit vector in ns) and WaveDrom (a data lane in ms), and its values are those
+/// of matiec's `TON` (transcribed above) run on the counterexample's input: `min(k ·
+/// 20 ms, 100 ms)` on the `k`-th scan after the start.
+#[test]
+fn an_unread_elapsed_time_is_drawn_as_matiec_computes_it() {
+    let dir = std::env::temp_dir().join(format!("ii-et-drawn-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let (vcd, wavedrom) = (dir.join("run.vcd"), dir.join("run.json"));
+    let (st, ii) = (format!("{UNREAD}.st"), format!("{UNREAD}.ii"));
+    let out = ii_prove(&[
+        &st,
+        &ii,
+        "--format",
+        "json",
+        "--vcd",
+        vcd.to_str().expect("path"),
+        "--wavedrom",
+        wavedrom.to_str().expect("path"),
+    ]);
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
+    let json: serde_json::Value = serde_json::from_str(&text(&out.stdout)).expect("JSON");
+    let (cycle_s, cycle_ns, pt) = (0.02, 20_000_000i64, matiec_duration_ns("T#100ms").unwrap());
+    let vcd = std::fs::read_to_string(&vcd).expect("the VCD file");
+    let wavedrom: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&wavedrom).expect("WaveDrom")).unwrap();
+    let properties = json["properties"].as_array().expect("properties");
+    assert_eq!(properties.len(), 3);
+    let mut running = 0;
+    for (index, p) in properties.iter().enumerate() {
+        let name = p["name"].as_str().unwrap();
+        assert_eq!(p["status"], "refuted", "{name}");
+        let c = &p["counterexample"];
+        assert_eq!(c["simulator_scan"], c["scan"], "{name}");
+        let integers = c["integers"].as_array().expect("integers");
+        assert_eq!(integers.len(), 1, "{name}: only the elapsed time, not its count");
+        let et = &integers[0];
+        assert_eq!((&et["name"], &et["type"]), (&"T1_ET".into(), &"TIME".into()), "{name}");
+        let got: Vec<i64> =
+            et["values"].as_array().unwrap().iter().map(|v| v.as_i64().unwrap()).collect();
+        // matiec's TON on the counterexample's input, the clock at k · cycle.
+        let start = c["signals"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|s| s["name"] == "start")
+            .expect("the input start");
+        let mut ton = Matiec::new(Kind::On, pt);
+        let expected: Vec<i64> = (0..got.len())
+            .map(|k| {
+                let at = if k == 0 { cycle_s / 2.0 } else { k as f64 * cycle_s };
+                ton.call(json_value(start, at), k as i64 * cycle_ns);
+                running += usize::from(ton.state == 1);
+                ton.et
+            })
+            .collect();
+        assert_eq!(got, expected, "{name}");
+        assert!(expected.iter().any(|v| *v > 0), "{name}: the timer runs");
+        // The text diagram: the values in ms where they change, no count of scans.
+        let diagram: Vec<&str> =
+            c["diagram"].as_array().unwrap().iter().map(|l| l.as_str().unwrap()).collect();
+        assert!(!diagram.iter().any(|l| l.contains("_SCANS")), "{diagram:#?}");
+        let row = diagram.iter().find(|l| l.starts_with("T1_ET ")).expect("an ET row");
+        let written: Vec<String> = row.split_whitespace().skip(1).map(String::from).collect();
+        let in_units: Vec<String> = expected.iter().map(|v| in_ms(*v)).collect();
+        assert_eq!(written, changes(&in_units), "{name}: {diagram:#?}");
+        // WaveDrom: a data lane with the same texts.
+        let group = &wavedrom["signal"][index];
+        assert_eq!(group[0], name);
+        let lane = group.as_array().unwrap().iter().find(|l| l["name"] == "T1_ET").expect("lane");
+        let data: Vec<String> =
+            lane["data"].as_array().unwrap().iter().map(|d| d.as_str().unwrap().into()).collect();
+        assert_eq!(data, changes(&in_units), "{name}");
+        // VCD: this scope's 64-bit vector, in ns, read at each scan's start (ms ticks).
+        let scope = vcd.split("$scope module ").nth(index + 1).expect("a scope");
+        let var = scope.lines().find(|l| l.ends_with(" T1_ET $end")).expect("the ET vector");
+        let fields: Vec<&str> = var.split_whitespace().collect();
+        assert_eq!(fields[2], "64", "{var}");
+        let id = fields[3];
+        assert!(vcd.contains("$timescale 1ms $end"), "{vcd}");
+        let mut tick = 0u64;
+        let mut values: Vec<(u64, i64)> = Vec::new();
+        for line in vcd.lines() {
+            if let Some(t) = line.strip_prefix('#') {
+                tick = t.parse().expect("a tick");
+            } else if let Some((word, rest)) =
+                line.strip_prefix('b').and_then(|l| l.split_once(' '))
+                && rest == id
+            {
+                values.push((tick, i64::from_str_radix(word, 2).expect("a word")));
+            }
+        }
+        for (k, e) in expected.iter().enumerate() {
+            let at = k as u64 * 20;
+            let v = values.iter().rev().find(|(t, _)| *t <= at).map(|(_, v)| *v);
+            assert_eq!(v, Some(*e), "{name}: scan {k} in the VCD");
+        }
+    }
+    assert!(running >= 5, "only {running} scans with the timer running");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `[T1.ET …]`, `[t1.et …]` and `[T1_ET …]` are one atom: the same verdicts, whether
+/// the program reads the elapsed time (stage_timer.st) or not (timer_et_unread.st); the
+/// bound `ET <= PT` is proved with a kernel-checked proof.
+#[test]
+fn a_pin_and_its_name_give_the_same_verdicts() {
+    let dir = std::env::temp_dir().join(format!("ii-et-pin-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    for (program, inst, atoms) in [
+        (
+            format!("{UNREAD}.st"),
+            "T1",
+            ["<= T#100ms", "< T#100ms", ">= T#40ms", "= 0", "<> T#60ms", "< T#50ms"],
+        ),
+        (
+            "tests/data/proves_programs/stage_timer.st".to_string(),
+            "Ramp",
+            ["<= T#2s", ">= T#100ms", ">= T#1100ms", "= 0", "<> T#1s", "< T#900ms"],
+        ),
+    ] {
+        let mut props = String::new();
+        for (k, atom) in atoms.iter().enumerate() {
+            let lower = inst.to_ascii_lowercase();
+            props.push_str(&format!("property N{k}: 1* => [{inst}_ET {atom}]\n"));
+            props.push_str(&format!("property D{k}: 1* => [{inst}.ET {atom}]\n"));
+            props.push_str(&format!("property L{k}: 1* => [{lower}.et {atom}]\n"));
+        }
+        let ii = dir.join(format!("{inst}.ii"));
+        std::fs::write(&ii, props).expect("write");
+        let got = verdicts(&[&program, ii.to_str().unwrap()]);
+        assert_eq!(got.len(), 3 * atoms.len(), "{program}: {got:?}");
+        for (k, atom) in atoms.iter().enumerate() {
+            let of = |p: &str| got.iter().find(|(n, _)| *n == format!("{p}{k}")).map(|(_, v)| v);
+            assert_eq!(of("N"), of("D"), "{program}: [{inst}.ET {atom}]");
+            assert_eq!(of("N"), of("L"), "{program}: [{inst}.ET {atom}]");
+        }
+        let of = |p: &str| got.iter().find(|(n, _)| n == p).map(|(_, v)| v.as_str());
+        assert_eq!(of("D0"), Some("proved"), "{program}: ET <= PT");
+        assert_eq!(of("D5"), Some("refuted"), "{program}");
+    }
+    // The bound of the unread elapsed time, proved: its proof printed as the kernel
+    // checked it.
+    let out = ii_prove(&[
+        &format!("{UNREAD}.st"),
+        "tests/data/proves_programs/timer_et_unread.ii",
+        "--trace",
+        "--only",
+        "BoundedPin",
+    ]);
+    let report = text(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{report}");
+    let first: Vec<&str> = report.lines().next().unwrap_or("").split_whitespace().collect();
+    assert_eq!(first[..2], ["BoundedPin", "proved"], "{report}");
+    assert!(report.lines().count() > 5, "a proof is printed: {report}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A pin the program computes no integer for is an error at the comparison, with the
+/// pins it has; a misspelt instance gets a suggestion. `show` of a program whose ET
+/// nothing reads has none.
+#[test]
+fn an_unknown_pin_is_a_located_error() {
+    let dir = std::env::temp_dir().join(format!("ii-et-unknown-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let program = format!("{UNREAD}.st");
+    for (property, expected) in [
+        (
+            "property E: lamp => [T1.ET < T#1s]\nproperty P: lamp => [T1.XX < 3]",
+            vec!["unknown pin `T1.XX`", "p.ii:2:21", "`T1.ET`"],
+        ),
+        (
+            "property P: lamp => [T1.XX < 3]",
+            vec!["unknown pin `T1.XX`", "p.ii:1:21", "no integer pin"],
+        ),
+        (
+            "property E: lamp => [T1.ET < T#1s]\nproperty P: lamp => [T2.ET < T#1s]",
+            vec!["unknown pin `T2.ET`", "p.ii:2:21", "did you mean `T1.ET`?"],
+        ),
+        (
+            "property P: lamp => [T2.ET < T#1s]",
+            vec!["unknown pin `T2.ET`", "where a property file given with the program names it"],
+        ),
+        ("property P: lamp => [T1. < 3]", vec!["p.ii:1:26", "a pin name"]),
+    ] {
+        let ii = dir.join("p.ii");
+        std::fs::write(&ii, property).expect("write");
+        let out = ii_prove(&[&program, ii.to_str().expect("path")]);
+        assert_eq!(out.status.code(), Some(2), "{property}");
+        let err = text(&out.stderr);
+        for e in expected {
+            assert!(err.contains(e), "{property}: {e} in\n{err}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+    let show = ii_prove(&["show", &program]);
+    assert_eq!(show.status.code(), Some(0));
+    assert!(!text(&show.stdout).contains("T1_ET"), "{}", text(&show.stdout));
+}
+
+/// The loader's scan of property files for the elapsed times they name.
+#[test]
+fn property_files_name_elapsed_times() {
+    let named = ii_prove::report::elapsed_named(
+        "property A: x => [T1.ET < T#2s] // Ramp_ET, main.t2.et\nproperty B: [P1_et >= 0] . Q1_ETA . ET\n",
+    );
+    let got: Vec<&str> = named.iter().map(String::as_str).collect();
+    assert_eq!(got, ["P1", "RAMP", "T1", "T2"]);
 }

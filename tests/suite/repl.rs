@@ -298,3 +298,32 @@ fn trace_all_prints_the_last_proof_with_every_lemma() {
     assert_eq!(folded, full);
     assert!(session.execute("trace some").starts_with("error: expected `trace` or `trace all`"));
 }
+
+/// A timer's elapsed time the program does not read: a property file loaded after the
+/// program cannot add it and says where it is computed; one whose `program` header
+/// (relative to the file) loads the program gets it computed, and its counterexample
+/// draws it.
+#[test]
+fn an_elapsed_time_named_by_a_file_with_a_program_header_is_computed() {
+    let dir = temp_dir("elapsed");
+    let program =
+        format!("{}/tests/data/refutes_programs/timer_et_unread.st", env!("CARGO_MANIFEST_DIR"));
+    std::fs::copy(&program, dir.join("lamp.st")).expect("copy");
+    let property = "property Early: lamp => [T1.ET < T#50ms]\n";
+    std::fs::write(dir.join("plain.ii"), property).expect("write");
+    std::fs::write(dir.join("headed.ii"), format!("program \"lamp.st\"\n{property}"))
+        .expect("write");
+    let mut after = ii_prove::repl::Session::new().unwrap();
+    after.execute(&format!("load {}", dir.join("lamp.st").display()));
+    let out = after.execute(&format!("load {}", dir.join("plain.ii").display()));
+    assert!(out.contains("unknown pin `T1.ET`"), "{out}");
+    assert!(out.contains("a file whose `program \"prog.st\"` header loads the program"), "{out}");
+    let mut headed = ii_prove::repl::Session::new().unwrap();
+    let out = headed.execute(&format!("load {}", dir.join("headed.ii").display()));
+    assert!(out.contains("1 property (Early)"), "{out}");
+    let out = headed.execute("prove Early");
+    assert!(out.starts_with("refuted Early"), "{out}");
+    let row = out.lines().find(|l| l.trim_start().starts_with("T1_ET ")).expect("an ET row");
+    assert!(row.contains("100ms"), "{out}");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -35,6 +35,10 @@ pub struct Selection {
     /// `--order`: which editor's statement order, when positions and document order
     /// differ (by default such a file is refused if the two orders compile differently).
     pub order: Option<StatementOrder>,
+    /// The timer instances (upper case) whose elapsed time `ET` the properties name
+    /// (`[T1.ET < T#2s]`, `[T1_ET < T#2s]`): the IEC text front end computes it as if
+    /// the program read it.
+    pub elapsed: std::collections::BTreeSet<String>,
 }
 
 /// The statement order of LD/FBD bodies whose positions and document order differ.

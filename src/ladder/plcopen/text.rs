@@ -42,7 +42,11 @@ pub fn st_program(
         Ok(u) => u,
         Err(e) => return Some(Err(fail(vec![e]))),
     };
-    Some(crate::iec::lower(sources, &unit, Some(&pou.name), task_cycle(sel, task)).map_err(fail))
+    let cycle = task_cycle(sel, task);
+    Some(
+        crate::iec::lower_wanting(sources, &unit, Some(&pou.name), cycle, &sel.elapsed)
+            .map_err(fail),
+    )
 }
 
 /// The cycle `--cycle` or the task's interval gives, if any.

@@ -51,10 +51,15 @@ impl Session {
         let mut out = String::new();
         if let Some((program, _)) = script::program_header(&self.sources, file) {
             let program = script::program_path(path, &program).display().to_string();
-            let already = self.program.as_ref().is_some_and(|(p, _)| *p == program);
+            // The session keeps the program's absolute path.
+            let absolute = std::fs::canonicalize(&program)
+                .map_or_else(|_| program.clone(), |p| p.display().to_string());
+            let already = self.program.as_ref().is_some_and(|(p, _)| *p == absolute);
             if !already {
-                out.push_str(&self.load_program(&program));
-                if self.program.as_ref().is_none_or(|(p, _)| *p != program) {
+                // The elapsed times the file names are computed (`[T1.ET < T#2s]`).
+                let wanted = report::elapsed_named(self.sources.text(file));
+                out.push_str(&self.load_program_wanting(&program, wanted));
+                if self.program.as_ref().is_none_or(|(p, _)| *p != absolute) {
                     return out;
                 }
             }
@@ -118,6 +123,16 @@ impl Session {
 
     /// `load PROGRAM.ld`: its compiled rungs become hypotheses, its signals names.
     fn load_program(&mut self, path: &str) -> String {
+        self.load_program_wanting(path, Default::default())
+    }
+
+    /// [`Session::load_program`], computing the elapsed time of the timer instances
+    /// `wanted` names as if the program read it.
+    fn load_program_wanting(
+        &mut self,
+        path: &str,
+        wanted: std::collections::BTreeSet<String>,
+    ) -> String {
         if self.program.is_some() {
             // Another program: the session starts over on it (the goals, proofs and
             // properties were about the first), unless it does not load.
@@ -126,7 +141,7 @@ impl Session {
                 Err(e) => return format!("error: {e}\n"),
             };
             fresh.notation = self.notation;
-            let out = fresh.load_program(path);
+            let out = fresh.load_program_wanting(path, wanted);
             if fresh.program.is_none() {
                 return out;
             }
@@ -135,7 +150,10 @@ impl Session {
                 "the session starts over on {path}: the previous program's goals, proofs and properties are put away\n{out}"
             );
         }
-        let loaded = match report::load_program(&mut self.sources, path, &Default::default()) {
+        let selection = crate::ladder::plcopen::Selection { elapsed: wanted, ..Default::default() };
+        let options = crate::ladder::CompileOptions::default();
+        let loaded = match report::load_program_with(&mut self.sources, path, &options, &selection)
+        {
             Ok(l) => l,
             Err(diagnostics) => {
                 return diagnostics
