@@ -874,8 +874,7 @@ pub fn prepare(
     // The one-shots of text blocks (an `R_TRIG` in an ST body or a chart) are their own
     // simulator's, not edge detectors of the graphical body: such a program is not
     // compared here (the IEC text front end's tests and the matiec oracle check them).
-    let text_one_shots = text_one_shots(&plc);
-    if text_one_shots > 0 && one_shots == lowered.edges.len() + text_one_shots {
+    if one_shots != lowered.edges.len() && has_text_calls(&plc) {
         fig.text_edges += 1;
         return None;
     }
@@ -917,15 +916,9 @@ pub fn prepare(
     Some(Prepared { plc, lowered, compiled, known, hyps, edge_of })
 }
 
-/// The one-shots in the programs of `plc`'s text block calls (and its inlined blocks').
-fn text_one_shots(plc: &PlcProgram) -> usize {
-    let mut n = 0;
-    for call in plc.text_calls.values() {
-        for e in call.program.blocks.iter().flat_map(|b| &b.stmts).filter_map(|s| s.expr()) {
-            walk(e, &mut |x| n += usize::from(matches!(x, BoolExpr::Edge { .. })));
-        }
-    }
-    n + plc.subs.values().map(text_one_shots).sum::<usize>()
+/// Whether `plc` (or a block it inlines) calls a text block.
+fn has_text_calls(plc: &PlcProgram) -> bool {
+    !plc.text_calls.is_empty() || plc.subs.values().any(has_text_calls)
 }
 
 /// Random values of the declared inputs for `scans` scans, each held for a random
