@@ -29,6 +29,7 @@ impl IntegerTrack {
         compiled
             .integers
             .iter()
+            .filter(|(x, _)| !elapsed_count(compiled, env, x))
             .filter_map(|(x, var)| {
                 let bits = (0..var.ty.bits)
                     .map(|k| {
@@ -38,9 +39,6 @@ impl IntegerTrack {
                     .collect::<Option<Vec<_>>>()?;
                 Some(IntegerTrack { name: named(x), ty: var.ty, bits })
             })
-            .collect::<Vec<_>>()
-            .into_iter()
-            .filter(|t| !elapsed_count(compiled, env, &t.name, named))
             .collect()
     }
 
@@ -48,9 +46,7 @@ impl IntegerTrack {
     /// it shows in part or whose hidden count of scans (`T1_ET_SCANS`) it has: a
     /// diagram draws the time, not the count, once they are added.
     pub fn elapsed_bits(compiled: &CompiledProgram, env: &Assignment) -> Vec<String> {
-        let has = |x: &str, k: u32| {
-            env.signals.contains_key(&Symbol::from(Program::int_bit(x, k).as_str()))
-        };
+        let has = |x: &str, k: u32| has_bit(env, x, k);
         let mut out = Vec::new();
         for (x, var) in compiled.integers.iter().filter(|(_, v)| v.ty.time) {
             let count = format!("{x}_SCANS");
@@ -117,19 +113,19 @@ impl IntegerTrack {
     }
 }
 
-/// Whether the integer named `label` is a timer's hidden count of scans
-/// (`T1_ET_SCANS`) whose elapsed time (`T1_ET`) `env` holds whole: that is drawn instead.
-fn elapsed_count(
-    compiled: &CompiledProgram,
-    env: &Assignment,
-    label: &str,
-    named: &dyn Fn(&str) -> String,
-) -> bool {
-    compiled.integers.iter().filter(|(_, v)| v.ty.time).any(|(x, var)| {
-        named(&format!("{x}_SCANS")) == label
-            && (0..var.ty.bits)
-                .all(|k| env.signals.contains_key(&Symbol::from(Program::int_bit(x, k).as_str())))
-    })
+/// Whether `env` holds bit `k` of the integer `x`.
+fn has_bit(env: &Assignment, x: &str, k: u32) -> bool {
+    env.signals.contains_key(&Symbol::from(Program::int_bit(x, k).as_str()))
+}
+
+/// Whether the integer `x` is a timer's hidden count of scans (`T1_ET_SCANS`) whose
+/// elapsed time (`T1_ET`, a TIME) `env` holds whole: that is drawn instead.
+fn elapsed_count(compiled: &CompiledProgram, env: &Assignment, x: &str) -> bool {
+    let Some(et) = x.strip_suffix("_SCANS") else { return false };
+    compiled
+        .integers
+        .get(et)
+        .is_some_and(|var| var.ty.time && (0..var.ty.bits).all(|k| has_bit(env, et, k)))
 }
 
 /// `signals` drawn with a value row for each of `tracks` (`Cparts  0    1    2 …`).

@@ -97,6 +97,16 @@ pub enum Ty {
     Other(String),
 }
 
+impl Ty {
+    /// The type's name as the IEC front end declares it (upper case).
+    pub fn iec_name(&self) -> String {
+        match self {
+            Ty::Bool => "BOOL".into(),
+            Ty::Derived(n) | Ty::Other(n) => n.to_ascii_uppercase(),
+        }
+    }
+}
+
 /// One declared variable.
 #[derive(Clone, Debug)]
 pub struct Var {

@@ -105,6 +105,11 @@ pub fn read<'g>(
 /// order by position than in document order: the error to report if the difference
 /// changes what the program does.
 pub fn order_dispute(sources: &Sources, project: &Project) -> Option<StError> {
+    // Only a chart has such actions: a project without one is not parsed again.
+    let chart = |p: &Pou| p.body.as_ref().is_some_and(|b| b.lang == super::Lang::Sfc);
+    if !project.pous.iter().any(chart) {
+        return None;
+    }
     let options = roxmltree::ParsingOptions { allow_dtd: true, ..Default::default() };
     let doc = roxmltree::Document::parse_with_options(sources.text(project.file), options).ok()?;
     let charts = doc.descendants().filter(|n| n.is_element() && n.tag_name().name() == "SFC");

@@ -149,13 +149,7 @@ fn decl(v: &super::Var, class: ast::VarClass) -> ast::VarDecl {
     ast::VarDecl {
         name: Ident { name: v.name.clone(), span: v.span },
         class,
-        ty: Ident {
-            name: match &v.ty {
-                Ty::Bool => "BOOL".into(),
-                Ty::Derived(n) | Ty::Other(n) => n.to_ascii_uppercase(),
-            },
-            span: v.span,
-        },
+        ty: Ident { name: v.ty.iec_name(), span: v.span },
         init: v.init.as_ref().map(|text| Expr {
             kind: match super::select::bool_literal(text) {
                 Some(b) => ExprKind::Bool(b),

@@ -23,7 +23,7 @@ use crate::iec::StError;
 use crate::iec::ast::{Arg, BinOp, Expr, ExprKind, Ident, Stmt, StmtKind, UnOp, VarClass, VarDecl};
 
 use super::super::select::geometric;
-use super::super::{Project, StatementOrder, Ty, Var};
+use super::super::{Project, StatementOrder, Var};
 
 type Node<'a, 'i> = roxmltree::Node<'a, 'i>;
 
@@ -105,7 +105,7 @@ impl<'a, 'i> Statements<'a, 'i> {
     fn of(body: Node<'a, 'i>) -> Result<Self, Node<'a, 'i>> {
         let mut lists = Statements { outs: Vec::new(), blocks: Vec::new(), connectors: Vec::new() };
         for n in body.children().filter(|c| c.is_element()) {
-            if n.attribute("executionOrderId").is_some_and(|v| v.trim().parse() != Ok(0)) {
+            if numbered(n) {
                 return Err(n);
             }
             match n.tag_name().name() {
@@ -140,6 +140,14 @@ impl<'a, 'i> Statements<'a, 'i> {
         Ok((sort(&self.outs)?, sort(&self.blocks)?))
     }
 }
+
+/// Whether `n` has an execution order number (`executionOrderId` other than 0).
+fn numbered(n: Node) -> bool {
+    n.attribute("executionOrderId").is_some_and(|v| v.trim().parse() != Ok(0))
+}
+
+/// The refusal of an object with an execution order number.
+const NUMBERED: &str = "an execution order number in a chart's network is not read yet";
 
 /// Whether the block `b` is a function (no instance name).
 fn is_function(b: Node) -> bool {
@@ -317,10 +325,8 @@ impl<'a, 'i> Net<'_, 'a, 'i> {
     /// of its own.
     fn plain_block(&self, b: Node<'a, 'i>) -> Result<String, StError> {
         let instance = b.attribute("instanceName").unwrap_or("").trim();
-        if b.attribute("executionOrderId").is_some_and(|v| v.trim().parse() != Ok(0)) {
-            return Err(
-                self.refuse(b, "an execution order number in a chart's network is not read yet")
-            );
+        if numbered(b) {
+            return Err(self.refuse(b, NUMBERED));
         }
         Ok(instance.to_string())
     }
@@ -411,10 +417,8 @@ impl<'a, 'i> Net<'_, 'a, 'i> {
             return Ok(e.clone());
         }
         let ty = b.attribute("typeName").unwrap_or("").trim().to_ascii_uppercase();
-        if b.attribute("executionOrderId").is_some_and(|v| v.trim().parse() != Ok(0)) {
-            return Err(
-                self.refuse(b, "an execution order number in a chart's network is not read yet")
-            );
+        if numbered(b) {
+            return Err(self.refuse(b, NUMBERED));
         }
         let outs: Vec<Node> =
             child(b, "outputVariables").into_iter().flat_map(|o| elements(o, "variable")).collect();
@@ -513,10 +517,7 @@ impl<'a, 'i> Net<'_, 'a, 'i> {
                     return Some(t.ty.name.clone());
                 }
                 let v = self.vars.iter().find(|v| v.name.eq_ignore_ascii_case(&id.name))?;
-                Some(match &v.ty {
-                    Ty::Bool => "BOOL".into(),
-                    Ty::Derived(n) | Ty::Other(n) => n.to_ascii_uppercase(),
-                })
+                Some(v.ty.iec_name())
             }
             _ => None,
         }
@@ -527,9 +528,7 @@ impl<'a, 'i> Net<'_, 'a, 'i> {
     /// chooses none: [`order_dispute`] then finds the difference, which the loader
     /// settles).
     pub fn program(&mut self, body: Node<'a, 'i>) -> Result<(), StError> {
-        let lists = Statements::of(body).map_err(|n| {
-            self.refuse(n, "an execution order number in a chart's network is not read yet")
-        })?;
+        let lists = Statements::of(body).map_err(|n| self.refuse(n, NUMBERED))?;
         let (outs, blocks) = match self.order {
             Some(StatementOrder::Document) => (lists.outs, lists.blocks),
             _ => match lists.by_position() {
