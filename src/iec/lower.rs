@@ -176,8 +176,8 @@ pub fn lower_wanting(
     // An integer found opaque while lowering changes what reads it: lowered again
     // until no new one appears (each round adds one at least).
     let (mut opaque, mut omitted, mut multi) = (BTreeMap::new(), BTreeSet::new(), BTreeSet::new());
-    let mut elapsed: BTreeMap<String, crate::program::IntType> =
-        wanted.iter().map(|w| (w.to_ascii_uppercase(), crate::program::IntType::TIME)).collect();
+    let mut elapsed: BTreeMap<String, elapsed::Wanted> =
+        wanted.iter().map(|w| (w.to_ascii_uppercase(), elapsed::Wanted::default())).collect();
     let time_facts = durations::time_facts(sources, unit);
     loop {
         let mut l = Lowering::new(sources, cycle_us, warnings.clone());
@@ -220,7 +220,7 @@ pub fn lower_wanting(
         if !l.errors.is_empty() {
             return Err(l.errors);
         }
-        l.elapsed_conditional();
+        l.elapsed_after_lowering();
         let called: BTreeSet<String> = l
             .called
             .iter()
@@ -417,9 +417,9 @@ struct Lowering<'s> {
     /// The standard function-block instances called more than once in a scan (instance
     /// key; given, grows while lowering, like `opaque`).
     multi: BTreeSet<String>,
-    /// The timer instances whose `ET` a statement reads (key), with its type once a call
-    /// gave it (grows like `opaque`).
-    elapsed: BTreeMap<String, crate::program::IntType>,
+    /// The timer instances whose `ET` a statement reads (key), with what the calls told
+    /// of it (grows like `opaque`).
+    elapsed: BTreeMap<String, elapsed::Wanted>,
     /// The values known at this point of the scan (to count `WHILE`/`REPEAT` loops).
     known: known::Known,
     /// The bodies being lowered, with their `RETURN` and loop bits, innermost last.

@@ -349,6 +349,18 @@ pub struct Block {
     pub stmts: Vec<Stmt>,
 }
 
+impl Block {
+    /// The label of the block that starts every scan by counting the scans since each
+    /// timer called call by call started (a front end's; a caller that runs the
+    /// program's blocks at a call of it runs this one at the start of its own scan).
+    pub const CLOCK: &'static str = "L00_clock";
+
+    /// Whether this is the [`Block::CLOCK`] block.
+    pub fn is_clock(&self) -> bool {
+        self.label.as_deref() == Some(Block::CLOCK)
+    }
+}
+
 /// A scan-local value: the power at some point of a block (never a signal).
 pub type Temp = usize;
 

@@ -49,11 +49,13 @@ impl IntegerTrack {
         let has = |x: &str, k: u32| has_bit(env, x, k);
         let mut out = Vec::new();
         for (x, var) in compiled.integers.iter().filter(|(_, v)| v.ty.time) {
-            let count = format!("{x}_SCANS");
-            let counted = compiled
-                .integers
-                .get(&count)
-                .is_some_and(|c| (0..c.ty.bits).all(|k| has(&count, k)));
+            let counts = [
+                format!("{x}_SCANS"),
+                x.strip_suffix("_ET").map_or(String::new(), |i| format!("{i}_AGE")),
+            ];
+            let counted = counts.iter().any(|count| {
+                compiled.integers.get(count).is_some_and(|c| (0..c.ty.bits).all(|k| has(count, k)))
+            });
             if counted || (0..var.ty.bits).any(|k| has(x, k)) {
                 out.extend(
                     (0..var.ty.bits).filter(|k| !has(x, *k)).map(|k| Program::int_bit(x, k)),
@@ -118,14 +120,19 @@ fn has_bit(env: &Assignment, x: &str, k: u32) -> bool {
     env.signals.contains_key(&Symbol::from(Program::int_bit(x, k).as_str()))
 }
 
-/// Whether the integer `x` is a timer's hidden count of scans (`T1_ET_SCANS`) whose
-/// elapsed time (`T1_ET`, a TIME) `env` holds whole: that is drawn instead.
+/// Whether the integer `x` is a timer's hidden count of scans (`T1_ET_SCANS`; `T1_AGE`,
+/// the scans since the start of one followed call by call) whose elapsed time (`T1_ET`,
+/// a TIME) `env` holds whole: that is drawn instead.
 fn elapsed_count(compiled: &CompiledProgram, env: &Assignment, x: &str) -> bool {
-    let Some(et) = x.strip_suffix("_SCANS") else { return false };
+    let et = match (x.strip_suffix("_SCANS"), x.strip_suffix("_AGE")) {
+        (Some(et), _) => et.to_string(),
+        (None, Some(inst)) => format!("{inst}_ET"),
+        (None, None) => return false,
+    };
     compiled
         .integers
-        .get(et)
-        .is_some_and(|var| var.ty.time && (0..var.ty.bits).all(|k| has_bit(env, et, k)))
+        .get(&et)
+        .is_some_and(|var| var.ty.time && (0..var.ty.bits).all(|k| has_bit(env, &et, k)))
 }
 
 /// `signals` drawn with a value row for each of `tracks` (`Cparts  0    1    2 …`).

@@ -302,7 +302,6 @@ impl Lowering<'_> {
         if !self.elapsed.contains_key(&inst.to_ascii_uppercase()) {
             return None;
         }
-        let pt = self.preset_ns(pt);
         let mut stmts = Vec::new();
         let v = self.temp(&mut stmts, v.clone());
         let q = self.elapsed_call(inst, kind, pt, &v, &mut stmts, span)?;
@@ -538,7 +537,7 @@ impl<'s> Lowering<'s> {
     /// The `PT` a call of the timer `inst` leaves out: the duration the instance holds at
     /// every call (T#0s, or the one literal every call that gives it gives), else why it
     /// may hold another.
-    fn kept_pt(&self, inst: &str) -> Result<u64, Option<String>> {
+    pub(super) fn kept_pt(&self, inst: &str) -> Result<u64, Option<String>> {
         let pin = format!("{inst}.PT");
         match self.durations.get(&pin) {
             Some(us) => Ok(*us),
@@ -713,15 +712,6 @@ impl<'s> Lowering<'s> {
                 None => format!("the pulse timer {inst} keeps a PT that is not a constant"),
             }),
         };
-        // Called twice in a scan, the second call sees the time of the first, which the
-        // scan model's count of scans does not.
-        let pt = pt.and_then(|pt| match self.multi.contains(&inst.to_ascii_uppercase()) {
-            true if pt > 0 => Err(format!(
-                "the pulse timer {inst} is called more than once in a scan, and its pulse \
-                 ends at the first call one PT after it started, which is not modelled"
-            )),
-            _ => Ok(pt),
-        });
         let pt = match pt {
             Ok(pt) => pt,
             Err(why) => {
@@ -732,10 +722,23 @@ impl<'s> Lowering<'s> {
         let q = self.hidden(inst, "Q");
         let done = self.hidden(inst, "DONE");
         let input = self.temp(&mut out, v);
-        let pt_ns = self.preset_ns(inputs.get("PT").copied());
-        if let Some(value) = self.elapsed_call(inst, Elapsed::Pulse, pt_ns, &input, &mut out, span)
+        let given = inputs.get("PT").copied();
+        if let Some(value) = self.elapsed_call(inst, Elapsed::Pulse, given, &input, &mut out, span)
         {
             out.push(Stmt::Write { target: q, kind: WriteKind::Assign, value, span });
+            return out;
+        }
+        // Called twice in a scan, the second call sees the time of the first, which the
+        // scan model's count of scans does not: the call by call model of its `ET` above
+        // does (lowering runs again with it).
+        let key = inst.to_ascii_uppercase();
+        if self.multi.contains(&key) && pt > 0 {
+            self.elapsed.entry(key).or_default();
+            let why = format!(
+                "the pulse timer {inst} is called more than once in a scan, and its pulse \
+                 ends at the first call one PT after it started, which is not modelled"
+            );
+            out.push(self.unconstrained_output(inst, ty, "Q", &why, span));
             return out;
         }
         let rise = self.edge(inst, "PREV_IN", ty, input.clone(), &mut out, span);

@@ -1,7 +1,7 @@
 //! Functions and conversions with an integer or Boolean result in Structured Text and Instruction List, as matiec's library computes them: the `*_TO_*` conversions (`TIME_TO_*`, `STRING_TO_*` of a literal, `<from>_TO_BOOL`), `MIN`/`MAX`/`LIMIT`/`SEL`/`ABS`/`MOVE` and the arithmetic functions; what is not computed is opaque, with the reason.
 
 use super::Lowering;
-use super::ints::{Int, Opaque, int_type, no_time_arithmetic};
+use super::ints::{ByZero, Int, Opaque, int_type, no_time_arithmetic};
 use crate::diag::Span;
 use crate::iec::ast::{self, Arg, BinOp};
 use crate::program::{BoolExpr, C_INT, CmpOp, Fresh, IntExpr, IntType, library, promoted};
@@ -125,7 +125,7 @@ impl Lowering<'_> {
                 // narrower one, then wrapped to it): `MUL` of three `INT`s cannot overflow.
                 let mut acc = first.clone();
                 for x in rest {
-                    let step = self.arithmetic(op, acc, x.clone(), e.span)?;
+                    let step = self.arithmetic(op, acc, x.clone(), e.span, ByZero::Zero)?;
                     acc = Int::of(IntExpr::Cast(Box::new(step.in_type(t)), t), Some(t));
                 }
                 acc.in_type(t)

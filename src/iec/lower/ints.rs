@@ -12,6 +12,17 @@ use crate::program::{
 
 pub(super) use crate::program::library::{counter_type, int_type, type_name};
 
+/// What the C matiec writes for a division computes for a divisor 0.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum ByZero {
+    /// 0: the `DIV` and `MOD` functions (`TEST_EN_COND(…, op2 == 0)`, `if (op2 == 0)
+    /// return 0;`) and Structured Text's `MOD` (`((b == 0)?0:a % b)`).
+    Zero,
+    /// Nothing defined (C's `/` and `%`: Structured Text's `/`, Instruction List's `DIV`
+    /// and `MOD`): the division is computed only by a literal that is not 0.
+    Undefined,
+}
+
 /// A typed integer expression: its value, its type (`None`: a literal, typed by where
 /// it is used) and whether it divides (its result then depends on the width it is
 /// computed in).
@@ -132,7 +143,9 @@ impl Lowering<'_> {
                 if a.is_real() || b.is_real() {
                     return self.real_arithmetic(*op, a, b, e.span);
                 }
-                self.arithmetic(*op, a, b, e.span)
+                // matiec writes `MOD` as `((b == 0)?0:a % b)` and `/` as C's `/`.
+                let zero = if *op == BinOp::Mod { ByZero::Zero } else { ByZero::Undefined };
+                self.arithmetic(*op, a, b, e.span, zero)
             }
             ExprKind::Binary(BinOp::Pow, ..) => Err("`**` computes in REAL".into()),
             ExprKind::Call(f, args) => self.int_function(f, args, e),
@@ -265,6 +278,7 @@ impl Lowering<'_> {
         a: Int,
         b: Int,
         span: Span,
+        zero: ByZero,
     ) -> Result<Int, Opaque> {
         let ty = self.unify(&a, &b, span)?;
         if let (IntExpr::Const(x), IntExpr::Const(y), None) = (&a.e, &b.e, ty) {
@@ -293,6 +307,8 @@ impl Lowering<'_> {
             let k = match (&b.e, ty) {
                 (IntExpr::Const(k), Some(t)) => t.wrap(*k),
                 (IntExpr::Const(k), None) => *k,
+                // A divisor 0 gives 0 (`DivBy`, `ModBy`).
+                _ if zero == ByZero::Zero => return self.c_arithmetic(cop, a, b, span, keyword),
                 _ => {
                     return Err(format!(
                         "`{}` divides by a variable, which may be 0 (a run-time error of the PLC)",
@@ -300,6 +316,9 @@ impl Lowering<'_> {
                     ));
                 }
             };
+            if k == 0 && zero == ByZero::Zero {
+                return Ok(Int::of(IntExpr::Const(0), ty));
+            }
             if k == 0 {
                 return Err(format!("`{}` divides by 0", self.text(span)));
             }
@@ -471,7 +490,8 @@ impl Lowering<'_> {
         x: Int,
         span: Span,
     ) -> Result<Int, Opaque> {
-        let v = self.arithmetic(op, cr, x, span)?;
+        // matiec's C: `CR /= x`, `CR %= x`.
+        let v = self.arithmetic(op, cr, x, span, ByZero::Undefined)?;
         Ok(match v.ty {
             Some(t) => Int::of(IntExpr::Cast(Box::new(v.in_type(t)), t), Some(t)),
             None => v,

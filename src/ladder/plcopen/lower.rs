@@ -909,6 +909,7 @@ fn lower_pass(l: &mut Lower<'_>) {
         l.coil(one(), started, WriteKind::Assign, file_span);
     }
     l.latch_inputs(p, file_span);
+    l.text_clocks(p);
     l.run();
 }
 

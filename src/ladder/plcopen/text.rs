@@ -279,6 +279,8 @@ pub struct TextCall {
     pub inputs: BTreeMap<String, (String, bool)>,
     /// Per BOOL output pin (upper case): the instance's variable.
     pub outputs: BTreeMap<String, String>,
+    /// Per integer output pin (upper case): the instance's variable.
+    pub int_outputs: BTreeMap<String, String>,
 }
 
 /// The call of the user function block `type_name` with a text body by the block
@@ -319,6 +321,7 @@ pub fn call(
             program: b.program.prefixed(&prefix),
             inputs: BTreeMap::new(),
             outputs: BTreeMap::new(),
+            int_outputs: BTreeMap::new(),
         };
         let mut presets = BTreeMap::new();
         for v in &fb.vars {
@@ -353,6 +356,9 @@ pub fn call(
                 }
                 VarClass::Output if v.ty == Ty::Bool => {
                     call.outputs.insert(upper, named);
+                }
+                VarClass::Output if int => {
+                    call.int_outputs.insert(upper, named);
                 }
                 _ => {}
             }
@@ -391,7 +397,7 @@ impl TextCall {
         for (var, _) in self.inputs.values_mut() {
             *var = format!("{prefix}{var}");
         }
-        for var in self.outputs.values_mut() {
+        for var in self.outputs.values_mut().chain(self.int_outputs.values_mut()) {
             *var = format!("{prefix}{var}");
         }
     }

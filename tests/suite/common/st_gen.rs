@@ -1,4 +1,4 @@
-//! Random Structured Text programs for the differential tests: Boolean assignments, IF/ELSIF/ELSE, every modelled function block (TON, TOF, TP, R_TRIG, F_TRIG, SR, RS, CTU, CTD, CTUD) with formal inputs and outputs (timers and edge detectors sometimes called under an IF, a timer's `PT` sometimes left out, and some instances called a second time with inputs left out), user functions and function blocks (inputs left out keep their values), FOR loops with constant bounds and WHILE/REPEAT loops counted before the scan (EXIT and CONTINUE under IF in their bodies), RETURN under IF in a program and a function block, the Boolean operators and functions, integers of every 8- to 32-bit type and a subrange of one (arithmetic, division and MOD by literals, conversions, MIN/MAX/LIMIT/ABS/SEL, comparisons, CASE, integer inputs), initial values, and a configuration giving the cycle.
+//! Random Structured Text programs for the differential tests: Boolean assignments, IF/ELSIF/ELSE, every modelled function block (TON, TOF, TP, R_TRIG, F_TRIG, SR, RS, CTU, CTD, CTUD) with formal inputs and outputs (timers and edge detectors sometimes called under an IF, a timer's `PT` sometimes left out, and some instances called a second time with inputs left out), user functions and function blocks (inputs left out keep their values), FOR loops with constant bounds and WHILE/REPEAT loops counted before the scan (EXIT and CONTINUE under IF in their bodies), RETURN under IF in a program and a function block, the Boolean operators and functions, integers of every 8- to 32-bit type and a subrange of one (arithmetic, division by literals, MOD by literals and variables, conversions, MIN/MAX/LIMIT/ABS/SEL, comparisons, CASE, integer inputs), initial values, and a configuration giving the cycle.
 #![allow(dead_code)]
 
 use super::rng::Rng;
@@ -39,6 +39,8 @@ struct Gen<'r> {
     rng: &'r mut Rng,
     /// Boolean literals written so far (every third is written `1` or `0`).
     literals: u32,
+    /// `MOD`s written so far (every third divides by a variable, perhaps 0).
+    mods: u32,
     /// Readable Boolean terms.
     reads: Vec<String>,
     /// Writable BOOL variables.
@@ -159,6 +161,13 @@ impl Gen<'_> {
                     k = -k;
                 }
                 let op = if self.rng.chance(50) { "/" } else { "MOD" };
+                // matiec's `MOD` gives 0 for a divisor 0; its `/` leaves that undefined.
+                if op == "MOD" {
+                    self.mods += 1;
+                    if self.mods.is_multiple_of(3) && !same.is_empty() {
+                        return format!("({a} MOD {})", same[self.mods as usize % same.len()]);
+                    }
+                }
                 format!("({a} {op} {k})")
             }
             7 if signed => format!("-({a})"),
@@ -350,6 +359,7 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
     let mut g = Gen {
         rng: &mut rng,
         literals: 0,
+        mods: 0,
         reads,
         writes: locals.clone(),
         funcs: Vec::new(),
@@ -400,6 +410,7 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
         let mut f = Gen {
             rng: &mut sub,
             literals: 0,
+            mods: 0,
             reads: g.reads.clone(),
             writes: Vec::new(),
             funcs: Vec::new(),
@@ -417,6 +428,7 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
         let mut f = Gen {
             rng: &mut *g.rng,
             literals: 0,
+            mods: 0,
             reads: vec!["A".into(), "B".into(), "L".into()],
             writes: vec!["L".into(), "Fn0".into()],
             funcs: Vec::new(),
@@ -438,6 +450,7 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
         let mut f = Gen {
             rng: &mut *g.rng,
             literals: 0,
+            mods: 0,
             reads,
             writes: vec!["O0".into(), "O1".into(), "M".into()],
             funcs: g.funcs.clone(),
@@ -638,14 +651,14 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
             }
         }
     }
-    // Reads of the elapsed time of timers called once at every scan (of the others it
-    // is not computed), among the calls (before a call: the last scan's value):
-    // compared with a duration, or whole seconds into an integer.
-    // (A preset not given in the call is not computed: its value in matiec's C is
-    // another literal's, rounded as `__time_to_timespec` rounds it.)
+    // Reads of the elapsed time of the timers whose first call gives a preset (called
+    // once at every scan, or also under a condition or a second time), among the calls
+    // (before a call: the last scan's value): compared with a duration, or whole seconds
+    // into an integer. (A timer called once at every scan without a preset has its
+    // elapsed time not computed.)
     let mut timers: Vec<String> = fbs
         .iter()
-        .filter(|(n, t)| matches!(*t, "TON" | "TOF") && !conditional.contains(n))
+        .filter(|(_, t)| matches!(*t, "TON" | "TOF"))
         .filter(|(n, _)| pts.iter().any(|(m, _)| m == n))
         .map(|(n, _)| n.clone())
         .collect();

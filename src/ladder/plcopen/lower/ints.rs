@@ -448,7 +448,7 @@ impl Lower<'_> {
         if !before {
             self.call(j);
         }
-        match self.p.hidden_name(j, pin).map(str::to_string) {
+        match self.p.int_output_name(j, pin).map(str::to_string) {
             Some(name) => self.int_read(&name),
             None => Err(self.output_not_computed(j, pin)),
         }

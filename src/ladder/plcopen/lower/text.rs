@@ -73,8 +73,23 @@ impl Lower<'_> {
             Renaming { name: &same, temps: self.next_temp, edge: &mut edge, presets: &presets };
         let blocks = renaming.blocks(&call.program.blocks);
         self.next_temp += call.program.temps_used();
-        for b in blocks {
+        // The clock runs at the start of the scan ([`Self::text_clocks`]).
+        for b in blocks.into_iter().filter(|b| !b.is_clock()) {
             self.push_block(b.stmts, b.span);
+        }
+    }
+
+    /// At the start of the scan: every text block instance's clock block, which counts
+    /// the scans since its timers called call by call started, whether it is called in
+    /// this scan or not (the runtime's clock runs on).
+    pub(super) fn text_clocks(&mut self, p: &PlcProgram) {
+        for call in p.text_calls.values() {
+            for b in call.program.blocks.iter().filter(|b| b.is_clock()) {
+                self.push_block(b.stmts.clone(), b.span);
+            }
+        }
+        for sub in p.subs.values() {
+            self.text_clocks(sub);
         }
     }
 }

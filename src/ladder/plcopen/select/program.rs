@@ -253,6 +253,15 @@ impl PlcProgram {
         self.hidden.get(&(k, pin.to_string())).map(String::as_str)
     }
 
+    /// The variable holding the integer output `pin` of the block at `k`: its hidden
+    /// variable, or a text block's output variable.
+    pub fn int_output_name(&self, k: usize, pin: &str) -> Option<&str> {
+        self.hidden_name(k, pin).or_else(|| {
+            let call = self.text_calls.get(&k)?;
+            call.int_outputs.get(&pin.to_ascii_uppercase()).map(String::as_str)
+        })
+    }
+
     /// The producer of a wire.
     pub fn source(&self, c: &Conn) -> Option<Source> {
         let k = *self.index.get(&c.from)?;

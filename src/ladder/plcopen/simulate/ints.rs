@@ -464,7 +464,7 @@ impl PlcSimulator {
                 // Its block was called (or not, by the order) when the inputs were computed.
                 // A peripheral's integer is the run's value of its free input.
                 let (name, _) = self.p.output_pin(j, p);
-                let h = match self.p.hidden_name(j, &name) {
+                let h = match self.p.int_output_name(j, &name) {
                     Some(h) => h.to_string(),
                     None if self.p.peripherals.contains(&j) => self.p.peripheral_input(j, &name),
                     None => return None,
