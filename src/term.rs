@@ -269,6 +269,34 @@ pub fn same_tree(x: &Expr, a: Id, y: &Expr, b: Id) -> bool {
     m.matches(n) && m.children().iter().zip(n.children()).all(|(&c, &d)| same_tree(x, c, y, d))
 }
 
+/// A hash of the tree at `id` in `expr` that depends on the tree alone (operators,
+/// names, shape; a delay literal only as a delay): equal trees ([`same_tree`]) hash
+/// alike wherever their nodes sit, so an index can find a subterm without copying it.
+pub fn tree_hash(expr: &Expr, id: Id) -> u64 {
+    fn mix(h: u64, word: u64) -> u64 {
+        (h.rotate_left(5) ^ word).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95)
+    }
+    let node = &expr[id];
+    let tag: u64 = match node {
+        Term::Zero => 1,
+        Term::One => 2,
+        Term::And(_) => 3,
+        Term::Or(_) => 4,
+        Term::Not(_) => 5,
+        Term::Pre(_) => 6,
+        Term::Ton(_) => 7,
+        Term::Tof(_) => 8,
+        Term::Sr(_) => 9,
+        Term::Rs(_) => 10,
+        Term::DMax(_) => 11,
+        Term::DMin(_) => 12,
+        Term::DAdd(_) => 13,
+        Term::Delay(_) => 14,
+        Term::Name(s) => 15 | u64::from(std::num::NonZeroU32::from(*s).get()) << 8,
+    };
+    node.children().iter().fold(mix(0, tag), |h, &c| mix(h, tree_hash(expr, c)))
+}
+
 /// Structural equality of two whole terms.
 pub fn same(x: &Expr, y: &Expr) -> bool {
     same_tree(x, root(x), y, root(y))
@@ -539,5 +567,64 @@ mod tests {
         let _ = b.and(x, y);
         assert!(same(&b.finish(), &sexp("(& a b)")));
         assert!(!same(&sexp("(& a b)"), &sexp("(& b a)")));
+    }
+
+    #[test]
+    fn an_instance_is_a_tree_the_same_as_its_copy() {
+        // A value with a shared node, and a pattern naming it twice.
+        let mut b = Builder::default();
+        let _stray = b.name("c");
+        let x = b.name("a");
+        let n = b.not(x);
+        let _ = b.and(n, n);
+        let value = b.finish();
+        let mut sigma = BTreeMap::new();
+        sigma.insert(Symbol::from("f"), value);
+        sigma.insert(Symbol::from("d"), sexp("5s"));
+        let instance = instantiate(&sexp("(+ (ton d f) (! f))"), &sigma).unwrap();
+        assert!(same(&instance, &sexp("(+ (ton 5s (& (! a) (! a))) (! (& (! a) (! a))))")));
+        assert_eq!(subterm(&instance, root(&instance)).as_ref(), instance.as_ref());
+    }
+
+    #[test]
+    fn equal_trees_hash_alike_wherever_their_nodes_sit() {
+        // `5s/a · ¬5s/a` with the timer shared and a node the root does not reach.
+        let mut b = Builder::default();
+        let _stray = b.name("c");
+        let x = b.name("a");
+        let d = b.delay("5s".parse().unwrap());
+        let t = b.ton(d, x);
+        let n = b.not(t);
+        let _ = b.and(t, n);
+        let shared = b.finish();
+        let tree = sexp("(& (ton 5s a) (! (ton 5s a)))");
+        assert_ne!(shared.as_ref(), tree.as_ref());
+        assert!(same(&shared, &tree));
+        assert_eq!(tree_hash(&shared, root(&shared)), tree_hash(&tree, root(&tree)));
+        let Term::And([_, m]) = tree[root(&tree)] else { panic!("an `·` at the root") };
+        assert_eq!(tree_hash(&shared, n), tree_hash(&tree, m));
+        // Different trees: operator, name, order of children.
+        let hash = |t: &str| {
+            let e = sexp(t);
+            tree_hash(&e, root(&e))
+        };
+        let all = [
+            "(& a b)",
+            "(& b a)",
+            "(+ a b)",
+            "(ton 5s a)",
+            "(tof a 5s)",
+            "(sr a b)",
+            "(rs a b)",
+            "(pre a)",
+            "(! a)",
+            "a",
+            "b",
+        ];
+        for (i, x) in all.iter().enumerate() {
+            for y in &all[i + 1..] {
+                assert_ne!(hash(x), hash(y), "{x} and {y}");
+            }
+        }
     }
 }

@@ -10,7 +10,7 @@ use crate::semantics::falsify::{self, Condition, Relation, SampleError, Witness}
 use crate::syntax::{
     self, DelayComparison, Goal, Law, NoProgram, Relation as GoalRelation, SideCondition, Statement,
 };
-use crate::term::{Delay, Expr, Symbol, Term, matches, root};
+use crate::term::{Delay, Expr, Language, Symbol, Term, matches, root};
 
 /// Matches a law's side against a whole ground term, extending `sigma` (the search and
 /// the script checker find instances with it; the kernel re-checks every use).
@@ -20,6 +20,12 @@ pub fn match_side(
     term: &Expr,
     sigma: &mut std::collections::BTreeMap<Symbol, Expr>,
 ) -> bool {
+    let (top, at) = (&side[root(side)], &term[root(term)]);
+    let variable = |s: &Symbol| law.signal_vars.contains(s) || law.delay_vars.contains(s);
+    // Most tries fail at the root: there, without gathering the variables.
+    if !matches!(top, Term::Name(s) if variable(s)) && !top.matches(at) {
+        return false;
+    }
     let vars: Vec<Symbol> = law.signal_vars.iter().chain(&law.delay_vars).cloned().collect();
     matches(side, root(side), &vars, &law.delay_vars, term, root(term), sigma)
 }

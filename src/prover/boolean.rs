@@ -18,7 +18,10 @@ use crate::sat_trace::Traced;
 
 use crate::kernel::{Axiom, Proof, Rel, Rule, Source, Step, Use};
 use crate::refutation::Cnf;
-use crate::term::{Expr, Id, Language, Symbol, Term, and, constant, mentions_pre, root, subterm};
+use crate::term::{
+    Expr, Id, Language, Symbol, Term, and, constant, mentions_pre, root, same, same_tree, subterm,
+    tree_hash,
+};
 
 use super::induction::{pre, push_pre};
 use super::normalize::replace_at;
@@ -57,12 +60,14 @@ pub(super) enum B {
     Or(Box<B>, Box<B>),
 }
 
-/// The atoms met so far, by their tree (a canonical copy: equal trees, equal keys).
+/// The atoms met so far, by their tree (equal trees, one atom).
 #[derive(Default, Debug)]
 pub struct Atoms {
     /// Each atom's term.
     pub terms: Vec<Expr>,
-    index: HashMap<Expr, usize>,
+    /// The atoms by the hash of their tree ([`tree_hash`]), those whose hashes collide
+    /// side by side: a subterm is looked up without being copied.
+    index: HashMap<u64, Vec<usize>>,
     /// Towards the representative of the atom's class: the next atom and the
     /// hypothesis (`a = b`, used forward or backward) that rewrites this one into it.
     link: Vec<Option<(usize, String, Use)>>,
@@ -136,12 +141,23 @@ impl Atoms {
     }
 
     pub(super) fn intern(&mut self, e: &Expr) -> usize {
-        let key = subterm(e, root(e));
-        if let Some(&i) = self.index.get(&key) {
-            return i;
+        let hash = tree_hash(e, root(e));
+        match self.find(e, root(e), hash) {
+            Some(i) => i,
+            None => self.add(hash, e.clone()),
         }
-        self.terms.push(e.clone());
-        self.index.insert(key, self.terms.len() - 1);
+    }
+
+    /// The atom whose tree is the one at `id` in `e` (of hash `hash`), if met.
+    fn find(&self, e: &Expr, id: Id, hash: u64) -> Option<usize> {
+        let same = |&i: &usize| same_tree(&self.terms[i], root(&self.terms[i]), e, id);
+        self.index.get(&hash)?.iter().copied().find(same)
+    }
+
+    /// A new atom.
+    fn add(&mut self, hash: u64, term: Expr) -> usize {
+        self.terms.push(term);
+        self.index.entry(hash).or_default().push(self.terms.len() - 1);
         self.terms.len() - 1
     }
 
@@ -152,7 +168,13 @@ impl Atoms {
             Term::Not(a) => B::Not(Box::new(self.view(e, *a))),
             Term::And([a, b]) => B::And(Box::new(self.view(e, *a)), Box::new(self.view(e, *b))),
             Term::Or([a, b]) => B::Or(Box::new(self.view(e, *a)), Box::new(self.view(e, *b))),
-            _ => B::Atom(self.intern(&subterm(e, id))),
+            _ => {
+                let hash = tree_hash(e, id);
+                B::Atom(match self.find(e, id, hash) {
+                    Some(i) => i,
+                    None => self.add(hash, subterm(e, id)),
+                })
+            }
         }
     }
 }
@@ -215,7 +237,10 @@ impl LawIndex {
 
 /// Instances of the laws for the atoms present: every law side with a temporal
 /// root (or a `·`/`+` of two of them) is matched against the atoms, in two rounds
-/// so that atoms introduced by instances get their own lemmas.
+/// so that atoms introduced by instances get their own lemmas. The second round
+/// matches only what involves an atom the first introduced: an instance of the first
+/// round's atoms alone is the first round's again (matching and instantiating are
+/// functions of the law and the atoms), already taken or already refused.
 pub fn law_instances(
     laws: &[Axiom],
     index: &LawIndex,
@@ -224,45 +249,68 @@ pub fn law_instances(
     limit: usize,
 ) -> Vec<Constraint> {
     let mut out: Vec<Constraint> = Vec::new();
-    let mut seen = std::collections::HashSet::new();
+    // The instances in `out`, by the hash of their two sides.
+    let mut seen: HashMap<u64, Vec<usize>> = HashMap::new();
+    // The atoms every earlier round matched: `atoms.terms` only grows.
+    let mut matched = 0;
     for _round in 0..2 {
         let pool: Vec<Expr> = atoms.terms.clone();
-        let temporal: Vec<&Expr> =
-            pool.iter().filter(|a| !matches!(a[root(a)], Term::Name(_))).collect();
+        // Each temporal atom, and whether this round is the first to match it.
+        let temporal: Vec<(&Expr, bool)> = pool
+            .iter()
+            .enumerate()
+            .filter(|(_, a)| !matches!(a[root(a)], Term::Name(_)))
+            .map(|(i, a)| (a, i >= matched))
+            .collect();
+        matched = pool.len();
         for (law, pieces) in laws.iter().zip(&index.0) {
             let Some(first) = pieces.first() else { continue };
-            let mut sigmas: Vec<BTreeMap<Symbol, Expr>> = Vec::new();
-            for atom in &temporal {
+            // Each match, and whether it involves an atom new in this round.
+            let mut sigmas: Vec<(BTreeMap<Symbol, Expr>, bool)> = Vec::new();
+            for &(atom, new) in &temporal {
+                // An old atom's match is wanted only to pair with a new atom.
+                if !new && pieces.len() == 1 {
+                    continue;
+                }
                 let mut sigma = BTreeMap::new();
                 if crate::theory::match_side(law, first, atom, &mut sigma) {
-                    sigmas.push(sigma);
+                    sigmas.push((sigma, new));
                 }
             }
             if let Some(second) = pieces.get(1) {
                 let mut extended = Vec::new();
-                for sigma in &sigmas {
-                    for atom in &temporal {
+                for (sigma, new_first) in &sigmas {
+                    for &(atom, new) in &temporal {
+                        if !new_first && !new {
+                            continue;
+                        }
                         let mut s = sigma.clone();
                         if crate::theory::match_side(law, second, atom, &mut s) {
-                            extended.push(s);
+                            extended.push((s, true));
                         }
                     }
                 }
                 sigmas.extend(extended);
             }
-            for sigma in sigmas {
+            for (sigma, new) in sigmas {
                 if out.len() >= limit {
                     return out;
                 }
-                let Some(c) = instance(law, cycle, sigma) else { continue };
-                let key = (
-                    law.name.clone(),
-                    subterm(&c.raw.0, root(&c.raw.0)),
-                    subterm(&c.raw.1, root(&c.raw.1)),
-                );
-                if !seen.insert(key) {
+                if !new {
                     continue;
                 }
+                let Some(c) = instance(law, cycle, sigma) else { continue };
+                // Once per law and instance (its two sides as trees).
+                let (l, r) = (&c.raw.0, &c.raw.1);
+                let hash = tree_hash(l, root(l)) ^ tree_hash(r, root(r)).rotate_left(1);
+                let taken = seen.entry(hash).or_default();
+                if taken.iter().any(|&k: &usize| {
+                    let d: &Constraint = &out[k];
+                    d.name == law.name && same(&d.raw.0, l) && same(&d.raw.1, r)
+                }) {
+                    continue;
+                }
+                taken.push(out.len());
                 atoms.view(&c.lhs, root(&c.lhs));
                 atoms.view(&c.rhs, root(&c.rhs));
                 out.push(c);
@@ -270,6 +318,10 @@ pub fn law_instances(
         }
     }
     out
+}
+
+fn is_delay_arithmetic(node: &Term) -> bool {
+    matches!(node, Term::DMax(_) | Term::DMin(_) | Term::DAdd(_))
 }
 
 /// The law's instance under `sigma`, unless a variable is unbound, a delay condition
@@ -285,7 +337,13 @@ fn instance(
     }
     let l = crate::term::instantiate(&law.lhs, &sigma)?;
     let r = crate::term::instantiate(&law.rhs, &sigma)?;
-    let (fl, fr) = (fold_delays(&l), fold_delays(&r));
+    // An instance is a tree (`instantiate` copies every value in), so without delay
+    // arithmetic it is its own folding.
+    let fold = |e: &Expr| match e.as_ref().iter().any(is_delay_arithmetic) {
+        true => fold_delays(e),
+        false => e.clone(),
+    };
+    let (fl, fr) = (fold(&l), fold(&r));
     if crate::term::same(&fl, &fr) {
         return None;
     }
@@ -392,7 +450,8 @@ fn temporal_pieces(law: &Axiom) -> Vec<Expr> {
     pieces
 }
 
-/// The term with every delay arithmetic node replaced by its value.
+/// The term with every delay arithmetic node replaced by its value (as a tree: a copy
+/// of `e` where it has none).
 pub fn fold_delays(e: &Expr) -> Expr {
     fn go(e: &Expr, id: Id, out: &mut Expr) -> Id {
         if let Term::DMax(_) | Term::DMin(_) | Term::DAdd(_) = &e[id]

@@ -709,12 +709,12 @@ fn constraints_for(
     depth: usize,
 ) -> Vec<boolean::Constraint> {
     let mut constraints: Vec<boolean::Constraint> = cone.iter().map(constraint).collect();
-    // Register the atoms of the terms and the hypotheses, then instantiate the laws for them.
-    let mut probe = constraints.clone();
-    probe.extend(
-        terms.iter().map(|t| constraint(&Axiom::ground("", (*t).clone(), Rel::Eq, (*t).clone()))),
-    );
-    boolean::register(atoms, &probe);
+    // Register the atoms of the hypotheses and of the terms, then instantiate the laws
+    // for them.
+    boolean::register(atoms, &constraints);
+    for t in terms {
+        atoms.view(t, root(t));
+    }
     for mut c in boolean::law_instances(&ctx.laws, &ctx.law_index, ctx.cycle.as_ref(), atoms, 2_000)
     {
         // A law with side conditions on signals is used only where they are proved.
