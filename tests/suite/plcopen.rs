@@ -633,9 +633,18 @@ fn integers_and_strings_from_peripherals_are_peripheral_reads() {
     };
     let all = shown(&tcp);
     assert!(all.contains("a peripheral read: the free input TCP_Connect0_SOCKET_ID, any INT"));
-    for cmp in ["LT: the comparison", "GT: the comparison"] {
+    for cmp in ["LT: the comparison", "GT: the comparison", "EQ: the comparison"] {
         assert!(!all.contains(cmp), "{cmp} in\n{all}");
     }
+    // `Received_msg = 'hi'`, where only the socket's MSG writes `Received_msg`.
+    assert!(
+        all.contains(
+            "a peripheral read: EQ compares strings from outside (Received_msg, written only \
+             by the output MSG of TCP_Receive0 (TCP_RECEIVE)): its result is any value"
+        ),
+        "{all}"
+    );
+    assert!(!all.contains("// fresh outputs of unsupported elements"), "{all}");
     let wx = shown(&format!("{corpus}/beremiz__beremiz/tests__projects__wxGlade__plc.xml"));
     assert!(wx.contains("its OUT is the free input _TMP_STRING_TO_INT30_OUT_READ, any INT"));
     assert!(!wx.contains("INT_TO_BOOL: the conversion"), "{wx}");

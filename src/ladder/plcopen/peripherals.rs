@@ -94,6 +94,78 @@ impl super::PlcProgram {
         }
     }
 
+    /// Where block `k` (a comparison) compares only strings that are literals or what
+    /// peripherals give: those peripherals' outputs (`the output MSG of Rx (TCP_RECEIVE)`),
+    /// each read on a wire or through a local STRING variable that only such outputs
+    /// write. `None` where an operand is anything else, or no peripheral is read.
+    pub fn peripheral_strings(&self, k: usize) -> Option<Vec<String>> {
+        let super::ObjKind::Block { inputs, .. } = &self.obj(k)?.kind else { return None };
+        let literal = |text: &str| crate::iec::literal::string_literal(text).is_some();
+        let mut read = Vec::new();
+        for pin in inputs.iter().filter(|p| !p.name.eq_ignore_ascii_case("EN")) {
+            if pin.negated || pin.edge != super::Edge::None {
+                return None;
+            }
+            if let Some((text, _)) = &pin.expr {
+                literal(text).then_some(())?;
+                continue;
+            }
+            if let Some((j, out)) = self.peripheral_output(pin) {
+                read.push(self.peripheral_name(j, &out));
+                continue;
+            }
+            let [c] = pin.conns.as_slice() else { return None };
+            let Some(super::Source::Object(j)) = self.source(c) else { return None };
+            let super::ObjKind::InVar { expr, .. } = &self.obj(j)?.kind else { return None };
+            if literal(&expr.0) {
+                continue;
+            }
+            read.push(self.peripheral_string_variable(&expr.0)?);
+        }
+        (!read.is_empty()).then_some(read)
+    }
+
+    /// The local STRING variable `name`, where every statement that writes it writes a
+    /// peripheral's output (one at least): `Rx_msg, written only by the output MSG of Rx
+    /// (TCP_RECEIVE)`.
+    fn peripheral_string_variable(&self, name: &str) -> Option<String> {
+        let v = self.vars.get(&name.trim().to_ascii_uppercase())?;
+        let string = matches!(&v.ty, super::Ty::Other(t) if t.eq_ignore_ascii_case("STRING"));
+        if !string || !matches!(v.class, super::VarClass::Local | super::VarClass::Output) {
+            return None;
+        }
+        let mut from = Vec::new();
+        for (k, o) in self.objects().iter().enumerate() {
+            let (super::ObjKind::OutVar { input, .. } | super::ObjKind::InOutVar { input, .. }) =
+                &o.kind
+            else {
+                continue;
+            };
+            match self.operands.get(&k) {
+                Some(super::Operand::Other(w)) if w.eq_ignore_ascii_case(&v.name) => {
+                    let (j, out) = self.peripheral_output(input)?;
+                    from.push(self.peripheral_name(j, &out));
+                }
+                _ => {}
+            }
+        }
+        (!from.is_empty()).then(|| format!("{}, written only by {}", v.name, from.join(" and ")))
+    }
+
+    /// `the output MSG of Rx (TCP_RECEIVE)`.
+    fn peripheral_name(&self, j: usize, pin: &str) -> String {
+        match self.obj(j).map(|o| &o.kind) {
+            Some(super::ObjKind::Block { type_name, instance, .. }) => {
+                let upper = type_name.to_ascii_uppercase();
+                match instance {
+                    Some(i) => format!("the output {pin} of {i} ({upper})"),
+                    None => format!("the output {pin} of {upper}"),
+                }
+            }
+            _ => format!("the output {pin}"),
+        }
+    }
+
     /// The free integer inputs that stand for what peripherals give, with their types
     /// (upper case): each integer output of a peripheral block written into an integer
     /// variable, and each `STRING_TO_<integer>` of a peripheral's string.

@@ -641,6 +641,16 @@ impl Lower<'_> {
                     let value = enabled(v);
                     stmts.push(Stmt::Write { target: out, kind: WriteKind::Assign, value, span });
                 }
+                Err(_) if let (IntBlock::Compare(_), Some(read)) = (b, p.peripheral_strings(k)) => {
+                    // Strings from outside compared: the result is what the outside gives.
+                    let why = format!(
+                        "a peripheral read: {upper} compares strings from outside ({}): its \
+                         result is any value at every scan, also where they did not change",
+                        read.join("; ")
+                    );
+                    let value = enabled(super::free(&upper, why, span, true));
+                    stmts.push(Stmt::Write { target: out, kind: WriteKind::Assign, value, span });
+                }
                 Err(why) if b.bool_out() => {
                     let what =
                         if matches!(b, IntBlock::Compare(_)) { "comparison" } else { "conversion" };
