@@ -298,8 +298,29 @@ fn inputs_left_out_keep_the_values_the_instance_last_received() {
     assert!(!stdout.contains("unconstrained"), "{stdout}");
 }
 
+/// A pulse timer called twice in a scan, the second call keeping the first's `PT`, runs
+/// call by call as matiec's block does (the matiec oracle's random programs check its
+/// values): its `Q` is computed, not unconstrained.
+#[test]
+fn a_pulse_timer_called_twice_runs_call_by_call() {
+    let source = "PROGRAM P\n  VAR_INPUT\n    A, B : BOOL;\n  END_VAR\n  VAR\n    P0 : TP;\n    \
+                X : BOOL;\n  END_VAR\n  P0(IN := A, PT := T#50ms);\n  X := P0.Q;\n  \
+                P0(IN := B);\nEND_PROGRAM\n";
+    let dir = std::env::temp_dir().join(format!("ii-prove-st-tp2-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("tp2.st");
+    std::fs::write(&path, source).unwrap();
+    let out = ii_prove(&["show", "--cycle", "10ms", path.to_str().unwrap()]);
+    let all = text(&out.stdout) + &text(&out.stderr);
+    assert!(!all.contains("unconstrained"), "{all}");
+    assert!(!all.contains("not modelled"), "{all}");
+    for hidden in ["P0_AGE", "P0_STATE", "P0_PT_GIVEN"] {
+        assert!(all.contains(hidden), "{hidden}: {all}");
+    }
+}
+
 /// What stays unconstrained (or refused) where inputs are left out, each with its reason:
-/// a pulse timer called twice in a scan, or whose kept `PT` is not one literal; a TON
+/// a pulse timer called twice in a scan with two presets; a TON
 /// called twice whose second call keeps a `PT` that is not one literal; an input written
 /// outside the call.
 #[test]
@@ -312,14 +333,8 @@ fn inputs_left_out_that_are_not_one_value_are_named_with_the_reason() {
     };
     let cases = [
         (
-            "  P0(IN := A, PT := T#50ms);\n  X := P0.Q;\n  P0(IN := B);\n",
-            "the pulse timer P0 is called more than once in a scan, and its pulse ends at the \
-             first call one PT after it started, which is not modelled",
-        ),
-        (
-            "  P0(IN := A, PT := T#50ms);\n  X := P0.Q;\n  P0(IN := B);\n",
-            "the pulse timer P0 is called without PT, and the PT it keeps is not a constant: it \
-             holds T#0s and is also written with T#50ms by the call at line 10",
+            "  P0(IN := A, PT := T#50ms);\n  X := P0.Q;\n  P0(IN := B, PT := T#1s);\n",
+            "the integer P0_ET is not computed (its timer is called with different presets",
         ),
         // Called twice, the second call keeping a PT the first gives only under a
         // condition (T#0s or T#1s): two presets for one count.

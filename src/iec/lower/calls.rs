@@ -688,6 +688,21 @@ impl<'s> Lowering<'s> {
     ) -> Vec<Stmt> {
         let mut out = Vec::new();
         let v = self.kept_input(inst, "IN", read, &mut out, span);
+        let input = self.temp(&mut out, v);
+        let q = self.hidden(inst, "Q");
+        // Called more than once in a scan, the second call sees the time of the first,
+        // which the scan model's count of scans does not: the pulse is followed call by
+        // call, as where its `ET` is read (lowering runs again with it).
+        let key = inst.to_ascii_uppercase();
+        if self.multi.contains(&key) {
+            self.elapsed.entry(key.clone()).or_default();
+        }
+        let given = inputs.get("PT").copied();
+        if let Some(value) = self.elapsed_call(inst, Elapsed::Pulse, given, &input, &mut out, span)
+        {
+            out.push(Stmt::Write { target: q, kind: WriteKind::Assign, value, span });
+            return out;
+        }
         let pt = match inputs.get("PT").map(|e| &e.kind) {
             Some(ExprKind::Time(us)) => Ok(*us),
             Some(ExprKind::Var(id)) => {
@@ -719,21 +734,9 @@ impl<'s> Lowering<'s> {
                 return out;
             }
         };
-        let q = self.hidden(inst, "Q");
         let done = self.hidden(inst, "DONE");
-        let input = self.temp(&mut out, v);
-        let given = inputs.get("PT").copied();
-        if let Some(value) = self.elapsed_call(inst, Elapsed::Pulse, given, &input, &mut out, span)
-        {
-            out.push(Stmt::Write { target: q, kind: WriteKind::Assign, value, span });
-            return out;
-        }
-        // Called twice in a scan, the second call sees the time of the first, which the
-        // scan model's count of scans does not: the call by call model of its `ET` above
-        // does (lowering runs again with it).
-        let key = inst.to_ascii_uppercase();
+        // Not followed call by call (its preset is not a duration literal).
         if self.multi.contains(&key) && pt > 0 {
-            self.elapsed.entry(key).or_default();
             let why = format!(
                 "the pulse timer {inst} is called more than once in a scan, and its pulse \
                  ends at the first call one PT after it started, which is not modelled"

@@ -95,11 +95,13 @@ impl super::PlcProgram {
     }
 
     /// Where block `k` (a comparison) compares only strings that are literals or what
-    /// peripherals give: those peripherals' outputs (`the output MSG of Rx (TCP_RECEIVE)`),
-    /// each read on a wire or through a local STRING variable that only such outputs
-    /// write. `None` where an operand is anything else, or no peripheral is read.
-    pub fn peripheral_strings(&self, k: usize) -> Option<Vec<String>> {
-        let super::ObjKind::Block { inputs, .. } = &self.obj(k)?.kind else { return None };
+    /// peripherals give (each read on a wire or through a local STRING variable that only
+    /// such outputs write), why its result is a peripheral read, naming them. `None`
+    /// where an operand is anything else, or no peripheral is read.
+    pub fn peripheral_strings(&self, k: usize) -> Option<String> {
+        let super::ObjKind::Block { inputs, type_name, .. } = &self.obj(k)?.kind else {
+            return None;
+        };
         let literal = |text: &str| crate::iec::literal::string_literal(text).is_some();
         let mut read = Vec::new();
         for pin in inputs.iter().filter(|p| !p.name.eq_ignore_ascii_case("EN")) {
@@ -122,7 +124,14 @@ impl super::PlcProgram {
             }
             read.push(self.peripheral_string_variable(&expr.0)?);
         }
-        (!read.is_empty()).then_some(read)
+        (!read.is_empty()).then(|| {
+            format!(
+                "a peripheral read: {} compares strings from outside ({}): its result is any \
+                 value at every scan, also where they did not change",
+                type_name.to_ascii_uppercase(),
+                read.join("; ")
+            )
+        })
     }
 
     /// The local STRING variable `name`, where every statement that writes it writes a

@@ -650,6 +650,11 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
                 calls.push(format!("  P0(IN := {}, PT := T#{}ms);\n", g.expr(1), ms(pt)))
             }
         }
+        // In half the programs a second call, PT left out (the one given kept): the pulse
+        // is then followed call by call.
+        if pulse_pt && seed.is_multiple_of(2) {
+            calls.push(format!("  P0(IN := {});\n", own.pick(&g.reads)));
+        }
     }
     // Reads of the elapsed time of the timers whose first call gives a preset (called
     // once at every scan, or also under a condition or a second time), among the calls

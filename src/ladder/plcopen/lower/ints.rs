@@ -641,13 +641,7 @@ impl Lower<'_> {
                     let value = enabled(v);
                     stmts.push(Stmt::Write { target: out, kind: WriteKind::Assign, value, span });
                 }
-                Err(_) if let (IntBlock::Compare(_), Some(read)) = (b, p.peripheral_strings(k)) => {
-                    // Strings from outside compared: the result is what the outside gives.
-                    let why = format!(
-                        "a peripheral read: {upper} compares strings from outside ({}): its \
-                         result is any value at every scan, also where they did not change",
-                        read.join("; ")
-                    );
+                Err(_) if let (IntBlock::Compare(_), Some(why)) = (b, p.peripheral_strings(k)) => {
                     let value = enabled(super::free(&upper, why, span, true));
                     stmts.push(Stmt::Write { target: out, kind: WriteKind::Assign, value, span });
                 }
