@@ -43,18 +43,15 @@ impl IntegerTrack {
     }
 
     /// The bits a counterexample's `env` lacks of the elapsed times (`T1_ET`, a TIME)
-    /// it shows in part or whose hidden count of scans (`T1_ET_SCANS`) it has: a
+    /// it shows in part or whose hidden count of scans ([`elapsed_of`]) it has: a
     /// diagram draws the time, not the count, once they are added.
     pub fn elapsed_bits(compiled: &CompiledProgram, env: &Assignment) -> Vec<String> {
         let has = |x: &str, k: u32| has_bit(env, x, k);
         let mut out = Vec::new();
         for (x, var) in compiled.integers.iter().filter(|(_, v)| v.ty.time) {
-            let counts = [
-                format!("{x}_SCANS"),
-                x.strip_suffix("_ET").map_or(String::new(), |i| format!("{i}_AGE")),
-            ];
-            let counted = counts.iter().any(|count| {
-                compiled.integers.get(count).is_some_and(|c| (0..c.ty.bits).all(|k| has(count, k)))
+            let counted = compiled.integers.iter().any(|(count, c)| {
+                elapsed_of(count).as_deref() == Some(x.as_str())
+                    && (0..c.ty.bits).all(|k| has(count, k))
             });
             if counted || (0..var.ty.bits).any(|k| has(x, k)) {
                 out.extend(
@@ -124,15 +121,22 @@ fn has_bit(env: &Assignment, x: &str, k: u32) -> bool {
 /// the scans since the start of one followed call by call) whose elapsed time (`T1_ET`,
 /// a TIME) `env` holds whole: that is drawn instead.
 fn elapsed_count(compiled: &CompiledProgram, env: &Assignment, x: &str) -> bool {
-    let et = match (x.strip_suffix("_SCANS"), x.strip_suffix("_AGE")) {
-        (Some(et), _) => et.to_string(),
-        (None, Some(inst)) => format!("{inst}_ET"),
-        (None, None) => return false,
-    };
+    let Some(et) = elapsed_of(x) else { return false };
     compiled
         .integers
         .get(&et)
         .is_some_and(|var| var.ty.time && (0..var.ty.bits).all(|k| has_bit(env, &et, k)))
+}
+
+/// The elapsed time (`T1_ET`) whose hidden count of scans the integer `x` would be:
+/// `T1_ET_SCANS`, or `T1_AGE` (the scans since the start of a timer followed call by
+/// call).
+fn elapsed_of(x: &str) -> Option<String> {
+    match (x.strip_suffix("_SCANS"), x.strip_suffix("_AGE")) {
+        (Some(et), _) => Some(et.to_string()),
+        (None, Some(inst)) => Some(format!("{inst}_ET")),
+        (None, None) => None,
+    }
 }
 
 /// `signals` drawn with a value row for each of `tracks` (`Cparts  0    1    2 …`).

@@ -157,7 +157,7 @@ impl Lowering<'_> {
         let state_t = IntType::int(2, false);
         let state = self.hidden_int(inst, "STATE", state_t);
         let prev = self.hidden(inst, "PREV_IN");
-        let age_t = timer.age_type();
+        let age_t = Clocked::age_type(timer.n);
         let age = self.hidden_int(inst, "AGE", age_t);
         let k = IntExpr::Const;
         let is = |v: i64| compare(CmpOp::Eq, state_t, IntExpr::var(&state), k(v));
@@ -294,7 +294,7 @@ impl Lowering<'_> {
         for a in ages {
             match a {
                 Ok((age, n, span)) => {
-                    let t = Clocked::age_type_for(n);
+                    let t = Clocked::age_type(n);
                     let (k, var) = (IntExpr::Const, || IntExpr::var(&age));
                     let full = compare(CmpOp::Ge, t, var(), k(n));
                     let value = IntExpr::ite(full, k(n), IntExpr::plus(var(), k(1)));
@@ -328,12 +328,8 @@ struct Clocked<'a> {
 }
 
 impl Clocked<'_> {
-    fn age_type(&self) -> IntType {
-        Clocked::age_type_for(self.n)
-    }
-
     /// The type of the scans since a start, counted up to `n`.
-    fn age_type_for(n: i64) -> IntType {
+    fn age_type(n: i64) -> IntType {
         IntType::int((64 - n.leading_zeros()).max(1), false)
     }
 }

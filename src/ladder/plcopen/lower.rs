@@ -140,8 +140,7 @@ fn free(keyword: &str, why: String, span: Span, peripheral: bool) -> BoolExpr {
 /// What output `pin` of the peripheral library block `type_name` is: `the output ACK of
 /// py1 (PYTHON_EVAL): its outputs are set when …`.
 fn peripheral_output(type_name: &str, instance: Option<&str>, pin: &str) -> String {
-    let upper = type_name.to_ascii_uppercase();
-    let out = instance.map_or(upper.clone(), |i| format!("the output {pin} of {i} ({upper})"));
+    let out = super::peripherals::output_of(type_name, instance, pin);
     let what = super::peripherals::peripheral(type_name).unwrap_or("it answers from outside");
     format!("{out}: {what}")
 }

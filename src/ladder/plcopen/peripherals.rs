@@ -30,6 +30,13 @@ pub fn peripheral(type_name: &str) -> Option<&'static str> {
     })
 }
 
+/// The output `pin` of a block of type `type_name`: `the output ACK of py1
+/// (PYTHON_EVAL)`, or the type's name for a block without an instance.
+pub fn output_of(type_name: &str, instance: Option<&str>, pin: &str) -> String {
+    let upper = type_name.to_ascii_uppercase();
+    instance.map_or(upper.clone(), |i| format!("the output {pin} of {i} ({upper})"))
+}
+
 /// Where the string a `STRING_TO_*` block converts comes from, when it is known.
 pub enum StringSource {
     /// A string literal on its `IN` or on the input variable wired to it: its bytes as
@@ -69,27 +76,28 @@ impl super::PlcProgram {
 
     /// The string at block `k`'s input `IN`: a literal, or a peripheral's output.
     pub fn string_input(&self, k: usize) -> Option<StringSource> {
-        let pin = self.pin(k, "IN")?;
+        self.pin_string(self.pin(k, "IN")?)?.ok()
+    }
+
+    /// The string on `pin`: a literal or a peripheral's output, on the pin or on its wire;
+    /// `Err`: the text of the input variable wired to it that is not a literal (a
+    /// variable's name). `None` for anything else.
+    fn pin_string<'a>(&'a self, pin: &super::PinIn) -> Option<Result<StringSource, &'a str>> {
         if pin.negated || pin.edge != super::Edge::None {
             return None;
         }
         let literal =
             |text: &str| crate::iec::literal::string_literal(text).map(StringSource::Literal);
         if let Some((text, _)) = &pin.expr {
-            return literal(text);
+            return literal(text).map(Ok);
         }
         if let Some((j, out)) = self.peripheral_output(pin) {
-            return Some(StringSource::Peripheral(j, out));
+            return Some(Ok(StringSource::Peripheral(j, out)));
         }
         let [c] = pin.conns.as_slice() else { return None };
-        match &self
-            .obj(match self.source(c)? {
-                super::Source::Object(j) => j,
-                _ => return None,
-            })?
-            .kind
-        {
-            super::ObjKind::InVar { expr, .. } => literal(&expr.0),
+        let Some(super::Source::Object(j)) = self.source(c) else { return None };
+        match &self.obj(j)?.kind {
+            super::ObjKind::InVar { expr, .. } => Some(literal(&expr.0).ok_or(expr.0.as_str())),
             _ => None,
         }
     }
@@ -102,27 +110,13 @@ impl super::PlcProgram {
         let super::ObjKind::Block { inputs, type_name, .. } = &self.obj(k)?.kind else {
             return None;
         };
-        let literal = |text: &str| crate::iec::literal::string_literal(text).is_some();
         let mut read = Vec::new();
         for pin in inputs.iter().filter(|p| !p.name.eq_ignore_ascii_case("EN")) {
-            if pin.negated || pin.edge != super::Edge::None {
-                return None;
+            match self.pin_string(pin)? {
+                Ok(StringSource::Literal(_)) => {}
+                Ok(StringSource::Peripheral(j, out)) => read.push(self.output_named(j, &out)),
+                Err(variable) => read.push(self.peripheral_string_variable(variable)?),
             }
-            if let Some((text, _)) = &pin.expr {
-                literal(text).then_some(())?;
-                continue;
-            }
-            if let Some((j, out)) = self.peripheral_output(pin) {
-                read.push(self.peripheral_name(j, &out));
-                continue;
-            }
-            let [c] = pin.conns.as_slice() else { return None };
-            let Some(super::Source::Object(j)) = self.source(c) else { return None };
-            let super::ObjKind::InVar { expr, .. } = &self.obj(j)?.kind else { return None };
-            if literal(&expr.0) {
-                continue;
-            }
-            read.push(self.peripheral_string_variable(&expr.0)?);
         }
         (!read.is_empty()).then(|| {
             format!(
@@ -153,7 +147,7 @@ impl super::PlcProgram {
             match self.operands.get(&k) {
                 Some(super::Operand::Other(w)) if w.eq_ignore_ascii_case(&v.name) => {
                     let (j, out) = self.peripheral_output(input)?;
-                    from.push(self.peripheral_name(j, &out));
+                    from.push(self.output_named(j, &out));
                 }
                 _ => {}
             }
@@ -161,15 +155,11 @@ impl super::PlcProgram {
         (!from.is_empty()).then(|| format!("{}, written only by {}", v.name, from.join(" and ")))
     }
 
-    /// `the output MSG of Rx (TCP_RECEIVE)`.
-    fn peripheral_name(&self, j: usize, pin: &str) -> String {
+    /// The output `pin` of the block at `j`, as [`output_of`] names it.
+    fn output_named(&self, j: usize, pin: &str) -> String {
         match self.obj(j).map(|o| &o.kind) {
             Some(super::ObjKind::Block { type_name, instance, .. }) => {
-                let upper = type_name.to_ascii_uppercase();
-                match instance {
-                    Some(i) => format!("the output {pin} of {i} ({upper})"),
-                    None => format!("the output {pin} of {upper}"),
-                }
+                output_of(type_name, instance.as_deref(), pin)
             }
             _ => format!("the output {pin}"),
         }
