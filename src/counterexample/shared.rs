@@ -22,8 +22,10 @@
 //! (one per unit of a plant) whose member the most recent run refuted: that run is
 //! repaired near the property ([`Near`]). A solver chooses the inputs of the property's
 //! cone cut after [`REPAIR_CAP`] equations, every other name the cut reads held at its
-//! value in the run, so that the property fails; the result is judged on the whole cone
-//! like any candidate (an equation outside the cut may read a changed input).
+//! value in the run, so that the property fails, keeping each input at its value in the
+//! run where a violation allows it (the fewer changes, the less the judge runs); the
+//! result is judged on the whole cone like any candidate (an equation outside the cut
+//! may read a changed input).
 //!
 //! A candidate from a kept run is judged on part of its cone where the front end can
 //! replay a run ([`Shared::near`]): the equations that read, through any chain, an input
@@ -279,6 +281,10 @@ impl Shared {
         (depth, form, cone): (usize, u64, Arc<Vec<usize>>),
         now: usize,
     ) {
+        // An input the run holds at 0 throughout is left out (a trace's missing input is
+        // 0): the candidates made from the run then carry, and compare, only what it sets.
+        let mut trace = trace;
+        trace.values.retain(|_, v| v.contains(&true));
         let Some(quiet) = self.quiet(program, &trace) else { return };
         let index = program.compiled.equation_index();
         let readers = self.readers(program);
@@ -618,6 +624,10 @@ fn judged(
 /// equations (a smaller cone is judged whole for less than finding the part costs).
 const NEAR_MIN: usize = 256;
 
+/// How many times a repair's solver gives up the inputs held at their values in the run
+/// that block a violation (a failed core's), before it lets every input of the cut change.
+const PREFER_ROUNDS: usize = 16;
+
 /// How many kept runs (the most recent first) are repaired for a property none of them
 /// violates.
 const REPAIRS: usize = 1;
@@ -723,7 +733,19 @@ impl<'a> Near<'a> {
         let fails: Vec<varisat::Lit> =
             l.iter().zip(r).map(|(a, b)| violated(&mut cnf, goal.rel, a, b)).collect();
         let some = cnf.or_all(&fails);
-        let model = cnf.solve(&[some])?;
+        // Each input kept at its value in the run where the violation allows it: the
+        // fewer inputs change, the fewer the judge runs and the smaller its part.
+        let preferred: Vec<varisat::Lit> = chosen
+            .iter()
+            .flat_map(|(n, lits)| {
+                let before = |k: usize| trace.values.get(n).and_then(|v| v.get(k)).copied();
+                lits.iter().enumerate().map(move |(k, l)| match before(k) {
+                    Some(true) => *l,
+                    _ => !*l,
+                })
+            })
+            .collect();
+        let model = cnf.solve_preferring(&[some], &preferred, PREFER_ROUNDS)?;
         let mut out = trace.clone();
         out.values.retain(|n, _| self.free.contains(n));
         let mut changed = Vec::new();

@@ -164,6 +164,35 @@ impl Cnf {
             _ => None,
         }
     }
+
+    /// Solves under `required` and as many of `preferred` as a model allows: after each
+    /// unsatisfiable attempt the preferred literals of the solver's failed core are
+    /// given up (at most `rounds` attempts). `Some(true literals)` when satisfiable under
+    /// `required` alone within the rounds.
+    pub fn solve_preferring(
+        &mut self,
+        required: &[Lit],
+        preferred: &[Lit],
+        rounds: usize,
+    ) -> Option<BTreeSet<Lit>> {
+        let mut kept: Vec<Lit> = preferred.to_vec();
+        for _ in 0..rounds {
+            let assumptions: Vec<Lit> = required.iter().chain(&kept).copied().collect();
+            match self.solver.solve(&assumptions) {
+                Ok(true) => return self.solver.solver.model().map(|m| m.into_iter().collect()),
+                Ok(false) => {}
+                Err(_) => return None,
+            }
+            let core: BTreeSet<Lit> = self.solver.solver.failed_core()?.iter().copied().collect();
+            let before = kept.len();
+            kept.retain(|l| !core.contains(l));
+            if kept.len() == before {
+                // The core is of required literals alone: unsatisfiable.
+                return None;
+            }
+        }
+        self.solve(required)
+    }
 }
 
 impl Bits for Cnf {
