@@ -310,8 +310,8 @@ fn function_check(project: &Project, f: &Pou) -> Result<(), String> {
     };
     match f.vars.iter().find(|v| matches!(&v.ty, Ty::Derived(t) if fb_type(t))) {
         Some(v) => Err(format!(
-            "it declares the function block instance `{}`, which matiec refuses in a function \
-             (a function keeps no state between calls)",
+            "it declares the function block instance `{}`: matiec refuses one in a function, \
+             which keeps no state between calls",
             v.name
         )),
         None => Ok(()),

@@ -82,6 +82,17 @@ impl Lower<'_> {
         }
     }
 
+    /// The text block at `k` under a wired EN, which is not run here: its integer
+    /// outputs are not computed (its BOOL outputs are unconstrained, as for any block
+    /// whose EN is wired).
+    pub(super) fn text_not_run(&mut self, k: usize) {
+        let Some(call) = self.p.text_calls.get(&k) else { return };
+        for (pin, var) in &call.int_outputs {
+            let why = format!("the block of its pin {pin} runs under a wired EN, not followed");
+            self.make_opaque(var, why);
+        }
+    }
+
     /// At the start of the scan: every text block instance's clock block, which counts
     /// the scans since its timers called call by call started, whether it is called in
     /// this scan or not (the runtime's clock runs on).
