@@ -293,11 +293,14 @@ fn text_block(
 }
 
 /// Why the function `f` cannot run as a program started afresh at each call: no return
-/// type, or a function block instance among its variables (matiec refuses one in a
-/// function: a function keeps no state).
+/// type, an SFC body, or a function block instance among its variables (matiec refuses
+/// both in a function: a function keeps no state).
 fn function_check(project: &Project, f: &Pou) -> Result<(), String> {
     if f.result.is_none() {
         return Err("it has no return type".into());
+    }
+    if f.body.as_ref().is_some_and(|b| b.lang == Lang::Sfc) {
+        return Err("its body is a chart, which matiec refuses in a function".into());
     }
     let fb_type = |t: &str| {
         project
