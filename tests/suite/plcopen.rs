@@ -656,3 +656,52 @@ fn integers_and_strings_from_peripherals_are_peripheral_reads() {
     let props = temp("py.ii", "property from_string: Test_Bool = 1*\n");
     assert_eq!(verdicts(&[&py, &props.display().to_string()]), pairs(&[("from_string", "proved")]));
 }
+
+/// `press_count_st_function.xml` with `from` replaced by `to`.
+fn press_count(from: &str, to: &str) -> String {
+    std::fs::read_to_string(root().join("tests/data/proves_programs/press_count_st_function.xml"))
+        .unwrap()
+        .replace(from, to)
+}
+
+/// A user FUNCTION with an ST body called from FBD is its body run from power-up at
+/// each call: Beremiz's `function0` (its return type and input a derived type of BOOL)
+/// gives the caller its input, no unconstrained signal. Under a wired EN, where the
+/// block is not run, its integer output is not computed rather than a stale value; a
+/// function declaring a timer stays opaque with matiec's reason.
+#[test]
+fn a_text_function_called_from_fbd_starts_afresh_at_each_call() {
+    let dir = root().join("tests/data/plcopen/corpus/beremiz__beremiz");
+    let out = ii_prove(&["show", dir.join("tests__python__plc.xml").to_str().unwrap()]);
+    let all = text(&out.stdout) + &text(&out.stderr);
+    assert!(!all.to_ascii_lowercase().contains("function0`"), "{all}");
+    assert!(!all.contains("function0_r"), "{all}");
+    for line in [
+        "_TMP_FUNCTION061_LocalVar0 = pre fefvsd",
+        "_TMP_FUNCTION061_function0 = _TMP_FUNCTION061_LocalVar0",
+        "fefvsd = _TMP_FUNCTION061_function0",
+    ] {
+        assert!(all.contains(line), "wanted `{line}` in\n{all}");
+    }
+    let en = press_count(
+        r#"<variable formalParameter="IN">"#,
+        r#"<variable formalParameter="EN"><connectionPointIn><connection refLocalId="1"/></connectionPointIn></variable><variable formalParameter="IN">"#,
+    );
+    let out = ii_prove(&["show", temp("press_en.xml", &en).to_str().unwrap()]);
+    let all = text(&out.stdout) + &text(&out.stderr);
+    assert!(
+        all.contains("the INT N is not computed (_TMP_PRESSED2_Count is not computed: the block of its pin COUNT runs under a wired EN, not followed)"),
+        "{all}"
+    );
+    assert!(!all.contains("assume L02a: N_b0"), "{all}");
+    let timer = press_count(
+        r#"<variable name="first">"#,
+        r#"<variable name="T1"><type><derived name="TON"/></type></variable><variable name="first">"#,
+    );
+    let out = ii_prove(&["show", temp("press_ton.xml", &timer).to_str().unwrap()]);
+    let all = text(&out.stdout) + &text(&out.stderr);
+    assert!(
+        all.contains("the user block `Pressed` is not modelled (it declares the function block instance `T1`: matiec refuses one in a function"),
+        "{all}"
+    );
+}

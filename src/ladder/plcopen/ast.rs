@@ -57,6 +57,9 @@ pub struct Pou {
     pub kind: PouKind,
     /// Every declared variable.
     pub vars: Vec<Var>,
+    /// A function's return variable: named like the function, of its `returnType`, an
+    /// output of the call (the block's `OUT` pin).
+    pub result: Option<Var>,
     /// The first body, if any.
     pub body: Option<Body>,
     /// What is malformed in this POU's interface or body (reported only when it is checked).

@@ -785,6 +785,7 @@ impl<'p> Lower<'p> {
                 self.coil(q, &hidden("Q"), WriteKind::Assign, span);
             }
             None if runs && p.text_calls.contains_key(&k) => self.text_call(k, inputs, &vals, span),
+            None if p.text_calls.contains_key(&k) => self.text_not_run(k),
             // An inlined user function block: its inputs are assigned, then its body runs.
             None if runs && p.subs.contains_key(&k) => {
                 for pin in inputs {

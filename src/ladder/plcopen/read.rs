@@ -323,14 +323,7 @@ impl Reader<'_> {
         let retain = kept("retain") || kept("persistent");
         for v in children(list, "variable") {
             let name = self.required(v, "name");
-            let ty = match child(v, "type").and_then(|t| t.children().find(|c| c.is_element())) {
-                Some(t) if t.tag_name().name() == "BOOL" => Ty::Bool,
-                Some(t) if t.tag_name().name() == "derived" => {
-                    Ty::Derived(t.attribute("name").unwrap_or_default().to_string())
-                }
-                Some(t) => Ty::Other(t.tag_name().name().to_string()),
-                None => Ty::Other("?".into()),
-            };
+            let ty = type_of(child(v, "type"));
             let init = child(v, "initialValue")
                 .and_then(|i| child(i, "simpleValue"))
                 .and_then(|s| s.attribute("value"))
@@ -374,9 +367,23 @@ impl Reader<'_> {
                 self.vars(l, class, &mut vars);
             }
         }
+        // A function's return variable, named like it.
+        let result = child(p, "interface")
+            .and_then(|i| child(i, "returnType"))
+            .filter(|_| kind == PouKind::Function)
+            .map(|t| Var {
+                name: name.clone(),
+                class: VarClass::Output,
+                ty: type_of(Some(t)),
+                address: None,
+                init: None,
+                retain: false,
+                range: None,
+                span: self.tag(t),
+            });
         let body = child(p, "body").and_then(|b| self.body(b));
         let errors = self.errors.split_off(before);
-        Pou { name, kind, vars, body, errors, span: self.tag(p) }
+        Pou { name, kind, vars, result, body, errors, span: self.tag(p) }
     }
 }
 
@@ -471,9 +478,10 @@ pub fn read_plcopen(sources: &Sources, file: FileId) -> Result<Project, Vec<PlcE
             _ => {}
         }
     }
-    let types = subranges(root);
-    for v in pous.iter_mut().flat_map(|p| p.vars.iter_mut()).chain(globals.iter_mut()) {
-        resolve_subrange(v, &types);
+    let types = user_types(root);
+    let vars = pous.iter_mut().flat_map(|p| p.vars.iter_mut().chain(p.result.as_mut()));
+    for v in vars.chain(globals.iter_mut()) {
+        resolve_type(v, &types);
     }
     if r.errors.is_empty() {
         Ok(Project { file, version, pous, tasks, globals, span, text_blocks: Default::default() })
@@ -482,18 +490,59 @@ pub fn read_plcopen(sources: &Sources, file: FileId) -> Result<Project, Vec<PlcE
     }
 }
 
-/// A subrange type: its base type (an XML element name, `INT`), limits and initial value.
-type Subrange = (String, i64, i64, Option<String>);
+/// A user data type that variables of it are read through, with the type's initial
+/// value: a subrange of an integer type (its base type, an XML element name such as
+/// `INT`, and its limits), or another name of a type (`datatype0` of `BOOL`).
+enum UserType {
+    Subrange(String, i64, i64, Option<String>),
+    Alias(Ty, Option<String>),
+}
 
-/// The subrange types of `types/dataTypes` by upper-case name: a `dataType` whose base
-/// type is a `subrangeSigned` or `subrangeUnsigned` of an integer type matiec allows one
-/// of, with limits in order and within that type (others stay derived types, opaque).
-fn subranges(root: Node) -> BTreeMap<String, Subrange> {
+/// How many names of one type are followed (`a` of `b` of `BOOL`) before the type
+/// stays derived (a loop of names).
+const MAX_ALIASES: usize = 16;
+
+/// The elementary types a `dataType` may give another name (the XML's element names).
+const ELEMENTARY: [&str; 21] = [
+    "BOOL", "SINT", "INT", "DINT", "LINT", "USINT", "UINT", "UDINT", "ULINT", "BYTE", "WORD",
+    "DWORD", "LWORD", "REAL", "LREAL", "TIME", "DATE", "TOD", "DT", "string", "wstring",
+];
+
+/// The type a `type`, `baseType` or `returnType` element names.
+fn type_of(t: Option<Node>) -> Ty {
+    match t.and_then(|t| t.children().find(|c| c.is_element())) {
+        Some(t) if t.tag_name().name() == "BOOL" => Ty::Bool,
+        Some(t) if t.tag_name().name() == "derived" => {
+            Ty::Derived(t.attribute("name").unwrap_or_default().to_string())
+        }
+        Some(t) => Ty::Other(t.tag_name().name().to_string()),
+        None => Ty::Other("?".into()),
+    }
+}
+
+/// The user types of `types/dataTypes` variables are read through, by upper-case name:
+/// a `dataType` whose base type is a `subrangeSigned` or `subrangeUnsigned` of an
+/// integer type matiec allows one of, with limits in order and within that type; one
+/// whose base type is an elementary type or names another type. Others (enumerations,
+/// arrays, structures) stay derived types, opaque.
+fn user_types(root: Node) -> BTreeMap<String, UserType> {
     let mut out = BTreeMap::new();
     let in_list = |d: &Node| d.parent_element().is_some_and(|p| p.tag_name().name() == "dataTypes");
     for d in root.descendants().filter(|d| d.tag_name().name() == "dataType" && in_list(d)) {
-        let Some(range) = child(d, "baseType")
-            .and_then(|b| child(b, "subrangeSigned").or_else(|| child(b, "subrangeUnsigned")))
+        let Some(name) = d.attribute("name") else { continue };
+        let init = child(d, "initialValue")
+            .and_then(|i| child(i, "simpleValue"))
+            .and_then(|s| s.attribute("value"))
+            .map(str::to_string);
+        let base = child(d, "baseType");
+        let element = base.and_then(|b| b.children().find(|c| c.is_element()));
+        let element = element.map(|e| e.tag_name().name()).unwrap_or_default();
+        if ELEMENTARY.contains(&element) || element == "derived" {
+            out.insert(name.to_ascii_uppercase(), UserType::Alias(type_of(base), init));
+            continue;
+        }
+        let Some(range) =
+            base.and_then(|b| child(b, "subrangeSigned").or_else(|| child(b, "subrangeUnsigned")))
         else {
             continue;
         };
@@ -508,26 +557,36 @@ fn subranges(root: Node) -> BTreeMap<String, Subrange> {
         let fits = crate::program::library::int_type(&base)
             .filter(|_| !matches!(base.as_str(), "BYTE" | "WORD" | "DWORD"))
             .is_some_and(|t| t.min() <= lo && lo <= hi && hi <= t.max());
-        let init = child(d, "initialValue")
-            .and_then(|i| child(i, "simpleValue"))
-            .and_then(|s| s.attribute("value"))
-            .map(str::to_string);
-        if fits && let Some(name) = d.attribute("name") {
-            out.insert(name.to_ascii_uppercase(), (base, lo, hi, init));
+        if fits {
+            out.insert(name.to_ascii_uppercase(), UserType::Subrange(base, lo, hi, init));
         }
     }
     out
 }
 
-/// A variable of a subrange type takes its base type and limits, and starts at the
-/// type's initial value, else the lower limit (matiec's `__INIT_VAR`), when it gives none.
-fn resolve_subrange(v: &mut Var, types: &BTreeMap<String, Subrange>) {
-    let Ty::Derived(name) = &v.ty else { return };
-    let Some((base, lo, hi, init)) = types.get(&name.to_ascii_uppercase()) else { return };
-    v.ty = Ty::Other(base.clone());
-    v.range = Some((*lo, *hi));
-    if v.init.is_none() {
-        v.init = Some(init.clone().unwrap_or_else(|| lo.to_string()));
+/// A variable of a user type takes the type it names (through other names of it), and
+/// starts at the type's initial value when it gives none (matiec's `__INIT_VAR`); of a
+/// subrange type, its base type and limits, and else the lower limit.
+fn resolve_type(v: &mut Var, types: &BTreeMap<String, UserType>) {
+    for _ in 0..MAX_ALIASES {
+        let Ty::Derived(name) = &v.ty else { return };
+        match types.get(&name.to_ascii_uppercase()) {
+            Some(UserType::Subrange(base, lo, hi, init)) => {
+                v.ty = Ty::Other(base.clone());
+                v.range = Some((*lo, *hi));
+                if v.init.is_none() {
+                    v.init = Some(init.clone().unwrap_or_else(|| lo.to_string()));
+                }
+                return;
+            }
+            Some(UserType::Alias(ty, init)) => {
+                v.ty = ty.clone();
+                if v.init.is_none() {
+                    v.init = init.clone();
+                }
+            }
+            None => return,
+        }
     }
 }
 

@@ -8,16 +8,21 @@ use super::{
 use crate::diag::{Diagnostic, Report, Sources};
 use crate::iec::StError;
 use crate::iec::ast::{self, Expr, ExprKind, Ident};
-use crate::program::{Preset, Program};
+use crate::program::{BoolExpr, Preset, Program};
 
-/// A user function block whose body is Structured Text or Instruction List, lowered by
-/// the IEC text front end as a standalone program: its input variables are the
-/// program's inputs, its outputs and locals its variables. A graphical body's call of an
-/// instance runs it with every name prefixed by the instance's (`select`, `lower`).
+/// A user function block or function whose body is Structured Text or Instruction
+/// List, lowered by the IEC text front end as a standalone program: its input variables
+/// are the program's inputs, its outputs and locals (and a function's return variable)
+/// its variables. A graphical body's call of an instance runs it with every name
+/// prefixed by the instance's, a function's call with names of that call alone
+/// (`select`, `lower`).
 #[derive(Clone, Debug)]
 pub struct TextBlock {
     /// The body as a program of its own.
     pub program: Program,
+    /// Whether it is a function: it keeps nothing between calls, each call runs the
+    /// program from power-up (every variable at its initial value).
+    pub function: bool,
     /// What the IEC front end said of it (elements not modelled exactly), as notes.
     pub warnings: Vec<PlcError>,
     /// Its TIME inputs the body never writes: a call that wires a literal to one gives
@@ -124,7 +129,10 @@ fn unit_of(
         body,
         span: p.span,
     };
-    let mut pous = vec![as_pou(pou, ast::PouKind::Program, body)];
+    let mut main = as_pou(pou, ast::PouKind::Program, body);
+    // A function's return variable is an output of the standalone program.
+    main.vars.extend(pou.result.iter().map(|v| decl(v, ast::VarClass::Output)));
+    let mut pous = vec![main];
     if callees {
         for p in project.pous.iter().filter(|p| p.kind == PouKind::FunctionBlock) {
             // A callee with a pragma is left out: its calls are then not read.
@@ -177,7 +185,7 @@ fn class(c: VarClass) -> ast::VarClass {
     }
 }
 
-/// Lowers every user function block of the project whose body is text into
+/// Lowers every user function block and function of the project whose body is text into
 /// [`Project::text_blocks`] at the cycle the selection gives, for the graphical body
 /// that calls them; a block that cannot be run exactly is kept with the reason, and its
 /// instances stay opaque.
@@ -185,7 +193,8 @@ pub fn prepare_text_blocks(sources: &mut Sources, project: &mut Project, sel: &S
     let task = super::select::pick(project, sel).ok().and_then(|(_, t)| t);
     let cycle = task_cycle(sel, task).unwrap_or(super::DEFAULT_CYCLE_US);
     let mut blocks = BTreeMap::new();
-    for fb in project.pous.iter().filter(|p| p.kind == PouKind::FunctionBlock) {
+    let user = |p: &&Pou| matches!(p.kind, PouKind::FunctionBlock | PouKind::Function);
+    for fb in project.pous.iter().filter(user) {
         if !fb.body.as_ref().is_some_and(|b| matches!(b.lang, Lang::St | Lang::Il | Lang::Sfc)) {
             continue;
         }
@@ -222,6 +231,10 @@ fn text_block(
     }
     if has_pragma(fb) {
         return Err("its body has a pragma `{…}`, C code that ii-prove cannot see".into());
+    }
+    let function = fb.kind == PouKind::Function;
+    if function {
+        function_check(project, fb)?;
     }
     let first =
         |e: Vec<StError>| e.first().map_or_else(|| "its body is not read".into(), |e| e.message());
@@ -260,20 +273,62 @@ fn text_block(
         let why = e.first().map_or_else(String::new, |e| format!(": {}", e.reason));
         return Err(format!("its body is refused by the compiler{why}"));
     }
+    // Run from power-up at each call, a function's program must keep nothing but its
+    // variables: no timer, edge memory or clock.
+    if function {
+        let mut timed = program.blocks.iter().any(|b| b.is_clock()) || program.edges_used() > 0;
+        for (_, st) in program.stmts() {
+            st.visit(&mut |_| {}, &mut |e| timed |= matches!(e, BoolExpr::Timer(_)));
+        }
+        if timed {
+            return Err("its body keeps timers or edge memories, which a function cannot".into());
+        }
+    }
     let warnings = lowered
         .warnings
         .iter()
         .filter_map(|w| Some(PlcError::Note { span: w.span()?, message: w.message() }))
         .collect();
-    Ok(TextBlock { program: lowered.program, warnings, time_inputs: lowered.time_inputs })
+    Ok(TextBlock { program: lowered.program, function, warnings, time_inputs: lowered.time_inputs })
+}
+
+/// Why the function `f` cannot run as a program started afresh at each call: no return
+/// type, an SFC body, or a function block instance among its variables (matiec refuses
+/// both in a function: a function keeps no state).
+fn function_check(project: &Project, f: &Pou) -> Result<(), String> {
+    if f.result.is_none() {
+        return Err("it has no return type".into());
+    }
+    if f.body.as_ref().is_some_and(|b| b.lang == Lang::Sfc) {
+        return Err("its body is a chart, which matiec refuses in a function".into());
+    }
+    let fb_type = |t: &str| {
+        project
+            .pous
+            .iter()
+            .any(|p| p.kind == PouKind::FunctionBlock && p.name.eq_ignore_ascii_case(t))
+            || super::Std::of(t).is_some_and(super::Std::is_fb)
+            || super::IntBlock::of(t).is_some_and(|b| b.is_fb())
+            || super::peripherals::peripheral(t).is_some()
+    };
+    match f.vars.iter().find(|v| matches!(&v.ty, Ty::Derived(t) if fb_type(t))) {
+        Some(v) => Err(format!(
+            "it declares the function block instance `{}`: matiec refuses one in a function, \
+             which keeps no state between calls",
+            v.name
+        )),
+        None => Ok(()),
+    }
 }
 
 /// One instance of a [`TextBlock`] called from a graphical body: its program with every
 /// name prefixed by the instance's (`Inst_`), and which of its variables each pin is.
 #[derive(Clone, Debug)]
 pub struct TextCall {
-    /// The block's program for this instance.
+    /// The block's program for this instance (or this call of a function).
     pub program: Program,
+    /// Whether it is a function's: each call runs it from power-up.
+    pub function: bool,
     /// Per input pin wired on the call (upper case): the instance's variable and whether
     /// it is an integer (else a BOOL).
     pub inputs: BTreeMap<String, (String, bool)>,
@@ -283,14 +338,15 @@ pub struct TextCall {
     pub int_outputs: BTreeMap<String, String>,
 }
 
-/// The call of the user function block `type_name` with a text body by the block
-/// `inputs` of `instance` (a declared instance of that type, `inst`): `None` for a type
+/// The call of the user function block or function `type_name` with a text body by the
+/// block `inputs` of `instance` (a declared instance of that type, `inst`; for a
+/// function, `call_name` names this call's variables instead): `None` for a type
 /// without a text body, the reason when it is kept opaque. `literal` is the duration
 /// wired to a pin, when a literal is.
 pub fn call(
     project: &Project,
     type_name: &str,
-    inst: Option<&super::Var>,
+    (inst, call_name): (Option<&super::Var>, &str),
     inputs: &[super::PinIn],
     cycle_us: u64,
     literal: &dyn Fn(&super::PinIn) -> Option<u64>,
@@ -300,8 +356,10 @@ pub fn call(
     Some(block.clone().and_then(|b| {
         let inst =
             inst.filter(|v| matches!(&v.ty, Ty::Derived(t) if t.eq_ignore_ascii_case(type_name)));
-        let Some(inst) = inst else {
-            return Err("it is not called through a declared instance of its type".into());
+        let prefix = match inst {
+            _ if b.function => format!("{call_name}_"),
+            Some(inst) => format!("{}_", inst.name),
+            None => return Err("it is not called through a declared instance of its type".into()),
         };
         if b.program.cycle_us != cycle_us {
             return Err("it was lowered at another scan cycle".into());
@@ -316,16 +374,18 @@ pub fn call(
             let all = b.program.names.iter().chain(b.program.integers.keys());
             all.into_iter().find(|n| n.eq_ignore_ascii_case(name)).cloned()
         };
-        let prefix = format!("{}_", inst.name);
         let mut call = TextCall {
             program: b.program.prefixed(&prefix),
+            function: b.function,
             inputs: BTreeMap::new(),
             outputs: BTreeMap::new(),
             int_outputs: BTreeMap::new(),
         };
         let mut presets = BTreeMap::new();
-        for v in &fb.vars {
-            let upper = v.name.to_ascii_uppercase();
+        for v in fb.vars.iter().chain(&fb.result) {
+            // A function's return value is the block's `OUT` pin.
+            let result = fb.result.as_ref().is_some_and(|r| std::ptr::eq(r, v));
+            let upper = if result { "OUT".into() } else { v.name.to_ascii_uppercase() };
             let name = spelled(&v.name).unwrap_or_else(|| v.name.clone());
             let int = b.program.integers.contains_key(&name);
             let named = format!("{prefix}{name}");

@@ -1,10 +1,10 @@
-//! The call of a user function block whose body is text: its wired inputs written to the instance's variables, then the blocks of its program (lowered by the IEC text front end, every name prefixed by the instance's) at the call's place in the scan.
+//! The call of a user function block or function whose body is text: a function's variables set to their power-up values (it keeps nothing between calls), its wired inputs written to the instance's (or call's) variables, then the blocks of its program (lowered by the IEC text front end, every name prefixed by the instance's) at the call's place in the scan.
 
 use std::collections::BTreeMap;
 
 use super::{BoolExpr, Lower, PinIn, PlcProgram, Span, Stmt, WriteKind};
-use crate::program::IntVar;
 use crate::program::rename::Renaming;
+use crate::program::{IntExpr, IntVar, Program};
 
 impl Lower<'_> {
     /// The integers of the text blocks' instances: written by their calls, so none is an
@@ -34,6 +34,9 @@ impl Lower<'_> {
     ) {
         let p = self.p;
         let Some(call) = p.text_calls.get(&k) else { return };
+        if call.function {
+            self.push_block(power_up(&call.program, span), span);
+        }
         for pin in inputs {
             let n = pin.name.to_ascii_uppercase();
             let Some((var, int)) = call.inputs.get(&n) else { continue };
@@ -79,6 +82,17 @@ impl Lower<'_> {
         }
     }
 
+    /// The text block at `k` under a wired EN, which is not run here: its integer
+    /// outputs are not computed (its BOOL outputs are unconstrained, as for any block
+    /// whose EN is wired).
+    pub(super) fn text_not_run(&mut self, k: usize) {
+        let Some(call) = self.p.text_calls.get(&k) else { return };
+        for (pin, var) in &call.int_outputs {
+            let why = format!("the block of its pin {pin} runs under a wired EN, not followed");
+            self.make_opaque(var, why);
+        }
+    }
+
     /// At the start of the scan: every text block instance's clock block, which counts
     /// the scans since its timers called call by call started, whether it is called in
     /// this scan or not (the runtime's clock runs on).
@@ -92,4 +106,30 @@ impl Lower<'_> {
             self.text_clocks(sub);
         }
     }
+}
+
+/// Writes that put `program`'s state back to power-up: every bit 0 (its start-up bit
+/// among them, so that its first-scan block sets the BOOLs declared TRUE again) and
+/// every integer its initial value, but the free values of what C leaves undefined.
+fn power_up(program: &Program, span: Span) -> Vec<Stmt> {
+    let int_bits: std::collections::BTreeSet<String> = program
+        .integers
+        .iter()
+        .flat_map(|(x, v)| (0..v.ty.bits).map(|k| Program::int_bit(x, k)))
+        .collect();
+    let mut bits = crate::program::bits(&program.blocks);
+    bits.extend(program.signals.iter().cloned());
+    let bits = bits.into_iter().filter(|n| !int_bits.contains(n));
+    let mut out: Vec<Stmt> = bits
+        .map(|target| Stmt::Write {
+            target,
+            kind: WriteKind::Assign,
+            value: BoolExpr::Const(false),
+            span,
+        })
+        .collect();
+    for (x, v) in program.integers.iter().filter(|(x, _)| !program.undefined.contains(*x)) {
+        out.push(Stmt::SetInt { target: x.clone(), value: IntExpr::Const(v.init), span });
+    }
+    out
 }

@@ -389,7 +389,13 @@ pub(super) fn check_pou(
                     None if let Some(call) = super::super::text::call(
                         project,
                         type_name,
-                        instance.as_deref().and_then(|i| program.vars.get(&i.to_ascii_uppercase())),
+                        (
+                            instance
+                                .as_deref()
+                                .and_then(|i| program.vars.get(&i.to_ascii_uppercase())),
+                            // A function's call: its variables named after the block.
+                            &call_name(&taken, type_name, o.id),
+                        ),
                         inputs,
                         cycle_us,
                         &|pin| wired_duration(&program, pin),
@@ -663,6 +669,20 @@ fn inline(
     }
     child.prefix_names(&format!("{}_", inst.name));
     Some(Ok(child))
+}
+
+/// The name of a call of the user function `type_name` by the block `id`
+/// (`_TMP_F12`, Beremiz's name for its result without `_OUT`), unique among `taken`:
+/// the call's variables are named after it.
+fn call_name(taken: &BTreeSet<String>, type_name: &str, id: u64) -> String {
+    let base = format!("_TMP_{}{id}", type_name.to_ascii_uppercase());
+    let mut name = base.clone();
+    let mut k = 2;
+    while taken.iter().any(|t| t.starts_with(&format!("{}_", name.to_ascii_uppercase()))) {
+        name = format!("{base}_{k}");
+        k += 1;
+    }
+    name
 }
 
 /// A variable of an instance whose name is already one of the program's (an instance

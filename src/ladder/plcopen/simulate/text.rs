@@ -1,4 +1,4 @@
-//! The call of a user function block whose body is text: its wired inputs given to one scan of the scan model's simulator running the block's program for this instance (its state kept between scans), then every variable of the instance read back — the same reading the IEC text front end's programs are checked on.
+//! The call of a user function block or function whose body is text: its wired inputs given to one scan of the scan model's simulator running the block's program for this instance (its state kept between scans; for a function, a copy of the simulator not yet run, so that every call starts from power-up), then every variable of the instance read back — the same reading the IEC text front end's programs are checked on.
 
 use std::collections::BTreeMap;
 
@@ -54,9 +54,12 @@ impl PlcSimulator {
                 }
             }
         }
-        let Some((sim, bits)) = self.texts.get_mut(&k) else { return };
-        sim.step(&given);
+        let Some((kept, bits)) = self.texts.get_mut(&k) else { return };
         let call = &self.p.text_calls[&k];
+        // A function runs from power-up at each call: a copy of its simulator as built.
+        let mut fresh = call.function.then(|| kept.clone());
+        let sim = fresh.as_mut().unwrap_or(kept);
+        sim.step(&given);
         for n in bits.iter() {
             self.bits.insert(n.clone(), sim.bit(n));
             if !sim.is_known(n) {
