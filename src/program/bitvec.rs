@@ -12,7 +12,7 @@ mod float;
 
 pub use float::{
     add_real, compare_real, div_real, int_to_real, mul_real, narrow_real, quotient_real,
-    real_to_int, widen_real,
+    real_to_int, sqrt_real, widen_real,
 };
 
 use super::CmpOp;

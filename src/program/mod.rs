@@ -172,6 +172,9 @@ pub enum IntExpr {
     /// `a + b`, `a - b`, `a * b` or `a / b` of two `REAL`s as C computes it (IEEE 754,
     /// the nearest number, ties to even; [`RealOp`]).
     Real(RealOp, Box<IntExpr>, Box<IntExpr>),
+    /// `√a` of a `REAL` (or `double`) as matiec's `SQRT` computes it: the nearest number
+    /// to the root, a NaN below 0 ([`real::sqrt_in`], [`bitvec::sqrt_real`]).
+    Sqrt(Box<IntExpr>),
     /// A signed operation as C computes it ([`Checked`]): exact where its result fits the
     /// signed type, a free integer's value where C leaves it undefined (an overflow);
     /// then converted to the context's type.
@@ -287,6 +290,7 @@ impl IntExpr {
             | IntExpr::Cast(a, _)
             | IntExpr::ToReal(a, _)
             | IntExpr::FromReal(a, _)
+            | IntExpr::Sqrt(a)
             | IntExpr::Shift(a, _) => a.visit(int, boolean),
             IntExpr::Ite(c, a, b) => {
                 walk(c, boolean);
@@ -662,6 +666,7 @@ pub fn int_visit_mut(
         | IntExpr::Cast(a, _)
         | IntExpr::ToReal(a, _)
         | IntExpr::FromReal(a, _)
+        | IntExpr::Sqrt(a)
         | IntExpr::Shift(a, _) => int_visit_mut(a, var, boolean),
         IntExpr::Ite(c, a, b) => {
             boolean(c);

@@ -59,6 +59,18 @@ pub fn quotient(a: i64, b: i64) -> i64 {
     sse(a, b, |x, y| x / y)
 }
 
+/// `√a` of a stored value of the real type `ty` as matiec's `SQRT` computes it: C's
+/// `sqrt` (of a `REAL` made a `double`, the root made a `float` again), its NaN as
+/// x86's SSE instructions give it (a NaN operand made quiet, the default NaN for a
+/// number below 0).
+pub fn sqrt_in(ty: super::IntType, a: i64) -> i64 {
+    if ty.bits == 64 {
+        sse_double(a, a, |x, _| x.sqrt())
+    } else {
+        sse(a, a, |x, _| f64::from(x).sqrt() as f32)
+    }
+}
+
 /// The number a stored `double` (an [`IntType::LREAL`](super::IntType::LREAL) value: its
 /// bit pattern) stands for.
 pub fn to_f64(v: i64) -> f64 {

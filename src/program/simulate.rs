@@ -329,6 +329,10 @@ impl Simulator {
                 let (a, b) = (self.int_value(a, ty), self.int_value(b, ty));
                 N { value: op.apply_in(ty, a.value, b.value), known: a.known && b.known }
             }
+            IntExpr::Sqrt(a) => {
+                let a = self.int_value(a, ty);
+                N { value: super::real::sqrt_in(ty, a.value), known: a.known }
+            }
             IntExpr::FromReal(a, unsigned) => {
                 let a = self.int_value(a, IntType::REAL);
                 let v = super::real::to_int(a.value, *unsigned).unwrap_or(0);

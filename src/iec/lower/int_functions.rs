@@ -130,6 +130,7 @@ impl Lowering<'_> {
                 }
                 acc.in_type(t)
             }
+            ("SQRT", [x]) if t.real => IntExpr::Sqrt(Box::new(value(x))),
             _ => return Err(format!("the function {} is not computed", f.name)),
         };
         if t.real {

@@ -117,6 +117,7 @@ impl Lowering<'_> {
             IntExpr::Real(op, a, b) => {
                 Ok(op.apply_in(ty, self.known_int(a, ty)?, self.known_int(b, ty)?))
             }
+            IntExpr::Sqrt(a) => Ok(crate::program::real::sqrt_in(ty, self.known_int(a, ty)?)),
             IntExpr::FromReal(a, unsigned) => {
                 let a = self.known_int(a, crate::program::IntType::REAL)?;
                 Ok(ty.wrap(crate::program::real::to_int(a, *unsigned).unwrap_or(0)))

@@ -1,11 +1,11 @@
-//! Tests of the binary64 (`double`) circuits of `float.rs` and the conversions between `float` and `double`, against Rust's `f64` and `f32` arithmetic (`program/real.rs`'s references).
+//! Tests of the binary64 (`double`) circuits of `float.rs`, the conversions between `float` and `double`, and the square root of both, against Rust's `f64` and `f32` arithmetic (`program/real.rs`'s references).
 
 use super::{
     Bits, Namer, add_real, compare_real, constant, div_real, mul_real, narrow_real, quotient_real,
-    widen_real,
+    sqrt_real, widen_real,
 };
 use crate::program::logic::L;
-use crate::program::{CmpOp, RealOp, real};
+use crate::program::{CmpOp, IntType, RealOp, real};
 use proptest::prelude::*;
 
 fn eval(t: &L) -> bool {
@@ -143,6 +143,64 @@ fn hard_values_widen_and_narrow_as_c() {
     ds.push((f64::from(f32::MAX) + 2f64.powi(103)).to_bits() - 1);
     for d in ds {
         narrows(d).unwrap();
+    }
+}
+
+/// The root circuit on the `double` `x`, against C's `sqrt` ([`real::sqrt_in`]), and
+/// that reference against Rust's own root (NaNs: x86's).
+fn roots(x: u64) -> Result<(), TestCaseError> {
+    let got = value(&sqrt_real(&bits(x), &mut |t| t));
+    let want = real::sqrt_in(IntType::LREAL, x as i64) as u64;
+    prop_assert_eq!(got, want, "√{:?}: {:016x}, not {:016x}", f64::from_bits(x), got, want);
+    let f = f64::from_bits(x);
+    if !f.sqrt().is_nan() {
+        prop_assert_eq!(got, f.sqrt().to_bits());
+    }
+    Ok(())
+}
+
+/// The root circuit on the `float` `x`, against C's `sqrt` of it made a `double`
+/// ([`real::sqrt_in`]), and that against `f32`'s own root, correctly rounded as well.
+fn roots_float(x: u32) -> Result<(), TestCaseError> {
+    let got = value(&sqrt_real(&constant(i64::from(x), 32), &mut |t| t)) as u32;
+    let want = real::sqrt_in(IntType::REAL, i64::from(x)) as u32;
+    prop_assert_eq!(got, want, "√{:?}: {:08x}, not {:08x}", f32::from_bits(x), got, want);
+    let f = f32::from_bits(x);
+    if !f.sqrt().is_nan() {
+        prop_assert_eq!(got, f.sqrt().to_bits());
+    } else {
+        prop_assert!(f32::from_bits(got).is_nan());
+    }
+    Ok(())
+}
+
+#[test]
+fn hard_values_have_the_roots_c_gives() {
+    for x in hard() {
+        roots(x).unwrap();
+    }
+    // Perfect squares, their neighbours, and the largest below a power of 4.
+    for x in
+        hard_floats().into_iter().chain([4.0f32, 9.0, 2.0, 0.25, 1e-45, 3.4e38].map(f32::to_bits))
+    {
+        for k in [0u32, 1, 2] {
+            roots_float(x.wrapping_add(k)).unwrap();
+            roots_float(x.wrapping_sub(k)).unwrap();
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+    #[test]
+    fn random_values_have_the_roots_c_gives(x in any::<u64>(), y in any::<u32>(), k in 1u32..4096) {
+        roots(x)?;
+        roots_float(y)?;
+        // Squares of short integers, exact roots, and the numbers next to them.
+        let square = (k * k) as f32;
+        roots_float(square.to_bits())?;
+        roots_float(square.to_bits() + 1)?;
+        roots_float(square.to_bits() - 1)?;
     }
 }
 

@@ -318,6 +318,63 @@ fn divide(a: &[L], b: &[L], by_zero: bool, name: Namer) -> (L, Bits) {
     (y.zero, out)
 }
 
+/// `√a` of a `REAL` as matiec's `SQRT` computes it (C's `sqrt` of the `float` made a
+/// `double`, the result made a `float` again: the nearest `float` to the root, as
+/// `sqrtss` gives it, since a `double` holds more than twice a `float`'s bits): `-0.0`
+/// of `-0.0`, `+∞` of `+∞`, the default NaN `0xFFC00000` of a number below 0 (`-∞`
+/// too), a NaN operand made quiet. Of a `double`, `sqrtsd`.
+///
+/// The significand ([`unpack`]), doubled where the exponent is odd, is a number in
+/// `[1, 4)` whose root, in the fraction's width + 4 bits, is taken a bit at a time
+/// (restoring square root: two bits of the radicand brought down per root bit, the
+/// trial `4·root + 1` subtracted where it fits); the remainder joins the sticky bit of
+/// [`round_pack`], the exponent is halved.
+pub fn sqrt_real(a: &[L], name: Namer) -> Bits {
+    let f = Format::of(a.len());
+    let x = unpack(a, f, name);
+    let sign = a[f.magnitude()].clone();
+    // The unbiased exponent, its parity, and its half rounded down (an arithmetic shift).
+    let e = sub(&x.e, &f.wide(f.bias()), name);
+    let odd = e[0].clone();
+    let top = e[e.len() - 1].clone();
+    let half: Bits = e[1..].iter().cloned().chain([top]).collect();
+    let exponent = add(&half, &f.wide(f.bias()), L::Zero, name);
+    // The radicand: the significand (fraction + 1 bits) shifted up by fraction + 6
+    // places, one more where the exponent is odd: 2n bits for an n-bit root.
+    let n = f.fraction + 4;
+    let shift = |by: usize| -> Bits {
+        let mut r: Bits = std::iter::repeat_n(L::Zero, by).chain(x.m.iter().cloned()).collect();
+        r.resize(2 * n, L::Zero);
+        r
+    };
+    let radicand = choose(&odd, &shift(f.fraction + 7), &shift(f.fraction + 6), name);
+    // The remainder stays below 2^(n + 2): one bit more holds the trial's sign.
+    let w = n + 3;
+    let mut rem = vec![L::Zero; w];
+    let mut root = vec![L::Zero; n];
+    for i in (0..n).rev() {
+        rem = [radicand[2 * i].clone(), radicand[2 * i + 1].clone()]
+            .into_iter()
+            .chain(rem[..w - 2].iter().cloned())
+            .collect();
+        let mut trial: Bits =
+            [L::One, L::Zero].into_iter().chain(root[i + 1..].iter().cloned()).collect();
+        trial.resize(w, L::Zero);
+        let diff = sub(&rem, &trial, name);
+        let fits = name(diff[w - 1].clone().negate());
+        rem = choose(&fits, &diff, &rem, name);
+        root[i] = fits;
+    }
+    let sticky = name(simp(&L::Or(rem)));
+    let finite = round_pack(&exponent, root, sticky, f, name);
+    let mut out: Bits = finite.into_iter().chain([L::Zero]).collect();
+    out = choose(&x.inf, &signed(f.infinity(), &L::Zero, f), &out, name);
+    let below = name(simp(&sign.and(x.zero.clone().negate()).and(x.nan.clone().negate())));
+    out = choose(&below, &constant(f.default_nan(), a.len() as u32), &out, name);
+    out = choose(&x.zero, a, &out, name);
+    choose(&x.nan, &quiet(a, f), &out, name)
+}
+
 /// `a * b` for two `REAL`s as C computes it on x86-64 (`mulss`: the nearest number,
 /// ties to even, subnormal results kept; a NaN result is the first NaN operand made
 /// quiet, else (`0 × ∞`) the default NaN `0xFFC00000`); of two `double`s, `mulsd`. Of

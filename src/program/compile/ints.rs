@@ -67,6 +67,7 @@ impl Compiler<'_> {
                 | IntExpr::Bitwise(..)
                 | IntExpr::ToReal(..)
                 | IntExpr::Real(..)
+                | IntExpr::Sqrt(..)
         );
         if ty.real && real_op {
             return self.not_real(ty, span);
@@ -127,6 +128,12 @@ impl Compiler<'_> {
                     RealOp::Div => bitvec::div_real(&a, &b, &mut name),
                     RealOp::Quotient => bitvec::quotient_real(&a, &b, &mut name),
                 }
+            }
+            IntExpr::Sqrt(_) if !ty.real => self.not_real(ty, span),
+            IntExpr::Sqrt(a) => {
+                let a = self.int(a, ty, span);
+                // Each step of the root reads the remainder's bits several times.
+                bitvec::sqrt_real(&a, &mut |t: L| self.intermediate_over(t, MAX_DIV_TERM))
             }
             IntExpr::FromReal(a, unsigned) => {
                 let a = self.int(a, IntType::REAL, span);
@@ -342,6 +349,7 @@ pub(super) fn constants(program: &Program) -> Vec<i64> {
             IntExpr::Cast(a, _)
             | IntExpr::Shift(a, _)
             | IntExpr::ToReal(a, _)
+            | IntExpr::Sqrt(a)
             | IntExpr::FromReal(a, _) => walk(a, out),
             IntExpr::Add(a, b)
             | IntExpr::Bitwise(_, a, b)

@@ -38,6 +38,8 @@ struct Gen<'r> {
     ints: Vec<String>,
     /// BOOL variables to read.
     bools: Vec<String>,
+    /// How many `ABS` or `SQRT` were written (they alternate).
+    absolutes: usize,
 }
 
 impl Gen<'_> {
@@ -79,7 +81,13 @@ impl Gen<'_> {
                 format!("{f}({}, {})", self.real(d), self.real(d))
             }
             6 => format!("LIMIT({}, {}, {})", self.real(d), self.real(d), self.real(d)),
-            7 => format!("ABS({})", self.real(d)),
+            // Every other one a root (counted, not drawn: the draws stay those of
+            // the programs before roots were generated).
+            7 => {
+                self.absolutes += 1;
+                let f = if self.absolutes.is_multiple_of(2) { "SQRT" } else { "ABS" };
+                format!("{f}({})", self.real(d))
+            }
             8 => format!("SEL({}, {}, {})", self.boolean(d), self.real(d), self.real(d)),
             9 => {
                 let f = *self.rng.pick(&["ADD", "SUB", "MUL", "DIV", "MOVE"]);
@@ -143,7 +151,8 @@ pub fn program(seed: u64) -> Generated {
     text += "  R : INT;\nEND_VAR\n";
     let mut reals = real_inputs.clone();
     reals.extend(vars.iter().cloned());
-    let mut g = Gen { rng: &mut rng, reals, ints: vec!["N".into(), "R".into()], bools: vec![] };
+    let ints = vec!["N".into(), "R".into()];
+    let mut g = Gen { rng: &mut rng, reals, ints, bools: vec![], absolutes: 0 };
     for _ in 0..(2 + g.rng.below(5)) {
         match g.rng.below(6) {
             0 | 1 => {
