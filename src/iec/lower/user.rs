@@ -57,10 +57,28 @@ impl Lowering<'_> {
             return;
         }
         let Some(pou) = self.user.get(fb).cloned() else { return };
+        if self.declares_en(&pou) {
+            return;
+        }
         self.inlining.push(fb.to_string());
         let table = self.variables(&pou, inst, Some(decl));
         self.inlining.pop();
         self.instances.insert(inst.to_string(), table);
+    }
+
+    /// Whether `pou` declares `EN` or `ENO`, refused: matiec gives every function block
+    /// and function both, and skips the body (`ENO` FALSE) while `EN` is FALSE, which
+    /// the inlined body, always run, does not follow.
+    fn declares_en(&mut self, pou: &ast::Pou) -> bool {
+        let en = pou.vars.iter().find(|v| matches!(v.name.key().as_str(), "EN" | "ENO"));
+        if let Some(v) = en {
+            self.refuse(
+                v.name.span,
+                &format!("the `{}` of `{}`", v.name.name, pou.name.name),
+                "matiec skips the body while EN is FALSE; declare another name",
+            );
+        }
+        en.is_some()
     }
 
     /// The variables of `pou` named `prefix_Var`: an instance's (`instance`, its
@@ -330,6 +348,9 @@ impl Lowering<'_> {
             return None;
         }
         let pou = self.user.get(&f.key()).cloned()?;
+        if self.declares_en(&pou) {
+            return None;
+        }
         self.calls += 1;
         let prefix = format!("{}_{}", pou.name.name, self.calls);
         let mut names = self.variables(&pou, &prefix, None);
