@@ -207,15 +207,7 @@ pub fn lower_wanting(
         }
         for (r, table) in runs.iter().zip(tables) {
             l.syms = table;
-            match &r.pou.body {
-                ast::Body::St(stmts) => l.program_body(stmts),
-                ast::Body::Il(lines) => {
-                    l.il = true;
-                    l.il_body(lines)
-                }
-                // Turned into Structured Text above.
-                ast::Body::Sfc(_) => {}
-            }
+            l.program_run(r.pou);
         }
         if !l.errors.is_empty() {
             return Err(l.errors);

@@ -171,6 +171,27 @@ impl Lowering<'_> {
         vec![Stmt::Write { target: signal, kind: WriteKind::Assign, value, span: e.span }]
     }
 
+    /// One run of the program `pou`, at every scan: its `VAR_TEMP` variables set to their
+    /// initial values (a block of its own, at their declaration's line), then its body.
+    pub(super) fn program_run(&mut self, pou: &ast::Pou) {
+        let names = self.syms.clone();
+        let resets = self.temp_resets(pou, &names);
+        if let Some(v) = pou.vars.iter().find(|v| v.class == ast::VarClass::Temp) {
+            self.line = self.line_of(v.name.span);
+            self.run_known(&resets);
+            self.push_block(v.name.span, resets);
+        }
+        match &pou.body {
+            ast::Body::St(stmts) => self.program_body(stmts),
+            ast::Body::Il(lines) => {
+                self.il = true;
+                self.il_body(lines)
+            }
+            // Turned into Structured Text before lowering (`sfc::desugar`).
+            ast::Body::Sfc(_) => {}
+        }
+    }
+
     /// A program's body: a block per top-level statement; after a statement that may
     /// `RETURN`, each block under `IF NOT _RETURN` (an `#ASSERT` counts only on the scans
     /// that reach it).

@@ -7,7 +7,7 @@ use super::{Lowering, Sym, Ty};
 use crate::diag::Span;
 use crate::iec::StError;
 use crate::iec::ast::{self, Arg, ExprKind, Ident, PouKind, VarClass};
-use crate::program::{BoolExpr, Stmt, WriteKind};
+use crate::program::{BoolExpr, IntExpr, Stmt, WriteKind};
 
 /// How deep user POUs may nest.
 const MAX_DEPTH: usize = 16;
@@ -57,10 +57,28 @@ impl Lowering<'_> {
             return;
         }
         let Some(pou) = self.user.get(fb).cloned() else { return };
+        if self.declares_en(&pou) {
+            return;
+        }
         self.inlining.push(fb.to_string());
         let table = self.variables(&pou, inst, Some(decl));
         self.inlining.pop();
         self.instances.insert(inst.to_string(), table);
+    }
+
+    /// Whether `pou` declares `EN` or `ENO`, refused: matiec gives every function block
+    /// and function both, and skips the body (`ENO` FALSE) while `EN` is FALSE, which
+    /// the inlined body, always run, does not follow.
+    fn declares_en(&mut self, pou: &ast::Pou) -> bool {
+        let en = pou.vars.iter().find(|v| matches!(v.name.key().as_str(), "EN" | "ENO"));
+        if let Some(v) = en {
+            self.refuse(
+                v.name.span,
+                &format!("the `{}` of `{}`", v.name.name, pou.name.name),
+                "matiec skips the body while EN is FALSE; declare another name",
+            );
+        }
+        en.is_some()
     }
 
     /// The variables of `pou` named `prefix_Var`: an instance's (`instance`, its
@@ -272,6 +290,11 @@ impl Lowering<'_> {
         for (target, value) in writes {
             out.push(Stmt::Write { target, kind: WriteKind::Assign, value, span });
         }
+        // matiec's body of a function block starts by setting its VAR_TEMP variables
+        // to their initial values, at every call.
+        out.extend(self.temp_resets(&pou, &names));
+        // The body is lowered knowing what the call wrote before it.
+        self.run_known(&out);
         out.extend(self.body(&pou, names.clone()));
         for a in args {
             let Arg::Output(pin, negated, target) = a else { continue };
@@ -325,6 +348,9 @@ impl Lowering<'_> {
             return None;
         }
         let pou = self.user.get(&f.key()).cloned()?;
+        if self.declares_en(&pou) {
+            return None;
+        }
         self.calls += 1;
         let prefix = format!("{}_{}", pou.name.name, self.calls);
         let mut names = self.variables(&pou, &prefix, None);
@@ -337,17 +363,7 @@ impl Lowering<'_> {
         let mut out = Vec::new();
         let writes = self.inputs_of(&pou, &names, first, args, &mut out);
         // Each call starts from the initial values.
-        for v in &pou.vars {
-            if let Some(Sym { ty: Ty::Bool, name, .. }) = names.get(&v.name.key()) {
-                let init = matches!(v.init.as_ref().map(|e| &e.kind), Some(ExprKind::Bool(true)));
-                out.push(Stmt::Write {
-                    target: name.clone(),
-                    kind: WriteKind::Assign,
-                    value: BoolExpr::Const(init),
-                    span: v.name.span,
-                });
-            }
-        }
+        out.extend(self.initial_writes(pou.vars.iter(), &names));
         if matches!(result_ty, Ty::Bool) {
             out.push(Stmt::Write {
                 target: result.clone(),
@@ -362,5 +378,69 @@ impl Lowering<'_> {
         out.extend(self.body(&pou, names));
         self.prelude.extend(out);
         matches!(result_ty, Ty::Bool).then(|| BoolExpr::var(&result))
+    }
+}
+
+impl Lowering<'_> {
+    /// Writes that give `vars` (named in `names`) their initial values, the type's
+    /// default where none is declared: a BOOL its value, an integer or `REAL` computed
+    /// exactly its start value (one not computed is unconstrained anyway).
+    fn initial_writes<'v>(
+        &self,
+        vars: impl Iterator<Item = &'v ast::VarDecl>,
+        names: &BTreeMap<String, Sym>,
+    ) -> Vec<Stmt> {
+        let mut out = Vec::new();
+        for v in vars {
+            let span = v.name.span;
+            match names.get(&v.name.key()) {
+                Some(Sym { ty: Ty::Bool, name, .. }) => {
+                    let init = matches!(
+                        v.init.as_ref().map(|e| &e.kind),
+                        Some(ExprKind::Bool(true) | ExprKind::Int(1))
+                    );
+                    let value = BoolExpr::Const(init);
+                    out.push(Stmt::Write {
+                        target: name.clone(),
+                        kind: WriteKind::Assign,
+                        value,
+                        span,
+                    });
+                }
+                Some(Sym { ty: Ty::Int(_), name, .. }) if !self.opaque.contains_key(name) => {
+                    if let Some(x) = self.ints.get(name) {
+                        let value = IntExpr::Const(x.init);
+                        out.push(Stmt::SetInt { target: name.clone(), value, span });
+                    }
+                }
+                _ => {}
+            }
+        }
+        out
+    }
+
+    /// The start of each run of `pou`'s body (a program's at every scan, a function
+    /// block's at every call), as matiec's C begins it: every `VAR_TEMP` variable set
+    /// to its initial value, the type's default where none is declared. A function-block
+    /// instance declared there is refused, as matiec refuses it.
+    pub(super) fn temp_resets(
+        &mut self,
+        pou: &ast::Pou,
+        names: &BTreeMap<String, Sym>,
+    ) -> Vec<Stmt> {
+        let temps: Vec<&ast::VarDecl> =
+            pou.vars.iter().filter(|v| v.class == VarClass::Temp).collect();
+        for v in &temps {
+            let instance =
+                matches!(names.get(&v.name.key()), Some(Sym { ty: Ty::Fb(..) | Ty::User(_), .. }));
+            if instance && !self.errors.iter().any(|e| e.span == v.ty.span) {
+                self.refuse(
+                    v.ty.span,
+                    "a function-block instance in VAR_TEMP",
+                    "declare it in VAR (matiec accepts no instance in VAR_TEMP)",
+                );
+            }
+        }
+        self.initial_writes(temps.into_iter(), names)
     }
 }
