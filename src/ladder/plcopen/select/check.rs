@@ -42,6 +42,19 @@ pub(super) fn check_pou(
             reason: "only LD and FBD bodies are read".into(),
         }]);
     }
+    // matiec sets an LD/FBD body's `tempVars` to their initial values at the start of
+    // every call (or scan): the graphical bodies keep them like `localVars`, so a body
+    // reading one before writing it would be read wrongly.
+    if let Some(v) = pou.vars.iter().find(|v| v.class == VarClass::Temp) {
+        return Err(vec![PlcError::Unsupported {
+            span: v.span,
+            what: format!("the temporary variable `{}` of `{}`", v.name, pou.name),
+            reason: "matiec starts it from its initial value at every call or scan, which \
+                     ii-prove does not follow in LD and FBD bodies yet (their Structured Text \
+                     and IL bodies do)"
+                .into(),
+        }]);
+    }
     // Names: POU variables shadow globals; case-insensitive; two spellings of one name are ambiguous.
     let mut vars: BTreeMap<String, Var> = BTreeMap::new();
     let mut spellings: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
