@@ -526,12 +526,11 @@ impl<'s> Lowering<'s> {
                 }
                 // matiec reads an integer literal 0 or 1 as a BOOL here too.
                 match v.init.as_ref().map(|e| &e.kind) {
-                    Some(ExprKind::Bool(true) | ExprKind::Int(1))
-                        if !input && !self.starts.contains(&name) =>
-                    {
-                        self.starts.push(name.clone())
+                    _ if user::starts_true(v) => {
+                        if !input && !self.starts.contains(&name) {
+                            self.starts.push(name.clone())
+                        }
                     }
-                    Some(ExprKind::Bool(true) | ExprKind::Int(1)) => {}
                     Some(ExprKind::Bool(_) | ExprKind::Int(0)) | None => {}
                     Some(_) if input => {}
                     Some(_) => self.bad_bool_init(v),

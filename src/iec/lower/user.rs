@@ -395,11 +395,7 @@ impl Lowering<'_> {
             let span = v.name.span;
             match names.get(&v.name.key()) {
                 Some(Sym { ty: Ty::Bool, name, .. }) => {
-                    let init = matches!(
-                        v.init.as_ref().map(|e| &e.kind),
-                        Some(ExprKind::Bool(true) | ExprKind::Int(1))
-                    );
-                    let value = BoolExpr::Const(init);
+                    let value = BoolExpr::Const(starts_true(v));
                     out.push(Stmt::Write {
                         target: name.clone(),
                         kind: WriteKind::Assign,
@@ -443,4 +439,10 @@ impl Lowering<'_> {
         }
         self.initial_writes(temps.into_iter(), names)
     }
+}
+
+/// Whether a BOOL's declared initial value is TRUE (matiec reads an integer literal 1 as
+/// a BOOL there too).
+pub(super) fn starts_true(v: &ast::VarDecl) -> bool {
+    matches!(v.init.as_ref().map(|e| &e.kind), Some(ExprKind::Bool(true) | ExprKind::Int(1)))
 }
