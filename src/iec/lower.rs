@@ -16,6 +16,7 @@
 mod calls;
 mod durations;
 mod elapsed;
+mod enable;
 mod expr;
 mod flow;
 mod il;
@@ -176,6 +177,7 @@ pub fn lower_wanting(
     // An integer found opaque while lowering changes what reads it: lowered again
     // until no new one appears (each round adds one at least).
     let (mut opaque, mut omitted, mut multi) = (BTreeMap::new(), BTreeSet::new(), BTreeSet::new());
+    let mut enabled = BTreeSet::new();
     let mut elapsed: BTreeMap<String, elapsed::Wanted> =
         wanted.iter().map(|w| (w.to_ascii_uppercase(), elapsed::Wanted::default())).collect();
     let time_facts = durations::time_facts(sources, unit);
@@ -185,6 +187,7 @@ pub fn lower_wanting(
         l.opaque = opaque.clone();
         l.omitted = omitted.clone();
         l.multi = multi.clone();
+        l.enabled = enabled.clone();
         l.elapsed = elapsed.clone();
         l.user = unit
             .pous
@@ -223,8 +226,10 @@ pub fn lower_wanting(
             || l.omitted.len() > omitted.len()
             || called.len() > multi.len()
             || l.elapsed != elapsed
+            || l.enabled.len() > enabled.len()
         {
             (opaque, omitted, multi, elapsed) = (l.opaque, l.omitted, called, l.elapsed);
+            enabled = l.enabled;
             continue;
         }
         l.warn_opaque();
@@ -409,6 +414,12 @@ struct Lowering<'s> {
     /// The standard function-block instances called more than once in a scan (instance
     /// key; given, grows while lowering, like `opaque`).
     multi: BTreeSet<String>,
+    /// The FB instances some call gives `EN` (key; grows like `opaque`): every call of
+    /// them runs its body under the instance's EN bit ([`enable`]).
+    enabled: BTreeSet<String>,
+    /// While a call under its EN is lowered: the writes of the inputs it keeps, which
+    /// run whatever its EN.
+    kept_writes: Option<Vec<Stmt>>,
     /// The timer instances whose `ET` a statement reads (key), with what the calls told
     /// of it (grows like `opaque`).
     elapsed: BTreeMap<String, elapsed::Wanted>,
@@ -465,6 +476,8 @@ impl<'s> Lowering<'s> {
             omitted: BTreeSet::new(),
             called: BTreeMap::new(),
             multi: BTreeSet::new(),
+            enabled: BTreeSet::new(),
+            kept_writes: None,
             elapsed: BTreeMap::new(),
             known: known::Known::default(),
             frames: Vec::new(),
@@ -627,37 +640,6 @@ impl<'s> Lowering<'s> {
             .unique(base, |n| taken.contains(n) || syms.contains_key(&n.to_ascii_uppercase()));
         self.taken.insert(name.clone());
         name
-    }
-
-    /// The first scan sets every BOOL whose initial value is TRUE, before any statement
-    /// (an input's initial value is the outside's business).
-    fn starts(&mut self) {
-        let inputs = &self.inputs;
-        self.starts.retain(|x| !inputs.contains(x));
-        if self.starts.is_empty() {
-            return;
-        }
-        let started = self.unique("_STARTED");
-        self.started = Some(started.clone());
-        let first = BoolExpr::negate(BoolExpr::var(&started));
-        let span = self.syms.values().next().map_or(Span::new(0, 0..0), |s| s.span);
-        let mut stmts: Vec<Stmt> = self
-            .starts
-            .iter()
-            .map(|x| Stmt::Write {
-                target: x.clone(),
-                kind: WriteKind::Set,
-                value: first.clone(),
-                span,
-            })
-            .collect();
-        stmts.push(Stmt::Write {
-            target: started,
-            kind: WriteKind::Assign,
-            value: BoolExpr::Const(true),
-            span,
-        });
-        self.blocks.insert(0, Block { number: 0, label: Some("L00_init".into()), span, stmts });
     }
 
     fn line_of(&self, span: Span) -> usize {

@@ -171,11 +171,13 @@ impl Lowering<'_> {
             return Vec::new();
         };
         let inst = sym.name.clone();
+        let en = self.enable(&inst, args);
         let mut inputs: BTreeMap<String, &ast::Expr> = BTreeMap::new();
         let mut outputs = Vec::new();
         let order = fb.inputs(&ty);
         for (k, a) in args.iter().enumerate() {
             match a {
+                _ if super::enable::is_en_eno(a) => {}
                 Arg::Input(n, e) => {
                     inputs.insert(n.key(), e);
                 }
@@ -194,6 +196,8 @@ impl Lowering<'_> {
             }
         }
         let mut out = Vec::new();
+        // The inputs it keeps are written whatever its EN.
+        let kept = std::mem::replace(&mut self.kept_writes, en.guarded().then(Vec::new));
         // The value a call gives an input (`None`: the call leaves it out).
         let input = |l: &mut Self, pin: &str| -> Option<BoolExpr> {
             match (inputs.get(pin), &given) {
@@ -263,6 +267,9 @@ impl Lowering<'_> {
             Fb::Tp => out.extend(self.pulse(&inst, &ty, &inputs, &input, span)),
             Fb::Counter => out.extend(self.counter(&inst, &ty, &inputs, &input, span)),
         }
+        let before = std::mem::replace(&mut self.kept_writes, kept).unwrap_or_default();
+        let body = out;
+        let mut out = Vec::new();
         for (pin, negated, target) in outputs {
             if fb == Fb::Counter && pin.key() == "CV" && !negated {
                 out.extend(self.counter_output(&inst, &ty, target, span));
@@ -284,7 +291,7 @@ impl Lowering<'_> {
             let value = if negated { BoolExpr::negate(q) } else { q };
             out.extend(self.assign_value(target, value, span));
         }
-        out
+        self.enabled_call(en, [before, body, out], span)
     }
 
     /// A call of the TON or TOF `inst` with the preset `pt` and `IN` `v` whose `ET` is
@@ -429,14 +436,16 @@ impl<'s> Lowering<'s> {
         let key = (inst.to_ascii_uppercase(), pin.to_string());
         match read(self, pin) {
             Some(v) if self.omitted.contains(&key) => {
-                let v = self.temp(out, v);
+                let mut writes = Vec::new();
+                let v = self.temp(&mut writes, v);
                 let kept = self.hidden(inst, &format!("{pin}_in"));
-                out.push(Stmt::Write {
+                writes.push(Stmt::Write {
                     target: kept,
                     kind: WriteKind::Assign,
                     value: v.clone(),
                     span,
                 });
+                self.kept_writes.as_mut().unwrap_or(out).extend(writes);
                 v
             }
             Some(v) => v,
@@ -466,7 +475,8 @@ impl<'s> Lowering<'s> {
                 let target = kept(self);
                 match self.int_input(e, t) {
                     Ok(value) => {
-                        out.push(Stmt::SetInt { target: target.clone(), value, span });
+                        let write = Stmt::SetInt { target: target.clone(), value, span };
+                        self.kept_writes.as_mut().unwrap_or(out).push(write);
                         Ok(IntExpr::Var(target))
                     }
                     Err(why) => {

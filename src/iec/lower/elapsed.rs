@@ -169,7 +169,8 @@ impl Lowering<'_> {
             run_out = BoolExpr::Or(vec![BoolExpr::negate(given.clone()), run_out]);
             pt = IntExpr::ite(given, pt, k(0));
         } else {
-            out.push(Stmt::Write {
+            // Kept whatever the call's EN, like the preset itself.
+            self.kept_writes.as_mut().unwrap_or(out).push(Stmt::Write {
                 target: timer.given.clone(),
                 kind: WriteKind::Assign,
                 value: BoolExpr::Const(true),

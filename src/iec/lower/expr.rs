@@ -1,5 +1,6 @@
 //! Boolean expressions of Structured Text in the scan model: variables and FB outputs, `NOT`/`AND`/`OR`/`XOR`, `=`/`<>` between BOOLs, the Boolean functions, integer comparisons (`ints`), `CASE` labels and `FOR` bounds.
 
+use super::enable::std_arg;
 use super::flow::MAX_ITERATIONS;
 use super::{Lowering, Sym, Ty};
 use crate::diag::Span;
@@ -33,14 +34,15 @@ impl Lowering<'_> {
                 BinOp::Eq | BinOp::Ne | BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge,
                 ..,
             ) => true,
-            ExprKind::Call(f, args) if f.key() == "SEL" => match (args.get(1), args.get(2)) {
-                (
-                    Some(Arg::Positional(x) | Arg::Input(_, x)),
-                    Some(Arg::Positional(y) | Arg::Input(_, y)),
-                ) if bit_literal(x).is_some() => self.is_bool(y) || bit_literal(y).is_some(),
-                (Some(Arg::Positional(x) | Arg::Input(_, x)), _) => self.is_bool(x),
-                _ => true,
-            },
+            ExprKind::Call(f, args) if f.key() == "SEL" => {
+                match (std_arg("SEL", args, 1), std_arg("SEL", args, 2)) {
+                    (Some(x), Some(y)) if bit_literal(x).is_some() => {
+                        self.is_bool(y) || bit_literal(y).is_some()
+                    }
+                    (Some(x), _) => self.is_bool(x),
+                    _ => true,
+                }
+            }
             ExprKind::Call(f, _) => {
                 ["AND", "OR", "XOR", "NOT", "GT", "GE", "EQ", "NE", "LT", "LE"]
                     .contains(&f.key().as_str())
@@ -152,13 +154,6 @@ impl Lowering<'_> {
     }
 
     pub(super) fn function(&mut self, f: &Ident, args: &[Arg], e: &ast::Expr) -> BoolExpr {
-        let values: Vec<&ast::Expr> = args
-            .iter()
-            .map(|a| match a {
-                Arg::Positional(x) | Arg::Input(_, x) => x,
-                Arg::Output(_, _, x) => x,
-            })
-            .collect();
         let name = f.key();
         if name.contains('.') {
             let what = format!("the method call `{}(…)`", f.name);
@@ -171,6 +166,25 @@ impl Lowering<'_> {
                 None => self.not_bool(e, &format!("the result of `{}`", f.name)),
             };
         }
+        let args = match self.std_args(f, args) {
+            Ok(args) => args,
+            Err(why) => {
+                let help = "give the inputs by position or each by its parameter's name";
+                self.errors.push(StError::new(f.span, why, help));
+                return BoolExpr::Const(false);
+            }
+        };
+        // Where `EN` is FALSE matiec's `TEST_EN` returns FALSE.
+        let en = args.en.map(|x| self.bool_expr(x));
+        let value = self.std_function(f, &args.values, e);
+        match en {
+            Some(en) => BoolExpr::and(en, value),
+            None => value,
+        }
+    }
+
+    fn std_function(&mut self, f: &Ident, values: &[&ast::Expr], e: &ast::Expr) -> BoolExpr {
+        let name = f.key();
         match name.as_str() {
             "AND" | "OR" | "XOR" if values.len() >= 2 => {
                 let vs: Vec<BoolExpr> = values.iter().map(|x| self.bool_expr(x)).collect();

@@ -15,7 +15,7 @@ use super::{Lowering, Sym, Ty};
 use crate::diag::Span;
 use crate::iec::StError;
 use crate::iec::ast::{self, StmtKind};
-use crate::program::{BoolExpr, IntExpr, Stmt, WriteKind};
+use crate::program::{Block, BoolExpr, IntExpr, Stmt, WriteKind};
 
 /// The most iterations a loop is unrolled to.
 pub(super) const MAX_ITERATIONS: u64 = 10_000;
@@ -91,6 +91,37 @@ fn unless(bits: Vec<&String>, stmts: Vec<Stmt>, span: Span) -> Vec<Stmt> {
 }
 
 impl Lowering<'_> {
+    /// The first scan sets every BOOL whose initial value is TRUE, before any statement
+    /// (an input's initial value is the outside's business).
+    pub(super) fn starts(&mut self) {
+        let inputs = &self.inputs;
+        self.starts.retain(|x| !inputs.contains(x));
+        if self.starts.is_empty() {
+            return;
+        }
+        let started = self.unique("_STARTED");
+        self.started = Some(started.clone());
+        let first = BoolExpr::negate(BoolExpr::var(&started));
+        let span = self.syms.values().next().map_or(Span::new(0, 0..0), |s| s.span);
+        let mut stmts: Vec<Stmt> = self
+            .starts
+            .iter()
+            .map(|x| Stmt::Write {
+                target: x.clone(),
+                kind: WriteKind::Set,
+                value: first.clone(),
+                span,
+            })
+            .collect();
+        stmts.push(Stmt::Write {
+            target: started,
+            kind: WriteKind::Assign,
+            value: BoolExpr::Const(true),
+            span,
+        });
+        self.blocks.insert(0, Block { number: 0, label: Some("L00_init".into()), span, stmts });
+    }
+
     fn frame(&mut self) -> &mut Frame {
         if self.frames.is_empty() {
             self.frames.push(Frame::default());

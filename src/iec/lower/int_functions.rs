@@ -15,25 +15,36 @@ impl Lowering<'_> {
         args: &[Arg],
         e: &ast::Expr,
     ) -> Result<Int, Opaque> {
-        let values: Vec<&ast::Expr> = args
-            .iter()
-            .map(|a| match a {
-                Arg::Positional(x) | Arg::Input(_, x) | Arg::Output(_, _, x) => x,
-            })
-            .collect();
+        let args = self.std_args(f, args)?;
+        let value = self.int_function_of(f, &args.values, e)?;
+        let Some(en) = args.en else { return Ok(value) };
+        // Where `EN` is FALSE matiec's `TEST_EN` returns the type's initial value, 0.
+        let Some(t) = value.ty else {
+            return Err(format!("`{}` of literals alone under `EN` is not computed", f.name));
+        };
+        let en = self.bool_expr(en);
+        Ok(Int::of(IntExpr::ite(en, value.in_type(t), IntExpr::Const(0)), Some(t)))
+    }
+
+    fn int_function_of(
+        &mut self,
+        f: &ast::Ident,
+        values: &[&ast::Expr],
+        e: &ast::Expr,
+    ) -> Result<Int, Opaque> {
         let name = f.key();
         if let Some(to) = name.strip_prefix("TIME_TO_") {
-            return self.time_conversion(f, to, &values, e.span);
+            return self.time_conversion(f, to, values, e.span);
         }
         if let Some(to) = name.strip_prefix("STRING_TO_") {
-            return string_conversion(f, to, &values);
+            return string_conversion(f, to, values);
         }
         if let Some((from, to)) = name.split_once("_TO_") {
             let (Some(from), Some(to)) = (library::number_type(from), library::number_type(to))
             else {
                 return Err(format!("the conversion {} is not computed", f.name));
             };
-            let [x] = values.as_slice() else {
+            let [x] = values else {
                 return Err(format!("{} takes one argument", f.name));
             };
             let x = self.int_expr(x)?;

@@ -214,6 +214,8 @@ impl Lowering<'_> {
         }
         for a in args {
             let (key, e, span) = match a {
+                // A function block's, read by the call ([`Lowering::enable`]).
+                _ if super::enable::is_en_eno(a) => continue,
                 Arg::Input(n, e) => (n.key(), e, n.span),
                 Arg::Positional(e) => {
                     let Some(d) = order.get(next) else {
@@ -285,19 +287,38 @@ impl Lowering<'_> {
         }
         let Some(pou) = self.user.get(fb).cloned() else { return Vec::new() };
         let names = self.instances.get(inst).cloned().unwrap_or_default();
-        let mut out = Vec::new();
-        let writes = self.inputs_of(&pou, &names, None, args, &mut out);
+        let en = self.enable(inst, args);
+        let mut before = Vec::new();
+        let writes = self.inputs_of(&pou, &names, None, args, &mut before);
         for (target, value) in writes {
-            out.push(Stmt::Write { target, kind: WriteKind::Assign, value, span });
+            before.push(Stmt::Write { target, kind: WriteKind::Assign, value, span });
         }
         // matiec's body of a function block starts by setting its VAR_TEMP variables
-        // to their initial values, at every call.
-        out.extend(self.temp_resets(&pou, &names));
+        // to their initial values, at every call its EN lets run.
+        let mut body = self.temp_resets(&pou, &names);
         // The body is lowered knowing what the call wrote before it.
-        self.run_known(&out);
-        out.extend(self.body(&pou, names.clone()));
+        self.run_known(&before);
+        self.run_known(&body);
+        body.extend(self.body(&pou, names.clone()));
+        let out = self.output_copies(&pou, &names, args, span);
+        self.enabled_call(en, [before, body, out], span)
+    }
+
+    /// The copies of a call's `=>` outputs (`ENO` is the caller's business) from the
+    /// variables `names` gives the VAR_OUTPUTs of `pou`, after its body.
+    fn output_copies(
+        &mut self,
+        pou: &ast::Pou,
+        names: &BTreeMap<String, Sym>,
+        args: &[Arg],
+        span: Span,
+    ) -> Vec<Stmt> {
+        let mut out = Vec::new();
         for a in args {
             let Arg::Output(pin, negated, target) = a else { continue };
+            if super::enable::is_en_eno(a) {
+                continue;
+            }
             let declared =
                 pou.vars.iter().any(|v| v.class == VarClass::Output && v.name.key() == pin.key());
             match names.get(&pin.key()) {
@@ -375,7 +396,13 @@ impl Lowering<'_> {
         for (target, value) in writes {
             out.push(Stmt::Write { target, kind: WriteKind::Assign, value, span: f.span });
         }
-        out.extend(self.body(&pou, names));
+        out.extend(self.body(&pou, names.clone()));
+        for a in args.iter().filter(|a| super::enable::is_en_eno(a)) {
+            let (Arg::Input(n, _) | Arg::Output(n, ..)) = a else { continue };
+            let what = format!("`{}` of a call of the function `{}`", n.name, pou.name.name);
+            self.refuse(n.span, &what, "call it without EN and ENO");
+        }
+        out.extend(self.output_copies(&pou, &names, args, f.span));
         self.prelude.extend(out);
         matches!(result_ty, Ty::Bool).then(|| BoolExpr::var(&result))
     }

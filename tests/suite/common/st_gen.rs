@@ -1,4 +1,4 @@
-//! Random Structured Text programs for the differential tests: Boolean assignments, IF/ELSIF/ELSE, every modelled function block (TON, TOF, TP, R_TRIG, F_TRIG, SR, RS, CTU, CTD, CTUD) with formal inputs and outputs (timers and edge detectors sometimes called under an IF, a timer's `PT` sometimes left out, and some instances called a second time with inputs left out), user functions and function blocks (inputs left out keep their values), FOR loops with constant bounds and WHILE/REPEAT loops counted before the scan (EXIT and CONTINUE under IF in their bodies), RETURN under IF in a program and a function block, the Boolean operators and functions, integers of every 8- to 32-bit type and a subrange of one (arithmetic, division by literals, MOD by literals and variables, conversions, MIN/MAX/LIMIT/ABS/SEL, comparisons, CASE, integer inputs), initial values, and a configuration giving the cycle.
+//! Random Structured Text programs for the differential tests: Boolean assignments, IF/ELSIF/ELSE, every modelled function block (TON, TOF, TP, R_TRIG, F_TRIG, SR, RS, CTU, CTD, CTUD) with formal inputs and outputs (`EN` and `ENO` in some calls) (timers and edge detectors sometimes called under an IF, a timer's `PT` sometimes left out, and some instances called a second time with inputs left out), user functions and function blocks (inputs left out keep their values), FOR loops with constant bounds and WHILE/REPEAT loops counted before the scan (EXIT and CONTINUE under IF in their bodies), RETURN under IF in a program and a function block, the Boolean operators and functions, integers of every 8- to 32-bit type and a subrange of one (arithmetic, division by literals, MOD by literals and variables, conversions, MIN/MAX/LIMIT/ABS/SEL, comparisons, CASE, integer inputs), initial values, and a configuration giving the cycle.
 #![allow(dead_code)]
 
 use super::rng::Rng;
@@ -524,6 +524,7 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
     // The calls, placed among the other statements.
     let mut pts: Vec<(String, String)> = Vec::new();
     let mut conditional: Vec<String> = Vec::new();
+    let mut counted = 0;
     let mut calls: Vec<String> = fbs
         .iter()
         .map(|(n, t)| {
@@ -543,6 +544,23 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
                 "R_TRIG" | "F_TRIG" => format!("{n}(CLK := {})", g.expr(2)),
                 "SR" => format!("{n}(S1 := {}, R := {})", g.expr(2), g.expr(2)),
                 _ => format!("{n}(S := {}, R1 := {})", g.expr(2), g.expr(2)),
+            };
+            // Every fifth call gives EN (which the instance keeps: its later calls run
+            // under it too), every tenth copies ENO; chosen by a count, so that the
+            // draws are those of the programs checked before.
+            counted += 1;
+            let call = match counted % 5 {
+                0 => {
+                    let en = &g.reads[counted % g.reads.len()];
+                    let eno = if counted % 10 == 0 {
+                        format!(", ENO => {}", locals[counted % locals.len()])
+                    } else {
+                        String::new()
+                    };
+                    let args = &call[n.len() + 1..call.len() - 1];
+                    format!("{n}(EN := {en}, {args}{eno})")
+                }
+                _ => call,
             };
             let line = if g.rng.chance(30) {
                 let x = g.rng.pick(&locals).clone();

@@ -1,0 +1,190 @@
+//! `EN` and `ENO` of a function-block call in Structured Text and IL, as matiec runs them: every function block has them (declared or not); a call's `EN := …` is kept in the instance like any input (TRUE at power-up), the body runs only while it is TRUE (`if (!EN) { ENO := FALSE; return; }`, `lib/C/iec_std_FB.h`, and the same for user FBs, `generate_c.cc`), and `ENO => x` copies the instance's ENO after the call.
+
+use super::Lowering;
+use crate::diag::Span;
+use crate::iec::ast::{self, Arg};
+use crate::program::{BoolExpr, Stmt, WriteKind};
+
+/// What a call's `EN` and `ENO` ask of it.
+pub(super) struct Enable<'a> {
+    /// Where the body runs: the instance's EN bit, when some call of it gives `EN`.
+    guard: Option<BoolExpr>,
+    /// The write of the instance's EN bit, when this call gives it.
+    set: Vec<Stmt>,
+    /// Each `ENO => x` (negated or not).
+    eno: Vec<(bool, &'a ast::Expr)>,
+}
+
+/// Whether `a` is the call's `EN := …` or `ENO => …` (handled here, not by the callee).
+pub(super) fn is_en_eno(a: &Arg) -> bool {
+    match a {
+        Arg::Input(n, _) => n.key() == "EN",
+        Arg::Output(n, _, _) => n.key() == "ENO",
+        Arg::Positional(_) => false,
+    }
+}
+
+impl Enable<'_> {
+    /// Whether the body runs under the instance's EN.
+    pub(super) fn guarded(&self) -> bool {
+        self.guard.is_some()
+    }
+}
+
+impl Lowering<'_> {
+    /// The `EN` and `ENO` of a call of the FB instance `inst` (its name in the scan
+    /// model) with `args`.
+    pub(super) fn enable<'a>(&mut self, inst: &str, args: &'a [Arg]) -> Enable<'a> {
+        let key = inst.to_ascii_uppercase();
+        let mut set = Vec::new();
+        let mut eno = Vec::new();
+        for a in args {
+            match a {
+                Arg::Input(n, e) if n.key() == "EN" => {
+                    self.enabled.insert(key.clone());
+                    let bit = self.en_bit(inst);
+                    let value = self.bool_expr(e);
+                    let value = self.temp(&mut set, value);
+                    set.push(Stmt::Write {
+                        target: bit,
+                        kind: WriteKind::Assign,
+                        value,
+                        span: n.span,
+                    });
+                }
+                Arg::Output(n, negated, target) if n.key() == "ENO" => eno.push((*negated, target)),
+                _ => {}
+            }
+        }
+        let guard = self.enabled.contains(&key).then(|| BoolExpr::var(&self.en_bit(inst)));
+        Enable { guard, set, eno }
+    }
+
+    /// The hidden bit of the instance's `EN`, TRUE at power-up.
+    fn en_bit(&mut self, inst: &str) -> String {
+        let bit = self.hidden(inst, "EN");
+        if !self.starts.contains(&bit) {
+            self.starts.push(bit.clone());
+        }
+        bit
+    }
+
+    /// The call: `before` (what it writes whatever its EN: the inputs it gives), the
+    /// write of its EN, its `body` where EN is TRUE, then `after` (its `=>` outputs,
+    /// copied whatever its EN) and its `ENO`s.
+    pub(super) fn enabled_call(
+        &mut self,
+        en: Enable<'_>,
+        parts: [Vec<Stmt>; 3],
+        span: Span,
+    ) -> Vec<Stmt> {
+        let [before, body, after] = parts;
+        let mut out = before;
+        out.extend(en.set);
+        match &en.guard {
+            Some(g) if !body.is_empty() => out.push(Stmt::If {
+                branches: vec![(g.clone(), body)],
+                otherwise: Vec::new(),
+                span,
+            }),
+            _ => out.extend(body),
+        }
+        out.extend(after);
+        let eno = en.guard.unwrap_or(BoolExpr::Const(true));
+        for (negated, target) in en.eno {
+            let value = if negated { BoolExpr::negate(eno.clone()) } else { eno.clone() };
+            out.extend(self.assign_value(target, value, span));
+        }
+        out
+    }
+}
+
+/// The arguments of a standard function call as matiec matches them: positional ones in
+/// order, formal ones by the parameter they name (`SEL(IN1 := a, G := g, IN0 := b)` is
+/// `SEL(g, b, a)`), and its `EN`. `TEST_EN` (`lib/C/iec_std_functions.h`) returns the
+/// type's initial value (0, FALSE, 0.0, T#0s) where `EN` is FALSE.
+pub(super) struct FnArgs<'a> {
+    /// The inputs, in the order of the function's parameters.
+    pub(super) values: Vec<&'a ast::Expr>,
+    /// The `EN := …` given.
+    pub(super) en: Option<&'a ast::Expr>,
+}
+
+/// The place of the formal parameter `name` among the inputs of the standard function
+/// `f` (both upper case).
+fn param_index(f: &str, name: &str) -> Option<usize> {
+    let numbered = |n: &str| n.strip_prefix("IN")?.parse::<usize>().ok();
+    match (f, name) {
+        ("SEL", "G") | ("MUX", "K") | ("LIMIT", "MN") => Some(0),
+        ("LIMIT", "IN") | ("SHL" | "SHR" | "ROL" | "ROR", "N") => Some(1),
+        ("LIMIT", "MX") => Some(2),
+        ("SEL" | "MUX", n) => numbered(n).map(|k| k + 1),
+        ("LIMIT", _) => None,
+        (_, "IN") => Some(0),
+        (_, n) => numbered(n).filter(|k| *k >= 1).map(|k| k - 1),
+    }
+}
+
+/// The input `k` (in parameter order) of the standard function call `f(args)`.
+pub(super) fn std_arg<'a>(f: &str, args: &'a [Arg], k: usize) -> Option<&'a ast::Expr> {
+    let mut positional = args.iter().filter_map(|a| match a {
+        Arg::Positional(x) => Some(x),
+        _ => None,
+    });
+    positional.nth(k).or_else(|| {
+        args.iter().find_map(|a| match a {
+            Arg::Input(n, x) if param_index(f, &n.key()) == Some(k) && n.key() != "EN" => Some(x),
+            _ => None,
+        })
+    })
+}
+
+impl Lowering<'_> {
+    /// The arguments of the standard function call `f(args)`, or why they are not read
+    /// (an output `=>` given to a function is refused with a located error: it would
+    /// write a variable).
+    pub(super) fn std_args<'a>(
+        &mut self,
+        f: &ast::Ident,
+        args: &'a [Arg],
+    ) -> Result<FnArgs<'a>, String> {
+        let name = f.key();
+        let (mut values, mut formal, mut en) = (Vec::new(), Vec::new(), None);
+        for a in args {
+            match a {
+                Arg::Positional(x) => values.push(x),
+                Arg::Input(n, x) if n.key() == "EN" => en = Some(x),
+                Arg::Input(n, x) => match param_index(&name, &n.key()) {
+                    Some(k) => formal.push((k, x)),
+                    None => {
+                        return Err(format!(
+                            "`{}` has no input `{}` ii-prove reads",
+                            f.name, n.name
+                        ));
+                    }
+                },
+                // Refused (the lowering fails), so the call is read without it.
+                Arg::Output(n, _, _) => {
+                    let what = format!("the output `{}` of the function `{}`", n.name, f.name);
+                    self.refuse(
+                        n.span,
+                        &what,
+                        "read the function's result; its ENO is not modelled",
+                    );
+                }
+            }
+        }
+        if !formal.is_empty() {
+            formal.sort_by_key(|(k, _)| *k);
+            let gap = formal.iter().enumerate().any(|(i, (k, _))| i != *k);
+            if !values.is_empty() || gap {
+                return Err(format!(
+                    "the inputs of `{}` are not given as its parameters in full",
+                    f.name
+                ));
+            }
+            values = formal.into_iter().map(|(_, x)| x).collect();
+        }
+        Ok(FnArgs { values, en })
+    }
+}
