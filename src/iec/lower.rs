@@ -24,9 +24,11 @@ mod int_functions;
 mod ints;
 mod known;
 mod reals;
+mod runs;
 mod user;
 
 use calls::Fb;
+use runs::pick;
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -49,6 +51,8 @@ pub struct Lowered {
     /// The program's TIME inputs no statement writes (a timer whose `PT` is one is
     /// unconstrained here, [`Preset::Variable`](crate::program::Preset) named after it).
     pub time_inputs: BTreeSet<String>,
+    /// The input bit the body runs under ([`lower_under_en`]).
+    pub enable: Option<String>,
 }
 
 /// A property written in the program: the bit that holds its truth at that point of the
@@ -114,6 +118,29 @@ pub fn lower_wanting(
     cycle_us: Option<u64>,
     wanted: &BTreeSet<String>,
 ) -> Result<Lowered, Vec<StError>> {
+    lower_inner(sources, unit, pou, cycle_us, wanted, false)
+}
+
+/// [`lower`] for a function block's body called under a wired `EN`: every block of the
+/// body runs only while the input bit [`Lowered::enable`] is TRUE (matiec's `if (!EN)
+/// return;`), as statements under a condition (timers followed call by call).
+pub fn lower_under_en(
+    sources: &Sources,
+    unit: &ast::Unit,
+    pou: Option<&str>,
+    cycle_us: Option<u64>,
+) -> Result<Lowered, Vec<StError>> {
+    lower_inner(sources, unit, pou, cycle_us, &BTreeSet::new(), true)
+}
+
+fn lower_inner(
+    sources: &Sources,
+    unit: &ast::Unit,
+    pou: Option<&str>,
+    cycle_us: Option<u64>,
+    wanted: &BTreeSet<String>,
+    under_en: bool,
+) -> Result<Lowered, Vec<StError>> {
     let runs = pick(unit, pou)?;
     let first = &runs[0];
     let mut warnings = Vec::new();
@@ -161,7 +188,7 @@ pub fn lower_wanting(
     }
     // A chart is lowered as the Structured Text matiec runs for it.
     if let Some(charts) = super::sfc::desugar(unit, cycle_us)? {
-        let mut lowered = lower_wanting(sources, &charts, pou, Some(cycle_us), wanted)?;
+        let mut lowered = lower_inner(sources, &charts, pou, Some(cycle_us), wanted, under_en)?;
         lowered.warnings.splice(0..0, warnings);
         return Ok(lowered);
     }
@@ -208,6 +235,11 @@ pub fn lower_wanting(
             l.declare(r.pou, &globals, &rename);
             tables.push(std::mem::take(&mut l.syms));
         }
+        if under_en {
+            let en = l.unique("EN");
+            l.inputs.insert(en.clone());
+            l.enable = Some(en);
+        }
         for (r, table) in runs.iter().zip(tables) {
             l.syms = table;
             l.program_run(r.pou);
@@ -235,115 +267,6 @@ pub fn lower_wanting(
         l.warn_opaque();
         return Ok(l.finish());
     }
-}
-
-/// One program instance to run each scan: the program, its task, and the prefix its
-/// local names take (`None`: its names are used as they are).
-struct Run<'u> {
-    pou: &'u ast::Pou,
-    task: Option<&'u ast::Task>,
-    instance: Option<&'u ast::Instance>,
-}
-
-/// The programs to run each scan, in order: `--pou`'s, else every program instance of the
-/// configuration (by task priority, then declaration; instances without a task last),
-/// else the file's one `PROGRAM`.
-fn pick<'u>(unit: &'u ast::Unit, pou: Option<&str>) -> Result<Vec<Run<'u>>, Vec<StError>> {
-    let programs: Vec<&ast::Pou> =
-        unit.pous.iter().filter(|p| p.kind == PouKind::Program).collect();
-    let find =
-        |name: &str| programs.iter().copied().find(|p| p.name.name.eq_ignore_ascii_case(name));
-    let tasks: Vec<&ast::Task> = unit.configs.iter().flat_map(|c| &c.tasks).collect();
-    let task_named =
-        |t: &Ident| tasks.iter().copied().find(|k| k.name.name.eq_ignore_ascii_case(&t.name));
-    let instances: Vec<&ast::Instance> = unit.configs.iter().flat_map(|c| &c.instances).collect();
-    if let Some(name) = pou {
-        return match find(name) {
-            Some(p) => {
-                let instance = instances
-                    .iter()
-                    .copied()
-                    .find(|i| i.ty.name.eq_ignore_ascii_case(&p.name.name));
-                let task = instance.and_then(|i| i.task.as_ref()).and_then(task_named);
-                Ok(vec![Run { pou: p, task, instance: None }])
-            }
-            None => {
-                let span = programs.first().map_or(Span::new(0, 0..0), |p| p.name.span);
-                let mut e = StError::new(
-                    span,
-                    format!("no PROGRAM `{name}` in this file"),
-                    "the programs are declared here",
-                );
-                if let Some(m) =
-                    crate::diag::did_you_mean(name, programs.iter().map(|p| p.name.name.as_str()))
-                {
-                    e.notes.push(format!("did you mean `{m}`?"));
-                }
-                Err(vec![e])
-            }
-        };
-    }
-    if instances.is_empty() {
-        return match programs.as_slice() {
-            [one] => Ok(vec![Run { pou: one, task: None, instance: None }]),
-            [] => Err(vec![StError::new(
-                Span::new(0, 0..0),
-                "no PROGRAM in this file",
-                "a program to check is a `PROGRAM … END_PROGRAM`",
-            )]),
-            many => {
-                let names: Vec<&str> = many.iter().map(|p| p.name.name.as_str()).collect();
-                Err(vec![StError::new(
-                    many[1].name.span,
-                    format!(
-                        "this file has {} programs ({}) and no configuration runs them: choose one with --pou",
-                        many.len(),
-                        names.join(", ")
-                    ),
-                    "a second program",
-                )])
-            }
-        };
-    }
-    let mut runs = Vec::new();
-    let mut errors = Vec::new();
-    for i in &instances {
-        let task = i.task.as_ref().and_then(task_named);
-        if let (Some(t), None) = (&i.task, task) {
-            errors.push(StError::new(
-                t.span,
-                format!("no task `{}` in this configuration", t.name),
-                "not declared",
-            ));
-        }
-        match find(&i.ty.name) {
-            Some(p) => runs.push(Run { pou: p, task, instance: Some(*i) }),
-            None => errors.push(StError::new(
-                i.ty.span,
-                format!("no PROGRAM `{}` in this file", i.ty.name),
-                "this program type is not declared",
-            )),
-        }
-    }
-    // An event task runs its programs when its trigger rises, not every cycle.
-    for r in &runs {
-        if let Some(t) = r.task.filter(|t| t.single) {
-            errors.push(StError::new(
-                t.name.span,
-                format!(
-                    "the event task `{}` (SINGLE) runs `{}` when its trigger rises: event tasks are not modelled yet; choose a cyclic program with --pou",
-                    t.name.name, r.pou.name.name
-                ),
-                "an event task",
-            ));
-        }
-    }
-    if !errors.is_empty() {
-        return Err(errors);
-    }
-    // Higher priority (a smaller number) first, then declaration order; no task last.
-    runs.sort_by_key(|r| r.task.map_or(i128::MAX, |t| t.priority));
-    Ok(runs)
 }
 
 struct Lowering<'s> {
@@ -420,6 +343,8 @@ struct Lowering<'s> {
     /// While a call under its EN is lowered: the writes of the inputs it keeps, which
     /// run whatever its EN.
     kept_writes: Option<Vec<Stmt>>,
+    /// The input bit every block of the body runs under ([`lower_under_en`]).
+    enable: Option<String>,
     /// The timer instances whose `ET` a statement reads (key), with what the calls told
     /// of it (grows like `opaque`).
     elapsed: BTreeMap<String, elapsed::Wanted>,
@@ -478,6 +403,7 @@ impl<'s> Lowering<'s> {
             multi: BTreeSet::new(),
             enabled: BTreeSet::new(),
             kept_writes: None,
+            enable: None,
             elapsed: BTreeMap::new(),
             known: known::Known::default(),
             frames: Vec::new(),
@@ -647,9 +573,16 @@ impl<'s> Lowering<'s> {
     }
 
     /// A block of the current line's statements (none: no block).
-    fn push_block(&mut self, span: Span, stmts: Vec<Stmt>) {
+    fn push_block(&mut self, span: Span, mut stmts: Vec<Stmt>) {
         if stmts.is_empty() {
             return;
+        }
+        if let Some(en) = &self.enable {
+            stmts = vec![Stmt::If {
+                branches: vec![(BoolExpr::var(en), stmts)],
+                otherwise: vec![],
+                span,
+            }];
         }
         let mut label = format!("L{:02}", self.line);
         let mut k = 2;
@@ -868,6 +801,7 @@ impl<'s> Lowering<'s> {
             asserts: self.asserts,
             warnings: self.warnings,
             time_inputs: self.time_inputs,
+            enable: self.enable,
         }
     }
 }

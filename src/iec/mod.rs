@@ -17,7 +17,7 @@ pub mod sfc;
 
 use crate::diag::{Report, Severity, Sources, Span};
 
-pub use lower::{Lowered, lower, lower_wanting};
+pub use lower::{Lowered, lower, lower_under_en, lower_wanting};
 
 /// A Structured Text error (or, with [`Severity::Warning`], a note), located.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -306,7 +306,12 @@ impl Lowering<'_> {
         out: &mut Vec<Stmt>,
         span: Span,
     ) -> Option<BoolExpr> {
-        if !self.elapsed.contains_key(&inst.to_ascii_uppercase()) {
+        let key = inst.to_ascii_uppercase();
+        // In a body under EN its state is the program's (the caller's simulator reads it).
+        if self.enable.is_some() {
+            self.elapsed.entry(key.clone()).or_default();
+        }
+        if !self.elapsed.contains_key(&key) {
             return None;
         }
         let mut stmts = Vec::new();
@@ -511,7 +516,7 @@ impl<'s> Lowering<'s> {
         out: &mut Vec<Stmt>,
         span: Span,
     ) -> BoolExpr {
-        if self.multi.contains(&inst.to_ascii_uppercase()) {
+        if self.call_by_call(&inst.to_ascii_uppercase()) {
             let input = self.temp(out, input);
             let m = self.hidden(inst, pin);
             let before = self.temp(out, BoolExpr::var(&m));
@@ -704,7 +709,7 @@ impl<'s> Lowering<'s> {
         // which the scan model's count of scans does not: the pulse is followed call by
         // call, as where its `ET` is read (lowering runs again with it).
         let key = inst.to_ascii_uppercase();
-        if self.multi.contains(&key) {
+        if self.call_by_call(&key) {
             self.elapsed.entry(key.clone()).or_default();
         }
         let given = inputs.get("PT").copied();

@@ -66,7 +66,7 @@ impl Lowering<'_> {
         let key = inst.to_ascii_uppercase();
         // A call that leaves the preset out is followed call by call too (the preset it
         // keeps is a hidden bit's business).
-        let clocked = self.elapsed.get(&key)?.clocked || self.multi.contains(&key) || pt.is_none();
+        let clocked = self.elapsed.get(&key)?.clocked || self.call_by_call(&key) || pt.is_none();
         let t = self.elapsed.get(&key)?.ty.unwrap_or(IntType::TIME);
         let et = self.hidden_int(inst, "ET", t);
         if self.opaque.contains_key(&et) {

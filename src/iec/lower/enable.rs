@@ -60,6 +60,14 @@ impl Lowering<'_> {
         Enable { guard, set, eno }
     }
 
+    /// Whether the standard FB instance `key` is followed call by call (its edge
+    /// memories hidden bits, its timers matiec's own state): called more than once in a
+    /// scan, or in a body that runs under an `EN` ([`super::lower_under_en`]), whose
+    /// state the caller's simulator then reads as the program's bits and integers.
+    pub(super) fn call_by_call(&self, key: &str) -> bool {
+        self.multi.contains(key) || self.enable.is_some()
+    }
+
     /// The hidden bit of the instance's `EN`, TRUE at power-up.
     fn en_bit(&mut self, inst: &str) -> String {
         let bit = self.hidden(inst, "EN");

@@ -551,9 +551,10 @@ impl<'p> Lower<'p> {
         else {
             return zero();
         };
-        let runs = self.en_const(k, 0);
+        let under_en = self.p.text_calls.get(&k).and_then(|c| c.enable.as_deref());
+        let runs = self.en_const(k, 0) || under_en.is_some();
         if pin.eq_ignore_ascii_case("ENO") {
-            if let Some(eno) = self.p.hidden_name(k, "ENO") {
+            if let Some(eno) = self.p.hidden_name(k, "ENO").or(under_en) {
                 return contact(eno, false);
             }
             return if runs {
@@ -784,7 +785,11 @@ impl<'p> Lower<'p> {
                 let q = self.trig_of(k, "M", edge, clk);
                 self.coil(q, &hidden("Q"), WriteKind::Assign, span);
             }
-            None if runs && p.text_calls.contains_key(&k) => self.text_call(k, inputs, &vals, span),
+            // A text block whose program runs under its EN bit: EN as computed.
+            None if p.text_calls.get(&k).is_some_and(|c| runs || c.enable.is_some()) => {
+                let en = en.clone().filter(|_| !runs);
+                self.text_call(k, inputs, &vals, en, span)
+            }
             None if p.text_calls.contains_key(&k) => self.text_not_run(k),
             // An inlined user function block: its inputs are assigned, then its body runs.
             None if runs && p.subs.contains_key(&k) => {

@@ -601,7 +601,7 @@ impl PlcSimulator {
                     self.set_hidden(k, "Q", clk && !m);
                 }
                 None if self.p.text_calls.contains_key(&k) => {
-                    self.text_call(k, &names, &values);
+                    self.text_call(k, &names, &values, true);
                 }
                 None => {
                     // An inlined user function block: inputs assigned, then its body runs
@@ -632,6 +632,10 @@ impl PlcSimulator {
                     }
                 }
             }
+        } else if self.p.text_calls.get(&k).is_some_and(|c| c.enable.is_some()) {
+            // A text block under EN = FALSE: its body does not run, but its clock (and
+            // the runtime's) runs on: a scan of its program with its EN bit FALSE.
+            self.text_call(k, &names, &values, false);
         }
         if self.p.int_block(k).is_none() {
             // A function's `_TMP_…_ENO` (an integer one's is written by `int_exec`).

@@ -28,6 +28,10 @@ pub struct TextBlock {
     /// Its TIME inputs the body never writes: a call that wires a literal to one gives
     /// the timers reading it that preset.
     pub time_inputs: BTreeSet<String>,
+    /// A function block's program lowered to run under its input bit `EN` (the second
+    /// of the pair), for the calls that wire `EN`; `None` where no call does, or where
+    /// the body cannot run so (a call under a wired EN then is not run).
+    pub enabled: Option<(Program, String)>,
 }
 
 /// The chosen program, when its body is Structured Text or Instruction List: lowered by
@@ -198,10 +202,25 @@ pub fn prepare_text_blocks(sources: &mut Sources, project: &mut Project, sel: &S
         if !fb.body.as_ref().is_some_and(|b| matches!(b.lang, Lang::St | Lang::Il | Lang::Sfc)) {
             continue;
         }
-        let lowered = text_block(sources, project, fb, cycle, sel.order);
+        let under_en = wires_en(project, &fb.name);
+        let lowered = text_block(sources, project, fb, cycle, sel.order, under_en);
         blocks.insert(fb.name.to_ascii_uppercase(), lowered);
     }
     project.text_blocks = blocks;
+}
+
+/// Whether some block of the project calling `name` wires its `EN`.
+fn wires_en(project: &Project, name: &str) -> bool {
+    let objects = project.pous.iter().filter_map(|p| p.body.as_ref()).flat_map(|b| &b.objects);
+    objects.into_iter().any(|o| match &o.kind {
+        super::ObjKind::Block { type_name, inputs, .. } => {
+            type_name.eq_ignore_ascii_case(name)
+                && inputs.iter().any(|p| {
+                    p.name.eq_ignore_ascii_case("EN") && (!p.conns.is_empty() || p.expr.is_some())
+                })
+        }
+        _ => false,
+    })
 }
 
 /// Whether the POU's text body has a pragma `{…}` (or a `{` in a comment or string):
@@ -217,6 +236,7 @@ fn text_block(
     fb: &Pou,
     cycle: u64,
     order: Option<StatementOrder>,
+    under_en: bool,
 ) -> Result<TextBlock, String> {
     if !fb.errors.is_empty() {
         return Err("its declarations are malformed".into());
@@ -289,7 +309,14 @@ fn text_block(
         .iter()
         .filter_map(|w| Some(PlcError::Note { span: w.span()?, message: w.message() }))
         .collect();
-    Ok(TextBlock { program: lowered.program, function, warnings, time_inputs: lowered.time_inputs })
+    // The same body, each of its blocks under EN: what else it reads is as above.
+    let enabled = (under_en && !function)
+        .then(|| crate::iec::lower_under_en(sources, &unit, Some(&fb.name), Some(cycle)).ok())
+        .flatten()
+        .filter(|l| crate::program::compile::compile(&l.program, &Default::default()).is_ok())
+        .and_then(|l| Some((l.program, l.enable?)));
+    let time_inputs = lowered.time_inputs;
+    Ok(TextBlock { program: lowered.program, function, warnings, time_inputs, enabled })
 }
 
 /// Why the function `f` cannot run as a program started afresh at each call: no return
@@ -336,6 +363,9 @@ pub struct TextCall {
     pub outputs: BTreeMap<String, String>,
     /// Per integer output pin (upper case): the instance's variable.
     pub int_outputs: BTreeMap<String, String>,
+    /// The instance's `EN` bit, when the call wires `EN`: `program` then runs its body
+    /// only while it is TRUE ([`TextBlock::enabled`]), and `ENO` is it.
+    pub enable: Option<String>,
 }
 
 /// The call of the user function block or function `type_name` with a text body by the
@@ -374,12 +404,17 @@ pub fn call(
             let all = b.program.names.iter().chain(b.program.integers.keys());
             all.into_iter().find(|n| n.eq_ignore_ascii_case(name)).cloned()
         };
+        let (program, enable) = match &b.enabled {
+            Some((program, en)) if wired("EN") => (program, Some(format!("{prefix}{en}"))),
+            _ => (&b.program, None),
+        };
         let mut call = TextCall {
-            program: b.program.prefixed(&prefix),
+            program: program.prefixed(&prefix),
             function: b.function,
             inputs: BTreeMap::new(),
             outputs: BTreeMap::new(),
             int_outputs: BTreeMap::new(),
+            enable,
         };
         let mut presets = BTreeMap::new();
         for v in fb.vars.iter().chain(&fb.result) {
@@ -459,6 +494,9 @@ impl TextCall {
         }
         for var in self.outputs.values_mut().chain(self.int_outputs.values_mut()) {
             *var = format!("{prefix}{var}");
+        }
+        if let Some(en) = &mut self.enable {
+            *en = format!("{prefix}{en}");
         }
     }
 }

@@ -31,8 +31,9 @@ impl Lower<'_> {
     /// The guard Beremiz puts around an output variable fed by one wire straight from a
     /// block whose `EN` is wired: `IF _TMP_ADD7_ENO THEN x := …; END_IF;`
     /// (`PLCGenerator.py`, `GetUsedEno` and its use in `ComputeProgram`). Only where the
-    /// block's ENO is computed (an integer function's `_TMP_…_ENO`); the other blocks
-    /// under a wired EN give unconstrained outputs, which need no guard.
+    /// block's ENO is computed (an integer function's `_TMP_…_ENO`, a text block's EN
+    /// bit); the other blocks under a wired EN give unconstrained outputs, which need no
+    /// guard.
     pub(super) fn eno_guard(&self, input: &PinIn) -> Option<BoolExpr> {
         let [c] = input.conns.as_slice() else { return None };
         let j = *self.p.index.get(&c.from)?;
@@ -40,7 +41,9 @@ impl Lower<'_> {
             return None;
         };
         let wired = inputs.iter().any(|p| p.name.eq_ignore_ascii_case("EN") && !p.conns.is_empty());
-        let eno = self.p.hidden_name(j, "ENO").filter(|_| wired)?;
+        // A text block run under its EN bit: `IF B1.ENO THEN …`, its ENO that bit.
+        let text = self.p.text_calls.get(&j).and_then(|c| c.enable.as_deref());
+        let eno = self.p.hidden_name(j, "ENO").or(text).filter(|_| wired)?;
         Some(contact(eno, false))
     }
 

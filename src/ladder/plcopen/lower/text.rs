@@ -24,12 +24,15 @@ impl Lower<'_> {
         }
     }
 
-    /// The call of the text block at `k`: `vals` the Boolean values of its pins.
+    /// The call of the text block at `k`: `vals` the Boolean values of its pins, `en`
+    /// its EN where it is wired and not always TRUE (its program then runs under the
+    /// instance's EN bit, [`crate::ladder::plcopen::TextCall::enable`]).
     pub(super) fn text_call(
         &mut self,
         k: usize,
         inputs: &[PinIn],
         vals: &BTreeMap<String, BoolExpr>,
+        en: Option<BoolExpr>,
         span: Span,
     ) {
         let p = self.p;
@@ -65,6 +68,11 @@ impl Lower<'_> {
                 }
             }
         }
+        // matiec writes EN with the other inputs, then the body returns at once where it
+        // is FALSE.
+        if let Some(bit) = &call.enable {
+            self.coil(en.unwrap_or(BoolExpr::Const(true)), bit, WriteKind::Assign, span);
+        }
         // The block's one-shots are this program's, after those met so far.
         let base = self.edges.len();
         let used = call.program.edges_used();
@@ -82,8 +90,9 @@ impl Lower<'_> {
         }
     }
 
-    /// The text block at `k` under a wired EN, which is not run here: its integer
-    /// outputs are not computed (its BOOL outputs are unconstrained, as for any block
+    /// The text block at `k` under a wired EN whose body cannot run under it (a
+    /// function, or a body the lowering under EN refuses): its integer outputs are not
+    /// computed (its BOOL outputs are unconstrained, as for any block
     /// whose EN is wired).
     pub(super) fn text_not_run(&mut self, k: usize) {
         let Some(call) = self.p.text_calls.get(&k) else { return };

@@ -23,10 +23,19 @@ pub(super) fn simulators(p: &crate::ladder::plcopen::PlcProgram) -> BTreeMap<usi
 
 impl PlcSimulator {
     /// Runs the text block at `k` once: `pins` the block's input pins, `values` their
-    /// Boolean values.
-    pub(super) fn text_call(&mut self, k: usize, pins: &[PinIn], values: &BTreeMap<String, bool>) {
+    /// Boolean values, `en` its EN (read by a program that runs under it).
+    pub(super) fn text_call(
+        &mut self,
+        k: usize,
+        pins: &[PinIn],
+        values: &BTreeMap<String, bool>,
+        en: bool,
+    ) {
         let Some(call) = self.p.text_calls.get(&k) else { return };
         let mut given = BTreeMap::new();
+        if let Some(bit) = &call.enable {
+            given.insert(bit.clone(), en);
+        }
         let mut ints = Vec::new();
         for pin in pins {
             let n = pin.name.to_ascii_uppercase();
