@@ -41,6 +41,9 @@ enum Want {
     /// The edge detector Beremiz made for an element: instance path, localId, field,
     /// and for a block the rank of the pin among its edge pins (document order).
     Edge(Vec<String>, u64, &'static str, usize),
+    /// A pulse timer's `DONE` (timed out, `IN` still high): its `STATE` member, by flat
+    /// name (`TP1_STATE`), is 2.
+    Done(String),
     /// A value the run is given: an input's (a latch, a retained variable's start).
     Given(String),
     /// `STARTED`: 1 from the end of the first scan on.
@@ -102,10 +105,19 @@ fn wants(p: &Prepared) -> Result<Vec<Want>, String> {
             Src::Bit(n) if plc.started.as_deref() == Some(n) => Want::Started,
             Src::Bit(n) if plc.inputs.contains(n) => Want::Given(n.clone()),
             Src::Bit(n) => {
-                // A hidden edge bit (`_TRIG7`) is the Q of the edge detector Beremiz made.
+                // A hidden edge bit (`_TRIG7`) is the Q of the edge detector Beremiz made;
+                // a pulse timer's hidden `DONE`, a state of the instance.
                 let edge = programs.iter().find_map(|(path, prog)| {
                     prog.hidden.iter().find(|(_, h)| *h == n).and_then(|((k, pin), _)| {
                         let o = prog.obj(*k)?;
+                        if let ObjKind::Block { type_name, instance: Some(inst), .. } = &o.kind
+                            && type_name.eq_ignore_ascii_case("TP")
+                            && pin == "DONE"
+                        {
+                            let mut flat = path.clone();
+                            flat.extend([inst.clone(), "STATE".into()]);
+                            return Some(Want::Done(flat.join("_")));
+                        }
                         let rank = edge_rank(&o.kind, pin)?;
                         Some(Want::Edge(path.clone(), o.id, "Q", rank))
                     })
@@ -120,9 +132,18 @@ fn wants(p: &Prepared) -> Result<Vec<Want>, String> {
                 let (names, prog) = at_path(plc, path).ok_or("an edge detector's path")?;
                 let o = prog.obj(*owner).ok_or("an edge detector's element")?;
                 match (&o.kind, pin.as_str()) {
-                    (ObjKind::Block { instance: Some(inst), .. }, "M") => {
+                    // An edge detector's own memory, a pulse timer's `PREV_IN`, a
+                    // counter's detector of an input (`CU_T.M`): members of the instance.
+                    (ObjKind::Block { instance: Some(inst), .. }, pin)
+                        if pin == "M" || pin == "TP_IN" || pin.ends_with("_T") =>
+                    {
                         let mut flat = names.clone();
-                        flat.extend([inst.clone(), "M".into()]);
+                        flat.push(inst.clone());
+                        match pin {
+                            "M" => flat.push("M".into()),
+                            "TP_IN" => flat.push("PREV_IN".into()),
+                            _ => flat.extend([pin.to_string(), "M".into()]),
+                        }
                         Want::Member(flat.join("_"))
                     }
                     (kind, pin) => Want::Edge(names, o.id, "M", edge_rank(kind, pin).unwrap_or(0)),
@@ -183,6 +204,7 @@ fn request(
         .iter()
         .filter_map(|w| match w {
             Want::Member(n) => Some(json!({ "bit": n })),
+            Want::Done(n) => Some(json!({ "int": n })),
             Want::Edge(path, id, field, rank) => Some(json!({ "edge": [path, id, field, rank] })),
             Want::Given(_) | Want::Started => None,
         })
@@ -279,10 +301,14 @@ fn run(programs: Vec<(u64, String, bool)>, fig: &mut Figures, tc: &mut Toolchain
             });
             continue;
         }
-        let traces: Vec<Vec<u8>> = out["trace"]
-            .as_array()
-            .map(|a| a.iter().map(|t| t.as_str().unwrap_or("").as_bytes().to_vec()).collect())
-            .unwrap_or_default();
+        // A bit's trace as its characters; an integer's (a `STATE`) as one character per
+        // scan, `1` where it is 2.
+        let trace = |t: &Value| match t.as_array() {
+            Some(v) => v.iter().map(|x| if x.as_i64() == Some(2) { b'1' } else { b'0' }).collect(),
+            None => t.as_str().unwrap_or("").as_bytes().to_vec(),
+        };
+        let traces: Vec<Vec<u8>> =
+            out["trace"].as_array().map(|a| a.iter().map(trace).collect()).unwrap_or_default();
         check_run(&mut p, seed, &xml, SCANS, fig, |scan| {
             let mut next = traces.iter();
             let mut values = Vec::with_capacity(wants.len());
@@ -291,7 +317,7 @@ fn run(programs: Vec<(u64, String, bool)>, fig: &mut Figures, tc: &mut Toolchain
                 let (name, v) = match w {
                     Want::Given(n) => (n.clone(), schedule[scan].get(n).copied().unwrap_or(false)),
                     Want::Started => ("STARTED".to_string(), true),
-                    Want::Member(n) => {
+                    Want::Member(n) | Want::Done(n) => {
                         let t = next.next().ok_or("a missing trace")?;
                         (n.clone(), *t.get(scan).ok_or("a short trace")? == b'1')
                     }

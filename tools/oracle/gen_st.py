@@ -98,6 +98,17 @@ def with_wire_points(src):
     return out.name
 
 
+def svghmi_types():
+    """The ST of Beremiz's SVGHMI library (the `HMI_*` types), as Beremiz writes it ahead
+    of a project's own (`POULibrary.GetSTCode`, `GetLibrariesSTCode`) when the SVGHMI
+    extension is loaded."""
+    lib = PLCControler()
+    lib.OpenXMLFile(os.path.join(beremiz, "svghmi", "pous.xml"))
+    text, errors, _warnings = lib.GenerateProgram(noconfig=True)
+    assert not errors, errors
+    return text + "\n"
+
+
 def job(src, st, mapping):
     fixed = with_wire_points(src)
     try:
@@ -108,6 +119,10 @@ def job(src, st, mapping):
         text, errors, _warnings = c.GenerateProgram(st)
         if errors:
             return "error: " + " | ".join(str(e) for e in errors).replace("\n", " ")
+        # A project that names the SVGHMI types builds with that library's ST first.
+        if "HMI_" in text:
+            with open(st, "w", encoding="utf-8") as f:
+                f.write(svghmi_types() + text)
         trigs = {}
         for chunk, info in c.ProgramChunks:
             if (chunk.startswith("R_TRIG") or chunk.startswith("F_TRIG")) and info and info[-1] in ("rising", "falling"):

@@ -1,4 +1,4 @@
-//! Random Structured Text programs for the differential tests: Boolean assignments, IF/ELSIF/ELSE, every modelled function block (TON, TOF, TP, R_TRIG, F_TRIG, SR, RS, CTU, CTD, CTUD) with formal inputs and outputs (`EN` and `ENO` in some calls) (timers and edge detectors sometimes called under an IF, a timer's `PT` sometimes left out, and some instances called a second time with inputs left out), user functions and function blocks (inputs left out keep their values), FOR loops with constant bounds and WHILE/REPEAT loops counted before the scan (EXIT and CONTINUE under IF in their bodies), RETURN under IF in a program and a function block, the Boolean operators and functions, integers of every 8- to 32-bit type and a subrange of one (arithmetic, division by literals, MOD by literals and variables, conversions, MIN/MAX/LIMIT/ABS/SEL, comparisons, CASE, integer inputs), initial values, and a configuration giving the cycle.
+//! Random Structured Text programs for the differential tests: Boolean assignments, IF/ELSIF/ELSE, every modelled function block (TON, TOF, TP, R_TRIG, F_TRIG, SR, RS, CTU, CTD, CTUD) with formal inputs and outputs (`EN` and `ENO` in some calls; timers and edge detectors sometimes called under an IF, a timer's `PT` sometimes left out, and some instances called a second time with inputs left out), user functions and function blocks (inputs left out keep their values), FOR loops with constant bounds and WHILE/REPEAT loops counted before the scan (EXIT and CONTINUE under IF in their bodies), RETURN under IF in a program and a function block, the Boolean operators and functions, integers of every 8- to 32-bit type and a subrange of one (arithmetic, division by literals, MOD by literals and variables, conversions, MIN/MAX/LIMIT/ABS/SEL, comparisons, CASE, integer inputs), initial values, some locals of the program and the function block in `VAR_TEMP` (FALSE again at every scan or call), and a configuration giving the cycle.
 #![allow(dead_code)]
 
 use super::rng::Rng;
@@ -298,6 +298,9 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
     // The draws of inputs left out and second calls, apart (the other draws, and so the
     // rest of each program, stay what they were before these were generated).
     let mut own = Rng::new(seed ^ 0x0DD5);
+    // Which locals are `VAR_TEMP` (set to their initial values at the start of every
+    // scan or call), drawn apart as well.
+    let mut temp = Rng::new(seed ^ 0x7E3F);
     let n_in = 1 + rng.below(4) as usize;
     let n_local = 2 + rng.below(5) as usize;
     let inputs: Vec<String> = (0..n_in).map(|k| format!("In{k}")).collect();
@@ -459,11 +462,15 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
         };
         let init = if f.rng.chance(50) { " := TRUE" } else { "" };
         text += "FUNCTION_BLOCK Fb0\n  VAR_INPUT\n    I0, I1 : BOOL;\n  END_VAR\n  VAR_OUTPUT\n    O0, O1 : BOOL;\n  END_VAR\n";
-        text += &format!("  VAR\n    M : BOOL{init};\n");
+        // matiec reads no initial value in `VAR_TEMP` (as IEC 61131-3 writes it).
+        let section = match temp.chance(35) {
+            true if init.is_empty() => "VAR_TEMP",
+            _ => "VAR",
+        };
+        text += &format!("  {section}\n    M : BOOL{init};\n  END_VAR\n");
         if !inner.is_empty() {
-            text += &format!("    K : {inner};\n");
+            text += &format!("  VAR\n    K : {inner};\n  END_VAR\n");
         }
-        text += "  END_VAR\n";
         text += &f.body("  ", 1);
         match inner {
             "TON" => {
@@ -511,9 +518,13 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
     if pulse {
         text += "    P0 : TP;\n";
     }
+    let mut temps = String::new();
     for b in &locals {
         let init = if g.rng.chance(30) { " := TRUE" } else { "" };
-        text += &format!("    {b} : BOOL{init};\n");
+        match temp.chance(15) {
+            true => temps += &format!("    {b} : BOOL;\n"),
+            false => text += &format!("    {b} : BOOL{init};\n"),
+        }
     }
     for (n, t) in &fbs {
         text += &format!("    {n} : {t};\n");
@@ -521,6 +532,9 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
     text += "    i : INT;\n";
     text += &user_vars;
     text += "  END_VAR\n";
+    if !temps.is_empty() {
+        text += &format!("  VAR_TEMP\n{temps}  END_VAR\n");
+    }
     // The calls, placed among the other statements.
     let mut pts: Vec<(String, String)> = Vec::new();
     let mut conditional: Vec<String> = Vec::new();
