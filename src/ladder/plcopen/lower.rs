@@ -785,12 +785,9 @@ impl<'p> Lower<'p> {
                 let q = self.trig_of(k, "M", edge, clk);
                 self.coil(q, &hidden("Q"), WriteKind::Assign, span);
             }
-            // A text block whose program runs under its EN bit: EN as computed.
-            None if p.text_calls.get(&k).is_some_and(|c| runs || c.enable.is_some()) => {
-                let en = en.clone().filter(|_| !runs);
-                self.text_call(k, inputs, &vals, en, span)
+            None if p.text_calls.contains_key(&k) => {
+                self.text_call(k, inputs, &vals, en.clone().filter(|_| !runs), span)
             }
-            None if p.text_calls.contains_key(&k) => self.text_not_run(k),
             // An inlined user function block: its inputs are assigned, then its body runs.
             None if runs && p.subs.contains_key(&k) => {
                 for pin in inputs {

@@ -26,7 +26,8 @@ impl Lower<'_> {
 
     /// The call of the text block at `k`: `vals` the Boolean values of its pins, `en`
     /// its EN where it is wired and not always TRUE (its program then runs under the
-    /// instance's EN bit, [`crate::ladder::plcopen::TextCall::enable`]).
+    /// instance's EN bit, [`crate::ladder::plcopen::TextCall::enable`], or, where it
+    /// has none, the block is not run).
     pub(super) fn text_call(
         &mut self,
         k: usize,
@@ -37,6 +38,9 @@ impl Lower<'_> {
     ) {
         let p = self.p;
         let Some(call) = p.text_calls.get(&k) else { return };
+        if en.is_some() && call.enable.is_none() {
+            return self.text_not_run(k);
+        }
         if call.function {
             self.push_block(power_up(&call.program, span), span);
         }
