@@ -578,11 +578,7 @@ impl<'s> Lowering<'s> {
             return;
         }
         if let Some(en) = &self.enable {
-            stmts = vec![Stmt::If {
-                branches: vec![(BoolExpr::var(en), stmts)],
-                otherwise: vec![],
-                span,
-            }];
+            stmts = flow::guarded(&BoolExpr::var(en), stmts, span);
         }
         let mut label = format!("L{:02}", self.line);
         let mut k = 2;

@@ -450,7 +450,7 @@ impl<'s> Lowering<'s> {
                     value: v.clone(),
                     span,
                 });
-                self.kept_writes.as_mut().unwrap_or(out).extend(writes);
+                self.keep(out, writes);
                 v
             }
             Some(v) => v,
@@ -481,7 +481,7 @@ impl<'s> Lowering<'s> {
                 match self.int_input(e, t) {
                     Ok(value) => {
                         let write = Stmt::SetInt { target: target.clone(), value, span };
-                        self.kept_writes.as_mut().unwrap_or(out).push(write);
+                        self.keep(out, [write]);
                         Ok(IntExpr::Var(target))
                     }
                     Err(why) => {

@@ -170,12 +170,13 @@ impl Lowering<'_> {
             pt = IntExpr::ite(given, pt, k(0));
         } else {
             // Kept whatever the call's EN, like the preset itself.
-            self.kept_writes.as_mut().unwrap_or(out).push(Stmt::Write {
+            let given = Stmt::Write {
                 target: timer.given.clone(),
                 kind: WriteKind::Assign,
                 value: BoolExpr::Const(true),
                 span,
-            });
+            };
+            self.keep(out, [given]);
         }
         let (on, off) = (input.clone(), BoolExpr::negate(input.clone()));
         let was = BoolExpr::var(&prev);

@@ -68,6 +68,12 @@ impl Lowering<'_> {
         self.multi.contains(key) || self.enable.is_some()
     }
 
+    /// Writes that keep what a call gives its instance (an input, a preset): into `out`,
+    /// or, in a call under its EN, before the call's `IF`, as they run whatever its EN.
+    pub(super) fn keep(&mut self, out: &mut Vec<Stmt>, writes: impl IntoIterator<Item = Stmt>) {
+        self.kept_writes.as_mut().unwrap_or(out).extend(writes);
+    }
+
     /// The hidden bit of the instance's `EN`, TRUE at power-up.
     fn en_bit(&mut self, inst: &str) -> String {
         let bit = self.hidden(inst, "EN");
@@ -90,12 +96,8 @@ impl Lowering<'_> {
         let mut out = before;
         out.extend(en.set);
         match &en.guard {
-            Some(g) if !body.is_empty() => out.push(Stmt::If {
-                branches: vec![(g.clone(), body)],
-                otherwise: Vec::new(),
-                span,
-            }),
-            _ => out.extend(body),
+            Some(g) => out.extend(super::flow::guarded(g, body, span)),
+            None => out.extend(body),
         }
         out.extend(after);
         let eno = en.guard.unwrap_or(BoolExpr::Const(true));

@@ -83,11 +83,19 @@ fn reset(x: &str, span: Span) -> Stmt {
 
 /// `IF NOT (bits) THEN stmts END_IF` (no bits: `stmts`).
 fn unless(bits: Vec<&String>, stmts: Vec<Stmt>, span: Span) -> Vec<Stmt> {
-    if bits.is_empty() || stmts.is_empty() {
+    if bits.is_empty() {
         return stmts;
     }
     let stop = BoolExpr::Or(bits.into_iter().map(|x| BoolExpr::var(x)).collect());
-    vec![Stmt::If { branches: vec![(BoolExpr::negate(stop), stmts)], otherwise: Vec::new(), span }]
+    guarded(&BoolExpr::negate(stop), stmts, span)
+}
+
+/// `IF guard THEN stmts END_IF` (no statements, or the guard `1*`: `stmts` as they are).
+pub(super) fn guarded(guard: &BoolExpr, stmts: Vec<Stmt>, span: Span) -> Vec<Stmt> {
+    if stmts.is_empty() || matches!(guard, BoolExpr::Const(true)) {
+        return stmts;
+    }
+    vec![Stmt::If { branches: vec![(guard.clone(), stmts)], otherwise: Vec::new(), span }]
 }
 
 impl Lowering<'_> {

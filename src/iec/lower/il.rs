@@ -12,6 +12,7 @@
 
 use std::collections::BTreeMap;
 
+use super::flow::guarded;
 use super::ints::{Int, Opaque};
 use super::{Lowering, Sym, Ty};
 use crate::diag::Span;
@@ -252,14 +253,6 @@ impl Lowering<'_> {
         }
     }
 
-    /// `stmts` as they run here: under the guard.
-    fn guarded(&self, guard: &BoolExpr, stmts: Vec<Stmt>, span: Span) -> Vec<Stmt> {
-        if stmts.is_empty() || is_const(guard, true) {
-            return stmts;
-        }
-        vec![Stmt::If { branches: vec![(guard.clone(), stmts)], otherwise: Vec::new(), span }]
-    }
-
     /// The CR as a BOOL, for the instruction `word`.
     fn cr_bool(&mut self, cr: &Cr, word: &ast::Ident) -> BoolExpr {
         match cr {
@@ -356,7 +349,7 @@ impl Lowering<'_> {
                     }
                     _ => unreachable!("matched above"),
                 };
-                out.extend(self.guarded(&flow.guard.value, stmts, word.span));
+                out.extend(guarded(&flow.guard.value, stmts, word.span));
             }
             IlInstr::Op { op, negate, operand, nested, word } => {
                 let cr = std::mem::replace(&mut flow.cr, Cr::Unset);
@@ -738,7 +731,7 @@ impl Lowering<'_> {
     ) {
         let span = word.span.to(instance.span);
         let stmts = self.call_with(instance, args, given, span);
-        out.extend(self.guarded(when, stmts, span));
+        out.extend(guarded(when, stmts, span));
     }
 }
 
