@@ -196,10 +196,12 @@ fn simulate(
             // Compiler-made names (atoms, intermediate values) stand for what they read.
             let depends = match kind {
                 Some(SignalKind::IntBit { of, .. }) => Some(of),
+                // (A one-shot's memory is the simulator's memory of its element, below.)
                 Some(
                     SignalKind::Atom
                     | SignalKind::Intermediate { .. }
-                    | SignalKind::HeldInput { .. },
+                    | SignalKind::HeldInput { .. }
+                    | SignalKind::EdgeMemory { .. },
                 ) => None,
                 _ => Some(*n),
             };

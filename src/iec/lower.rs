@@ -578,7 +578,7 @@ impl<'s> Lowering<'s> {
             return;
         }
         if let Some(en) = &self.enable {
-            stmts = flow::guarded(&BoolExpr::var(en), stmts, span);
+            stmts = Stmt::guarded(&BoolExpr::var(en), stmts, span);
         }
         let mut label = format!("L{:02}", self.line);
         let mut k = 2;

@@ -325,6 +325,12 @@ impl crate::program::simulate::Reference for plcopen::PlcProgram {
     }
 }
 
+impl crate::program::simulate::Reference for plcopen::PlcReference {
+    fn simulator(&self) -> Box<dyn ScanSimulator> {
+        Box::new(plcopen::PlcSimulator::new(&self.program).showing(self.edges.clone()))
+    }
+}
+
 impl ScanSimulator for Simulator {
     fn step(&mut self, inputs: &std::collections::BTreeMap<String, bool>) {
         Simulator::step(self, inputs)
@@ -364,6 +370,9 @@ impl ScanSimulator for plcopen::PlcSimulator {
     }
     fn int(&self, name: &str) -> Option<i64> {
         plcopen::PlcSimulator::int(self, name)
+    }
+    fn edge_memory(&self, index: usize) -> Option<bool> {
+        plcopen::PlcSimulator::edge_memory(self, index)
     }
 }
 

@@ -682,6 +682,14 @@ pub fn int_visit_mut(
 }
 
 impl Stmt {
+    /// `IF guard THEN stmts END_IF` (no statements, or the guard `1*`: `stmts` as they are).
+    pub fn guarded(guard: &BoolExpr, stmts: Vec<Stmt>, span: Span) -> Vec<Stmt> {
+        if stmts.is_empty() || matches!(guard, BoolExpr::Const(true)) {
+            return stmts;
+        }
+        vec![Stmt::If { branches: vec![(guard.clone(), stmts)], otherwise: Vec::new(), span }]
+    }
+
     /// The expression the statement computes itself, if any (an `If`'s are its
     /// conditions and its branches': [`Stmt::visit`]).
     pub fn expr(&self) -> Option<&BoolExpr> {

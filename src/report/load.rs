@@ -167,8 +167,9 @@ pub fn load_program_with(
             dispute = plc.order_dispute().map(Diagnostic::from).or(chart_dispute);
         }
         let notes = with_places(sources, &lowered.warnings);
+        let reference = plcopen::PlcReference { program: plc, edges: lowered.edges };
         (
-            std::sync::Arc::new(plc) as std::sync::Arc<dyn crate::ladder::Reference>,
+            std::sync::Arc::new(reference) as std::sync::Arc<dyn crate::ladder::Reference>,
             lowered.program,
             notes,
         )

@@ -96,7 +96,7 @@ impl Lowering<'_> {
         let mut out = before;
         out.extend(en.set);
         match &en.guard {
-            Some(g) => out.extend(super::flow::guarded(g, body, span)),
+            Some(g) => out.extend(Stmt::guarded(g, body, span)),
             None => out.extend(body),
         }
         out.extend(after);

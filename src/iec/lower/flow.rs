@@ -87,15 +87,7 @@ fn unless(bits: Vec<&String>, stmts: Vec<Stmt>, span: Span) -> Vec<Stmt> {
         return stmts;
     }
     let stop = BoolExpr::Or(bits.into_iter().map(|x| BoolExpr::var(x)).collect());
-    guarded(&BoolExpr::negate(stop), stmts, span)
-}
-
-/// `IF guard THEN stmts END_IF` (no statements, or the guard `1*`: `stmts` as they are).
-pub(super) fn guarded(guard: &BoolExpr, stmts: Vec<Stmt>, span: Span) -> Vec<Stmt> {
-    if stmts.is_empty() || matches!(guard, BoolExpr::Const(true)) {
-        return stmts;
-    }
-    vec![Stmt::If { branches: vec![(guard.clone(), stmts)], otherwise: Vec::new(), span }]
+    Stmt::guarded(&BoolExpr::negate(stop), stmts, span)
 }
 
 impl Lowering<'_> {

@@ -12,7 +12,6 @@
 
 use std::collections::BTreeMap;
 
-use super::flow::guarded;
 use super::ints::{Int, Opaque};
 use super::{Lowering, Sym, Ty};
 use crate::diag::Span;
@@ -349,7 +348,7 @@ impl Lowering<'_> {
                     }
                     _ => unreachable!("matched above"),
                 };
-                out.extend(guarded(&flow.guard.value, stmts, word.span));
+                out.extend(Stmt::guarded(&flow.guard.value, stmts, word.span));
             }
             IlInstr::Op { op, negate, operand, nested, word } => {
                 let cr = std::mem::replace(&mut flow.cr, Cr::Unset);
@@ -731,7 +730,7 @@ impl Lowering<'_> {
     ) {
         let span = word.span.to(instance.span);
         let stmts = self.call_with(instance, args, given, span);
-        out.extend(guarded(when, stmts, span));
+        out.extend(Stmt::guarded(when, stmts, span));
     }
 }
 

@@ -6,10 +6,11 @@
 //! `_TRIG12`, see `docs/plcopen.md`), so a value computed once per scan is read by
 //! every consumer, and a read before the writer sees the previous scan, exactly as in
 //! the scan model. Negation of a compound value is pushed to the variables (De
-//! Morgan). Integers are the scan model's (`lower/ints.rs`). What the algebra cannot
-//! express (function blocks and Boolean functions under a wired `EN`, non-Boolean
-//! values in a Boolean place) becomes an unconstrained value, which the compiler names
-//! with a warning naming the block.
+//! Morgan). Integers are the scan model's (`lower/ints.rs`); a function block under a
+//! wired `EN` runs its body under its instance's `ENO` (`lower/fbs.rs`). What the
+//! algebra cannot express (library blocks not modelled, non-Boolean values in a Boolean
+//! place) becomes an unconstrained value, which the compiler names with a warning
+//! naming the block.
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -17,12 +18,11 @@ use super::{
     Edge, ObjKind, Operand, PinIn, PlcError, PlcProgram, Source, Std, Storage, unconnected,
 };
 use crate::diag::Span;
-use crate::program::{
-    Block, BoolExpr, Fresh, Inputs, IntVar, Memory, Preset, Program, Stmt, Timer, WriteKind,
-};
+use crate::program::{Block, BoolExpr, Fresh, Inputs, IntVar, Memory, Program, Stmt, WriteKind};
 
 mod durations;
 mod en;
+mod fbs;
 mod ints;
 mod strings;
 mod text;
@@ -552,7 +552,7 @@ impl<'p> Lower<'p> {
             return zero();
         };
         let under_en = self.p.text_calls.get(&k).and_then(|c| c.enable.as_deref());
-        let runs = self.en_const(k, 0) || under_en.is_some();
+        let runs = self.en_const(k, 0) || under_en.is_some() || self.fb_eno(k).is_some();
         if pin.eq_ignore_ascii_case("ENO") {
             if let Some(eno) = self.p.hidden_name(k, "ENO").or(under_en) {
                 return contact(eno, false);
@@ -606,13 +606,13 @@ impl<'p> Lower<'p> {
         }
         let p = self.p;
         let Some(o) = p.obj(k) else { return };
-        let ObjKind::Block { type_name, instance, inputs, .. } = &o.kind else { return };
+        let ObjKind::Block { type_name, inputs, .. } = &o.kind else { return };
         let span = o.span;
         let outer = std::mem::replace(&mut self.no_pull, o.order > 0);
         let runs = self.en_const(k, 0);
         // A function under a wired EN returns FALSE when EN is FALSE (matiec's
         // `TEST_EN(BOOL)`): its output is EN and-ed with its value.
-        let std = Std::of(type_name).filter(|s| runs || !s.is_fb());
+        let std = Std::of(type_name).filter(|s| runs || !s.is_fb() || self.fb_eno(k).is_some());
         // Inputs are computed first, `EN` then the others in document order, as the scan
         // simulator does; the block's own rungs come after every call they trigger.
         let en = p.en_pin(k).map(|pin| self.pin_value(k, pin));
@@ -648,7 +648,7 @@ impl<'p> Lower<'p> {
             Some(en) => and(vec![en.clone(), out]),
             None => out,
         };
-        let hidden = |pin: &str| p.hidden_name(k, pin).unwrap_or_default().to_string();
+        let mut start = self.fb_enable(k, en.clone(), span);
         match std {
             Some(s @ (Std::And | Std::Or | Std::Xor)) => {
                 let pins = p.data_inputs(k);
@@ -678,118 +678,12 @@ impl<'p> Lower<'p> {
                 let out = or(vec![and(vec![not(g.clone()), a]), and(vec![g, b])]);
                 self.function_out(k, gated(out), span);
             }
-            Some(s @ (Std::Ton | Std::Tof)) => {
-                let input = value(self, "IN");
-                let delay = preset;
-                // The instance's variable name (prefixed inside an inlined block).
-                let inst = instance.as_deref().map_or_else(String::new, |i| {
-                    p.vars.get(&i.to_ascii_uppercase()).map_or(i.to_string(), |v| v.name.clone())
-                });
-                let preset = match delay {
-                    // PT = 0 still takes one scan (the starting scan never switches):
-                    // the delay of one cycle, counted exactly.
-                    Ok(0) => {
-                        self.warnings.push(PlcError::Note {
-                            span,
-                            message: format!(
-                                "{} {inst} has PT = 0: matiec's timer still switches one scan \
-                                 later, so it is compiled with the delay of one cycle",
-                                type_name.to_ascii_uppercase()
-                            ),
-                        });
-                        Preset::iec(0, p.cycle_us)
-                    }
-                    Ok(us) => Preset::iec(us, p.cycle_us),
-                    Err(None) => Preset::Variable { name: format!("{inst}.PT"), why: None },
-                    Err(Some((name, why))) => Preset::Variable { name, why: Some(why) },
-                };
-                let timer = Timer {
-                    on_delay: s == Std::Ton,
-                    keyword: if s == Std::Ton { "TON" } else { "TOF" }.into(),
-                    accumulator: inst,
-                    preset,
-                    input,
-                    span,
-                    called: true,
-                };
-                let q = BoolExpr::Timer(Box::new(timer));
-                self.coil(q, &hidden("Q"), WriteKind::Assign, span);
-            }
-            Some(Std::Tp) => {
-                let inst = instance.as_deref().map_or_else(String::new, |i| {
-                    p.vars.get(&i.to_ascii_uppercase()).map_or(i.to_string(), |v| v.name.clone())
-                });
-                let Ok(pt) = preset else {
-                    let what = match preset {
-                        Err(Some((var, why))) => format!(
-                            "the pulse timer {inst} with a PT given by the variable {var}, \
-                             which is not a constant: {why}"
-                        ),
-                        _ => format!("the pulse timer {inst} with a PT that is not a literal"),
-                    };
-                    self.coil(fresh("TP", &what, span), &hidden("Q"), WriteKind::Assign, span);
-                    self.no_pull = outer;
-                    self.in_progress.remove(&k);
-                    self.called.insert(k);
-                    return;
-                };
-                let mut stmts = Vec::new();
-                let v = value(self, "IN");
-                let input = self.temp(&mut stmts, v);
-                // matiec's TP remembers IN (`PREV_IN`) to see its rising edge.
-                self.edges.push((self.path.clone(), k, "TP_IN".into()));
-                let memory = Memory {
-                    base: "OSR".into(),
-                    element: "OSR".into(),
-                    index: self.edges.len() - 1,
-                };
-                let edge = crate::program::EdgeKind::Rising;
-                let rise = BoolExpr::Edge {
-                    kind: edge,
-                    input: Box::new(input.clone()),
-                    memory: Box::new(memory),
-                };
-                let rise = self.temp(&mut stmts, rise);
-                let (q, done) = (hidden("Q"), hidden("DONE"));
-                let pulse = crate::program::library::Pulse {
-                    keyword: "TP",
-                    instance: &inst,
-                    q: &q,
-                    done: &done,
-                    pt_us: pt,
-                    cycle_us: p.cycle_us,
-                    span,
-                };
-                stmts.extend(pulse.call(input, rise, &mut |out, e| self.temp(out, e)));
-                self.push_block(stmts, span);
-            }
-            Some(s @ (Std::Sr | Std::Rs)) => {
-                let (set, reset) = if s == Std::Sr { ("S1", "R") } else { ("S", "R1") };
-                let sv = value(self, set);
-                let rv = value(self, reset);
-                let (hs, hr, q) = (hidden(set), hidden(reset), hidden("Q1"));
-                self.coil(sv, &hs, WriteKind::Assign, span);
-                self.coil(rv, &hr, WriteKind::Assign, span);
-                let set_rung = (contact(&hs, false), WriteKind::Set);
-                let reset_rung = (contact(&hr, false), WriteKind::Reset);
-                // SR: Q1 := S1 + ¬R·Q1 (reset, then set); RS: Q1 := ¬R1·(S + Q1) (set, then reset).
-                let rungs =
-                    if s == Std::Sr { [reset_rung, set_rung] } else { [set_rung, reset_rung] };
-                for (c, kind) in rungs {
-                    self.coil(c, &q, kind, span);
-                }
-            }
-            Some(s @ (Std::RTrig | Std::FTrig)) => {
-                let clk = value(self, "CLK");
-                let edge = if s == Std::RTrig { Edge::Rising } else { Edge::Falling };
-                let q = self.trig_of(k, "M", edge, clk);
-                self.coil(q, &hidden("Q"), WriteKind::Assign, span);
-            }
+            Some(s) => start = self.std_fb(k, s, &vals, preset, span),
             None if p.text_calls.contains_key(&k) => {
                 self.text_call(k, inputs, &vals, en.clone().filter(|_| !runs), span)
             }
             // An inlined user function block: its inputs are assigned, then its body runs.
-            None if runs && p.subs.contains_key(&k) => {
+            None if (runs || self.fb_eno(k).is_some()) && p.subs.contains_key(&k) => {
                 for pin in inputs {
                     let n = pin.name.to_ascii_uppercase();
                     if let (Some(var), Some(v)) = (p.sub_var(k, &n, false), vals.get(&n)) {
@@ -801,6 +695,7 @@ impl<'p> Lower<'p> {
                         }
                     }
                 }
+                start = self.blocks.len();
                 if let Some(child) = p.subs.get(&k) {
                     let mut sub = Lower::new(child);
                     self.hand_over(&mut sub);
@@ -814,8 +709,9 @@ impl<'p> Lower<'p> {
             // Not interpreted (or run under a wired EN): only its inputs were computed.
             None => {}
         }
+        self.under_eno(k, start, runs);
         // A function's `_TMP_…_ENO`: matiec's `TEST_EN` sets it to EN.
-        if let Some(eno) = p.hidden_name(k, "ENO") {
+        if let Some(eno) = p.hidden_name(k, "ENO").filter(|_| self.fb_eno(k).is_none()) {
             self.coil(en.unwrap_or_else(one), eno, WriteKind::Assign, span);
         }
         self.no_pull = outer;

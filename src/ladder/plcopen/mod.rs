@@ -221,3 +221,12 @@ impl Report for PlcError {
         }
     }
 }
+
+/// A PLCopen program as the reference of its lowering: its scan simulator, which also
+/// shows the memory of each one-shot the lowering made.
+pub struct PlcReference {
+    /// The program.
+    pub program: PlcProgram,
+    /// What each one-shot of the lowering stands for ([`Lowered::edges`]).
+    pub edges: Vec<EdgeKey>,
+}

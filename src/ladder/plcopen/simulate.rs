@@ -46,6 +46,9 @@ pub struct PlcSimulator {
     /// called are not called (their outputs are read as they stand).
     no_pull: bool,
     edges: BTreeMap<(usize, String), bool>,
+    /// The edge detector each one-shot of the lowering stands for, by index
+    /// ([`super::Lowered::edges`]), where given ([`PlcSimulator::showing`]).
+    one_shots: Vec<super::EdgeKey>,
     visiting: BTreeSet<usize>,
     /// Blocks whose EN was off in this scan (their outputs kept).
     scans: u64,
@@ -128,6 +131,7 @@ impl PlcSimulator {
             in_progress: BTreeSet::new(),
             no_pull: false,
             edges: BTreeMap::new(),
+            one_shots: Vec::new(),
             visiting: BTreeSet::new(),
             scans: 0,
             unknown: BTreeSet::new(),
@@ -208,6 +212,25 @@ impl PlcSimulator {
             Some((k, rest)) => self.subs.get(k)?.edge_memory_of(rest, owner, pin),
             None => Some(self.memory.get(&(owner, pin.to_string())).copied().unwrap_or(false)),
         }
+    }
+
+    /// The simulator that also shows the memory of each one-shot of the lowering, by its
+    /// index ([`PlcSimulator::edge_memory`]): `one_shots` the lowering's
+    /// [`super::Lowered::edges`].
+    pub fn showing(mut self, one_shots: Vec<super::EdgeKey>) -> PlcSimulator {
+        self.one_shots = one_shots;
+        self
+    }
+
+    /// The memory of the lowering's one-shot with this index after the last scan: its
+    /// edge detector's, `None` where not given or inside a text block (whose memories
+    /// are its own program's).
+    pub fn edge_memory(&self, index: usize) -> Option<bool> {
+        let (path, owner, pin) = self.one_shots.get(index)?;
+        if pin.starts_with("TEXT") {
+            return None;
+        }
+        self.edge_memory_of(path, *owner, pin)
     }
 
     /// Names written from values the simulator does not model (counters, comparisons…).
@@ -490,6 +513,7 @@ impl PlcSimulator {
             values.insert(n, v);
         }
         self.no_pull = outer;
+        self.kept_inputs(k, (std, en), &names, &values);
         let get = |n: &str| values.get(n).copied().unwrap_or(false);
         if let Some(b) = self.p.int_block(k) {
             self.int_exec(k, &b, en, &values);
@@ -587,8 +611,6 @@ impl PlcSimulator {
                 Some(s @ (Std::Sr | Std::Rs)) => {
                     let (set, reset) = if s == Std::Sr { ("S1", "R") } else { ("S", "R1") };
                     let (sv, rv) = (get(set), get(reset));
-                    self.set_hidden(k, set, sv);
-                    self.set_hidden(k, reset, rv);
                     let q = self.p.hidden_name(k, "Q1").is_some_and(|h| self.bit(h));
                     let q = if s == Std::Sr { sv || (!rv && q) } else { !rv && (sv || q) };
                     self.set_hidden(k, "Q1", q);
@@ -604,23 +626,8 @@ impl PlcSimulator {
                     self.text_call(k, &names, &values, true);
                 }
                 None => {
-                    // An inlined user function block: inputs assigned, then its body runs
-                    // on the same bits, at this scan's time.
-                    for (n, v) in &values {
-                        if let Some(var) = self.p.sub_var(k, n, false) {
-                            self.bits.insert(var.to_string(), *v);
-                        }
-                    }
-                    // An integer input takes the value wired to its pin.
-                    for pin in &names {
-                        let n = pin.name.to_ascii_uppercase();
-                        if let Some(var) = self.p.sub_int_input(k, &n).map(str::to_string) {
-                            self.int_assign(&var, pin);
-                            if let Some(range) = self.p.sub_int_range(k, &n) {
-                                self.subrange_check(&var, range);
-                            }
-                        }
-                    }
+                    // An inlined user function block: its body runs on the same bits, at
+                    // this scan's time (its inputs assigned above).
                     if let Some(mut sub) = self.subs.remove(&k) {
                         sub.bits = std::mem::take(&mut self.bits);
                         sub.ints = std::mem::take(&mut self.ints);
@@ -645,6 +652,44 @@ impl PlcSimulator {
         self.in_progress.remove(&k);
         self.called.insert(k);
         en
+    }
+
+    /// The inputs the instance at `k` keeps, which a call writes whatever its EN (matiec
+    /// writes them, then the body returns at once where EN is FALSE): SR's and RS's
+    /// set and reset, an inlined user block's inputs (an integer one takes the value
+    /// wired to its pin).
+    fn kept_inputs(
+        &mut self,
+        k: usize,
+        (std, en): (Option<Std>, bool),
+        names: &[PinIn],
+        values: &BTreeMap<String, bool>,
+    ) {
+        let get = |n: &str| values.get(n).copied().unwrap_or(false);
+        if let Some(s @ (Std::Sr | Std::Rs)) = std {
+            let (set, reset) = if s == Std::Sr { ("S1", "R") } else { ("S", "R1") };
+            self.set_hidden(k, set, get(set));
+            self.set_hidden(k, reset, get(reset));
+        }
+        // A user block whose EN has no ENO of its own to run under is not run.
+        let modelled = en || self.p.hidden_name(k, "ENO").is_some();
+        if std.is_some() || !self.subs.contains_key(&k) || !modelled {
+            return;
+        }
+        for (n, v) in values {
+            if let Some(var) = self.p.sub_var(k, n, false) {
+                self.bits.insert(var.to_string(), *v);
+            }
+        }
+        for pin in names {
+            let n = pin.name.to_ascii_uppercase();
+            if let Some(var) = self.p.sub_int_input(k, &n).map(str::to_string) {
+                self.int_assign(&var, pin);
+                if let Some(range) = self.p.sub_int_range(k, &n) {
+                    self.subrange_check(&var, range);
+                }
+            }
+        }
     }
 
     /// Whether an output variable fed by `input` is written: Beremiz's `PLCGenerator.py`

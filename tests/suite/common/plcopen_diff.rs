@@ -867,14 +867,20 @@ pub fn prepare(
         .iter()
         .map(|h| Hyp::new(h, &compiled, cycle, &mut known, &loose))
         .collect();
-    let mut one_shots = 0;
-    for e in lowered.program.blocks.iter().flat_map(|b| &b.stmts).filter_map(|s| s.expr()) {
-        walk(e, &mut |x| one_shots += usize::from(matches!(x, BoolExpr::Edge { .. })));
+    // The one-shots, and those outside any `IF` (a function block's under a wired EN
+    // are inside one).
+    let (mut one_shots, mut outside) = (0, 0);
+    for s in lowered.program.blocks.iter().flat_map(|b| &b.stmts) {
+        s.visit(&mut |_| {}, &mut |x| one_shots += usize::from(matches!(x, BoolExpr::Edge { .. })));
+        if let Some(e) = s.expr() {
+            walk(e, &mut |x| outside += usize::from(matches!(x, BoolExpr::Edge { .. })));
+        }
     }
-    // The one-shots of text blocks (an `R_TRIG` in an ST body or a chart) are their own
-    // simulator's, not edge detectors of the graphical body: such a program is not
-    // compared here (the IEC text front end's tests and the matiec oracle check them).
-    if one_shots != lowered.edges.len() && has_text_calls(&plc) {
+    // The one-shots of text blocks (an `R_TRIG` in an ST body or a chart, under the
+    // chart's or the body's conditions) are their own simulator's, not edge detectors
+    // of the graphical body: such a program is not compared here (the IEC text front
+    // end's tests and the matiec oracle check them).
+    if outside != lowered.edges.len() && has_text_calls(&plc) {
         fig.text_edges += 1;
         return None;
     }

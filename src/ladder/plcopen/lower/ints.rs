@@ -563,7 +563,7 @@ impl Lower<'_> {
     /// == 0)` also clears it for a divisor 0); the wrapper `generate_c_inlinefcall.cc`
     /// writes `ENO` back after the call. So `OUT := EN ? f(…) : 0` and `ENO := EN ∧ ok`,
     /// no state. A counter is a function block: under a wired `EN` its body (and its
-    /// edge detectors' memories) does not run, which is not modelled: opaque.
+    /// edge detectors' memories) runs only where EN is TRUE.
     pub(super) fn int_call(&mut self, k: usize, b: &IntBlock, en: BoolExpr, span: Span) {
         let p = self.p;
         let Some(ObjKind::Block { inputs, type_name, instance, .. }) = p.obj(k).map(|o| &o.kind)
@@ -591,16 +591,10 @@ impl Lower<'_> {
         let name = instance.as_deref().unwrap_or(&upper).to_string();
         let runs = matches!(en, BoolExpr::Const(true));
         if let IntBlock::Counter(ty) = b {
-            if runs {
-                self.counter_call(k, ty, &name, bools, ints, span);
-            } else if let Some(cv) = p.hidden_name(k, "CV").map(str::to_string) {
-                let why = format!(
-                    "the counter {name} runs under a wired EN, which skips its body and its edge \
-                     detectors' memories, not modelled"
-                );
-                self.make_opaque(&cv, why);
-            }
-            return;
+            // Under a wired EN its body runs under the instance's ENO (`lower/fbs.rs`).
+            let start = self.fb_enable(k, Some(en), span);
+            self.counter_call(k, ty, &name, bools, ints, span);
+            return self.under_eno(k, start, runs);
         }
         let mut stmts = Vec::new();
         let en = if runs { en } else { self.temp(&mut stmts, en) };

@@ -316,6 +316,10 @@ pub(super) fn check_pou(
                         if matches!(s, Std::Tp) {
                             pins_of.push("DONE".into());
                         }
+                        // The instance's ENO, written by each call (its EN).
+                        if en_drawn(inputs, outputs) {
+                            pins_of.push("ENO".into());
+                        }
                         for pin in pins_of {
                             if program
                                 .hidden
@@ -360,7 +364,8 @@ pub(super) fn check_pou(
                             (IntBlock::Counter(ty), Some(inst)) => {
                                 let kind = library::Counter::of(ty);
                                 let outs = kind.map_or(&[][..], library::Counter::outputs);
-                                for pin in outs.iter().chain(&["CV"]) {
+                                let eno = en_drawn(inputs, outputs).then_some("ENO");
+                                for pin in outs.iter().chain(&["CV"]).chain(&eno) {
                                     let n = hide(&mut taken, format!("{inst}_{pin}"));
                                     program.hidden.insert((k, pin.to_string()), n);
                                 }
@@ -397,6 +402,18 @@ pub(super) fn check_pou(
                         }
                         program.inputs.extend(child.inputs.iter().cloned());
                         program.latches.extend(child.latches.clone());
+                        // Its ENO, where its body declares neither EN nor ENO.
+                        let own = ["EN", "ENO"].iter().any(|n| child.vars.contains_key(*n));
+                        if let Some(inst) =
+                            instance.as_ref().filter(|_| !own && en_drawn(inputs, outputs))
+                        {
+                            let name = program
+                                .vars
+                                .get(&inst.to_ascii_uppercase())
+                                .map_or(inst, |v| &v.name);
+                            let n = hide(&mut taken, format!("{name}_ENO"));
+                            program.hidden.insert((k, "ENO".into()), n);
+                        }
                         program.subs.insert(k, child);
                     }
                     None if let Some(call) = super::super::text::call(
@@ -787,4 +804,13 @@ fn wired_duration(program: &PlcProgram, pin: &PinIn) -> Option<u64> {
         ObjKind::InVar { expr, .. } => parse_duration(&expr.0),
         _ => None,
     }
+}
+
+/// Whether a block is drawn with its `EN` wired (or given) or its `ENO`: a function
+/// block's call then writes the instance's ENO.
+fn en_drawn(inputs: &[PinIn], outputs: &[PinOut]) -> bool {
+    inputs
+        .iter()
+        .any(|p| p.name.eq_ignore_ascii_case("EN") && (!p.conns.is_empty() || p.expr.is_some()))
+        || outputs.iter().any(|p| p.name.eq_ignore_ascii_case("ENO"))
 }

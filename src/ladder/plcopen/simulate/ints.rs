@@ -380,6 +380,12 @@ impl PlcSimulator {
         for (n, t) in p.undefined_inputs().into_iter().chain(p.peripheral_inputs()) {
             ints.extend(CType::of(&t).map(|ct| (n, (0, ct))));
         }
+        // A counter's CV starts at 0, whether its body has run or not.
+        for ((k, pin), name) in &p.hidden {
+            if let (true, Some(IntBlock::Counter(ty))) = (pin == "CV", p.int_block(*k)) {
+                ints.extend(counter_ctype(&ty).map(|ct| (name.clone(), (0, ct))));
+            }
+        }
         for sub in p.subs.values() {
             PlcSimulator::init_ints(sub, ints);
         }
@@ -534,6 +540,8 @@ impl PlcSimulator {
         }
         let get = |n: &str| bools.get(n).copied().unwrap_or(false);
         if let IntBlock::Counter(ty) = b {
+            // Its ENO (where drawn) is its EN.
+            self.set_hidden(k, "ENO", en);
             if en {
                 self.count(k, ty, get("CU"), get("CD"), get("R"), get("LD"), &args);
             }
@@ -624,10 +632,7 @@ impl PlcSimulator {
         args: &[(String, Val)],
     ) {
         let kind = ty.split('_').next().unwrap_or(ty).to_string();
-        let ct = match ty.split_once('_') {
-            None => CType::of("INT"),
-            Some((_, t)) => CType::of(t),
-        };
+        let ct = counter_ctype(ty);
         let (Some(ct), Some(cv_name)) = (ct, self.p.hidden_name(k, "CV").map(str::to_string))
         else {
             return;
@@ -693,5 +698,13 @@ impl PlcSimulator {
         for (pin, v) in outs {
             self.set_hidden(k, pin, *v);
         }
+    }
+}
+
+/// The C type of the count of the counter `ty` (`CTU` an INT, `CTU_DINT` a DINT, …).
+fn counter_ctype(ty: &str) -> Option<CType> {
+    match ty.split_once('_') {
+        None => CType::of("INT"),
+        Some((_, t)) => CType::of(t),
     }
 }
