@@ -24,7 +24,7 @@ const SIMPLIFY_BUDGET: usize = 1 << 16;
 pub type Name = std::sync::Arc<str>;
 
 /// A working term.
-#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(Clone, Debug, Eq, PartialOrd, Ord)]
 pub enum L {
     /// `0*`.
     Zero,
@@ -48,6 +48,28 @@ pub enum L {
     Rs(Box<L>, Box<L>),
     /// `pre f`: `f` one scan earlier.
     Pre(Box<L>),
+}
+
+/// Structural equality, names compared from their last character: the names of a
+/// bit-blasted circuit share long prefixes and differ at their ends (`X_b3`, `X_b4`).
+impl PartialEq for L {
+    fn eq(&self, other: &L) -> bool {
+        if std::ptr::eq(self, other) {
+            return true;
+        }
+        match (self, other) {
+            (L::Zero, L::Zero) | (L::One, L::One) => true,
+            (L::Var(a), L::Var(b)) => {
+                std::sync::Arc::ptr_eq(a, b)
+                    || (a.len() == b.len() && a.bytes().rev().eq(b.bytes().rev()))
+            }
+            (L::Not(a), L::Not(b)) | (L::Pre(a), L::Pre(b)) => a == b,
+            (L::And(a), L::And(b)) | (L::Or(a), L::Or(b)) => a == b,
+            (L::Ton(d, a), L::Ton(e, b)) | (L::Tof(a, d), L::Tof(b, e)) => d == e && a == b,
+            (L::Sr(a, b), L::Sr(c, d)) | (L::Rs(a, b), L::Rs(c, d)) => a == c && b == d,
+            _ => false,
+        }
+    }
 }
 
 impl L {
@@ -200,54 +222,67 @@ impl L {
         }
     }
 
-    /// Adds the atoms of `self` not yet in `out`, in first-occurrence order; false when
-    /// there would be more than [`MAX_ATOMS`].
-    fn atoms<'a>(&'a self, out: &mut Vec<&'a L>) -> bool {
+    /// Adds the atoms of `self` not yet in `out`, in first-occurrence order, and the index
+    /// in `out` of each atom occurrence to `leaves`, in the order [`L::word`] and
+    /// [`L::fill`] meet them; false when there would be more than [`MAX_ATOMS`].
+    fn atoms<'a>(&'a self, out: &mut Vec<&'a L>, leaves: &mut Vec<u8>) -> bool {
         match self {
             L::Zero | L::One => true,
-            L::Not(x) => x.atoms(out),
-            L::And(xs) | L::Or(xs) => xs.iter().all(|x| x.atoms(out)),
+            L::Not(x) => x.atoms(out, leaves),
+            L::And(xs) | L::Or(xs) => xs.iter().all(|x| x.atoms(out, leaves)),
             atom => {
-                if !out.contains(&atom) {
-                    if out.len() == MAX_ATOMS {
-                        return false;
+                let i = match out.iter().position(|a| *a == atom) {
+                    Some(i) => i,
+                    None if out.len() == MAX_ATOMS => return false,
+                    None => {
+                        out.push(atom);
+                        out.len() - 1
                     }
-                    out.push(atom);
-                }
+                };
+                leaves.push(i as u8);
                 true
             }
         }
     }
 
-    /// The truth table over `atoms` when it fits one word (at most 6 atoms).
-    fn word(&self, atoms: &[&L]) -> u64 {
+    /// The truth table when it fits one word (at most 6 atoms), each atom occurrence's
+    /// index taken from `leaves` in order.
+    fn word(&self, leaves: &mut std::slice::Iter<u8>) -> u64 {
         match self {
             L::Zero => 0,
             L::One => !0,
-            L::Not(x) => !x.word(atoms),
-            L::And(xs) => xs.iter().fold(!0, |acc, x| acc & x.word(atoms)),
-            L::Or(xs) => xs.iter().fold(0, |acc, x| acc | x.word(atoms)),
-            atom => atom_word(atoms.iter().position(|a| *a == atom).unwrap_or(0), 0),
+            L::Not(x) => !x.word(leaves),
+            L::And(xs) => xs.iter().fold(!0, |acc, x| acc & x.word(leaves)),
+            L::Or(xs) => xs.iter().fold(0, |acc, x| acc | x.word(leaves)),
+            _ => atom_word(leaves.next().map_or(0, |i| usize::from(*i)), 0),
         }
     }
 
-    fn table(&self, atoms: &[&L], words: usize) -> Vec<u64> {
-        if words == 1 {
-            return vec![self.word(atoms)];
-        }
+    /// Writes the truth table into `out` (one word per 64 rows), each atom occurrence's
+    /// index taken from `leaves` in order; `spare` keeps the operands' buffers for reuse.
+    fn fill(&self, leaves: &mut std::slice::Iter<u8>, out: &mut [u64], spare: &mut Vec<Vec<u64>>) {
         match self {
-            L::Zero => vec![0; words],
-            L::One => vec![!0; words],
-            L::Not(x) => x.table(atoms, words).into_iter().map(|w| !w).collect(),
-            L::And(xs) => xs.iter().fold(vec![!0; words], |acc, x| {
-                acc.iter().zip(x.table(atoms, words)).map(|(a, b)| a & b).collect()
-            }),
-            L::Or(xs) => xs.iter().fold(vec![0; words], |acc, x| {
-                acc.iter().zip(x.table(atoms, words)).map(|(a, b)| a | b).collect()
-            }),
-            atom => {
-                let i = atoms.iter().position(|a| *a == atom).unwrap_or(0);
-                (0..words).map(|w| atom_word(i, w)).collect()
+            L::Zero => out.fill(0),
+            L::One => out.fill(!0),
+            L::Not(x) => {
+                x.fill(leaves, out, spare);
+                out.iter_mut().for_each(|w| *w = !*w);
+            }
+            L::And(xs) | L::Or(xs) => {
+                let is_and = matches!(self, L::And(_));
+                out.fill(if is_and { !0 } else { 0 });
+                let mut operand = spare.pop().unwrap_or_else(|| vec![0; out.len()]);
+                for x in xs {
+                    x.fill(leaves, &mut operand, spare);
+                    for (o, w) in out.iter_mut().zip(&operand) {
+                        *o = if is_and { *o & w } else { *o | w };
+                    }
+                }
+                spare.push(operand);
+            }
+            _ => {
+                let i = leaves.next().map_or(0, |i| usize::from(*i));
+                out.iter_mut().enumerate().for_each(|(w, o)| *o = atom_word(i, w));
             }
         }
     }
@@ -384,8 +419,9 @@ impl Tables {
     /// the words of a table).
     pub fn within(terms: &[&L], budget: usize) -> Option<Tables> {
         let mut atoms = Vec::new();
+        let mut leaves = Vec::new();
         for t in terms {
-            if !t.atoms(&mut atoms) {
+            if !t.atoms(&mut atoms, &mut leaves) {
                 return None;
             }
         }
@@ -395,7 +431,19 @@ impl Tables {
             return None;
         }
         let mask = if n >= 6 { !0 } else { (1u64 << (1u32 << n)) - 1 };
-        let tables = terms.iter().map(|t| t.table(&atoms, words)).collect();
+        let mut leaves = leaves.iter();
+        let mut spare = Vec::new();
+        let tables = terms
+            .iter()
+            .map(|t| {
+                if words == 1 {
+                    return vec![t.word(&mut leaves)];
+                }
+                let mut table = vec![0; words];
+                t.fill(&mut leaves, &mut table, &mut spare);
+                table
+            })
+            .collect();
         Some(Tables { tables, mask })
     }
 
