@@ -503,6 +503,23 @@ pub fn compile(
     program: &Program,
     options: &CompileOptions,
 ) -> Result<CompiledProgram, Vec<CompileError>> {
+    compile_then(program, options, true, |c| c.finish())
+}
+
+/// Whether [`compile`] accepts the program (else its errors), without stating the
+/// equations: for a caller that only asks whether a body can be compiled.
+pub fn accepts(program: &Program, options: &CompileOptions) -> Result<(), Vec<CompileError>> {
+    compile_then(program, options, false, |_| ())
+}
+
+/// Runs the compiler over the program (stating its equations if `equations`), then
+/// `then` on it, or the errors that refuse the program.
+fn compile_then<T>(
+    program: &Program,
+    options: &CompileOptions,
+    equations: bool,
+    then: impl FnOnce(Compiler<'_>) -> T,
+) -> Result<T, Vec<CompileError>> {
     // From an arbitrary state the power-up values play no part: integers are stored
     // as their values, every bit of them a start value.
     let arbitrary;
@@ -514,11 +531,12 @@ pub fn compile(
         false => program,
     };
     let mut c = Compiler::new(program, *options);
+    c.equations = equations;
     c.run();
     if !c.errors.is_empty() {
         return Err(std::mem::take(&mut c.errors));
     }
-    Ok(c.finish())
+    Ok(then(c))
 }
 
 struct Pending {
@@ -531,6 +549,8 @@ struct Pending {
 struct Compiler<'a> {
     program: &'a Program,
     options: CompileOptions,
+    /// Whether the equations are stated (else only the errors are looked for).
+    equations: bool,
     /// Per written variable, the global index of its last write.
     last_write: HashMap<String, usize>,
     /// Bits read but never written and not inputs: they stay `0*`; first reading block.
@@ -600,6 +620,7 @@ impl<'a> Compiler<'a> {
         let mut c = Compiler {
             program,
             options,
+            equations: true,
             last_write: HashMap::default(),
             unwritten: BTreeMap::new(),
             shared_timers: BTreeSet::new(),
@@ -741,16 +762,11 @@ impl<'a> Compiler<'a> {
 
     /// A term of the scan with every internal previous-value name replaced by `pre X`.
     fn exact(&self, e: &L) -> L {
-        let mut names = Vec::new();
-        e.names(&mut names);
-        names.into_iter().filter(|n| self.pre_of.contains_key(n.as_str())).fold(
-            e.clone(),
-            |acc, p| {
-                let x = &self.pre_of[p.as_str()];
-                let of = L::Pre(Box::new(self.exact(&L::var(x))));
-                acc.subst(&p, &self.start_or(x, of))
-            },
-        )
+        e.substitute(&|p| {
+            let x = self.pre_of.get(p)?;
+            let of = L::Pre(Box::new(self.exact(&L::var(x))));
+            Some(self.start_or(x, of))
+        })
     }
 
     /// The previous-scan value of the power `input` at this point of the scan (a
@@ -1093,7 +1109,7 @@ impl<'a> Compiler<'a> {
     fn flush_block(&mut self) {
         self.state_repeated();
         let pending = std::mem::take(&mut self.pending);
-        if pending.is_empty() {
+        if pending.is_empty() || !self.equations {
             return;
         }
         let block = self.block();

@@ -184,24 +184,24 @@ impl L {
 
     /// `self[name := value]` everywhere (also under timers and memories).
     pub fn subst(&self, name: &str, value: &L) -> L {
+        self.substitute(&|v| (v == name).then(|| value.clone()))
+    }
+
+    /// `self` with every name `f` gives a term for replaced by that term, in one pass
+    /// (also under timers and memories).
+    pub fn substitute(&self, f: &dyn Fn(&str) -> Option<L>) -> L {
         match self {
             L::Zero => L::Zero,
             L::One => L::One,
-            L::Var(v) => {
-                if **v == *name {
-                    value.clone()
-                } else {
-                    self.clone()
-                }
-            }
-            L::Not(x) => L::Not(Box::new(x.subst(name, value))),
-            L::And(xs) => L::And(xs.iter().map(|x| x.subst(name, value)).collect()),
-            L::Or(xs) => L::Or(xs.iter().map(|x| x.subst(name, value)).collect()),
-            L::Ton(d, x) => L::Ton(d.clone(), Box::new(x.subst(name, value))),
-            L::Tof(x, d) => L::Tof(Box::new(x.subst(name, value)), d.clone()),
-            L::Sr(a, b) => L::Sr(Box::new(a.subst(name, value)), Box::new(b.subst(name, value))),
-            L::Rs(a, b) => L::Rs(Box::new(a.subst(name, value)), Box::new(b.subst(name, value))),
-            L::Pre(x) => L::Pre(Box::new(x.subst(name, value))),
+            L::Var(v) => f(v).unwrap_or_else(|| self.clone()),
+            L::Not(x) => L::Not(Box::new(x.substitute(f))),
+            L::And(xs) => L::And(xs.iter().map(|x| x.substitute(f)).collect()),
+            L::Or(xs) => L::Or(xs.iter().map(|x| x.substitute(f)).collect()),
+            L::Ton(d, x) => L::Ton(d.clone(), Box::new(x.substitute(f))),
+            L::Tof(x, d) => L::Tof(Box::new(x.substitute(f)), d.clone()),
+            L::Sr(a, b) => L::Sr(Box::new(a.substitute(f)), Box::new(b.substitute(f))),
+            L::Rs(a, b) => L::Rs(Box::new(a.substitute(f)), Box::new(b.substitute(f))),
+            L::Pre(x) => L::Pre(Box::new(x.substitute(f))),
         }
     }
 
