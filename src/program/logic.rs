@@ -403,8 +403,10 @@ fn atom_word(i: usize, w: usize) -> u64 {
 
 /// Truth tables of several terms over their common atoms, with the mask of valid bits.
 pub struct Tables {
-    /// One table per term.
-    pub tables: Vec<Vec<u64>>,
+    /// The tables one after the other, `words` words each.
+    words: Vec<u64>,
+    /// The words of one table.
+    width: usize,
     mask: u64,
 }
 
@@ -426,40 +428,44 @@ impl Tables {
             }
         }
         let n = atoms.len();
-        let words = if n <= 6 { 1 } else { 1 << (n - 6) };
-        if words > 1 && terms.iter().map(|t| t.size()).sum::<usize>() * words > budget {
+        let width = if n <= 6 { 1 } else { 1 << (n - 6) };
+        if width > 1 && terms.iter().map(|t| t.size()).sum::<usize>() * width > budget {
             return None;
         }
         let mask = if n >= 6 { !0 } else { (1u64 << (1u32 << n)) - 1 };
         let mut leaves = leaves.iter();
-        let mut spare = Vec::new();
-        let tables = terms
-            .iter()
-            .map(|t| {
-                if words == 1 {
-                    return vec![t.word(&mut leaves)];
-                }
-                let mut table = vec![0; words];
-                t.fill(&mut leaves, &mut table, &mut spare);
-                table
-            })
-            .collect();
-        Some(Tables { tables, mask })
+        let mut words = vec![0; terms.len() * width];
+        if width == 1 {
+            for (w, t) in words.iter_mut().zip(terms) {
+                *w = t.word(&mut leaves);
+            }
+        } else {
+            let mut spare = Vec::new();
+            for (table, t) in words.chunks_exact_mut(width).zip(terms) {
+                t.fill(&mut leaves, table, &mut spare);
+            }
+        }
+        Some(Tables { words, width, mask })
+    }
+
+    /// The table of term `i`.
+    pub fn table(&self, i: usize) -> &[u64] {
+        &self.words[i * self.width..(i + 1) * self.width]
     }
 
     /// Does term `i` imply term `j` (for every valuation of the atoms)?
     pub fn implies(&self, i: usize, j: usize) -> bool {
-        self.tables[i].iter().zip(&self.tables[j]).all(|(a, b)| a & !b & self.mask == 0)
+        self.table(i).iter().zip(self.table(j)).all(|(a, b)| a & !b & self.mask == 0)
     }
 
     /// Is term `i` always 0?
     pub fn is_zero(&self, i: usize) -> bool {
-        self.tables[i].iter().all(|a| a & self.mask == 0)
+        self.table(i).iter().all(|a| a & self.mask == 0)
     }
 
     /// Is term `i` always 1?
     pub fn is_one(&self, i: usize) -> bool {
-        self.tables[i].iter().all(|a| !a & self.mask == 0)
+        self.table(i).iter().all(|a| !a & self.mask == 0)
     }
 }
 
@@ -528,20 +534,25 @@ pub fn simp_sum(xs: Vec<L>) -> L {
 /// and duplicates, redundant operands absorbed, constant functions folded.
 fn combine(xs: impl Iterator<Item = L>, is_and: bool) -> L {
     let (unit, absorbing) = if is_and { (L::One, L::Zero) } else { (L::Zero, L::One) };
-    let mut items: Vec<L> = Vec::new();
+    let mut items: Vec<L> = Vec::with_capacity(xs.size_hint().0);
+    // Adds an operand not met yet; false for the absorbing constant.
+    let add = |items: &mut Vec<L>, y: L| {
+        if y == absorbing {
+            return false;
+        }
+        if y != unit && !items.contains(&y) {
+            items.push(y);
+        }
+        true
+    };
     for x in xs {
-        let parts = match x {
-            L::And(ys) if is_and => ys,
-            L::Or(ys) if !is_and => ys,
-            y => vec![y],
+        let added = match x {
+            L::And(ys) if is_and => ys.into_iter().all(|y| add(&mut items, y)),
+            L::Or(ys) if !is_and => ys.into_iter().all(|y| add(&mut items, y)),
+            y => add(&mut items, y),
         };
-        for y in parts {
-            if y == absorbing {
-                return absorbing;
-            }
-            if y != unit && !items.contains(&y) {
-                items.push(y);
-            }
+        if !added {
+            return absorbing;
         }
     }
     if items.len() > 1 {
@@ -559,13 +570,10 @@ fn combine(xs: impl Iterator<Item = L>, is_and: bool) -> L {
                 }
             }
             // The kept operands' function, from their tables.
-            let words = t.tables[0].len();
-            let mut folded = vec![if is_and { !0 } else { 0 }; words];
-            for (k, table) in t.tables.iter().enumerate() {
-                if keep[k] {
-                    for (f, w) in folded.iter_mut().zip(table) {
-                        *f = if is_and { *f & w } else { *f | w };
-                    }
+            let mut folded = vec![if is_and { !0 } else { 0 }; t.width];
+            for (k, _) in keep.iter().enumerate().filter(|(_, kept)| **kept) {
+                for (f, w) in folded.iter_mut().zip(t.table(k)) {
+                    *f = if is_and { *f & w } else { *f | w };
                 }
             }
             if folded.iter().all(|w| w & t.mask == 0) {
