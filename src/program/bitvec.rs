@@ -139,7 +139,7 @@ pub fn rem_by(a: &[L], b: &[L], ty: IntType, name: Namer) -> Bits {
 
 /// `v`, or 0 where every bit of `b` is 0.
 fn unless_zero(v: Bits, b: &[L]) -> Bits {
-    let nonzero = simp(&L::Or(b.to_vec()));
+    let nonzero = simp(&L::Or(b.to_vec().into()));
     v.iter().map(|x| simp(&x.clone().and(nonzero.clone()))).collect()
 }
 

@@ -885,7 +885,8 @@ impl<'a> Compiler<'a> {
         for (k, body) in branches.iter().map(|(_, b)| b.as_slice()).chain([otherwise]).enumerate() {
             // A branch runs where no earlier condition holds and its own does.
             let own = conditions.get(k).cloned().unwrap_or(L::One);
-            self.guard = simp(&L::And(vec![outer.clone(), none_before.clone(), own.clone()]));
+            self.guard =
+                simp(&L::And(vec![outer.clone(), none_before.clone(), own.clone()].into()));
             none_before = simp(&none_before.and(own.negate()));
             self.current = entry.clone();
             for s in body {

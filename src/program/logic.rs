@@ -24,7 +24,7 @@ const SIMPLIFY_BUDGET: usize = 1 << 16;
 pub type Name = std::sync::Arc<str>;
 
 /// A working term.
-#[derive(Clone, Debug, Eq, PartialOrd, Ord)]
+#[derive(Clone, Debug, Eq)]
 pub enum L {
     /// `0*`.
     Zero,
@@ -35,9 +35,9 @@ pub enum L {
     /// `¬f`.
     Not(Box<L>),
     /// A product (empty = `1*`).
-    And(Vec<L>),
+    And(Ops),
     /// A sum (empty = `0*`).
-    Or(Vec<L>),
+    Or(Ops),
     /// `d/f`.
     Ton(Delay, Box<L>),
     /// `f/d`.
@@ -48,6 +48,71 @@ pub enum L {
     Rs(Box<L>, Box<L>),
     /// `pre f`: `f` one scan earlier.
     Pre(Box<L>),
+}
+
+/// The operands of a sum or product, and whether the term is [`simp`]'s result: then
+/// simplifying it again gives it back (simplification is idempotent), and [`simp`] does
+/// not look inside. Terms of bit-blasted arithmetic are built from simplified operands,
+/// which every later operator would otherwise simplify again. Only [`simp`] marks a term;
+/// a term built any other way is unmarked, and the mark plays no part in equality.
+#[derive(Clone, Default, Eq)]
+pub struct Ops {
+    items: Vec<L>,
+    simplified: bool,
+}
+
+impl Ops {
+    /// The operands.
+    pub fn into_vec(self) -> Vec<L> {
+        self.items
+    }
+}
+
+impl PartialEq for Ops {
+    fn eq(&self, other: &Ops) -> bool {
+        self.items == other.items
+    }
+}
+
+impl std::fmt::Debug for Ops {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        self.items.fmt(f)
+    }
+}
+
+impl std::ops::Deref for Ops {
+    type Target = Vec<L>;
+    fn deref(&self) -> &Vec<L> {
+        &self.items
+    }
+}
+
+impl From<Vec<L>> for Ops {
+    fn from(items: Vec<L>) -> Ops {
+        Ops { items, simplified: false }
+    }
+}
+
+impl FromIterator<L> for Ops {
+    fn from_iter<I: IntoIterator<Item = L>>(iter: I) -> Ops {
+        Ops::from(iter.into_iter().collect::<Vec<L>>())
+    }
+}
+
+impl IntoIterator for Ops {
+    type Item = L;
+    type IntoIter = std::vec::IntoIter<L>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.items.into_iter()
+    }
+}
+
+impl<'a> IntoIterator for &'a Ops {
+    type Item = &'a L;
+    type IntoIter = std::slice::Iter<'a, L>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.items.iter()
+    }
 }
 
 /// Structural equality, names compared from their last character: the names of a
@@ -93,20 +158,22 @@ impl L {
         match (self, other) {
             (L::Zero, _) | (_, L::Zero) => L::Zero,
             (L::One, x) | (x, L::One) => x,
-            (L::And(mut a), L::And(b)) => {
+            (L::And(a), L::And(b)) => {
+                let mut a = a.into_vec();
                 a.extend(b);
-                L::And(a)
+                L::And(a.into())
             }
-            (L::And(mut a), x) => {
+            (L::And(a), x) => {
+                let mut a = a.into_vec();
                 a.push(x);
-                L::And(a)
+                L::And(a.into())
             }
             (x, L::And(b)) => {
                 let mut a = vec![x];
                 a.extend(b);
-                L::And(a)
+                L::And(a.into())
             }
-            (x, y) => L::And(vec![x, y]),
+            (x, y) => L::And(vec![x, y].into()),
         }
     }
 
@@ -115,20 +182,22 @@ impl L {
         match (self, other) {
             (L::One, _) | (_, L::One) => L::One,
             (L::Zero, x) | (x, L::Zero) => x,
-            (L::Or(mut a), L::Or(b)) => {
+            (L::Or(a), L::Or(b)) => {
+                let mut a = a.into_vec();
                 a.extend(b);
-                L::Or(a)
+                L::Or(a.into())
             }
-            (L::Or(mut a), x) => {
+            (L::Or(a), x) => {
+                let mut a = a.into_vec();
                 a.push(x);
-                L::Or(a)
+                L::Or(a.into())
             }
             (x, L::Or(b)) => {
                 let mut a = vec![x];
                 a.extend(b);
-                L::Or(a)
+                L::Or(a.into())
             }
-            (x, y) => L::Or(vec![x, y]),
+            (x, y) => L::Or(vec![x, y].into()),
         }
     }
 
@@ -488,6 +557,7 @@ pub fn simp(e: &L) -> L {
     match e {
         L::Zero | L::One | L::Var(_) => e.clone(),
         L::Not(x) => simp(x).negate(),
+        L::And(xs) | L::Or(xs) if xs.simplified => e.clone(),
         L::And(xs) => junction(xs, true),
         L::Or(xs) => junction(xs, false),
         L::Ton(d, x) => match simp(x) {
@@ -514,8 +584,13 @@ pub fn simp(e: &L) -> L {
     }
 }
 
+/// [`simp`] of a product (`is_and`) or a sum: marked as simplified.
 fn junction(xs: &[L], is_and: bool) -> L {
-    combine(xs.iter().map(simp), is_and)
+    match combine(xs.iter().map(simp), is_and) {
+        L::And(ys) => L::And(Ops { simplified: true, ..ys }),
+        L::Or(ys) => L::Or(Ops { simplified: true, ..ys }),
+        other => other,
+    }
 }
 
 /// `a · b` for operands that are already [`simp`]'s results: the same term as
@@ -594,9 +669,9 @@ fn combine(xs: impl Iterator<Item = L>, is_and: bool) -> L {
         1 => items.pop().unwrap_or(unit),
         _ => {
             if is_and {
-                L::And(items)
+                L::And(items.into())
             } else {
-                L::Or(items)
+                L::Or(items.into())
             }
         }
     }
@@ -605,7 +680,7 @@ fn combine(xs: impl Iterator<Item = L>, is_and: bool) -> L {
 /// The operands of a product (a non-product is a product of one).
 pub fn factors(e: &L) -> Vec<L> {
     match e {
-        L::And(xs) => xs.clone(),
+        L::And(xs) => xs.to_vec(),
         L::One => Vec::new(),
         x => vec![x.clone()],
     }
@@ -614,7 +689,7 @@ pub fn factors(e: &L) -> Vec<L> {
 /// The operands of a sum (a non-sum is a sum of one).
 pub fn summands(e: &L) -> Vec<L> {
     match e {
-        L::Or(xs) => xs.clone(),
+        L::Or(xs) => xs.to_vec(),
         L::Zero => Vec::new(),
         x => vec![x.clone()],
     }
@@ -669,8 +744,8 @@ mod tests {
         leaf.prop_recursive(4, 40, 4, |inner| {
             prop_oneof![
                 inner.clone().prop_map(L::negate),
-                proptest::collection::vec(inner.clone(), 0..4).prop_map(L::And),
-                proptest::collection::vec(inner, 0..4).prop_map(L::Or),
+                proptest::collection::vec(inner.clone(), 0..4).prop_map(|xs| L::And(xs.into())),
+                proptest::collection::vec(inner, 0..4).prop_map(|xs| L::Or(xs.into())),
             ]
         })
     }
@@ -684,9 +759,19 @@ mod tests {
             proptest::prop_assert_eq!(&and, &simp(&a.clone().and(b.clone())));
             let or = simp_sum(vec![a.clone(), b.clone(), c.clone()]);
             proptest::prop_assert_eq!(&or, &simp(&sum(vec![a.clone(), b.clone(), c.clone()])));
-            proptest::prop_assert_eq!(equivalent(&and, &L::And(vec![a.clone(), b.clone()])), Some(true));
-            proptest::prop_assert_eq!(equivalent(&or, &L::Or(vec![a, b, c])), Some(true));
+            proptest::prop_assert_eq!(equivalent(&and, &L::And(vec![a.clone(), b.clone()].into())), Some(true));
+            proptest::prop_assert_eq!(equivalent(&or, &L::Or(vec![a, b, c].into())), Some(true));
             proptest::prop_assert_eq!(simp(&and), and);
+        }
+
+        /// Simplifying a simplified term again from scratch (every sum and product rebuilt
+        /// unmarked) gives it back: what lets `simp` return a marked term as it is.
+        #[test]
+        fn simplification_is_idempotent(a in term(), b in term()) {
+            let s = simp(&a.and(b.negate()));
+            let unmarked = s.substitute(&|_| None);
+            proptest::prop_assert!(!matches!(&unmarked, L::And(xs) | L::Or(xs) if xs.simplified));
+            proptest::prop_assert_eq!(simp(&unmarked), s);
         }
     }
 }

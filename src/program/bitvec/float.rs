@@ -74,8 +74,8 @@ fn log2_up(n: usize) -> usize {
 
 /// Whether a number is a NaN: its exponent all ones and its fraction not 0.
 fn is_nan(v: &[L], f: Format) -> L {
-    let exponent_ones = L::And(v[f.fraction..f.magnitude()].to_vec());
-    let fraction = L::Or(v[..f.fraction].to_vec());
+    let exponent_ones = L::And(v[f.fraction..f.magnitude()].to_vec().into());
+    let fraction = L::Or(v[..f.fraction].to_vec().into());
     simp(&exponent_ones.and(fraction))
 }
 
@@ -104,7 +104,10 @@ pub fn compare_real(op: CmpOp, a: &[L], b: &[L], name: Namer) -> L {
         let signs = sx.clone().and(py.clone());
         let positive = px.clone().and(py.clone()).and(lt.clone());
         let negative = sx.clone().and(sy.clone()).and(gt.clone());
-        ordered.clone().and(zeros.clone().negate()).and(L::Or(vec![signs, positive, negative]))
+        ordered
+            .clone()
+            .and(zeros.clone().negate())
+            .and(L::Or(vec![signs, positive, negative].into()))
     };
     let less = || below(&sa, &pa, &sb, &pb, &lt, &gt);
     let greater = || below(&sb, &pb, &sa, &pa, &gt, &lt);
@@ -126,7 +129,7 @@ fn normalize(m: &mut Bits, width: u32, name: Namer) -> Bits {
     let mut count = vec![L::Zero; width as usize];
     for k in (0..log2_up(w)).rev() {
         let step = 1usize << k;
-        let top_zero = name(simp(&L::Or(m[w - step..].to_vec()).negate()));
+        let top_zero = name(simp(&L::Or(m[w - step..].to_vec().into()).negate()));
         let shifted: Bits =
             std::iter::repeat_n(L::Zero, step).chain(m[..w - step].iter().cloned()).collect();
         *m = m.iter().zip(&shifted).map(|(p, s)| name(mux(&top_zero, s, p))).collect();
@@ -142,7 +145,7 @@ fn choose(c: &L, pattern: &[L], x: &[L], name: Namer) -> Bits {
 
 /// Whether all of `v` is 0.
 fn all_zero(v: &[L]) -> L {
-    simp(&L::Or(v.to_vec()).negate())
+    simp(&L::Or(v.to_vec().into()).negate())
 }
 
 /// An operand taken apart.
@@ -171,7 +174,7 @@ struct Classes<'a> {
 fn classify<'a>(v: &'a [L], f: Format, name: Namer) -> Classes<'a> {
     let (fraction, exponent) = (&v[..f.fraction], &v[f.fraction..f.magnitude()]);
     let subnormal = all_zero(exponent);
-    let ones = simp(&L::And(exponent.to_vec()));
+    let ones = simp(&L::And(exponent.to_vec().into()));
     let no_fraction = all_zero(fraction);
     let zero = name(simp(&subnormal.clone().and(no_fraction.clone())));
     let inf = name(simp(&ones.clone().and(no_fraction.clone())));
@@ -209,12 +212,12 @@ fn round_pack(e: &[L], mut s: Bits, mut sticky: L, f: Format, name: Namer) -> Bi
     for (j, amount) in t.iter().take(steps).enumerate() {
         let step = 1usize << j;
         let on = name(simp(&tiny.clone().and(amount.clone())));
-        sticky = name(simp(&sticky.or(on.clone().and(L::Or(s[..step].to_vec())))));
+        sticky = name(simp(&sticky.or(on.clone().and(L::Or(s[..step].to_vec().into())))));
         let down: Bits =
             s[step..].iter().cloned().chain(std::iter::repeat_n(L::Zero, step)).collect();
         s = choose(&on, &down, &s, name);
     }
-    sticky = name(simp(&sticky.or(all_out.clone().and(L::Or(s.clone())))));
+    sticky = name(simp(&sticky.or(all_out.clone().and(L::Or(s.clone().into())))));
     s = choose(&all_out, &constant(0, s.len() as u32), &s, name);
     let exponent = choose(&tiny, &constant(0, f.exponent as u32), &e[..f.exponent], name);
     let fraction = &s[3..3 + f.fraction];
@@ -299,7 +302,7 @@ fn divide(a: &[L], b: &[L], by_zero: bool, name: Namer) -> (L, Bits) {
             r = std::iter::once(L::Zero).chain(r[..rw - 1].iter().cloned()).collect();
         }
     }
-    let rest = name(simp(&L::Or(r)));
+    let rest = name(simp(&L::Or(r.into())));
     // The leading 1 at the top (a quotient below 1 is shifted up once).
     let top = q[qw - 1].clone();
     let shifted: Bits = std::iter::once(L::Zero).chain(q[..qw - 1].iter().cloned()).collect();
@@ -365,7 +368,7 @@ pub fn sqrt_real(a: &[L], name: Namer) -> Bits {
         rem = choose(&fits, &diff, &rem, name);
         root[i] = fits;
     }
-    let sticky = name(simp(&L::Or(rem)));
+    let sticky = name(simp(&L::Or(rem.into())));
     let finite = round_pack(&exponent, root, sticky, f, name);
     let mut out: Bits = finite.into_iter().chain([L::Zero]).collect();
     out = choose(&x.inf, &signed(f.infinity(), &L::Zero, f), &out, name);
@@ -397,7 +400,7 @@ pub fn mul_real(a: &[L], b: &[L], name: Namer) -> Bits {
         std::iter::once(L::Zero).chain(product[..2 * p - 1].iter().cloned()).collect();
     let product = choose(&top, &product, &shifted, name);
     let low = f.fraction - 2;
-    let sticky = name(simp(&L::Or(product[..low].to_vec())));
+    let sticky = name(simp(&L::Or(product[..low].to_vec().into())));
     let s = product[low..].to_vec();
     // 1.s × 2^(ea - bias) × 1.t × 2^(eb - bias), the product's leading 1 at 2^1 or 2^0.
     let offset = choose(&top, &f.wide(1 - f.bias()), &f.wide(-f.bias()), name);
@@ -455,12 +458,12 @@ pub fn add_real(a: &[L], b: &[L], subtract: bool, name: Namer) -> Bits {
     let mut sticky = L::Zero;
     for (j, amount) in d.iter().take(steps).enumerate() {
         let step = 1usize << j;
-        sticky = name(simp(&sticky.or(amount.clone().and(L::Or(my[..step].to_vec())))));
+        sticky = name(simp(&sticky.or(amount.clone().and(L::Or(my[..step].to_vec().into())))));
         let down: Bits =
             my[step..].iter().cloned().chain(std::iter::repeat_n(L::Zero, step)).collect();
         my = choose(amount, &down, &my, name);
     }
-    sticky = name(simp(&sticky.or(far.clone().and(L::Or(my.clone())))));
+    sticky = name(simp(&sticky.or(far.clone().and(L::Or(my.clone().into())))));
     my = choose(&far, &constant(0, width as u32), &my, name);
     my[0] = simp(&my[0].clone().or(sticky));
     let same = name(simp(&super::xor(&big[n], &small[n]).negate()));
@@ -527,7 +530,7 @@ pub fn narrow_real(a: &[L], name: Namer) -> Bits {
     // The significand's top 27 bits (the leading 1 at bit 26, a subnormal's lower), the
     // rest sticky.
     let cut = DOUBLE.fraction + 1 - (SINGLE.fraction + 4);
-    let sticky = name(simp(&L::Or(m[..cut].to_vec())));
+    let sticky = name(simp(&L::Or(m[..cut].to_vec().into())));
     let s = m[cut..].to_vec();
     let e: Bits = exponent.iter().cloned().chain([L::Zero]).collect();
     let e = choose(&subnormal, &constant(1, 12), &e, name);
@@ -559,13 +562,13 @@ pub fn int_to_real(a: &[L], ty: IntType, name: Namer) -> Bits {
     let sign = if ty.signed { name(x[31].clone()) } else { L::Zero };
     let negated = sub(&constant(0, 32), &x, name);
     let mut m: Bits = x.iter().zip(&negated).map(|(p, n)| name(mux(&sign, n, p))).collect();
-    let zero = name(simp(&L::Or(m.clone()).negate()));
+    let zero = name(simp(&L::Or(m.clone().into()).negate()));
     let count = normalize(&mut m, 8, name);
     // The leading 1 at bit 31 - count: exponent 127 + 31 - count.
     let exponent = sub(&constant(158, 8), &count, name);
     let fraction = &m[8..31];
     let guard = &m[7];
-    let sticky = L::Or(m[..7].to_vec());
+    let sticky = L::Or(m[..7].to_vec().into());
     let round = name(simp(&guard.clone().and(sticky.or(fraction[0].clone()))));
     let unrounded: Bits = fraction.iter().chain(&exponent).cloned().collect();
     let rounded = add(&unrounded, &constant(0, 31), round, name);
@@ -607,7 +610,7 @@ pub fn real_to_int(a: &[L], unsigned: bool, w: u32, name: Namer) -> Bits {
             .collect();
         f = choose(on, &up, &f, name);
     }
-    let sticky = L::Or(f[..23].to_vec());
+    let sticky = L::Or(f[..23].to_vec().into());
     let round = name(simp(&f[23].clone().and(sticky.or(f[24].clone()))));
     let magnitude = add(&f[24..], &constant(0, w as u32), round, name);
     let magnitude: Bits = magnitude.iter().map(|b| simp(&b.clone().and(rounds.clone()))).collect();

@@ -288,7 +288,7 @@ impl Compiler<'_> {
         let q = match (t.on_delay, scans) {
             (true, 0) => input.clone().and(e),
             (false, 0) => input.clone().or(e),
-            (true, _) => L::And(vec![input.clone(), b.negate(), pre_due]),
+            (true, _) => L::And(vec![input.clone(), b.negate(), pre_due].into()),
             (false, _) => simp_sum(vec![input.clone(), b, pre_due]),
         };
         self.after_call(name, &input);
@@ -351,7 +351,7 @@ impl Compiler<'_> {
             let pre_e = L::Var(self.pre_name(&held));
             // The part `U` (TON) or `F` (TOF), timed over K − 2 more scans.
             let part = if on_delay {
-                L::And(vec![pre_e, e.clone(), b.negate()])
+                L::And(vec![pre_e, e.clone(), b.negate()].into())
             } else {
                 e.clone().negate().and(pre_e.or(b))
             };
@@ -365,7 +365,7 @@ impl Compiler<'_> {
                     self.pending.push(Pending { var: runs.clone(), rhs: part, recurrence: None });
                     // `U · d/U` (= `d/U`): the run going on now, stated where the
                     // Boolean case splits, which keep timers opaque, can read it.
-                    L::And(vec![L::var(&runs), L::Ton(d, Box::new(L::var(&runs)))])
+                    L::And(vec![L::var(&runs), L::Ton(d, Box::new(L::var(&runs)))].into())
                 }
                 Ok(d) => L::Tof(Box::new(part), d),
                 Err(_) => {
