@@ -114,7 +114,9 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use super::fast_hash::{FastMap as HashMap, FastSet as HashSet};
 
-use super::logic::{L, Name, Tables, factors, product, simp, simp_and, simp_sum, sum, summands};
+use super::logic::{
+    L, Name, Tables, factors, product, simp, simp_and, simp_sum, simplify, sum, summands,
+};
 use super::{Block, BoolExpr, Memory, Program, Stmt, Temp, WriteKind};
 use crate::diag::{Report, Severity, Sources, Span};
 use crate::kernel::{Axiom, Rel};
@@ -886,8 +888,8 @@ impl<'a> Compiler<'a> {
             // A branch runs where no earlier condition holds and its own does.
             let own = conditions.get(k).cloned().unwrap_or(L::One);
             self.guard =
-                simp(&L::And(vec![outer.clone(), none_before.clone(), own.clone()].into()));
-            none_before = simp(&none_before.and(own.negate()));
+                simplify(L::And(vec![outer.clone(), none_before.clone(), own.clone()].into()));
+            none_before = simplify(none_before.and(own.negate()));
             self.current = entry.clone();
             for s in body {
                 self.stmt(s);
@@ -1033,7 +1035,7 @@ impl<'a> Compiler<'a> {
                 // On a rising edge of the power the bit flips: the edge is `i · ¬pre i`
                 // over the hidden bit.
                 let prev = self.previous_power(memory, input);
-                let edge = simp(&input.clone().and(prev.negate()));
+                let edge = simplify(input.clone().and(prev.negate()));
                 let flip = edge.clone().and(old.clone().negate());
                 flip.or(edge.negate().and(old))
             }
@@ -1090,8 +1092,8 @@ impl<'a> Compiler<'a> {
         if !g.mentions(pre) || g.mentions_temporally(pre) || self.options.any_state {
             return (g, None);
         }
-        let g0 = simp(&g.subst(pre, &L::Zero));
-        let g1 = simp(&g.subst(pre, &L::One));
+        let g0 = simplify(g.subst(pre, &L::Zero));
+        let g1 = simplify(g.subst(pre, &L::One));
         let Some(t) = Tables::new(&[&g0, &g1]) else {
             return (g, None);
         };
@@ -1243,9 +1245,11 @@ fn readable_not(y: &L) -> L {
             .collect()
     };
     match y {
-        L::And(xs) => inner(xs).map_or_else(|| simp(&y.clone().negate()), |v| simp(&sum(v))),
-        L::Or(xs) => inner(xs).map_or_else(|| simp(&y.clone().negate()), |v| simp(&product(v))),
-        _ => simp(&y.clone().negate()),
+        L::And(xs) => inner(xs).map_or_else(|| simplify(y.clone().negate()), |v| simplify(sum(v))),
+        L::Or(xs) => {
+            inner(xs).map_or_else(|| simplify(y.clone().negate()), |v| simplify(product(v)))
+        }
+        _ => simplify(y.clone().negate()),
     }
 }
 
@@ -1258,14 +1262,14 @@ fn memory_form(g: &L, pre: &str, g0: L, g1: L, prefer_rs: Option<bool>) -> Optio
     let kept: Vec<L> =
         f0.iter().filter(|f| super::logic::implies(&y_rs, f) != Some(true)).cloned().collect();
     let rs_dropped = kept.len() < f0.len();
-    let s_rs = simp(&product(kept));
+    let s_rs = simplify(product(kept));
     // SR(S, ¬Y): S = g0, Y = the summands of g1 that do not imply g0.
     let s_sr = g0.clone();
     let f1 = summands(&g1);
     let kept: Vec<L> =
         f1.iter().filter(|f| super::logic::implies(f, &g0) != Some(true)).cloned().collect();
     let sr_dropped = kept.len() < f1.len();
-    let y_sr = simp(&sum(kept));
+    let y_sr = simplify(sum(kept));
     let rs = (s_rs.clone(), y_rs.clone());
     let sr = (s_sr.clone(), y_sr.clone());
     let size = |(s, y): &(L, L)| s.size() + y.size();
@@ -1284,9 +1288,9 @@ fn memory_form(g: &L, pre: &str, g0: L, g1: L, prefer_rs: Option<bool>) -> Optio
         if super::logic::equivalent(&recurrence, g) == Some(true) {
             let r = Box::new(readable_not(&y));
             let s = Box::new(s);
-            return Some(simp(&if is_rs { L::Rs(s, r) } else { L::Sr(s, r) }));
+            return Some(simplify(if is_rs { L::Rs(s, r) } else { L::Sr(s, r) }));
         }
     }
-    let fallback = L::Sr(Box::new(g0), Box::new(simp(&g1.negate())));
+    let fallback = L::Sr(Box::new(g0), Box::new(simplify(g1.negate())));
     Some(simp(&fallback))
 }

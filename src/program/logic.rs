@@ -554,30 +554,36 @@ pub fn equivalent(a: &L, b: &L) -> Option<bool> {
 /// constant as a Boolean function becomes that constant. Also `d/0* = 0*`,
 /// `0*/d = 0*`, `SR(0*, r) = RS(0*, r) = RS(s, 1*) = 0*`, `SR(1*, r) = 1*`.
 pub fn simp(e: &L) -> L {
+    simplify(e.clone())
+}
+
+/// [`simp`] of a term the caller gives away: its simplified parts are moved into the
+/// result, not copied.
+pub fn simplify(e: L) -> L {
     match e {
-        L::Zero | L::One | L::Var(_) => e.clone(),
-        L::Not(x) => simp(x).negate(),
-        L::And(xs) | L::Or(xs) if xs.simplified => e.clone(),
+        L::Zero | L::One | L::Var(_) => e,
+        L::Not(x) => simplify(*x).negate(),
+        L::And(ref xs) | L::Or(ref xs) if xs.simplified => e,
         L::And(xs) => junction(xs, true),
         L::Or(xs) => junction(xs, false),
-        L::Ton(d, x) => match simp(x) {
+        L::Ton(d, x) => match simplify(*x) {
             L::Zero => L::Zero,
-            x => L::Ton(d.clone(), Box::new(x)),
+            x => L::Ton(d, Box::new(x)),
         },
-        L::Tof(x, d) => match simp(x) {
+        L::Tof(x, d) => match simplify(*x) {
             L::Zero => L::Zero,
-            x => L::Tof(Box::new(x), d.clone()),
+            x => L::Tof(Box::new(x), d),
         },
-        L::Sr(s, r) => match (simp(s), simp(r)) {
+        L::Sr(s, r) => match (simplify(*s), simplify(*r)) {
             (L::Zero, _) => L::Zero,
             (L::One, _) => L::One,
             (s, r) => L::Sr(Box::new(s), Box::new(r)),
         },
-        L::Rs(s, r) => match (simp(s), simp(r)) {
+        L::Rs(s, r) => match (simplify(*s), simplify(*r)) {
             (L::Zero, _) | (_, L::One) => L::Zero,
             (s, r) => L::Rs(Box::new(s), Box::new(r)),
         },
-        L::Pre(x) => match simp(x) {
+        L::Pre(x) => match simplify(*x) {
             c @ (L::Zero | L::One) => c,
             x => L::Pre(Box::new(x)),
         },
@@ -585,8 +591,8 @@ pub fn simp(e: &L) -> L {
 }
 
 /// [`simp`] of a product (`is_and`) or a sum: marked as simplified.
-fn junction(xs: &[L], is_and: bool) -> L {
-    match combine(xs.iter().map(simp), is_and) {
+fn junction(xs: Ops, is_and: bool) -> L {
+    match combine(xs.into_iter().map(simplify), is_and) {
         L::And(ys) => L::And(Ops { simplified: true, ..ys }),
         L::Or(ys) => L::Or(Ops { simplified: true, ..ys }),
         other => other,
