@@ -17,7 +17,7 @@ pub use float::{
 
 use super::CmpOp;
 use super::IntType;
-use super::logic::{L, simp};
+use super::logic::{L, simplify};
 
 /// A value of some width: its bits, least significant first.
 pub type Bits = Vec<L>;
@@ -30,7 +30,7 @@ pub fn xor(a: &L, b: &L) -> L {
     match (a, b) {
         (L::Zero, x) | (x, L::Zero) => x.clone(),
         (L::One, x) | (x, L::One) => x.clone().negate(),
-        _ => simp(&a.clone().and(b.clone().negate()).or(a.clone().negate().and(b.clone()))),
+        _ => simplify(a.clone().and(b.clone().negate()).or(a.clone().negate().and(b.clone()))),
     }
 }
 
@@ -40,7 +40,7 @@ pub fn mux(c: &L, a: &L, b: &L) -> L {
         L::One => a.clone(),
         L::Zero => b.clone(),
         _ if a == b => a.clone(),
-        _ => simp(&c.clone().and(a.clone()).or(c.clone().negate().and(b.clone()))),
+        _ => simplify(c.clone().and(a.clone()).or(c.clone().negate().and(b.clone()))),
     }
 }
 
@@ -76,7 +76,7 @@ pub fn add(a: &[L], b: &[L], carry: L, name: Namer) -> Bits {
         out.push(name(xor(&half, &c)));
         if k + 1 < a.len() {
             // The carry: x · y + c · (x ⊕ y).
-            c = name(simp(&x.clone().and(y.clone()).or(c.and(half))));
+            c = name(simplify(x.clone().and(y.clone()).or(c.and(half))));
         }
     }
     out
@@ -98,7 +98,7 @@ pub fn mul(a: &[L], b: &[L], name: Namer) -> Bits {
         // a · y shifted by k.
         let mut partial = constant(0, width as u32);
         for j in k..width {
-            partial[j] = simp(&a[j - k].clone().and(y.clone()));
+            partial[j] = simplify(a[j - k].clone().and(y.clone()));
         }
         acc = add(&acc, &partial, L::Zero, name);
     }
@@ -139,8 +139,8 @@ pub fn rem_by(a: &[L], b: &[L], ty: IntType, name: Namer) -> Bits {
 
 /// `v`, or 0 where every bit of `b` is 0.
 fn unless_zero(v: Bits, b: &[L]) -> Bits {
-    let nonzero = simp(&L::Or(b.to_vec()));
-    v.iter().map(|x| simp(&x.clone().and(nonzero.clone()))).collect()
+    let nonzero = simplify(L::Or(b.to_vec().into()));
+    v.iter().map(|x| simplify(x.clone().and(nonzero.clone()))).collect()
 }
 
 /// The remainder of magnitude `r` (in `w + 2` bits) in `w` bits, negated when the
@@ -218,7 +218,7 @@ fn divide(a: &[L], d: &Divisor, ty: IntType, name: Namer) -> (Bits, Bits, L) {
 
 /// `a op b` for two values of type `ty`.
 pub fn compare(op: CmpOp, ty: IntType, a: &[L], b: &[L], name: Namer) -> L {
-    let eq = || simp(&L::And(a.iter().zip(b).map(|(x, y)| xor(x, y).negate()).collect()));
+    let eq = || simplify(L::And(a.iter().zip(b).map(|(x, y)| xor(x, y).negate()).collect()));
     // Signed order is the unsigned order of the values with their sign bits flipped.
     let flip = |v: &[L]| -> Bits {
         let mut v = v.to_vec();
@@ -235,18 +235,18 @@ pub fn compare(op: CmpOp, ty: IntType, a: &[L], b: &[L], name: Namer) -> L {
         for (p, q) in x.iter().zip(y) {
             let strictly = p.clone().negate().and(q.clone());
             let same = xor(p, q).negate();
-            lt = name(simp(&strictly.or(same.and(lt))));
+            lt = name(simplify(strictly.or(same.and(lt))));
         }
         lt
     };
     let (fa, fb) = (flip(a), flip(b));
     match op {
         CmpOp::Eq => eq(),
-        CmpOp::Ne => simp(&eq().negate()),
+        CmpOp::Ne => simplify(eq().negate()),
         CmpOp::Lt => less(&fa, &fb, name),
         CmpOp::Gt => less(&fb, &fa, name),
-        CmpOp::Le => simp(&less(&fb, &fa, name).negate()),
-        CmpOp::Ge => simp(&less(&fa, &fb, name).negate()),
+        CmpOp::Le => simplify(less(&fb, &fa, name).negate()),
+        CmpOp::Ge => simplify(less(&fa, &fb, name).negate()),
     }
 }
 

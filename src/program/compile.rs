@@ -114,7 +114,9 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use super::fast_hash::{FastMap as HashMap, FastSet as HashSet};
 
-use super::logic::{L, Name, Tables, factors, product, simp, simp_and, simp_sum, sum, summands};
+use super::logic::{
+    L, Name, Tables, factors, product, simp, simp_and, simp_sum, simplify, sum, summands,
+};
 use super::{Block, BoolExpr, Memory, Program, Stmt, Temp, WriteKind};
 use crate::diag::{Report, Severity, Sources, Span};
 use crate::kernel::{Axiom, Rel};
@@ -503,6 +505,23 @@ pub fn compile(
     program: &Program,
     options: &CompileOptions,
 ) -> Result<CompiledProgram, Vec<CompileError>> {
+    compile_then(program, options, true, |c| c.finish())
+}
+
+/// Whether [`compile`] accepts the program (else its errors), without stating the
+/// equations: for a caller that only asks whether a body can be compiled.
+pub fn accepts(program: &Program, options: &CompileOptions) -> Result<(), Vec<CompileError>> {
+    compile_then(program, options, false, |_| ())
+}
+
+/// Runs the compiler over the program (stating its equations if `equations`), then
+/// `then` on it, or the errors that refuse the program.
+fn compile_then<T>(
+    program: &Program,
+    options: &CompileOptions,
+    equations: bool,
+    then: impl FnOnce(Compiler<'_>) -> T,
+) -> Result<T, Vec<CompileError>> {
     // From an arbitrary state the power-up values play no part: integers are stored
     // as their values, every bit of them a start value.
     let arbitrary;
@@ -514,11 +533,12 @@ pub fn compile(
         false => program,
     };
     let mut c = Compiler::new(program, *options);
+    c.equations = equations;
     c.run();
     if !c.errors.is_empty() {
         return Err(std::mem::take(&mut c.errors));
     }
-    Ok(c.finish())
+    Ok(then(c))
 }
 
 struct Pending {
@@ -531,6 +551,8 @@ struct Pending {
 struct Compiler<'a> {
     program: &'a Program,
     options: CompileOptions,
+    /// Whether the equations are stated (else only the errors are looked for).
+    equations: bool,
     /// Per written variable, the global index of its last write.
     last_write: HashMap<String, usize>,
     /// Bits read but never written and not inputs: they stay `0*`; first reading block.
@@ -600,6 +622,7 @@ impl<'a> Compiler<'a> {
         let mut c = Compiler {
             program,
             options,
+            equations: true,
             last_write: HashMap::default(),
             unwritten: BTreeMap::new(),
             shared_timers: BTreeSet::new(),
@@ -741,16 +764,11 @@ impl<'a> Compiler<'a> {
 
     /// A term of the scan with every internal previous-value name replaced by `pre X`.
     fn exact(&self, e: &L) -> L {
-        let mut names = Vec::new();
-        e.names(&mut names);
-        names.into_iter().filter(|n| self.pre_of.contains_key(n.as_str())).fold(
-            e.clone(),
-            |acc, p| {
-                let x = &self.pre_of[p.as_str()];
-                let of = L::Pre(Box::new(self.exact(&L::var(x))));
-                acc.subst(&p, &self.start_or(x, of))
-            },
-        )
+        e.substitute(&|p| {
+            let x = self.pre_of.get(p)?;
+            let of = L::Pre(Box::new(self.exact(&L::var(x))));
+            Some(self.start_or(x, of))
+        })
     }
 
     /// The previous-scan value of the power `input` at this point of the scan (a
@@ -869,8 +887,9 @@ impl<'a> Compiler<'a> {
         for (k, body) in branches.iter().map(|(_, b)| b.as_slice()).chain([otherwise]).enumerate() {
             // A branch runs where no earlier condition holds and its own does.
             let own = conditions.get(k).cloned().unwrap_or(L::One);
-            self.guard = simp(&L::And(vec![outer.clone(), none_before.clone(), own.clone()]));
-            none_before = simp(&none_before.and(own.negate()));
+            self.guard =
+                simplify(L::And(vec![outer.clone(), none_before.clone(), own.clone()].into()));
+            none_before = simplify(none_before.and(own.negate()));
             self.current = entry.clone();
             for s in body {
                 self.stmt(s);
@@ -1016,7 +1035,7 @@ impl<'a> Compiler<'a> {
                 // On a rising edge of the power the bit flips: the edge is `i · ¬pre i`
                 // over the hidden bit.
                 let prev = self.previous_power(memory, input);
-                let edge = simp(&input.clone().and(prev.negate()));
+                let edge = simplify(input.clone().and(prev.negate()));
                 let flip = edge.clone().and(old.clone().negate());
                 flip.or(edge.negate().and(old))
             }
@@ -1073,8 +1092,8 @@ impl<'a> Compiler<'a> {
         if !g.mentions(pre) || g.mentions_temporally(pre) || self.options.any_state {
             return (g, None);
         }
-        let g0 = simp(&g.subst(pre, &L::Zero));
-        let g1 = simp(&g.subst(pre, &L::One));
+        let g0 = simplify(g.subst(pre, &L::Zero));
+        let g1 = simplify(g.subst(pre, &L::One));
         let Some(t) = Tables::new(&[&g0, &g1]) else {
             return (g, None);
         };
@@ -1093,7 +1112,7 @@ impl<'a> Compiler<'a> {
     fn flush_block(&mut self) {
         self.state_repeated();
         let pending = std::mem::take(&mut self.pending);
-        if pending.is_empty() {
+        if pending.is_empty() || !self.equations {
             return;
         }
         let block = self.block();
@@ -1226,9 +1245,11 @@ fn readable_not(y: &L) -> L {
             .collect()
     };
     match y {
-        L::And(xs) => inner(xs).map_or_else(|| simp(&y.clone().negate()), |v| simp(&sum(v))),
-        L::Or(xs) => inner(xs).map_or_else(|| simp(&y.clone().negate()), |v| simp(&product(v))),
-        _ => simp(&y.clone().negate()),
+        L::And(xs) => inner(xs).map_or_else(|| simplify(y.clone().negate()), |v| simplify(sum(v))),
+        L::Or(xs) => {
+            inner(xs).map_or_else(|| simplify(y.clone().negate()), |v| simplify(product(v)))
+        }
+        _ => simplify(y.clone().negate()),
     }
 }
 
@@ -1241,14 +1262,14 @@ fn memory_form(g: &L, pre: &str, g0: L, g1: L, prefer_rs: Option<bool>) -> Optio
     let kept: Vec<L> =
         f0.iter().filter(|f| super::logic::implies(&y_rs, f) != Some(true)).cloned().collect();
     let rs_dropped = kept.len() < f0.len();
-    let s_rs = simp(&product(kept));
+    let s_rs = simplify(product(kept));
     // SR(S, ¬Y): S = g0, Y = the summands of g1 that do not imply g0.
     let s_sr = g0.clone();
     let f1 = summands(&g1);
     let kept: Vec<L> =
         f1.iter().filter(|f| super::logic::implies(f, &g0) != Some(true)).cloned().collect();
     let sr_dropped = kept.len() < f1.len();
-    let y_sr = simp(&sum(kept));
+    let y_sr = simplify(sum(kept));
     let rs = (s_rs.clone(), y_rs.clone());
     let sr = (s_sr.clone(), y_sr.clone());
     let size = |(s, y): &(L, L)| s.size() + y.size();
@@ -1267,9 +1288,9 @@ fn memory_form(g: &L, pre: &str, g0: L, g1: L, prefer_rs: Option<bool>) -> Optio
         if super::logic::equivalent(&recurrence, g) == Some(true) {
             let r = Box::new(readable_not(&y));
             let s = Box::new(s);
-            return Some(simp(&if is_rs { L::Rs(s, r) } else { L::Sr(s, r) }));
+            return Some(simplify(if is_rs { L::Rs(s, r) } else { L::Sr(s, r) }));
         }
     }
-    let fallback = L::Sr(Box::new(g0), Box::new(simp(&g1.negate())));
+    let fallback = L::Sr(Box::new(g0), Box::new(simplify(g1.negate())));
     Some(simp(&fallback))
 }

@@ -289,7 +289,7 @@ fn text_block(
     }
     // What the compiler refuses in the body (a timer under an `IF`) keeps the block
     // opaque rather than refusing the caller.
-    if let Err(e) = crate::program::compile::compile(program, &Default::default()) {
+    if let Err(e) = crate::program::compile::accepts(program, &Default::default()) {
         let why = e.first().map_or_else(String::new, |e| format!(": {}", e.reason));
         return Err(format!("its body is refused by the compiler{why}"));
     }
@@ -313,7 +313,7 @@ fn text_block(
     let enabled = (under_en && !function)
         .then(|| crate::iec::lower_under_en(sources, &unit, Some(&fb.name), Some(cycle)).ok())
         .flatten()
-        .filter(|l| crate::program::compile::compile(&l.program, &Default::default()).is_ok())
+        .filter(|l| crate::program::compile::accepts(&l.program, &Default::default()).is_ok())
         .and_then(|l| Some((l.program, l.enable?)));
     let time_inputs = lowered.time_inputs;
     Ok(TextBlock { program: lowered.program, function, warnings, time_inputs, enabled })

@@ -1,6 +1,6 @@
 //! IEEE 754 floating-point circuits on Boolean terms of a number's bits (least significant first: the fraction, the exponent, the sign), for `REAL` (binary32, C's `float`) and C's `double` (binary64), as C computes and compares them on x86-64: a NaN is unordered (every comparison false but `<>`), `-0 = +0`. The format of an operand is told by its width (32 or 64 bits).
 
-use super::super::logic::{L, simp};
+use super::super::logic::{L, simplify};
 use super::super::{CmpOp, IntType};
 use super::{Bits, Namer, add, compare, constant, mux, resize, sub};
 
@@ -74,9 +74,9 @@ fn log2_up(n: usize) -> usize {
 
 /// Whether a number is a NaN: its exponent all ones and its fraction not 0.
 fn is_nan(v: &[L], f: Format) -> L {
-    let exponent_ones = L::And(v[f.fraction..f.magnitude()].to_vec());
-    let fraction = L::Or(v[..f.fraction].to_vec());
-    simp(&exponent_ones.and(fraction))
+    let exponent_ones = L::And(v[f.fraction..f.magnitude()].to_vec().into());
+    let fraction = L::Or(v[..f.fraction].to_vec().into());
+    simplify(exponent_ones.and(fraction))
 }
 
 /// `a op b` for two numbers of one format (`REAL`s or `double`s).
@@ -94,8 +94,8 @@ pub fn compare_real(op: CmpOp, a: &[L], b: &[L], name: Namer) -> L {
     let lt = name(lt);
     let gt = compare(CmpOp::Lt, magnitude, mb, ma, name);
     let gt = name(gt);
-    let zeros = simp(&L::And(ma.iter().chain(mb).map(|x| x.clone().negate()).collect()));
-    let ordered = name(simp(&is_nan(a, f).or(is_nan(b, f)).negate()));
+    let zeros = simplify(L::And(ma.iter().chain(mb).map(|x| x.clone().negate()).collect()));
+    let ordered = name(simplify(is_nan(a, f).or(is_nan(b, f)).negate()));
     let (pa, pb) = (sa.clone().negate(), sb.clone().negate());
     let same_sign = pa.clone().and(pb.clone()).or(sa.clone().and(sb.clone()));
     let same_magnitude = lt.clone().negate().and(gt.clone().negate());
@@ -104,11 +104,14 @@ pub fn compare_real(op: CmpOp, a: &[L], b: &[L], name: Namer) -> L {
         let signs = sx.clone().and(py.clone());
         let positive = px.clone().and(py.clone()).and(lt.clone());
         let negative = sx.clone().and(sy.clone()).and(gt.clone());
-        ordered.clone().and(zeros.clone().negate()).and(L::Or(vec![signs, positive, negative]))
+        ordered
+            .clone()
+            .and(zeros.clone().negate())
+            .and(L::Or(vec![signs, positive, negative].into()))
     };
     let less = || below(&sa, &pa, &sb, &pb, &lt, &gt);
     let greater = || below(&sb, &pb, &sa, &pa, &gt, &lt);
-    simp(&match op {
+    simplify(match op {
         CmpOp::Eq => eq,
         CmpOp::Ne => eq.negate(),
         CmpOp::Lt => less(),
@@ -126,7 +129,7 @@ fn normalize(m: &mut Bits, width: u32, name: Namer) -> Bits {
     let mut count = vec![L::Zero; width as usize];
     for k in (0..log2_up(w)).rev() {
         let step = 1usize << k;
-        let top_zero = name(simp(&L::Or(m[w - step..].to_vec()).negate()));
+        let top_zero = name(simplify(L::Or(m[w - step..].to_vec().into()).negate()));
         let shifted: Bits =
             std::iter::repeat_n(L::Zero, step).chain(m[..w - step].iter().cloned()).collect();
         *m = m.iter().zip(&shifted).map(|(p, s)| name(mux(&top_zero, s, p))).collect();
@@ -142,7 +145,7 @@ fn choose(c: &L, pattern: &[L], x: &[L], name: Namer) -> Bits {
 
 /// Whether all of `v` is 0.
 fn all_zero(v: &[L]) -> L {
-    simp(&L::Or(v.to_vec()).negate())
+    simplify(L::Or(v.to_vec().into()).negate())
 }
 
 /// An operand taken apart.
@@ -171,11 +174,11 @@ struct Classes<'a> {
 fn classify<'a>(v: &'a [L], f: Format, name: Namer) -> Classes<'a> {
     let (fraction, exponent) = (&v[..f.fraction], &v[f.fraction..f.magnitude()]);
     let subnormal = all_zero(exponent);
-    let ones = simp(&L::And(exponent.to_vec()));
+    let ones = simplify(L::And(exponent.to_vec().into()));
     let no_fraction = all_zero(fraction);
-    let zero = name(simp(&subnormal.clone().and(no_fraction.clone())));
-    let inf = name(simp(&ones.clone().and(no_fraction.clone())));
-    let nan = name(simp(&ones.and(no_fraction.negate())));
+    let zero = name(simplify(subnormal.clone().and(no_fraction.clone())));
+    let inf = name(simplify(ones.clone().and(no_fraction.clone())));
+    let nan = name(simplify(ones.and(no_fraction.negate())));
     let mut m: Bits = fraction.to_vec();
     m.push(subnormal.clone().negate());
     Classes { exponent, subnormal, m, zero, inf, nan }
@@ -208,18 +211,18 @@ fn round_pack(e: &[L], mut s: Bits, mut sticky: L, f: Format, name: Namer) -> Bi
     let all_out = name(tiny.clone().and(far));
     for (j, amount) in t.iter().take(steps).enumerate() {
         let step = 1usize << j;
-        let on = name(simp(&tiny.clone().and(amount.clone())));
-        sticky = name(simp(&sticky.or(on.clone().and(L::Or(s[..step].to_vec())))));
+        let on = name(simplify(tiny.clone().and(amount.clone())));
+        sticky = name(simplify(sticky.or(on.clone().and(L::Or(s[..step].to_vec().into())))));
         let down: Bits =
             s[step..].iter().cloned().chain(std::iter::repeat_n(L::Zero, step)).collect();
         s = choose(&on, &down, &s, name);
     }
-    sticky = name(simp(&sticky.or(all_out.clone().and(L::Or(s.clone())))));
+    sticky = name(simplify(sticky.or(all_out.clone().and(L::Or(s.clone().into())))));
     s = choose(&all_out, &constant(0, s.len() as u32), &s, name);
     let exponent = choose(&tiny, &constant(0, f.exponent as u32), &e[..f.exponent], name);
     let fraction = &s[3..3 + f.fraction];
-    let sticky = simp(&sticky.or(s[1].clone()).or(s[0].clone()));
-    let round = name(simp(&s[2].clone().and(sticky.or(fraction[0].clone()))));
+    let sticky = simplify(sticky.or(s[1].clone()).or(s[0].clone()));
+    let round = name(simplify(s[2].clone().and(sticky.or(fraction[0].clone()))));
     let unrounded: Bits = fraction.iter().chain(&exponent).cloned().collect();
     let n = f.magnitude() as u32;
     let result = add(&unrounded, &constant(0, n), round, name);
@@ -299,7 +302,7 @@ fn divide(a: &[L], b: &[L], by_zero: bool, name: Namer) -> (L, Bits) {
             r = std::iter::once(L::Zero).chain(r[..rw - 1].iter().cloned()).collect();
         }
     }
-    let rest = name(simp(&L::Or(r)));
+    let rest = name(simplify(L::Or(r.into())));
     // The leading 1 at the top (a quotient below 1 is shifted up once).
     let top = q[qw - 1].clone();
     let shifted: Bits = std::iter::once(L::Zero).chain(q[..qw - 1].iter().cloned()).collect();
@@ -307,11 +310,11 @@ fn divide(a: &[L], b: &[L], by_zero: bool, name: Namer) -> (L, Bits) {
     let below_one = choose(&top, &f.wide(f.bias()), &f.wide(f.bias() - 1), name);
     let e = add(&sub(&x.e, &y.e, name), &below_one, L::Zero, name);
     let finite = round_pack(&e, s, rest, f, name);
-    let to_zero = name(simp(&x.zero.clone().or(y.inf.clone())));
-    let (mut inf, mut invalid) = (x.inf.clone(), simp(&x.inf.and(y.inf)));
+    let to_zero = name(simplify(x.zero.clone().or(y.inf.clone())));
+    let (mut inf, mut invalid) = (x.inf.clone(), simplify(x.inf.and(y.inf)));
     if by_zero {
-        inf = name(simp(&inf.or(y.zero.clone())));
-        invalid = simp(&invalid.or(x.zero.and(y.zero.clone())));
+        inf = name(simplify(inf.or(y.zero.clone())));
+        invalid = simplify(invalid.or(x.zero.and(y.zero.clone())));
     }
     let specials = (to_zero, inf, invalid);
     let out = special(finite, &sign, specials, (a, &x.nan), (b, &y.nan), f, name);
@@ -365,11 +368,11 @@ pub fn sqrt_real(a: &[L], name: Namer) -> Bits {
         rem = choose(&fits, &diff, &rem, name);
         root[i] = fits;
     }
-    let sticky = name(simp(&L::Or(rem)));
+    let sticky = name(simplify(L::Or(rem.into())));
     let finite = round_pack(&exponent, root, sticky, f, name);
     let mut out: Bits = finite.into_iter().chain([L::Zero]).collect();
     out = choose(&x.inf, &signed(f.infinity(), &L::Zero, f), &out, name);
-    let below = name(simp(&sign.and(x.zero.clone().negate()).and(x.nan.clone().negate())));
+    let below = name(simplify(sign.and(x.zero.clone().negate()).and(x.nan.clone().negate())));
     out = choose(&below, &constant(f.default_nan(), a.len() as u32), &out, name);
     out = choose(&x.zero, a, &out, name);
     choose(&x.nan, &quiet(a, f), &out, name)
@@ -397,15 +400,15 @@ pub fn mul_real(a: &[L], b: &[L], name: Namer) -> Bits {
         std::iter::once(L::Zero).chain(product[..2 * p - 1].iter().cloned()).collect();
     let product = choose(&top, &product, &shifted, name);
     let low = f.fraction - 2;
-    let sticky = name(simp(&L::Or(product[..low].to_vec())));
+    let sticky = name(simplify(L::Or(product[..low].to_vec().into())));
     let s = product[low..].to_vec();
     // 1.s × 2^(ea - bias) × 1.t × 2^(eb - bias), the product's leading 1 at 2^1 or 2^0.
     let offset = choose(&top, &f.wide(1 - f.bias()), &f.wide(-f.bias()), name);
     let e = add(&add(&x.e, &y.e, L::Zero, name), &offset, L::Zero, name);
     let finite = round_pack(&e, s, sticky, f, name);
-    let zero = simp(&x.zero.clone().or(y.zero.clone()));
-    let inf = simp(&x.inf.clone().or(y.inf.clone()));
-    let invalid = name(simp(&zero.clone().and(inf.clone())));
+    let zero = simplify(x.zero.clone().or(y.zero.clone()));
+    let inf = simplify(x.inf.clone().or(y.inf.clone()));
+    let invalid = name(simplify(zero.clone().and(inf.clone())));
     let specials = (name(zero), name(inf), invalid);
     special(finite, &sign, specials, (a, &x.nan), (b, &y.nan), f, name)
 }
@@ -455,15 +458,15 @@ pub fn add_real(a: &[L], b: &[L], subtract: bool, name: Namer) -> Bits {
     let mut sticky = L::Zero;
     for (j, amount) in d.iter().take(steps).enumerate() {
         let step = 1usize << j;
-        sticky = name(simp(&sticky.or(amount.clone().and(L::Or(my[..step].to_vec())))));
+        sticky = name(simplify(sticky.or(amount.clone().and(L::Or(my[..step].to_vec().into())))));
         let down: Bits =
             my[step..].iter().cloned().chain(std::iter::repeat_n(L::Zero, step)).collect();
         my = choose(amount, &down, &my, name);
     }
-    sticky = name(simp(&sticky.or(far.clone().and(L::Or(my.clone())))));
+    sticky = name(simplify(sticky.or(far.clone().and(L::Or(my.clone().into())))));
     my = choose(&far, &constant(0, width as u32), &my, name);
-    my[0] = simp(&my[0].clone().or(sticky));
-    let same = name(simp(&super::xor(&big[n], &small[n]).negate()));
+    my[0] = simplify(my[0].clone().or(sticky));
+    let same = name(simplify(super::xor(&big[n], &small[n]).negate()));
     let (mx1, my1): (Bits, Bits) = (
         mx.iter().cloned().chain([L::Zero]).collect(),
         my.iter().cloned().chain([L::Zero]).collect(),
@@ -474,7 +477,7 @@ pub fn add_real(a: &[L], b: &[L], subtract: bool, name: Namer) -> Bits {
     // A carry: shifted right once (its last bit kept as sticky), the exponent one up.
     let carry = total[width].clone();
     let mut down: Bits = total[1..].to_vec();
-    down[0] = simp(&down[0].clone().or(total[0].clone()));
+    down[0] = simplify(down[0].clone().or(total[0].clone()));
     let mut s = choose(&carry, &down, &total[..width], name);
     let e = add(&ex, &constant(0, f.wide_bits()), carry, name);
     let cancelled = all_zero(&s);
@@ -482,12 +485,12 @@ pub fn add_real(a: &[L], b: &[L], subtract: bool, name: Namer) -> Bits {
     let e = sub(&e, &count, name);
     let finite = round_pack(&e, s, L::Zero, f, name);
     let (x, y) = (unpack(a, f, name), unpack(b, f, name));
-    let inf = simp(&x.inf.clone().or(y.inf.clone()));
+    let inf = simplify(x.inf.clone().or(y.inf.clone()));
     // An exact zero: -0.0 only for two negative zeros (same signs).
-    let exact_zero = name(simp(&cancelled.and(inf.clone().negate())));
-    let zero_sign = simp(&same.clone().and(big[n].clone()));
+    let exact_zero = name(simplify(cancelled.and(inf.clone().negate())));
+    let zero_sign = simplify(same.clone().and(big[n].clone()));
     let sign = choose(&exact_zero, &[zero_sign], &[big[n].clone()], name).remove(0);
-    let opposite_inf = simp(&x.inf.and(y.inf).and(same.negate()));
+    let opposite_inf = simplify(x.inf.and(y.inf).and(same.negate()));
     // `±∞` takes the sign of the infinite operand, which the larger magnitude is.
     let specials = (exact_zero, name(inf), name(opposite_inf));
     special(finite, &sign, specials, (a, &x.nan), (b, &y.nan), f, name)
@@ -527,7 +530,7 @@ pub fn narrow_real(a: &[L], name: Namer) -> Bits {
     // The significand's top 27 bits (the leading 1 at bit 26, a subnormal's lower), the
     // rest sticky.
     let cut = DOUBLE.fraction + 1 - (SINGLE.fraction + 4);
-    let sticky = name(simp(&L::Or(m[..cut].to_vec())));
+    let sticky = name(simplify(L::Or(m[..cut].to_vec().into())));
     let s = m[cut..].to_vec();
     let e: Bits = exponent.iter().cloned().chain([L::Zero]).collect();
     let e = choose(&subnormal, &constant(1, 12), &e, name);
@@ -559,21 +562,21 @@ pub fn int_to_real(a: &[L], ty: IntType, name: Namer) -> Bits {
     let sign = if ty.signed { name(x[31].clone()) } else { L::Zero };
     let negated = sub(&constant(0, 32), &x, name);
     let mut m: Bits = x.iter().zip(&negated).map(|(p, n)| name(mux(&sign, n, p))).collect();
-    let zero = name(simp(&L::Or(m.clone()).negate()));
+    let zero = name(simplify(L::Or(m.clone().into()).negate()));
     let count = normalize(&mut m, 8, name);
     // The leading 1 at bit 31 - count: exponent 127 + 31 - count.
     let exponent = sub(&constant(158, 8), &count, name);
     let fraction = &m[8..31];
     let guard = &m[7];
-    let sticky = L::Or(m[..7].to_vec());
-    let round = name(simp(&guard.clone().and(sticky.or(fraction[0].clone()))));
+    let sticky = L::Or(m[..7].to_vec().into());
+    let round = name(simplify(guard.clone().and(sticky.or(fraction[0].clone()))));
     let unrounded: Bits = fraction.iter().chain(&exponent).cloned().collect();
     let rounded = add(&unrounded, &constant(0, 31), round, name);
     let not_zero = zero.negate();
     rounded
         .iter()
         .chain(std::iter::once(&sign))
-        .map(|b| simp(&b.clone().and(not_zero.clone())))
+        .map(|b| simplify(b.clone().and(not_zero.clone())))
         .collect()
 }
 
@@ -596,7 +599,7 @@ pub fn real_to_int(a: &[L], unsigned: bool, w: u32, name: Namer) -> Bits {
     let shift = sub(&e, &wide(126), name);
     let half = compare(CmpOp::Ge, ty, &shift, &wide(0), name);
     let far = compare(CmpOp::Ge, ty, &shift, &wide(64), name);
-    let rounds = name(simp(&half.and(far.negate())));
+    let rounds = name(simplify(half.and(far.negate())));
     let mut f: Bits = a[..23].to_vec();
     f.push(L::One);
     f.extend(std::iter::repeat_n(L::Zero, w));
@@ -607,13 +610,14 @@ pub fn real_to_int(a: &[L], unsigned: bool, w: u32, name: Namer) -> Bits {
             .collect();
         f = choose(on, &up, &f, name);
     }
-    let sticky = L::Or(f[..23].to_vec());
-    let round = name(simp(&f[23].clone().and(sticky.or(f[24].clone()))));
+    let sticky = L::Or(f[..23].to_vec().into());
+    let round = name(simplify(f[23].clone().and(sticky.or(f[24].clone()))));
     let magnitude = add(&f[24..], &constant(0, w as u32), round, name);
-    let magnitude: Bits = magnitude.iter().map(|b| simp(&b.clone().and(rounds.clone()))).collect();
+    let magnitude: Bits =
+        magnitude.iter().map(|b| simplify(b.clone().and(rounds.clone()))).collect();
     let sign = a[31].clone();
     if unsigned {
-        return magnitude.iter().map(|b| simp(&b.clone().and(sign.clone().negate()))).collect();
+        return magnitude.iter().map(|b| simplify(b.clone().and(sign.clone().negate()))).collect();
     }
     let negated = sub(&constant(0, w as u32), &magnitude, name);
     choose(&sign, &negated, &magnitude, name)

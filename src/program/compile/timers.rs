@@ -1,6 +1,6 @@
 //! Timers in the II compiler: a timer as the runtime counts its scans (`d/IN`, `IN/d` over the scans it counts), and timers and edge detectors called under a condition, which the runtime runs only at the scans they are called.
 
-use super::super::logic::{L, simp};
+use super::super::logic::{L, simp, simplify};
 use super::super::{EdgeKind, Preset, Timer, TimerModel};
 use super::{CompileError, Compiler, Pending, SignalKind, TimerInfo, canonical, simp_sum};
 use crate::syntax::delay_to_string;
@@ -20,7 +20,7 @@ impl Compiler<'_> {
         self.fresh.insert(h.clone(), kind);
         let pre = self.pre_name(&h);
         let g = self.guard.clone();
-        let next = simp(&g.clone().and(input.clone()).or(g.negate().and(L::Var(pre.clone()))));
+        let next = simplify(g.clone().and(input.clone()).or(g.negate().and(L::Var(pre.clone()))));
         let (rhs, recurrence) = self.finish_var(&pre, next, None);
         self.pending.push(Pending { var: h.clone(), rhs, recurrence });
         h
@@ -51,8 +51,8 @@ impl Compiler<'_> {
         match self.timer_delay(t) {
             Err(fresh) => fresh,
             Ok(None) => input,
-            Ok(Some(d)) if t.on_delay => simp(&L::Ton(d, Box::new(input))),
-            Ok(Some(d)) => simp(&L::Tof(Box::new(input), d)),
+            Ok(Some(d)) if t.on_delay => simplify(L::Ton(d, Box::new(input))),
+            Ok(Some(d)) => simplify(L::Tof(Box::new(input), d)),
         }
     }
 
@@ -180,9 +180,9 @@ fn signed(v: i64) -> String {
 /// `i · ¬prev`, falling `¬i · prev`, not rising `¬(i · ¬prev)`.
 pub(super) fn edge_of(kind: EdgeKind, input: L, prev: L) -> L {
     match kind {
-        EdgeKind::Rising => simp(&input.and(prev.negate())),
-        EdgeKind::Falling => simp(&input.negate().and(prev)),
-        EdgeKind::NotRising => simp(&input.and(prev.negate()).negate()),
+        EdgeKind::Rising => simplify(input.and(prev.negate())),
+        EdgeKind::Falling => simplify(input.negate().and(prev)),
+        EdgeKind::NotRising => simplify(input.and(prev.negate()).negate()),
     }
 }
 
@@ -288,7 +288,7 @@ impl Compiler<'_> {
         let q = match (t.on_delay, scans) {
             (true, 0) => input.clone().and(e),
             (false, 0) => input.clone().or(e),
-            (true, _) => L::And(vec![input.clone(), b.negate(), pre_due]),
+            (true, _) => L::And(vec![input.clone(), b.negate(), pre_due].into()),
             (false, _) => simp_sum(vec![input.clone(), b, pre_due]),
         };
         self.after_call(name, &input);
@@ -324,7 +324,7 @@ impl Compiler<'_> {
         let (held, broken, on_delay) = (r.held.clone(), r.broken.clone(), r.on_delay);
         let b = self.read(&broken);
         let breaks = if on_delay { input.clone().negate() } else { input.clone() };
-        self.current.insert(broken, simp(&b.or(breaks)));
+        self.current.insert(broken, simplify(b.or(breaks)));
         self.current.insert(held, input.clone());
     }
 
@@ -351,7 +351,7 @@ impl Compiler<'_> {
             let pre_e = L::Var(self.pre_name(&held));
             // The part `U` (TON) or `F` (TOF), timed over K − 2 more scans.
             let part = if on_delay {
-                L::And(vec![pre_e, e.clone(), b.negate()])
+                L::And(vec![pre_e, e.clone(), b.negate()].into())
             } else {
                 e.clone().negate().and(pre_e.or(b))
             };
@@ -365,7 +365,7 @@ impl Compiler<'_> {
                     self.pending.push(Pending { var: runs.clone(), rhs: part, recurrence: None });
                     // `U · d/U` (= `d/U`): the run going on now, stated where the
                     // Boolean case splits, which keep timers opaque, can read it.
-                    L::And(vec![L::var(&runs), L::Ton(d, Box::new(L::var(&runs)))])
+                    L::And(vec![L::var(&runs), L::Ton(d, Box::new(L::var(&runs)))].into())
                 }
                 Ok(d) => L::Tof(Box::new(part), d),
                 Err(_) => {
