@@ -48,6 +48,10 @@ enum Want {
     Given(String),
     /// `STARTED`: 1 from the end of the first scan on.
     Started,
+    /// A name the hypotheses define themselves (a timer's or edge detector's input held
+    /// between the calls that run it, an intermediate value): read FALSE here, its
+    /// equation sets it, as in the differential test.
+    Defined(String),
 }
 
 /// The programs of `p`'s instance tree with their instance-name paths.
@@ -124,9 +128,8 @@ fn wants(p: &Prepared) -> Result<Vec<Want>, String> {
                 });
                 edge.unwrap_or_else(|| Want::Member(n.clone()))
             }
-            Src::IntBit { .. } | Src::Defined(_) | Src::PreDefined(_) => {
-                return Err(READS_INTEGERS.into());
-            }
+            Src::IntBit { .. } => return Err(READS_INTEGERS.into()),
+            Src::Defined(n) | Src::PreDefined(n) => Want::Defined(n.clone()),
             Src::Edge(k) => {
                 let (path, owner, pin) = &p.lowered.edges[p.edge_of[k]];
                 let (names, prog) = at_path(plc, path).ok_or("an edge detector's path")?;
@@ -206,7 +209,7 @@ fn request(
             Want::Member(n) => Some(json!({ "bit": n })),
             Want::Done(n) => Some(json!({ "int": n })),
             Want::Edge(path, id, field, rank) => Some(json!({ "edge": [path, id, field, rank] })),
-            Want::Given(_) | Want::Started => None,
+            Want::Given(_) | Want::Started | Want::Defined(_) => None,
         })
         .collect();
     let req = json!({
@@ -317,6 +320,7 @@ fn run(programs: Vec<(u64, String, bool)>, fig: &mut Figures, tc: &mut Toolchain
                 let (name, v) = match w {
                     Want::Given(n) => (n.clone(), schedule[scan].get(n).copied().unwrap_or(false)),
                     Want::Started => ("STARTED".to_string(), true),
+                    Want::Defined(n) => (n.clone(), false),
                     Want::Member(n) | Want::Done(n) => {
                         let t = next.next().ok_or("a missing trace")?;
                         (n.clone(), *t.get(scan).ok_or("a short trace")? == b'1')
