@@ -319,12 +319,6 @@ impl crate::program::simulate::Reference for LdProgram {
     }
 }
 
-impl crate::program::simulate::Reference for plcopen::PlcProgram {
-    fn simulator(&self) -> Box<dyn ScanSimulator> {
-        Box::new(plcopen::PlcSimulator::new(self))
-    }
-}
-
 impl crate::program::simulate::Reference for plcopen::PlcReference {
     fn simulator(&self) -> Box<dyn ScanSimulator> {
         Box::new(plcopen::PlcSimulator::new(&self.program).showing(self.edges.clone()))

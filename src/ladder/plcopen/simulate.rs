@@ -609,7 +609,7 @@ impl PlcSimulator {
                     }
                 }
                 Some(s @ (Std::Sr | Std::Rs)) => {
-                    let (set, reset) = if s == Std::Sr { ("S1", "R") } else { ("S", "R1") };
+                    let (set, reset) = s.set_reset().unwrap_or_default();
                     let (sv, rv) = (get(set), get(reset));
                     let q = self.p.hidden_name(k, "Q1").is_some_and(|h| self.bit(h));
                     let q = if s == Std::Sr { sv || (!rv && q) } else { !rv && (sv || q) };
@@ -666,8 +666,7 @@ impl PlcSimulator {
         values: &BTreeMap<String, bool>,
     ) {
         let get = |n: &str| values.get(n).copied().unwrap_or(false);
-        if let Some(s @ (Std::Sr | Std::Rs)) = std {
-            let (set, reset) = if s == Std::Sr { ("S1", "R") } else { ("S", "R1") };
+        if let Some((set, reset)) = std.and_then(Std::set_reset) {
             self.set_hidden(k, set, get(set));
             self.set_hidden(k, reset, get(reset));
         }

@@ -148,7 +148,7 @@ impl<'p> Lower<'p> {
                 self.push_block(stmts, span);
             }
             s @ (Std::Sr | Std::Rs) => {
-                let (set, reset) = if s == Std::Sr { ("S1", "R") } else { ("S", "R1") };
+                let (set, reset) = s.set_reset().unwrap_or_default();
                 let sv = value(set);
                 let rv = value(reset);
                 let (hs, hr, q) = (hidden(set), hidden(reset), hidden("Q1"));

@@ -307,11 +307,8 @@ pub(super) fn check_pou(
                             }
                         }
                         let mut pins_of = vec![s.output().to_string()];
-                        if matches!(s, Std::Sr) {
-                            pins_of.extend(["S1".into(), "R".into()]);
-                        }
-                        if matches!(s, Std::Rs) {
-                            pins_of.extend(["S".into(), "R1".into()]);
+                        if let Some((set, reset)) = s.set_reset() {
+                            pins_of.extend([set.into(), reset.into()]);
                         }
                         if matches!(s, Std::Tp) {
                             pins_of.push("DONE".into());

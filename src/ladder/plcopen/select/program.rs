@@ -62,6 +62,15 @@ impl Std {
     pub fn is_fb(self) -> bool {
         matches!(self, Std::Ton | Std::Tof | Std::Tp | Std::Sr | Std::Rs | Std::RTrig | Std::FTrig)
     }
+    /// The set and reset pins of `SR` (`S1`, `R`) and `RS` (`S`, `R1`), the inputs its
+    /// instance keeps.
+    pub fn set_reset(self) -> Option<(&'static str, &'static str)> {
+        match self {
+            Std::Sr => Some(("S1", "R")),
+            Std::Rs => Some(("S", "R1")),
+            _ => None,
+        }
+    }
     /// Its Boolean output pin.
     pub fn output(self) -> &'static str {
         match self {
