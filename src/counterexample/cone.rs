@@ -1,9 +1,10 @@
 //! A property's cone: the program's equations that compute what it reads, through any chain, and the `assume` statements about them; whole, or cut after a number of equations taken breadth first.
 
-use std::collections::{HashMap, HashSet, VecDeque};
+use std::collections::VecDeque;
 
 use super::Program;
 use super::unroll::Model;
+use crate::program::fast_hash::{FastMap as HashMap, FastSet as HashSet};
 use crate::term::{Expr, Symbol, Term};
 
 impl Program<'_> {
@@ -46,7 +47,7 @@ impl Program<'_> {
                 m
             })
             .collect();
-        let mut mentioning: HashMap<Symbol, Vec<usize>> = HashMap::new();
+        let mut mentioning: HashMap<Symbol, Vec<usize>> = HashMap::default();
         for (i, m) in mentioned.iter().enumerate() {
             for n in m {
                 mentioning.entry(*n).or_default().push(i);

@@ -72,9 +72,11 @@ pub(super) fn changed_inputs(trace: &ScanTrace, base: &ScanTrace) -> BTreeSet<St
             (None, None) => return changed,
             (Some((n, _)), None) => (*n, a.next().map(|p| p.1), None),
             (None, Some((n, _))) => (*n, None, b.next().map(|p| p.1)),
-            (Some((n, _)), Some((m, _))) if n < m => (*n, a.next().map(|p| p.1), None),
-            (Some((n, _)), Some((m, _))) if m < n => (*m, None, b.next().map(|p| p.1)),
-            (Some((n, _)), Some(_)) => (*n, a.next().map(|p| p.1), b.next().map(|p| p.1)),
+            (Some((n, _)), Some((m, _))) => match n.cmp(m) {
+                std::cmp::Ordering::Less => (*n, a.next().map(|p| p.1), None),
+                std::cmp::Ordering::Greater => (*m, None, b.next().map(|p| p.1)),
+                std::cmp::Ordering::Equal => (*n, a.next().map(|p| p.1), b.next().map(|p| p.1)),
+            },
         };
         if differ(x, y) {
             changed.insert(name.clone());

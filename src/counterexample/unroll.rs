@@ -14,11 +14,12 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 use varisat::Lit;
 
+use crate::program::fast_hash::FastSet;
 use crate::sat_trace::Traced;
 
 use crate::kernel::Rel;
 use crate::semantics::{Assignment, Time, eval_delay};
-use crate::term::{Delay, Expr, Id, Language as _, Term, initial_values};
+use crate::term::{Delay, Expr, Id, Language as _, Symbol, Term, initial_values};
 
 /// Boolean operations over some kind of value (a `bool`, a SAT literal).
 pub trait Bits {
@@ -252,18 +253,19 @@ impl Model {
 
     /// The names the model leaves free (not defined) among `exprs`.
     pub fn free_names<'a>(&'a self, exprs: impl Iterator<Item = &'a Expr>) -> BTreeSet<String> {
-        let defined: BTreeSet<&str> = self.defs.iter().map(|(n, _)| n.as_str()).collect();
-        let mut out = BTreeSet::new();
+        let defined: FastSet<&str> = self.defs.iter().map(|(n, _)| n.as_str()).collect();
+        let mut free: FastSet<Symbol> = FastSet::default();
         for e in self.terms().chain(exprs) {
             for node in e.as_ref() {
                 if let Term::Name(n) = node
+                    && !free.contains(n)
                     && !defined.contains(n.as_str())
                 {
-                    out.insert(n.as_str().to_string());
+                    free.insert(*n);
                 }
             }
         }
-        out
+        free.into_iter().map(|n| n.as_str().to_string()).collect()
     }
 
     /// Every delay literal of a timer in the model and in `exprs`.

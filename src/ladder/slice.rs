@@ -4,11 +4,12 @@
 //! the compiled equations, so that a run of a part is still the simulator's own reading of
 //! the program.
 
-use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
+use std::collections::{BTreeMap, BTreeSet};
 use std::sync::{Arc, OnceLock};
 
 use super::ldmicro::{ElementKind, LdProgram};
 use super::simulate::{RunRecord, Simulator};
+use crate::program::fast_hash::{FastMap as HashMap, FastSet as HashSet};
 
 impl LdProgram {
     /// The rungs that can change `names`, in scan order: those that write a name of
@@ -67,7 +68,7 @@ impl LdProgram {
         let all = tables.writing(names.iter().map(String::as_str), |_| true).0;
         // Moved: every rung of the slice that reads an input of `changed` or a name a
         // moved rung writes. (A writer of a name a rung of the slice reads is in it.)
-        let mut moved = HashSet::new();
+        let mut moved = HashSet::default();
         let mut seen: HashSet<&str> = changed.iter().map(String::as_str).collect();
         // The changed inputs some rung of the slice reads (from the smaller side).
         let mut pending: Vec<&str> = if changed.len() <= all.len() {
@@ -129,8 +130,8 @@ impl LdProgram {
     fn slice_tables(&self) -> Option<SliceTables> {
         let mut reads = Vec::with_capacity(self.rungs.len());
         let mut writes = Vec::with_capacity(self.rungs.len());
-        let mut writers: HashMap<String, Vec<usize>> = HashMap::new();
-        let mut readers: HashMap<String, Vec<usize>> = HashMap::new();
+        let mut writers: HashMap<String, Vec<usize>> = HashMap::default();
+        let mut readers: HashMap<String, Vec<usize>> = HashMap::default();
         for (i, rung) in self.rungs.iter().enumerate() {
             let (mut r, mut w) = (Vec::new(), Vec::new());
             for e in rung.elements() {
@@ -187,7 +188,7 @@ impl SliceTables {
         names: impl Iterator<Item = &'a str>,
         follow: impl Fn(usize) -> bool,
     ) -> (HashSet<usize>, HashSet<usize>) {
-        let (mut taken, mut left) = (HashSet::new(), HashSet::new());
+        let (mut taken, mut left) = (HashSet::default(), HashSet::default());
         let mut seen: HashSet<&str> = names.collect();
         let mut pending: Vec<&str> = seen.iter().copied().collect();
         while let Some(n) = pending.pop() {

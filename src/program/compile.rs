@@ -415,9 +415,9 @@ pub struct EquationIndex {
     /// Per equation in scan order: the name it defines and the index of its hypothesis.
     pub equations: Vec<(String, usize)>,
     /// Per name: the positions in `equations` of those that define it.
-    pub defining: std::collections::HashMap<String, Vec<usize>>,
+    pub defining: HashMap<String, Vec<usize>>,
     /// Per name: the hypotheses (any kind, by index) that mention it, in order.
-    pub mentioning: std::collections::HashMap<Symbol, Vec<usize>>,
+    pub mentioning: HashMap<Symbol, Vec<usize>>,
     /// The hypotheses that mention no name.
     pub nameless: Vec<usize>,
 }
