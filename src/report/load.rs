@@ -235,37 +235,48 @@ fn same_equations(
         // Compiler-made names carry their rung number: compare them by what they stand
         // for. An intermediate signal (a part of an integer value) stands for its
         // definition, named by a hash of the definition's canonical text, which names the
-        // intermediates it reads the same way (defined before they are read).
-        use std::collections::BTreeMap;
-        let mut defined: BTreeMap<String, String> = BTreeMap::new();
+        // intermediates it reads the same way (defined before they are read). Names are
+        // looked up by hash, each word of a side's text read in place (a REAL-heavy
+        // program's sides run to megabytes).
+        use crate::program::fast_hash::FastMap;
+        use std::fmt::Write as _;
+        let kinds: FastMap<&str, &SignalKind> =
+            compiled.signals.iter().map(|(n, k)| (n.as_str(), k)).collect();
+        let mut defined: FastMap<String, String> = FastMap::default();
         let canonical =
-            |name: &str, defined: &BTreeMap<String, String>| match compiled.signals.get(name) {
-                Some(SignalKind::Fresh { element, .. }) => format!("fresh[{element}]"),
-                Some(SignalKind::EdgeMemory { element, .. }) => format!("edge[{element}]"),
-                Some(SignalKind::Intermediate { .. }) => {
-                    defined.get(name).cloned().unwrap_or_else(|| name.to_string())
+            |name: &str, defined: &FastMap<String, String>, out: &mut String| match kinds.get(name)
+            {
+                Some(SignalKind::Fresh { element, .. }) => {
+                    let _ = write!(out, "fresh[{element}]");
                 }
-                _ => name.to_string(),
+                Some(SignalKind::EdgeMemory { element, .. }) => {
+                    let _ = write!(out, "edge[{element}]");
+                }
+                Some(SignalKind::Intermediate { .. }) => {
+                    out.push_str(defined.get(name).map_or(name, String::as_str))
+                }
+                _ => out.push_str(name),
             };
         let side = |e| crate::syntax::term_to_string(e, crate::syntax::Notation::Ascii);
-        let words = |text: &str, defined: &BTreeMap<String, String>| {
-            let mut out = String::new();
-            let mut word = String::new();
-            for c in text.chars().chain(std::iter::once(' ')) {
-                if c.is_alphanumeric() || c == '_' {
-                    word.push(c);
-                } else {
-                    out.push_str(&canonical(&std::mem::take(&mut word), defined));
+        let words = |text: &str, defined: &FastMap<String, String>| {
+            let mut out = String::with_capacity(text.len());
+            let mut start = 0;
+            for (i, c) in text.char_indices() {
+                if !(c.is_alphanumeric() || c == '_') {
+                    canonical(&text[start..i], defined, &mut out);
                     out.push(c);
+                    start = i + c.len_utf8();
                 }
             }
+            canonical(&text[start..], defined, &mut out);
+            out.push(' ');
             out
         };
         let mut all: Vec<String> = Vec::new();
         for h in &compiled.hypotheses {
             let lhs = side(&h.lhs);
             let rhs = words(&side(&h.rhs), &defined);
-            if matches!(compiled.signals.get(&lhs), Some(SignalKind::Intermediate { .. })) {
+            if matches!(kinds.get(lhs.as_str()), Some(SignalKind::Intermediate { .. })) {
                 use std::hash::{Hash, Hasher};
                 let mut hasher = std::collections::hash_map::DefaultHasher::new();
                 rhs.hash(&mut hasher);
