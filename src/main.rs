@@ -566,6 +566,7 @@ fn prove(run: Run, common: Common) -> ExitCode {
             || matches!(head.format, Format::Json | Format::Html)
             || tail.html.is_some(),
         run_signals: head.json || matches!(head.format, Format::Json),
+        equations: matches!(head.format, Format::Html) || tail.html.is_some(),
     };
     let format = if head.json { Format::Json } else { head.format };
     let outputs = report::export::Outputs {

@@ -123,6 +123,21 @@ impl ScanTrace {
         Signal::from_steps(self.horizon(), first, &changes)
     }
 
+    /// The trace of the inputs of `names` only: walked from the smaller side (a run kept
+    /// for a whole plant may set thousands of inputs, a property's cone read a few).
+    fn restricted(&self, names: &BTreeSet<String>) -> ScanTrace {
+        let values = if names.len() < self.values.len() {
+            names.iter().filter_map(|n| Some((n.clone(), self.values.get(n)?.clone()))).collect()
+        } else {
+            self.values
+                .iter()
+                .filter(|(n, _)| names.contains(*n))
+                .map(|(n, v)| (n.clone(), v.clone()))
+                .collect()
+        };
+        ScanTrace { cycle: self.cycle.clone(), scans: self.scans, values }
+    }
+
     fn truncate(&mut self, scans: usize) {
         self.scans = scans.min(self.scans);
         for v in self.values.values_mut() {

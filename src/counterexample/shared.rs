@@ -550,8 +550,7 @@ pub fn refute_shared(
     for kept in &runs {
         let Some(v) = violated_at(goal, kept) else { continue };
         let (model, free) = cone.get_or_insert_with(cone_of);
-        let mut trace = kept.trace.clone();
-        trace.values.retain(|n, _| free.contains(n));
+        let mut trace = kept.trace.restricted(free);
         trace.truncate(v + 1);
         // Of the inputs drawn, only those the violation needs stay set; a run that drew
         // many of the property's inputs costs more than a search of its own.
@@ -747,8 +746,7 @@ impl<'a> Near<'a> {
             })
             .collect();
         let model = cnf.solve_preferring(&[some], &preferred, PREFER_ROUNDS)?;
-        let mut out = trace.clone();
-        out.values.retain(|n, _| self.free.contains(n));
+        let mut out = trace.restricted(self.free);
         let mut changed = Vec::new();
         for (n, lits) in chosen {
             let values: Vec<bool> = lits.iter().map(|l| model.contains(l)).collect();

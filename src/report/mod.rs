@@ -80,6 +80,9 @@ pub struct Options {
     /// HTML page need only the signals the diagram shows, which a deep cone makes far
     /// fewer).
     pub run_signals: bool,
+    /// Put the program's compiled equations, printed, into the report (the HTML page's
+    /// appendix shows them; a plant of 10,000 units has 110,000).
+    pub equations: bool,
 }
 
 impl Default for Options {
@@ -96,6 +99,7 @@ impl Default for Options {
             plcopen: Default::default(),
             proof_text: true,
             run_signals: true,
+            equations: true,
         }
     }
 }
@@ -591,9 +595,8 @@ pub fn run_program_with(
     let mut report = finish(Some(program.to_string()), paths, warnings, properties);
     report.timers = Some(opts.timers.as_str());
     // After the properties are read: names print as they spell them.
-    report.equations = loaded
-        .compiled
-        .hypotheses
+    let shown = if opts.equations { &loaded.compiled.hypotheses[..] } else { &[] };
+    report.equations = shown
         .iter()
         .map(|h| {
             let goal = h.goal();
