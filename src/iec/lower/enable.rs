@@ -32,6 +32,12 @@ impl Enable<'_> {
     pub(super) fn guarded(&self) -> bool {
         self.guard.is_some()
     }
+
+    /// The call's `ENO => x` are copied among its outputs (a declared `ENO`, in its
+    /// place), not by [`Lowering::enabled_call`].
+    pub(super) fn eno_among_outputs(&mut self) {
+        self.eno.clear();
+    }
 }
 
 impl Lowering<'_> {
@@ -92,8 +98,9 @@ impl Lowering<'_> {
     }
 
     /// The call: `before` (what it writes whatever its EN: the inputs it gives), the
-    /// write of its EN, its `body` where EN is TRUE, then `after` (its `=>` outputs,
-    /// copied whatever its EN) and its `ENO`s.
+    /// write of its EN, its `body` where EN is TRUE, then its `ENO`s and `after` (its
+    /// `=>` outputs, copied whatever its EN): matiec copies the outputs in their
+    /// declaration order, the `ENO` it declares itself first.
     pub(super) fn enabled_call(
         &mut self,
         en: Enable<'_>,
@@ -113,11 +120,11 @@ impl Lowering<'_> {
             Some(g) => out.extend(Stmt::guarded(g, body, span)),
             None => out.extend(body),
         }
-        out.extend(after);
         let eno = en.eno_bit.as_deref().map_or(on, BoolExpr::var);
         for (negated, target) in en.eno {
             out.extend(self.eno_copy(negated, target, &eno, span));
         }
+        out.extend(after);
         out
     }
 

@@ -361,31 +361,47 @@ impl Lowering<'_> {
         self.run_known(&before);
         self.run_known(&body);
         body.extend(self.body(&pou, names.clone()));
-        let out = self.output_copies(&pou, &names, args, span);
+        let out = self.output_copies(&pou, &names, args, span, true);
+        // A declared `ENO` is copied among the outputs, in its place.
+        if pou.vars.iter().any(|v| v.class == VarClass::Output && v.name.key() == "ENO") {
+            en.eno_among_outputs();
+        }
         self.enabled_call(en, [before, body, out], span)
     }
 
-    /// The copies of a call's `=>` outputs (`ENO` is the caller's business) from the
-    /// variables `names` gives the VAR_OUTPUTs of `pou`, after its body.
+    /// The copies of a call's `=>` outputs from the variables `names` gives the
+    /// VAR_OUTPUTs of `pou`, after its body, in the order matiec copies them: the
+    /// outputs' declaration order (whatever the call's). `ENO` is the caller's business
+    /// ([`Lowering::enabled_call`], [`Lowering::eno_copies`]), but a function block's
+    /// declared `ENO` (`with_eno`), copied in its place.
     fn output_copies(
         &mut self,
         pou: &ast::Pou,
         names: &BTreeMap<String, Sym>,
         args: &[Arg],
         span: Span,
+        with_eno: bool,
     ) -> Vec<Stmt> {
-        let mut out = Vec::new();
+        let outputs: Vec<String> =
+            pou.vars.iter().filter(|v| v.class == VarClass::Output).map(|v| v.name.key()).collect();
+        let mut given: Vec<(Option<usize>, &Ident, bool, &ast::Expr)> = Vec::new();
         for a in args {
             let Arg::Output(pin, negated, target) = a else { continue };
-            if super::enable::is_en_eno(a) {
+            let rank = outputs.iter().position(|o| *o == pin.key());
+            if super::enable::is_en_eno(a) && !(with_eno && rank.is_some()) {
                 continue;
             }
-            let declared =
-                pou.vars.iter().any(|v| v.class == VarClass::Output && v.name.key() == pin.key());
+            given.push((rank, pin, *negated, target));
+        }
+        // Stable: two copies of one output stay in the call's order.
+        given.sort_by_key(|g| g.0.unwrap_or(usize::MAX));
+        let mut out = Vec::new();
+        for (rank, pin, negated, target) in given {
+            let declared = rank.is_some();
             match names.get(&pin.key()) {
                 Some(Sym { ty: Ty::Bool, name, .. }) if declared => {
                     let q = BoolExpr::var(name);
-                    let value = if *negated { BoolExpr::negate(q) } else { q };
+                    let value = if negated { BoolExpr::negate(q) } else { q };
                     out.extend(self.assign_value(target, value, span));
                 }
                 Some(Sym { ty: Ty::Int(t), name, .. }) if declared && !negated => {
@@ -480,7 +496,7 @@ impl Lowering<'_> {
             None => en_given,
         };
         let mut body = self.body(&pou, names.clone());
-        body.extend(self.output_copies(&pou, &names, args, f.span));
+        body.extend(self.output_copies(&pou, &names, args, f.span, false));
         match &guard {
             Some(g) => out.extend(Stmt::guarded(g, body, f.span)),
             None => out.extend(body),
