@@ -15,6 +15,7 @@
 
 mod calls;
 mod durations;
+mod effects;
 mod elapsed;
 mod enable;
 mod expr;
@@ -340,6 +341,8 @@ struct Lowering<'s> {
     /// The FB instances some call gives `EN` (key; grows like `opaque`): every call of
     /// them runs its body under the instance's EN bit ([`enable`]).
     enabled: BTreeSet<String>,
+    /// The user FB instances whose type declares `EN : BOOL := FALSE` (key).
+    en_off: BTreeSet<String>,
     /// While a call under its EN is lowered: the writes of the inputs it keeps, which
     /// run whatever its EN.
     kept_writes: Option<Vec<Stmt>>,
@@ -402,6 +405,7 @@ impl<'s> Lowering<'s> {
             called: BTreeMap::new(),
             multi: BTreeSet::new(),
             enabled: BTreeSet::new(),
+            en_off: BTreeSet::new(),
             kept_writes: None,
             enable: None,
             elapsed: BTreeMap::new(),
@@ -606,6 +610,7 @@ impl<'s> Lowering<'s> {
 
     /// The statements of `s`, after those the user functions it calls run.
     fn stmt(&mut self, s: &ast::Stmt, depth: usize) -> Vec<Stmt> {
+        self.check_effects(s);
         let outer = std::mem::take(&mut self.prelude);
         let out = self.stmt_alone(s, depth);
         let mut all = std::mem::replace(&mut self.prelude, outer);

@@ -3,7 +3,7 @@
 use super::Lowering;
 use crate::diag::Span;
 use crate::iec::ast::{self, Arg};
-use crate::program::{BoolExpr, Stmt, WriteKind};
+use crate::program::{BoolExpr, CmpOp, Stmt, WriteKind};
 
 /// What a call's `EN` and `ENO` ask of it.
 pub(super) struct Enable<'a> {
@@ -13,6 +13,9 @@ pub(super) struct Enable<'a> {
     set: Vec<Stmt>,
     /// Each `ENO => x` (negated or not).
     eno: Vec<(bool, &'a ast::Expr)>,
+    /// The instance's `ENO` bit, where its body may write it (declared, or named by the
+    /// body): each call sets it to its EN before the body, and `ENO => x` reads it.
+    pub(super) eno_bit: Option<String>,
 }
 
 /// Whether `a` is the call's `EN := …` or `ENO => …` (handled here, not by the callee).
@@ -28,6 +31,12 @@ impl Enable<'_> {
     /// Whether the body runs under the instance's EN.
     pub(super) fn guarded(&self) -> bool {
         self.guard.is_some()
+    }
+
+    /// The call's `ENO => x` are copied among its outputs (a declared `ENO`, in its
+    /// place), not by [`Lowering::enabled_call`].
+    pub(super) fn eno_among_outputs(&mut self) {
+        self.eno.clear();
     }
 }
 
@@ -56,8 +65,12 @@ impl Lowering<'_> {
                 _ => {}
             }
         }
-        let guard = self.enabled.contains(&key).then(|| BoolExpr::var(&self.en_bit(inst)));
-        Enable { guard, set, eno }
+        // A declared `EN := FALSE` no call gives: the body never runs.
+        let guard = match self.enabled.contains(&key) {
+            true => Some(BoolExpr::var(&self.en_bit(inst))),
+            false => self.en_off.contains(&key).then_some(BoolExpr::Const(false)),
+        };
+        Enable { guard, set, eno, eno_bit: None }
     }
 
     /// Whether the standard FB instance `key` is followed call by call (its edge
@@ -74,18 +87,20 @@ impl Lowering<'_> {
         self.kept_writes.as_mut().unwrap_or(out).extend(writes);
     }
 
-    /// The hidden bit of the instance's `EN`, TRUE at power-up.
+    /// The hidden bit of the instance's `EN`, TRUE at power-up (unless declared
+    /// `EN : BOOL := FALSE`).
     fn en_bit(&mut self, inst: &str) -> String {
         let bit = self.hidden(inst, "EN");
-        if !self.starts.contains(&bit) {
+        if !self.starts.contains(&bit) && !self.en_off.contains(&inst.to_ascii_uppercase()) {
             self.starts.push(bit.clone());
         }
         bit
     }
 
     /// The call: `before` (what it writes whatever its EN: the inputs it gives), the
-    /// write of its EN, its `body` where EN is TRUE, then `after` (its `=>` outputs,
-    /// copied whatever its EN) and its `ENO`s.
+    /// write of its EN, its `body` where EN is TRUE, then its `ENO`s and `after` (its
+    /// `=>` outputs, copied whatever its EN): matiec copies the outputs in their
+    /// declaration order, the `ENO` it declares itself first.
     pub(super) fn enabled_call(
         &mut self,
         en: Enable<'_>,
@@ -95,15 +110,45 @@ impl Lowering<'_> {
         let [before, body, after] = parts;
         let mut out = before;
         out.extend(en.set);
+        let on = en.guard.clone().unwrap_or(BoolExpr::Const(true));
+        // `if (!EN) { ENO := FALSE; return; } else ENO := TRUE;`
+        if let Some(bit) = &en.eno_bit {
+            let (target, value) = (bit.clone(), on.clone());
+            out.push(Stmt::Write { target, kind: WriteKind::Assign, value, span });
+        }
         match &en.guard {
             Some(g) => out.extend(Stmt::guarded(g, body, span)),
             None => out.extend(body),
         }
-        out.extend(after);
-        let eno = en.guard.unwrap_or(BoolExpr::Const(true));
+        let eno = en.eno_bit.as_deref().map_or(on, BoolExpr::var);
         for (negated, target) in en.eno {
-            let value = if negated { BoolExpr::negate(eno.clone()) } else { eno.clone() };
-            out.extend(self.assign_value(target, value, span));
+            out.extend(self.eno_copy(negated, target, &eno, span));
+        }
+        out.extend(after);
+        out
+    }
+
+    /// `ENO => target` (`NOT ENO =>` where `negated`) of a call whose ENO is `eno`.
+    fn eno_copy(
+        &mut self,
+        negated: bool,
+        target: &ast::Expr,
+        eno: &BoolExpr,
+        span: Span,
+    ) -> Vec<Stmt> {
+        let value = if negated { BoolExpr::negate(eno.clone()) } else { eno.clone() };
+        self.assign_value(target, value, span)
+    }
+
+    /// The copies of the `ENO => x` among a function call's `args`, its ENO being `eno`.
+    pub(super) fn eno_copies(&mut self, args: &[Arg], eno: &BoolExpr, span: Span) -> Vec<Stmt> {
+        let mut out = Vec::new();
+        for a in args {
+            if let Arg::Output(n, negated, target) = a
+                && n.key() == "ENO"
+            {
+                out.extend(self.eno_copy(*negated, target, eno, span));
+            }
         }
         out
     }
@@ -173,13 +218,15 @@ impl Lowering<'_> {
                         ));
                     }
                 },
+                // Written by [`Lowering::std_eno`].
+                Arg::Output(n, _, _) if n.key() == "ENO" => {}
                 // Refused (the lowering fails), so the call is read without it.
                 Arg::Output(n, _, _) => {
                     let what = format!("the output `{}` of the function `{}`", n.name, f.name);
                     self.refuse(
                         n.span,
                         &what,
-                        "read the function's result; its ENO is not modelled",
+                        "a standard function has no output but its result and ENO",
                     );
                 }
             }
@@ -196,5 +243,69 @@ impl Lowering<'_> {
             values = formal.into_iter().map(|(_, x)| x).collect();
         }
         Ok(FnArgs { values, en })
+    }
+}
+
+impl Lowering<'_> {
+    /// The `ENO => x` of the standard function call `f(args)` (`values`: its inputs in
+    /// parameter order; `en`: its `EN`), run before the statement as matiec's C runs it
+    /// while evaluating it: `TEST_EN` (`lib/C/iec_std_functions.h`) sets ENO to EN;
+    /// `DIV`'s `TEST_EN_COND` clears it where the divisor is 0 too. Refused for the
+    /// functions whose condition ii-prove does not compute (`MUX`'s selector out of
+    /// range, an invalid BCD, the string functions' lengths and positions).
+    pub(super) fn std_eno(
+        &mut self,
+        f: &ast::Ident,
+        args: &[Arg],
+        values: &[&ast::Expr],
+        en: Option<BoolExpr>,
+    ) {
+        let Some(pin) = args.iter().find_map(|a| match a {
+            Arg::Output(n, _, _) if n.key() == "ENO" => Some(n),
+            _ => None,
+        }) else {
+            return;
+        };
+        let name = f.key();
+        let on = en.unwrap_or(BoolExpr::Const(true));
+        let eno = match name.as_str() {
+            "DIV" => match values.get(1) {
+                Some(d) if plain(d) => match self.int_expr(d) {
+                    Ok(d) => {
+                        let zero = super::ints::Int::literal(0);
+                        let nonzero = self.int_compare_values(CmpOp::Ne, d, zero, f.span);
+                        Some(BoolExpr::and(on, nonzero))
+                    }
+                    Err(_) => None,
+                },
+                _ => None,
+            },
+            "MUX" | "LEFT" | "RIGHT" | "MID" | "DELETE" | "INSERT" | "REPLACE" => None,
+            n if n.starts_with("BCD_TO_") || n.contains("_BCD_TO_") => None,
+            _ => Some(on),
+        };
+        match eno {
+            Some(eno) => {
+                let copies = self.eno_copies(args, &eno, f.span);
+                self.prelude.extend(copies);
+            }
+            None => self.refuse(
+                pin.span,
+                &format!("the ENO of `{}`", f.name),
+                "matiec clears it where an input is out of range, which ii-prove does not compute here",
+            ),
+        }
+    }
+}
+
+/// Whether `e` calls no function (lowering it again adds nothing to run before it).
+fn plain(e: &ast::Expr) -> bool {
+    use ast::ExprKind as K;
+    match &e.kind {
+        K::Call(..) => false,
+        K::Member(x, _) | K::Unary(_, x) => plain(x),
+        K::Binary(_, a, b) => plain(a) && plain(b),
+        K::Index(x, ix) => plain(x) && ix.iter().all(plain),
+        K::Bool(_) | K::Int(_) | K::Time(_) | K::Literal(_) | K::Var(_) => true,
     }
 }

@@ -166,6 +166,7 @@ impl Lowering<'_> {
                 None => self.not_bool(e, &format!("the result of `{}`", f.name)),
             };
         }
+        let call_args = args;
         let args = match self.std_args(f, args) {
             Ok(args) => args,
             Err(why) => {
@@ -176,6 +177,7 @@ impl Lowering<'_> {
         };
         // Where `EN` is FALSE matiec's `TEST_EN` returns FALSE.
         let en = args.en.map(|x| self.bool_expr(x));
+        self.std_eno(f, call_args, &args.values, en.clone());
         let value = self.std_function(f, &args.values, e);
         match en {
             Some(en) => BoolExpr::and(en, value),

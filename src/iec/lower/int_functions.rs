@@ -15,14 +15,29 @@ impl Lowering<'_> {
         args: &[Arg],
         e: &ast::Expr,
     ) -> Result<Int, Opaque> {
-        let args = self.std_args(f, args)?;
+        let call_args = args;
+        let args = match self.std_args(f, args) {
+            Ok(args) => args,
+            Err(why) => {
+                let eno = call_args.iter().find_map(|a| match a {
+                    Arg::Output(n, _, _) if n.key() == "ENO" => Some(n.span),
+                    _ => None,
+                });
+                if let Some(span) = eno {
+                    let what = format!("the ENO of `{}`", f.name);
+                    self.refuse(span, &what, &why);
+                }
+                return Err(why);
+            }
+        };
+        let en = args.en.map(|x| self.bool_expr(x));
+        self.std_eno(f, call_args, &args.values, en.clone());
         let value = self.int_function_of(f, &args.values, e)?;
-        let Some(en) = args.en else { return Ok(value) };
+        let Some(en) = en else { return Ok(value) };
         // Where `EN` is FALSE matiec's `TEST_EN` returns the type's initial value, 0.
         let Some(t) = value.ty else {
             return Err(format!("`{}` of literals alone under `EN` is not computed", f.name));
         };
-        let en = self.bool_expr(en);
         Ok(Int::of(IntExpr::ite(en, value.in_type(t), IntExpr::Const(0)), Some(t)))
     }
 

@@ -57,28 +57,58 @@ impl Lowering<'_> {
             return;
         }
         let Some(pou) = self.user.get(fb).cloned() else { return };
-        if self.declares_en(&pou) {
-            return;
-        }
         self.inlining.push(fb.to_string());
-        let table = self.variables(&pou, inst, Some(decl));
+        let mut table = self.variables(&pou, inst, Some(decl));
         self.inlining.pop();
+        // An `ENO` the body uses without declaring it: matiec declares it, TRUE at first.
+        if !table.contains_key("ENO") && self.mentions_eno(&pou) {
+            let name = self.hidden(inst, "ENO");
+            self.starts.push(name.clone());
+            table.insert("ENO".into(), Sym { name, ty: Ty::Bool, span: pou.name.span });
+        }
         self.instances.insert(inst.to_string(), table);
     }
 
-    /// Whether `pou` declares `EN` or `ENO`, refused: matiec gives every function block
-    /// and function both, and skips the body (`ENO` FALSE) while `EN` is FALSE, which
-    /// the inlined body, always run, does not follow.
-    fn declares_en(&mut self, pou: &ast::Pou) -> bool {
-        let en = pou.vars.iter().find(|v| matches!(v.name.key().as_str(), "EN" | "ENO"));
-        if let Some(v) = en {
-            self.refuse(
+    /// Whether the body of `pou` names `ENO` (matiec's implicit `ENO` is then a variable
+    /// of it; a word `ENO` in a comment or in a nested call's `ENO =>` counts too, which
+    /// only adds a bit that nothing else writes).
+    fn mentions_eno(&self, pou: &ast::Pou) -> bool {
+        let text = self.text(pou.span).to_ascii_uppercase();
+        let word = |c: char| c.is_ascii_alphanumeric() || c == '_';
+        text.match_indices("ENO")
+            .any(|(k, _)| !text[..k].ends_with(word) && !text[k + 3..].starts_with(word))
+    }
+
+    /// Whether the declaration `v` of `pou` is an `EN` or `ENO` matiec accepts: `EN` a
+    /// `VAR_INPUT` `BOOL` with its initial value, `ENO` a `VAR_OUTPUT` `BOOL` without
+    /// one (`EN : BOOL := TRUE;`, `ENO : BOOL;`); a located error otherwise.
+    fn en_eno_declaration(&mut self, pou: &ast::Pou, v: &ast::VarDecl) -> bool {
+        let (class, init) = match v.name.key().as_str() {
+            "EN" => (VarClass::Input, true),
+            "ENO" => (VarClass::Output, false),
+            _ => return true,
+        };
+        let fits = pou.kind != PouKind::Program
+            && v.class == class
+            && v.ty.key() == "BOOL"
+            && v.init.is_some() == init
+            && v.location.is_none();
+        if !fits {
+            let shape = if init {
+                "VAR_INPUT EN : BOOL := TRUE; END_VAR"
+            } else {
+                "VAR_OUTPUT ENO : BOOL; END_VAR"
+            };
+            self.errors.push(StError::new(
                 v.name.span,
-                &format!("the `{}` of `{}`", v.name.name, pou.name.name),
-                "matiec skips the body while EN is FALSE; declare another name",
-            );
+                format!(
+                    "matiec accepts `{}` of a function block or function only as `{shape}`",
+                    v.name.name
+                ),
+                "declare it so, or use another name",
+            ));
         }
-        en.is_some()
+        fits
     }
 
     /// The variables of `pou` named `prefix_Var`: an instance's (`instance`, its
@@ -120,7 +150,22 @@ impl Lowering<'_> {
                 self.twice(v, prev);
                 continue;
             }
-            let name = self.unique(&format!("{prefix}_{}", v.name.name));
+            if !self.en_eno_declaration(pou, v) {
+                continue;
+            }
+            // An instance's `EN` is the bit its calls' `EN := …` write
+            // ([`Lowering::enable`]), its `ENO` the bit each call sets from it.
+            let name = match (key.as_str(), fresh) {
+                ("EN" | "ENO", false) => self.hidden(prefix, &key),
+                _ => self.unique(&format!("{prefix}_{}", v.name.name)),
+            };
+            match (key.as_str(), fresh) {
+                ("EN", false) if !starts_true(v) => {
+                    self.en_off.insert(prefix.to_ascii_uppercase());
+                }
+                ("ENO", false) => self.starts.push(name.clone()),
+                _ => {}
+            }
             let ty = self.type_of(&v.ty);
             match (&ty, v.init.as_ref().map(|e| &e.kind)) {
                 (Ty::Bool, Some(ExprKind::Bool(true))) if !fresh => self.starts.push(name.clone()),
@@ -194,6 +239,9 @@ impl Lowering<'_> {
 
     /// The inputs of a call: `(variable, value)` for each BOOL input given (a positional
     /// argument takes the next `VAR_INPUT`), evaluated in the caller's scope.
+    /// A declared `EN` is an input like the others (given by position too, as matiec
+    /// gives it) for a function; a function block's is read by the call
+    /// ([`Lowering::enable`]).
     fn inputs_of(
         &mut self,
         pou: &ast::Pou,
@@ -204,6 +252,7 @@ impl Lowering<'_> {
     ) -> Vec<(String, BoolExpr)> {
         let order: Vec<&ast::VarDecl> =
             pou.vars.iter().filter(|v| v.class == VarClass::Input).collect();
+        let en_input = pou.kind == PouKind::Function && names.contains_key("EN");
         let mut given = Vec::new();
         let mut next = 0;
         if let Some(v) = first {
@@ -214,9 +263,20 @@ impl Lowering<'_> {
         }
         for a in args {
             let (key, e, span) = match a {
-                // A function block's, read by the call ([`Lowering::enable`]).
+                Arg::Input(n, e) if en_input && n.key() == "EN" => (n.key(), e, n.span),
                 _ if super::enable::is_en_eno(a) => continue,
                 Arg::Input(n, e) => (n.key(), e, n.span),
+                Arg::Positional(e)
+                    if !en_input && order.get(next).is_some_and(|d| d.name.key() == "EN") =>
+                {
+                    self.refuse(
+                        e.span,
+                        &format!("`{}`'s declared EN given by position", pou.name.name),
+                        "give it as `EN := …`",
+                    );
+                    next += 1;
+                    continue;
+                }
                 Arg::Positional(e) => {
                     let Some(d) = order.get(next) else {
                         self.errors.push(StError::new(
@@ -287,7 +347,8 @@ impl Lowering<'_> {
         }
         let Some(pou) = self.user.get(fb).cloned() else { return Vec::new() };
         let names = self.instances.get(inst).cloned().unwrap_or_default();
-        let en = self.enable(inst, args);
+        let mut en = self.enable(inst, args);
+        en.eno_bit = names.get("ENO").map(|s| s.name.clone());
         let mut before = Vec::new();
         let writes = self.inputs_of(&pou, &names, None, args, &mut before);
         for (target, value) in writes {
@@ -300,31 +361,47 @@ impl Lowering<'_> {
         self.run_known(&before);
         self.run_known(&body);
         body.extend(self.body(&pou, names.clone()));
-        let out = self.output_copies(&pou, &names, args, span);
+        let out = self.output_copies(&pou, &names, args, span, true);
+        // A declared `ENO` is copied among the outputs, in its place.
+        if pou.vars.iter().any(|v| v.class == VarClass::Output && v.name.key() == "ENO") {
+            en.eno_among_outputs();
+        }
         self.enabled_call(en, [before, body, out], span)
     }
 
-    /// The copies of a call's `=>` outputs (`ENO` is the caller's business) from the
-    /// variables `names` gives the VAR_OUTPUTs of `pou`, after its body.
+    /// The copies of a call's `=>` outputs from the variables `names` gives the
+    /// VAR_OUTPUTs of `pou`, after its body, in the order matiec copies them: the
+    /// outputs' declaration order (whatever the call's). `ENO` is the caller's business
+    /// ([`Lowering::enabled_call`], [`Lowering::eno_copies`]), but a function block's
+    /// declared `ENO` (`with_eno`), copied in its place.
     fn output_copies(
         &mut self,
         pou: &ast::Pou,
         names: &BTreeMap<String, Sym>,
         args: &[Arg],
         span: Span,
+        with_eno: bool,
     ) -> Vec<Stmt> {
-        let mut out = Vec::new();
+        let outputs: Vec<String> =
+            pou.vars.iter().filter(|v| v.class == VarClass::Output).map(|v| v.name.key()).collect();
+        let mut given: Vec<(Option<usize>, &Ident, bool, &ast::Expr)> = Vec::new();
         for a in args {
             let Arg::Output(pin, negated, target) = a else { continue };
-            if super::enable::is_en_eno(a) {
+            let rank = outputs.iter().position(|o| *o == pin.key());
+            if super::enable::is_en_eno(a) && !(with_eno && rank.is_some()) {
                 continue;
             }
-            let declared =
-                pou.vars.iter().any(|v| v.class == VarClass::Output && v.name.key() == pin.key());
+            given.push((rank, pin, *negated, target));
+        }
+        // Stable: two copies of one output stay in the call's order.
+        given.sort_by_key(|g| g.0.unwrap_or(usize::MAX));
+        let mut out = Vec::new();
+        for (rank, pin, negated, target) in given {
+            let declared = rank.is_some();
             match names.get(&pin.key()) {
                 Some(Sym { ty: Ty::Bool, name, .. }) if declared => {
                     let q = BoolExpr::var(name);
-                    let value = if *negated { BoolExpr::negate(q) } else { q };
+                    let value = if negated { BoolExpr::negate(q) } else { q };
                     out.extend(self.assign_value(target, value, span));
                 }
                 Some(Sym { ty: Ty::Int(t), name, .. }) if declared && !negated => {
@@ -369,12 +446,15 @@ impl Lowering<'_> {
             return None;
         }
         let pou = self.user.get(&f.key()).cloned()?;
-        if self.declares_en(&pou) {
-            return None;
-        }
         self.calls += 1;
         let prefix = format!("{}_{}", pou.name.name, self.calls);
         let mut names = self.variables(&pou, &prefix, None);
+        // Its `ENO`, declared or used undeclared: TRUE at each call, as matiec starts it.
+        if !names.contains_key("ENO") && self.mentions_eno(&pou) {
+            let name = self.unique(&format!("{prefix}_ENO"));
+            names.insert("ENO".into(), Sym { name, ty: Ty::Bool, span: pou.name.span });
+        }
+        let eno = names.get("ENO").map(|s| s.name.clone());
         let result_ty = pou.result.as_ref().map_or(Ty::Other("?".into()), |r| self.type_of(r));
         let result = self.unique(&prefix);
         names.insert(
@@ -383,8 +463,21 @@ impl Lowering<'_> {
         );
         let mut out = Vec::new();
         let writes = self.inputs_of(&pou, &names, first, args, &mut out);
+        // The `EN` of a call of a function that does not declare it.
+        let en_given = match args.iter().find(|a| matches!(a, Arg::Input(n, _) if n.key() == "EN"))
+        {
+            Some(Arg::Input(_, e)) if !names.contains_key("EN") => {
+                let v = self.bool_expr(e);
+                Some(self.temp(&mut out, v))
+            }
+            _ => None,
+        };
         // Each call starts from the initial values.
         out.extend(self.initial_writes(pou.vars.iter(), &names));
+        if let Some(n) = &eno {
+            let (target, value) = (n.clone(), BoolExpr::Const(true));
+            out.push(Stmt::Write { target, kind: WriteKind::Assign, value, span: f.span });
+        }
         if matches!(result_ty, Ty::Bool) {
             out.push(Stmt::Write {
                 target: result.clone(),
@@ -396,13 +489,24 @@ impl Lowering<'_> {
         for (target, value) in writes {
             out.push(Stmt::Write { target, kind: WriteKind::Assign, value, span: f.span });
         }
-        out.extend(self.body(&pou, names.clone()));
-        for a in args.iter().filter(|a| super::enable::is_en_eno(a)) {
-            let (Arg::Input(n, _) | Arg::Output(n, ..)) = a else { continue };
-            let what = format!("`{}` of a call of the function `{}`", n.name, pou.name.name);
-            self.refuse(n.span, &what, "call it without EN and ENO");
+        // matiec's C: `if (!EN) { *__ENO = FALSE; return <result's initial value>; }`,
+        // its outputs then left as they were; else the body, then its outputs and ENO.
+        let guard = match names.get("EN") {
+            Some(s) => Some(BoolExpr::var(&s.name)),
+            None => en_given,
+        };
+        let mut body = self.body(&pou, names.clone());
+        body.extend(self.output_copies(&pou, &names, args, f.span, false));
+        match &guard {
+            Some(g) => out.extend(Stmt::guarded(g, body, f.span)),
+            None => out.extend(body),
         }
-        out.extend(self.output_copies(&pou, &names, args, f.span));
+        let eno = match (eno, guard) {
+            (Some(n), Some(g)) => BoolExpr::and(g, BoolExpr::var(&n)),
+            (Some(n), None) => BoolExpr::var(&n),
+            (None, g) => g.unwrap_or(BoolExpr::Const(true)),
+        };
+        out.extend(self.eno_copies(args, &eno, f.span));
         self.prelude.extend(out);
         matches!(result_ty, Ty::Bool).then(|| BoolExpr::var(&result))
     }

@@ -252,6 +252,17 @@ fn text_block(
     if has_pragma(fb) {
         return Err("its body has a pragma `{…}`, C code that ii-prove cannot see".into());
     }
+    // Lowered as a program, a declared `EN` would be an input like the others and `ENO`
+    // a variable no call sets: matiec's call skips the body while `EN` is FALSE and sets
+    // `ENO` from it before the body.
+    if let Some(v) =
+        fb.vars.iter().find(|v| matches!(v.name.to_ascii_uppercase().as_str(), "EN" | "ENO"))
+    {
+        return Err(format!(
+            "it declares `{}`, which ii-prove does not follow in a block drawn in a graphical body yet",
+            v.name
+        ));
+    }
     let function = fb.kind == PouKind::Function;
     if function {
         function_check(project, fb)?;

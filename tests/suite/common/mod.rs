@@ -9,6 +9,7 @@ pub mod rng;
 pub mod scan_eval;
 pub mod sfc_gen;
 pub mod st_gen;
+pub mod st_gen_en;
 
 use std::path::{Path, PathBuf};
 

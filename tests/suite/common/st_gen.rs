@@ -1,4 +1,4 @@
-//! Random Structured Text programs for the differential tests: Boolean assignments, IF/ELSIF/ELSE, every modelled function block (TON, TOF, TP, R_TRIG, F_TRIG, SR, RS, CTU, CTD, CTUD) with formal inputs and outputs (`EN` and `ENO` in some calls; timers and edge detectors sometimes called under an IF, a timer's `PT` sometimes left out, and some instances called a second time with inputs left out), user functions and function blocks (inputs left out keep their values), FOR loops with constant bounds and WHILE/REPEAT loops counted before the scan (EXIT and CONTINUE under IF in their bodies), RETURN under IF in a program and a function block, the Boolean operators and functions, integers of every 8- to 32-bit type and a subrange of one (arithmetic, division by literals, MOD by literals and variables, conversions, MIN/MAX/LIMIT/ABS/SEL, comparisons, CASE, integer inputs), initial values, some locals of the program and the function block in `VAR_TEMP` (FALSE again at every scan or call), and a configuration giving the cycle.
+//! Random Structured Text programs for the differential tests: Boolean assignments, IF/ELSIF/ELSE, every modelled function block (TON, TOF, TP, R_TRIG, F_TRIG, SR, RS, CTU, CTD, CTUD) with formal inputs and outputs (`EN` and `ENO` in some calls; timers and edge detectors sometimes called under an IF, a timer's `PT` sometimes left out, and some instances called a second time with inputs left out), user functions and function blocks (inputs left out keep their values; some declaring `EN` and `ENO`, their bodies writing `ENO`, called with `EN` and `ENO =>`), standard and user function calls with `EN` and `ENO =>`, FOR loops with constant bounds and WHILE/REPEAT loops counted before the scan (EXIT and CONTINUE under IF in their bodies), RETURN under IF in a program and a function block, the Boolean operators and functions, integers of every 8- to 32-bit type and a subrange of one (arithmetic, division by literals, MOD by literals and variables, conversions, MIN/MAX/LIMIT/ABS/SEL, comparisons, CASE, integer inputs), initial values, some locals of the program and the function block in `VAR_TEMP` (FALSE again at every scan or call), and a configuration giving the cycle.
 #![allow(dead_code)]
 
 use super::rng::Rng;
@@ -301,6 +301,9 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
     // Which locals are `VAR_TEMP` (set to their initial values at the start of every
     // scan or call), drawn apart as well.
     let mut temp = Rng::new(seed ^ 0x7E3F);
+    // The draws of declared `EN` and `ENO`, of `EN` and `ENO =>` on user calls and of
+    // standard and user function calls with `ENO =>`, apart as well.
+    let mut en = Rng::new(seed ^ 0xE0E0);
     let n_in = 1 + rng.below(4) as usize;
     let n_local = 2 + rng.below(5) as usize;
     let inputs: Vec<String> = (0..n_in).map(|k| format!("In{k}")).collect();
@@ -438,8 +441,23 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
             ints: Vec::new(),
             int_writes: Vec::new(),
         };
-        text += "FUNCTION Fn0 : BOOL\n  VAR_INPUT\n    A, B : BOOL;\n  END_VAR\n  VAR\n    L : BOOL;\n  END_VAR\n";
+        // Perhaps a declared EN (after A and B: the calls give them by position; FALSE
+        // at first: the function runs only where a call gives EN) and ENO.
+        let en_decl = match (en.chance(30), en.chance(25)) {
+            (true, true) => "    EN : BOOL := FALSE;\n",
+            (true, false) => "    EN : BOOL := TRUE;\n",
+            _ => "",
+        };
+        let eno_decl =
+            if en.chance(30) { "  VAR_OUTPUT\n    ENO : BOOL;\n  END_VAR\n" } else { "" };
+        text += &format!(
+            "FUNCTION Fn0 : BOOL\n  VAR_INPUT\n    A, B : BOOL;\n{en_decl}  END_VAR\n{eno_decl}  VAR\n    L : BOOL;\n  END_VAR\n"
+        );
         text += &f.body("  ", 1);
+        if !eno_decl.is_empty() || en.chance(20) {
+            let (c, v) = (en.pick(&["A", "B", "L"]), en.pick(&["FALSE", "A", "NOT B"]));
+            text += &format!("  IF {c} THEN\n    ENO := {v};\n  END_IF;\n");
+        }
         text += &format!("  Fn0 := {};\nEND_FUNCTION\n\n", f.expr(2));
         g.funcs.push("Fn0".into());
     }
@@ -461,7 +479,18 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
             int_writes: Vec::new(),
         };
         let init = if f.rng.chance(50) { " := TRUE" } else { "" };
-        text += "FUNCTION_BLOCK Fb0\n  VAR_INPUT\n    I0, I1 : BOOL;\n  END_VAR\n  VAR_OUTPUT\n    O0, O1 : BOOL;\n  END_VAR\n";
+        // Perhaps a declared EN (FALSE at first: an instance runs only once a call gives
+        // it TRUE) and ENO, and a body that clears or sets ENO.
+        let en_decl = match (en.chance(40), en.chance(25)) {
+            (true, true) => "    EN : BOOL := FALSE;\n",
+            (true, false) => "    EN : BOOL := TRUE;\n",
+            _ => "",
+        };
+        let eno_decl = if en.chance(40) { "    ENO : BOOL;\n" } else { "" };
+        let eno_write = !eno_decl.is_empty() || en.chance(20);
+        text += &format!(
+            "FUNCTION_BLOCK Fb0\n  VAR_INPUT\n{en_decl}    I0, I1 : BOOL;\n  END_VAR\n  VAR_OUTPUT\n{eno_decl}    O0, O1 : BOOL;\n  END_VAR\n"
+        );
         // matiec reads no initial value in `VAR_TEMP` (as IEC 61131-3 writes it).
         let section = match temp.chance(35) {
             true if init.is_empty() => "VAR_TEMP",
@@ -484,6 +513,10 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
             text += &format!("  IF {} THEN\n    RETURN;\n  END_IF;\n", f.expr(1));
         }
         text += &f.body("  ", 1);
+        if eno_write {
+            let (c, v) = (en.pick(&["I0", "I1", "M", "O0"]), en.pick(&["FALSE", "TRUE", "NOT I1"]));
+            text += &format!("  IF {c} THEN\n    ENO := {v};\n  END_IF;\n");
+        }
         text += "END_FUNCTION_BLOCK\n\n";
         for k in 0..1 + g.rng.below(2) {
             let u = format!("U{k}");
@@ -491,12 +524,21 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
             g.reads.push(format!("{u}.O0"));
             g.reads.push(format!("{u}.O1"));
             user_bits.extend(["O0", "O1", "M"].iter().map(|v| format!("{u}_{v}")));
+            if eno_write {
+                user_bits.push(format!("{u}_ENO"));
+            }
             let mut args = vec![format!("I0 := {}", g.expr(1))];
             if g.rng.chance(70) {
                 args.push(format!("I1 := {}", g.expr(1)));
             }
             if g.rng.chance(40) {
                 args.push(format!("O1 => {}", g.rng.pick(&locals)));
+            }
+            if en.chance(35) || en_decl.contains("FALSE") && en.chance(60) {
+                args.insert(0, format!("EN := {}", en.pick(&g.reads)));
+            }
+            if en.chance(40) {
+                args.push(format!("ENO => {}", en.pick(&locals)));
             }
             user_calls.push(format!("  {u}({});\n", args.join(", ")));
         }
@@ -760,6 +802,8 @@ pub fn program_with(seed: u64, negated_outputs: bool) -> Generated {
     for c in calls {
         text += &c;
     }
+    text +=
+        &super::st_gen_en::function_calls(&mut en, &inputs, &locals, &int_vars, &ranged, &g.funcs);
     // A RETURN after the calls (a call it may skip would be a timer run on some scans).
     if g.rng.chance(20) {
         text += &format!("  IF {} THEN\n    RETURN;\n  END_IF;\n", g.expr(1));

@@ -399,10 +399,8 @@ pub(super) fn check_pou(
                         }
                         program.inputs.extend(child.inputs.iter().cloned());
                         program.latches.extend(child.latches.clone());
-                        // Its ENO, where its body declares neither EN nor ENO.
-                        let own = ["EN", "ENO"].iter().any(|n| child.vars.contains_key(*n));
-                        if let Some(inst) =
-                            instance.as_ref().filter(|_| !own && en_drawn(inputs, outputs))
+                        // Its ENO.
+                        if let Some(inst) = instance.as_ref().filter(|_| en_drawn(inputs, outputs))
                         {
                             let name = program
                                 .vars
@@ -488,6 +486,7 @@ pub(super) fn check_pou(
                                          outputs are unconstrained signals",
                                         opaque_why
                                             .take()
+                                            .or_else(|| own_en_eno(project, type_name))
                                             .map_or(String::new(), |w| format!(" ({w})"))
                                     ),
                                 },
@@ -665,6 +664,9 @@ fn inline(
     if !graphical || !typed || fb.vars.iter().any(|v| v.class == VarClass::InOut) {
         return None;
     }
+    if declares_en_eno(fb) {
+        return None;
+    }
     if depth + 1 > MAX_INLINE_DEPTH {
         return Some(Err(vec![PlcError::Unsupported {
             span,
@@ -805,6 +807,23 @@ fn wired_duration(program: &PlcProgram, pin: &PinIn) -> Option<u64> {
 
 /// Whether a block is drawn with its `EN` wired (or given) or its `ENO`: a function
 /// block's call then writes the instance's ENO.
+/// Whether the user block `fb` declares `EN` or `ENO` itself: matiec's call then skips
+/// its body while that `EN` is FALSE (also where none is wired and it is declared
+/// `:= FALSE`), and the body may clear `ENO`, which the inlined body does not follow.
+fn declares_en_eno(fb: &Pou) -> bool {
+    fb.vars.iter().any(|v| v.name.eq_ignore_ascii_case("EN") || v.name.eq_ignore_ascii_case("ENO"))
+}
+
+/// Why the graphical user block `type_name` is not inlined, where it declares `EN` or
+/// `ENO` ([`declares_en_eno`]).
+fn own_en_eno(project: &Project, type_name: &str) -> Option<String> {
+    let fb = project.pous.iter().find(|p| p.name.eq_ignore_ascii_case(type_name))?;
+    let graphical = fb.body.as_ref().is_some_and(|b| matches!(b.lang, Lang::Ld | Lang::Fbd));
+    (graphical && declares_en_eno(fb)).then(|| {
+        "it declares EN or ENO, whose run ii-prove does not follow in a graphical body yet".into()
+    })
+}
+
 fn en_drawn(inputs: &[PinIn], outputs: &[PinOut]) -> bool {
     inputs
         .iter()
