@@ -805,8 +805,6 @@ fn wired_duration(program: &PlcProgram, pin: &PinIn) -> Option<u64> {
     }
 }
 
-/// Whether a block is drawn with its `EN` wired (or given) or its `ENO`: a function
-/// block's call then writes the instance's ENO.
 /// Whether the user block `fb` declares `EN` or `ENO` itself: matiec's call then skips
 /// its body while that `EN` is FALSE (also where none is wired and it is declared
 /// `:= FALSE`), and the body may clear `ENO`, which the inlined body does not follow.
@@ -824,6 +822,8 @@ fn own_en_eno(project: &Project, type_name: &str) -> Option<String> {
     })
 }
 
+/// Whether a block is drawn with its `EN` wired (or given) or its `ENO`: a function
+/// block's call then writes the instance's ENO.
 fn en_drawn(inputs: &[PinIn], outputs: &[PinOut]) -> bool {
     inputs
         .iter()
